@@ -1,0 +1,104 @@
+// Writes every point cloud it receives (`points`) as DIR/NNNNNN.ply (or KITTI .bin) and every mesh
+// chunk (`mesh`) as DIR/mesh_<local map id>.ply (the latest revision of each chunk).
+#include <cstdio>
+#include <filesystem>
+
+#include "common/convert/geometry.hpp"
+#include "common/convert/pointcloud2.hpp"
+#include "common/core/io_error.hpp"
+#include "common/core/kitti_io.hpp"
+#include "common/core/ply_io.hpp"
+#include "runtime/component.hpp"
+
+namespace ltm::sinks {
+namespace {
+
+using runtime::PathCheck;
+using runtime::TopicRole;
+
+class CloudWriter : public runtime::Component {
+public:
+    explicit CloudWriter(runtime::ComponentContext& ctx) : ctx_(ctx) {
+        auto& p = ctx.params();
+        dir_ = p.get<std::string>("dir", "");
+        if (dir_.empty()) p.fail("dir", "required parameter is missing (the output folder)");
+        std::error_code ec;
+        std::filesystem::create_directories(dir_, ec);
+        if (ec) p.fail("dir", "cannot create " + dir_ + ": " + ec.message());
+        format_ = p.get<std::string>("format", "ply");
+        if (format_ != "ply" && format_ != "bin") p.fail("format", "expected ply or bin, got '" + format_ + "'");
+        every_ = p.get<int>("every", 1);
+        if (every_ < 1) p.fail("every", "must be at least 1");
+        ctx.subscribe<msg::PointCloud2>("points", TopicRole::kSensor,
+                                        [this](const msg::PointCloud2& m) { on_points(m); });
+        ctx.subscribe<msg::Mesh>("mesh", TopicRole::kMap, [this](const msg::Mesh& m) { on_mesh(m); });
+    }
+
+    void on_shutdown() override {
+        ctx_.log().info("wrote " + std::to_string(written_) + " clouds and " + std::to_string(meshes_) +
+                        " mesh chunks to " + dir_ + (rejected_ ? " (" + std::to_string(rejected_) + " rejected)" : ""));
+    }
+
+private:
+    void on_points(const msg::PointCloud2& m) {
+        const std::size_t index = received_++;
+        if (index % every_ != 0) return;
+        common::PointCloud cloud;
+        const std::string err = convert::from_pointcloud2(m, cloud);
+        if (!err.empty()) {
+            if (++rejected_ <= 5) ctx_.log().warn("rejected point cloud " + std::to_string(index) + ": " + err);
+            return;
+        }
+        char name[32];
+        std::snprintf(name, sizeof name, "%06zu.%s", index, format_.c_str());
+        const std::string path = dir_ + "/" + name;
+        try {
+            if (format_ == "bin") {
+                common::write_kitti_bin(path, cloud);
+            } else {
+                common::PlyCloud ply;
+                ply.points = std::move(cloud.points);
+                ply.intensity = std::move(cloud.intensity);
+                common::write_ply(path, ply);
+            }
+            ++written_;
+        } catch (const common::IoError& e) {
+            ctx_.log().error(e.what());
+        }
+    }
+
+    void on_mesh(const msg::Mesh& m) {
+        if (m.vertices._length % 3 || m.triangles._length % 3 ||
+            (m.normals._length && m.normals._length != m.vertices._length)) {
+            ++rejected_;
+            ctx_.log().warn("rejected mesh chunk " + std::to_string(m.local_map_id) + ": sizes not multiples of 3");
+            return;
+        }
+        common::PlyMesh mesh;
+        const Eigen::Isometry3f T = convert::to_isometry(m.anchor).cast<float>();
+        for (std::uint32_t i = 0; i < m.vertices._length; i += 3)
+            mesh.vertices.push_back(T * Eigen::Vector3f(m.vertices._buffer[i], m.vertices._buffer[i + 1], m.vertices._buffer[i + 2]));
+        for (std::uint32_t i = 0; i < m.normals._length; i += 3)
+            mesh.normals.push_back(T.linear() * Eigen::Vector3f(m.normals._buffer[i], m.normals._buffer[i + 1], m.normals._buffer[i + 2]));
+        for (std::uint32_t i = 0; i < m.triangles._length; i += 3)
+            mesh.triangles.emplace_back(m.triangles._buffer[i], m.triangles._buffer[i + 1], m.triangles._buffer[i + 2]);
+        try {
+            common::write_ply(dir_ + "/mesh_" + std::to_string(m.local_map_id) + ".ply", mesh);
+            ++meshes_;
+        } catch (const common::IoError& e) {
+            ++rejected_;
+            ctx_.log().warn(std::string("rejected mesh chunk: ") + e.what());
+        }
+    }
+
+    runtime::ComponentContext& ctx_;
+    std::string dir_, format_;
+    int every_ = 1;
+    std::size_t received_ = 0, written_ = 0, meshes_ = 0, rejected_ = 0;
+};
+
+}  // namespace
+}  // namespace ltm::sinks
+
+LTM_REGISTER_COMPONENT(ltm::sinks::CloudWriter, "cloud_writer",
+                       "writes received point clouds (PLY or KITTI .bin) and mesh chunks (PLY) to a folder")

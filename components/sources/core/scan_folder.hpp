@@ -1,0 +1,46 @@
+#pragma once
+// A folder of recorded scans: KITTI layout (velodyne/*.bin, times.txt, optional poses) or PCD/PLY
+// files (optional times.txt and KITTI-format poses file). Scans load one at a time.
+#include <Eigen/Geometry>
+#include <string>
+#include <vector>
+
+#include "common/core/point_cloud.hpp"
+#include "common/core/trajectory_io.hpp"
+
+namespace ltm::sources {
+
+enum class ScanFormat { kKittiBin, kCloudFiles };
+
+struct ScanFolderConfig {
+    std::string path;               // the folder (KITTI: the sequence or its velodyne/)
+    ScanFormat format = ScanFormat::kKittiBin;
+    std::string times_file;         // "" : <sequence>/times.txt when present
+    std::string poses_file;         // "" : none (KITTI format, one line a scan)
+    double default_period_s = 0.1;  // scan spacing when there is no times file
+    std::size_t start = 0;          // first scan
+    std::size_t count = 0;          // 0: all from start
+};
+
+class ScanFolder {
+public:
+    // Throws common::IoError (one line) when the folder, times or poses are missing or malformed,
+    // or when they disagree with the number of scans.
+    explicit ScanFolder(const ScanFolderConfig& config);
+
+    std::size_t size() const { return files_.size(); }
+    double stamp(std::size_t i) const { return times_[i]; }
+    bool has_poses() const { return !poses_.empty(); }
+    const Eigen::Isometry3d& pose(std::size_t i) const { return poses_[i]; }
+    const std::string& file(std::size_t i) const { return files_[i]; }
+    // Loads scan i with its stamp. Throws common::IoError for a damaged file.
+    common::PointCloud load(std::size_t i) const;
+
+private:
+    ScanFolderConfig config_;
+    std::vector<std::string> files_;
+    std::vector<double> times_;
+    common::PoseList poses_;
+};
+
+}  // namespace ltm::sources

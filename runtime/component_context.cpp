@@ -1,0 +1,144 @@
+#include "runtime/component_context.hpp"
+
+#include "runtime/dds_error.hpp"
+#include "runtime/topic_names.hpp"
+
+namespace ltm::runtime {
+
+ComponentContext::ComponentContext(Domain& domain, const LaunchConfig& config, const ComponentSpec& spec)
+    : domain_(domain), config_(config), spec_(spec), params_(spec.params, config.file, spec.name),
+      log_(spec.name) {
+    for (const auto& [from, to] : spec_.remaps) remap_used_[from] = false;
+}
+
+ComponentContext::~ComponentContext() {
+    // Readers and writers first (their read conditions go with them); topics stay with the domain.
+    for (auto& s : subscriptions_) dds_delete(s.reader);
+    for (auto& w : writers_) dds_delete(w->writer);
+}
+
+void ComponentContext::fail_topic(const std::string& topic, const std::string& problem) const {
+    auto it = spec_.remap_lines.find(topic);
+    throw ConfigError(config_.file, it != spec_.remap_lines.end() ? it->second : spec_.line,
+                      spec_.name + ".topic " + topic, problem);
+}
+
+std::string ComponentContext::resolve(const std::string& topic) {
+    std::string name = topic;
+    if (auto it = spec_.remaps.find(topic); it != spec_.remaps.end()) {
+        name = it->second;
+        remap_used_[topic] = true;
+    }
+    std::string err;
+    const std::string abs = resolve_name(name, config_.ns, spec_.name, err);
+    if (abs.empty()) fail_topic(topic, err);
+    return abs;
+}
+
+void ComponentContext::check_remaps_used() const {
+    for (const auto& [from, used] : remap_used_) {
+        if (used) continue;
+        std::string topics;
+        for (const auto& s : subscriptions_) topics += (topics.empty() ? "" : ", ") + s.topic;
+        for (const auto& w : writers_) topics += (topics.empty() ? "" : ", ") + w->topic;
+        throw ConfigError(config_.file, spec_.remap_lines.at(from), spec_.name + ".remap." + from,
+                          "component type '" + spec_.type + "' has no topic '" + from + "'" +
+                              (topics.empty() ? std::string(" (it has no topics)") : " (its topics: " + topics + ")"));
+    }
+}
+
+void ComponentContext::add_subscription(const std::string& topic, TopicRole role,
+                                        const dds_topic_descriptor_t* desc,
+                                        std::function<void(const void*)> handler) {
+    const std::string abs = resolve(topic);
+    dds_entity_t t;
+    try {
+        t = domain_.topic(dds_topic_name(abs), desc);
+    } catch (const std::invalid_argument& e) {
+        fail_topic(topic, e.what());
+    }
+    Qos qos;
+    fill_reader_qos(domain_.profile(abs, role), qos.get());
+    Subscription s;
+    s.topic = abs;
+    s.reader = check_dds(dds_create_reader(domain_.participant(), t, qos.get(), nullptr),
+                         "creating a reader for " + abs);
+    s.readcond = check_dds(dds_create_readcondition(s.reader, DDS_ANY_STATE), "creating a read condition");
+    s.handler = std::move(handler);
+    subscriptions_.push_back(std::move(s));
+}
+
+std::shared_ptr<WriterHandle> ComponentContext::add_writer(const std::string& topic, TopicRole role,
+                                                           const dds_topic_descriptor_t* desc) {
+    const std::string abs = resolve(topic);
+    dds_entity_t t;
+    try {
+        t = domain_.topic(dds_topic_name(abs), desc);
+    } catch (const std::invalid_argument& e) {
+        fail_topic(topic, e.what());
+    }
+    auto h = std::make_shared<WriterHandle>();
+    h->profile = domain_.profile(abs, role);
+    Qos qos;
+    fill_writer_qos(h->profile, qos.get());
+    h->writer = check_dds(dds_create_writer(domain_.participant(), t, qos.get(), nullptr),
+                          "creating a writer for " + abs);
+    h->topic = abs;
+    h->stop = &stop_;
+    h->log = log_;
+    writers_.push_back(h);
+    return h;
+}
+
+void ComponentContext::add_timer(double period_s, std::function<void()> fn) {
+    Timer t;
+    t.period_s = period_s < 0 ? 0 : period_s;
+    t.next = std::chrono::steady_clock::now();
+    t.fn = std::move(fn);
+    timers_.push_back(std::move(t));
+}
+
+void ComponentContext::request_stop() {
+    {
+        std::lock_guard<std::mutex> lock(sleep_mutex_);
+        stop_ = true;
+    }
+    sleep_cv_.notify_all();
+}
+
+bool ComponentContext::sleep_until(std::chrono::steady_clock::time_point deadline) {
+    std::unique_lock<std::mutex> lock(sleep_mutex_);
+    return !sleep_cv_.wait_until(lock, deadline, [this] { return stop_.load(); });
+}
+
+bool ComponentContext::has_role_override(const std::string& topic) {
+    const std::string abs = resolve(topic);
+    return domain_.role(abs, TopicRole::kSensor) != TopicRole::kSensor ||
+           domain_.role(abs, TopicRole::kState) != TopicRole::kState;
+}
+
+void ComponentContext::finished() {
+    // Reliable readers elsewhere get everything before the host may decide to stop.
+    for (const auto& w : writers_)
+        if (w->profile.reliable) dds_wait_for_acks(w->writer, DDS_SECS(2));
+    finished_ = true;
+}
+
+bool write_sample(WriterHandle& h, const void* sample) {
+    while (true) {
+        const dds_return_t rc = dds_write(h.writer, sample);
+        if (rc == DDS_RETCODE_OK) {
+            ++h.published;
+            return true;
+        }
+        // Back-pressure: a keep-all reader's queue is full. Retry until it drains or we stop.
+        if (rc == DDS_RETCODE_TIMEOUT && h.profile.keep_all && !(h.stop && h.stop->load())) continue;
+        const std::uint64_t n = ++h.failed;
+        if (n <= 3 || (n & (n - 1)) == 0)
+            h.log.warn("publishing on " + h.topic + " failed (" + dds_strretcode(rc) + "), " +
+                       std::to_string(n) + " so far");
+        return false;
+    }
+}
+
+}  // namespace ltm::runtime

@@ -1,0 +1,111 @@
+#pragma once
+// What a component gets from its host: its parameters, topics (with remaps, namespace and QoS
+// applied), timers, a logger and a stop flag.
+#include <dds/dds.h>
+
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <mutex>
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "runtime/domain.hpp"
+#include "runtime/logging.hpp"
+#include "runtime/messages.hpp"
+#include "runtime/parameters.hpp"
+#include "runtime/publisher.hpp"
+#include "runtime/qos.hpp"
+
+namespace ltm::runtime {
+
+class ComponentContext {
+public:
+    ComponentContext(Domain& domain, const LaunchConfig& config, const ComponentSpec& spec);
+    ~ComponentContext();
+    ComponentContext(const ComponentContext&) = delete;
+    ComponentContext& operator=(const ComponentContext&) = delete;
+
+    const std::string& name() const { return spec_.name; }
+    const std::string& type() const { return spec_.type; }
+    Parameters& params() { return params_; }
+    const Logger& log() const { return log_; }
+
+    // An input: `handler` runs on this component's thread for every sample taken.
+    template <class T>
+    void subscribe(const std::string& topic, TopicRole role, std::function<void(const T&)> handler) {
+        add_subscription(topic, role, MessageTraits<T>::descriptor(),
+                         [h = std::move(handler)](const void* sample) { h(*static_cast<const T*>(sample)); });
+    }
+    // An output.
+    template <class T>
+    Publisher<T> advertise(const std::string& topic, TopicRole role) {
+        return Publisher<T>(add_writer(topic, role, MessageTraits<T>::descriptor()));
+    }
+
+    // Calls `fn` every `period_s` seconds on this component's thread; period 0 calls it whenever
+    // no input is waiting (a source's production loop).
+    void add_timer(double period_s, std::function<void()> fn);
+
+    // A source produces data on its own; the host may exit once every source has finished and
+    // every component has processed its input.
+    void declare_source() { source_ = true; }
+    // Called by a source when it has published everything (waits for reliable readers' acks).
+    void finished();
+    bool is_source() const { return source_; }
+    bool is_finished() const { return finished_; }
+    bool stop_requested() const { return stop_.load(); }
+    // Sleeps until `deadline` or a stop request; false when stopped. For pacing a source.
+    bool sleep_until(std::chrono::steady_clock::time_point deadline);
+    // True when the launch config's `topics:` section sets the role of this declared topic.
+    bool has_role_override(const std::string& topic);
+
+    // The absolute ROS name a declared topic resolves to (remap and namespace applied).
+    std::string resolve(const std::string& topic);
+    // Throws ConfigError for a remap of a topic the component never declared.
+    void check_remaps_used() const;
+
+    // --- used by the runner ---
+    struct Subscription {
+        std::string topic;
+        dds_entity_t reader = 0;
+        dds_entity_t readcond = 0;
+        std::function<void(const void*)> handler;
+    };
+    struct Timer {
+        double period_s = 0;
+        std::chrono::steady_clock::time_point next;
+        std::function<void()> fn;
+    };
+    std::vector<Subscription>& subscriptions() { return subscriptions_; }
+    std::vector<Timer>& timers() { return timers_; }
+    void request_stop();
+    const std::vector<std::shared_ptr<WriterHandle>>& writers() const { return writers_; }
+
+private:
+    void add_subscription(const std::string& topic, TopicRole role, const dds_topic_descriptor_t* desc,
+                          std::function<void(const void*)> handler);
+    std::shared_ptr<WriterHandle> add_writer(const std::string& topic, TopicRole role,
+                                             const dds_topic_descriptor_t* desc);
+    [[noreturn]] void fail_topic(const std::string& topic, const std::string& problem) const;
+
+    Domain& domain_;
+    const LaunchConfig& config_;
+    ComponentSpec spec_;
+    Parameters params_;
+    Logger log_;
+    std::map<std::string, bool> remap_used_;
+    std::vector<Subscription> subscriptions_;
+    std::vector<Timer> timers_;
+    std::vector<std::shared_ptr<WriterHandle>> writers_;
+    std::atomic<bool> stop_{false};
+    std::mutex sleep_mutex_;
+    std::condition_variable sleep_cv_;
+    bool source_ = false;
+    std::atomic<bool> finished_{false};
+};
+
+}  // namespace ltm::runtime

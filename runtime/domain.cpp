@@ -1,0 +1,76 @@
+#include "runtime/domain.hpp"
+
+#include <stdexcept>
+
+#include "runtime/dds_error.hpp"
+#include "runtime/topic_names.hpp"
+
+namespace ltm::runtime {
+
+std::string cyclone_xml(const DdsSettings& dds) {
+    std::string xml = "<CycloneDDS><Domain Id=\"any\"><General>";
+    if (!dds.interfaces.empty()) {
+        xml += "<Interfaces>";
+        for (const auto& i : dds.interfaces) xml += "<NetworkInterface name=\"" + i + "\"/>";
+        xml += "</Interfaces>";
+    }
+    xml += std::string("<AllowMulticast>") + (dds.multicast ? "default" : "false") + "</AllowMulticast>";
+    xml += "</General><Discovery>";
+    if (!dds.peers.empty()) {
+        xml += "<ParticipantIndex>auto</ParticipantIndex><MaxAutoParticipantIndex>" +
+               std::to_string(dds.max_participant_index) + "</MaxAutoParticipantIndex><Peers>";
+        for (const auto& p : dds.peers) xml += "<Peer Address=\"" + p + "\"/>";
+        xml += "</Peers>";
+    }
+    xml += "</Discovery>" + dds.extra_xml + "</Domain></CycloneDDS>";
+    return xml;
+}
+
+Domain::Domain(const LaunchConfig& config) : config_(config), domain_id_(config.domain_id) {
+    if (config.dds.custom) {
+        const std::string xml = cyclone_xml(config.dds);
+        domain_ = dds_create_domain(static_cast<dds_domainid_t>(domain_id_), xml.c_str());
+        check_dds(domain_, "creating DDS domain " + std::to_string(domain_id_) + " from the launch config's dds settings");
+    }
+    participant_ = dds_create_participant(static_cast<dds_domainid_t>(domain_id_), nullptr, nullptr);
+    if (participant_ < 0) {
+        const dds_return_t rc = participant_;
+        if (domain_ > 0) dds_delete(domain_);
+        throw DdsError("creating the DDS participant on domain " + std::to_string(domain_id_), rc);
+    }
+}
+
+Domain::~Domain() {
+    dds_delete(participant_);
+    if (domain_ > 0) dds_delete(domain_);
+}
+
+dds_entity_t Domain::topic(const std::string& dds_name, const dds_topic_descriptor_t* desc) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    auto it = topics_.find(dds_name);
+    if (it != topics_.end()) {
+        if (it->second.second != desc)
+            throw std::invalid_argument("topic '" + dds_name + "' already has type " +
+                                        it->second.second->m_typename + ", not " + desc->m_typename);
+        return it->second.first;
+    }
+    const dds_entity_t t = dds_create_topic(participant_, desc, dds_name.c_str(), nullptr, nullptr);
+    check_dds(t, "creating topic " + dds_name + " (" + desc->m_typename + ")");
+    topics_[dds_name] = {t, desc};
+    return t;
+}
+
+TopicRole Domain::role(const std::string& absolute_name, TopicRole declared) const {
+    for (const auto& [name, role] : config_.topic_roles) {
+        std::string err;
+        const std::string abs = resolve_name(name, config_.ns, "", err);
+        if (abs == absolute_name) return role;
+    }
+    return declared;
+}
+
+QosProfile Domain::profile(const std::string& absolute_name, TopicRole declared) const {
+    return config_.qos.at(role(absolute_name, declared));
+}
+
+}  // namespace ltm::runtime

@@ -1,0 +1,235 @@
+#include "runtime/launch_config.hpp"
+
+#include <filesystem>
+#include <set>
+
+#include "runtime/config_error.hpp"
+#include "runtime/parameters.hpp"
+
+namespace ltm::runtime {
+namespace {
+
+int line_of(const YAML::Node& n) { return n.Mark().line + 1; }
+
+// Line of `key` inside map `map` (the key, not the value).
+int key_line(const YAML::Node& map, const std::string& key) {
+    for (const auto& kv : map)
+        if (kv.first.as<std::string>() == key) return kv.first.Mark().line + 1;
+    return line_of(map);
+}
+
+void check_keys(const std::string& file, const YAML::Node& map, const std::string& where,
+                const std::set<std::string>& known) {
+    for (const auto& kv : map) {
+        const std::string k = kv.first.as<std::string>();
+        if (!known.count(k)) {
+            std::string list;
+            for (const auto& s : known) list += (list.empty() ? "" : ", ") + s;
+            throw ConfigError(file, kv.first.Mark().line + 1, where.empty() ? k : where + "." + k,
+                              "unknown key (known: " + list + ")");
+        }
+    }
+}
+
+template <class T>
+T scalar(const std::string& file, const YAML::Node& map, const std::string& key, const std::string& where,
+         const T& fallback) {
+    const YAML::Node& cmap = map;
+    const YAML::Node n = cmap[key];
+    if (!n.IsDefined() || n.IsNull()) return fallback;
+    try {
+        if (!n.IsScalar()) throw YAML::Exception(n.Mark(), "");
+        return n.as<T>();
+    } catch (const YAML::Exception&) {
+        throw ConfigError(file, key_line(map, key), where.empty() ? key : where + "." + key,
+                          std::string("expected ") + yaml_type_name<T>());
+    }
+}
+
+std::vector<std::string> string_list(const std::string& file, const YAML::Node& map, const std::string& key,
+                                     const std::string& where) {
+    const YAML::Node& cmap = map;
+    const YAML::Node n = cmap[key];
+    std::vector<std::string> out;
+    if (!n.IsDefined() || n.IsNull()) return out;
+    if (!n.IsSequence())
+        throw ConfigError(file, key_line(map, key), where + "." + key, "expected a list of strings");
+    for (const auto& e : n) {
+        if (!e.IsScalar()) throw ConfigError(file, line_of(e), where + "." + key, "expected a list of strings");
+        out.push_back(e.as<std::string>());
+    }
+    return out;
+}
+
+void set_dotted(YAML::Node node, const std::string& dotted, const YAML::Node& value) {
+    const std::size_t dot = dotted.find('.');
+    if (dot == std::string::npos) {
+        node[dotted] = value;
+        return;
+    }
+    YAML::Node child = node[dotted.substr(0, dot)];
+    if (!child.IsMap()) child = YAML::Node(YAML::NodeType::Map);
+    set_dotted(child, dotted.substr(dot + 1), value);
+    node[dotted.substr(0, dot)] = child;
+}
+
+void apply_override(YAML::Node root, const std::string& arg) {
+    const std::size_t eq = arg.find('=');
+    if (eq == std::string::npos || eq == 0)
+        throw ConfigError("<command line>", 0, "--set " + arg, "expected KEY=VALUE");
+    const std::string key = arg.substr(0, eq);
+    YAML::Node value;
+    try {
+        value = YAML::Load(arg.substr(eq + 1));
+    } catch (const YAML::Exception& e) {
+        throw ConfigError("<command line>", 0, "--set " + key, "value is not valid YAML");
+    }
+    const std::size_t dot = key.find('.');
+    const YAML::Node& croot = root;
+    if (dot != std::string::npos && croot["components"].IsSequence()) {
+        const std::string comp = key.substr(0, dot);
+        for (auto entry : croot["components"]) {
+            const YAML::Node& centry = entry;
+            YAML::Node name = centry.IsMap() ? centry["name"] : YAML::Node();
+            if (!name.IsDefined() || !name.IsScalar()) name.reset(centry.IsMap() ? centry["type"] : YAML::Node());
+            if (name.IsDefined() && name.IsScalar() && name.as<std::string>() == comp) {
+                YAML::Node params = entry["params"];
+                if (!params.IsMap()) {
+                    params = YAML::Node(YAML::NodeType::Map);
+                    entry["params"] = params;
+                }
+                set_dotted(entry["params"], key.substr(dot + 1), value);
+                return;
+            }
+        }
+    }
+    if (const YAML::Node top = croot[key.substr(0, dot == std::string::npos ? key.size() : dot)];
+        dot != std::string::npos && !(top.IsDefined() && top.IsMap()))
+        throw ConfigError("<command line>", 0, "--set " + key,
+                          "no component named '" + key.substr(0, dot) + "' in the launch config");
+    set_dotted(root, key, value);
+}
+
+QosProfile load_profile(const std::string& file, const YAML::Node& n, const std::string& where, QosProfile p) {
+    if (!n.IsMap()) throw ConfigError(file, line_of(n), where, "expected a map");
+    check_keys(file, n, where, {"reliable", "transient_local", "keep_all", "depth", "max_blocking_s"});
+    p.reliable = scalar<bool>(file, n, "reliable", where, p.reliable);
+    p.transient_local = scalar<bool>(file, n, "transient_local", where, p.transient_local);
+    p.keep_all = scalar<bool>(file, n, "keep_all", where, p.keep_all);
+    p.depth = scalar<int>(file, n, "depth", where, p.depth);
+    p.max_blocking_s = scalar<double>(file, n, "max_blocking_s", where, p.max_blocking_s);
+    if (p.depth < 1) throw ConfigError(file, key_line(n, "depth"), where + ".depth", "must be at least 1");
+    if (p.max_blocking_s <= 0)
+        throw ConfigError(file, key_line(n, "max_blocking_s"), where + ".max_blocking_s", "must be positive");
+    return p;
+}
+
+}  // namespace
+
+LaunchConfig load_launch_config(const std::string& path, const std::vector<std::string>& overrides) {
+    LaunchConfig cfg;
+    cfg.file = path;
+    if (!std::filesystem::is_regular_file(path)) throw ConfigError(path, 0, "launch config", "no such file");
+    YAML::Node root;
+    try {
+        root = YAML::LoadFile(path);
+    } catch (const YAML::ParserException& e) {
+        throw ConfigError(path, e.mark.line + 1, "yaml", e.msg);
+    } catch (const YAML::Exception& e) {
+        throw ConfigError(path, 0, "yaml", e.what());
+    }
+    if (!root.IsMap()) throw ConfigError(path, 1, "launch config", "expected a map at the top level");
+    for (const auto& o : overrides) apply_override(root, o);
+    const std::string& f = path;
+    const YAML::Node& croot = root;  // const access: a missing key must not be inserted
+    check_keys(f, root, "",
+               {"domain_id", "namespace", "dds", "qos", "topics", "on_component_error", "max_restarts",
+                "exit_when_sources_done", "idle_exit_s", "shutdown_timeout_s", "components"});
+
+    cfg.domain_id = scalar<int>(f, root, "domain_id", "", 0);
+    if (cfg.domain_id < 0 || cfg.domain_id > 232)
+        throw ConfigError(f, key_line(root, "domain_id"), "domain_id", "must be 0..232");
+    cfg.ns = scalar<std::string>(f, root, "namespace", "", "");
+    cfg.max_restarts = scalar<int>(f, root, "max_restarts", "", 3);
+    cfg.exit_when_sources_done = scalar<bool>(f, root, "exit_when_sources_done", "", true);
+    cfg.idle_exit_s = scalar<double>(f, root, "idle_exit_s", "", 0.0);
+    cfg.shutdown_timeout_s = scalar<double>(f, root, "shutdown_timeout_s", "", 2.0);
+    const std::string policy = scalar<std::string>(f, root, "on_component_error", "", "stop");
+    if (policy == "stop") {
+        cfg.on_error = ErrorPolicy::kStop;
+    } else if (policy == "restart") {
+        cfg.on_error = ErrorPolicy::kRestart;
+    } else {
+        throw ConfigError(f, key_line(root, "on_component_error"), "on_component_error",
+                          "expected 'stop' or 'restart', got '" + policy + "'");
+    }
+
+    if (const YAML::Node dds = croot["dds"]; dds.IsDefined() && !dds.IsNull()) {
+        if (!dds.IsMap()) throw ConfigError(f, line_of(dds), "dds", "expected a map");
+        check_keys(f, dds, "dds", {"interfaces", "peers", "multicast", "max_participant_index", "extra_xml"});
+        cfg.dds.custom = true;
+        cfg.dds.interfaces = string_list(f, dds, "interfaces", "dds");
+        cfg.dds.peers = string_list(f, dds, "peers", "dds");
+        cfg.dds.multicast = scalar<bool>(f, dds, "multicast", "dds", true);
+        cfg.dds.max_participant_index = scalar<int>(f, dds, "max_participant_index", "dds", 20);
+        cfg.dds.extra_xml = scalar<std::string>(f, dds, "extra_xml", "dds", "");
+    }
+
+    for (TopicRole r : {TopicRole::kSensor, TopicRole::kState, TopicRole::kMap, TopicRole::kStream})
+        cfg.qos[r] = default_profile(r);
+    if (const YAML::Node qos = croot["qos"]; qos.IsDefined() && !qos.IsNull()) {
+        if (!qos.IsMap()) throw ConfigError(f, line_of(qos), "qos", "expected a map");
+        check_keys(f, qos, "qos", {"sensor", "state", "map", "stream"});
+        for (const auto& kv : qos) {
+            TopicRole r;
+            parse_role(kv.first.as<std::string>(), r);
+            cfg.qos[r] = load_profile(f, kv.second, "qos." + kv.first.as<std::string>(), cfg.qos[r]);
+        }
+    }
+    if (const YAML::Node topics = croot["topics"]; topics.IsDefined() && !topics.IsNull()) {
+        if (!topics.IsMap()) throw ConfigError(f, line_of(topics), "topics", "expected a map of name: role");
+        for (const auto& kv : topics) {
+            const std::string name = kv.first.as<std::string>();
+            TopicRole r;
+            if (!kv.second.IsScalar() || !parse_role(kv.second.as<std::string>(), r))
+                throw ConfigError(f, kv.first.Mark().line + 1, "topics." + name,
+                                  "expected a role: sensor, state, map or stream");
+            cfg.topic_roles[name] = r;  // resolved against the namespace by the host
+        }
+    }
+
+    const YAML::Node comps = croot["components"];
+    if (!comps.IsDefined() || !comps.IsSequence() || comps.size() == 0)
+        throw ConfigError(f, comps.IsDefined() ? line_of(comps) : 1, "components",
+                          "expected a non-empty list of components");
+    std::set<std::string> names;
+    for (const auto& entry : comps) {
+        if (!entry.IsMap()) throw ConfigError(f, line_of(entry), "components", "each entry must be a map");
+        check_keys(f, entry, "components[]", {"name", "type", "params", "remap"});
+        ComponentSpec spec;
+        spec.line = line_of(entry);
+        spec.type = scalar<std::string>(f, entry, "type", "components[]", "");
+        spec.type_line = key_line(entry, "type");
+        if (spec.type.empty()) throw ConfigError(f, spec.line, "components[].type", "missing");
+        spec.name = scalar<std::string>(f, entry, "name", "components[]", spec.type);
+        if (!names.insert(spec.name).second)
+            throw ConfigError(f, key_line(entry, "name"), spec.name, "two components with this name");
+        if (const YAML::Node params = entry["params"]; params.IsDefined()) spec.params.reset(params);
+        if (const YAML::Node remap = entry["remap"]; remap.IsDefined() && !remap.IsNull()) {
+            if (!remap.IsMap())
+                throw ConfigError(f, line_of(remap), spec.name + ".remap", "expected a map of from: to");
+            for (const auto& kv : remap) {
+                const std::string from = kv.first.as<std::string>();
+                if (!kv.second.IsScalar())
+                    throw ConfigError(f, kv.first.Mark().line + 1, spec.name + ".remap." + from,
+                                      "expected a topic name");
+                spec.remaps[from] = kv.second.as<std::string>();
+                spec.remap_lines[from] = kv.first.Mark().line + 1;
+            }
+        }
+        cfg.components.push_back(std::move(spec));
+    }
+    return cfg;
+}
+
+}  // namespace ltm::runtime

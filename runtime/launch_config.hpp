@@ -1,0 +1,54 @@
+#pragma once
+// The launch config: one host process, its DDS settings and its components (see
+// launch_configs/README.md for every key).
+#include <yaml-cpp/yaml.h>
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "runtime/qos.hpp"
+
+namespace ltm::runtime {
+
+struct DdsSettings {
+    bool custom = false;                  // false: Cyclone's defaults (CYCLONEDDS_URI honoured)
+    std::vector<std::string> interfaces;  // e.g. [lo]
+    std::vector<std::string> peers;       // unicast discovery peers, e.g. [127.0.0.1]
+    bool multicast = true;
+    int max_participant_index = 20;       // unicast discovery probes this many ports a peer
+    std::string extra_xml;                // appended inside <Domain>, for anything else
+};
+
+struct ComponentSpec {
+    std::string name;                     // instance name, unique in the host
+    std::string type;                     // registered component type
+    YAML::Node params;                    // the `params:` map (may be null)
+    std::map<std::string, std::string> remaps;  // declared topic -> new name
+    std::map<std::string, int> remap_lines;     // for error messages
+    int line = 0;                         // line of the entry
+    int type_line = 0;
+};
+
+enum class ErrorPolicy { kStop, kRestart };
+
+struct LaunchConfig {
+    std::string file;
+    int domain_id = 0;
+    std::string ns;                       // namespace of every relative topic name
+    DdsSettings dds;
+    std::map<TopicRole, QosProfile> qos;  // a profile for every role
+    std::map<std::string, TopicRole> topic_roles;  // absolute name -> role override
+    ErrorPolicy on_error = ErrorPolicy::kStop;
+    int max_restarts = 3;
+    bool exit_when_sources_done = true;   // stop once every source finished and all input is processed
+    double idle_exit_s = 0.0;             // hosts without sources: stop after this long without input (0: never)
+    double shutdown_timeout_s = 2.0;
+    std::vector<ComponentSpec> components;
+};
+
+// Reads and validates a launch config. `overrides` are "--set" arguments: "name.key=value" sets a
+// parameter of component `name`, "key=value" a top-level key. Throws ConfigError (file:line: key:).
+LaunchConfig load_launch_config(const std::string& path, const std::vector<std::string>& overrides = {});
+
+}  // namespace ltm::runtime

@@ -1,0 +1,150 @@
+#include "runtime/parameters.hpp"
+
+#include <cstdlib>
+#include <filesystem>
+
+namespace ltm::runtime {
+namespace {
+
+std::vector<std::string> split_dots(const std::string& key) {
+    std::vector<std::string> parts;
+    std::size_t start = 0;
+    while (true) {
+        const std::size_t dot = key.find('.', start);
+        parts.push_back(key.substr(start, dot - start));
+        if (dot == std::string::npos) return parts;
+        start = dot + 1;
+    }
+}
+
+// Every leaf key of a map, dotted; a nested map contributes its own leaves.
+void leaves(const YAML::Node& node, const std::string& prefix, std::vector<std::pair<std::string, YAML::Node>>& out) {
+    for (const auto& kv : node) {
+        const std::string k = prefix.empty() ? kv.first.as<std::string>() : prefix + "." + kv.first.as<std::string>();
+        if (kv.second.IsMap() && kv.second.size() > 0) {
+            leaves(kv.second, k, out);
+        } else {
+            out.emplace_back(k, kv.first);
+        }
+    }
+}
+
+}  // namespace
+
+std::string expand_env(const std::string& text) {
+    std::string out;
+    std::size_t i = 0;
+    while (i < text.size()) {
+        if (text[i] == '$' && i + 1 < text.size() && text[i + 1] == '{') {
+            const std::size_t end = text.find('}', i + 2);
+            if (end == std::string::npos) break;
+            std::string inner = text.substr(i + 2, end - i - 2), fallback;
+            const std::size_t dflt = inner.find(":-");
+            if (dflt != std::string::npos) {
+                fallback = inner.substr(dflt + 2);
+                inner = inner.substr(0, dflt);
+            }
+            const char* v = std::getenv(inner.c_str());
+            out += (v && *v) ? std::string(v) : fallback;
+            i = end + 1;
+        } else {
+            out += text[i++];
+        }
+    }
+    if (i < text.size()) out += text.substr(i);
+    return out;
+}
+
+Parameters::Parameters(YAML::Node node, std::string file, std::string prefix)
+    : root_(node), file_(std::move(file)), prefix_(std::move(prefix)),
+      used_(std::make_shared<std::set<std::string>>()) {
+    if (root_.IsDefined() && !root_.IsNull() && !root_.IsMap())
+        throw ConfigError(file_, root_.Mark().line + 1, prefix_, "parameters must be a map");
+}
+
+YAML::Node Parameters::lookup(const std::string& key) const {
+    // Const access only: a non-const operator[] would insert the key into the config.
+    YAML::Node node;
+    node.reset(root_);
+    for (const auto& part : split_dots(key)) {
+        if (!node.IsMap()) return YAML::Node(YAML::NodeType::Undefined);
+        const YAML::Node& parent = node;
+        const YAML::Node child = parent[part];
+        if (!child.IsDefined()) return YAML::Node(YAML::NodeType::Undefined);
+        node.reset(child);
+    }
+    return node;
+}
+
+bool Parameters::has(const std::string& key) const {
+    const YAML::Node n = lookup(key);
+    return n.IsDefined() && !n.IsNull();
+}
+
+int Parameters::line_of(const std::string& key) const {
+    // Line of the key itself (not of its value) when present, else of the params map.
+    const YAML::Node cur = root_;
+    if (!cur.IsDefined() || cur.IsNull()) return 0;
+    int line = cur.Mark().line + 1;
+    YAML::Node node;
+    node.reset(root_);
+    for (const auto& part : split_dots(key)) {
+        if (!node.IsMap()) break;
+        bool found = false;
+        for (const auto& kv : node) {
+            if (kv.first.as<std::string>() == part) {
+                line = kv.first.Mark().line + 1;
+                node.reset(kv.second);
+                found = true;
+                break;
+            }
+        }
+        if (!found) break;
+    }
+    return line;
+}
+
+void Parameters::fail(const std::string& key, const std::string& problem) const {
+    throw ConfigError(file_, line_of(key), full(key), problem);
+}
+
+std::string Parameters::path(const std::string& key, const std::string& fallback, PathCheck check) {
+    std::string p = get<std::string>(key, fallback);
+    if (p.empty()) return p;
+    namespace fs = std::filesystem;
+    switch (check) {
+        case PathCheck::kNone: break;
+        case PathCheck::kFileExists:
+            if (!fs::is_regular_file(p)) fail(key, "no such file: " + p);
+            break;
+        case PathCheck::kDirExists:
+            if (!fs::is_directory(p)) fail(key, "no such folder: " + p);
+            break;
+        case PathCheck::kParentExists: {
+            const fs::path parent = fs::path(p).parent_path();
+            if (!parent.empty() && !fs::is_directory(parent)) {
+                std::error_code ec;
+                fs::create_directories(parent, ec);
+                if (ec) fail(key, "cannot create folder " + parent.string() + ": " + ec.message());
+            }
+            break;
+        }
+    }
+    return p;
+}
+
+void Parameters::check_all_used() const {
+    if (!root_.IsDefined() || root_.IsNull()) return;
+    std::vector<std::pair<std::string, YAML::Node>> all;
+    leaves(root_, "", all);
+    for (const auto& [key, node] : all) {
+        if (used_->count(key)) continue;
+        std::string known;
+        for (const auto& u : *used_) known += (known.empty() ? "" : ", ") + u;
+        throw ConfigError(file_, line_of(key), full(key),
+                          "unknown parameter" + (known.empty() ? std::string(" (this component takes none)")
+                                                               : " (known: " + known + ")"));
+    }
+}
+
+}  // namespace ltm::runtime

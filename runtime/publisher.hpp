@@ -1,0 +1,47 @@
+#pragma once
+// A typed writer. publish() never throws: it returns false when the sample was not delivered
+// (stop requested while blocked on back-pressure, or a DDS error, which is logged).
+#include <dds/dds.h>
+
+#include <atomic>
+#include <memory>
+#include <string>
+
+#include "runtime/logging.hpp"
+#include "runtime/qos.hpp"
+
+namespace ltm::runtime {
+
+struct WriterHandle {
+    dds_entity_t writer = 0;
+    std::string topic;               // absolute ROS name
+    QosProfile profile;
+    const std::atomic<bool>* stop = nullptr;
+    Logger log{""};
+    std::atomic<std::uint64_t> published{0};
+    std::atomic<std::uint64_t> failed{0};
+};
+
+// Writes one sample; blocks (in slices of max_blocking_s) on a keep-all topic whose readers are full.
+bool write_sample(WriterHandle& handle, const void* sample);
+
+template <class T>
+class Publisher {
+public:
+    Publisher() = default;
+    explicit Publisher(std::shared_ptr<WriterHandle> h) : h_(std::move(h)) {}
+    bool publish(const T& message) { return h_ && write_sample(*h_, &message); }
+    bool valid() const { return h_ != nullptr; }
+    const std::string& topic() const { return h_->topic; }
+    // Readers currently matched (in this process or elsewhere).
+    std::uint32_t matched() const {
+        dds_publication_matched_status_t st{};
+        return (h_ && dds_get_publication_matched_status(h_->writer, &st) == DDS_RETCODE_OK) ? st.current_count : 0;
+    }
+    std::uint64_t published() const { return h_ ? h_->published.load() : 0; }
+
+private:
+    std::shared_ptr<WriterHandle> h_;
+};
+
+}  // namespace ltm::runtime

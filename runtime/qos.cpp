@@ -1,0 +1,79 @@
+#include "runtime/qos.hpp"
+
+namespace ltm::runtime {
+
+QosProfile default_profile(TopicRole role) {
+    QosProfile p;
+    switch (role) {
+        case TopicRole::kSensor:
+            p.reliable = false;
+            p.depth = 5;
+            break;
+        case TopicRole::kState:
+            p.depth = 50;
+            break;
+        case TopicRole::kMap:
+            p.transient_local = true;
+            p.depth = 100;
+            break;
+        case TopicRole::kStream:
+            p.keep_all = true;
+            p.depth = 8;
+            break;
+    }
+    return p;
+}
+
+const char* role_name(TopicRole role) {
+    switch (role) {
+        case TopicRole::kSensor: return "sensor";
+        case TopicRole::kState: return "state";
+        case TopicRole::kMap: return "map";
+        case TopicRole::kStream: return "stream";
+    }
+    return "?";
+}
+
+bool parse_role(const std::string& text, TopicRole& role) {
+    for (TopicRole r : {TopicRole::kSensor, TopicRole::kState, TopicRole::kMap, TopicRole::kStream}) {
+        if (text == role_name(r)) {
+            role = r;
+            return true;
+        }
+    }
+    return false;
+}
+
+namespace {
+
+void fill_common(const QosProfile& p, dds_qos_t* qos) {
+    dds_qset_reliability(qos, p.reliable ? DDS_RELIABILITY_RELIABLE : DDS_RELIABILITY_BEST_EFFORT,
+                         static_cast<dds_duration_t>(p.max_blocking_s * 1e9));
+    dds_qset_durability(qos, p.transient_local ? DDS_DURABILITY_TRANSIENT_LOCAL : DDS_DURABILITY_VOLATILE);
+    if (p.keep_all) {
+        dds_qset_history(qos, DDS_HISTORY_KEEP_ALL, 0);
+    } else {
+        dds_qset_history(qos, DDS_HISTORY_KEEP_LAST, p.depth);
+    }
+}
+
+}  // namespace
+
+void fill_writer_qos(const QosProfile& p, dds_qos_t* qos) {
+    fill_common(p, qos);
+    if (p.transient_local) {
+        // Late joiners get the last `depth` samples.
+        dds_qset_durability_service(qos, 0, DDS_HISTORY_KEEP_LAST, p.depth, DDS_LENGTH_UNLIMITED,
+                                    DDS_LENGTH_UNLIMITED, DDS_LENGTH_UNLIMITED);
+    }
+}
+
+void fill_reader_qos(const QosProfile& p, dds_qos_t* qos) {
+    fill_common(p, qos);
+    if (p.keep_all) {
+        // The bounded input queue: when it is full, the reliable writer blocks (back-pressure).
+        dds_qset_resource_limits(qos, p.depth, DDS_LENGTH_UNLIMITED, p.depth);
+    }
+}
+
+}  // namespace ltm::runtime
