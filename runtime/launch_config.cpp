@@ -61,6 +61,14 @@ std::vector<std::string> string_list(const std::string& file, const YAML::Node& 
     return out;
 }
 
+// The scalar value of `key` in `map`, "" when absent (iterates: no zombie nodes).
+std::string map_scalar(const YAML::Node& map, const std::string& key) {
+    if (!map.IsMap()) return "";
+    for (const auto& kv : map)
+        if (kv.first.as<std::string>() == key && kv.second.IsScalar()) return kv.second.as<std::string>();
+    return "";
+}
+
 void set_dotted(YAML::Node node, const std::string& dotted, const YAML::Node& value) {
     const std::size_t dot = dotted.find('.');
     if (dot == std::string::npos) {
@@ -89,10 +97,10 @@ void apply_override(YAML::Node root, const std::string& arg) {
     if (dot != std::string::npos && croot["components"].IsSequence()) {
         const std::string comp = key.substr(0, dot);
         for (auto entry : croot["components"]) {
-            const YAML::Node& centry = entry;
-            YAML::Node name = centry.IsMap() ? centry["name"] : YAML::Node();
-            if (!name.IsDefined() || !name.IsScalar()) name.reset(centry.IsMap() ? centry["type"] : YAML::Node());
-            if (name.IsDefined() && name.IsScalar() && name.as<std::string>() == comp) {
+            // A component's name defaults to its type.
+            std::string name = map_scalar(entry, "name");
+            if (name.empty()) name = map_scalar(entry, "type");
+            if (name == comp) {
                 YAML::Node params = entry["params"];
                 if (!params.IsMap()) {
                     params = YAML::Node(YAML::NodeType::Map);

@@ -1,0 +1,80 @@
+#!/usr/bin/env bash
+# ./ltm bench dds [--points N] [--count N] [--rate HZ]
+# Measures the spine: host start-up time, latency of PointCloud2 scans in one process and between
+# two processes (loopback, unicast discovery), and the CPU an idle host uses.
+set -euo pipefail
+BIN="$(cd "$(dirname "$0")" && pwd)"
+HOST="$BIN/ltm_host"
+POINTS=120000; COUNT=150; RATE=10
+while [ $# -gt 0 ]; do
+    case "$1" in
+        --points) POINTS="$2"; shift 2 ;;
+        --count) COUNT="$2"; shift 2 ;;
+        --rate) RATE="$2"; shift 2 ;;
+        *) echo "usage: ltm_bench_dds [--points N] [--count N] [--rate HZ]" >&2; exit 2 ;;
+    esac
+done
+WORK="$(mktemp -d)"
+trap 'rm -rf "$WORK"' EXIT
+DOMAIN=$(( 100 + RANDOM % 100 ))
+DDS='dds: {interfaces: [lo], multicast: false, peers: [127.0.0.1]}'
+
+source_entry="  - {name: source, type: bench_latency_source, params: {points: $POINTS, count: $COUNT, rate_hz: $RATE}}"
+sink_entry() { echo "  - {name: sink, type: bench_latency_sink, params: {report: $1}}"; }
+
+echo "== start-up: ltm_host --check on launch_configs/robot_composed.yaml (10 runs)"
+ROOT="$(cd "$BIN/../.." 2>/dev/null && pwd)"
+export LTM_ROOT="${LTM_ROOT:-$ROOT}" LTM_DATA="${LTM_DATA:-$LTM_ROOT/tests/fixtures/kitti00_mini}" LTM_OUT="$WORK/out"
+times=()
+for _ in $(seq 10); do
+    s=$(date +%s%N); "$HOST" "$LTM_ROOT/launch_configs/robot_composed.yaml" --check >/dev/null; e=$(date +%s%N)
+    times+=($(( (e - s) / 1000000 )))
+done
+printf '%s\n' "${times[@]}" | sort -n | awk '{a[NR]=$1} END {printf "   process start to all components configured: median %d ms, max %d ms\n", a[int((NR+1)/2)], a[NR]}'
+
+echo "== latency, one process: $COUNT scans of $POINTS points at $RATE Hz"
+cat > "$WORK/inproc.yaml" <<YAML
+domain_id: $DOMAIN
+$DDS
+components:
+$source_entry
+$(sink_entry "$WORK/inproc.txt")
+YAML
+"$HOST" "$WORK/inproc.yaml" --log-level warn
+echo "   $(cat "$WORK/inproc.txt")"
+
+echo "== latency, two processes on loopback (unicast discovery): same scans"
+cat > "$WORK/pub.yaml" <<YAML
+domain_id: $DOMAIN
+$DDS
+components:
+$source_entry
+YAML
+cat > "$WORK/sub.yaml" <<YAML
+domain_id: $DOMAIN
+$DDS
+idle_exit_s: 3
+components:
+$(sink_entry "$WORK/interproc.txt")
+YAML
+"$HOST" "$WORK/sub.yaml" --log-level warn & sub=$!
+"$HOST" "$WORK/pub.yaml" --log-level warn
+wait $sub
+echo "   $(cat "$WORK/interproc.txt")"
+
+echo "== idle host: trajectory and cloud writers with no input, 10 s"
+cat > "$WORK/idle.yaml" <<YAML
+domain_id: $DOMAIN
+$DDS
+components:
+  - {name: traj, type: trajectory_writer, params: {kitti_file: $WORK/idle.txt}}
+  - {name: clouds, type: cloud_writer, params: {dir: $WORK/idle_clouds}}
+YAML
+"$HOST" "$WORK/idle.yaml" --log-level warn & pid=$!
+sleep 2
+t0=$(awk '{print $14+$15}' /proc/$pid/stat)
+sleep 10
+t1=$(awk '{print $14+$15}' /proc/$pid/stat)
+kill -TERM $pid; wait $pid || true
+hz=$(getconf CLK_TCK)
+awk -v d=$((t1 - t0)) -v hz="$hz" 'BEGIN {printf "   CPU: %.2f %% of one core (%.3f s in 10 s)\n", 100 * d / hz / 10, d / hz}'

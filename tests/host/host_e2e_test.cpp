@@ -1,0 +1,278 @@
+// The host end to end, as a separate process: composition, bad configurations, signals, failure
+// policies, two processes over DDS.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <regex>
+
+#include "common/core/kitti_io.hpp"
+#include "host/process.hpp"
+
+namespace fs = std::filesystem;
+using ltm::tests::Process;
+
+namespace {
+
+const std::string kHost = std::string(LTM_BINARY_DIR) + "/bin/ltm_host";
+const std::string kTestHost = std::string(LTM_BINARY_DIR) + "/tests/ltm_test_host";
+const std::string kFixture = std::string(LTM_SOURCE_DIR) + "/tests/fixtures/kitti00_mini";
+
+// Loopback only, unicast discovery, a domain of the test's own: tests may run in parallel.
+std::string dds_section(int domain) {
+    return "domain_id: " + std::to_string(domain) +
+           "\ndds: {interfaces: [lo], multicast: false, peers: [127.0.0.1]}\n";
+}
+
+class HostTest : public ::testing::Test {
+protected:
+    void SetUp() override {
+        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        dir_ = fs::temp_directory_path() / ("ltm_host_e2e_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+    }
+    void TearDown() override {
+        if (!HasFailure()) fs::remove_all(dir_);
+    }
+    std::string write(const std::string& name, const std::string& text) {
+        const std::string path = (dir_ / name).string();
+        std::ofstream(path) << text;
+        return path;
+    }
+    std::string path(const std::string& name) const { return (dir_ / name).string(); }
+    std::size_t count_files(const std::string& sub, const std::string& ext) const {
+        std::size_t n = 0;
+        if (!fs::is_directory(dir_ / sub)) return 0;
+        for (const auto& e : fs::directory_iterator(dir_ / sub))
+            if (e.path().extension() == ext) ++n;
+        return n;
+    }
+    fs::path dir_;
+};
+
+std::size_t ply_vertices(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::string line;
+    while (std::getline(in, line) && line != "end_header")
+        if (line.rfind("element vertex ", 0) == 0) return std::stoul(line.substr(15));
+    return 0;
+}
+
+std::size_t lines(const std::string& text) {
+    std::size_t n = 0;
+    for (char c : text) n += c == '\n';
+    return n;
+}
+
+}  // namespace
+
+TEST_F(HostTest, SourceToWriterWritesExactlyNFrames) {
+    for (const std::string mode : {"fast", "realtime"}) {
+        const std::string out = "clouds_" + mode;
+        const std::string launch = write("compose_" + mode + ".yaml", dds_section(151) + R"(
+topics: {points: stream}
+components:
+  - name: player
+    type: kitti_player
+    params: {path: )" + kFixture + ", mode: " + mode + R"(, rate: 5.0}
+  - name: writer
+    type: cloud_writer
+    params: {dir: )" + path(out) + R"(}
+)");
+        Process host({kHost, launch}, path("host_" + mode));
+        ASSERT_EQ(host.wait(60), 0) << host.err();
+        const auto scans = ltm::common::list_kitti_scans(kFixture);
+        ASSERT_EQ(count_files(out, ".ply"), scans.size()) << host.err();
+        for (std::size_t i = 0; i < scans.size(); ++i) {
+            char name[32];
+            std::snprintf(name, sizeof name, "/%06zu.ply", i);
+            EXPECT_EQ(ply_vertices(path(out) + name), ltm::common::read_kitti_bin(scans[i]).size());
+        }
+    }
+}
+
+struct BadCase {
+    const char* name;
+    const char* components;     // YAML of the components list
+    const char* expected;       // regex on the single stderr line
+};
+
+void PrintTo(const BadCase& c, std::ostream* os) { *os << c.name; }
+
+class BadConfigTest : public HostTest, public ::testing::WithParamInterface<BadCase> {};
+
+TEST_P(BadConfigTest, ExitsNonZeroWithOneLineNamingFileLineAndKey) {
+    const BadCase& c = GetParam();
+    const std::string launch = write("bad.yaml", dds_section(152) + "components:\n" + c.components);
+    Process host({kHost, launch}, path("host"));
+    EXPECT_EQ(host.wait(30), 2);
+    const std::string err = host.err();
+    EXPECT_EQ(lines(err), 1u) << err;
+    EXPECT_TRUE(std::regex_search(err, std::regex(std::string("^ltm_host: ") + launch + c.expected))) << err;
+    EXPECT_FALSE(fs::exists(path("never")));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, BadConfigTest,
+    ::testing::Values(
+        BadCase{"UnknownType", "  - name: x\n    type: kitti_playr\n",
+                ":5: x\\.type: unknown component type 'kitti_playr' \\(known: .*kitti_player.*\\)"},
+        BadCase{"UnknownParameter",
+                "  - name: w\n    type: cloud_writer\n    params: {dir: /tmp/never, evry: 2}\n",
+                ":6: w\\.evry: unknown parameter \\(known: dir, every, format\\)"},
+        BadCase{"IllTypedParameter",
+                "  - name: w\n    type: cloud_writer\n    params:\n      dir: /tmp/never\n      every: often\n",
+                ":8: w\\.every: expected an integer, got 'often'"},
+        BadCase{"RemapOfUnknownTopic",
+                "  - name: w\n    type: cloud_writer\n    params: {dir: /tmp/never}\n    remap: {pointz: /a}\n",
+                ":7: w\\.remap\\.pointz: component type 'cloud_writer' has no topic 'pointz' \\(its topics: "
+                "/points, /mesh\\)"},
+        BadCase{"MissingFolder",
+                "  - name: p\n    type: kitti_player\n    params: {path: /no/such/folder}\n",
+                ":6: p\\.path: no such folder: /no/such/folder"},
+        BadCase{"BadValue",
+                "  - name: p\n    type: kitti_player\n    params: {path: /tmp, mode: turbo}\n",
+                ":6: p\\.mode: expected 'realtime' or 'fast', got 'turbo'"}),
+    [](const auto& info) { return std::string(info.param.name); });
+
+TEST_F(HostTest, MissingLaunchFileIsOneLine) {
+    Process host({kHost, path("nothing.yaml")}, path("host"));
+    EXPECT_EQ(host.wait(30), 2);
+    EXPECT_EQ(host.err(), "ltm_host: " + path("nothing.yaml") + ":0: launch config: no such file\n");
+}
+
+TEST_F(HostTest, SigtermShutsDownWithinTwoSecondsAndFlushes) {
+    const std::string launch = write("loop.yaml", dds_section(153) + R"(
+components:
+  - name: player
+    type: kitti_player
+    params: {path: )" + kFixture + ", poses_file: " + kFixture + R"(/poses_semantickitti.txt, loop: true, rate: 2.0}
+  - name: traj
+    type: trajectory_writer
+    params: {tum_file: )" + path("gt_tum.txt") + R"(, input: pose}
+    remap: {pose: ground_truth}
+)");
+    Process host({kHost, launch}, path("host"));
+    // Wait until poses flow (the writer logs nothing per pose; the player logs when it starts).
+    for (int i = 0; i < 500 && host.err().find("playing 3 scans") == std::string::npos; ++i)
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    std::this_thread::sleep_for(std::chrono::milliseconds(800));
+    const auto t0 = std::chrono::steady_clock::now();
+    host.signal(SIGTERM);
+    const int rc = host.wait(10);
+    const double took = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    EXPECT_EQ(rc, 0) << host.err();
+    EXPECT_LT(took, 2.0 + 1.0) << "shutdown took " << took << " s";  // 2 s budget plus process slack
+    EXPECT_NE(host.err().find("received SIGTERM"), std::string::npos);
+    EXPECT_NE(host.err().find("stopped cleanly"), std::string::npos);
+    std::ifstream tum(path("gt_tum.txt"));
+    std::string first;
+    ASSERT_TRUE(std::getline(tum, first)) << "no pose flushed";
+    EXPECT_EQ(std::count(first.begin(), first.end(), ' '), 7);
+}
+
+TEST_F(HostTest, ThrowingComponentIsNamedAndStopsTheHost) {
+    const std::string launch = write("fault.yaml", dds_section(154) + R"(
+topics: {points: stream}
+components:
+  - name: player
+    type: kitti_player
+    params: {path: )" + kFixture + R"(, mode: fast}
+  - name: faulty
+    type: test_faulty
+    params: {throw_at: 2}
+  - name: writer
+    type: cloud_writer
+    params: {dir: )" + path("clouds") + R"(}
+)");
+    Process host({kTestHost, launch}, path("host"));
+    EXPECT_EQ(host.wait(60), 1);
+    const std::string err = host.err();
+    EXPECT_NE(err.find("component 'faulty' (test_faulty) threw in its handler of /points: injected fault"),
+              std::string::npos) << err;
+    EXPECT_NE(err.find("stopping (on_component_error: stop)"), std::string::npos) << err;
+    EXPECT_NE(err.find("[writer] wrote"), std::string::npos) << "the other components were not shut down: " << err;
+}
+
+TEST_F(HostTest, RestartPolicyRestartsThenGivesUp) {
+    const std::string launch = write("restart.yaml", dds_section(155) + R"(
+on_component_error: restart
+max_restarts: 1
+components:
+  - name: faulty
+    type: test_faulty
+    params: {throw_in_activate: true}
+)");
+    Process host({kTestHost, launch}, path("host"));
+    EXPECT_EQ(host.wait(60), 1);
+    const std::string err = host.err();
+    EXPECT_NE(err.find("threw in on_activate: injected fault in activate"), std::string::npos) << err;
+    EXPECT_NE(err.find("restarting component 'faulty' (1 of 1)"), std::string::npos) << err;
+    EXPECT_NE(err.find("component 'faulty' failed too often; stopping"), std::string::npos) << err;
+}
+
+TEST_F(HostTest, StuckComponentDoesNotHangTheHost) {
+    const std::string launch = write("stuck.yaml", dds_section(156) + R"(
+components:
+  - name: stuck
+    type: test_stuck
+    params: {seconds: 60}
+)");
+    Process host({kTestHost, launch}, path("host"));
+    for (int i = 0; i < 500 && host.err().find("running 1 components") == std::string::npos; ++i)
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    const auto t0 = std::chrono::steady_clock::now();
+    host.signal(SIGINT);
+    EXPECT_EQ(host.wait(20), 3);
+    const double took = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    EXPECT_LT(took, 2.0 + 1.0);
+    EXPECT_NE(host.err().find("component 'stuck' did not stop within 2"), std::string::npos) << host.err();
+}
+
+TEST_F(HostTest, UnsupportedPointCloudLayoutIsRejectedCleanly) {
+    const std::string launch = write("badcloud.yaml", dds_section(157) + R"(
+topics: {points: stream}
+components:
+  - {name: source, type: test_bad_cloud_source}
+  - name: writer
+    type: cloud_writer
+    params: {dir: )" + path("clouds") + R"(}
+)");
+    Process host({kTestHost, launch}, path("host"));
+    EXPECT_EQ(host.wait(60), 0) << host.err();
+    EXPECT_NE(host.err().find("rejected point cloud 0: field 'x' is datatype 8, need float32 (7)"), std::string::npos)
+        << host.err();
+    EXPECT_EQ(count_files("clouds", ".ply"), 0u);
+}
+
+class TwoProcessTest : public HostTest, public ::testing::WithParamInterface<bool> {};
+
+TEST_P(TwoProcessTest, SamplesCrossBetweenHosts) {
+    const bool loopback_unicast = GetParam();
+    const int domain = loopback_unicast ? 158 : 159;
+    const std::string dds = loopback_unicast ? dds_section(domain) : "domain_id: " + std::to_string(domain) + "\n";
+    const std::string robot = write("robot.yaml", dds + R"(
+topics: {points: stream}
+components:
+  - name: player
+    type: kitti_player
+    params: {path: )" + kFixture + R"(, mode: fast, wait_for_readers: 1}
+)");
+    const std::string base = write("base.yaml", dds + R"(
+topics: {points: stream}
+idle_exit_s: 2
+components:
+  - name: writer
+    type: cloud_writer
+    params: {dir: )" + path("clouds") + R"(}
+)");
+    Process b({kHost, base}, path("base"));
+    Process r({kHost, robot}, path("robot"));
+    EXPECT_EQ(r.wait(60), 0) << r.err();
+    EXPECT_EQ(b.wait(60), 0) << b.err();
+    EXPECT_EQ(count_files("clouds", ".ply"), 3u) << r.err() << b.err();
+}
+
+INSTANTIATE_TEST_SUITE_P(Discovery, TwoProcessTest, ::testing::Values(false, true),
+                         [](const auto& info) { return info.param ? "LoopbackUnicastPeers" : "DefaultDiscovery"; });

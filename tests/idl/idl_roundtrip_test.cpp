@@ -1,0 +1,325 @@
+// Every message type survives a trip through Cyclone DDS (serialise, deliver, deserialise).
+#include <dds/dds.h>
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "common/convert/geometry.hpp"
+#include "common/convert/pointcloud2.hpp"
+#include "runtime/messages.hpp"
+
+using namespace ltm;
+
+namespace {
+
+class Dds : public ::testing::Test {
+protected:
+    static void SetUpTestSuite() {
+        const char* xml =
+            "<CycloneDDS><Domain Id=\"any\"><General><Interfaces><NetworkInterface name=\"lo\"/></Interfaces>"
+            "<AllowMulticast>false</AllowMulticast></General></Domain></CycloneDDS>";
+        domain_ = dds_create_domain(212, xml);
+        participant_ = dds_create_participant(212, nullptr, nullptr);
+    }
+    static void TearDownTestSuite() {
+        dds_delete(participant_);
+        dds_delete(domain_);
+    }
+
+    // Writes `in` and hands the received sample to `check`.
+    template <class T>
+    void roundtrip(const T& in, const std::function<void(const T&)>& check) {
+        ASSERT_GT(participant_, 0);
+        static int n = 0;
+        const std::string name = "rt/ltm_test/roundtrip_" + std::to_string(n++);
+        const dds_entity_t topic = dds_create_topic(participant_, runtime::MessageTraits<T>::descriptor(), name.c_str(), nullptr, nullptr);
+        ASSERT_GT(topic, 0);
+        dds_qos_t* qos = dds_create_qos();
+        dds_qset_reliability(qos, DDS_RELIABILITY_RELIABLE, DDS_SECS(1));
+        const dds_entity_t reader = dds_create_reader(participant_, topic, qos, nullptr);
+        const dds_entity_t writer = dds_create_writer(participant_, topic, qos, nullptr);
+        dds_delete_qos(qos);
+        ASSERT_EQ(dds_write(writer, &in), DDS_RETCODE_OK);
+        void* buf[1] = {nullptr};
+        dds_sample_info_t info;
+        ASSERT_EQ(dds_take(reader, buf, &info, 1, 1), 1);
+        ASSERT_TRUE(info.valid_data);
+        check(*static_cast<const T*>(buf[0]));
+        dds_return_loan(reader, buf, 1);
+        dds_delete(writer);
+        dds_delete(reader);
+    }
+
+    static dds_entity_t domain_, participant_;
+};
+dds_entity_t Dds::domain_ = 0;
+dds_entity_t Dds::participant_ = 0;
+
+Eigen::Isometry3d some_pose(double k) {
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.linear() = Eigen::AngleAxisd(0.3 * k, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+    T.translation() = Eigen::Vector3d(k, -2 * k, 0.5 * k);
+    return T;
+}
+
+char* c(std::string& s) { return const_cast<char*>(s.c_str()); }
+
+}  // namespace
+
+TEST_F(Dds, PointCloud2ThroughTheConverter) {
+    common::PointCloud cloud;
+    for (int i = 0; i < 1000; ++i) {
+        cloud.points.emplace_back(i * 0.1f, -i * 0.2f, 1.5f);
+        cloud.intensity.push_back(i % 7);
+        cloud.time.push_back(i * 1e-4f);
+    }
+    cloud.stamp = 1234.5678;
+    cloud.frame_id = "velodyne";
+    convert::PointCloud2Builder builder;
+    roundtrip<msg::PointCloud2>(builder.build(cloud), [&](const msg::PointCloud2& m) {
+        common::PointCloud back;
+        ASSERT_EQ(convert::from_pointcloud2(m, back), "");
+        EXPECT_EQ(back.points, cloud.points);
+        EXPECT_EQ(back.intensity, cloud.intensity);
+        EXPECT_EQ(back.time, cloud.time);
+        EXPECT_NEAR(back.stamp, cloud.stamp, 1e-9);
+        EXPECT_EQ(back.frame_id, "velodyne");
+    });
+}
+
+TEST_F(Dds, OdometryAndPath) {
+    std::string odom = "odom", child = "lidar";
+    msg::Odometry o{};
+    o.header.stamp = convert::to_time(10.25);
+    o.header.frame_id = c(odom);
+    o.child_frame_id = c(child);
+    o.pose.pose = convert::to_pose(some_pose(1));
+    for (int i = 0; i < 36; ++i) o.pose.covariance[i] = i, o.twist.covariance[i] = -i;
+    o.twist.twist.linear = {1, 2, 3};
+    roundtrip<msg::Odometry>(o, [&](const msg::Odometry& r) {
+        EXPECT_EQ(std::string(r.child_frame_id), "lidar");
+        EXPECT_TRUE(convert::to_isometry(r.pose.pose).isApprox(some_pose(1), 1e-12));
+        EXPECT_EQ(r.pose.covariance[35], 35);
+        EXPECT_EQ(r.twist.covariance[7], -7);
+        EXPECT_EQ(r.twist.twist.linear.z, 3);
+        EXPECT_EQ(r.header.stamp.nanosec, 250000000u);
+    });
+    std::vector<msg::PoseStamped> poses(5);
+    for (int i = 0; i < 5; ++i) {
+        poses[i].header.frame_id = c(odom);
+        poses[i].pose = convert::to_pose(some_pose(i));
+    }
+    msg::Path p{};
+    p.header.frame_id = c(odom);
+    p.poses._buffer = poses.data();
+    p.poses._length = p.poses._maximum = 5;
+    roundtrip<msg::Path>(p, [&](const msg::Path& r) {
+        ASSERT_EQ(r.poses._length, 5u);
+        EXPECT_TRUE(convert::to_isometry(r.poses._buffer[4].pose).isApprox(some_pose(4), 1e-12));
+    });
+}
+
+TEST_F(Dds, LocalMapWithVoxelsAndLifeRecords) {
+    std::string frame = "odom";
+    std::vector<msg::Voxel> voxels(3);
+    std::vector<std::uint16_t> seen = {0, 2};
+    std::vector<double> times = {1.0, 1.1, 1.2};
+    for (int i = 0; i < 3; ++i) {
+        voxels[i].ix = i;
+        voxels[i].iy = -i;
+        voxels[i].iz = 7;
+        voxels[i].centre[0] = 0.25f * i;
+        voxels[i].normal[2] = 1;
+        voxels[i].point_count = 10 + i;
+        voxels[i].stability = 0.9f;
+        voxels[i].life.created = 1.0;
+        voxels[i].life.last_seen = 1.2;
+        voxels[i].life.observations = 2;
+        voxels[i].life.seen._buffer = seen.data();
+        voxels[i].life.seen._length = voxels[i].life.seen._maximum = 2;
+    }
+    msg::LocalMap m{};
+    m.header.frame_id = c(frame);
+    m.id = 42;
+    m.revision = 3;
+    m.finished = true;
+    m.anchor = convert::to_pose(some_pose(2));
+    m.bbox_min = {-20, -20, -5};
+    m.bbox_max = {20, 20, 5};
+    m.voxel_size = 0.5f;
+    m.observation_times._buffer = times.data();
+    m.observation_times._length = m.observation_times._maximum = 3;
+    m.voxels._buffer = voxels.data();
+    m.voxels._length = m.voxels._maximum = 3;
+    roundtrip<msg::LocalMap>(m, [&](const msg::LocalMap& r) {
+        EXPECT_EQ(r.id, 42u);
+        EXPECT_TRUE(r.finished);
+        ASSERT_EQ(r.voxels._length, 3u);
+        EXPECT_EQ(r.voxels._buffer[2].iy, -2);
+        EXPECT_EQ(r.voxels._buffer[2].centre[0], 0.5f);
+        EXPECT_EQ(r.voxels._buffer[1].point_count, 11u);
+        ASSERT_EQ(r.voxels._buffer[1].life.seen._length, 2u);
+        EXPECT_EQ(r.voxels._buffer[1].life.seen._buffer[1], 2);
+        EXPECT_EQ(r.observation_times._buffer[2], 1.2);
+        EXPECT_EQ(r.bbox_max.z, 5);
+    });
+}
+
+TEST_F(Dds, KeyframeGraphLoopStatusChangesMesh) {
+    std::string frame = "map", comp = "odometry", code = "skip", text = "empty scan";
+    std::vector<float> values(20 * 60, 1.5f), ring(20, 0.5f);
+    msg::Keyframe k{};
+    k.header.frame_id = c(frame);
+    k.points.header.frame_id = c(frame);
+    k.id = 7;
+    k.local_map_id = 2;
+    k.descriptor.kind = 1;
+    k.descriptor.rings = 20;
+    k.descriptor.sectors = 60;
+    k.descriptor.values._buffer = values.data();
+    k.descriptor.values._length = k.descriptor.values._maximum = values.size();
+    k.descriptor.ring_key._buffer = ring.data();
+    k.descriptor.ring_key._length = k.descriptor.ring_key._maximum = ring.size();
+    roundtrip<msg::Keyframe>(k, [&](const msg::Keyframe& r) {
+        EXPECT_EQ(r.descriptor.values._length, 1200u);
+        EXPECT_EQ(r.descriptor.ring_key._buffer[19], 0.5f);
+        EXPECT_EQ(r.local_map_id, 2u);
+    });
+
+    std::vector<msg::AnchorPose> anchors(2);
+    anchors[1].id = 9;
+    anchors[1].pose = convert::to_pose(some_pose(3));
+    std::vector<msg::PoseGraphEdge> edges(1);
+    edges[0].from_id = 0;
+    edges[0].to_id = 9;
+    edges[0].kind = 1;
+    edges[0].information[0] = 100;
+    msg::PoseGraph g{};
+    g.header.frame_id = c(frame);
+    g.revision = 5;
+    g.anchors._buffer = anchors.data();
+    g.anchors._length = g.anchors._maximum = 2;
+    g.edges._buffer = edges.data();
+    g.edges._length = g.edges._maximum = 1;
+    roundtrip<msg::PoseGraph>(g, [&](const msg::PoseGraph& r) {
+        EXPECT_EQ(r.revision, 5u);
+        EXPECT_TRUE(convert::to_isometry(r.anchors._buffer[1].pose).isApprox(some_pose(3), 1e-12));
+        EXPECT_EQ(r.edges._buffer[0].information[0], 100);
+        EXPECT_EQ(r.edges._buffer[0].kind, ltm_msgs_msg_PoseGraphEdge_Constants_LOOP);
+    });
+
+    msg::LoopClosure l{};
+    l.header.frame_id = c(frame);
+    l.from_map_id = 1;
+    l.to_map_id = 30;
+    l.relative_pose = convert::to_pose(some_pose(0.5));
+    l.score = 0.12f;
+    l.accepted = true;
+    roundtrip<msg::LoopClosure>(l, [&](const msg::LoopClosure& r) {
+        EXPECT_EQ(r.to_map_id, 30u);
+        EXPECT_FLOAT_EQ(r.score, 0.12f);
+        EXPECT_TRUE(r.accepted);
+    });
+
+    msg::LocalisationStatus s{};
+    s.header.frame_id = c(frame);
+    s.state = ltm_msgs_msg_LocalisationStatus_Constants_RELOCALISING;
+    s.message = c(text);
+    s.inlier_ratio = 0.75f;
+    roundtrip<msg::LocalisationStatus>(s, [&](const msg::LocalisationStatus& r) {
+        EXPECT_EQ(r.state, 3);
+        EXPECT_EQ(std::string(r.message), "empty scan");
+        EXPECT_FLOAT_EQ(r.inlier_ratio, 0.75f);
+    });
+
+    std::vector<msg::VoxelKey> keys = {{1, 2, 3}, {4, 5, 6}};
+    std::vector<msg::MapChange> removed(1);
+    removed[0].local_map_id = 4;
+    removed[0].reason = ltm_msgs_msg_MapChange_Constants_VANISHED;
+    removed[0].voxels._buffer = keys.data();
+    removed[0].voxels._length = removed[0].voxels._maximum = 2;
+    msg::MapChangeSet cs{};
+    cs.header.frame_id = c(frame);
+    cs.removed._buffer = removed.data();
+    cs.removed._length = cs.removed._maximum = 1;
+    roundtrip<msg::MapChangeSet>(cs, [&](const msg::MapChangeSet& r) {
+        ASSERT_EQ(r.removed._length, 1u);
+        EXPECT_EQ(r.removed._buffer[0].voxels._buffer[1].iz, 6);
+        EXPECT_EQ(r.added._length, 0u);
+    });
+
+    std::vector<float> vertices = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    std::vector<std::uint32_t> tris = {0, 1, 2};
+    msg::Mesh mesh{};
+    mesh.header.frame_id = c(frame);
+    mesh.local_map_id = 11;
+    mesh.vertices._buffer = vertices.data();
+    mesh.vertices._length = mesh.vertices._maximum = vertices.size();
+    mesh.triangles._buffer = tris.data();
+    mesh.triangles._length = mesh.triangles._maximum = tris.size();
+    roundtrip<msg::Mesh>(mesh, [&](const msg::Mesh& r) {
+        EXPECT_EQ(r.vertices._length, 9u);
+        EXPECT_EQ(r.triangles._buffer[2], 2u);
+    });
+
+    msg::Status st{};
+    st.header.frame_id = c(frame);
+    st.component = c(comp);
+    st.code = c(code);
+    st.message = c(text);
+    st.level = ltm_msgs_msg_Status_Constants_WARN;
+    roundtrip<msg::Status>(st, [&](const msg::Status& r) {
+        EXPECT_EQ(std::string(r.code), "skip");
+        EXPECT_EQ(r.level, 1);
+    });
+}
+
+TEST_F(Dds, TransformAndPoseWithCovariance) {
+    std::string a = "map", b = "odom";
+    msg::TransformStamped t{};
+    t.header.frame_id = c(a);
+    t.child_frame_id = c(b);
+    t.transform.translation = {1, 2, 3};
+    t.transform.rotation = {0, 0, 0, 1};
+    roundtrip<msg::TransformStamped>(t, [&](const msg::TransformStamped& r) {
+        EXPECT_EQ(std::string(r.child_frame_id), "odom");
+        EXPECT_EQ(r.transform.translation.y, 2);
+        EXPECT_EQ(r.transform.rotation.w, 1);
+    });
+    msg::PoseWithCovarianceStamped p{};
+    p.header.frame_id = c(a);
+    p.pose.pose = convert::to_pose(some_pose(2));
+    p.pose.covariance[14] = 0.01;
+    roundtrip<msg::PoseWithCovarianceStamped>(p, [&](const msg::PoseWithCovarianceStamped& r) {
+        EXPECT_EQ(r.pose.covariance[14], 0.01);
+        EXPECT_TRUE(convert::to_isometry(r.pose.pose).isApprox(some_pose(2), 1e-12));
+    });
+}
+
+TEST(Convert, TimeConversionsRoundTrip) {
+    for (double s : {0.0, 0.5, 1.999999999, 1700000000.123456789, 12.0}) {
+        const msg::Time t = convert::to_time(s);
+        EXPECT_LT(t.nanosec, 1000000000u);
+        EXPECT_NEAR(convert::to_seconds(t), s, 1e-6);
+    }
+}
+
+TEST(Convert, PointCloud2WithShortDataIsRejected) {
+    std::uint8_t data[16] = {};
+    char x[] = "x", y[] = "y", z[] = "z";
+    msg::PointField fields[3] = {{x, 0, 7, 1}, {y, 4, 7, 1}, {z, 8, 7, 1}};
+    msg::PointCloud2 m{};
+    m.height = 1;
+    m.width = 2;  // says 2 points of 16 bytes, holds one
+    m.point_step = 16;
+    m.row_step = 32;
+    m.fields._buffer = fields;
+    m.fields._length = 3;
+    m.data._buffer = data;
+    m.data._length = 16;
+    common::PointCloud out;
+    EXPECT_EQ(convert::from_pointcloud2(m, out), "data holds 16 bytes, height * row_step says 32");
+}
