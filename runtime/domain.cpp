@@ -1,5 +1,6 @@
 #include "runtime/domain.hpp"
 
+#include <cstdlib>
 #include <stdexcept>
 
 #include "runtime/dds_error.hpp"
@@ -8,11 +9,17 @@
 namespace ltm::runtime {
 
 std::string cyclone_xml(const DdsSettings& dds) {
-    std::string xml = "<CycloneDDS><Domain Id=\"any\"><General>";
+    // Socket buffers large enough for bursts of 1-2 MB scans (the OS may grant less: rmem_max).
+    std::string xml = "<CycloneDDS><Domain Id=\"any\"><Internal><SocketReceiveBufferSize max=\"8MiB\"/>"
+                      "</Internal>";
+    if (!dds.custom) return xml + "</Domain></CycloneDDS>";
+    xml += "<General>";
     if (!dds.interfaces.empty()) {
         xml += "<Interfaces>";
         for (const auto& i : dds.interfaces) xml += "<NetworkInterface name=\"" + i + "\"/>";
         xml += "</Interfaces>";
+        // Loopback only: large datagrams cost nothing there and cut per-fragment overhead.
+        if (dds.interfaces.size() == 1 && dds.interfaces[0] == "lo") xml += "<MaxMessageSize>65000B</MaxMessageSize>";
     }
     xml += std::string("<AllowMulticast>") + (dds.multicast ? "default" : "false") + "</AllowMulticast>";
     xml += "</General><Discovery>";
@@ -27,11 +34,12 @@ std::string cyclone_xml(const DdsSettings& dds) {
 }
 
 Domain::Domain(const LaunchConfig& config) : config_(config), domain_id_(config.domain_id) {
-    if (config.dds.custom) {
-        const std::string xml = cyclone_xml(config.dds);
-        domain_ = dds_create_domain(static_cast<dds_domainid_t>(domain_id_), xml.c_str());
-        check_dds(domain_, "creating DDS domain " + std::to_string(domain_id_) + " from the launch config's dds settings");
-    }
+    // ltm's settings first, then CYCLONEDDS_URI's (the user's word wins), then the launch config's.
+    std::string xml = cyclone_xml(DdsSettings{});
+    if (const char* uri = std::getenv("CYCLONEDDS_URI"); uri && *uri) xml += std::string(",") + uri;
+    if (config.dds.custom) xml += "," + cyclone_xml(config.dds);
+    domain_ = dds_create_domain(static_cast<dds_domainid_t>(domain_id_), xml.c_str());
+    check_dds(domain_, "creating DDS domain " + std::to_string(domain_id_) + " (launch config dds settings, CYCLONEDDS_URI)");
     participant_ = dds_create_participant(static_cast<dds_domainid_t>(domain_id_), nullptr, nullptr);
     if (participant_ < 0) {
         const dds_return_t rc = participant_;
