@@ -92,6 +92,42 @@ components:
     }
 }
 
+TEST_F(HostTest, CloudFolderPlayerWithPosesFeedsTheTrajectoryWriter) {
+    // A folder of PLY scans with a KITTI poses file, as exported by many mapping tools.
+    fs::create_directories(dir_ / "scans");
+    std::string poses;
+    for (int i = 0; i < 4; ++i) {
+        std::ofstream ply(path("scans/" + std::to_string(100 + i) + ".ply"));
+        ply << "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\nproperty float z\n"
+               "property float intensity\nend_header\n" << i << " 0 0 1\n0 " << i << " 0 2\n";
+        poses += "1 0 0 " + std::to_string(i) + " 0 1 0 0 0 0 1 0\n";
+    }
+    std::ofstream(path("poses.txt")) << poses;
+    const std::string launch = write("folder.yaml", dds_section(160) + R"(
+topics: {points: stream, ground_truth: stream}
+components:
+  - name: player
+    type: cloud_folder_player
+    params: {path: )" + path("scans") + ", poses_file: " + path("poses.txt") + R"(, mode: fast, period_s: 0.5}
+  - name: traj
+    type: trajectory_writer
+    params: {kitti_file: )" + path("traj.txt") + ", tum_file: " + path("traj_tum.txt") + R"(, input: pose}
+    remap: {pose: ground_truth}
+  - name: writer
+    type: cloud_writer
+    params: {dir: )" + path("clouds") + R"(, format: bin}
+)");
+    Process host({kHost, launch}, path("host"));
+    ASSERT_EQ(host.wait(60), 0) << host.err();
+    EXPECT_EQ(count_files("clouds", ".bin"), 4u);
+    EXPECT_EQ(ltm::common::read_kitti_bin(path("clouds/000003.bin")).points[0].x(), 3.0f);
+    std::ifstream tum(path("traj_tum.txt"));
+    std::vector<std::string> rows;
+    for (std::string l; std::getline(tum, l);) rows.push_back(l);
+    ASSERT_EQ(rows.size(), 4u);
+    EXPECT_EQ(rows[3].substr(0, 24), "1.500000000 3.000000000 ");
+}
+
 struct BadCase {
     const char* name;
     const char* components;     // YAML of the components list

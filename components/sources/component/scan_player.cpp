@@ -65,12 +65,14 @@ void ScanPlayer::step() {
             ctx_.log().warn("no reader matched within " + std::to_string(wait_timeout_s_) + " s; playing anyway");
         waiting_ = false;
         start_wall_ = clock::now();
+        progress_ = std::make_unique<common::Progress>(ctx_.name(), folder_->size(), "scans");
     }
     if (next_ >= folder_->size()) {
         if (loop_ && folder_->size() > 0) {
             next_ = 0;
             start_wall_ = clock::now();
         } else {
+            progress_->finish();
             ctx_.log().info("published " + std::to_string(published_) + " scans (" + std::to_string(skipped_) +
                             " damaged files skipped, " + std::to_string(non_finite_) + " non-finite points dropped)");
             ctx_.finished();
@@ -94,6 +96,7 @@ void ScanPlayer::step() {
     non_finite_ += common::remove_non_finite(cloud);
     cloud.frame_id = frame_id_;
     if (points_.publish(builder_.build(cloud))) ++published_;
+    progress_->update(i + 1);
     if (ground_truth_.valid()) {
         msg::PoseStamped ps{};
         ps.header.stamp = convert::to_time(cloud.stamp);

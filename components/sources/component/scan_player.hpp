@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "common/convert/pointcloud2.hpp"
+#include "common/core/progress.hpp"
 #include "runtime/component.hpp"
 #include "sources/core/scan_folder.hpp"
 
@@ -36,6 +37,7 @@ private:
     std::size_t next_ = 0, published_ = 0, skipped_ = 0, non_finite_ = 0;
     std::chrono::steady_clock::time_point start_wall_, waiting_since_;
     bool waiting_ = true;
+    std::unique_ptr<common::Progress> progress_;
 };
 
 }  // namespace ltm::sources
