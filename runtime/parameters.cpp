@@ -62,6 +62,15 @@ Parameters::Parameters(YAML::Node node, std::string file, std::string prefix)
         throw ConfigError(file_, root_.Mark().line + 1, prefix_, "parameters must be a map");
 }
 
+Parameters Parameters::from_file(const std::string& path, const std::string& prefix) {
+    if (!std::filesystem::is_regular_file(path)) throw ConfigError(path, 0, prefix, "no such file");
+    try {
+        return Parameters(YAML::LoadFile(path), path, prefix);
+    } catch (const YAML::ParserException& e) {
+        throw ConfigError(path, e.mark.line + 1, prefix, e.msg);
+    }
+}
+
 YAML::Node Parameters::lookup(const std::string& key) const {
     // Const access only: a non-const operator[] would insert the key into the config.
     YAML::Node node;

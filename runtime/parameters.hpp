@@ -19,6 +19,8 @@ class Parameters {
 public:
     // `node` is a map (or null: no parameters); `prefix` names it in messages ("kitti_player").
     Parameters(YAML::Node node, std::string file, std::string prefix);
+    // The top-level map of a YAML file (a tool's --config). Throws ConfigError (file:line).
+    static Parameters from_file(const std::string& path, const std::string& prefix);
 
     // Optional value with a default. Dotted keys walk nested maps ("odometry.voxel_size").
     template <class T>

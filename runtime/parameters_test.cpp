@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <fstream>
+#include <functional>
 
 using namespace ltm::runtime;
 
@@ -78,4 +80,14 @@ TEST(Parameters, LookupsNeverAddKeys) {
     p.get<int>("b.c.d", 0);
     EXPECT_FALSE(p.has("b"));
     EXPECT_EQ(n.size(), 1u);
+}
+
+TEST(Parameters, FromFile) {
+    const std::string path = ::testing::TempDir() + "params_" + std::to_string(::getpid()) + ".yaml";
+    { std::ofstream(path) << "voxel_size: 0.5\nbad: [\n"; }
+    EXPECT_NE(error_of([&] { Parameters::from_file(path, "odometry"); }).find(":3: odometry: "), std::string::npos);
+    { std::ofstream(path) << "voxel_size: 0.5\n"; }
+    Parameters p = Parameters::from_file(path, "odometry");
+    EXPECT_DOUBLE_EQ(p.get<double>("voxel_size", 1.0), 0.5);
+    EXPECT_EQ(error_of([&] { Parameters::from_file("/no/such.yaml", "odometry"); }), "/no/such.yaml:0: odometry: no such file");
 }
