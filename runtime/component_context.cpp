@@ -1,6 +1,7 @@
 #include "runtime/component_context.hpp"
 
 #include "runtime/dds_error.hpp"
+#include "runtime/raw_cdr.hpp"
 #include "runtime/topic_names.hpp"
 
 namespace ltm::runtime {
@@ -66,6 +67,73 @@ void ComponentContext::add_subscription(const std::string& topic, TopicRole role
     s.readcond = check_dds(dds_create_readcondition(s.reader, DDS_ANY_STATE), "creating a read condition");
     s.handler = std::move(handler);
     subscriptions_.push_back(std::move(s));
+    attach(subscriptions_.back());
+}
+
+void ComponentContext::attach_waitset(dds_entity_t waitset) {
+    waitset_ = waitset;
+    for (const auto& s : subscriptions_) attach(s);
+}
+
+void ComponentContext::attach(const Subscription& s) {
+    if (waitset_ > 0) check_dds(dds_waitset_attach(waitset_, s.readcond, 0), "attaching a read condition");
+}
+
+QosProfile ComponentContext::role_profile(const std::string& topic, TopicRole declared) {
+    return domain_.profile(resolve(topic), declared);
+}
+
+void ComponentContext::subscribe_raw(const std::string& topic, const dds_topic_descriptor_t* desc,
+                                     const QosProfile& profile, RawHandler handler) {
+    const std::string abs = resolve(topic);
+    dds_entity_t t;
+    try {
+        t = domain_.topic(dds_topic_name(abs), desc);
+    } catch (const std::invalid_argument& e) {
+        fail_topic(topic, e.what());
+    }
+    Qos qos;
+    fill_reader_qos(profile, qos.get());
+    Subscription s;
+    s.topic = abs;
+    s.reader = check_dds(dds_create_reader(domain_.participant(), t, qos.get(), nullptr), "creating a reader for " + abs);
+    s.readcond = check_dds(dds_create_readcondition(s.reader, DDS_ANY_STATE), "creating a read condition");
+    s.raw_handler = std::move(handler);
+    subscriptions_.push_back(std::move(s));
+    attach(subscriptions_.back());
+}
+
+void ComponentContext::subscribe_reader(dds_entity_t reader, std::function<void(const void*)> handler) {
+    Subscription s;
+    s.topic = "(built-in)";
+    s.reader = reader;
+    s.readcond = check_dds(dds_create_readcondition(reader, DDS_ANY_STATE), "creating a read condition");
+    s.handler = std::move(handler);
+    subscriptions_.push_back(std::move(s));
+    attach(subscriptions_.back());
+}
+
+std::shared_ptr<RawWriterHandle> ComponentContext::advertise_raw(const std::string& topic,
+                                                                 const dds_topic_descriptor_t* desc,
+                                                                 const QosProfile& profile) {
+    const std::string abs = resolve(topic);
+    dds_entity_t t;
+    try {
+        t = domain_.topic(dds_topic_name(abs), desc);
+    } catch (const std::invalid_argument& e) {
+        fail_topic(topic, e.what());
+    }
+    auto h = std::make_shared<RawWriterHandle>();
+    h->profile = profile;
+    Qos qos;
+    fill_writer_qos(profile, qos.get());
+    h->writer = check_dds(dds_create_writer(domain_.participant(), t, qos.get(), nullptr), "creating a writer for " + abs);
+    h->topic = abs;
+    h->stop = &stop_;
+    h->log = log_;
+    h->type = sertype_of(domain_.participant(), desc);
+    writers_.push_back(h);
+    return h;
 }
 
 std::shared_ptr<WriterHandle> ComponentContext::add_writer(const std::string& topic, TopicRole role,
@@ -124,9 +192,13 @@ void ComponentContext::finished() {
     finished_ = true;
 }
 
-bool write_sample(WriterHandle& h, const void* sample) {
+namespace {
+
+// Writes with `write` until it succeeds, retrying while a keep-all reader is full.
+template <class Write>
+bool write_with_backpressure(WriterHandle& h, Write&& write) {
     while (true) {
-        const dds_return_t rc = dds_write(h.writer, sample);
+        const dds_return_t rc = write();
         if (rc == DDS_RETCODE_OK) {
             ++h.published;
             return true;
@@ -139,6 +211,16 @@ bool write_sample(WriterHandle& h, const void* sample) {
                        std::to_string(n) + " so far");
         return false;
     }
+}
+
+}  // namespace
+
+bool write_sample(WriterHandle& h, const void* sample) {
+    return write_with_backpressure(h, [&] { return dds_write(h.writer, sample); });
+}
+
+bool write_raw(RawWriterHandle& h, const std::uint8_t* cdr, std::size_t size) {
+    return write_with_backpressure(h, [&] { return write_cdr(h.writer, h.type, cdr, size); });
 }
 
 }  // namespace ltm::runtime

@@ -5,6 +5,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <deque>
 #include <condition_variable>
 #include <mutex>
 #include <functional>
@@ -46,6 +47,20 @@ public:
         return Publisher<T>(add_writer(topic, role, MessageTraits<T>::descriptor()));
     }
 
+    // Raw CDR input (serialized bytes with their encapsulation header), for recording: `qos` as
+    // given. May also be called while running, from the component's own thread.
+    using RawHandler = std::function<void(const std::vector<std::uint8_t>& cdr, const dds_sample_info_t& info)>;
+    void subscribe_raw(const std::string& topic, const dds_topic_descriptor_t* desc, const QosProfile& qos,
+                       RawHandler handler);
+    // Raw CDR output, for replay.
+    std::shared_ptr<RawWriterHandle> advertise_raw(const std::string& topic, const dds_topic_descriptor_t* desc,
+                                                   const QosProfile& qos);
+    // A reader the component created itself (a built-in topic such as DCPSPublication); the
+    // context owns it from now on and `handler` gets each valid sample on the component's thread.
+    void subscribe_reader(dds_entity_t reader, std::function<void(const void* sample)> handler);
+    dds_entity_t participant() const { return domain_.participant(); }
+    QosProfile role_profile(const std::string& topic, TopicRole declared);
+
     // Calls `fn` every `period_s` seconds on this component's thread; period 0 calls it whenever
     // no input is waiting (a source's production loop).
     void add_timer(double period_s, std::function<void()> fn);
@@ -73,14 +88,18 @@ public:
         std::string topic;
         dds_entity_t reader = 0;
         dds_entity_t readcond = 0;
-        std::function<void(const void*)> handler;
+        std::function<void(const void*)> handler;  // typed samples
+        RawHandler raw_handler;                     // or raw CDR
+        std::vector<std::uint8_t> buffer;           // reused by raw takes
     };
     struct Timer {
         double period_s = 0;
         std::chrono::steady_clock::time_point next;
         std::function<void()> fn;
     };
-    std::vector<Subscription>& subscriptions() { return subscriptions_; }
+    // A deque: subscriptions added by a handler do not move the one being dispatched.
+    std::deque<Subscription>& subscriptions() { return subscriptions_; }
+    void attach_waitset(dds_entity_t waitset);
     std::vector<Timer>& timers() { return timers_; }
     void request_stop();
     const std::vector<std::shared_ptr<WriterHandle>>& writers() const { return writers_; }
@@ -98,7 +117,9 @@ private:
     Parameters params_;
     Logger log_;
     std::map<std::string, bool> remap_used_;
-    std::vector<Subscription> subscriptions_;
+    void attach(const Subscription& s);
+    std::deque<Subscription> subscriptions_;
+    dds_entity_t waitset_ = 0;
     std::vector<Timer> timers_;
     std::vector<std::shared_ptr<WriterHandle>> writers_;
     std::atomic<bool> stop_{false};

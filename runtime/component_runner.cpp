@@ -3,6 +3,7 @@
 #include <exception>
 
 #include "runtime/dds_error.hpp"
+#include "runtime/raw_cdr.hpp"
 
 namespace ltm::runtime {
 namespace {
@@ -35,8 +36,7 @@ ComponentRunner::ComponentRunner(Domain& domain, const LaunchConfig& config, con
     waitset_ = check_dds(dds_create_waitset(domain.participant()), "creating a waitset");
     guard_ = check_dds(dds_create_guardcondition(domain.participant()), "creating a guard condition");
     check_dds(dds_waitset_attach(waitset_, guard_, 0), "attaching the guard condition");
-    for (const auto& s : ctx_->subscriptions())
-        check_dds(dds_waitset_attach(waitset_, s.readcond, 0), "attaching a read condition");
+    ctx_->attach_waitset(waitset_);
 }
 
 ComponentRunner::~ComponentRunner() {
@@ -93,15 +93,26 @@ void ComponentRunner::fail(const std::string& where, const std::string& what) {
 
 bool ComponentRunner::dispatch_one_round() {
     bool any = false;
-    for (auto& s : ctx_->subscriptions()) {
-        Loan loan{s.reader};
-        dds_sample_info_t info;
-        loan.n = dds_take(s.reader, loan.buf, &info, 1, 1);
-        if (loan.n <= 0) continue;
-        any = true;
-        if (!info.valid_data) continue;
+    auto& subs = ctx_->subscriptions();
+    // By index: a handler may add subscriptions (the deque keeps `s` valid).
+    for (std::size_t i = 0; i < subs.size(); ++i) {
+        auto& s = subs[i];
         try {
-            s.handler(loan.buf[0]);
+            if (s.raw_handler) {
+                dds_sample_info_t info;
+                if (take_cdr(s.reader, s.buffer, info) <= 0) continue;
+                any = true;
+                if (!info.valid_data) continue;
+                s.raw_handler(s.buffer, info);
+            } else {
+                Loan loan{s.reader};
+                dds_sample_info_t info;
+                loan.n = dds_take(s.reader, loan.buf, &info, 1, 1);
+                if (loan.n <= 0) continue;
+                any = true;
+                if (!info.valid_data) continue;
+                s.handler(loan.buf[0]);
+            }
         } catch (const std::exception& e) {
             fail("its handler of " + s.topic, e.what());
             return any;

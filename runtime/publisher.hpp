@@ -10,6 +10,8 @@
 #include "runtime/logging.hpp"
 #include "runtime/qos.hpp"
 
+struct ddsi_sertype;
+
 namespace ltm::runtime {
 
 struct WriterHandle {
@@ -24,6 +26,13 @@ struct WriterHandle {
 
 // Writes one sample; blocks (in slices of max_blocking_s) on a keep-all topic whose readers are full.
 bool write_sample(WriterHandle& handle, const void* sample);
+
+// A writer of raw CDR bytes (replay).
+struct RawWriterHandle : WriterHandle {
+    const ::ddsi_sertype* type = nullptr;
+};
+// Writes serialized CDR; blocks on back-pressure like write_sample.
+bool write_raw(RawWriterHandle& handle, const std::uint8_t* cdr, std::size_t size);
 
 template <class T>
 class Publisher {
