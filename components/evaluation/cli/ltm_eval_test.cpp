@@ -1,0 +1,148 @@
+// End-to-end checks of the ltm_eval command line on small files with known answers.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "common/core/kitti_io.hpp"
+#include "common/core/ply_io.hpp"
+#include "common/core/trajectory_io.hpp"
+#include "evaluation/core/eval_io.hpp"
+#include "evaluation/core/point_labels.hpp"
+
+namespace ltm::eval {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliRun {
+    int code;
+    std::string output;
+};
+
+CliRun run(const std::string& args) {
+    const std::string log = testing::TempDir() + "ltm_eval_cli_output.txt";
+    const std::string cmd =
+        std::string(LTM_BINARY_DIR) + "/bin/ltm_eval " + args + " > " + log + " 2>&1";
+    const int status = std::system(cmd.c_str());
+    std::ifstream in(log);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return {WEXITSTATUS(status), ss.str()};
+}
+
+std::string read(const fs::path& p) {
+    std::ifstream in(p);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+
+fs::path fresh_dir(const std::string& name) {
+    const fs::path d = fs::path(testing::TempDir()) / ("ltm_eval_cli_" + name);
+    fs::remove_all(d);
+    fs::create_directories(d);
+    return d;
+}
+
+// 61 frames along x, 1 m apart; the estimate's steps are 1 % long.
+void straight_files(const fs::path& dir) {
+    common::PoseList ref, est;
+    for (int i = 0; i <= 60; ++i) {
+        Eigen::Isometry3d r = Eigen::Isometry3d::Identity(), e = r;
+        r.translation().x() = i;
+        e.translation().x() = 1.01 * i;
+        ref.push_back(r);
+        est.push_back(e);
+    }
+    common::write_kitti_poses((dir / "ref.txt").string(), ref);
+    common::write_kitti_poses((dir / "est.txt").string(), est);
+}
+
+TEST(LtmEvalCli, TrajWritesMetricsAndFigures) {
+    const fs::path d = fresh_dir("traj");
+    straight_files(d);
+    const CliRun r = run("traj --estimate " + (d / "est.txt").string() + " --reference " +
+                         (d / "ref.txt").string() + " --out " + (d / "out").string());
+    ASSERT_EQ(r.code, 0) << r.output;
+    // Hand-computed in kitti_metric_test: 15 segments, 1.058 %.
+    const std::string json = read(d / "out" / "metrics.json");
+    EXPECT_NE(json.find("\"translation_pct\": 1.058"), std::string::npos) << json;
+    EXPECT_NE(json.find("\"segments\": 15"), std::string::npos) << json;
+    EXPECT_NE(r.output.find("kitti_short_10_50m"), std::string::npos);
+    for (const char* f : {"metrics.txt", "trajectory.svg", "errors.svg", "estimate_aligned.txt"})
+        EXPECT_TRUE(fs::exists(d / "out" / f)) << f;
+    EXPECT_EQ(read(d / "out" / "trajectory.svg").rfind("<?xml", 0), 0u);
+}
+
+TEST(LtmEvalCli, BadInputGivesOneLineAndAnExitCode) {
+    const CliRun unknown = run("traj --bogus 1");
+    EXPECT_EQ(unknown.code, 2);
+    EXPECT_NE(unknown.output.find("unknown option --bogus"), std::string::npos);
+    const CliRun missing = run("traj --estimate /nonexistent/a.txt --reference /nonexistent/b.txt");
+    EXPECT_EQ(missing.code, 1);
+    EXPECT_NE(missing.output.find("/nonexistent/a.txt: cannot open"), std::string::npos);
+    EXPECT_EQ(run("nosuchcommand").code, 2);
+    EXPECT_EQ(run("traj --estimate a --reference b --reference-frame camera").code, 1);
+}
+
+TEST(LtmEvalCli, MeshOffsetByHand) {
+    const fs::path d = fresh_dir("mesh");
+    common::PlyMesh a, b;
+    a.vertices = {{0, 0, 0.1f}, {1, 0, 0.1f}, {1, 1, 0.1f}, {0, 1, 0.1f}};
+    a.triangles = {{0, 1, 2}, {0, 2, 3}};
+    b = a;
+    for (auto& v : b.vertices) v.z() = 0;
+    common::write_ply((d / "a.ply").string(), a);
+    common::write_ply((d / "b.ply").string(), b);
+    const CliRun r = run("mesh --mesh " + (d / "a.ply").string() + " --truth " +
+                         (d / "b.ply").string() + " --samples 2000 --out " + d.string());
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(read(d / "metrics.json").find("\"chamfer_l1_m\": 0.1"), std::string::npos);
+}
+
+TEST(LtmEvalCli, DynamicOnATinyLabelledRun) {
+    // One scan: 3 static points and 1 moving actor; the map keeps the static ones and the actor.
+    const fs::path d = fresh_dir("dynamic");
+    fs::create_directories(d / "velodyne");
+    fs::create_directories(d / "labels");
+    common::PointCloud scan;
+    scan.points = {{1, 0, 0}, {2, 0, 0}, {3, 0, 0}, {5, 5, 0}};
+    common::write_kitti_bin((d / "velodyne" / "000000.bin").string(), scan);
+    write_labels((d / "labels" / "000000.label").string(),
+                 {make_label(kSimStatic, 0), make_label(kSimStatic, 0), make_label(kSimStatic, 0),
+                  make_label(kSimMovingActor, 1)});
+    common::write_kitti_poses((d / "poses.txt").string(), {Eigen::Isometry3d::Identity()});
+    common::PlyCloud map;
+    map.points = {{1, 0, 0}, {2, 0, 0}, {5, 5, 0}};
+    common::write_ply((d / "map.ply").string(), map);
+    const CliRun r = run("dynamic --scans " + d.string() + " --map " + (d / "map.ply").string() +
+                         " --out " + (d / "out").string());
+    ASSERT_EQ(r.code, 0) << r.output;
+    const std::string json = read(d / "out" / "metrics.json");
+    EXPECT_NE(json.find("\"SA_pct\": 66.6667"), std::string::npos) << json;
+    EXPECT_NE(json.find("\"DA_pct\": 0"), std::string::npos) << json;
+}
+
+TEST(LtmEvalCli, LoopsAndReloc) {
+    const fs::path d = fresh_dir("loops");
+    straight_files(d);  // ref.txt: 61 frames along x, no revisit
+    write_loop_pairs((d / "loops.txt").string(), {{60, 0, 1.0}});
+    const CliRun loops = run("loops --loops " + (d / "loops.txt").string() + " --reference " +
+                             (d / "ref.txt").string() + " --out " + d.string());
+    ASSERT_EQ(loops.code, 0) << loops.output;
+    EXPECT_NE(read(d / "metrics.json").find("\"false_positives\": 1"), std::string::npos);
+    EXPECT_TRUE(fs::exists(d / "loops.svg"));
+
+    std::ofstream(d / "reloc.txt") << "10 0.5 1 1 0 0 10.2 0 1 0 0 0 0 1 0\n20 2.0 0\n";
+    const CliRun reloc = run("reloc --attempts " + (d / "reloc.txt").string() + " --reference " +
+                             (d / "ref.txt").string());
+    ASSERT_EQ(reloc.code, 0) << reloc.output;
+    EXPECT_NE(reloc.output.find("success_rate"), std::string::npos);
+    EXPECT_NE(reloc.output.find(" 0.5\n"), std::string::npos) << reloc.output;
+}
+
+}  // namespace
+}  // namespace ltm::eval
