@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "common/convert/geometry.hpp"
+#include "common/convert/local_map.hpp"
 #include "common/convert/pointcloud2.hpp"
 #include "runtime/messages.hpp"
 
@@ -165,6 +166,65 @@ TEST_F(Dds, LocalMapWithVoxelsAndLifeRecords) {
         EXPECT_EQ(r.voxels._buffer[1].life.seen._buffer[1], 2);
         EXPECT_EQ(r.observation_times._buffer[2], 1.2);
         EXPECT_EQ(r.bbox_max.z, 5);
+    });
+}
+
+TEST_F(Dds, LocalMapDataAndKeyframeDataThroughTheConverters) {
+    common::LocalMapData d;
+    d.id = 5;
+    d.revision = 2;
+    d.finished = true;
+    d.T_odom_anchor = some_pose(1.5);
+    d.T_anchor_grid = some_pose(-0.5);
+    d.bbox_min = {-50, -50, -10};
+    d.bbox_max = {50, 50, 10};
+    d.voxel_size = 0.75f;
+    d.observation_times = {3.0, 3.1};
+    for (int i = 0; i < 100; ++i) {
+        common::VoxelData v;
+        v.index = {i, -i, i % 3};
+        v.centre = {0.1f * i, 0.2f, -0.3f};
+        v.normal = {0, 0, 1};
+        v.point_count = i;
+        v.planarity = 0.8f;
+        v.stability = 0.95f;
+        v.life.created = 3.0;
+        v.life.last_seen = 3.1;
+        v.life.observations = 2;
+        v.life.health = 0.5f;
+        v.life.seen = {0, 1};
+        d.voxels.push_back(v);
+    }
+    convert::LocalMapBuilder builder;
+    roundtrip<msg::LocalMap>(builder.build(d, 3.1, "odom"), [&](const msg::LocalMap& m) {
+        const common::LocalMapData r = convert::from_msg(m);
+        EXPECT_EQ(r.id, 5u);
+        EXPECT_TRUE(r.finished);
+        EXPECT_TRUE(r.T_odom_anchor.isApprox(d.T_odom_anchor, 1e-12));
+        EXPECT_TRUE(r.T_anchor_grid.isApprox(d.T_anchor_grid, 1e-12));
+        EXPECT_EQ(r.bbox_max, d.bbox_max);
+        EXPECT_EQ(r.observation_times, d.observation_times);
+        ASSERT_EQ(r.voxels.size(), 100u);
+        EXPECT_EQ(r.voxels[42].index, d.voxels[42].index);
+        EXPECT_EQ(r.voxels[42].centre, d.voxels[42].centre);
+        EXPECT_EQ(r.voxels[42].life.seen, d.voxels[42].life.seen);
+        EXPECT_EQ(r.voxels[42].life.health, 0.5f);
+    });
+    common::KeyframeData k;
+    k.id = 3;
+    k.scan_index = 30;
+    k.local_map_id = 5;
+    k.stamp = 3.05;
+    k.T_odom_lidar = some_pose(2);
+    k.T_anchor_lidar = some_pose(0.2);
+    k.points = {{1, 2, 3}, {4, 5, 6}};
+    convert::KeyframeBuilder kb;
+    roundtrip<msg::Keyframe>(kb.build(k, "odom", "lidar"), [&](const msg::Keyframe& m) {
+        const common::KeyframeData r = convert::from_msg(m);
+        EXPECT_EQ(r.scan_index, 30u);
+        EXPECT_NEAR(r.stamp, 3.05, 1e-9);
+        EXPECT_TRUE(r.T_anchor_lidar.isApprox(k.T_anchor_lidar, 1e-12));
+        EXPECT_EQ(r.points, k.points);
     });
 }
 

@@ -1,0 +1,39 @@
+#pragma once
+// ltm_msgs/LocalMap and ltm_msgs/Keyframe <-> common::LocalMapData / KeyframeData.
+#include <string>
+#include <vector>
+
+#include "common/convert/pointcloud2.hpp"
+#include "common/core/local_map_data.hpp"
+#include "runtime/messages.hpp"
+
+namespace ltm::convert {
+
+common::LocalMapData from_msg(const msg::LocalMap& m);
+common::KeyframeData from_msg(const msg::Keyframe& m);
+
+// Builds a LocalMap message over buffers it owns; valid until the next build().
+class LocalMapBuilder {
+public:
+    const msg::LocalMap& build(const common::LocalMapData& map, double stamp, const std::string& frame_id);
+
+private:
+    std::vector<msg::Voxel> voxels_;
+    std::string frame_id_;
+    msg::LocalMap message_{};
+};
+
+// Builds a Keyframe message (points as PointCloud2, no descriptor unless given).
+class KeyframeBuilder {
+public:
+    const msg::Keyframe& build(const common::KeyframeData& keyframe, const std::string& frame_id,
+                               const std::string& lidar_frame_id);
+
+private:
+    PointCloud2Builder points_;
+    common::PointCloud cloud_;
+    std::string frame_id_;
+    msg::Keyframe message_{};
+};
+
+}  // namespace ltm::convert
