@@ -1,0 +1,164 @@
+#include "recorder/core/compression.hpp"
+
+#include <lz4frame.h>
+#include <zstd.h>
+
+namespace ltm::recorder {
+namespace {
+
+// Larger uncompressed sizes are treated as a corrupt chunk header, not allocated.
+constexpr std::uint64_t kMaxChunkBytes = std::uint64_t{2} << 30;
+
+bool decompress_zstd(const std::uint8_t* in, std::size_t n, std::uint64_t size,
+                     std::vector<std::uint8_t>& out, std::string& error) {
+    const unsigned long long declared = ZSTD_getFrameContentSize(in, n);
+    if (declared == ZSTD_CONTENTSIZE_ERROR) {
+        error = "not a zstd frame";
+        return false;
+    }
+    if (declared != ZSTD_CONTENTSIZE_UNKNOWN && declared != size) {
+        error = "zstd frame holds " + std::to_string(declared) + " bytes, chunk header says " +
+                std::to_string(size);
+        return false;
+    }
+    out.resize(size);
+    const std::size_t got = ZSTD_decompress(out.data(), out.size(), in, n);
+    if (ZSTD_isError(got)) {
+        error = std::string("zstd: ") + ZSTD_getErrorName(got);
+        return false;
+    }
+    if (got != size) {
+        error = "zstd gave " + std::to_string(got) + " bytes, expected " + std::to_string(size);
+        return false;
+    }
+    return true;
+}
+
+bool decompress_lz4(const std::uint8_t* in, std::size_t n, std::uint64_t size,
+                    std::vector<std::uint8_t>& out, std::string& error) {
+    LZ4F_dctx* ctx = nullptr;
+    if (LZ4F_isError(LZ4F_createDecompressionContext(&ctx, LZ4F_VERSION))) {
+        error = "lz4: cannot create a context";
+        return false;
+    }
+    out.resize(size);
+    std::size_t in_pos = 0, out_pos = 0;
+    bool ok = true;
+    while (true) {
+        std::size_t dst = out.size() - out_pos, src = n - in_pos;
+        const std::size_t hint =
+            LZ4F_decompress(ctx, out.data() + out_pos, &dst, in + in_pos, &src, nullptr);
+        if (LZ4F_isError(hint)) {
+            error = std::string("lz4: ") + LZ4F_getErrorName(hint);
+            ok = false;
+            break;
+        }
+        in_pos += src;
+        out_pos += dst;
+        if (hint == 0) break;  // frame complete
+        if (src == 0 && dst == 0) {
+            error = out_pos == out.size() ? "lz4 frame holds more bytes than the chunk header says"
+                                          : "lz4 frame is cut short";
+            ok = false;
+            break;
+        }
+    }
+    LZ4F_freeDecompressionContext(ctx);
+    if (ok && out_pos != size) {
+        error = "lz4 gave " + std::to_string(out_pos) + " bytes, expected " + std::to_string(size);
+        ok = false;
+    }
+    return ok;
+}
+
+}  // namespace
+
+const char* compression_name(Compression c) {
+    switch (c) {
+        case Compression::kZstd:
+            return "zstd";
+        case Compression::kLz4:
+            return "lz4";
+        case Compression::kNone:
+            break;
+    }
+    return "";
+}
+
+bool parse_compression(const std::string& text, Compression& out) {
+    if (text == "zstd")
+        out = Compression::kZstd;
+    else if (text == "lz4")
+        out = Compression::kLz4;
+    else if (text == "none" || text.empty())
+        out = Compression::kNone;
+    else
+        return false;
+    return true;
+}
+
+Compressor::Compressor(Compression kind, int level) : kind_(kind), level_(level) {
+    if (kind_ == Compression::kZstd) zstd_ctx_ = ZSTD_createCCtx();
+}
+
+Compressor::~Compressor() { ZSTD_freeCCtx(static_cast<ZSTD_CCtx*>(zstd_ctx_)); }
+
+bool Compressor::compress(const std::uint8_t* in, std::size_t size, std::vector<std::uint8_t>& out,
+                          std::string& error) {
+    switch (kind_) {
+        case Compression::kNone:
+            out.assign(in, in + size);
+            return true;
+        case Compression::kZstd: {
+            out.resize(ZSTD_compressBound(size));
+            const std::size_t got =
+                ZSTD_compressCCtx(static_cast<ZSTD_CCtx*>(zstd_ctx_), out.data(), out.size(), in,
+                                  size, level_ > 0 ? level_ : 1);
+            if (ZSTD_isError(got)) {
+                error = std::string("zstd: ") + ZSTD_getErrorName(got);
+                return false;
+            }
+            out.resize(got);
+            return true;
+        }
+        case Compression::kLz4: {
+            LZ4F_preferences_t prefs{};
+            prefs.frameInfo.contentSize = size;
+            prefs.frameInfo.blockSizeID = LZ4F_max4MB;
+            prefs.compressionLevel = level_ > 0 ? level_ : 0;
+            out.resize(LZ4F_compressFrameBound(size, &prefs));
+            const std::size_t got = LZ4F_compressFrame(out.data(), out.size(), in, size, &prefs);
+            if (LZ4F_isError(got)) {
+                error = std::string("lz4: ") + LZ4F_getErrorName(got);
+                return false;
+            }
+            out.resize(got);
+            return true;
+        }
+    }
+    error = "unknown compression";
+    return false;
+}
+
+bool decompress(const std::string& compression, const std::uint8_t* in, std::size_t in_size,
+                std::uint64_t size, std::vector<std::uint8_t>& out, std::string& error) {
+    if (size > kMaxChunkBytes) {
+        error = "implausible uncompressed size " + std::to_string(size);
+        return false;
+    }
+    if (compression.empty()) {
+        if (in_size != size) {
+            error = "uncompressed chunk holds " + std::to_string(in_size) + " bytes, header says " +
+                    std::to_string(size);
+            return false;
+        }
+        out.assign(in, in + in_size);
+        return true;
+    }
+    if (compression == "zstd") return decompress_zstd(in, in_size, size, out, error);
+    if (compression == "lz4") return decompress_lz4(in, in_size, size, out, error);
+    error = "unsupported compression '" + compression + "'";
+    return false;
+}
+
+}  // namespace ltm::recorder
