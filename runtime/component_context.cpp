@@ -36,6 +36,8 @@ std::string ComponentContext::resolve(const std::string& topic) {
     return abs;
 }
 
+std::string ComponentContext::ns() const { return normalise_namespace(config_.ns); }
+
 void ComponentContext::check_remaps_used() const {
     for (const auto& [from, used] : remap_used_) {
         if (used) continue;

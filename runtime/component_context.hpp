@@ -32,6 +32,8 @@ public:
 
     const std::string& name() const { return spec_.name; }
     const std::string& type() const { return spec_.type; }
+    // The host's namespace ("" or "/robot").
+    std::string ns() const;
     Parameters& params() { return params_; }
     const Logger& log() const { return log_; }
 

@@ -2,11 +2,13 @@
 # Independent reader test: @mcap/core (the official TypeScript MCAP library, from npm) reads the
 # files ltm writes, and ltm reads files that @mcap/core writes. Exits 77 (ctest SKIP) when node,
 # npm or the npm registry is not available.
-#   independent_reader_test.sh LTM_MCAP NODE_DIR WORK_DIR
+#   independent_reader_test.sh LTM_MCAP NODE_DIR WORK_DIR [LTM_HOST KITTI_FOLDER]
 set -u -o pipefail
 LTM_MCAP=$1
 NODE_DIR=$2   # npm packages are installed here once (cached in the build folder)
 WORK=$3
+LTM_HOST=${4:-}      # with these two, also a real DDS recording of a KITTI folder
+KITTI=${5:-}
 HERE=$(cd "${0%/*}" && pwd)
 PACKAGES="@mcap/core@2.2.2 @mcap/nodejs@1.0.2 @foxglove/wasm-zstd@1.0.1 @foxglove/wasm-lz4@1.0.2"
 
@@ -64,6 +66,30 @@ for mode in zstd none unchunked; do
     check "ltm reads node_$mode.mcap" "$LTM_MCAP" manifest "$f" -o "$WORK/node_$mode.ltm.json"
     check "ltm reads node_$mode.mcap as written" interop compare "$WORK/node_$mode.json" "$WORK/node_$mode.ltm.json"
 done
+
+# 4. A real recording: ltm_host plays a KITTI folder and its recorder component writes the file.
+if [ -n "$LTM_HOST" ]; then
+    cat > "$WORK/record.yaml" <<YAML
+domain_id: 171
+dds: {interfaces: [lo], multicast: false, peers: [127.0.0.1]}
+namespace: /robot
+topics: {points: stream, ground_truth: stream}
+components:
+  - name: player
+    type: kitti_player
+    params: {path: $KITTI, poses_file: $KITTI/poses_semantickitti.txt, mode: fast, wait_for_readers: 1}
+  - name: recorder
+    type: recorder
+    params: {file: $WORK/dds_recording.mcap, all: true, compression: lz4}
+YAML
+    if "$LTM_HOST" "$WORK/record.yaml" --log-level warn; then
+        check "ltm reads its DDS recording" "$LTM_MCAP" manifest "$WORK/dds_recording.mcap" -o "$WORK/dds_recording.json"
+        check "@mcap/core reads ltm's DDS recording as ltm does" interop read "$WORK/dds_recording.mcap" "$WORK/dds_recording.json"
+    else
+        echo "FAILED: recording through ltm_host"
+        failed=$((failed + 1))
+    fi
+fi
 
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]
