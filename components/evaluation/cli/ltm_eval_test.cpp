@@ -1,5 +1,6 @@
 // End-to-end checks of the ltm_eval command line on small files with known answers.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -23,7 +24,8 @@ struct CliRun {
 };
 
 CliRun run(const std::string& args) {
-    const std::string log = testing::TempDir() + "ltm_eval_cli_output.txt";
+    // One file per process: ctest runs this binary's tests in parallel processes.
+    const std::string log = testing::TempDir() + "ltm_eval_cli_output_" + std::to_string(::getpid()) + ".txt";
     const std::string cmd =
         std::string(LTM_BINARY_DIR) + "/bin/ltm_eval " + args + " > " + log + " 2>&1";
     const int status = std::system(cmd.c_str());
