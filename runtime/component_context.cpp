@@ -50,26 +50,35 @@ void ComponentContext::check_remaps_used() const {
     }
 }
 
-void ComponentContext::add_subscription(const std::string& topic, TopicRole role,
-                                        const dds_topic_descriptor_t* desc,
-                                        std::function<void(const void*)> handler) {
-    const std::string abs = resolve(topic);
-    dds_entity_t t;
+dds_entity_t ComponentContext::topic_entity(const std::string& topic, const dds_topic_descriptor_t* desc,
+                                            std::string& absolute) {
+    absolute = resolve(topic);
     try {
-        t = domain_.topic(dds_topic_name(abs), desc);
+        return domain_.topic(dds_topic_name(absolute), desc);
     } catch (const std::invalid_argument& e) {
         fail_topic(topic, e.what());
     }
-    Qos qos;
-    fill_reader_qos(domain_.profile(abs, role), qos.get());
+}
+
+ComponentContext::Subscription& ComponentContext::add_reader(const std::string& topic,
+                                                             const dds_topic_descriptor_t* desc,
+                                                             const QosProfile& profile) {
     Subscription s;
-    s.topic = abs;
+    const dds_entity_t t = topic_entity(topic, desc, s.topic);
+    Qos qos;
+    fill_reader_qos(profile, qos.get());
     s.reader = check_dds(dds_create_reader(domain_.participant(), t, qos.get(), nullptr),
-                         "creating a reader for " + abs);
+                         "creating a reader for " + s.topic);
     s.readcond = check_dds(dds_create_readcondition(s.reader, DDS_ANY_STATE), "creating a read condition");
-    s.handler = std::move(handler);
     subscriptions_.push_back(std::move(s));
     attach(subscriptions_.back());
+    return subscriptions_.back();
+}
+
+void ComponentContext::add_subscription(const std::string& topic, TopicRole role,
+                                        const dds_topic_descriptor_t* desc,
+                                        std::function<void(const void*)> handler) {
+    add_reader(topic, desc, domain_.profile(resolve(topic), role)).handler = std::move(handler);
 }
 
 void ComponentContext::attach_waitset(dds_entity_t waitset) {
@@ -87,22 +96,7 @@ QosProfile ComponentContext::role_profile(const std::string& topic, TopicRole de
 
 void ComponentContext::subscribe_raw(const std::string& topic, const dds_topic_descriptor_t* desc,
                                      const QosProfile& profile, RawHandler handler) {
-    const std::string abs = resolve(topic);
-    dds_entity_t t;
-    try {
-        t = domain_.topic(dds_topic_name(abs), desc);
-    } catch (const std::invalid_argument& e) {
-        fail_topic(topic, e.what());
-    }
-    Qos qos;
-    fill_reader_qos(profile, qos.get());
-    Subscription s;
-    s.topic = abs;
-    s.reader = check_dds(dds_create_reader(domain_.participant(), t, qos.get(), nullptr), "creating a reader for " + abs);
-    s.readcond = check_dds(dds_create_readcondition(s.reader, DDS_ANY_STATE), "creating a read condition");
-    s.raw_handler = std::move(handler);
-    subscriptions_.push_back(std::move(s));
-    attach(subscriptions_.back());
+    add_reader(topic, desc, profile).raw_handler = std::move(handler);
 }
 
 void ComponentContext::subscribe_reader(dds_entity_t reader, std::function<void(const void*)> handler) {
@@ -115,49 +109,33 @@ void ComponentContext::subscribe_reader(dds_entity_t reader, std::function<void(
     attach(subscriptions_.back());
 }
 
-std::shared_ptr<RawWriterHandle> ComponentContext::advertise_raw(const std::string& topic,
-                                                                 const dds_topic_descriptor_t* desc,
-                                                                 const QosProfile& profile) {
-    const std::string abs = resolve(topic);
-    dds_entity_t t;
-    try {
-        t = domain_.topic(dds_topic_name(abs), desc);
-    } catch (const std::invalid_argument& e) {
-        fail_topic(topic, e.what());
-    }
-    auto h = std::make_shared<RawWriterHandle>();
+template <class Handle>
+std::shared_ptr<Handle> ComponentContext::make_writer(const std::string& topic, const dds_topic_descriptor_t* desc,
+                                                      const QosProfile& profile) {
+    auto h = std::make_shared<Handle>();
+    const dds_entity_t t = topic_entity(topic, desc, h->topic);
     h->profile = profile;
     Qos qos;
     fill_writer_qos(profile, qos.get());
-    h->writer = check_dds(dds_create_writer(domain_.participant(), t, qos.get(), nullptr), "creating a writer for " + abs);
-    h->topic = abs;
+    h->writer = check_dds(dds_create_writer(domain_.participant(), t, qos.get(), nullptr),
+                          "creating a writer for " + h->topic);
     h->stop = &stop_;
     h->log = log_;
-    h->type = sertype_of(domain_.participant(), desc);
     writers_.push_back(h);
+    return h;
+}
+
+std::shared_ptr<RawWriterHandle> ComponentContext::advertise_raw(const std::string& topic,
+                                                                 const dds_topic_descriptor_t* desc,
+                                                                 const QosProfile& profile) {
+    auto h = make_writer<RawWriterHandle>(topic, desc, profile);
+    h->type = sertype_of(domain_.participant(), desc);
     return h;
 }
 
 std::shared_ptr<WriterHandle> ComponentContext::add_writer(const std::string& topic, TopicRole role,
                                                            const dds_topic_descriptor_t* desc) {
-    const std::string abs = resolve(topic);
-    dds_entity_t t;
-    try {
-        t = domain_.topic(dds_topic_name(abs), desc);
-    } catch (const std::invalid_argument& e) {
-        fail_topic(topic, e.what());
-    }
-    auto h = std::make_shared<WriterHandle>();
-    h->profile = domain_.profile(abs, role);
-    Qos qos;
-    fill_writer_qos(h->profile, qos.get());
-    h->writer = check_dds(dds_create_writer(domain_.participant(), t, qos.get(), nullptr),
-                          "creating a writer for " + abs);
-    h->topic = abs;
-    h->stop = &stop_;
-    h->log = log_;
-    writers_.push_back(h);
-    return h;
+    return make_writer<WriterHandle>(topic, desc, domain_.profile(resolve(topic), role));
 }
 
 void ComponentContext::add_timer(double period_s, std::function<void()> fn) {

@@ -112,6 +112,11 @@ private:
     std::shared_ptr<WriterHandle> add_writer(const std::string& topic, TopicRole role,
                                              const dds_topic_descriptor_t* desc);
     [[noreturn]] void fail_topic(const std::string& topic, const std::string& problem) const;
+    dds_entity_t topic_entity(const std::string& topic, const dds_topic_descriptor_t* desc, std::string& absolute);
+    Subscription& add_reader(const std::string& topic, const dds_topic_descriptor_t* desc, const QosProfile& profile);
+    template <class Handle>
+    std::shared_ptr<Handle> make_writer(const std::string& topic, const dds_topic_descriptor_t* desc,
+                                        const QosProfile& profile);
 
     Domain& domain_;
     const LaunchConfig& config_;
