@@ -1,0 +1,205 @@
+#include "simulator/cli/sim_run.hpp"
+
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+
+#include "common/core/io_error.hpp"
+#include "common/core/kitti_io.hpp"
+#include "common/core/ply_io.hpp"
+#include "common/core/progress.hpp"
+#include "common/core/trajectory_io.hpp"
+#include "simulator/cli/truth_files.hpp"
+#include "simulator/core/scenario_yaml.hpp"
+#include "simulator/core/simulator.hpp"
+
+namespace ltm::sim::cli {
+namespace {
+
+bool parse_count(const std::string& s, std::size_t& out) {
+    if (s.empty() || s.find_first_not_of("0123456789") != std::string::npos) return false;
+    out = std::stoull(s);
+    return true;
+}
+
+std::string frame_name(std::size_t i, const char* ext) {
+    char buf[48];
+    std::snprintf(buf, sizeof buf, "%06zu%s", i, ext);
+    return buf;
+}
+
+}  // namespace
+
+std::string sim_usage() {
+    return "usage: ltm_sim SCENARIO.yaml [--seed N] [--session K] [--frames A:B] [--sensor NAME] "
+           "[--quiet] --out DIR\n"
+           "  writes DIR/velodyne/NNNNNN.bin, labels/, times.txt, poses.txt (KITTI, LiDAR frame),\n"
+           "  poses_tum.txt, calib.txt (identity), truth_mesh.ply, scenario.yaml, objects.txt,\n"
+           "  changes.txt, actors.txt, kidnaps.txt. --frames A:B writes scans A..B-1 (A: or :B\n"
+           "  allowed) numbered from 0. Sensors: " +
+           sensor_preset_names() + "\n";
+}
+
+bool parse_sim_args(const std::vector<std::string>& args, SimRunOptions& o, std::string& error) {
+    auto bad = [&](const std::string& message) {
+        error = message;
+        return false;
+    };
+    for (std::size_t i = 1; i < args.size(); ++i) {
+        const std::string& a = args[i];
+        const bool takes_value =
+            a == "--seed" || a == "--session" || a == "--frames" || a == "--sensor" || a == "--out";
+        if (takes_value && i + 1 >= args.size()) return bad(a + ": needs a value");
+        const std::string v = takes_value ? args[++i] : std::string();
+        std::size_t n = 0;
+        if (a == "--seed") {
+            if (!parse_count(v, n))
+                return bad("--seed: expected a non-negative integer, got '" + v + "'");
+            o.has_seed = true;
+            o.seed = n;
+        } else if (a == "--session") {
+            if (!parse_count(v, n)) return bad("--session: expected 0, 1, ..., got '" + v + "'");
+            o.session = static_cast<int>(n);
+        } else if (a == "--frames") {
+            const std::size_t colon = v.find(':');
+            const std::string lo = colon == std::string::npos ? v : v.substr(0, colon);
+            const std::string hi = colon == std::string::npos ? "" : v.substr(colon + 1);
+            const bool ok = colon != std::string::npos &&
+                            (lo.empty() || parse_count(lo, o.first)) &&
+                            (hi.empty() || parse_count(hi, o.last));
+            if (!ok || o.first >= o.last) {
+                return bad("--frames: expected A:B with A < B (e.g. 0:100, 50:), got '" + v + "'");
+            }
+        } else if (a == "--sensor") {
+            o.sensor = v;
+        } else if (a == "--out") {
+            o.out = v;
+        } else if (a == "--quiet") {
+            o.quiet = true;
+        } else if (!a.empty() && a[0] == '-') {
+            return bad(a + ": unknown option");
+        } else if (o.scenario.empty()) {
+            o.scenario = a;
+        } else {
+            return bad(a + ": only one scenario file is allowed");
+        }
+    }
+    if (o.scenario.empty()) return bad("missing the scenario file");
+    if (o.out.empty()) return bad("missing --out DIR");
+    return true;
+}
+
+ScenarioConfig load_with_options(const SimRunOptions& o) {
+    ScenarioConfig sc = load_scenario(o.scenario);
+    if (o.has_seed) sc.seed = o.seed;
+    if (!o.sensor.empty()) {
+        SensorConfig s;
+        if (!make_sensor_preset(o.sensor, s)) {
+            throw ScenarioError("--sensor " + o.sensor +
+                                ": unknown (known: " + sensor_preset_names() + ")");
+        }
+        s.height = sc.sensor.height;
+        s.has_ego_box = sc.sensor.has_ego_box;
+        s.ego_box = sc.sensor.ego_box;
+        s.motion_distortion = sc.sensor.motion_distortion;
+        s.per_point_time = sc.sensor.per_point_time;
+        sc.sensor = s;
+    }
+    return sc;
+}
+
+int run_sim(const SimRunOptions& o) {
+    try {
+        const ScenarioConfig sc = load_with_options(o);
+        const Simulator sim(sc, o.session);
+        for (const auto& w : sim.warnings()) std::cerr << "ltm_sim: warning: " << w << "\n";
+        const std::size_t first = std::min(o.first, sim.num_scans());
+        const std::size_t last = std::min(o.last, sim.num_scans());
+        if (first >= last) {
+            std::cerr << "ltm_sim: --frames selects no scans (session " << o.session << " has "
+                      << sim.num_scans() << ")\n";
+            return 2;
+        }
+        if (!o.quiet) {
+            std::cerr << "ltm_sim: " << sc.name << " session " << o.session << " ("
+                      << sc.sessions[static_cast<std::size_t>(o.session)].name << "), sensor "
+                      << sc.sensor.model << ", seed " << sc.seed << ": scans " << first << ".."
+                      << last - 1 << " of " << sim.num_scans() << "; " << sim.objects().size()
+                      << " objects, " << sim.world().static_mesh().num_triangles() << " triangles, "
+                      << sim.actors().size() << " moving actors, " << sim.plan().changed_ids.size()
+                      << " objects changed between sessions\n";
+        }
+        namespace fs = std::filesystem;
+        const fs::path out(o.out);
+        std::error_code ec;
+        fs::create_directories(out / "velodyne", ec);
+        fs::create_directories(out / "labels", ec);
+        if (ec || !fs::is_directory(out / "velodyne"))
+            throw common::IoError(o.out, "cannot create the output folder");
+
+        common::Progress progress("ltm_sim", last - first, "scans");
+        std::vector<double> times;
+        common::PoseList poses;
+        common::Trajectory tum;
+        std::vector<std::size_t> kidnap_frames;
+        std::vector<double> kidnap_stamps;
+        SimScan scan;
+        for (std::size_t i = first; i < last; ++i) {
+            sim.scan(i, scan);
+            const std::size_t k = i - first;
+            common::write_kitti_bin((out / "velodyne" / frame_name(k, ".bin")).string(),
+                                    scan.cloud);
+            write_labels((out / "labels" / frame_name(k, ".label")).string(), scan.labels);
+            times.push_back(scan.cloud.stamp);
+            poses.push_back(scan.T_world_lidar);
+            common::StampedPose sp;
+            sp.stamp = scan.cloud.stamp;
+            sp.pose = scan.T_world_lidar;
+            tum.push_back(sp);
+            if (scan.after_kidnap) {
+                kidnap_frames.push_back(k);
+                kidnap_stamps.push_back(scan.cloud.stamp);
+            }
+            if (!o.quiet) progress.update(k + 1);
+        }
+        if (!o.quiet) progress.finish();
+        common::write_times((out / "times.txt").string(), times);
+        common::write_kitti_poses((out / "poses.txt").string(), poses);
+        common::write_tum_trajectory((out / "poses_tum.txt").string(), tum);
+        write_identity_calib((out / "calib.txt").string());
+        common::write_ply((out / "truth_mesh.ply").string(), sim.truth_mesh());
+        write_objects((out / "objects.txt").string(), sim);
+        write_changes((out / "changes.txt").string(), sim);
+        write_actors((out / "actors.txt").string(), sim);
+        write_kidnaps((out / "kidnaps.txt").string(), kidnap_frames, kidnap_stamps);
+        copy_scenario(o.scenario, (out / "scenario.yaml").string(),
+                      "seed " + std::to_string(sc.seed) + ", session " + std::to_string(o.session) +
+                          ", frames " + std::to_string(first) + ":" + std::to_string(last) +
+                          ", sensor " + sc.sensor.model);
+        return 0;
+    } catch (const ScenarioError& e) {
+        std::cerr << "ltm_sim: " << e.what() << "\n";
+    } catch (const common::IoError& e) {
+        std::cerr << "ltm_sim: " << e.what() << "\n";
+    }
+    return 1;
+}
+
+int sim_main(int argc, char** argv) {
+    std::vector<std::string> args(argv, argv + argc);
+    for (const auto& a : args) {
+        if (a == "-h" || a == "--help") {
+            std::cout << sim_usage();
+            return 0;
+        }
+    }
+    SimRunOptions o;
+    std::string error;
+    if (!parse_sim_args(args, o, error)) {
+        std::cerr << "ltm_sim: " << error << "\n" << sim_usage();
+        return 2;
+    }
+    return run_sim(o);
+}
+
+}  // namespace ltm::sim::cli

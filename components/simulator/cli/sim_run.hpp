@@ -1,0 +1,37 @@
+#pragma once
+// `ltm_sim SCENARIO.yaml [--seed N] [--session K] [--frames A:B] [--sensor NAME] --out DIR`:
+// one session of a scenario written as a KITTI-layout folder with its ground truth.
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "simulator/core/scenario.hpp"
+
+namespace ltm::sim::cli {
+
+struct SimRunOptions {
+    std::string scenario;  // YAML file
+    bool has_seed = false;
+    std::uint64_t seed = 0;
+    int session = 0;
+    std::size_t first = 0;  // --frames A:B (B exclusive)
+    std::size_t last = std::numeric_limits<std::size_t>::max();
+    std::string sensor;  // preset replacing the scenario's sensor (mount height and ego box kept)
+    std::string out;
+    bool quiet = false;  // no summary and no progress
+};
+
+// Parses the command line (argv[0] is the program). False with a one-line `error` on bad input.
+bool parse_sim_args(const std::vector<std::string>& args, SimRunOptions& options,
+                    std::string& error);
+std::string sim_usage();
+
+// Loads the scenario with the options applied (seed, sensor). Throws ScenarioError.
+ScenarioConfig load_with_options(const SimRunOptions& options);
+
+// Runs and writes the folder. Returns the process exit code; errors go to stderr as one line.
+int run_sim(const SimRunOptions& options);
+int sim_main(int argc, char** argv);
+
+}  // namespace ltm::sim::cli

@@ -1,0 +1,110 @@
+#include "simulator/cli/sim_run.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "common/core/kitti_io.hpp"
+#include "common/core/trajectory_io.hpp"
+#include "evaluation/core/point_labels.hpp"
+
+namespace ltm::sim::cli {
+namespace {
+
+const std::string kTiny = LTM_SOURCE_DIR "/components/simulator/scenarios/tiny_loop.yaml";
+
+std::vector<std::string> argv_of(std::initializer_list<std::string> args) {
+    std::vector<std::string> v{"ltm_sim"};
+    v.insert(v.end(), args);
+    return v;
+}
+
+std::size_t file_size(const std::string& path) { return std::filesystem::file_size(path); }
+
+TEST(SimRun, ParsesOptions) {
+    SimRunOptions o;
+    std::string error;
+    ASSERT_TRUE(parse_sim_args(argv_of({"s.yaml", "--seed", "9", "--session", "1", "--frames",
+                                        "5:", "--sensor", "vlp16", "--out", "d"}),
+                               o, error))
+        << error;
+    EXPECT_EQ(o.scenario, "s.yaml");
+    EXPECT_TRUE(o.has_seed);
+    EXPECT_EQ(o.seed, 9u);
+    EXPECT_EQ(o.session, 1);
+    EXPECT_EQ(o.first, 5u);
+    EXPECT_EQ(o.last, std::numeric_limits<std::size_t>::max());
+    EXPECT_EQ(o.sensor, "vlp16");
+    EXPECT_EQ(o.out, "d");
+    for (const auto& bad :
+         {argv_of({"s.yaml"}), argv_of({"--out", "d"}),
+          argv_of({"s.yaml", "--out", "d", "--frames", "9:3"}),
+          argv_of({"s.yaml", "--out", "d", "--seed", "x"}),
+          argv_of({"s.yaml", "--out", "d", "--fast"}), argv_of({"s.yaml", "--out"})}) {
+        SimRunOptions b;
+        error.clear();
+        EXPECT_FALSE(parse_sim_args(bad, b, error));
+        EXPECT_FALSE(error.empty());
+        EXPECT_EQ(error.find('\n'), std::string::npos);
+    }
+}
+
+TEST(SimRun, WritesAKittiFolderThatReadsBack) {
+    const std::string out = LTM_BINARY_DIR "/tests/sim_run_test_out";
+    std::filesystem::remove_all(out);
+    SimRunOptions o;
+    std::string error;
+    ASSERT_TRUE(parse_sim_args(
+        argv_of({kTiny, "--session", "1", "--frames", "0:4", "--quiet", "--out", out}), o, error));
+    ASSERT_EQ(run_sim(o), 0);
+    const auto scans = common::list_kitti_scans(out);
+    ASSERT_EQ(scans.size(), 4u);
+    for (std::size_t i = 0; i < scans.size(); ++i) {
+        const common::PointCloud cloud = common::read_kitti_bin(scans[i]);
+        EXPECT_GT(cloud.size(), 3000u);
+        char name[64];
+        std::snprintf(name, sizeof name, "/labels/%06zu.label", i);
+        EXPECT_EQ(file_size(out + name), 4 * cloud.size());
+        for (const auto& p : cloud.points) EXPECT_LT(p.norm(), 100.5f);
+    }
+    EXPECT_EQ(common::read_times(out + "/times.txt").size(), 4u);
+    const auto poses = common::read_kitti_poses(out + "/poses.txt");
+    ASSERT_EQ(poses.size(), 4u);
+    const auto tum = common::read_tum_trajectory(out + "/poses_tum.txt");
+    ASSERT_EQ(tum.size(), 4u);
+    EXPECT_TRUE(tum[2].pose.isApprox(poses[2], 1e-6));
+    EXPECT_TRUE(
+        common::read_kitti_calib_tr(out + "/calib.txt").isApprox(Eigen::Isometry3d::Identity()));
+    for (const char* f : {"/truth_mesh.ply", "/scenario.yaml", "/objects.txt", "/changes.txt",
+                          "/actors.txt", "/kidnaps.txt"}) {
+        EXPECT_TRUE(std::filesystem::exists(out + f)) << f;
+    }
+    EXPECT_GT(file_size(out + "/truth_mesh.ply"), 100000u);
+    std::ifstream kid(out + "/kidnaps.txt");
+    std::string header, first;
+    std::getline(kid, header);
+    std::getline(kid, first);
+    EXPECT_EQ(first.rfind("0 ", 0), 0u);  // session 1 starts kidnapped
+}
+
+TEST(SimRun, BadInputIsAnErrorNotACrash) {
+    SimRunOptions o;
+    o.scenario = "/nonexistent.yaml";
+    o.out = LTM_BINARY_DIR "/tests/sim_run_test_none";
+    o.quiet = true;
+    EXPECT_EQ(run_sim(o), 1);
+    o.scenario = kTiny;
+    o.session = 5;
+    EXPECT_EQ(run_sim(o), 1);
+    o.session = 0;
+    o.sensor = "lidar9";
+    EXPECT_EQ(run_sim(o), 1);
+    o.sensor.clear();
+    o.first = 100000;
+    o.last = 100001;
+    EXPECT_EQ(run_sim(o), 2);
+}
+
+}  // namespace
+}  // namespace ltm::sim::cli

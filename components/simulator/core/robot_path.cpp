@@ -1,0 +1,178 @@
+#include "simulator/core/robot_path.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "common/core/io_error.hpp"
+#include "common/core/kitti_io.hpp"
+
+namespace ltm::sim {
+
+std::string resolve_path(const std::string& path, const std::string& base_dir) {
+    if (path.empty() || path[0] == '/' || base_dir.empty()) return path;
+    return base_dir + "/" + path;
+}
+
+RobotPath::RobotPath(const RouteConfig& config, const std::string& base_dir) {
+    if (!config.poses_file.empty()) {
+        init_file(config, base_dir);
+    } else {
+        init_waypoints(config);
+    }
+}
+
+void RobotPath::init_waypoints(const RouteConfig& config) {
+    if (config.waypoints.size() < 2)
+        throw ScenarioError("route: needs at least two waypoints or a poses_file");
+    if (config.speed <= 0) throw ScenarioError("route.speed: must be > 0");
+    Points2 pts;
+    for (const auto& w : config.waypoints) pts.emplace_back(w.x, w.y);
+    std::vector<std::size_t> index;
+    line_ = Polyline(round_corners(pts, config.corner_radius, 0.5, &index));
+    if (line_.length() <= 0) throw ScenarioError("route: the waypoints do not move the robot");
+    waypoint_vertex_ = index;
+    // The speed of waypoint i holds until waypoint i + 1.
+    vertex_time_.assign(line_.points().size(), 0.0);
+    std::size_t leg = 0;
+    for (std::size_t j = 1; j < line_.points().size(); ++j) {
+        while (leg + 1 < index.size() && index[leg + 1] < j) ++leg;
+        const double v =
+            config.waypoints[leg].speed > 0 ? config.waypoints[leg].speed : config.speed;
+        vertex_time_[j] = vertex_time_[j - 1] + (line_.vertex_s(j) - line_.vertex_s(j - 1)) / v;
+    }
+}
+
+void RobotPath::init_file(const RouteConfig& config, const std::string& base_dir) {
+    const std::string poses_path = resolve_path(config.poses_file, base_dir);
+    const std::string times_path = resolve_path(config.times_file, base_dir);
+    try {
+        common::PoseList poses = common::read_kitti_poses(poses_path);
+        if (config.times_file.empty())
+            throw ScenarioError("route.times_file: needed with poses_file");
+        times_ = common::read_times(times_path);
+        if (config.camera_frame) {
+            if (config.calib_file.empty()) {
+                throw ScenarioError(
+                    "route.calib_file: needed for camera-frame poses (or set camera_frame: false)");
+            }
+            const std::string calib = resolve_path(config.calib_file, base_dir);
+            poses = common::camera_to_lidar_poses(poses, common::read_kitti_calib_tr(calib));
+        }
+        poses_ = std::move(poses);
+    } catch (const common::IoError& e) {
+        throw ScenarioError(std::string("route: ") + e.what());
+    }
+    if (poses_.size() < 2)
+        throw ScenarioError("route: " + poses_path + " holds fewer than two poses");
+    if (times_.size() != poses_.size()) {
+        throw ScenarioError("route: " + times_path + " has " + std::to_string(times_.size()) +
+                            " times for " + std::to_string(poses_.size()) + " poses");
+    }
+    for (std::size_t i = 1; i < times_.size(); ++i) {
+        if (!(times_[i] > times_[i - 1]))
+            throw ScenarioError("route: " + times_path + ": times do not increase at line " +
+                                std::to_string(i + 1));
+    }
+    Points2 pts;
+    for (const auto& T : poses_) {
+        const Eigen::Vector2d p = T.translation().head<2>();
+        if (pts.empty() || (p - pts.back()).norm() >= 1.0) pts.push_back(p);
+    }
+    if (pts.size() < 2)
+        pts.push_back(poses_.back().translation().head<2>() + Eigen::Vector2d(1e-3, 0));
+    line_ = Polyline(pts);
+}
+
+double RobotPath::duration() const {
+    if (from_file()) return times_.back() - times_.front();
+    return vertex_time_.back();
+}
+
+double RobotPath::arc_at(double t) const {
+    if (from_file()) return line_.project(pose_at(t, Terrain(), 0).translation().head<2>());
+    const auto it = std::upper_bound(vertex_time_.begin(), vertex_time_.end(), t);
+    if (it == vertex_time_.begin()) return 0.0;
+    if (it == vertex_time_.end()) return line_.length();
+    const std::size_t j = static_cast<std::size_t>(it - vertex_time_.begin());
+    const double f = (t - vertex_time_[j - 1]) / (vertex_time_[j] - vertex_time_[j - 1]);
+    return line_.vertex_s(j - 1) + f * (line_.vertex_s(j) - line_.vertex_s(j - 1));
+}
+
+Eigen::Vector2d RobotPath::plan_position(double t) const {
+    if (!from_file()) return line_.point_at(arc_at(t));
+    const double ft = times_.front() + t;
+    const auto it = std::upper_bound(times_.begin(), times_.end(), ft);
+    if (it == times_.begin()) return poses_.front().translation().head<2>();
+    if (it == times_.end()) return poses_.back().translation().head<2>();
+    const std::size_t j = static_cast<std::size_t>(it - times_.begin());
+    const double f = (ft - times_[j - 1]) / (times_[j] - times_[j - 1]);
+    return ((1 - f) * poses_[j - 1].translation() + f * poses_[j].translation()).head<2>();
+}
+
+double RobotPath::waypoint_time(int i) const {
+    if (from_file() || i < 0 || i >= num_waypoints()) return -1.0;
+    return vertex_time_[waypoint_vertex_[static_cast<std::size_t>(i)]];
+}
+
+std::vector<double> RobotPath::scan_times(double t0, double t1, double rate) const {
+    std::vector<double> out;
+    if (from_file()) {
+        const double base = times_.front();
+        for (const double t : times_) {
+            if (t - base >= t0 - 1e-9 && t - base <= t1 + 1e-9) out.push_back(t - base);
+        }
+        return out;
+    }
+    for (long k = 0;; ++k) {
+        const double t = t0 + static_cast<double>(k) / rate;
+        if (t > t1 + 1e-9) break;
+        out.push_back(t);
+    }
+    return out;
+}
+
+std::vector<Eigen::Vector3d> RobotPath::ground_points(double height) const {
+    std::vector<Eigen::Vector3d> out;
+    for (const auto& T : poses_) {
+        const Eigen::Vector3d g = T * Eigen::Vector3d(0, 0, -height);
+        if (out.empty() || (g - out.back()).head<2>().norm() >= 2.0) out.push_back(g);
+    }
+    return out;
+}
+
+void RobotPath::drape(const Terrain& terrain, double height) {
+    for (auto& T : poses_) {
+        const Eigen::Vector3d g = T * Eigen::Vector3d(0, 0, -height);
+        T.translation().z() += terrain.height(g.x(), g.y()) - g.z();
+    }
+}
+
+Eigen::Isometry3d RobotPath::pose_at(double t, const Terrain& terrain, double height) const {
+    if (from_file()) {
+        const double ft = times_.front() + t;
+        const auto it = std::upper_bound(times_.begin(), times_.end(), ft);
+        if (it == times_.begin()) return poses_.front();
+        if (it == times_.end()) return poses_.back();
+        const std::size_t j = static_cast<std::size_t>(it - times_.begin());
+        const double f = (ft - times_[j - 1]) / (times_[j] - times_[j - 1]);
+        const Eigen::Quaterniond q0(poses_[j - 1].linear()), q1(poses_[j].linear());
+        Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+        T.linear() = q0.slerp(f, q1).toRotationMatrix();
+        T.translation() = (1 - f) * poses_[j - 1].translation() + f * poses_[j].translation();
+        return T;
+    }
+    const double s = arc_at(t);
+    const Eigen::Vector2d p = line_.point_at(s);
+    Eigen::Vector2d dir = line_.point_at(s + 0.6) - line_.point_at(s - 0.6);
+    if (dir.norm() < 1e-6) dir = line_.tangent_at(s);
+    const double yaw = std::atan2(dir.y(), dir.x());
+    const Eigen::Vector3d n = terrain.normal(p.x(), p.y());
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.linear() = (Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), n) *
+                  Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()))
+                     .toRotationMatrix();
+    T.translation() = Eigen::Vector3d(p.x(), p.y(), terrain.height(p.x(), p.y())) + height * n;
+    return T;
+}
+
+}  // namespace ltm::sim

@@ -1,0 +1,105 @@
+#include "simulator/core/scenario_yaml.hpp"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+namespace ltm::sim {
+namespace {
+
+const std::string kScenarios = LTM_SOURCE_DIR "/components/simulator/scenarios/";
+
+const char* kMinimal = R"(name: t
+seed: 3
+sensor: {model: vlp16, rate: 5}
+sessions:
+  - route:
+      waypoints: [[0, 0], [10, 0, 2.5], [10, 10]]
+)";
+
+std::string error_of(const std::string& text) {
+    try {
+        parse_scenario(text, "test.yaml", ".");
+    } catch (const ScenarioError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+TEST(ScenarioYaml, ShippedScenariosLoad) {
+    for (const char* name : {"tiny_loop", "site_loop", "site_sessions", "kitti00_path"}) {
+        const ScenarioConfig sc = load_scenario(kScenarios + name + ".yaml");
+        EXPECT_EQ(sc.name, name);
+        EXPECT_FALSE(sc.sessions.empty());
+        EXPECT_EQ(validate_scenario(sc), "");
+    }
+    const ScenarioConfig sessions = load_scenario(kScenarios + "site_sessions.yaml");
+    ASSERT_EQ(sessions.sessions.size(), 2u);
+    EXPECT_TRUE(sessions.sessions[1].kidnapped_start);
+    EXPECT_EQ(sessions.sessions[1].kidnaps.size(), 1u);
+    const ChangesConfig& c = sessions.sessions[1].changes;
+    EXPECT_GE(
+        c.move_parked + c.remove_parked + c.add_parked + c.add_containers + c.remove_fence_segments,
+        10);
+    const ScenarioConfig kitti = load_scenario(kScenarios + "kitti00_path.yaml");
+    EXPECT_EQ(kitti.sensor.model, "hdl64e");
+    EXPECT_EQ(kitti.world.style, WorldStyle::kTown);
+    EXPECT_TRUE(kitti.sensor.has_ego_box);
+}
+
+TEST(ScenarioYaml, ReadsValuesOverPresets) {
+    const ScenarioConfig sc = parse_scenario(kMinimal, "test.yaml", "/base");
+    EXPECT_EQ(sc.seed, 3u);
+    EXPECT_EQ(sc.sensor.model, "vlp16");
+    EXPECT_DOUBLE_EQ(sc.sensor.rate_hz, 5.0);
+    EXPECT_EQ(sc.sensor.elevations_deg.size(), 16u);
+    ASSERT_EQ(sc.sessions[0].route.waypoints.size(), 3u);
+    EXPECT_DOUBLE_EQ(sc.sessions[0].route.waypoints[1].speed, 2.5);
+    EXPECT_EQ(sc.base_dir, "/base");
+}
+
+TEST(ScenarioYaml, RejectsUnknownKeysNamingKeyAndLine) {
+    std::string text = kMinimal;
+    text.replace(text.find("rate: 5"), 7, "rate: 5, sped: 3");
+    const std::string e = error_of(text);
+    EXPECT_NE(e.find("test.yaml:3"), std::string::npos) << e;
+    EXPECT_NE(e.find("sensor.sped"), std::string::npos) << e;
+    EXPECT_NE(e.find("unknown key"), std::string::npos) << e;
+    const std::string nested =
+        error_of(std::string(kMinimal) + "    actors: {vehicles: 1, bicycles: 2}\n");
+    EXPECT_NE(nested.find("sessions[0].actors.bicycles"), std::string::npos) << nested;
+    EXPECT_NE(nested.find("test.yaml:7"), std::string::npos) << nested;
+    EXPECT_NE(error_of(std::string(kMinimal) + "colour: red\n").find("colour"), std::string::npos);
+}
+
+TEST(ScenarioYaml, RejectsBadValuesWithOneLine) {
+    auto check = [](const std::string& text, const std::string& needle) {
+        const std::string e = error_of(text);
+        EXPECT_NE(e.find(needle), std::string::npos) << e;
+        EXPECT_EQ(e.find('\n'), std::string::npos) << e;
+    };
+    std::string t = kMinimal;
+    check(t.replace(t.find("vlp16"), 5, "lidar9"), "unknown sensor");
+    t = kMinimal;
+    check(t.replace(t.find("rate: 5"), 7, "rate: fast"), "sensor.rate: expected a number");
+    t = kMinimal;
+    check(t.replace(t.find("rate: 5"), 7, "rate: -1"), "sensor.rate: must be > 0");
+    check("sessions: []\n", "at least one session");
+    check("name: x\n", "sessions: missing");
+    check("sessions:\n  - name: a\n", "sessions[0].route: missing");
+    check(std::string(kMinimal) + "    kidnaps: [{at: 3}]\n", "needs resume_at");
+    check("sessions: [ {route: {waypoints: [[0, 0], [1]]}} ]\n", "sessions[0].route.waypoints[1]");
+    check("{{{", "not valid YAML");
+}
+
+TEST(ScenarioYaml, MissingFilesGiveOneLine) {
+    try {
+        load_scenario("/nonexistent/dir/s.yaml");
+        FAIL();
+    } catch (const ScenarioError& e) {
+        EXPECT_NE(std::string(e.what()).find("/nonexistent/dir/s.yaml"), std::string::npos);
+    }
+}
+
+}  // namespace
+}  // namespace ltm::sim
