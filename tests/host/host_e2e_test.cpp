@@ -128,6 +128,32 @@ components:
     EXPECT_EQ(rows[3].substr(0, 24), "1.500000000 3.000000000 ");
 }
 
+TEST_F(HostTest, SimulatorStreamsLiveThroughTheHost) {
+    const std::string scenario = std::string(LTM_SOURCE_DIR) + "/components/simulator/scenarios/tiny_loop.yaml";
+    const std::string launch = write("sim.yaml", dds_section(161) + R"(
+topics: {points: stream, ground_truth: stream}
+components:
+  - name: sim
+    type: simulator
+    params: {scenario: )" + scenario + R"(, mode: fast, count: 8}
+  - name: writer
+    type: cloud_writer
+    params: {dir: )" + path("clouds") + R"(, format: bin}
+  - name: traj
+    type: trajectory_writer
+    params: {kitti_file: )" + path("truth.txt") + R"(, input: pose}
+    remap: {pose: ground_truth}
+)");
+    Process host({kHost, launch}, path("host"));
+    ASSERT_EQ(host.wait(120), 0) << host.err();
+    ASSERT_EQ(count_files("clouds", ".bin"), 8u);
+    EXPECT_GT(ltm::common::read_kitti_bin(path("clouds/000007.bin")).size(), 1000u);
+    std::ifstream truth(path("truth.txt"));
+    std::size_t n = 0;
+    for (std::string l; std::getline(truth, l);) ++n;
+    EXPECT_EQ(n, 8u);
+}
+
 struct BadCase {
     const char* name;
     const char* components;     // YAML of the components list

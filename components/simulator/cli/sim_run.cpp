@@ -92,18 +92,8 @@ bool parse_sim_args(const std::vector<std::string>& args, SimRunOptions& o, std:
 ScenarioConfig load_with_options(const SimRunOptions& o) {
     ScenarioConfig sc = load_scenario(o.scenario);
     if (o.has_seed) sc.seed = o.seed;
-    if (!o.sensor.empty()) {
-        SensorConfig s;
-        if (!make_sensor_preset(o.sensor, s)) {
-            throw ScenarioError("--sensor " + o.sensor +
-                                ": unknown (known: " + sensor_preset_names() + ")");
-        }
-        s.height = sc.sensor.height;
-        s.has_ego_box = sc.sensor.has_ego_box;
-        s.ego_box = sc.sensor.ego_box;
-        s.motion_distortion = sc.sensor.motion_distortion;
-        s.per_point_time = sc.sensor.per_point_time;
-        sc.sensor = s;
+    if (!o.sensor.empty() && !replace_sensor(o.sensor, sc.sensor)) {
+        throw ScenarioError("--sensor " + o.sensor + ": unknown (known: " + sensor_preset_names() + ")");
     }
     return sc;
 }

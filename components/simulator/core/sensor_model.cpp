@@ -162,3 +162,19 @@ double SensorModel::intensity(double reflectivity, double power) {
 }
 
 }  // namespace ltm::sim
+
+namespace ltm::sim {
+
+bool replace_sensor(const std::string& name, SensorConfig& config) {
+    SensorConfig s;
+    if (!make_sensor_preset(name, s)) return false;
+    s.height = config.height;
+    s.has_ego_box = config.has_ego_box;
+    s.ego_box = config.ego_box;
+    s.motion_distortion = config.motion_distortion;
+    s.per_point_time = config.per_point_time;
+    config = s;
+    return true;
+}
+
+}  // namespace ltm::sim

@@ -37,6 +37,9 @@ struct SensorConfig {
 // False when the name is unknown.
 bool make_sensor_preset(const std::string& name, SensorConfig& config);
 std::string sensor_preset_names();  // "hdl64e, vlp32c, ..." for messages
+// Swaps the sensor for preset `name`, keeping how it is mounted and timed (height, ego box,
+// motion distortion, per-point time). False for an unknown name (config unchanged).
+bool replace_sensor(const std::string& name, SensorConfig& config);
 
 struct Pulse {
     Eigen::Vector3f dir;  // unit, sensor frame (x forward, y left, z up)
