@@ -65,7 +65,7 @@ void ScanPlayer::step() {
             ctx_.log().warn("no reader matched within " + std::to_string(wait_timeout_s_) + " s; playing anyway");
         waiting_ = false;
         start_wall_ = clock::now();
-        progress_ = std::make_unique<common::Progress>(ctx_.name(), folder_->size(), "scans");
+        progress_ = std::make_unique<common::Progress>(ctx_.name(), loop_ ? 0 : folder_->size(), "scans");
     }
     if (next_ >= folder_->size()) {
         if (loop_ && folder_->size() > 0) {
@@ -96,7 +96,7 @@ void ScanPlayer::step() {
     non_finite_ += common::remove_non_finite(cloud);
     cloud.frame_id = frame_id_;
     if (points_.publish(builder_.build(cloud))) ++published_;
-    progress_->update(i + 1);
+    progress_->update(published_);
     if (ground_truth_.valid()) {
         msg::PoseStamped ps{};
         ps.header.stamp = convert::to_time(cloud.stamp);
@@ -107,7 +107,10 @@ void ScanPlayer::step() {
 }
 
 void ScanPlayer::on_shutdown() {
-    if (next_ < folder_->size())
+    if (loop_)
+        ctx_.log().info("stopped after " + std::to_string(published_) + " scans (looping over " +
+                        std::to_string(folder_->size()) + ")");
+    else if (next_ < folder_->size())
         ctx_.log().info("stopped after " + std::to_string(published_) + " of " + std::to_string(folder_->size()) + " scans");
 }
 
