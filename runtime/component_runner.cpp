@@ -192,6 +192,13 @@ void ComponentRunner::run() {
         bool triggered = false;
         dds_take_guardcondition(guard_, &triggered);
     }
+    // Input already queued when the stop came is still processed (bounded), so that the last
+    // outputs of the components stopped before this one are not lost.
+    if (ok && !failed_) {
+        const auto drain_until = clock::now() + std::chrono::milliseconds(500);
+        while (clock::now() < drain_until && !failed_ && dispatch_one_round()) {
+        }
+    }
     lifecycle("on_deactivate", &Component::on_deactivate);
     lifecycle("on_shutdown", &Component::on_shutdown);
     {

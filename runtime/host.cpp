@@ -152,14 +152,22 @@ int Host::run() {
 
     const auto deadline = clock::now() + std::chrono::duration_cast<clock::duration>(
                                              std::chrono::duration<double>(config_.shutdown_timeout_s));
-    for (auto& r : runners_) r->request_stop();
+    // Stop in launch-config order (sources first, sinks last): what a component publishes while
+    // it shuts down (its last local map, say) still reaches the components listed after it.
     bool timed_out = false;
     for (auto& r : runners_) {
+        r->request_stop();
         if (!r->wait_done(deadline)) {
             g_log.error("component '" + r->name() + "' did not stop within " +
                         std::to_string(config_.shutdown_timeout_s) + " s");
             timed_out = true;
+            break;
         }
+    }
+    if (timed_out) {
+        // Give the others what is left of a short grace to flush their outputs.
+        for (auto& r : runners_) r->request_stop();
+        for (auto& r : runners_) r->wait_done(std::max(deadline, clock::now()) + std::chrono::milliseconds(200));
     }
     if (timed_out) {
         // A stuck component thread cannot be joined; leave without running destructors.

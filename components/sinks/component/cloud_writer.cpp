@@ -1,9 +1,11 @@
-// Writes every point cloud it receives (`points`) as DIR/NNNNNN.ply (or KITTI .bin) and every mesh
-// chunk (`mesh`) as DIR/mesh_<local map id>.ply (the latest revision of each chunk).
+// Writes every point cloud it receives (`points`) as DIR/NNNNNN.ply (or KITTI .bin), every finished
+// local map (`local_map`) as DIR/local_map_<id>.ply (voxel centres and normals, odometry frame) and
+// every mesh chunk (`mesh`) as DIR/mesh_<local map id>.ply (the latest revision of each chunk).
 #include <cstdio>
 #include <filesystem>
 
 #include "common/convert/geometry.hpp"
+#include "common/convert/local_map.hpp"
 #include "common/convert/pointcloud2.hpp"
 #include "common/core/io_error.hpp"
 #include "common/core/kitti_io.hpp"
@@ -29,14 +31,26 @@ public:
         if (format_ != "ply" && format_ != "bin") p.fail("format", "expected ply or bin, got '" + format_ + "'");
         every_ = p.get<int>("every", 1);
         if (every_ < 1) p.fail("every", "must be at least 1");
-        ctx.subscribe<msg::PointCloud2>("points", TopicRole::kSensor,
-                                        [this](const msg::PointCloud2& m) { on_points(m); });
-        ctx.subscribe<msg::Mesh>("mesh", TopicRole::kMap, [this](const msg::Mesh& m) { on_mesh(m); });
+        const auto inputs = p.get<std::vector<std::string>>("inputs", {"points", "local_map", "mesh"});
+        for (const auto& in : inputs) {
+            if (in == "points") {
+                ctx.subscribe<msg::PointCloud2>("points", TopicRole::kSensor,
+                                                [this](const msg::PointCloud2& m) { on_points(m); });
+            } else if (in == "local_map") {
+                ctx.subscribe<msg::LocalMap>("local_map", TopicRole::kMap,
+                                             [this](const msg::LocalMap& m) { on_local_map(m); });
+            } else if (in == "mesh") {
+                ctx.subscribe<msg::Mesh>("mesh", TopicRole::kMap, [this](const msg::Mesh& m) { on_mesh(m); });
+            } else {
+                p.fail("inputs", "unknown input '" + in + "' (known: points, local_map, mesh)");
+            }
+        }
     }
 
     void on_shutdown() override {
-        ctx_.log().info("wrote " + std::to_string(written_) + " clouds and " + std::to_string(meshes_) +
-                        " mesh chunks to " + dir_ + (rejected_ ? " (" + std::to_string(rejected_) + " rejected)" : ""));
+        ctx_.log().info("wrote " + std::to_string(written_) + " clouds, " + std::to_string(maps_) + " local maps and " +
+                        std::to_string(meshes_) + " mesh chunks to " + dir_ +
+                        (rejected_ ? " (" + std::to_string(rejected_) + " rejected)" : ""));
     }
 
 private:
@@ -62,6 +76,24 @@ private:
                 common::write_ply(path, ply);
             }
             ++written_;
+        } catch (const common::IoError& e) {
+            ctx_.log().error(e.what());
+        }
+    }
+
+    void on_local_map(const msg::LocalMap& m) {
+        if (!m.finished) return;  // snapshots of the map being built
+        const common::LocalMapData d = convert::from_msg(m);
+        const Eigen::Isometry3f T = (d.T_odom_anchor * d.T_anchor_grid).cast<float>();
+        common::PlyCloud ply;
+        for (const auto& v : d.voxels) {
+            ply.points.push_back(T * v.centre);
+            ply.normals.push_back(T.linear() * v.normal);
+            ply.intensity.push_back(v.stability);
+        }
+        try {
+            common::write_ply(dir_ + "/local_map_" + std::to_string(d.id) + ".ply", ply);
+            ++maps_;
         } catch (const common::IoError& e) {
             ctx_.log().error(e.what());
         }
@@ -94,7 +126,7 @@ private:
     runtime::ComponentContext& ctx_;
     std::string dir_, format_;
     int every_ = 1;
-    std::size_t received_ = 0, written_ = 0, meshes_ = 0, rejected_ = 0;
+    std::size_t received_ = 0, written_ = 0, maps_ = 0, meshes_ = 0, rejected_ = 0;
 };
 
 }  // namespace

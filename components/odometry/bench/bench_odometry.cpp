@@ -1,0 +1,273 @@
+// ltm_bench_odometry: runs the odometry core over a folder of scans and reports speed, peak memory
+// and, with a reference trajectory, accuracy (ATE after SE(3) alignment, frame-to-frame relative
+// errors, KITTI metric).
+//
+//   ltm_bench_odometry DIR [--threads N] [--out poses.txt] [--reference poses.txt
+//       [--calib calib.txt]] [--preset hdl64|vlp32|vlp16|narrow] [--config file.yaml]
+//       [--max-frames N] [--frame-log frames.csv]
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <numeric>
+#include <string>
+
+#include "common/core/io_error.hpp"
+#include "common/core/kitti_io.hpp"
+#include "common/core/progress.hpp"
+#include "common/core/trajectory_io.hpp"
+#include "evaluation/core/ate.hpp"
+#include "evaluation/core/kitti_metric.hpp"
+#include "evaluation/core/rpe.hpp"
+#include "odometry/bench/dataset.hpp"
+#include "odometry/core/odometry.hpp"
+#include "odometry/params/odometry_params.hpp"
+
+namespace {
+
+using namespace ltm;
+using Clock = std::chrono::steady_clock;
+
+struct Args {
+    std::string dir, out, reference, calib, preset, config, frame_log;
+    int threads = 1;
+    std::size_t max_frames = 0;
+};
+
+[[noreturn]] void usage(const std::string& error) {
+    std::cerr
+        << "error: " << error << "\n"
+        << "usage: ltm_bench_odometry DIR [--threads N] [--out poses.txt]\n"
+        << "         [--reference poses.txt [--calib calib.txt]]\n"
+        << "         [--preset hdl64|vlp32|vlp16|narrow] [--config file.yaml]\n"
+        << "         [--max-frames N] [--frame-log frames.csv]\n"
+        << "  DIR: KITTI layout (velodyne/*.bin) or a PCD/PLY folder (Scans/*.pcd).\n"
+        << "  --reference: KITTI-format poses, one line a frame (the first N lines are used);\n"
+        << "    with --calib (KITTI calib.txt) they are camera poses, converted to the LiDAR.\n"
+        << "  --config overrides the preset (default hdl64) with the keys of its odometry "
+           "section.\n";
+    std::exit(2);
+}
+
+Args parse(int argc, char** argv) {
+    Args a;
+    for (int i = 1; i < argc; ++i) {
+        const std::string k = argv[i];
+        auto value = [&]() -> std::string {
+            if (i + 1 >= argc) usage(k + " needs a value");
+            return argv[++i];
+        };
+        auto number = [&](const std::string& v) -> long {
+            char* end = nullptr;
+            const long n = std::strtol(v.c_str(), &end, 10);
+            if (v.empty() || *end != '\0' || n < 0) usage(k + " needs a non-negative integer");
+            return n;
+        };
+        if (k == "--threads") {
+            a.threads = int(number(value()));
+        } else if (k == "--out") {
+            a.out = value();
+        } else if (k == "--reference") {
+            a.reference = value();
+        } else if (k == "--calib") {
+            a.calib = value();
+        } else if (k == "--preset") {
+            a.preset = value();
+        } else if (k == "--config") {
+            a.config = value();
+        } else if (k == "--max-frames") {
+            a.max_frames = std::size_t(number(value()));
+        } else if (k == "--frame-log") {
+            a.frame_log = value();
+        } else if (k == "-h" || k == "--help") {
+            usage("help requested");
+        } else if (!k.empty() && k[0] == '-') {
+            usage("unknown option " + k);
+        } else if (a.dir.empty()) {
+            a.dir = k;
+        } else {
+            usage("more than one DIR given");
+        }
+    }
+    if (a.dir.empty()) usage("no DIR given");
+    if (!a.calib.empty() && a.reference.empty()) usage("--calib needs --reference");
+    if (a.threads < 1) usage("--threads must be at least 1");
+    return a;
+}
+
+// CPU time of the calling thread [s] (unlike wall time, not inflated by other processes).
+double thread_cpu_seconds() {
+    timespec ts{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
+
+// Peak resident memory [MiB] (VmHWM of /proc/self/status), -1 when unavailable.
+double peak_memory_mib() {
+    std::ifstream in("/proc/self/status");
+    std::string line;
+    while (std::getline(in, line)) {
+        if (line.rfind("VmHWM:", 0) == 0) return std::atof(line.c_str() + 6) / 1024.0;
+    }
+    return -1.0;
+}
+
+odometry::OdometryConfig make_config(const Args& a) {
+    const std::string preset = a.preset.empty() ? "hdl64" : a.preset;
+    odometry::OdometryConfig config = odometry::preset_config(odometry::parse_sensor_preset(preset));
+    if (!a.config.empty()) config = odometry::load_odometry_config_file(a.config, a.preset);
+    config.threads = a.threads;
+    const std::string error = odometry::validate(config);
+    if (!error.empty()) throw odometry::ConfigError(error);
+    return config;
+}
+
+void report_accuracy(const common::PoseList& est, const Args& a) {
+    common::PoseList ref = common::read_kitti_poses(a.reference);
+    if (!a.calib.empty())
+        ref = common::camera_to_lidar_poses(ref, common::read_kitti_calib_tr(a.calib));
+    if (ref.size() < est.size()) {
+        std::printf("warning: reference has %zu poses for %zu frames; comparing the first %zu\n",
+                    ref.size(), est.size(), ref.size());
+    }
+    ref.resize(std::min(ref.size(), est.size()));
+    const eval::AteResult ate = eval::compute_ate(est, ref);
+    std::printf("ATE (SE(3)-aligned, %zu poses): rmse %.4f m  mean %.4f  median %.4f  max %.4f\n",
+                ate.n, ate.rmse, ate.mean, ate.median, ate.max);
+    const eval::RpeResult rpe = eval::compute_rpe(est, ref, 1);
+    std::printf(
+        "relative error, consecutive frames (%zu pairs): translation median %.4f m  mean "
+        "%.4f  rmse %.4f  max %.4f; rotation median %.4f deg  mean %.4f  max %.4f\n",
+        rpe.translation.n, rpe.translation.median, rpe.translation.mean, rpe.translation.rmse,
+        rpe.translation.max, rpe.rotation_deg.median, rpe.rotation_deg.mean, rpe.rotation_deg.max);
+    const eval::KittiMetric km = eval::compute_kitti_metric(est, ref);
+    if (km.segments == 0) {
+        std::printf("KITTI metric: run too short (no 10 m segment)\n");
+    } else {
+        std::printf("KITTI metric (%s lengths, %zu segments): %.3f %%  %.4f deg/100 m\n",
+                    km.short_segments ? "short 10..50 m" : "100..800 m", km.segments,
+                    km.translation_pct, km.rotation_deg_per_100m);
+    }
+}
+
+int run(const Args& a) {
+    const odometry::OdometryConfig config = make_config(a);
+    const odometry::bench::Dataset data(a.dir);
+    const std::size_t frames = a.max_frames ? std::min(a.max_frames, data.size()) : data.size();
+    std::printf("%s: %zu %s scans%s, %d thread(s), voxel %.2f m\n", a.dir.c_str(), frames,
+                data.kind().c_str(), data.has_times() ? "" : " (no times.txt: 10 Hz assumed)",
+                config.threads, config.voxel_size);
+    std::ofstream log;
+    if (!a.frame_log.empty()) {
+        log.open(a.frame_log);
+        if (!log) throw common::IoError(a.frame_log, "cannot write");
+        log << "frame,status,ms,preprocess_ms,registration_ms,update_ms,input,"
+               "registration_points,correspondences,attempts,iterations,coarse_iterations,residual_"
+               "rms,"
+               "degenerate,min_information,local_map\n";
+    }
+
+    odometry::Odometry odo(config);
+    common::PoseList poses;
+    std::vector<double> ms;
+    std::map<std::string, std::size_t> statuses;
+    double pre_ms = 0.0, reg_ms = 0.0, upd_ms = 0.0;
+    std::size_t coarse_its = 0, retries = 0;
+    std::size_t keyframes = 0, maps_finished = 0, dropped_non_finite = 0, reg_points = 0, its = 0;
+    double io_seconds = 0.0, cpu_seconds = 0.0;
+    common::Progress progress("odometry", frames);
+    const auto start = Clock::now();
+    for (std::size_t i = 0; i < frames; ++i) {
+        const auto t0 = Clock::now();
+        const common::PointCloud cloud = data.load(i);
+        const auto t1 = Clock::now();
+        const double c1 = thread_cpu_seconds();
+        const odometry::FrameResult r = odo.register_frame(cloud);
+        cpu_seconds += thread_cpu_seconds() - c1;
+        const auto t2 = Clock::now();
+        maps_finished += odo.take_finished_local_maps().size();  // handed on, dropped here
+        io_seconds += std::chrono::duration<double>(t1 - t0).count();
+        ms.push_back(std::chrono::duration<double, std::milli>(t2 - t1).count());
+        poses.push_back(r.T_odom_lidar);
+        ++statuses[odometry::to_string(r.status)];
+        keyframes += r.keyframe.has_value();
+        dropped_non_finite += r.dropped_non_finite;
+        reg_points += r.registration_points;
+        its += std::size_t(r.iterations);
+        retries += r.attempts > 1;
+        coarse_its += std::size_t(r.coarse_iterations);
+        pre_ms += r.preprocess_ms;
+        reg_ms += r.registration_ms;
+        upd_ms += r.update_ms;
+        if (!r.message.empty()) std::fprintf(stderr, "frame %zu: %s\n", i, r.message.c_str());
+        if (log) {
+            log << i << ',' << odometry::to_string(r.status) << ',' << ms.back() << ','
+                << r.preprocess_ms << ',' << r.registration_ms << ',' << r.update_ms << ','
+                << r.input_points << ',' << r.registration_points << ',' << r.correspondences << ','
+                << r.attempts << ',' << r.iterations << ',' << r.coarse_iterations << ','
+                << r.residual_rms << ',' << r.degenerate_directions.size() << ','
+                << r.min_information << ',' << r.local_map_id << '\n';
+        }
+        progress.update(i + 1);
+    }
+    progress.finish();
+    const double wall = std::chrono::duration<double>(Clock::now() - start).count();
+    const double core = std::accumulate(ms.begin(), ms.end(), 0.0) / 1000.0;
+    std::vector<double> sorted = ms;
+    std::sort(sorted.begin(), sorted.end());
+    const auto pct = [&](double p) {
+        return sorted[std::min(sorted.size() - 1, std::size_t(p * sorted.size()))];
+    };
+
+    std::printf("frames: %zu;", frames);
+    for (const auto& [name, n] : statuses) std::printf(" %s %zu;", name.c_str(), n);
+    std::printf(" keyframes %zu; local maps finished %zu, active %zu\n", keyframes, maps_finished,
+                odo.active_local_maps().size());
+    std::printf(
+        "speed: %.1f frames/s odometry (pre-processing included, file reading excluded), "
+        "%.1f frames/s with reading\n",
+        frames / core, frames / wall);
+    if (config.threads == 1) {
+        std::printf("speed by CPU time of the odometry thread: %.1f frames/s (%.2f ms a frame)\n",
+                    frames / cpu_seconds, 1000.0 * cpu_seconds / frames);
+    }
+    std::printf("time a frame: mean %.2f ms  median %.2f  p95 %.2f  max %.2f; reading %.2f ms\n",
+                1000.0 * core / frames, pct(0.5), pct(0.95), sorted.back(),
+                1000.0 * io_seconds / frames);
+    std::printf(
+        "stages a frame: pre-processing %.2f ms, registration %.2f ms, map update %.2f ms\n",
+        pre_ms / frames, reg_ms / frames, upd_ms / frames);
+    std::printf(
+        "registration: %.0f points a frame, %.2f iterations a frame (+%.2f coarse), %zu frames "
+        "retried from the last pose; non-finite points dropped %zu\n",
+        double(reg_points) / frames, double(its) / frames, double(coarse_its) / frames, retries,
+        dropped_non_finite);
+    std::printf("memory: peak resident %.1f MiB (VmHWM); local maps now %.1f MiB\n",
+                peak_memory_mib(), odo.memory_bytes() / 1048576.0);
+    if (!a.out.empty()) {
+        common::write_kitti_poses(a.out, poses);
+        std::printf("poses: %s (T_odom_lidar, KITTI format)\n", a.out.c_str());
+    }
+    if (!a.reference.empty()) report_accuracy(poses, a);
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    const Args args = parse(argc, argv);
+    try {
+        return run(args);
+    } catch (const ltm::common::IoError& e) {
+        std::cerr << "error: " << e.what() << "\n";
+    } catch (const ltm::odometry::ConfigError& e) {
+        std::cerr << "error: " << e.what() << "\n";
+    } catch (const ltm::runtime::ConfigError& e) {
+        std::cerr << "error: " << e.what() << "\n";
+    }
+    return 1;
+}

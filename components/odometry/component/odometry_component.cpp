@@ -1,0 +1,142 @@
+// LiDAR odometry as a component: `points` (PointCloud2) in; `odometry` (nav_msgs/Odometry with
+// covariance), `keyframe`, `local_map` (finished maps, and snapshots of the active one) and
+// `status` (skipped, rejected or diverged scans) out. Parameters: the odometry's (preset and
+// keys, see odometry/params) plus the frames and the snapshot period.
+#include <memory>
+
+#include "common/convert/geometry.hpp"
+#include "common/convert/local_map.hpp"
+#include "common/convert/pointcloud2.hpp"
+#include "odometry/component/local_map_export.hpp"
+#include "odometry/core/odometry.hpp"
+#include "odometry/params/odometry_params.hpp"
+#include "runtime/component.hpp"
+
+namespace ltm::odometry {
+namespace {
+
+using runtime::TopicRole;
+
+class OdometryComponent : public runtime::Component {
+public:
+    explicit OdometryComponent(runtime::ComponentContext& ctx) : ctx_(ctx) {
+        auto& p = ctx.params();
+        odom_frame_ = p.get<std::string>("frame_id", "odom");
+        child_frame_ = p.get<std::string>("child_frame_id", "lidar");
+        const double snapshot_period = p.get<double>("snapshot_period_s", 2.0);
+        odometry_ = std::make_unique<Odometry>(load_odometry_config(p));
+        ctx.subscribe<msg::PointCloud2>("points", TopicRole::kSensor, [this](const msg::PointCloud2& m) { on_points(m); });
+        odometry_out_ = ctx.advertise<msg::Odometry>("odometry", TopicRole::kState);
+        keyframe_out_ = ctx.advertise<msg::Keyframe>("keyframe", TopicRole::kState);
+        local_map_out_ = ctx.advertise<msg::LocalMap>("local_map", TopicRole::kMap);
+        status_out_ = ctx.advertise<msg::Status>("status", TopicRole::kState);
+        if (snapshot_period > 0) ctx.add_timer(snapshot_period, [this] { publish_snapshot(); });
+    }
+
+    void on_shutdown() override {
+        // Hand every map on: the active ones are finished here, nothing built is lost.
+        odometry_->finish_local_maps();
+        publish_finished();
+        ctx_.log().info(std::to_string(frames_) + " scans, " + std::to_string(tracked_) + " tracked, " +
+                        std::to_string(frames_ - tracked_) + " not (see status), " +
+                        std::to_string(maps_published_) + " local maps published");
+    }
+
+private:
+    void on_points(const msg::PointCloud2& m) {
+        const std::uint64_t index = frames_++;
+        const std::string err = convert::from_pointcloud2(m, cloud_);
+        if (!err.empty()) {
+            status(ltm_msgs_msg_Status_Constants_ERROR, "bad_cloud", "scan " + std::to_string(index) + ": " + err, cloud_.stamp);
+            return;
+        }
+        const FrameResult r = odometry_->register_frame(cloud_);
+        if (r.pose_valid()) {
+            ++tracked_;
+            publish_odometry(r);
+        } else {
+            status(ltm_msgs_msg_Status_Constants_WARN, to_string(r.status),
+                   "scan " + std::to_string(index) + ": " + r.message, r.stamp);
+        }
+        if (r.degenerate())
+            status(ltm_msgs_msg_Status_Constants_WARN, "degenerate",
+                   "scan " + std::to_string(index) + ": " + std::to_string(r.degenerate_directions.size()) +
+                       " degenerate direction(s)", r.stamp);
+        if (r.keyframe) {
+            Eigen::Isometry3d anchor = Eigen::Isometry3d::Identity();
+            for (const auto& map : odometry_->active_local_maps())
+                if (map.id() == r.keyframe->local_map_id) anchor = map.T_odom_anchor();
+            keyframe_out_.publish(keyframes_.build(export_keyframe(*r.keyframe, index, anchor), odom_frame_, child_frame_));
+        }
+        publish_finished();
+    }
+
+    void publish_odometry(const FrameResult& r) {
+        msg::Odometry o{};
+        o.header.stamp = convert::to_time(r.stamp);
+        o.header.frame_id = const_cast<char*>(odom_frame_.c_str());
+        o.child_frame_id = const_cast<char*>(child_frame_.c_str());
+        o.pose.pose = convert::to_pose(r.T_odom_lidar);
+        convert::to_array36(r.covariance, o.pose.covariance);
+        if (has_last_ && r.stamp > last_stamp_) {
+            // Twist in the child frame, from the last two poses.
+            const double dt = r.stamp - last_stamp_;
+            const Eigen::Isometry3d delta = last_pose_.inverse() * r.T_odom_lidar;
+            const Eigen::AngleAxisd aa(delta.rotation());
+            const Eigen::Vector3d v = delta.translation() / dt, w = aa.axis() * aa.angle() / dt;
+            o.twist.twist.linear = {v.x(), v.y(), v.z()};
+            o.twist.twist.angular = {w.x(), w.y(), w.z()};
+        }
+        last_pose_ = r.T_odom_lidar;
+        last_stamp_ = r.stamp;
+        has_last_ = true;
+        odometry_out_.publish(o);
+    }
+
+    void publish_finished() {
+        for (const LocalMap& map : odometry_->take_finished_local_maps()) {
+            local_map_out_.publish(maps_.build(export_local_map(map, true, ++revision_), map.last_update(), odom_frame_));
+            ++maps_published_;
+        }
+    }
+
+    void publish_snapshot() {
+        if (!odometry_->initialised() || odometry_->active_local_maps().empty()) return;
+        const LocalMap& active = odometry_->active_local_maps().back();
+        local_map_out_.publish(maps_.build(export_local_map(active, false, ++revision_), active.last_update(), odom_frame_));
+    }
+
+    void status(std::uint8_t level, const std::string& code, const std::string& text, double stamp) {
+        if (++warnings_ <= 10 || (warnings_ & (warnings_ - 1)) == 0) ctx_.log().warn(text);
+        msg::Status s{};
+        s.header.stamp = convert::to_time(stamp);
+        s.header.frame_id = const_cast<char*>(odom_frame_.c_str());
+        s.component = const_cast<char*>(ctx_.name().c_str());
+        s.level = level;
+        s.code = const_cast<char*>(code.c_str());
+        s.message = const_cast<char*>(text.c_str());
+        status_out_.publish(s);
+    }
+
+    runtime::ComponentContext& ctx_;
+    std::unique_ptr<Odometry> odometry_;
+    std::string odom_frame_, child_frame_;
+    common::PointCloud cloud_;
+    convert::LocalMapBuilder maps_;
+    convert::KeyframeBuilder keyframes_;
+    runtime::Publisher<msg::Odometry> odometry_out_;
+    runtime::Publisher<msg::Keyframe> keyframe_out_;
+    runtime::Publisher<msg::LocalMap> local_map_out_;
+    runtime::Publisher<msg::Status> status_out_;
+    Eigen::Isometry3d last_pose_ = Eigen::Isometry3d::Identity();
+    double last_stamp_ = 0.0;
+    bool has_last_ = false;
+    std::uint64_t frames_ = 0, tracked_ = 0, warnings_ = 0, maps_published_ = 0;
+    std::uint32_t revision_ = 0;
+};
+
+}  // namespace
+}  // namespace ltm::odometry
+
+LTM_REGISTER_COMPONENT(ltm::odometry::OdometryComponent, "odometry",
+                       "IMLS LiDAR odometry: PointCloud2 in; odometry, keyframes and local maps out")

@@ -1,0 +1,41 @@
+#include "odometry/core/motion_model.hpp"
+
+namespace ltm::odometry {
+namespace {
+
+// Re-orthonormalised: Isometry3d::inverse() transposes the rotation, so a rotation that drifts
+// from orthonormal would make repeated extrapolation grow without bound.
+Eigen::Isometry3d normalised(const Eigen::Isometry3d& T) {
+    Eigen::Isometry3d out = T;
+    out.linear() = Eigen::Quaterniond(T.linear()).normalized().toRotationMatrix();
+    return out;
+}
+
+}  // namespace
+
+void MotionModel::push(double stamp, const Eigen::Isometry3d& T_odom_lidar) {
+    stamp_[0] = stamp_[1];
+    pose_[0] = pose_[1];
+    stamp_[1] = stamp;
+    pose_[1] = normalised(T_odom_lidar);
+    if (count_ < 2) ++count_;
+}
+
+Eigen::Isometry3d MotionModel::predict(double stamp) const {
+    if (count_ == 0) return Eigen::Isometry3d::Identity();
+    if (count_ == 1 || mode_ == PredictionMode::kNone) return pose_[1];
+    const Eigen::Isometry3d delta = pose_[0].inverse() * pose_[1];
+    if (mode_ == PredictionMode::kFrame) return normalised(pose_[1] * delta);
+    const double dt_prev = stamp_[1] - stamp_[0];
+    const double dt = stamp - stamp_[1];
+    if (!(dt_prev > 0.0) || !(dt >= 0.0)) return pose_[1];
+    return normalised(pose_[1] * scale_motion(delta, dt / dt_prev));
+}
+
+Vector6d MotionModel::velocity() const {
+    const double dt_prev = stamp_[1] - stamp_[0];
+    if (count_ < 2 || !(dt_prev > 0.0)) return Vector6d::Zero();
+    return se3_log(pose_[0].inverse() * pose_[1]) / dt_prev;
+}
+
+}  // namespace ltm::odometry

@@ -1,0 +1,57 @@
+#include "odometry/core/motion_model.hpp"
+
+#include <gtest/gtest.h>
+
+namespace ltm::odometry {
+namespace {
+
+Eigen::Isometry3d pose(double x, double yaw) {
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.linear() = so3_exp(Eigen::Vector3d(0, 0, yaw));
+    T.translation() = Eigen::Vector3d(x, 0.5 * x, 0);
+    return T;
+}
+
+TEST(MotionModel, PredictsTheLastPoseUntilItHasTwo) {
+    MotionModel m;
+    EXPECT_TRUE(m.predict(1.0).isApprox(Eigen::Isometry3d::Identity()));
+    m.push(0.0, pose(1, 0.1));
+    EXPECT_TRUE(m.predict(0.1).isApprox(pose(1, 0.1)));
+    EXPECT_TRUE(m.velocity().isZero());
+}
+
+TEST(MotionModel, ConstantVelocityScaledByTime) {
+    MotionModel m;
+    const Eigen::Isometry3d a = pose(0, 0), b = pose(1, 0.1);
+    m.push(0.0, a);
+    m.push(0.1, b);
+    const Eigen::Isometry3d delta = a.inverse() * b;
+    EXPECT_TRUE(m.predict(0.2).isApprox(b * delta, 1e-12));
+    // A dropped frame: twice the time, twice the motion.
+    EXPECT_TRUE(m.predict(0.3).isApprox(b * delta * delta, 1e-12));
+    EXPECT_TRUE(m.velocity().isApprox(se3_log(delta) / 0.1, 1e-12));
+}
+
+TEST(MotionModel, FrameAndNoneModesIgnoreTheStamps) {
+    const Eigen::Isometry3d a = pose(0, 0), b = pose(1, 0.1);
+    MotionModel frame(PredictionMode::kFrame), none(PredictionMode::kNone);
+    for (MotionModel* m : {&frame, &none}) {
+        m->push(0.0, a);
+        m->push(7.3, b);  // irregular stamps, as in a keyframe stream
+    }
+    EXPECT_TRUE(frame.predict(7.7).isApprox(b * (a.inverse() * b), 1e-12));
+    EXPECT_TRUE(none.predict(7.7).isApprox(b));
+}
+
+TEST(MotionModel, RepeatedExtrapolationStaysARigidTransform) {
+    MotionModel m(PredictionMode::kFrame);
+    m.push(0.0, pose(0, 0));
+    m.push(0.1, pose(1, 0.3));
+    for (int i = 2; i < 2000; ++i) m.push(0.1 * i, m.predict(0.1 * i));
+    const Eigen::Matrix3d R = m.last_pose().linear();
+    EXPECT_LT((R.transpose() * R - Eigen::Matrix3d::Identity()).norm(), 1e-9);
+    EXPECT_TRUE(m.last_pose().matrix().allFinite());
+}
+
+}  // namespace
+}  // namespace ltm::odometry

@@ -1,0 +1,255 @@
+#include "odometry/core/odometry.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <random>
+#include <set>
+
+#include "common/core/kitti_io.hpp"
+#include "common/core/trajectory_io.hpp"
+#include "odometry/core/test_scenes.hpp"
+
+namespace ltm::odometry {
+namespace {
+
+using Eigen::Isometry3d;
+constexpr double kRadToDeg = 180.0 / M_PI;
+
+// A drive along the synthetic street: 1 m a frame at 10 Hz, gentle weaving.
+Isometry3d street_pose(int i) {
+    return test::make_pose(1.0 * i, 0.4 * std::sin(i / 5.0), 1.8, 0.0, 0.0,
+                           3.0 * std::sin(i / 8.0));
+}
+
+common::PointCloud street_scan(const test::Scene& scene, int i) {
+    test::ScanPattern pattern;
+    common::PointCloud c =
+        test::scan_scene(scene, pattern, street_pose(i), street_pose(i), 100 + i);
+    c.stamp = 0.1 * i;
+    return c;
+}
+
+void expect_near_pose(const Isometry3d& est, const Isometry3d& truth, double t_tol,
+                      double r_tol_deg, const std::string& what) {
+    const Isometry3d d = truth.inverse() * est;
+    EXPECT_LT(d.translation().norm(), t_tol) << what;
+    EXPECT_LT(rotation_angle(d) * kRadToDeg, r_tol_deg) << what;
+}
+
+class StreetOdometry : public testing::Test {
+  protected:
+    static void SetUpTestSuite() { scene_ = new test::Scene(test::street_scene()); }
+    static void TearDownTestSuite() { delete scene_; }
+    static const test::Scene& scene() { return *scene_; }
+    static test::Scene* scene_;
+};
+test::Scene* StreetOdometry::scene_ = nullptr;
+
+TEST_F(StreetOdometry, TracksAndHandsOverLocalMapsWithBoundedMemory) {
+    OdometryConfig config;
+    config.local_map.half_extent = 40.0;
+    config.local_map.switch_distance = 12.0;
+    config.keyframe.distance = 2.0;
+    Odometry odo(config, street_pose(0));
+    std::set<std::uint32_t> finished_ids;
+    std::size_t keyframes = 0, new_maps = 0;
+    std::vector<std::size_t> memory;
+    const int frames = 48;
+    for (int i = 0; i < frames; ++i) {
+        const FrameResult r = odo.register_frame(street_scan(scene(), i));
+        ASSERT_TRUE(r.pose_valid()) << "frame " << i << ": " << r.message;
+        EXPECT_EQ(r.status, i == 0 ? FrameStatus::kInitialised : FrameStatus::kTracked);
+        expect_near_pose(r.T_odom_lidar, street_pose(i), 0.05, 0.2, "frame " + std::to_string(i));
+        EXPECT_TRUE(r.degenerate_directions.empty()) << "frame " << i;
+        if (r.keyframe) {
+            ++keyframes;
+            EXPECT_EQ(r.keyframe->local_map_id, r.local_map_id);
+            EXPECT_EQ(r.keyframe->points.size(), r.map_points);
+            EXPECT_TRUE(r.keyframe->T_odom_lidar.isApprox(r.T_odom_lidar));
+        }
+        new_maps += r.new_local_map;
+        EXPECT_LE(odo.active_local_maps().size(), std::size_t(config.local_map.max_active_maps));
+        EXPECT_EQ(odo.active_local_maps().back().id(), r.local_map_id);
+        for (const LocalMap& m : odo.take_finished_local_maps()) {
+            EXPECT_TRUE(finished_ids.insert(m.id()).second);  // each handed over once
+            EXPECT_LT(m.id(), r.local_map_id);
+            EXPECT_GT(m.voxels().usable_voxels(), 100u);
+        }
+        memory.push_back(odo.memory_bytes());
+    }
+    // 48 m with a 12 m switch box: maps start at 0, 13, 26 and 39 m.
+    EXPECT_EQ(new_maps, 4u);
+    EXPECT_EQ(finished_ids.size(), 2u);
+    EXPECT_NEAR(double(keyframes), 24.0, 2.0);
+    // Bounded by the active maps: the last 16 frames need no more than frames 16-32 did (+25 %).
+    const std::size_t early = *std::max_element(memory.begin() + 16, memory.begin() + 32);
+    const std::size_t late = *std::max_element(memory.begin() + 32, memory.end());
+    EXPECT_LT(double(late), 1.25 * double(early));
+    odo.finish_local_maps();
+    EXPECT_TRUE(odo.active_local_maps().empty());
+    EXPECT_EQ(odo.take_finished_local_maps().size(), 2u);
+}
+
+TEST_F(StreetOdometry, NonFinitePointsAreDroppedAndCounted) {
+    Odometry odo(OdometryConfig{}, street_pose(0));
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    for (int i = 0; i < 4; ++i) {
+        common::PointCloud c = street_scan(scene(), i);
+        for (int k = 0; k < 10 * i; ++k) {
+            c.points[std::size_t(k) * 97] = Eigen::Vector3f(nan, 0.0f, k % 2 ? INFINITY : 1.0f);
+        }
+        const FrameResult r = odo.register_frame(c);
+        ASSERT_TRUE(r.pose_valid()) << r.message;
+        EXPECT_EQ(r.dropped_non_finite, std::size_t(10 * i));
+        expect_near_pose(r.T_odom_lidar, street_pose(i), 0.05, 0.2, "frame " + std::to_string(i));
+    }
+}
+
+TEST_F(StreetOdometry, EmptyAndTinyScansAreSkippedWithThePredictionCarriedForward) {
+    Odometry odo(OdometryConfig{}, street_pose(0));
+    for (int i = 0; i < 3; ++i)
+        ASSERT_TRUE(odo.register_frame(street_scan(scene(), i)).pose_valid());
+    common::PointCloud empty;
+    empty.stamp = 0.3;
+    const FrameResult skipped = odo.register_frame(empty);
+    EXPECT_EQ(skipped.status, FrameStatus::kSkippedTooFewPoints);
+    EXPECT_FALSE(skipped.pose_valid());
+    EXPECT_FALSE(skipped.message.empty());
+    common::PointCloud tiny = street_scan(scene(), 4);
+    tiny.points.resize(20);
+    const FrameResult skipped2 = odo.register_frame(tiny);
+    EXPECT_EQ(skipped2.status, FrameStatus::kSkippedTooFewPoints);
+    // The next real scan is tracked again.
+    const FrameResult r = odo.register_frame(street_scan(scene(), 5));
+    ASSERT_EQ(r.status, FrameStatus::kTracked) << r.message;
+    expect_near_pose(r.T_odom_lidar, street_pose(5), 0.05, 0.2, "after the skipped scans");
+}
+
+TEST_F(StreetOdometry, SkippedScanCarriesTheConstantVelocityPrediction) {
+    Odometry odo(OdometryConfig{}, street_pose(0));
+    FrameResult r1, r2;
+    ASSERT_TRUE(odo.register_frame(street_scan(scene(), 0)).pose_valid());
+    ASSERT_TRUE((r1 = odo.register_frame(street_scan(scene(), 1))).pose_valid());
+    ASSERT_TRUE((r2 = odo.register_frame(street_scan(scene(), 2))).pose_valid());
+    common::PointCloud empty;
+    empty.stamp = 0.3;
+    const FrameResult skipped = odo.register_frame(empty);
+    const Isometry3d expected = r2.T_odom_lidar * (r1.T_odom_lidar.inverse() * r2.T_odom_lidar);
+    EXPECT_TRUE(skipped.T_odom_lidar.isApprox(expected, 1e-9));
+    EXPECT_TRUE(odo.pose().isApprox(expected, 1e-9));
+}
+
+TEST_F(StreetOdometry, StampsThatDoNotAdvanceAreRejected) {
+    Odometry odo(OdometryConfig{}, street_pose(0));
+    ASSERT_TRUE(odo.register_frame(street_scan(scene(), 0)).pose_valid());
+    ASSERT_TRUE(odo.register_frame(street_scan(scene(), 1)).pose_valid());
+    const Isometry3d before = odo.pose();
+    const std::size_t voxels = odo.active_local_maps().back().voxels().size();
+    for (const double stamp : {0.05, 0.1, std::numeric_limits<double>::quiet_NaN()}) {
+        common::PointCloud c = street_scan(scene(), 2);
+        c.stamp = stamp;
+        const FrameResult r = odo.register_frame(c);
+        EXPECT_EQ(r.status, FrameStatus::kRejectedStamp) << stamp;
+        EXPECT_FALSE(r.pose_valid());
+        EXPECT_FALSE(r.message.empty());
+    }
+    EXPECT_TRUE(odo.pose().isApprox(before));
+    EXPECT_EQ(odo.active_local_maps().back().voxels().size(), voxels);
+    const FrameResult r = odo.register_frame(street_scan(scene(), 2));
+    ASSERT_EQ(r.status, FrameStatus::kTracked) << r.message;
+    expect_near_pose(r.T_odom_lidar, street_pose(2), 0.05, 0.2, "after the rejected scans");
+}
+
+TEST_F(StreetOdometry, DivergenceIsReportedAndNotReturnedAsAPose) {
+    Odometry odo(OdometryConfig{}, street_pose(0));
+    for (int i = 0; i < 3; ++i)
+        ASSERT_TRUE(odo.register_frame(street_scan(scene(), i)).pose_valid());
+    const std::size_t voxels = odo.active_local_maps().back().voxels().size();
+    // A scan of random clutter: nothing in it matches the street.
+    std::mt19937 rng(9);
+    std::uniform_real_distribution<float> u(-40.0f, 40.0f);
+    common::PointCloud clutter;
+    for (int k = 0; k < 20000; ++k)
+        clutter.points.emplace_back(u(rng), u(rng), 0.1f * u(rng) + 2.0f);
+    clutter.stamp = 0.3;
+    const FrameResult bad = odo.register_frame(clutter);
+    EXPECT_EQ(bad.status, FrameStatus::kDiverged) << bad.message;
+    EXPECT_FALSE(bad.pose_valid());
+    EXPECT_FALSE(bad.keyframe.has_value());
+    EXPECT_EQ(odo.active_local_maps().back().voxels().size(), voxels);  // the map is untouched
+    const FrameResult r = odo.register_frame(street_scan(scene(), 4));
+    ASSERT_EQ(r.status, FrameStatus::kTracked) << r.message;
+    expect_near_pose(r.T_odom_lidar, street_pose(4), 0.05, 0.2, "after the divergence");
+}
+
+TEST(Odometry, DeskewsScansWithPerPointTimes) {
+    // Starting at rest and accelerating into a 135 deg/s turn within 1.5 s, in the room: each
+    // revolution smears its scan by up to 13 deg. De-skewing uses the constant-velocity motion,
+    // which lags an accelerating turn, so some error remains; without it the error is far larger.
+    const test::Scene scene = test::room_scene();
+    test::ScanPattern pattern;
+    auto pose = [](double t) {
+        return test::make_pose(-6.0 + 1.5 * t * t, 1.0, 1.5, 0, 0, 45.0 * t * t);
+    };
+    double rot_on = 0.0, rot_off = 0.0, trans_on = 0.0;
+    for (const bool deskew : {true, false}) {
+        OdometryConfig config;
+        config.preprocess.deskew = deskew;
+        Odometry odo(config, pose(0.0));
+        for (int i = 0; i < 15; ++i) {
+            const double t = 0.1 * i;
+            common::PointCloud c =
+                test::scan_scene(scene, pattern, pose(t), pose(t + 0.1), 7 + i, true);
+            c.stamp = t;
+            const FrameResult r = odo.register_frame(c);
+            ASSERT_TRUE(r.pose_valid()) << r.message;
+            EXPECT_EQ(r.deskewed, deskew && i >= 1) << i;  // needs a motion estimate
+            const Isometry3d d = pose(t).inverse() * r.T_odom_lidar;
+            (deskew ? rot_on : rot_off) = rotation_angle(d) * kRadToDeg;
+            if (deskew) trans_on = std::max(trans_on, d.translation().norm());
+        }
+    }
+    EXPECT_LT(rot_on, 2.0);
+    EXPECT_LT(trans_on, 0.15);
+    EXPECT_GT(rot_off, 2.5 * rot_on);
+}
+
+TEST(Odometry, InvalidConfigurationThrowsNamingTheKey) {
+    OdometryConfig config;
+    config.voxel_size = -1.0;
+    try {
+        Odometry odo(config);
+        FAIL() << "no exception";
+    } catch (const ConfigError& e) {
+        EXPECT_NE(std::string(e.what()).find("odometry.voxel_size"), std::string::npos) << e.what();
+    }
+}
+
+TEST(Odometry, RealKittiFixtureMatchesTheReferenceMotion) {
+    const std::string dir = LTM_SOURCE_DIR "/tests/fixtures/kitti00_mini";
+    const auto scans = common::list_kitti_scans(dir);
+    ASSERT_EQ(scans.size(), 3u);
+    const auto times = common::read_times(dir + "/times.txt");
+    const auto reference =
+        common::camera_to_lidar_poses(common::read_kitti_poses(dir + "/poses_semantickitti.txt"),
+                                      common::read_kitti_calib_tr(dir + "/calib.txt"));
+    Odometry odo(preset_config(SensorPreset::kHdl64));
+    std::vector<Isometry3d> est;
+    for (std::size_t i = 0; i < scans.size(); ++i) {
+        common::PointCloud c = common::read_kitti_bin(scans[i]);
+        c.stamp = times[i];
+        const FrameResult r = odo.register_frame(c);
+        ASSERT_TRUE(r.pose_valid()) << r.message;
+        est.push_back(r.T_odom_lidar);
+    }
+    for (std::size_t i = 1; i < est.size(); ++i) {
+        expect_near_pose(est[i - 1].inverse() * est[i], reference[i - 1].inverse() * reference[i],
+                         0.05, 0.2, "frame " + std::to_string(i));
+    }
+}
+
+}  // namespace
+}  // namespace ltm::odometry

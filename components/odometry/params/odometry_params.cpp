@@ -1,0 +1,36 @@
+#include "odometry/params/odometry_params.hpp"
+
+namespace ltm::odometry {
+
+OdometryConfig load_odometry_config(runtime::Parameters& params, const std::string& prefix,
+                                    const std::string& default_preset) {
+    const std::string pre = prefix.empty() ? "" : prefix + ".";
+    const std::string preset = params.get<std::string>(pre + "preset", default_preset);
+    OdometryConfig config;
+    try {
+        config = preset_config(parse_sensor_preset(preset));
+    } catch (const ConfigError& e) {
+        params.fail(pre + "preset", e.what());
+    }
+    visit_fields(config, [&](const char* key, auto& field) { field = params.get(pre + key, field); });
+    const std::string problem = validate(config);
+    if (!problem.empty()) {
+        // validate() names the key as "odometry.<key> ...": point at that key's line.
+        std::string key = problem.substr(0, problem.find(' '));
+        if (key.rfind("odometry.", 0) == 0) key = key.substr(9);
+        params.fail(pre + key, problem.substr(problem.find(' ') + 1));
+    }
+    return config;
+}
+
+OdometryConfig load_odometry_config_file(const std::string& path, const std::string& preset) {
+    runtime::Parameters params = runtime::Parameters::from_file(path, "odometry");
+    const std::string prefix = params.has("odometry") ? "odometry" : "";
+    const std::string preset_key = prefix.empty() ? "preset" : "odometry.preset";
+    if (!preset.empty() && params.has(preset_key)) params.fail(preset_key, "--preset and the config's preset both given");
+    OdometryConfig config = load_odometry_config(params, prefix, preset.empty() ? "hdl64" : preset);
+    params.check_all_used();
+    return config;
+}
+
+}  // namespace ltm::odometry

@@ -1,0 +1,67 @@
+#include "odometry/params/odometry_params.hpp"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <fstream>
+
+namespace ltm::odometry {
+namespace {
+
+runtime::Parameters params_of(const std::string& yaml) {
+    return runtime::Parameters(YAML::Load(yaml), "test.yaml", "odometry");
+}
+
+std::string error_of(const std::string& yaml) {
+    try {
+        runtime::Parameters p = params_of(yaml);
+        load_odometry_config(p);
+        p.check_all_used();
+    } catch (const runtime::ConfigError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+TEST(OdometryParams, PresetThenOverrides) {
+    runtime::Parameters p = params_of(
+        "preset: narrow\nvoxel_size: 0.4\npreprocess: {max_range: 30}\n"
+        "registration: {stability_weighting: false}\nprediction: frame\n");
+    const OdometryConfig c = load_odometry_config(p);
+    EXPECT_NO_THROW(p.check_all_used());
+    const OdometryConfig narrow = preset_config(SensorPreset::kNarrow);
+    EXPECT_DOUBLE_EQ(c.voxel_size, 0.4);
+    EXPECT_DOUBLE_EQ(c.preprocess.max_range, 30.0);
+    EXPECT_FALSE(c.registration.stability_weighting);
+    EXPECT_EQ(c.prediction, "frame");
+    EXPECT_EQ(c.coarse_voxel_factor, narrow.coarse_voxel_factor);  // untouched keys: the preset's
+    EXPECT_DOUBLE_EQ(c.preprocess.min_range, narrow.preprocess.min_range);
+    // Nothing given: the default preset.
+    runtime::Parameters empty(YAML::Node(), "test.yaml", "odometry");
+    EXPECT_DOUBLE_EQ(load_odometry_config(empty).voxel_size, preset_config(SensorPreset::kHdl64).voxel_size);
+}
+
+TEST(OdometryParams, RejectsWhatItDoesNotKnowNamingFileLineAndKey) {
+    EXPECT_EQ(error_of("voxel_size: 1\npreprocess: {max_rnage: 30}").rfind(
+                  "test.yaml:2: odometry.preprocess.max_rnage: unknown parameter", 0),
+              0u);
+    EXPECT_EQ(error_of("voxel_size: big"), "test.yaml:1: odometry.voxel_size: expected a number, got 'big'");
+    EXPECT_NE(error_of("a: 1\nvoxel_size: -1").find("test.yaml:2: odometry.voxel_size: must be > 0"), std::string::npos)
+        << error_of("a: 1\nvoxel_size: -1");
+    EXPECT_NE(error_of("preset: hdl32").find("test.yaml:1: odometry.preset: unknown sensor preset 'hdl32'"),
+              std::string::npos);
+    EXPECT_NE(error_of("registration: {kernel_scale: [1]}").find("odometry.registration.kernel_scale: expected a number"),
+              std::string::npos);
+}
+
+TEST(OdometryParams, UnderAPrefixAsInALaunchConfig) {
+    runtime::Parameters p = params_of("frame_id: odom\nodometry: {preset: vlp16, keyframe: {distance: 3.0}}\n");
+    const OdometryConfig c = load_odometry_config(p, "odometry");
+    p.get<std::string>("frame_id", "");
+    EXPECT_NO_THROW(p.check_all_used());
+    EXPECT_DOUBLE_EQ(c.keyframe.distance, 3.0);
+    EXPECT_DOUBLE_EQ(c.voxel_size, preset_config(SensorPreset::kVlp16).voxel_size);
+}
+
+}  // namespace
+}  // namespace ltm::odometry
