@@ -34,7 +34,13 @@ std::string read_file(const fs::path& p) {
 
 // The processing side of the pipeline (grows with every issue): scans and true poses to files.
 std::string pipeline(const fs::path& out) {
-    return R"(  - name: writer
+    return R"(  - name: odometry
+    type: odometry
+    params: {preset: hdl64, min_scan_points: 50}
+  - name: odometry_writer
+    type: trajectory_writer
+    params: {kitti_file: )" + (out / "odometry.txt").string() + R"(, tum_file: )" + (out / "odometry_tum.txt").string() + R"(}
+  - name: writer
     type: cloud_writer
     params: {dir: )" + (out / "clouds").string() + R"(}
   - name: traj
@@ -64,7 +70,7 @@ protected:
         const std::string cfg = write("live.yaml", dds(domain) + R"(components:
   - name: player
     type: kitti_player
-    params: {path: )" + kFixture + ", poses_file: " + kFixture + R"(/poses_semantickitti.txt, mode: fast, wait_for_readers: 2}
+    params: {path: )" + kFixture + ", poses_file: " + kFixture + R"(/poses_semantickitti.txt, mode: fast, wait_for_readers: 3}
   - name: recorder
     type: recorder
     params: {file: )" + (dir_ / "run.mcap").string() + R"(, topics: [points, ground_truth]}
@@ -82,7 +88,7 @@ protected:
         }
         std::size_t files = 0;
         for (const auto& e : fs::recursive_directory_iterator(dir_ / "live")) files += e.is_regular_file();
-        EXPECT_EQ(files, 4u);  // 3 clouds + 1 trajectory
+        EXPECT_EQ(files, 7u);  // 3 clouds, 1 local map, the truth and the odometry (KITTI, TUM)
     }
     fs::path dir_;
 };
@@ -107,7 +113,7 @@ TEST_F(ReplayTest, SplitReplayEqualsTheLiveRunBitForBit) {
     const std::string robot = write("robot.yaml", dds(184) + R"(components:
   - name: replay
     type: replayer
-    params: {file: )" + (dir_ / "run.mcap").string() + R"(, fast: true, wait_for_readers: 1}
+    params: {file: )" + (dir_ / "run.mcap").string() + R"(, fast: true, wait_for_readers: 3}
 )");
     const std::string base = write("base.yaml", dds(184) + "idle_exit_s: 2\ncomponents:\n" + pipeline(dir_ / "split"));
     Process b({kHost, base}, (dir_ / "base").string());

@@ -103,6 +103,10 @@ private:
     void publish_snapshot() {
         if (!odometry_->initialised() || odometry_->active_local_maps().empty()) return;
         const LocalMap& active = odometry_->active_local_maps().back();
+        // Only when it changed since the last snapshot: an idle pipeline stays quiet.
+        if (active.id() == snapshot_map_ && active.scans_integrated() == snapshot_scans_) return;
+        snapshot_map_ = active.id();
+        snapshot_scans_ = active.scans_integrated();
         local_map_out_.publish(maps_.build(export_local_map(active, false, ++revision_), active.last_update(), odom_frame_));
     }
 
@@ -133,6 +137,7 @@ private:
     bool has_last_ = false;
     std::uint64_t frames_ = 0, tracked_ = 0, warnings_ = 0, maps_published_ = 0;
     std::uint32_t revision_ = 0;
+    std::uint32_t snapshot_map_ = ~0u, snapshot_scans_ = 0;
 };
 
 }  // namespace

@@ -137,15 +137,16 @@ private:
     bool ready() {
         if (wait_for_readers_ <= 0) return true;
         if (waiting_since_ == std::chrono::steady_clock::time_point{}) waiting_since_ = std::chrono::steady_clock::now();
-        std::uint32_t least = ~0u;
+        std::uint32_t matched = 0;  // readers summed over the replayed topics
         for (const auto& [id, w] : writers_) {
             dds_publication_matched_status_t st{};
             dds_get_publication_matched_status(w->writer, &st);
-            least = std::min(least, st.current_count);
+            matched += st.current_count;
         }
-        if (static_cast<int>(least) >= wait_for_readers_) return true;
+        if (static_cast<int>(matched) >= wait_for_readers_) return true;
         if (std::chrono::steady_clock::now() - waiting_since_ > std::chrono::duration<double>(wait_timeout_s_)) {
-            ctx_.log().warn("not every topic has a reader after " + std::to_string(wait_timeout_s_) + " s; replaying anyway");
+            ctx_.log().warn("only " + std::to_string(matched) + " of " + std::to_string(wait_for_readers_) +
+                            " readers after " + std::to_string(wait_timeout_s_) + " s; replaying anyway");
             return true;
         }
         ctx_.sleep_until(std::chrono::steady_clock::now() + std::chrono::milliseconds(5));

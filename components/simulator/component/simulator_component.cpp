@@ -2,6 +2,8 @@
 // `t` when the scenario's sensor has it) and `ground_truth` (PoseStamped) at the sensor's rate,
 // or as fast as readers take them.
 #include <chrono>
+#include <deque>
+#include <future>
 #include <memory>
 
 #include "common/convert/geometry.hpp"
@@ -34,6 +36,8 @@ public:
         first_ = p.get<std::size_t>("start", 0);
         const std::size_t count = p.get<std::size_t>("count", 0);
         wait_for_readers_ = p.get<int>("wait_for_readers", fast_ ? 1 : 0);
+        threads_ = p.get<int>("threads", 2);
+        if (threads_ < 1) p.fail("threads", "must be at least 1");
         frame_id_ = p.get<std::string>("frame_id", "lidar");
         world_frame_id_ = p.get<std::string>("world_frame_id", "world");
         try {
@@ -49,7 +53,7 @@ public:
         if (first_ >= sim_->num_scans())
             p.fail("start", "past the last scan (" + std::to_string(sim_->num_scans()) + " scans)");
         last_ = count ? std::min(sim_->num_scans(), first_ + count) : sim_->num_scans();
-        next_ = first_;
+        next_ = next_render_ = first_;
         points_ = ctx.advertise<msg::PointCloud2>("points", fast_ ? TopicRole::kStream : TopicRole::kSensor);
         ground_truth_ = ctx.advertise<msg::PoseStamped>("ground_truth", TopicRole::kState);
         ctx.declare_source();
@@ -80,7 +84,17 @@ private:
                                                     std::chrono::duration<double>(offset))))
                 return;
         }
-        if (!sim_->scan(i, scan_)) return;
+        // Scans are rendered ahead on `threads_` workers (Simulator::scan is a pure function).
+        while (ahead_.size() < static_cast<std::size_t>(threads_) && next_render_ < last_) {
+            const std::size_t k = next_render_++;
+            ahead_.push_back(std::async(std::launch::async, [this, k] {
+                SimScan s;
+                sim_->scan(k, s);
+                return s;
+            }));
+        }
+        scan_ = ahead_.front().get();
+        ahead_.pop_front();
         scan_.cloud.frame_id = frame_id_;
         points_.publish(builder_.build(scan_.cloud));
         msg::PoseStamped ps{};
@@ -100,8 +114,9 @@ private:
     std::unique_ptr<common::Progress> progress_;
     bool fast_ = false;
     double rate_ = 1.0;
-    int wait_for_readers_ = 0;
-    std::size_t first_ = 0, last_ = 0, next_ = 0;
+    int wait_for_readers_ = 0, threads_ = 2;
+    std::size_t first_ = 0, last_ = 0, next_ = 0, next_render_ = 0;
+    std::deque<std::future<SimScan>> ahead_;
     std::string frame_id_, world_frame_id_;
     std::chrono::steady_clock::time_point start_wall_, created_ = std::chrono::steady_clock::now();
 };

@@ -26,7 +26,7 @@ struct SensorConfig {
     double range_noise = 0.02;       // [m] 1-sigma, Gaussian along the beam
     double dropout = 0.002;          // probability that a return is lost at random
     double intensity_noise = 0.1;    // relative 1-sigma of the intensity (plus 0.02 absolute)
-    bool per_point_time = true;      // fill PointCloud::time (seconds after the scan stamp)
+    bool per_point_time = true;      // fill PointCloud::time (s after the stamp) of distorted scans
     bool motion_distortion = false;  // each pulse from the pose at its firing time
     double height = 1.0;             // [m] sensor above the ground (waypoint routes)
     bool has_ego_box = false;        // pulses into this sensor-frame box are lost (own vehicle)

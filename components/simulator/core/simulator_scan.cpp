@@ -113,7 +113,10 @@ bool Simulator::scan(std::size_t i, SimScan& out) const {
     // Pulses: cast, detect, add noise, label.
     std::vector<Pulse> scratch;
     const std::vector<Pulse>& pulses = sensor_.pulses(i, scratch);
-    out.cloud.reserve(pulses.size(), true, sc.per_point_time);
+    // Times only describe a sweep when the points were taken along it: an undistorted scan is a
+    // snapshot at its stamp, and per-point times would make a de-skew distort it.
+    const bool with_time = sc.per_point_time && distort;
+    out.cloud.reserve(pulses.size(), true, with_time);
     out.labels.reserve(pulses.size());
     out.rings.reserve(pulses.size());
     std::vector<ActorView> views;
@@ -155,7 +158,7 @@ bool Simulator::scan(std::size_t i, SimScan& out) const {
         out.cloud.points.push_back(p.dir * static_cast<float>(range) +
                                    Eigen::Vector3f(0, 0, p.origin_z));
         out.cloud.intensity.push_back(static_cast<float>(std::clamp(intensity, 0.0, 1.0)));
-        if (sc.per_point_time) out.cloud.time.push_back(p.time);
+        if (with_time) out.cloud.time.push_back(p.time);
         out.labels.push_back(label_of(hit));
         out.rings.push_back(p.ring);
     }

@@ -131,6 +131,11 @@ TEST(Simulator, MotionDistortionFollowsThePulseTime) {
         ++checked;
     }
     EXPECT_GT(checked, 30);
+    // Without distortion a scan is a snapshot at its stamp: no per-point times to de-skew with.
+    sc.sensor.motion_distortion = false;
+    SimScan still;
+    ASSERT_TRUE(Simulator(sc).scan(4, still));
+    EXPECT_FALSE(still.cloud.has_time());
 }
 
 TEST(Simulator, MovingActorPointsAreLabelledAndOnTheActor) {
