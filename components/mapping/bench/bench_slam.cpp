@@ -1,0 +1,453 @@
+// ltm_bench_slam: odometry + mapping (loop closure, pose graph) over a folder of scans. Prints
+// ATE before and after loop closure, the loops found (and, with a reference, the revisits closed
+// or missed and the false loops), loop detection, verification and optimisation times, memory;
+// writes odometry.txt, slam.txt (LiDAR poses, KITTI format), loops.txt, the map and its PLY.
+//
+//   ltm_bench_slam DIR [--reference poses.txt [--calib calib.txt]] [--out OUTDIR]
+//       [--preset hdl64|vlp32|vlp16|narrow] [--config odometry.yaml] [--max-frames N]
+//   ltm_bench_slam --graph-bench N     (optimisation time of a synthetic graph of N anchors)
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <numeric>
+#include <sstream>
+#include <string>
+
+#include "common/core/io_error.hpp"
+#include "common/core/kitti_io.hpp"
+#include "common/core/ply_io.hpp"
+#include "common/core/progress.hpp"
+#include "common/core/trajectory_io.hpp"
+#include "evaluation/core/ate.hpp"
+#include "mapping/bench/graph_bench.hpp"
+#include "mapping/bench/revisits.hpp"
+#include "mapping/core/binary_io.hpp"
+#include "mapping/core/map_store.hpp"
+#include "mapping/core/mapper.hpp"
+#include "mapping/core/odometry_bridge.hpp"
+#include "odometry/bench/dataset.hpp"
+#include "odometry/core/odometry.hpp"
+#include "odometry/params/odometry_params.hpp"
+
+namespace {
+
+using namespace ltm;
+using Clock = std::chrono::steady_clock;
+
+struct Args {
+    std::string dir, out, reference, calib, preset, config;
+    std::string pairs, session;
+    std::size_t max_frames = 0, graph_bench = 0, snapshot_every = 10;
+};
+
+[[noreturn]] void usage(const std::string& error) {
+    std::cerr
+        << "error: " << error << "\n"
+        << "usage: ltm_bench_slam DIR [--reference poses.txt [--calib calib.txt]] [--out OUTDIR]\n"
+        << "         [--preset hdl64|vlp32|vlp16|narrow] [--config odometry.yaml] [--max-frames "
+           "N]\n"
+        << "         [--snapshot-every K] [--pairs verified_pairs.txt --session s1]\n"
+        << "       ltm_bench_slam --graph-bench N\n"
+        << "  DIR: KITTI layout (velodyne/*.bin) or a PCD/PLY folder (Scans/*.pcd).\n"
+        << "  --reference: KITTI-format poses, one a frame; with --calib they are camera poses.\n"
+        << "  --snapshot-every: hand snapshots of the active local maps to the mapper every K\n"
+        << "    keyframes (default 10; 0: finished maps only), as the odometry component does.\n"
+        << "  --pairs/--session: verified revisit pairs (hku-avia-2session format): the relative\n"
+        << "    poses of the session's verified pairs are compared with the ICP-refined ones.\n"
+        << "  --graph-bench: time the optimisation of a synthetic graph of N anchors.\n";
+    std::exit(2);
+}
+
+Args parse(int argc, char** argv) {
+    Args a;
+    for (int i = 1; i < argc; ++i) {
+        const std::string k = argv[i];
+        auto value = [&]() -> std::string {
+            if (i + 1 >= argc) usage(k + " needs a value");
+            return argv[++i];
+        };
+        auto number = [&](const std::string& v) -> std::size_t {
+            char* end = nullptr;
+            const long n = std::strtol(v.c_str(), &end, 10);
+            if (v.empty() || *end != '\0' || n < 0) usage(k + " needs a non-negative integer");
+            return std::size_t(n);
+        };
+        if (k == "--out")
+            a.out = value();
+        else if (k == "--reference")
+            a.reference = value();
+        else if (k == "--calib")
+            a.calib = value();
+        else if (k == "--preset")
+            a.preset = value();
+        else if (k == "--config")
+            a.config = value();
+        else if (k == "--max-frames")
+            a.max_frames = number(value());
+        else if (k == "--graph-bench")
+            a.graph_bench = number(value());
+        else if (k == "--snapshot-every")
+            a.snapshot_every = number(value());
+        else if (k == "--pairs")
+            a.pairs = value();
+        else if (k == "--session")
+            a.session = value();
+        else if (k == "-h" || k == "--help")
+            usage("help requested");
+        else if (!k.empty() && k[0] == '-')
+            usage("unknown option " + k);
+        else if (a.dir.empty())
+            a.dir = k;
+        else
+            usage("more than one DIR given");
+    }
+    if (a.dir.empty() && a.graph_bench == 0) usage("no DIR given");
+    if (!a.calib.empty() && a.reference.empty()) usage("--calib needs --reference");
+    if (a.pairs.empty() != a.session.empty()) usage("--pairs and --session go together");
+    return a;
+}
+
+double peak_memory_mib() {
+    std::ifstream in("/proc/self/status");
+    std::string line;
+    while (std::getline(in, line)) {
+        if (line.rfind("VmHWM:", 0) == 0) return std::atof(line.c_str() + 6) / 1024.0;
+    }
+    return -1.0;
+}
+
+struct Stats {
+    std::vector<double> v;
+    const char* unit = "ms";
+    void add(double x) { v.push_back(x); }
+    std::string str() const {
+        if (v.empty()) return "none";
+        std::vector<double> s = v;
+        std::sort(s.begin(), s.end());
+        char buf[160];
+        std::snprintf(
+            buf, sizeof(buf), "mean %.3f %s  median %.3f  p95 %.3f  max %.3f (%zu)",
+            std::accumulate(s.begin(), s.end(), 0.0) / double(s.size()), unit, s[s.size() / 2],
+            s[std::min(s.size() - 1, std::size_t(0.95 * double(s.size())))], s.back(), s.size());
+        return buf;
+    }
+};
+
+double ms_since(Clock::time_point t) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
+}
+
+// Mapping settings for the sensor preset (the benchmark's choice; the DDS adapter reads YAML).
+mapping::MapperConfig mapper_config(const std::string& preset) {
+    mapping::MapperConfig c;
+    if (preset == "narrow") {
+        // A ~70 deg field of view, ranges under 40 m, keyframes every 0.5 m.
+        c.scan_context.max_range = 40.0;
+        c.scan_context.sensor_height = 1.0;
+        c.loop_detection.exclude_recent_seconds = 15.0;
+        c.loop_detection.exclude_recent_keyframes = 20;
+        c.loop_detection.max_distance = 0.4;
+        c.verification.downsample = 0.3;
+        c.verification.min_inliers = 200;
+        c.verification.coarse_factor = 4;
+        c.verification.max_correction_translation = 4.0;
+        c.loop_cooldown_keyframes = 4;
+    } else {
+        c.scan_context.sensor_height = 1.73;  // KITTI's HDL-64E
+    }
+    return c;
+}
+
+// Verified intra-session pairs: "intra sA iA sB iB ... verified T_A_B(12)" (hku-avia-2session).
+void report_pairs(const Args& a, const common::PoseList& odom, const common::PoseList& slam) {
+    std::ifstream in(a.pairs);
+    if (!in) throw common::IoError(a.pairs, "cannot read");
+    std::string line;
+    Stats err_odom, err_slam;
+    err_odom.unit = err_slam.unit = "m";
+    std::size_t over = 0;
+    while (std::getline(in, line)) {
+        std::istringstream f(line);
+        std::string kind, sa, sb;
+        std::size_t ia = 0, ib = 0;
+        double skip = 0;
+        int verified = 0;
+        if (!(f >> kind >> sa >> ia >> sb >> ib) || kind != "intra" || sa != a.session ||
+            sb != a.session)
+            continue;
+        for (int k = 0; k < 7; ++k) f >> skip;
+        f >> verified;
+        Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+        for (int r = 0; r < 3; ++r) {
+            for (int c = 0; c < 4; ++c) f >> T.matrix()(r, c);
+        }
+        if (!f || verified != 1 || ia >= slam.size() || ib >= slam.size()) continue;
+        const double eo = ((odom[ia].inverse() * odom[ib]).inverse() * T).translation().norm();
+        const double es = ((slam[ia].inverse() * slam[ib]).inverse() * T).translation().norm();
+        err_odom.add(eo);
+        err_slam.add(es);
+        over += es > 0.1;
+        std::printf("  pair %zu-%zu: odometry off by %.3f m, after loop closure %.3f m\n", ia, ib,
+                    eo, es);
+    }
+    std::printf(
+        "verified pairs of %s (relative pose vs ICP, metres): odometry %s; after loop closure %s; "
+        "%zu over 0.1 m\n",
+        a.session.c_str(), err_odom.str().c_str(), err_slam.str().c_str(), over);
+}
+
+int graph_bench(std::size_t anchors) {
+    const mapping::MapperConfig config;
+    mapping::bench::run_graph_bench(std::min<std::size_t>(anchors, 100), config, 7);  // warm up
+    const mapping::bench::GraphBenchResult r = mapping::bench::run_graph_bench(anchors, config);
+    std::printf("graph: %zu anchors, %zu edges (%zu loops)%s\n", r.nodes, r.edges, r.loops,
+                r.solved ? "" : " NOT SOLVED");
+    std::printf(
+        "optimisation: first %.1f ms (from the odometry; %d solves, %d iterations), "
+        "incremental %.1f ms (one more loop); loops rejected %zu\n",
+        r.first_ms, r.solves, r.iterations, r.incremental_ms, r.loops_rejected);
+    std::printf("largest anchor error: %.2f m before, %.3f m after\n", r.error_before,
+                r.error_after);
+    return r.solved ? 0 : 1;
+}
+
+int run(const Args& a) {
+    odometry::OdometryConfig oc =
+        a.config.empty() ? odometry::preset_config(
+                               odometry::parse_sensor_preset(a.preset.empty() ? "hdl64" : a.preset))
+                         : odometry::load_odometry_config_file(a.config);
+    const mapping::MapperConfig mc = mapper_config(a.preset);
+    const odometry::bench::Dataset data(a.dir);
+    const std::size_t frames = a.max_frames ? std::min(a.max_frames, data.size()) : data.size();
+    std::printf("%s: %zu %s scans, odometry voxel %.2f m\n", a.dir.c_str(), frames,
+                data.kind().c_str(), oc.voxel_size);
+
+    odometry::Odometry odo(oc);
+    mapping::Mapper mapper(mc);
+    mapping::LoopDetector shadow(mc.scan_context, mc.loop_detection);  // detection timing alone
+    common::PoseList odom(frames);
+    std::vector<std::uint64_t> frame_map(frames, 0);
+    std::map<std::uint32_t, std::vector<double>> seen;  // local map -> stamps of its scans
+    Stats detect, add, verify, optimise, odometry_ms;
+    std::size_t keyframes = 0, candidates = 0, verifications = 0, rejected = 0;
+    std::map<std::string, std::size_t> reasons;  // refusals by reason (numbers cut off)
+    std::uint32_t snapshot_revision = 0;
+    auto hand_over = [&](std::vector<odometry::LocalMap> maps) {
+        for (const odometry::LocalMap& m : maps) {
+            const mapping::LocalMapResult r = mapper.add_local_map(
+                mapping::to_local_map_data(m, snapshot_revision + 1, true, seen[m.id()]));
+            if (!r.added) std::fprintf(stderr, "local map %u: %s\n", m.id(), r.message.c_str());
+            seen.erase(m.id());
+        }
+    };
+    common::Progress progress("slam", frames);
+    for (std::size_t i = 0; i < frames; ++i) {
+        const common::PointCloud cloud = data.load(i);
+        auto t0 = Clock::now();
+        const odometry::FrameResult r = odo.register_frame(cloud);
+        odometry_ms.add(ms_since(t0));
+        odom[i] = r.T_odom_lidar;
+        frame_map[i] = r.local_map_id;
+        if (r.pose_valid()) {
+            for (const odometry::LocalMap& m : odo.active_local_maps())
+                seen[m.id()].push_back(cloud.stamp);
+        }
+        if (!r.message.empty()) std::fprintf(stderr, "frame %zu: %s\n", i, r.message.c_str());
+        if (r.keyframe) {
+            const odometry::LocalMap* map = nullptr;
+            for (const odometry::LocalMap& m : odo.active_local_maps()) {
+                if (m.id() == r.keyframe->local_map_id) map = &m;
+            }
+            if (map) {
+                const common::KeyframeData k =
+                    mapping::to_keyframe_data(*r.keyframe, map->T_odom_anchor(), i);
+                t0 = Clock::now();
+                std::vector<mapping::LoopCandidate> c;
+                shadow.add(mapping::make_scan_context(k.points, mc.scan_context), 0, k.stamp, &c);
+                const double detection = ms_since(t0);
+                detect.add(detection);
+                t0 = Clock::now();
+                const mapping::KeyframeResult kr = mapper.add_keyframe(k);
+                const double total = ms_since(t0);
+                add.add(total);
+                ++keyframes;
+                candidates += kr.candidates;
+                rejected += kr.rejected.size();
+                for (const mapping::LoopRejection& j : kr.rejected) {
+                    if (std::getenv("LTM_BENCH_LOOPS")) {
+                        std::printf(
+                            "  refused %zu -> %lu (distance %.3f): %s\n", i,
+                            (unsigned long)mapper.keyframes()[j.match_keyframe]->data.scan_index,
+                            j.descriptor_distance, j.reason.c_str());
+                    }
+                    std::string why = j.reason.substr(0, j.reason.find_first_of("0123456789"));
+                    ++reasons[why];
+                }
+                if (kr.verified) {
+                    ++verifications;
+                    verify.add(std::max(0.0, total - detection));
+                }
+                if (kr.optimisation_due()) {
+                    t0 = Clock::now();
+                    const mapping::OptimisationSummary s = mapper.optimise();
+                    optimise.add(ms_since(t0));
+                    if (!s.solved)
+                        std::fprintf(stderr, "optimisation failed: %s\n", s.message.c_str());
+                }
+            }
+        }
+        hand_over(odo.take_finished_local_maps());
+        if (r.keyframe && a.snapshot_every && keyframes % a.snapshot_every == 0) {
+            ++snapshot_revision;
+            for (const odometry::LocalMap& m : odo.active_local_maps()) {
+                mapper.add_local_map(
+                    mapping::to_local_map_data(m, snapshot_revision, false, seen[m.id()]));
+            }
+        }
+        progress.update(i + 1);
+    }
+    progress.finish();
+    odo.finish_local_maps();
+    hand_over(odo.take_finished_local_maps());
+    auto t0 = Clock::now();
+    const mapping::OptimisationSummary final_opt = mapper.optimise();
+    const double final_ms = ms_since(t0);
+
+    common::PoseList slam(frames);
+    double path = 0.0;
+    for (std::size_t i = 0; i < frames; ++i) {
+        const std::optional<Eigen::Isometry3d> w = mapper.T_world_lidar(frame_map[i], odom[i]);
+        slam[i] = w ? *w : odom[i];
+        if (i) path += (odom[i].translation() - odom[i - 1].translation()).norm();
+    }
+    std::size_t active = 0;
+    for (const mapping::PoseGraphEdge& e : mapper.graph().edges()) {
+        active += e.kind == mapping::EdgeKind::kLoop && e.active;
+    }
+    std::printf("keyframes %zu, local maps %zu, graph %zu nodes %zu edges; path %.1f m\n",
+                keyframes, mapper.local_map_count(), mapper.graph().nodes().size(),
+                mapper.graph().edges().size(), path);
+    std::printf(
+        "loops: %zu closed (%zu kept by the last optimisation), %zu candidates, %zu verifications, "
+        "%zu refused\n",
+        mapper.loops().size(), active, candidates, verifications, rejected);
+    for (const auto& [why, n] : reasons) std::printf("  refused %zu: %s...\n", n, why.c_str());
+    std::printf("odometry a frame: %s\n", odometry_ms.str().c_str());
+    std::printf("loop detection a keyframe (descriptor + retrieval): %s\n", detect.str().c_str());
+    std::printf("mapping a keyframe (detection + verification): %s\n", add.str().c_str());
+    std::printf("verification a verified keyframe: %s\n", verify.str().c_str());
+    std::printf("optimisation after a loop: %s; final %.1f ms (%s)\n", optimise.str().c_str(),
+                final_ms, final_opt.message.c_str());
+    const double mib = double(mapper.memory_bytes()) / 1048576.0;
+    std::printf("memory: mapper %.1f MiB (%.1f MiB/km), peak resident %.1f MiB\n", mib,
+                path > 0 ? mib / (path / 1000.0) : 0.0, peak_memory_mib());
+
+    if (!a.reference.empty()) {
+        common::PoseList ref = common::read_kitti_poses(a.reference);
+        if (!a.calib.empty())
+            ref = common::camera_to_lidar_poses(ref, common::read_kitti_calib_tr(a.calib));
+        ref.resize(std::min(ref.size(), frames));
+        const eval::AteResult before = eval::compute_ate(odom, ref),
+                              after = eval::compute_ate(slam, ref);
+        std::printf(
+            "ATE (SE(3)-aligned, %zu poses): odometry rmse %.3f m (max %.3f), after loop closure "
+            "rmse %.3f m (max %.3f) = %.3f %% of the path\n",
+            after.n, before.rmse, before.max, after.rmse, after.max,
+            path > 0 ? 100.0 * after.rmse / path : 0.0);
+        std::size_t false_loops = 0;
+        std::vector<std::size_t> queries;
+        std::map<std::uint64_t, bool> kept;  // loop edges by query keyframe: still active
+        for (const mapping::PoseGraphEdge& e : mapper.graph().edges()) {
+            if (e.kind == mapping::EdgeKind::kLoop) kept[e.query_keyframe] = e.active;
+        }
+        for (const mapping::LoopClosure& l : mapper.loops()) {
+            if (l.query_scan >= ref.size() || l.match_scan >= ref.size()) continue;
+            const Eigen::Isometry3d e =
+                (ref[l.match_scan].inverse() * ref[l.query_scan]).inverse() * l.T_match_query;
+            const bool bad = e.translation().norm() > 1.0 ||
+                             Eigen::AngleAxisd(e.linear()).angle() > 5.0 * M_PI / 180;
+            false_loops += bad;
+            if (std::getenv("LTM_BENCH_LOOPS")) {
+                std::printf(
+                    "  loop %lu -> %lu: err %.2f m, inl %zu frac %.2f rms %.3f, structure %zu/%zu "
+                    "= %.2f, "
+                    "moved %.2f m, disagreed %.2f m\n",
+                    (unsigned long)l.query_scan, (unsigned long)l.match_scan,
+                    e.translation().norm(), l.inliers, l.inlier_fraction, l.inlier_rms,
+                    l.structure_inliers, l.structure_points,
+                    l.structure_points ? double(l.structure_inliers) / l.structure_points : 0.0,
+                    l.correction_translation, l.disagreement);
+            }
+            if (bad) {
+                std::printf(
+                    "  false loop: scan %lu -> %lu, off by %.2f m (inliers %zu, %.2f, rms %.3f m, "
+                    "moved %.2f m from the guess, disagreed %.2f m with the graph)\n",
+                    (unsigned long)l.query_scan, (unsigned long)l.match_scan,
+                    e.translation().norm(), l.inliers, l.inlier_fraction, l.inlier_rms,
+                    l.correction_translation, l.disagreement);
+            } else {
+                queries.push_back(l.query_scan);
+            }
+        }
+        // Revisits: within 5 m of a pose at least 30 s (300 frames at 10 Hz) earlier.
+        std::vector<mapping::bench::RevisitSegment> seg =
+            mapping::bench::revisit_segments(ref, 5.0, 300);
+        mapping::bench::mark_closed(queries, &seg);
+        const std::size_t closed =
+            std::count_if(seg.begin(), seg.end(), [](const auto& s) { return s.closed; });
+        std::printf(
+            "revisits (within 5 m of a pose 300+ frames earlier): %zu segments, %zu closed; "
+            "false loops %zu\n",
+            seg.size(), closed, false_loops);
+        for (const auto& s : seg) {
+            if (!s.closed) std::printf("  missed revisit: frames %zu-%zu\n", s.first, s.last);
+        }
+    }
+
+    if (!a.pairs.empty()) report_pairs(a, odom, slam);
+
+    if (!a.out.empty()) {
+        std::filesystem::create_directories(a.out);
+        common::write_kitti_poses(a.out + "/odometry.txt", odom);
+        common::write_kitti_poses(a.out + "/slam.txt", slam);
+        std::ofstream loops(a.out + "/loops.txt");
+        loops << "# query_scan match_scan T_match_query (3x4 row-major: query LiDAR frame -> match "
+                 "LiDAR frame)\n";
+        for (const mapping::LoopClosure& l : mapper.loops()) {
+            loops << l.query_scan << " " << l.match_scan << " "
+                  << common::format_kitti_pose(l.T_match_query) << "\n";
+        }
+        t0 = Clock::now();
+        const mapping::SaveStats s = mapping::save_map(a.out + "/map", mapper.snapshot());
+        std::printf("map: %s/map, %zu files, %.1f MiB, saved in %.0f ms\n", a.out.c_str(),
+                    s.files_written, double(s.bytes_total) / 1048576.0, ms_since(t0));
+        mapping::GlobalMapStats gs;
+        common::write_ply(a.out + "/global_map.ply", mapper.global_map(&gs));
+        std::printf("global map: %zu voxels fused from %zu -> %s/global_map.ply\n", gs.fused_voxels,
+                    gs.input_voxels, a.out.c_str());
+    }
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    const Args args = parse(argc, argv);
+    try {
+        return args.graph_bench ? graph_bench(args.graph_bench) : run(args);
+    } catch (const ltm::common::IoError& e) {
+        std::cerr << "error: " << e.what() << "\n";
+    } catch (const ltm::odometry::ConfigError& e) {
+        std::cerr << "error: " << e.what() << "\n";
+    } catch (const ltm::mapping::MapperConfigError& e) {
+        std::cerr << "error: " << e.what() << "\n";
+    } catch (const ltm::mapping::MapFormatError& e) {
+        std::cerr << "error: " << e.what() << "\n";
+    }
+    return 1;
+}

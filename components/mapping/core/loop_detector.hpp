@@ -1,0 +1,73 @@
+#pragma once
+// Loop-closure candidates by Scan Context (METHOD.md section 3): every keyframe's descriptor is
+// kept; a new keyframe is compared with the keyframes that are not recent (an exclusion window in
+// keyframes and seconds within its session), retrieved by ring key from a k-d tree, and the
+// column-shift distance under a threshold makes a candidate, with the yaw between the scans.
+// The caller verifies candidates geometrically.
+#include <cstdint>
+#include <deque>
+#include <string>
+#include <vector>
+
+#include "mapping/core/ring_key_index.hpp"
+#include "mapping/core/scan_context.hpp"
+
+namespace ltm::mapping {
+
+struct LoopDetectorConfig {
+    int candidates = 10;                   // nearest ring keys compared in full
+    double max_distance = 0.35;            // descriptor distance threshold (kMaxHeight: 0..1)
+    int exclude_recent_keyframes = 50;     // the last N keyframes of the session are not searched
+    double exclude_recent_seconds = 30.0;  // nor the keyframes less than this older [s]
+    int max_results = 3;                   // best candidates returned
+    int rebuild_every = 64;                // keys added between k-d tree rebuilds
+};
+
+std::string validate(const LoopDetectorConfig& config,
+                     const std::string& prefix = "loop_detection");
+
+struct LoopCandidate {
+    std::uint32_t match = 0;  // index of the earlier keyframe (order of add())
+    double distance = 0.0;    // descriptor distance
+    double yaw = 0.0;         // R_match_query = Rz(yaw) [rad]
+    int shift = 0;            // sectors
+};
+
+class LoopDetector {
+  public:
+    // Throws std::invalid_argument (naming the key) on an invalid configuration.
+    LoopDetector(const ScanContextConfig& sc_config, const LoopDetectorConfig& config);
+
+    const ScanContextConfig& scan_context_config() const { return sc_config_; }
+    // Descriptors kept, and descriptor i (index = order of add()).
+    std::size_t size() const { return descriptors_.size(); }
+    const ScanContext& descriptor(std::uint32_t i) const { return descriptors_[i]; }
+    std::size_t searchable() const { return index_.size(); }
+
+    // The candidates for a new keyframe of `session` taken at `stamp` (best first), then the
+    // keyframe's descriptor is kept under index size(). The descriptor must have the configured
+    // kind and shape (false: nothing kept, no candidates).
+    bool add(const ScanContext& descriptor, std::uint32_t session, double stamp,
+             std::vector<LoopCandidate>* candidates);
+    // A keyframe of an earlier session (a loaded map): searchable at once.
+    bool add_searchable(const ScanContext& descriptor);
+    // Candidates among all searchable keyframes for a descriptor not kept (re-localisation).
+    std::vector<LoopCandidate> query(const ScanContext& descriptor) const;
+
+  private:
+    struct Pending {
+        std::uint32_t item;
+        std::uint32_t session;
+        double stamp;
+    };
+    bool fits(const ScanContext& sc) const;
+    void release(std::uint32_t session, double stamp);
+
+    ScanContextConfig sc_config_;
+    LoopDetectorConfig config_;
+    std::vector<ScanContext> descriptors_;
+    RingKeyIndex index_;
+    std::deque<Pending> pending_;  // recent keyframes, not yet searchable (oldest first)
+};
+
+}  // namespace ltm::mapping

@@ -1,0 +1,207 @@
+#include "mapping/core/loop_verifier.hpp"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "odometry/core/imls.hpp"
+#include "odometry/core/registration.hpp"
+
+namespace ltm::mapping {
+namespace {
+
+constexpr double kDegToRad = M_PI / 180.0;
+
+const LoopVerifierConfig& checked(const LoopVerifierConfig& c) {
+    const std::string error = validate(c);
+    if (!error.empty()) throw std::invalid_argument(error);
+    return c;
+}
+
+Eigen::Isometry3d yawed(const Eigen::Isometry3d& T, double yaw) {
+    Eigen::Isometry3d out = T;
+    out.linear() = T.linear() * Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    return out;
+}
+
+}  // namespace
+
+std::string validate(const LoopVerifierConfig& c, const std::string& prefix) {
+    std::ostringstream e;
+    if (!(c.downsample >= 0.0)) {
+        e << prefix << ".downsample must be >= 0 (got " << c.downsample << ")";
+    } else if (c.max_points < 100) {
+        e << prefix << ".max_points must be >= 100 (got " << c.max_points << ")";
+    } else if (c.yaw_offsets.empty()) {
+        e << prefix << ".yaw_offsets must hold at least one value";
+    } else if (!(c.inlier_distance > 0.0)) {
+        e << prefix << ".inlier_distance must be > 0 (got " << c.inlier_distance << ")";
+    } else if (c.min_inliers < 1) {
+        e << prefix << ".min_inliers must be >= 1 (got " << c.min_inliers << ")";
+    } else if (!(c.min_inlier_fraction >= 0.0 && c.min_inlier_fraction <= 1.0)) {
+        e << prefix << ".min_inlier_fraction must be in [0, 1] (got " << c.min_inlier_fraction
+          << ")";
+    } else if (!(c.max_inlier_rms > 0.0)) {
+        e << prefix << ".max_inlier_rms must be > 0 (got " << c.max_inlier_rms << ")";
+    } else if (c.coarse_factor != 0 && (c.coarse_factor < 2 || c.coarse_factor > 16)) {
+        e << prefix << ".coarse_factor must be 0 or in [2, 16] (got " << c.coarse_factor << ")";
+    } else if (!(c.max_correction_translation > 0.0) || !(c.max_correction_rotation > 0.0)) {
+        e << prefix << ".max_correction_translation/rotation must be > 0";
+    } else if (!(c.min_structure_inlier_ratio >= 0.0 && c.min_structure_inlier_ratio <= 1.0)) {
+        e << prefix << ".min_structure_inlier_ratio must be in [0, 1] (got "
+          << c.min_structure_inlier_ratio << ")";
+    } else if (c.min_structure_points < 0) {
+        e << prefix << ".min_structure_points must be >= 0 (got " << c.min_structure_points << ")";
+    } else if (c.cache_size < 1) {
+        e << prefix << ".cache_size must be >= 1 (got " << c.cache_size << ")";
+    } else if (c.coarse.max_iterations < 1 || c.fine.max_iterations < 1) {
+        e << prefix << ".coarse/fine.max_iterations must be >= 1";
+    }
+    return e.str();
+}
+
+LoopVerifier::LoopVerifier(const LoopVerifierConfig& config) : config_(checked(config)) {}
+
+std::shared_ptr<RegistrationTarget> LoopVerifier::target(std::uint64_t key,
+                                                         const common::LocalMapData& map) {
+    for (auto it = cache_.begin(); it != cache_.end(); ++it) {
+        if (it->key != key) continue;
+        Cached hit = *it;
+        cache_.erase(it);
+        cache_.push_front(hit);
+        return hit.target;
+    }
+    auto t = std::make_shared<RegistrationTarget>(
+        rebuild_registration_target(map, config_.min_planarity, config_.coarse_factor));
+    cache_.push_front({key, t});
+    while (cache_.size() > std::size_t(config_.cache_size)) cache_.pop_back();
+    return t;
+}
+
+LoopVerification LoopVerifier::attempt(const std::vector<Eigen::Vector3f>& points,
+                                       const RegistrationTarget& t,
+                                       const Eigen::Isometry3d& guess) {
+    LoopVerification v;
+    v.points = points.size();
+    const odometry::VoxelGrid& first = t.coarse ? *t.coarse : t.fine;
+    odometry::Registration coarse(config_.coarse, first.voxel_size());
+    odometry::Registration fine(config_.fine, t.fine.voxel_size());
+    const odometry::RegistrationResult c =
+        coarse.align(points, first, t.T_anchor_grid.inverse() * guess);
+    v.iterations = c.iterations;
+    if (!c.ok()) {
+        v.reason = std::string("coarse registration: ") + odometry::to_string(c.status) + " (" +
+                   std::to_string(c.correspondences) + " correspondences)";
+        return v;
+    }
+    const odometry::RegistrationResult f = fine.align(points, t.fine, c.T_map_lidar);
+    v.iterations += f.iterations;
+    if (f.status != odometry::RegistrationResult::Status::kConverged ||
+        !f.T_map_lidar.matrix().allFinite()) {
+        v.reason = std::string("fine registration: ") + odometry::to_string(f.status) + " (" +
+                   std::to_string(f.correspondences) + " correspondences)";
+        return v;
+    }
+    // Inliers at the final pose, with the fine IMLS settings.
+    const odometry::ImlsParams imls = fine.imls_params();
+    const Eigen::Matrix3f R = f.T_map_lidar.linear().cast<float>();
+    const Eigen::Vector3f tr = f.T_map_lidar.translation().cast<float>();
+    double sq = 0.0;
+    odometry::ImlsResult r;
+    for (const Eigen::Vector3f& p : points) {
+        if (!odometry::imls_distance(t.fine, R * p + tr, imls, &r)) continue;
+        const bool inlier = std::abs(r.distance) <= config_.inlier_distance;
+        // Structure: not ground-like (the ground matches almost anywhere).
+        if (std::abs(r.normal.z()) < 0.8f) {
+            ++v.structure_points;
+            v.structure_inliers += inlier;
+        }
+        if (!inlier) continue;
+        ++v.inliers;
+        sq += double(r.distance) * r.distance;
+    }
+    v.inlier_fraction = v.points ? double(v.inliers) / double(v.points) : 0.0;
+    v.inlier_rms = v.inliers ? std::sqrt(sq / double(v.inliers)) : 0.0;
+    v.T_anchor_lidar = t.T_anchor_grid * f.T_map_lidar;
+    const Eigen::Isometry3d correction = guess.inverse() * v.T_anchor_lidar;
+    v.correction_translation = correction.translation().norm();
+    v.correction_rotation = Eigen::AngleAxisd(correction.linear()).angle() / kDegToRad;
+    v.degenerate_directions = f.degenerate_directions.size();
+    std::ostringstream why;
+    if (config_.refuse_degenerate && v.degenerate_directions > 0) {
+        why << "registration is degenerate in " << v.degenerate_directions << " direction(s)";
+    } else if (v.correction_translation > config_.max_correction_translation ||
+               v.correction_rotation > config_.max_correction_rotation) {
+        why << "moved " << v.correction_translation << " m / " << v.correction_rotation
+            << " deg from the guess (limits " << config_.max_correction_translation << " m / "
+            << config_.max_correction_rotation << " deg)";
+    } else if (v.structure_points < std::size_t(config_.min_structure_points)) {
+        why << v.structure_points << " points on structure, fewer than "
+            << config_.min_structure_points;
+    } else if (double(v.structure_inliers) <
+               config_.min_structure_inlier_ratio * double(v.structure_points)) {
+        why << "structure inlier ratio " << double(v.structure_inliers) / double(v.structure_points)
+            << " below " << config_.min_structure_inlier_ratio;
+    } else if (v.inliers < std::size_t(config_.min_inliers)) {
+        why << v.inliers << " inliers, fewer than " << config_.min_inliers;
+    } else if (v.inlier_fraction < config_.min_inlier_fraction) {
+        why << "inlier fraction " << v.inlier_fraction << " below " << config_.min_inlier_fraction;
+    } else if (v.inlier_rms > config_.max_inlier_rms) {
+        why << "inlier RMS " << v.inlier_rms << " m above " << config_.max_inlier_rms << " m";
+    }
+    v.reason = why.str();
+    v.accepted = v.reason.empty();
+    return v;
+}
+
+LoopVerification LoopVerifier::verify(const std::vector<Eigen::Vector3f>& points,
+                                      std::uint64_t map_key, const common::LocalMapData& map,
+                                      const Eigen::Isometry3d& guess) {
+    LoopVerification best;
+    if (!guess.matrix().allFinite()) {
+        best.reason = "initial guess is not finite";
+        return best;
+    }
+    if (map.voxels.empty() || !(map.voxel_size > 0.0f)) {
+        best.reason = "candidate local map has no voxels";
+        return best;
+    }
+    if (config_.downsample > 0.0) {
+        sampler_.run(points, config_.downsample, &sampled_);
+    } else {
+        sampled_.clear();
+        for (const Eigen::Vector3f& p : points) {
+            if (p.allFinite()) sampled_.push_back(p);
+        }
+    }
+    if (sampled_.size() > std::size_t(config_.max_points)) {
+        const double step = double(sampled_.size()) / config_.max_points;
+        std::vector<Eigen::Vector3f> thinned;
+        thinned.reserve(std::size_t(config_.max_points));
+        for (int i = 0; i < config_.max_points; ++i)
+            thinned.push_back(sampled_[std::size_t(i * step)]);
+        sampled_.swap(thinned);
+    }
+    if (sampled_.size() < std::size_t(config_.min_inliers)) {
+        best.reason = "keyframe has " + std::to_string(sampled_.size()) +
+                      " points after down-sampling, fewer than min_inliers";
+        best.points = sampled_.size();
+        return best;
+    }
+    const std::shared_ptr<RegistrationTarget> t = target(map_key, map);
+    if (t->fine.usable_voxels() == 0) {
+        best.reason = "candidate local map has no usable voxel";
+        return best;
+    }
+    bool first = true;
+    for (const double offset : config_.yaw_offsets) {
+        LoopVerification v = attempt(sampled_, *t, yawed(guess, offset * kDegToRad));
+        const bool better = v.accepted != best.accepted ? v.accepted : v.inliers > best.inliers;
+        if (first || better) best = v;
+        first = false;
+        if (best.accepted && best.inlier_fraction > 0.8) break;  // no better start to look for
+    }
+    return best;
+}
+
+}  // namespace ltm::mapping

@@ -1,0 +1,115 @@
+#pragma once
+// Geometric verification of a loop candidate (METHOD.md section 3): the keyframe is registered
+// against the candidate's local map with the odometry's registration core (IMLS point-to-surface
+// Gauss-Newton), first with a wide reach from the descriptor's guess, then with the odometry's
+// fine settings; accepted with enough inliers (points whose IMLS distance is small at the final
+// pose), a large enough inlier fraction and a small inlier RMS.
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "common/core/local_map_data.hpp"
+#include "mapping/core/odometry_bridge.hpp"
+#include "odometry/core/odometry_config.hpp"
+#include "odometry/core/preprocess.hpp"
+
+namespace ltm::mapping {
+
+struct LoopVerifierConfig {
+    // First pass, from the guess: on a coarse grid of coarse_factor voxels fitted to the map's
+    // surfaces (0: on the fine grid with the coarse settings).
+    int coarse_factor = 3;
+    odometry::RegistrationConfig coarse = coarse_defaults();
+    odometry::RegistrationConfig fine = fine_defaults();  // second pass: must converge
+    double min_planarity = 0.4;  // map voxels below this planarity are not used
+    double downsample = 1.0;     // grid for the keyframe's points [m] (0: keep all)
+    int max_points = 6000;       // cap on the registered points (evenly thinned)
+    // Initial yaws tried about the descriptor's yaw [deg]; the best-scoring result is kept.
+    std::vector<double> yaw_offsets = {0.0};
+    double inlier_distance = 0.3;  // |IMLS distance| below this: an inlier [m]
+    int min_inliers = 400;
+    double min_inlier_fraction = 0.5;  // of the registered points
+    double max_inlier_rms = 0.15;      // [m]
+    // Of the points on structure (surfaces that are not ground-like) within reach of a surface,
+    // this share must be inliers: a wrong alignment still fits the ground, not the walls.
+    double min_structure_inlier_ratio = 0.75;
+    int min_structure_points = 100;
+    // Refuse a registration with a degenerate direction (along a straight road or a corridor the
+    // result stays at the guess in that direction, which is the matched keyframe's place, not the
+    // query's).
+    bool refuse_degenerate = true;
+    // The result may move this far from the guess (a revisit is a few metres from the matched
+    // keyframe; a registration that slides farther has found another place) [m], [deg].
+    double max_correction_translation = 8.0;
+    double max_correction_rotation = 30.0;
+    int cache_size = 6;  // rebuilt local maps kept
+
+    static odometry::RegistrationConfig fine_defaults() {
+        odometry::RegistrationConfig c;  // the odometry's, with more iterations
+        c.max_iterations = 50;
+        return c;
+    }
+    static odometry::RegistrationConfig coarse_defaults() {
+        odometry::RegistrationConfig c;  // distances for 3 m coarse voxels
+        c.max_correspondence_distance = 4.5;
+        c.min_normal_agreement = 0.5;
+        c.kernel_scale = 0.3;
+        c.max_iterations = 40;
+        c.convergence_translation = 3e-3;
+        c.convergence_rotation = 3e-2;
+        c.stability_weighting = false;
+        return c;
+    }
+};
+
+std::string validate(const LoopVerifierConfig& config, const std::string& prefix = "verification");
+
+struct LoopVerification {
+    bool accepted = false;
+    std::string reason;  // why it was refused (one line), empty when accepted
+    Eigen::Isometry3d T_anchor_lidar = Eigen::Isometry3d::Identity();  // in the candidate anchor
+    std::size_t points = 0, inliers = 0;
+    double inlier_fraction = 0.0;
+    double inlier_rms = 0.0;                // [m]
+    double correction_translation = 0.0;    // result vs guess [m]
+    double correction_rotation = 0.0;       // [deg]
+    std::size_t degenerate_directions = 0;  // of the fine registration
+    // Points on structure (the normal of their surface not vertical, in the grid frame) that have
+    // a surface within reach, and those of them that are inliers.
+    std::size_t structure_points = 0, structure_inliers = 0;
+    int iterations = 0;  // coarse + fine
+    EIGEN_MAKE_ALIGNED_OPERATOR_NEW
+};
+
+class LoopVerifier {
+  public:
+    // Throws std::invalid_argument (naming the key) on an invalid configuration.
+    explicit LoopVerifier(const LoopVerifierConfig& config);
+
+    const LoopVerifierConfig& config() const { return config_; }
+
+    // points: the keyframe in its LiDAR frame; map: the candidate local map, known to the cache
+    // as `map_key` (the same key must mean the same content); guess: the keyframe's pose in the
+    // candidate map's anchor frame. Never throws on bad data: the result says why it failed.
+    LoopVerification verify(const std::vector<Eigen::Vector3f>& points, std::uint64_t map_key,
+                            const common::LocalMapData& map, const Eigen::Isometry3d& guess);
+
+  private:
+    struct Cached {
+        std::uint64_t key;
+        std::shared_ptr<RegistrationTarget> target;
+    };
+    std::shared_ptr<RegistrationTarget> target(std::uint64_t key, const common::LocalMapData& map);
+    LoopVerification attempt(const std::vector<Eigen::Vector3f>& points,
+                             const RegistrationTarget& target, const Eigen::Isometry3d& guess);
+
+    LoopVerifierConfig config_;
+    std::deque<Cached> cache_;  // most recent first
+    odometry::VoxelDownsampler sampler_;
+    std::vector<Eigen::Vector3f> sampled_;
+};
+
+}  // namespace ltm::mapping

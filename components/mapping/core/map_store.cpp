@@ -1,0 +1,350 @@
+#include "mapping/core/map_store.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <functional>
+#include <iomanip>
+#include <set>
+#include <sstream>
+#include <unordered_set>
+
+#include "common/core/io_error.hpp"
+#include "mapping/core/binary_io.hpp"
+#include "mapping/core/map_codec.hpp"
+
+namespace ltm::mapping {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr const char* kManifest = "manifest.txt";
+constexpr std::uint64_t kFirstHeaderField = 16;  // magic, version, section length
+
+struct FileEntry {
+    std::string kind;  // graph, keyframes, local_map
+    std::string file;  // relative to the map directory
+    std::uint64_t size = 0;
+    std::uint64_t hash = 0;              // FNV-1a 64 of the file
+    std::uint64_t node = 0;              // local_map
+    std::uint64_t first = 0, count = 0;  // keyframes
+    int line = 0;
+};
+
+struct Manifest {
+    std::uint64_t revision = 0;
+    ScanContextConfig descriptor;
+    std::vector<FileEntry> files;
+};
+
+std::string padded(std::uint64_t v, int width) {
+    std::ostringstream s;
+    s << std::setw(width) << std::setfill('0') << v;
+    return s.str();
+}
+
+bool safe_relative(const std::string& f) {
+    return !f.empty() && f[0] != '/' && f.find("..") == std::string::npos &&
+           f.find_first_of(" \t\r\n") == std::string::npos;
+}
+
+std::string write_manifest_text(const Manifest& m) {
+    std::ostringstream s;
+    s.precision(17);
+    s << "ltm_map " << kMapFormatVersion << "\n";
+    s << "revision " << m.revision << "\n";
+    s << "descriptor " << int(m.descriptor.kind) << " " << m.descriptor.rings << " "
+      << m.descriptor.sectors << " " << m.descriptor.max_range << " " << m.descriptor.min_range
+      << " " << m.descriptor.sensor_height << "\n";
+    for (const FileEntry& f : m.files) {
+        if (f.kind == "graph") {
+            s << "graph " << f.file << " " << f.size << " " << hex64(f.hash) << "\n";
+        } else if (f.kind == "keyframes") {
+            s << "keyframes " << f.file << " " << f.size << " " << hex64(f.hash) << " " << f.first
+              << " " << f.count << "\n";
+        } else {
+            s << "local_map " << f.node << " " << f.file << " " << f.size << " " << hex64(f.hash)
+              << "\n";
+        }
+    }
+    s << "end " << m.files.size() << "\n";
+    return s.str();
+}
+
+Manifest parse_manifest(const std::string& text) {
+    Manifest m;
+    std::istringstream in(text);
+    std::string line;
+    int number = 0;
+    std::uint64_t offset = 0;
+    bool header = false, descriptor = false, end = false, graph = false;
+    auto fail = [&](const std::string& problem) {
+        throw MapFormatError(kManifest, "line " + std::to_string(number), offset, problem);
+    };
+    while (std::getline(in, line)) {
+        ++number;
+        const std::uint64_t line_offset = offset;
+        offset += line.size() + 1;
+        std::istringstream f(line);
+        std::string key;
+        if (!(f >> key)) continue;
+        offset = line_offset;  // errors point at the start of the line
+        if (end) fail("text after 'end'");
+        if (!header) {
+            std::uint32_t version = 0;
+            if (key != "ltm_map" || !(f >> version)) fail("expected 'ltm_map <version>' first");
+            if (version != kMapFormatVersion) {
+                fail("format version " + std::to_string(version) +
+                     " is not supported (this build reads " + std::to_string(kMapFormatVersion) +
+                     ")");
+            }
+            header = true;
+        } else if (key == "revision") {
+            if (!(f >> m.revision)) fail("expected 'revision <n>'");
+        } else if (key == "descriptor") {
+            int kind = -1;
+            ScanContextConfig& d = m.descriptor;
+            if (!(f >> kind >> d.rings >> d.sectors >> d.max_range >> d.min_range >>
+                  d.sensor_height) ||
+                kind < 0 || kind > 1) {
+                fail(
+                    "expected 'descriptor <kind 0|1> <rings> <sectors> <max_range> <min_range> "
+                    "<sensor_height>'");
+            }
+            d.kind = ScanContextKind(kind);
+            const std::string error = validate(d, "descriptor");
+            if (!error.empty()) fail(error);
+            descriptor = true;
+        } else if (key == "graph" || key == "keyframes" || key == "local_map") {
+            FileEntry e;
+            e.kind = key;
+            e.line = number;
+            std::string hash;
+            bool ok = true;
+            if (key == "local_map") ok = bool(f >> e.node);
+            ok = ok && bool(f >> e.file >> e.size >> hash);
+            if (key == "keyframes") ok = ok && bool(f >> e.first >> e.count);
+            if (!ok || hash.size() != 16 ||
+                hash.find_first_not_of("0123456789abcdef") != std::string::npos) {
+                fail("malformed '" + key + "' entry");
+            }
+            e.hash = std::stoull(hash, nullptr, 16);
+            if (!safe_relative(e.file))
+                fail("file name '" + e.file + "' is not a plain relative path");
+            if (key == "graph") {
+                if (graph) fail("a second graph entry");
+                graph = true;
+            }
+            m.files.push_back(e);
+        } else if (key == "end") {
+            std::size_t n = 0;
+            if (!(f >> n) || n != m.files.size()) {
+                fail("'end' counts " + std::to_string(n) + " entries, the manifest has " +
+                     std::to_string(m.files.size()));
+            }
+            end = true;
+        } else {
+            fail("unknown entry '" + key + "'");
+        }
+        std::string extra;
+        if (f >> extra) fail("unexpected '" + extra + "' at the end of the line");
+        offset = line_offset + line.size() + 1;
+    }
+    if (!header) throw MapFormatError(kManifest, "empty: not an ltm map manifest");
+    if (!end) throw MapFormatError(kManifest, "truncated: no 'end' line (an interrupted write?)");
+    if (!descriptor) throw MapFormatError(kManifest, "no 'descriptor' line");
+    if (!graph) throw MapFormatError(kManifest, "no 'graph' entry");
+    return m;
+}
+
+// The file's bytes, checked against the manifest after decoding (which locates damage better).
+void check_entry(const FileEntry& e, const std::string& bytes) {
+    if (bytes.size() != e.size) {
+        throw MapFormatError(e.file, "size: " + std::to_string(bytes.size()) +
+                                         " bytes, the manifest says " + std::to_string(e.size) +
+                                         " (truncated or replaced)");
+    }
+    const std::uint64_t hash = fnv1a64(bytes);
+    if (hash != e.hash) {
+        throw MapFormatError(e.file, "file checksum: FNV-1a " + hex64(hash) +
+                                         " differs from the manifest's " + hex64(e.hash));
+    }
+}
+
+}  // namespace
+
+MapWriter::MapWriter(std::string dir, SaveOptions options)
+    : dir_(std::move(dir)), options_(options) {
+    if (options_.keyframes_per_file == 0) options_.keyframes_per_file = 1;
+}
+
+SaveStats MapWriter::save(const MapData& map) {
+    SaveStats stats;
+    std::error_code ec;
+    fs::create_directories(fs::path(dir_) / "local_maps", ec);
+    if (ec) throw common::IoError(dir_, "cannot create the map directory: " + ec.message());
+
+    Manifest manifest;
+    manifest.revision = map.revision;
+    manifest.descriptor = map.descriptor_config;
+    std::unordered_map<std::string, Written> cache;
+    // Writes (or keeps) one file; `key` names it in the cache.
+    auto emit = [&](const std::string& key, const std::string& kind, const std::string& prefix,
+                    std::shared_ptr<const void> first, std::shared_ptr<const void> last,
+                    const std::function<std::string()>& encode) -> FileEntry {
+        FileEntry e;
+        e.kind = kind;
+        const auto hit = cache_.find(key);
+        if (first && hit != cache_.end() && hit->second.first.lock() == first &&
+            hit->second.last.lock() == last &&
+            fs::file_size(fs::path(dir_) / hit->second.file, ec) == hit->second.size && !ec) {
+            e.file = hit->second.file;
+            e.size = hit->second.size;
+            e.hash = hit->second.hash;
+            ++stats.files_kept;
+        } else {
+            const std::string bytes = encode();
+            e.hash = fnv1a64(bytes);
+            e.size = bytes.size();
+            e.file = prefix + hex64(e.hash) + ".bin";
+            const fs::path path = fs::path(dir_) / e.file;
+            if (fs::exists(path, ec) && fs::file_size(path, ec) == e.size) {
+                ++stats.files_kept;  // the same content is already there (named by its CRC)
+            } else {
+                write_file_atomic(path.string(), bytes);
+                ++stats.files_written;
+                stats.bytes_written += bytes.size();
+            }
+        }
+        stats.bytes_total += e.size;
+        if (first) cache[key] = Written{first, last, e.file, e.size, e.hash};
+        return e;
+    };
+
+    manifest.files.push_back(emit("graph", "graph", "graph_", nullptr, nullptr, [&] {
+        return encode_graph(map.revision, map.nodes, map.edges);
+    }));
+    const std::size_t per = options_.keyframes_per_file;
+    for (std::size_t a = 0; a < map.keyframes.size(); a += per) {
+        const std::size_t n = std::min(per, map.keyframes.size() - a);
+        FileEntry e =
+            emit("kf:" + std::to_string(a) + ":" + std::to_string(n), "keyframes",
+                 "keyframes_" + padded(a, 8) + "_", map.keyframes[a], map.keyframes[a + n - 1],
+                 [&] { return encode_keyframes(map.descriptor_config, map.keyframes, a, n); });
+        e.first = a;
+        e.count = n;
+        manifest.files.push_back(e);
+    }
+    for (const StoredLocalMap& m : map.local_maps) {
+        if (!m.data) continue;
+        FileEntry e = emit("lm:" + std::to_string(m.node), "local_map",
+                           "local_maps/lm_" + padded(m.node, 8) + "_", m.data, m.data,
+                           [&] { return encode_local_map(m); });
+        e.node = m.node;
+        manifest.files.push_back(e);
+    }
+    const std::string text = write_manifest_text(manifest);
+    write_file_atomic((fs::path(dir_) / kManifest).string(), text);
+    ++stats.files_written;
+    stats.bytes_written += text.size();
+    cache_.swap(cache);
+
+    // Files of earlier saves that the new manifest does not name.
+    std::unordered_set<std::string> keep;
+    for (const FileEntry& e : manifest.files) keep.insert(e.file);
+    for (const char* sub : {"", "local_maps"}) {
+        const fs::path folder = fs::path(dir_) / sub;
+        for (const fs::directory_entry& entry : fs::directory_iterator(folder, ec)) {
+            if (!entry.is_regular_file()) continue;
+            const std::string name = entry.path().filename().string();
+            const std::string rel = std::string(sub).empty() ? name : std::string(sub) + "/" + name;
+            const bool ours = name.rfind("graph_", 0) == 0 || name.rfind("keyframes_", 0) == 0 ||
+                              name.rfind("lm_", 0) == 0;
+            const bool bin = name.size() > 4 && (name.compare(name.size() - 4, 4, ".bin") == 0 ||
+                                                 name.compare(name.size() - 4, 4, ".tmp") == 0);
+            if (ours && bin && !keep.count(rel)) {
+                fs::remove(entry.path(), ec);
+                if (!ec) ++stats.files_removed;
+            }
+        }
+    }
+    return stats;
+}
+
+SaveStats save_map(const std::string& dir, const MapData& map, const SaveOptions& options) {
+    return MapWriter(dir, options).save(map);
+}
+
+LoadedMap load_map(const std::string& dir) {
+    LoadedMap out;
+    const fs::path root(dir);
+    if (!fs::is_directory(root)) throw MapFormatError(dir, "not a directory");
+    const Manifest manifest = parse_manifest(read_file((root / kManifest).string(), kManifest));
+    MapData& map = out.map;
+    map.descriptor_config = manifest.descriptor;
+
+    // The graph first: without it nothing can be placed.
+    for (const FileEntry& e : manifest.files) {
+        if (e.kind != "graph") continue;
+        const std::string bytes = read_file((root / e.file).string(), e.file);
+        std::uint64_t revision = 0;
+        decode_graph(bytes, e.file, &revision, &map.nodes, &map.edges);
+        check_entry(e, bytes);
+        if (revision != manifest.revision) {
+            throw MapFormatError(e.file, "header.revision", kFirstHeaderField,
+                                 "revision " + std::to_string(revision) + ", the manifest says " +
+                                     std::to_string(manifest.revision));
+        }
+        map.revision = revision;
+    }
+    std::unordered_set<std::uint64_t> nodes;
+    for (const PoseGraphNode& n : map.nodes) nodes.insert(n.id);
+
+    for (const FileEntry& e : manifest.files) {
+        if (e.kind == "graph") continue;
+        try {
+            const std::string bytes = read_file((root / e.file).string(), e.file);
+            if (e.kind == "keyframes") {
+                std::uint64_t first = 0;
+                auto keyframes = decode_keyframes(bytes, e.file, &manifest.descriptor, &first);
+                check_entry(e, bytes);
+                if (first != e.first || keyframes.size() != e.count) {
+                    throw MapFormatError(e.file, "header.first", kFirstHeaderField,
+                                         "holds keyframes " + std::to_string(first) + "+" +
+                                             std::to_string(keyframes.size()) +
+                                             ", the manifest says " + std::to_string(e.first) +
+                                             "+" + std::to_string(e.count));
+                }
+                for (std::size_t i = 0; i < keyframes.size(); ++i) {
+                    if (!nodes.count(keyframes[i]->node)) {
+                        throw MapFormatError(e.file, "keyframes[" + std::to_string(first + i) +
+                                                         "].node: node " +
+                                                         std::to_string(keyframes[i]->node) +
+                                                         " is not in the graph");
+                    }
+                }
+                map.keyframes.insert(map.keyframes.end(), keyframes.begin(), keyframes.end());
+            } else {
+                StoredLocalMap m = decode_local_map(bytes, e.file);
+                check_entry(e, bytes);
+                if (m.node != e.node) {
+                    throw MapFormatError(e.file, "header.node", kFirstHeaderField,
+                                         "node " + std::to_string(m.node) + ", the manifest says " +
+                                             std::to_string(e.node));
+                }
+                if (!nodes.count(m.node)) {
+                    throw MapFormatError(e.file, "header.node", kFirstHeaderField,
+                                         "node " + std::to_string(m.node) + " is not in the graph");
+                }
+                map.local_maps.push_back(std::move(m));
+            }
+        } catch (const MapFormatError& error) {
+            out.refused.push_back(error.what());
+        }
+    }
+    std::sort(map.local_maps.begin(), map.local_maps.end(),
+              [](const StoredLocalMap& a, const StoredLocalMap& b) { return a.node < b.node; });
+    return out;
+}
+
+}  // namespace ltm::mapping

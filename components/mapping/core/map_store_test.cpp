@@ -1,0 +1,355 @@
+#include "mapping/core/map_store.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <random>
+
+#include "mapping/core/binary_io.hpp"
+#include "mapping/core/map_codec.hpp"
+#include "mapping/core/test_data.hpp"
+
+namespace ltm::mapping {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path fresh_dir(const std::string& name) {
+    const fs::path p = fs::path(LTM_BINARY_DIR) / "mapping_test_maps" / name;
+    fs::remove_all(p);
+    return p;
+}
+
+std::shared_ptr<const common::LocalMapData> random_local_map(std::uint64_t id, std::uint32_t seed,
+                                                             std::size_t voxels) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    auto m = std::make_shared<common::LocalMapData>();
+    m->id = id;
+    m->revision = seed % 7;
+    m->finished = seed % 2 == 0;
+    m->T_odom_anchor = test::xy_yaw(10.0 * id, 3.0, 17.0 * id);
+    m->T_anchor_grid = test::xy_yaw(-0.3, 0.2, -17.0 * id);
+    m->bbox_min = Eigen::Vector3d(-50, -50, -50);
+    m->bbox_max = Eigen::Vector3d(50, 50, 50);
+    m->voxel_size = 0.5f;
+    for (int i = 0; i < 20; ++i) m->observation_times.push_back(100.0 + 0.1 * i);
+    for (std::size_t i = 0; i < voxels; ++i) {
+        common::VoxelData v;
+        v.index = Eigen::Vector3i(int(i % 50) - 25, int(i / 50) - 10, int(i % 7) - 3);
+        v.centre = (v.index.cast<float>() + Eigen::Vector3f(u(rng), u(rng), u(rng))) * 0.5f;
+        v.normal = i % 5 == 0 ? Eigen::Vector3f::Zero()
+                              : Eigen::Vector3f(u(rng) - 0.5f, u(rng) - 0.5f, u(rng)).normalized();
+        v.point_count = std::uint32_t(1 + i % 60);
+        v.planarity = u(rng);
+        v.stability = u(rng);
+        v.life.created = 100.0 + u(rng);
+        v.life.last_seen = v.life.created + 0.5;
+        v.life.observations = std::uint32_t(i % 13);
+        v.life.health = u(rng);
+        for (std::uint16_t k = 0; k < i % 4; ++k)
+            v.life.seen.push_back(std::uint16_t((k * 7 + i) % 20));
+        m->voxels.push_back(v);
+    }
+    return m;
+}
+
+MapData sample_map() {
+    MapData map;
+    map.revision = 5;
+    map.descriptor_config.kind = ScanContextKind::kMeanVariance;  // both descriptor kinds load
+    map.descriptor_config.rings = 10;
+    map.descriptor_config.sectors = 24;
+    for (std::uint64_t n = 0; n < 3; ++n) {
+        PoseGraphNode node;
+        node.id = 10 + n;
+        node.local_map_id = n;
+        node.session = n == 2 ? 1 : 0;
+        node.T_odom_anchor = test::xy_yaw(10.0 * n, 0, 5.0 * n);
+        node.T_world_anchor = test::xy_yaw(10.0 * n + 0.1, 0.2, 5.0 * n + 1.0);
+        node.fixed = n == 0;
+        map.nodes.push_back(node);
+        map.local_maps.push_back(
+            {node.id, node.session, random_local_map(n, 7 + n, 3000 + 2000 * n)});
+    }
+    PoseGraphEdge e;
+    e.from = 10;
+    e.to = 11;
+    e.T_from_to = test::xy_yaw(10, 0, 5);
+    e.information = Matrix6d::Identity() * 100.0;
+    e.information(0, 1) = e.information(1, 0) = 3.0;
+    map.edges.push_back(e);
+    e.from = 10;
+    e.to = 12;
+    e.kind = EdgeKind::kLoop;
+    e.active = false;
+    e.query_keyframe = 2;
+    e.match_keyframe = 0;
+    e.error_translation = 0.25;
+    e.error_rotation = 0.01;
+    map.edges.push_back(e);
+    const std::vector<Eigen::Vector3f> scene = test::synthetic_scene(4, 30.0);
+    for (std::uint32_t i = 0; i < 5; ++i) {
+        auto k = std::make_shared<StoredKeyframe>();
+        k->session = i == 4 ? 1 : 0;
+        k->node = 10 + std::min<std::uint32_t>(i / 2, 2);
+        k->data.id = i;
+        k->data.scan_index = 100 + i;
+        k->data.local_map_id = i / 2;
+        k->data.stamp = 12.5 + i;
+        k->data.T_odom_lidar = test::xy_yaw(i, 0.5 * i, 3.0 * i);
+        k->data.T_anchor_lidar = test::xy_yaw(0.1 * i, 0, 1.0 * i);
+        const std::vector<Eigen::Vector3f> pts = test::view(scene, k->data.T_odom_lidar, 30.0);
+        k->descriptor = make_scan_context(pts, map.descriptor_config);
+        if (i % 2 == 0) k->data.points = test::every_nth(pts, 50, i);
+        map.keyframes.push_back(k);
+    }
+    return map;
+}
+
+void expect_same_local_map(const common::LocalMapData& a, const common::LocalMapData& b) {
+    EXPECT_EQ(a.id, b.id);
+    EXPECT_EQ(a.revision, b.revision);
+    EXPECT_EQ(a.finished, b.finished);
+    EXPECT_TRUE(a.T_odom_anchor.isApprox(b.T_odom_anchor, 0.0));
+    EXPECT_TRUE(a.T_anchor_grid.isApprox(b.T_anchor_grid, 0.0));
+    EXPECT_EQ(a.bbox_min, b.bbox_min);
+    EXPECT_EQ(a.bbox_max, b.bbox_max);
+    EXPECT_EQ(a.voxel_size, b.voxel_size);
+    EXPECT_EQ(a.observation_times, b.observation_times);
+    ASSERT_EQ(a.voxels.size(), b.voxels.size());
+    for (std::size_t i = 0; i < a.voxels.size(); ++i) {
+        const common::VoxelData &x = a.voxels[i], &y = b.voxels[i];
+        ASSERT_TRUE(x.index == y.index && x.centre == y.centre && x.normal == y.normal &&
+                    x.point_count == y.point_count && x.planarity == y.planarity &&
+                    x.stability == y.stability && x.life.created == y.life.created &&
+                    x.life.last_seen == y.life.last_seen &&
+                    x.life.observations == y.life.observations && x.life.health == y.life.health &&
+                    x.life.seen == y.life.seen)
+            << "voxel " << i;
+    }
+}
+
+void expect_same(const MapData& a, const MapData& b) {
+    EXPECT_EQ(a.revision, b.revision);
+    EXPECT_EQ(a.descriptor_config.kind, b.descriptor_config.kind);
+    EXPECT_EQ(a.descriptor_config.rings, b.descriptor_config.rings);
+    EXPECT_EQ(a.descriptor_config.sectors, b.descriptor_config.sectors);
+    ASSERT_EQ(a.nodes.size(), b.nodes.size());
+    for (std::size_t i = 0; i < a.nodes.size(); ++i) {
+        EXPECT_EQ(a.nodes[i].id, b.nodes[i].id);
+        EXPECT_EQ(a.nodes[i].local_map_id, b.nodes[i].local_map_id);
+        EXPECT_EQ(a.nodes[i].session, b.nodes[i].session);
+        EXPECT_EQ(a.nodes[i].fixed, b.nodes[i].fixed);
+        EXPECT_TRUE(a.nodes[i].T_odom_anchor.isApprox(b.nodes[i].T_odom_anchor, 0.0));
+        EXPECT_TRUE(a.nodes[i].T_world_anchor.isApprox(b.nodes[i].T_world_anchor, 0.0));
+    }
+    ASSERT_EQ(a.edges.size(), b.edges.size());
+    for (std::size_t i = 0; i < a.edges.size(); ++i) {
+        const PoseGraphEdge &x = a.edges[i], &y = b.edges[i];
+        EXPECT_TRUE(x.from == y.from && x.to == y.to && x.kind == y.kind && x.active == y.active &&
+                    x.information == y.information && x.query_keyframe == y.query_keyframe &&
+                    x.match_keyframe == y.match_keyframe &&
+                    x.error_translation == y.error_translation &&
+                    x.error_rotation == y.error_rotation && x.T_from_to.isApprox(y.T_from_to, 0.0))
+            << "edge " << i;
+    }
+    ASSERT_EQ(a.keyframes.size(), b.keyframes.size());
+    for (std::size_t i = 0; i < a.keyframes.size(); ++i) {
+        const StoredKeyframe &x = *a.keyframes[i], &y = *b.keyframes[i];
+        EXPECT_TRUE(x.session == y.session && x.node == y.node && x.data.id == y.data.id &&
+                    x.data.scan_index == y.data.scan_index &&
+                    x.data.local_map_id == y.data.local_map_id && x.data.stamp == y.data.stamp &&
+                    x.data.T_odom_lidar.isApprox(y.data.T_odom_lidar, 0.0) &&
+                    x.data.T_anchor_lidar.isApprox(y.data.T_anchor_lidar, 0.0) &&
+                    x.data.points == y.data.points && x.descriptor.kind == y.descriptor.kind &&
+                    x.descriptor.value == y.descriptor.value &&
+                    x.descriptor.spread == y.descriptor.spread &&
+                    x.descriptor.occupied == y.descriptor.occupied)
+            << "keyframe " << i;
+    }
+    ASSERT_EQ(a.local_maps.size(), b.local_maps.size());
+    for (std::size_t i = 0; i < a.local_maps.size(); ++i) {
+        EXPECT_EQ(a.local_maps[i].node, b.local_maps[i].node);
+        EXPECT_EQ(a.local_maps[i].session, b.local_maps[i].session);
+        expect_same_local_map(*a.local_maps[i].data, *b.local_maps[i].data);
+    }
+}
+
+std::string local_map_file(const fs::path& dir, std::uint64_t node) {
+    for (const auto& e : fs::directory_iterator(dir / "local_maps")) {
+        const std::string name = e.path().filename().string();
+        if (name.rfind("lm_" + std::string(8 - std::to_string(node).size(), '0') +
+                           std::to_string(node) + "_",
+                       0) == 0) {
+            return "local_maps/" + name;
+        }
+    }
+    return "";
+}
+
+void flip_byte(const fs::path& file, std::uint64_t offset) {
+    std::fstream f(file, std::ios::in | std::ios::out | std::ios::binary);
+    f.seekg(std::streamoff(offset));
+    char c = 0;
+    f.read(&c, 1);
+    c = char(c ^ 0x5A);
+    f.seekp(std::streamoff(offset));
+    f.write(&c, 1);
+}
+
+TEST(MapStore, SavedMapReloadsIdentical) {
+    const fs::path dir = fresh_dir("identical");
+    const MapData map = sample_map();
+    const SaveStats s = save_map(dir.string(), map);
+    EXPECT_EQ(s.files_written, 1u + 1u + 3u + 1u);  // graph, keyframes, 3 local maps, manifest
+    const LoadedMap loaded = load_map(dir.string());
+    EXPECT_TRUE(loaded.refused.empty()) << loaded.refused.front();
+    expect_same(map, loaded.map);
+    // Saved again from what was loaded: the same files, byte for byte.
+    const fs::path again = fresh_dir("identical_again");
+    save_map(again.string(), loaded.map);
+    for (const auto& e : fs::recursive_directory_iterator(dir)) {
+        if (!e.is_regular_file()) continue;
+        const fs::path other = again / fs::relative(e.path(), dir);
+        ASSERT_TRUE(fs::exists(other)) << other;
+        EXPECT_EQ(read_file(e.path().string(), "a"), read_file(other.string(), "b")) << other;
+    }
+}
+
+TEST(MapStore, OnlyChangedFilesAreWrittenAndStaleOnesRemoved) {
+    const fs::path dir = fresh_dir("incremental");
+    MapData map = sample_map();
+    MapWriter writer(dir.string(), SaveOptions{2});
+    const SaveStats first = writer.save(map);
+    EXPECT_EQ(first.files_written,
+              1u + 3u + 3u + 1u);  // graph, 3 keyframe chunks, 3 maps, manifest
+    const SaveStats same = writer.save(map);
+    EXPECT_EQ(same.files_written, 1u);  // the manifest only
+    EXPECT_EQ(same.files_removed, 0u);
+    const std::string old_file = local_map_file(dir, 11);
+    map.local_maps[1].data = random_local_map(1, 99, 10);  // a new snapshot of one map
+    map.revision = 6;
+    const SaveStats changed = writer.save(map);
+    EXPECT_EQ(changed.files_written, 3u);  // that map, the graph (new revision), the manifest
+    EXPECT_EQ(changed.files_removed, 2u);  // the old map file and the old graph
+    EXPECT_FALSE(fs::exists(dir / old_file));
+    expect_same(map, load_map(dir.string()).map);
+}
+
+TEST(MapStore, DamagedLocalMapIsRefusedAndTheRestLoads) {
+    const fs::path dir = fresh_dir("damaged");
+    const MapData map = sample_map();
+    save_map(dir.string(), map);
+    const std::string victim = local_map_file(dir, 11);
+    ASSERT_FALSE(victim.empty());
+    // A byte in the middle of the voxels.
+    flip_byte(dir / victim, fs::file_size(dir / victim) / 2);
+    const LoadedMap loaded = load_map(dir.string());
+    ASSERT_EQ(loaded.refused.size(), 1u);
+    const std::string& why = loaded.refused[0];
+    EXPECT_NE(why.find(victim + ": voxels["), std::string::npos) << why;
+    EXPECT_NE(why.find("checksum mismatch over bytes"), std::string::npos) << why;
+    // Everything else is there and unchanged.
+    MapData expected = map;
+    expected.local_maps.erase(expected.local_maps.begin() + 1);
+    expect_same(expected, loaded.map);
+}
+
+TEST(MapStore, InvalidFieldIsNamedWithItsOffset) {
+    auto m = std::make_shared<common::LocalMapData>(*random_local_map(3, 1, 50));
+    m->voxels[17].normal = Eigen::Vector3f(2.0f, 0.0f, 0.0f);  // not a unit vector
+    const std::string bytes = encode_local_map({4, 0, m});
+    try {
+        decode_local_map(bytes, "lm.bin");
+        FAIL() << "an invalid normal was accepted";
+    } catch (const MapFormatError& e) {
+        EXPECT_EQ(e.field(), "voxels[17].normal");
+        // The offset points at the stored value itself.
+        float x = 0.0f;
+        std::memcpy(&x, bytes.data() + e.offset(), 4);
+        EXPECT_EQ(x, 2.0f);
+        EXPECT_NE(std::string(e.what()).find("lm.bin: voxels[17].normal at byte "),
+                  std::string::npos);
+    }
+    // A centre outside its cell, and a life record seen before it was created.
+    auto c = std::make_shared<common::LocalMapData>(*random_local_map(3, 1, 50));
+    c->voxels[3].centre.x() += 5.0f;
+    EXPECT_THROW(decode_local_map(encode_local_map({4, 0, c}), "x"), MapFormatError);
+    auto t = std::make_shared<common::LocalMapData>(*random_local_map(3, 1, 50));
+    t->voxels[8].life.last_seen = t->voxels[8].life.created - 1.0;
+    try {
+        decode_local_map(encode_local_map({4, 0, t}), "y");
+        FAIL();
+    } catch (const MapFormatError& e) {
+        EXPECT_EQ(e.field(), "voxels[8].life.last_seen");
+    }
+}
+
+TEST(MapStore, TruncatedOrMismatchedFilesAreRefused) {
+    const fs::path dir = fresh_dir("truncated");
+    save_map(dir.string(), sample_map());
+    const std::string victim = local_map_file(dir, 12);
+    fs::resize_file(dir / victim, fs::file_size(dir / victim) - 100);
+    const std::string other = local_map_file(dir, 10);
+    // A file replaced by another valid local map: its checksum differs from the manifest's.
+    {
+        const std::string bytes = encode_local_map({10, 0, random_local_map(0, 1234, 20)});
+        std::ofstream(dir / other, std::ios::binary | std::ios::trunc) << bytes;
+    }
+    const LoadedMap loaded = load_map(dir.string());
+    ASSERT_EQ(loaded.refused.size(), 2u);
+    const std::string all = loaded.refused[0] + "\n" + loaded.refused[1];
+    EXPECT_NE(all.find(victim + ": voxels["), std::string::npos) << all;
+    EXPECT_NE(all.find("truncated"), std::string::npos) << all;  // the last section is cut
+    EXPECT_NE(all.find(other + ": size: "), std::string::npos) << all;
+    EXPECT_EQ(loaded.map.local_maps.size(), 1u);
+    EXPECT_EQ(loaded.map.nodes.size(), 3u);
+}
+
+TEST(MapStore, DamagedManifestOrGraphFailsTheLoadWithAPreciseMessage) {
+    const fs::path dir = fresh_dir("manifest");
+    save_map(dir.string(), sample_map());
+    const std::string manifest = read_file((dir / "manifest.txt").string(), "m");
+    // Truncated (no end line).
+    std::ofstream(dir / "manifest.txt", std::ios::trunc) << manifest.substr(0, manifest.size() / 2);
+    try {
+        load_map(dir.string());
+        FAIL();
+    } catch (const MapFormatError& e) {
+        EXPECT_NE(std::string(e.what()).find("manifest.txt"), std::string::npos) << e.what();
+    }
+    // A malformed line is named by its number.
+    std::string bad = manifest;
+    bad.replace(bad.find("revision"), 8, "revisoin");
+    std::ofstream(dir / "manifest.txt", std::ios::trunc) << bad;
+    try {
+        load_map(dir.string());
+        FAIL();
+    } catch (const MapFormatError& e) {
+        EXPECT_NE(std::string(e.what()).find("manifest.txt: line 2 at byte"), std::string::npos)
+            << e.what();
+        EXPECT_NE(std::string(e.what()).find("unknown entry 'revisoin'"), std::string::npos);
+    }
+    // A damaged graph: nothing can be placed.
+    std::ofstream(dir / "manifest.txt", std::ios::trunc) << manifest;
+    std::string graph;
+    for (const auto& e : fs::directory_iterator(dir)) {
+        if (e.path().filename().string().rfind("graph_", 0) == 0)
+            graph = e.path().filename().string();
+    }
+    flip_byte(dir / graph, 60);  // inside the first nodes section
+    try {
+        load_map(dir.string());
+        FAIL();
+    } catch (const MapFormatError& e) {
+        EXPECT_EQ(e.file(), graph);
+        EXPECT_NE(std::string(e.what()).find("nodes[0..2]"), std::string::npos) << e.what();
+    }
+    EXPECT_THROW(load_map((dir / "nowhere").string()), MapFormatError);
+}
+
+}  // namespace
+}  // namespace ltm::mapping

@@ -1,0 +1,432 @@
+#include "mapping/core/mapper.hpp"
+
+#include <cmath>
+#include <sstream>
+#include <tuple>
+
+#include "mapping/core/global_map.hpp"
+
+namespace ltm::mapping {
+namespace {
+
+const MapperConfig& checked(const MapperConfig& config) {
+    const std::string error = validate(config);
+    if (!error.empty()) throw MapperConfigError(error);
+    return config;
+}
+
+// A finite rigid transform (rotation orthonormal to 1e-3, as printed poses are), returned with
+// its rotation re-orthonormalised; false otherwise.
+bool rigid(const Eigen::Isometry3d& T, Eigen::Isometry3d* out) {
+    if (!T.matrix().allFinite()) return false;
+    const Eigen::Matrix3d R = T.linear();
+    if ((R.transpose() * R - Eigen::Matrix3d::Identity()).norm() > 1e-3 || R.determinant() <= 0.0) {
+        return false;
+    }
+    *out = T;
+    out->linear() = Eigen::Quaterniond(R).normalized().toRotationMatrix();
+    return true;
+}
+
+Eigen::Isometry3d yawed(const Eigen::Isometry3d& T, double yaw) {
+    Eigen::Isometry3d out = T;
+    out.linear() = T.linear() * Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    return out;
+}
+
+}  // namespace
+
+Mapper::Mapper(const MapperConfig& config)
+    : config_(checked(config)),
+      graph_(config.pose_graph),
+      detector_(config.scan_context, config.loop_detection),
+      verifier_(config.verification) {}
+
+Mapper::Mapper(const MapperConfig& config, const MapData& loaded, bool freeze_loaded)
+    : Mapper(config) {
+    const ScanContextConfig& a = loaded.descriptor_config;
+    const ScanContextConfig& b = config_.scan_context;
+    if (a.kind != b.kind || a.rings != b.rings || a.sectors != b.sectors ||
+        std::abs(a.max_range - b.max_range) > 1e-9 || std::abs(a.min_range - b.min_range) > 1e-9 ||
+        std::abs(a.sensor_height - b.sensor_height) > 1e-9) {
+        std::ostringstream e;
+        e << "mapping.scan_context differs from the loaded map's descriptors (" << a.rings << " x "
+          << a.sectors << ", kind " << int(a.kind) << ", max_range " << a.max_range
+          << ", sensor_height " << a.sensor_height << ")";
+        throw MapperConfigError(e.str());
+    }
+    std::uint32_t last_session = 0;
+    for (PoseGraphNode n : loaded.nodes) {
+        n.fixed = n.fixed || freeze_loaded;
+        if (!graph_.add_node(n))
+            throw MapperConfigError("loaded map: node " + std::to_string(n.id) +
+                                    " is invalid or repeated");
+        chains_[n.session][n.local_map_id] = n.id;
+        next_node_ = std::max(next_node_, n.id + 1);
+        last_session = std::max(last_session, n.session);
+    }
+    for (const PoseGraphEdge& e : loaded.edges) graph_.add_edge(e);
+    for (const auto& [session, chain] : chains_) {
+        for (const auto& [local_map_id, id] : chain) set_path(session, local_map_id);
+    }
+    for (const std::shared_ptr<const StoredKeyframe>& k : loaded.keyframes) {
+        if (!k || !detector_.add_searchable(k->descriptor)) continue;
+        keyframes_.push_back(k);
+    }
+    for (const StoredLocalMap& m : loaded.local_maps) {
+        if (m.data && graph_.find(m.node)) maps_[m.node] = MapEntry{m, next_serial_++};
+    }
+    session_ = loaded.nodes.empty() ? 0 : last_session + 1;
+    revision_ = loaded.revision;
+}
+
+std::optional<std::uint64_t> Mapper::node_of(std::uint64_t local_map_id) const {
+    const auto chain = chains_.find(session_);
+    if (chain == chains_.end()) return std::nullopt;
+    const auto it = chain->second.find(local_map_id);
+    if (it == chain->second.end()) return std::nullopt;
+    return it->second;
+}
+
+Eigen::Isometry3d Mapper::predicted_world(std::uint32_t session, std::uint64_t local_map_id,
+                                          const Eigen::Isometry3d& T_odom_anchor) const {
+    const auto chain = chains_.find(session);
+    if (chain == chains_.end() || chain->second.empty()) return T_odom_anchor;
+    // The nearest map of the chain, preferably an earlier one: its correction carries over.
+    auto it = chain->second.lower_bound(local_map_id);
+    if (it != chain->second.begin()) --it;
+    const PoseGraphNode* n = graph_.find(it->second);
+    return n->T_world_anchor * n->T_odom_anchor.inverse() * T_odom_anchor;
+}
+
+std::uint64_t Mapper::ensure_node(std::uint64_t local_map_id,
+                                  const Eigen::Isometry3d& T_odom_anchor) {
+    if (const std::optional<std::uint64_t> existing = node_of(local_map_id)) return *existing;
+    PoseGraphNode n;
+    n.id = next_node_++;
+    n.session = session_;
+    n.local_map_id = local_map_id;
+    n.T_odom_anchor = T_odom_anchor;
+    n.T_world_anchor = predicted_world(session_, local_map_id, T_odom_anchor);
+    graph_.add_node(n);
+    chains_[session_][local_map_id] = n.id;
+    link_odometry(local_map_id);
+    set_path(session_, local_map_id);
+    return n.id;
+}
+
+void Mapper::set_path(std::uint32_t session, std::uint64_t local_map_id) {
+    const std::map<std::uint64_t, std::uint64_t>& chain = chains_[session];
+    const auto it = chain.find(local_map_id);
+    const PoseGraphNode* node = graph_.find(it->second);
+    double path = 0.0;
+    if (it != chain.begin()) {
+        const PoseGraphNode* prev = graph_.find(std::prev(it)->second);
+        path = path_at_[prev->id] +
+               (prev->T_odom_anchor.translation() - node->T_odom_anchor.translation()).norm();
+    }
+    path_at_[node->id] = path;
+}
+
+void Mapper::link_odometry(std::uint64_t local_map_id) {
+    const std::map<std::uint64_t, std::uint64_t>& chain = chains_[session_];
+    const auto it = chain.find(local_map_id);
+    const PoseGraphNode* node = graph_.find(it->second);
+    const PoseGraphNode* prev = it == chain.begin() ? nullptr : graph_.find(std::prev(it)->second);
+    const PoseGraphNode* next =
+        std::next(it) == chain.end() ? nullptr : graph_.find(std::next(it)->second);
+    if (prev && next) graph_.remove_edges(prev->id, next->id, EdgeKind::kOdometry);
+    auto link = [&](const PoseGraphNode* a, const PoseGraphNode* b) {
+        PoseGraphEdge e;
+        e.from = a->id;
+        e.to = b->id;
+        e.kind = EdgeKind::kOdometry;
+        e.T_from_to = a->T_odom_anchor.inverse() * b->T_odom_anchor;
+        e.information =
+            odometry_information(config_.odometry_edge, e.T_from_to.translation().norm());
+        graph_.add_edge(e);
+    };
+    // Pointers into the graph stay valid: add_edge does not touch the nodes.
+    if (prev) link(prev, node);
+    if (next) link(node, next);
+}
+
+LocalMapResult Mapper::add_local_map(const common::LocalMapData& map) {
+    return add_local_map(std::make_shared<const common::LocalMapData>(map));
+}
+
+LocalMapResult Mapper::add_local_map(std::shared_ptr<const common::LocalMapData> map) {
+    LocalMapResult r;
+    if (!map) {
+        r.message = "no local map";
+        return r;
+    }
+    Eigen::Isometry3d T_odom_anchor, T_anchor_grid;
+    if (!rigid(map->T_odom_anchor, &T_odom_anchor) || !rigid(map->T_anchor_grid, &T_anchor_grid)) {
+        r.message = "local map " + std::to_string(map->id) +
+                    ": anchor or grid pose is not a finite rigid transform";
+        return r;
+    }
+    if (!T_odom_anchor.isApprox(map->T_odom_anchor, 0.0) ||
+        !T_anchor_grid.isApprox(map->T_anchor_grid, 0.0)) {
+        auto copy = std::make_shared<common::LocalMapData>(*map);  // stored re-orthonormalised
+        copy->T_odom_anchor = T_odom_anchor;
+        copy->T_anchor_grid = T_anchor_grid;
+        map = std::move(copy);
+    }
+    if (!(map->voxel_size > 0.0f) || !std::isfinite(map->voxel_size)) {
+        r.message = "local map " + std::to_string(map->id) + ": voxel size must be > 0";
+        return r;
+    }
+    r.node = ensure_node(map->id, map->T_odom_anchor);
+    const auto it = maps_.find(r.node);
+    if (it != maps_.end() && it->second.stored.data->revision > map->revision) {
+        r.message = "local map " + std::to_string(map->id) + ": revision " +
+                    std::to_string(map->revision) + " is older than the stored " +
+                    std::to_string(it->second.stored.data->revision);
+        return r;
+    }
+    MapEntry& e = maps_[r.node];
+    e.stored.node = r.node;
+    e.stored.session = session_;
+    e.stored.data = std::move(map);
+    e.serial = next_serial_++;
+    r.added = true;
+    return r;
+}
+
+KeyframeResult Mapper::add_keyframe(const common::KeyframeData& input) {
+    KeyframeResult r;
+    common::KeyframeData keyframe;  // the poses re-orthonormalised; the points are not copied
+    if (!rigid(input.T_odom_lidar, &keyframe.T_odom_lidar) ||
+        !rigid(input.T_anchor_lidar, &keyframe.T_anchor_lidar)) {
+        r.message =
+            "keyframe " + std::to_string(input.id) + ": pose is not a finite rigid transform";
+        return r;
+    }
+    keyframe.id = input.id;
+    keyframe.scan_index = input.scan_index;
+    keyframe.local_map_id = input.local_map_id;
+    keyframe.stamp = input.stamp;
+    if (!std::isfinite(keyframe.stamp)) {
+        r.message = "keyframe " + std::to_string(keyframe.id) + ": stamp is not finite";
+        return r;
+    }
+    const Eigen::Isometry3d T_odom_anchor =
+        keyframe.T_odom_lidar * keyframe.T_anchor_lidar.inverse();
+    const std::uint64_t node = ensure_node(keyframe.local_map_id, T_odom_anchor);
+    auto stored = std::make_shared<StoredKeyframe>();
+    stored->session = session_;
+    stored->node = node;
+    stored->descriptor = make_scan_context(input.points, config_.scan_context);
+    std::vector<LoopCandidate> candidates;
+    if (!detector_.add(stored->descriptor, session_, keyframe.stamp, &candidates)) {
+        r.message = "keyframe " + std::to_string(keyframe.id) + ": descriptor has the wrong shape";
+        return r;
+    }
+    r.added = true;
+    r.index = std::uint32_t(keyframes_.size());
+    r.candidates = candidates.size();
+    if (cooldown_ > 0) {
+        --cooldown_;
+    } else if (!candidates.empty()) {
+        r.verified = true;
+        verify(keyframe, input.points, node, candidates, &r);
+        if (!r.loops.empty()) cooldown_ = config_.loop_cooldown_keyframes;
+    }
+    stored->data.id = keyframe.id;
+    stored->data.scan_index = keyframe.scan_index;
+    stored->data.local_map_id = keyframe.local_map_id;
+    stored->data.stamp = keyframe.stamp;
+    stored->data.T_odom_lidar = keyframe.T_odom_lidar;
+    stored->data.T_anchor_lidar = keyframe.T_anchor_lidar;
+    if (config_.keep_keyframe_points) stored->data.points = input.points;
+    keyframes_.push_back(std::move(stored));
+    return r;
+}
+
+void Mapper::verify(const common::KeyframeData& keyframe,
+                    const std::vector<Eigen::Vector3f>& points, std::uint64_t node,
+                    const std::vector<LoopCandidate>& candidates, KeyframeResult* r) {
+    for (const LoopCandidate& c : candidates) {
+        if (r->loops.size() >= std::size_t(config_.max_loops_per_keyframe)) break;
+        const StoredKeyframe& match = *keyframes_[c.match];
+        LoopRejection rejection{c.match, c.distance, ""};
+        const auto entry = maps_.find(match.node);
+        if (match.node == node) {
+            rejection.reason = "candidate is in the same local map";
+        } else if (entry == maps_.end()) {
+            rejection.reason = "the candidate's local map was not received";
+        }
+        if (!rejection.reason.empty()) {
+            r->rejected.push_back(rejection);
+            continue;
+        }
+        const Eigen::Isometry3d guess = yawed(match.data.T_anchor_lidar, c.yaw);
+        const LoopVerification v =
+            verifier_.verify(points, entry->second.serial, *entry->second.stored.data, guess);
+        if (!v.accepted) {
+            rejection.reason = v.reason;
+            r->rejected.push_back(rejection);
+            continue;
+        }
+        PoseGraphEdge e;
+        e.from = match.node;
+        e.to = node;
+        e.kind = EdgeKind::kLoop;
+        e.T_from_to = v.T_anchor_lidar * keyframe.T_anchor_lidar.inverse();
+        // Against the graph's estimate: within one session, the odometry bounds the disagreement.
+        const Eigen::Isometry3d predicted =
+            graph_.find(e.from)->T_world_anchor.inverse() * graph_.find(e.to)->T_world_anchor;
+        const Eigen::Isometry3d D = predicted.inverse() * e.T_from_to;
+        const double disagreement = D.translation().norm();
+        const double disagreement_deg = Eigen::AngleAxisd(D.linear()).angle() * 180.0 / M_PI;
+        if (match.session == session_) {
+            const LoopConsistencyConfig& lc = config_.loop_consistency;
+            const double path = std::abs(path_at_[e.to] - path_at_[e.from]);
+            const double max_t = lc.translation + lc.translation_per_m * path;
+            const double max_r = lc.rotation + lc.rotation_per_m * path;
+            if (disagreement > max_t || disagreement_deg > max_r) {
+                std::ostringstream why;
+                why << "disagrees with the graph by " << disagreement << " m / " << disagreement_deg
+                    << " deg (limits " << max_t << " m / " << max_r << " deg after " << path
+                    << " m of odometry)";
+                rejection.reason = why.str();
+                r->rejected.push_back(rejection);
+                continue;
+            }
+        }
+        e.information = loop_information(config_.loop_edge);
+        e.query_keyframe = r->index;
+        e.match_keyframe = c.match;
+        if (!graph_.add_edge(e)) continue;
+        LoopClosure l;
+        l.query_keyframe = r->index;
+        l.match_keyframe = c.match;
+        l.query_scan = keyframe.scan_index;
+        l.match_scan = match.data.scan_index;
+        l.query_session = session_;
+        l.match_session = match.session;
+        l.from_node = e.from;
+        l.to_node = e.to;
+        l.T_from_to = e.T_from_to;
+        l.T_match_query = match.data.T_anchor_lidar.inverse() * v.T_anchor_lidar;
+        l.descriptor_distance = c.distance;
+        l.descriptor_yaw = c.yaw;
+        l.inliers = v.inliers;
+        l.inlier_fraction = v.inlier_fraction;
+        l.inlier_rms = v.inlier_rms;
+        l.correction_translation = v.correction_translation;
+        l.disagreement = disagreement;
+        l.structure_points = v.structure_points;
+        l.structure_inliers = v.structure_inliers;
+        r->loops.push_back(l);
+        loops_.push_back(l);
+    }
+}
+
+OptimisationSummary Mapper::optimise() {
+    const OptimisationSummary s = graph_.optimise();
+    if (s.solved) ++revision_;
+    return s;
+}
+
+bool Mapper::apply(const PoseGraph& optimised, const OptimisationSummary& summary) {
+    if (!summary.solved) return false;
+    for (const PoseGraphNode& n : optimised.nodes()) graph_.set_pose(n.id, n.T_world_anchor);
+    // Loop flags: edges are matched by their ends, kind and keyframes.
+    using Key = std::tuple<std::uint64_t, std::uint64_t, int, std::uint64_t, std::uint64_t>;
+    std::map<Key, const PoseGraphEdge*> solved;
+    for (const PoseGraphEdge& e : optimised.edges()) {
+        solved[Key(e.from, e.to, int(e.kind), e.query_keyframe, e.match_keyframe)] = &e;
+    }
+    PoseGraph updated(graph_.config());
+    for (const PoseGraphNode& n : graph_.nodes()) updated.add_node(n);
+    for (PoseGraphEdge e : graph_.edges()) {
+        const auto it =
+            solved.find(Key(e.from, e.to, int(e.kind), e.query_keyframe, e.match_keyframe));
+        if (it != solved.end()) {
+            e.active = it->second->active;
+            e.error_translation = it->second->error_translation;
+            e.error_rotation = it->second->error_rotation;
+        }
+        updated.add_edge(e);
+    }
+    graph_ = std::move(updated);
+    // Nodes added since the snapshot follow their predecessor's correction.
+    for (const auto& [session, chain] : chains_) {
+        for (const auto& [local_map_id, id] : chain) {
+            if (optimised.find(id)) continue;
+            const PoseGraphNode* n = graph_.find(id);
+            graph_.set_pose(id, predicted_world(session, local_map_id, n->T_odom_anchor));
+        }
+    }
+    ++revision_;
+    return true;
+}
+
+std::optional<Eigen::Isometry3d> Mapper::T_world_odom(std::uint64_t local_map_id) const {
+    const std::optional<std::uint64_t> id = node_of(local_map_id);
+    if (!id) return std::nullopt;
+    const PoseGraphNode* n = graph_.find(*id);
+    return n->T_world_anchor * n->T_odom_anchor.inverse();
+}
+
+std::optional<Eigen::Isometry3d> Mapper::T_world_lidar(
+    std::uint64_t local_map_id, const Eigen::Isometry3d& T_odom_lidar) const {
+    const std::optional<Eigen::Isometry3d> c = T_world_odom(local_map_id);
+    if (!c) return std::nullopt;
+    return *c * T_odom_lidar;
+}
+
+Eigen::Isometry3d Mapper::keyframe_pose(std::uint32_t index) const {
+    const StoredKeyframe& k = *keyframes_.at(index);
+    return graph_.find(k.node)->T_world_anchor * k.data.T_anchor_lidar;
+}
+
+common::PlyCloud Mapper::global_map(GlobalMapStats* stats) const {
+    std::map<std::uint64_t, const MapEntry*> ordered;
+    for (const auto& [node, entry] : maps_) ordered[node] = &entry;
+    std::vector<PlacedLocalMap> placed;
+    placed.reserve(ordered.size());
+    for (const auto& [node, entry] : ordered) {
+        PlacedLocalMap p;
+        p.map = entry->stored.data.get();
+        p.T_world_anchor = graph_.find(node)->T_world_anchor;
+        placed.push_back(p);
+    }
+    return build_global_map(placed, config_.global_map, stats);
+}
+
+MapData Mapper::snapshot() const {
+    MapData m;
+    m.revision = revision_;
+    m.descriptor_config = config_.scan_context;
+    m.nodes = graph_.nodes();
+    m.edges = graph_.edges();
+    m.keyframes = keyframes_;
+    std::map<std::uint64_t, const MapEntry*> ordered;
+    for (const auto& [node, entry] : maps_) ordered[node] = &entry;
+    for (const auto& [node, entry] : ordered) m.local_maps.push_back(entry->stored);
+    return m;
+}
+
+std::size_t Mapper::memory_bytes() const {
+    std::size_t n = graph_.nodes().capacity() * sizeof(PoseGraphNode) +
+                    graph_.edges().capacity() * sizeof(PoseGraphEdge);
+    for (const auto& [node, entry] : maps_) {
+        const common::LocalMapData& d = *entry.stored.data;
+        n += sizeof(common::LocalMapData) + d.voxels.capacity() * sizeof(common::VoxelData) +
+             d.observation_times.capacity() * sizeof(double);
+        for (const common::VoxelData& v : d.voxels)
+            n += v.life.seen.capacity() * sizeof(std::uint16_t);
+    }
+    for (const auto& k : keyframes_) {
+        n += sizeof(StoredKeyframe) + k->descriptor.value.capacity() * sizeof(float) +
+             k->descriptor.spread.capacity() * sizeof(float) + k->descriptor.occupied.capacity() +
+             k->data.points.capacity() * sizeof(Eigen::Vector3f);
+    }
+    return n;
+}
+
+}  // namespace ltm::mapping

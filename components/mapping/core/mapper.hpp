@@ -1,0 +1,150 @@
+#pragma once
+// The hierarchical SLAM back end (METHOD.md section 3, Eq. 9-10): a short facade over the modules
+//   keyframe -> Scan Context -> loop candidates (LoopDetector) -> geometric verification against
+//   the candidate's local map (LoopVerifier) -> loop edge in the PoseGraph;
+//   local map -> graph node (its anchor) with an odometry edge to the previous one;
+//   optimise() on demand -> corrected anchors, hence corrected poses and the global map.
+// Synchronous, no threads, no I/O. An adapter may run the optimisation elsewhere: take
+// graph_snapshot(), call PoseGraph::optimise() on it on any thread, then apply() the result.
+//
+// Frames: every odometry pose belongs to the local map it was registered in; its world pose is
+// T_world_anchor * T_odom_anchor^-1 * T_odom_lidar. Voxels never move inside their local map.
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "common/core/local_map_data.hpp"
+#include "common/core/ply_io.hpp"
+#include "mapping/core/loop_detector.hpp"
+#include "mapping/core/loop_verifier.hpp"
+#include "mapping/core/map_data.hpp"
+#include "mapping/core/mapper_config.hpp"
+#include "mapping/core/pose_graph.hpp"
+
+namespace ltm::mapping {
+
+struct LoopClosure {
+    std::uint32_t query_keyframe = 0, match_keyframe = 0;  // keyframe indices (order of arrival)
+    std::uint64_t query_scan = 0, match_scan = 0;          // KeyframeData::scan_index
+    std::uint32_t query_session = 0, match_session = 0;
+    std::uint64_t from_node = 0, to_node = 0;  // the loop edge: match anchor -> query anchor
+    Eigen::Isometry3d T_from_to = Eigen::Isometry3d::Identity();
+    Eigen::Isometry3d T_match_query = Eigen::Isometry3d::Identity();  // LiDAR to LiDAR
+    double descriptor_distance = 0.0;
+    double descriptor_yaw = 0.0;  // [rad]
+    std::size_t inliers = 0;
+    double inlier_fraction = 0.0, inlier_rms = 0.0;
+    double correction_translation = 0.0;  // verification result vs the descriptor's guess [m]
+    double disagreement = 0.0;            // with the graph's estimate at the time [m]
+    std::size_t structure_points = 0, structure_inliers = 0;  // see LoopVerification
+    EIGEN_MAKE_ALIGNED_OPERATOR_NEW
+};
+
+struct LoopRejection {
+    std::uint32_t match_keyframe = 0;
+    double descriptor_distance = 0.0;
+    std::string reason;
+};
+
+struct KeyframeResult {
+    bool added = false;
+    std::string message;                  // why it was not added (one line)
+    std::uint32_t index = 0;              // keyframe index when added
+    std::size_t candidates = 0;           // descriptor candidates under the threshold
+    bool verified = false;                // candidates were verified (not in the cool-down)
+    std::vector<LoopClosure> loops;       // accepted: their edges are in the graph
+    std::vector<LoopRejection> rejected;  // refused by the verification
+    bool optimisation_due() const { return !loops.empty(); }
+};
+
+struct LocalMapResult {
+    bool added = false;   // stored (new, or a newer snapshot of a known map)
+    std::string message;  // why not (one line)
+    std::uint64_t node = 0;
+};
+
+class Mapper {
+  public:
+    // Throws MapperConfigError (naming the key) on an invalid configuration.
+    explicit Mapper(const MapperConfig& config);
+    // Continues a loaded map in a new session: its keyframes are searchable at once and, with
+    // `freeze_loaded`, its anchors are held fixed. Throws MapperConfigError when the map's
+    // descriptors do not match config.scan_context.
+    Mapper(const MapperConfig& config, const MapData& loaded, bool freeze_loaded = true);
+
+    const MapperConfig& config() const { return config_; }
+    std::uint32_t session() const { return session_; }
+    std::uint64_t revision() const { return revision_; }
+
+    // A local map, or a newer snapshot of one (same id, higher or equal revision). Never throws.
+    LocalMapResult add_local_map(const common::LocalMapData& map);
+    LocalMapResult add_local_map(std::shared_ptr<const common::LocalMapData> map);
+    // A keyframe: loop detection and verification; accepted loops become graph edges.
+    KeyframeResult add_keyframe(const common::KeyframeData& keyframe);
+
+    // Optimises the graph now; the revision increases when it succeeds.
+    OptimisationSummary optimise();
+    // The same in two halves, for an optimisation run off this object's thread.
+    PoseGraph graph_snapshot() const { return graph_; }
+    // Takes the optimised poses and loop flags of a snapshot; nodes added since are carried along
+    // by their odometry. False (nothing changed) when the summary says it was not solved.
+    bool apply(const PoseGraph& optimised, const OptimisationSummary& summary);
+
+    const PoseGraph& graph() const { return graph_; }
+    const std::vector<LoopClosure>& loops() const { return loops_; }
+    const std::vector<std::shared_ptr<const StoredKeyframe>>& keyframes() const {
+        return keyframes_;
+    }
+    // The graph node of a local map of the current session.
+    std::optional<std::uint64_t> node_of(std::uint64_t local_map_id) const;
+    // World pose of an odometry pose registered in local map `local_map_id` (current session).
+    std::optional<Eigen::Isometry3d> T_world_lidar(std::uint64_t local_map_id,
+                                                   const Eigen::Isometry3d& T_odom_lidar) const;
+    // The correction of that local map's odometry frame: T_world_odom.
+    std::optional<Eigen::Isometry3d> T_world_odom(std::uint64_t local_map_id) const;
+    // World pose of keyframe i.
+    Eigen::Isometry3d keyframe_pose(std::uint32_t index) const;
+
+    common::PlyCloud global_map(GlobalMapStats* stats = nullptr) const;
+    // Everything a saved map holds (local maps and keyframes shared, not copied).
+    MapData snapshot() const;
+    std::size_t local_map_count() const { return maps_.size(); }
+    std::size_t memory_bytes() const;
+
+  private:
+    struct MapEntry {
+        StoredLocalMap stored;
+        std::uint64_t serial = 0;  // changes with every stored snapshot (verification cache key)
+    };
+    std::uint64_t ensure_node(std::uint64_t local_map_id, const Eigen::Isometry3d& T_odom_anchor);
+    void link_odometry(std::uint64_t local_map_id);
+    void set_path(std::uint32_t session, std::uint64_t local_map_id);
+    Eigen::Isometry3d predicted_world(std::uint32_t session, std::uint64_t local_map_id,
+                                      const Eigen::Isometry3d& T_odom_anchor) const;
+    void verify(const common::KeyframeData& keyframe, const std::vector<Eigen::Vector3f>& points,
+                std::uint64_t node, const std::vector<LoopCandidate>& candidates,
+                KeyframeResult* result);
+
+    MapperConfig config_;
+    std::uint32_t session_ = 0;
+    std::uint64_t revision_ = 0;
+    std::uint64_t next_node_ = 0;
+    std::uint64_t next_serial_ = 1;
+    PoseGraph graph_;
+    LoopDetector detector_;
+    LoopVerifier verifier_;
+    // Per session: local map id -> node, in id order (the odometry chain).
+    std::map<std::uint32_t, std::map<std::uint64_t, std::uint64_t>> chains_;
+    std::unordered_map<std::uint64_t, MapEntry> maps_;   // by node
+    std::unordered_map<std::uint64_t, double> path_at_;  // odometry path to each node [m]
+    std::vector<std::shared_ptr<const StoredKeyframe>> keyframes_;
+    std::vector<LoopClosure> loops_;
+    int cooldown_ = 0;
+};
+
+}  // namespace ltm::mapping

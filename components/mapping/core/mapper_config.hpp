@@ -1,0 +1,68 @@
+#pragma once
+// Configuration of the mapping back end (METHOD.md section 3): one plain struct with defaults for
+// a Velodyne HDL-64E on a car (KITTI), and the information of odometry and loop edges.
+#include <stdexcept>
+#include <string>
+
+#include "mapping/core/global_map.hpp"
+#include "mapping/core/loop_detector.hpp"
+#include "mapping/core/loop_verifier.hpp"
+#include "mapping/core/pose_graph.hpp"
+#include "mapping/core/scan_context.hpp"
+
+namespace ltm::mapping {
+
+// Standard deviations of an odometry edge between consecutive anchors d metres apart:
+// sigma = floor + per_metre * d (translation per axis, rotation per axis).
+struct OdometryEdgeConfig {
+    double sigma_translation = 0.05;        // [m]
+    double sigma_translation_per_m = 0.01;  // [m/m]
+    double sigma_rotation = 0.05;           // [deg]
+    double sigma_rotation_per_m = 0.005;    // [deg/m]
+};
+
+// Standard deviations of a verified loop edge.
+struct LoopEdgeConfig {
+    double sigma_translation = 0.1;  // [m]
+    double sigma_rotation = 0.3;     // [deg]
+};
+
+// A verified loop whose relative anchor pose disagrees with the graph's current estimate by more
+// than floor + per_m * (odometry path between the two anchors) is refused (same session only):
+// the odometry cannot have drifted that much, so the registration found another place.
+struct LoopConsistencyConfig {
+    double translation = 2.0;         // [m]
+    double translation_per_m = 0.03;  // [m/m]
+    double rotation = 5.0;            // [deg]
+    double rotation_per_m = 0.05;     // [deg/m]
+};
+
+struct MapperConfig {
+    ScanContextConfig scan_context;
+    LoopDetectorConfig loop_detection;
+    LoopVerifierConfig verification;
+    PoseGraphConfig pose_graph;
+    OdometryEdgeConfig odometry_edge;
+    LoopEdgeConfig loop_edge;
+    LoopConsistencyConfig loop_consistency;
+    GlobalMapConfig global_map;
+    int max_loops_per_keyframe = 1;  // verified loops kept a keyframe (best candidates first)
+    // After a keyframe closes a loop, this many following keyframes are not verified (their
+    // descriptors are still kept): a revisit is closed every few keyframes, not at each one.
+    int loop_cooldown_keyframes = 2;
+    bool keep_keyframe_points = false;  // keep each keyframe's scan in the map (memory, files)
+};
+
+// Empty when valid; otherwise one line naming the first offending key ("mapping.pose_graph...").
+std::string validate(const MapperConfig& config);
+
+class MapperConfigError : public std::invalid_argument {
+  public:
+    using std::invalid_argument::invalid_argument;
+};
+
+// 6x6 information matrices of e = [dt; dr] (pose_graph.hpp).
+Matrix6d odometry_information(const OdometryEdgeConfig& config, double distance);
+Matrix6d loop_information(const LoopEdgeConfig& config);
+
+}  // namespace ltm::mapping
