@@ -10,8 +10,10 @@ namespace ltm::runtime {
 
 std::string cyclone_xml(const DdsSettings& dds) {
     // Socket buffers large enough for bursts of 1-2 MB scans (the OS may grant less: rmem_max).
+    // Warnings off: a writer waiting for a full keep-all reader (the `stream` role's intended
+    // back-pressure) would be reported every max_blocking_s. Errors still show.
     std::string xml = "<CycloneDDS><Domain Id=\"any\"><Internal><SocketReceiveBufferSize max=\"8MiB\"/>"
-                      "</Internal>";
+                      "</Internal><Tracing><Verbosity>severe</Verbosity></Tracing>";
     if (!dds.custom) return xml + "</Domain></CycloneDDS>";
     xml += "<General>";
     if (!dds.interfaces.empty()) {

@@ -115,11 +115,13 @@ int Host::run() {
     int exit_code = 0;
     auto idle_since = clock::now();
     std::uint64_t idle_count = 0;
+    bool signalled = false;
     while (true) {
         const timespec wait{0, 50'000'000};
         const int sig = sigtimedwait(&set, nullptr, &wait);
         if (sig == SIGINT || sig == SIGTERM) {
             g_log.info(std::string("received ") + (sig == SIGINT ? "SIGINT" : "SIGTERM") + ", shutting down");
+            signalled = true;
             break;
         }
         if (stop_) break;
@@ -150,16 +152,16 @@ int Host::run() {
         }
     }
 
-    const auto deadline = clock::now() + std::chrono::duration_cast<clock::duration>(
-                                             std::chrono::duration<double>(config_.shutdown_timeout_s));
+    // A signal asks for a quick stop; a finished run may take longer for final saves.
+    const double budget = (signalled || stop_) ? config_.shutdown_timeout_s : config_.finish_timeout_s;
+    const auto deadline = clock::now() + std::chrono::duration_cast<clock::duration>(std::chrono::duration<double>(budget));
     // Stop in launch-config order (sources first, sinks last): what a component publishes while
     // it shuts down (its last local map, say) still reaches the components listed after it.
     bool timed_out = false;
     for (auto& r : runners_) {
         r->request_stop();
         if (!r->wait_done(deadline)) {
-            g_log.error("component '" + r->name() + "' did not stop within " +
-                        std::to_string(config_.shutdown_timeout_s) + " s");
+            g_log.error("component '" + r->name() + "' did not stop within " + std::to_string(budget) + " s");
             timed_out = true;
             break;
         }

@@ -152,7 +152,7 @@ LaunchConfig load_launch_config(const std::string& path, const std::vector<std::
     const YAML::Node& croot = root;  // const access: a missing key must not be inserted
     check_keys(f, root, "",
                {"domain_id", "namespace", "dds", "qos", "topics", "on_component_error", "max_restarts",
-                "exit_when_sources_done", "idle_exit_s", "shutdown_timeout_s", "components"});
+                "exit_when_sources_done", "idle_exit_s", "shutdown_timeout_s", "finish_timeout_s", "components"});
 
     cfg.domain_id = scalar<int>(f, root, "domain_id", "", 0);
     if (cfg.domain_id < 0 || cfg.domain_id > 232)
@@ -162,6 +162,7 @@ LaunchConfig load_launch_config(const std::string& path, const std::vector<std::
     cfg.exit_when_sources_done = scalar<bool>(f, root, "exit_when_sources_done", "", true);
     cfg.idle_exit_s = scalar<double>(f, root, "idle_exit_s", "", 0.0);
     cfg.shutdown_timeout_s = scalar<double>(f, root, "shutdown_timeout_s", "", 2.0);
+    cfg.finish_timeout_s = scalar<double>(f, root, "finish_timeout_s", "", 60.0);
     const std::string policy = scalar<std::string>(f, root, "on_component_error", "", "stop");
     if (policy == "stop") {
         cfg.on_error = ErrorPolicy::kStop;

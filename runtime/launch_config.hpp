@@ -43,7 +43,8 @@ struct LaunchConfig {
     int max_restarts = 3;
     bool exit_when_sources_done = true;   // stop once every source finished and all input is processed
     double idle_exit_s = 0.0;             // hosts without sources: stop after this long without input (0: never)
-    double shutdown_timeout_s = 2.0;
+    double shutdown_timeout_s = 2.0;     // after SIGINT/SIGTERM
+    double finish_timeout_s = 60.0;      // after the sources finished or the idle exit (final saves)
     std::vector<ComponentSpec> components;
 };
 

@@ -82,7 +82,8 @@ TEST(LaunchConfig, OverridesFromTheCommandLine) {
 TEST(LaunchConfig, BadConfigurationsNameLineAndKey) {
     EXPECT_EQ(error_of("domain_id: 1\ncomponentz: []\n"),
               ":2: componentz: unknown key (known: components, dds, domain_id, exit_when_sources_done, "
-              "idle_exit_s, max_restarts, namespace, on_component_error, qos, shutdown_timeout_s, topics)");
+              "finish_timeout_s, idle_exit_s, max_restarts, namespace, on_component_error, qos, shutdown_timeout_s, "
+              "topics)");
     EXPECT_EQ(error_of("domain_id: x\ncomponents: [{type: a}]\n"), ":1: domain_id: expected an integer");
     EXPECT_EQ(error_of("components: []\n"), ":1: components: expected a non-empty list of components");
     EXPECT_EQ(error_of("components:\n  - {type: a, name: x}\n  - {type: b, name: x}\n"),

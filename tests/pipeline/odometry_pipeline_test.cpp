@@ -105,3 +105,30 @@ components:
     const Eigen::Isometry3d rel_truth = truth.front().inverse() * truth.back();
     EXPECT_LT((rel_est.translation() - rel_truth.translation()).norm(), 1.0);
 }
+
+TEST_F(OdometryPipeline, SlamBackEndSavesItsMapAndPath) {
+    const std::string scenario = std::string(LTM_SOURCE_DIR) + "/components/simulator/scenarios/tiny_loop.yaml";
+    const std::string cfg = write("slam.yaml", R"(domain_id: 193
+dds: {interfaces: [lo], multicast: false, peers: [127.0.0.1]}
+topics: {points: stream}
+components:
+  - name: sensor
+    type: simulator
+    params: {scenario: )" + scenario + R"(, mode: fast}
+  - name: odometry
+    type: odometry
+    params: {preset: vlp16}
+  - name: mapping
+    type: mapping
+    params: {map_dir: )" + (dir_ / "map").string() + ", global_map_file: " + (dir_ / "global_map.ply").string() + R"(}
+  - name: slam
+    type: trajectory_writer
+    params: {tum_file: )" + (dir_ / "slam_tum.txt").string() + R"(, input: path}
+)");
+    Process host({kHost, cfg}, (dir_ / "host").string());
+    ASSERT_EQ(host.wait(300), 0) << host.err();
+    EXPECT_TRUE(fs::exists(dir_ / "map" / "manifest.txt")) << host.err();
+    EXPECT_TRUE(fs::exists(dir_ / "global_map.ply"));
+    const common::Trajectory path = common::read_tum_trajectory((dir_ / "slam_tum.txt").string());
+    EXPECT_GT(path.size(), 10u);  // the keyframes, at their graph poses
+}
