@@ -1,8 +1,6 @@
 #pragma once
-// Between the odometry core's objects and the plain map data the mapping core consumes:
-//   odometry::LocalMap -> common::LocalMapData (the grid frame is the odometry's map frame: the
-//     odometry axes at LocalMap::origin(), so T_anchor_grid = T_odom_anchor^-1 * T_odom_map);
-//   odometry::Keyframe -> common::KeyframeData;
+// Between the odometry core's objects and the plain map data the mapping core consumes
+// (odometry/core/local_map_export.hpp converts the odometry's maps and keyframes):
 //   common::LocalMapData -> odometry::VoxelGrid (fine, and optionally coarse), the registration
 //     target of loop verification, in the map's grid frame.
 // The last one goes through the VoxelGrid's public API only (it has no voxel insertion): each
@@ -17,18 +15,15 @@
 
 #include "common/core/local_map_data.hpp"
 #include "odometry/core/local_map.hpp"
+#include "odometry/core/local_map_export.hpp"
 #include "odometry/core/odometry.hpp"
 #include "odometry/core/voxel_grid.hpp"
 
 namespace ltm::mapping {
 
-common::LocalMapData to_local_map_data(const odometry::LocalMap& map, std::uint32_t revision,
-                                       bool finished,
-                                       const std::vector<double>& observation_times = {});
-
-common::KeyframeData to_keyframe_data(const odometry::Keyframe& keyframe,
-                                      const Eigen::Isometry3d& T_odom_anchor,
-                                      std::uint64_t scan_index);
+// odometry::LocalMap / Keyframe -> plain data: the odometry core's own conversions.
+using odometry::to_keyframe_data;
+using odometry::to_local_map_data;
 
 struct RegistrationTarget {
     odometry::VoxelGrid fine;

@@ -7,7 +7,7 @@
 #include "common/convert/geometry.hpp"
 #include "common/convert/local_map.hpp"
 #include "common/convert/pointcloud2.hpp"
-#include "odometry/component/local_map_export.hpp"
+#include "odometry/core/local_map_export.hpp"
 #include "odometry/core/odometry.hpp"
 #include "odometry/params/odometry_params.hpp"
 #include "runtime/component.hpp"
@@ -66,7 +66,7 @@ private:
             Eigen::Isometry3d anchor = Eigen::Isometry3d::Identity();
             for (const auto& map : odometry_->active_local_maps())
                 if (map.id() == r.keyframe->local_map_id) anchor = map.T_odom_anchor();
-            keyframe_out_.publish(keyframes_.build(export_keyframe(*r.keyframe, index, anchor), odom_frame_, child_frame_));
+            keyframe_out_.publish(keyframes_.build(to_keyframe_data(*r.keyframe, anchor, index), odom_frame_, child_frame_));
         }
         publish_finished();
     }
@@ -95,7 +95,7 @@ private:
 
     void publish_finished() {
         for (const LocalMap& map : odometry_->take_finished_local_maps()) {
-            local_map_out_.publish(maps_.build(export_local_map(map, true, ++revision_), map.last_update(), odom_frame_));
+            local_map_out_.publish(maps_.build(to_local_map_data(map, ++revision_, true), map.last_update(), odom_frame_));
             ++maps_published_;
         }
     }
@@ -107,7 +107,7 @@ private:
         if (active.id() == snapshot_map_ && active.scans_integrated() == snapshot_scans_) return;
         snapshot_map_ = active.id();
         snapshot_scans_ = active.scans_integrated();
-        local_map_out_.publish(maps_.build(export_local_map(active, false, ++revision_), active.last_update(), odom_frame_));
+        local_map_out_.publish(maps_.build(to_local_map_data(active, ++revision_, false), active.last_update(), odom_frame_));
     }
 
     void status(std::uint8_t level, const std::string& code, const std::string& text, double stamp) {
