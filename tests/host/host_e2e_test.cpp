@@ -154,6 +154,20 @@ components:
     EXPECT_EQ(n, 8u);
 }
 
+TEST_F(HostTest, EveryShippedLaunchConfigIsValid) {
+    setenv("LTM_DATA", kFixture.c_str(), 1);
+    setenv("LTM_OUT", path("out").c_str(), 1);
+    setenv("LTM_SCENARIO", (std::string(LTM_SOURCE_DIR) + "/components/simulator/scenarios/tiny_loop.yaml").c_str(), 1);
+    std::size_t checked = 0;
+    for (const auto& e : fs::directory_iterator(std::string(LTM_SOURCE_DIR) + "/launch_configs")) {
+        if (e.path().extension() != ".yaml") continue;
+        Process host({kHost, e.path().string(), "--check"}, path("check_" + e.path().stem().string()));
+        EXPECT_EQ(host.wait(120), 0) << e.path() << ": " << host.err();
+        ++checked;
+    }
+    EXPECT_GE(checked, 5u);
+}
+
 struct BadCase {
     const char* name;
     const char* components;     // YAML of the components list
