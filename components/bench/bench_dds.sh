@@ -22,12 +22,12 @@ DDS='dds: {interfaces: [lo], multicast: false, peers: [127.0.0.1]}'
 source_entry="  - {name: source, type: bench_latency_source, params: {points: $POINTS, count: $COUNT, rate_hz: $RATE}}"
 sink_entry() { echo "  - {name: sink, type: bench_latency_sink, params: {report: $1}}"; }
 
-echo "== start-up: ltm_host --check on launch_configs/robot_composed.yaml (10 runs)"
+echo "== start-up: ltm_host --check on launch_configs/kitti_composed.yaml (10 runs)"
 ROOT="$(cd "$BIN/../.." 2>/dev/null && pwd)"
 export LTM_ROOT="${LTM_ROOT:-$ROOT}" LTM_DATA="${LTM_DATA:-$LTM_ROOT/tests/fixtures/kitti00_mini}" LTM_OUT="$WORK/out"
 times=()
 for _ in $(seq 10); do
-    s=$(date +%s%N); "$HOST" "$LTM_ROOT/launch_configs/robot_composed.yaml" --check >/dev/null; e=$(date +%s%N)
+    s=$(date +%s%N); "$HOST" "$LTM_ROOT/launch_configs/kitti_composed.yaml" --check >/dev/null; e=$(date +%s%N)
     times+=($(( (e - s) / 1000000 )))
 done
 printf '%s\n' "${times[@]}" | sort -n | awk '{a[NR]=$1} END {printf "   process start to all components configured: median %d ms, max %d ms\n", a[int((NR+1)/2)], a[NR]}'
