@@ -30,7 +30,7 @@
 #include "mapping/core/map_store.hpp"
 #include "mapping/core/mapper.hpp"
 #include "mapping/core/odometry_bridge.hpp"
-#include "odometry/bench/dataset.hpp"
+#include "sources/core/scan_folder.hpp"
 #include "odometry/core/odometry.hpp"
 #include "odometry/params/odometry_params.hpp"
 
@@ -222,10 +222,14 @@ int run(const Args& a) {
                                odometry::parse_sensor_preset(a.preset.empty() ? "hdl64" : a.preset))
                          : odometry::load_odometry_config_file(a.config);
     const mapping::MapperConfig mc = mapper_config(a.preset);
-    const odometry::bench::Dataset data(a.dir);
+    sources::ScanFolderConfig folder;
+    folder.path = a.dir;
+    folder.format = sources::ScanFormat::kAuto;
+    const sources::ScanFolder data(folder);
+    const char* kind = data.format() == sources::ScanFormat::kKittiBin ? "kitti" : "pcd";
     const std::size_t frames = a.max_frames ? std::min(a.max_frames, data.size()) : data.size();
     std::printf("%s: %zu %s scans, odometry voxel %.2f m\n", a.dir.c_str(), frames,
-                data.kind().c_str(), oc.voxel_size);
+                kind, oc.voxel_size);
 
     odometry::Odometry odo(oc);
     mapping::Mapper mapper(mc);

@@ -23,7 +23,7 @@
 #include "evaluation/core/ate.hpp"
 #include "evaluation/core/kitti_metric.hpp"
 #include "evaluation/core/rpe.hpp"
-#include "odometry/bench/dataset.hpp"
+#include "sources/core/scan_folder.hpp"
 #include "odometry/core/odometry.hpp"
 #include "odometry/params/odometry_params.hpp"
 
@@ -156,10 +156,14 @@ void report_accuracy(const common::PoseList& est, const Args& a) {
 
 int run(const Args& a) {
     const odometry::OdometryConfig config = make_config(a);
-    const odometry::bench::Dataset data(a.dir);
+    sources::ScanFolderConfig folder;
+    folder.path = a.dir;
+    folder.format = sources::ScanFormat::kAuto;
+    const sources::ScanFolder data(folder);
+    const char* kind = data.format() == sources::ScanFormat::kKittiBin ? "kitti" : "pcd";
     const std::size_t frames = a.max_frames ? std::min(a.max_frames, data.size()) : data.size();
     std::printf("%s: %zu %s scans%s, %d thread(s), voxel %.2f m\n", a.dir.c_str(), frames,
-                data.kind().c_str(), data.has_times() ? "" : " (no times.txt: 10 Hz assumed)",
+                kind, data.has_times() ? "" : " (no times.txt: 10 Hz assumed)",
                 config.threads, config.voxel_size);
     std::ofstream log;
     if (!a.frame_log.empty()) {

@@ -15,7 +15,9 @@ ScanFolder::ScanFolder(const ScanFolderConfig& config) : config_(config) {
     using common::IoError;
     std::vector<std::string> all;
     std::string seq_dir = config.path;
-    if (config.format == ScanFormat::kKittiBin) {
+    if (config_.format == ScanFormat::kAuto)
+        config_.format = common::list_kitti_scans(config.path).empty() ? ScanFormat::kCloudFiles : ScanFormat::kKittiBin;
+    if (config_.format == ScanFormat::kKittiBin) {
         all = common::list_kitti_scans(config.path);
         seq_dir = common::kitti_sequence_dir(config.path);
         if (all.empty()) throw IoError(config.path, "no .bin scans (expected DIR/velodyne/*.bin or DIR/*.bin)");
@@ -35,6 +37,7 @@ ScanFolder::ScanFolder(const ScanFolderConfig& config) : config_(config) {
         times_file = (fs::path(seq_dir) / "times.txt").string();
     if (!times_file.empty()) {
         times = common::read_times(times_file);
+        has_times_ = true;
         if (times.size() < all.size())
             throw IoError(times_file, std::to_string(times.size()) + " times for " + std::to_string(all.size()) + " scans");
     } else {

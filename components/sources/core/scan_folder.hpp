@@ -10,7 +10,11 @@
 
 namespace ltm::sources {
 
-enum class ScanFormat { kKittiBin, kCloudFiles };
+enum class ScanFormat {
+    kKittiBin,    // DIR/velodyne/*.bin or DIR/*.bin
+    kCloudFiles,  // DIR/Scans/*.pcd|ply or DIR/*.pcd|ply
+    kAuto,        // KITTI when the folder has .bin scans, else cloud files
+};
 
 struct ScanFolderConfig {
     std::string path;               // the folder (KITTI: the sequence or its velodyne/)
@@ -29,6 +33,8 @@ public:
     explicit ScanFolder(const ScanFolderConfig& config);
 
     std::size_t size() const { return files_.size(); }
+    ScanFormat format() const { return config_.format; }  // resolved (never kAuto)
+    bool has_times() const { return has_times_; }         // false: default_period_s spacing
     double stamp(std::size_t i) const { return times_[i]; }
     bool has_poses() const { return !poses_.empty(); }
     const Eigen::Isometry3d& pose(std::size_t i) const { return poses_[i]; }
@@ -41,6 +47,7 @@ private:
     std::vector<std::string> files_;
     std::vector<double> times_;
     common::PoseList poses_;
+    bool has_times_ = false;
 };
 
 }  // namespace ltm::sources

@@ -78,6 +78,24 @@ TEST(ScanFolder, CloudFilesWithPosesAndDefaultPeriod) {
     fs::remove_all(d);
 }
 
+TEST(ScanFolder, AutoDetectsTheLayout) {
+    sources::ScanFolderConfig cfg;
+    cfg.path = kFixture;
+    cfg.format = sources::ScanFormat::kAuto;
+    sources::ScanFolder kitti(cfg);
+    EXPECT_EQ(kitti.format(), sources::ScanFormat::kKittiBin);
+    EXPECT_TRUE(kitti.has_times());
+    const fs::path d = temp_dir("auto");
+    common::PlyCloud c;
+    c.points = {{1, 2, 3}};
+    common::write_ply((d / "a.ply").string(), c);
+    cfg.path = d.string();
+    sources::ScanFolder clouds(cfg);
+    EXPECT_EQ(clouds.format(), sources::ScanFormat::kCloudFiles);
+    EXPECT_FALSE(clouds.has_times());
+    fs::remove_all(d);
+}
+
 TEST(ScanFolder, TimesGoingBackwardsAreRefused) {
     const fs::path d = temp_dir("times");
     fs::create_directories(d / "velodyne");
