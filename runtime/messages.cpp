@@ -17,6 +17,7 @@ const std::vector<MessageTypeInfo>& known_message_types() {
         info<msg::TransformStamped>(), info<msg::Twist>(), info<msg::Odometry>(), info<msg::Path>(),
         info<msg::Keyframe>(), info<msg::LocalMap>(), info<msg::LoopClosure>(), info<msg::PoseGraph>(),
         info<msg::LocalisationStatus>(), info<msg::MapChangeSet>(), info<msg::Mesh>(), info<msg::Status>(),
+        info<msg::MapRequest>(),
     };
     return types;
 }

@@ -27,6 +27,7 @@
 #include "ltm_msgs/msg/Mesh.h"
 #include "ltm_msgs/msg/PlaceDescriptor.h"
 #include "ltm_msgs/msg/PoseGraph.h"
+#include "ltm_msgs/msg/MapRequest.h"
 #include "ltm_msgs/msg/Status.h"
 #include "nav_msgs/msg/Odometry.h"
 #include "nav_msgs/msg/Path.h"
@@ -67,6 +68,7 @@ using MapChange = ltm_msgs_msg_dds__MapChange_;
 using MapChangeSet = ltm_msgs_msg_dds__MapChangeSet_;
 using Mesh = ltm_msgs_msg_dds__Mesh_;
 using Status = ltm_msgs_msg_dds__Status_;
+using MapRequest = ltm_msgs_msg_dds__MapRequest_;
 }  // namespace ltm::msg
 
 namespace ltm::runtime {
@@ -100,6 +102,7 @@ LTM_MESSAGE_TRAITS(ltm_msgs_msg_dds__LocalisationStatus_, "ltm_msgs/msg/Localisa
 LTM_MESSAGE_TRAITS(ltm_msgs_msg_dds__MapChangeSet_, "ltm_msgs/msg/MapChangeSet")
 LTM_MESSAGE_TRAITS(ltm_msgs_msg_dds__Mesh_, "ltm_msgs/msg/Mesh")
 LTM_MESSAGE_TRAITS(ltm_msgs_msg_dds__Status_, "ltm_msgs/msg/Status")
+LTM_MESSAGE_TRAITS(ltm_msgs_msg_dds__MapRequest_, "ltm_msgs/msg/MapRequest")
 
 // The table of known top-level types: for `--all` recording, replay and `ltm_host --list-types`.
 struct MessageTypeInfo {

@@ -335,6 +335,19 @@ TEST_F(Dds, KeyframeGraphLoopStatusChangesMesh) {
         EXPECT_EQ(std::string(r.code), "skip");
         EXPECT_EQ(r.level, 1);
     });
+
+    std::string dir = "/tmp/map", ply = "";
+    msg::MapRequest req{};
+    req.id = 7;
+    req.command = ltm_msgs_msg_MapRequest_Constants_SAVE_ALL;
+    req.map_dir = c(dir);
+    req.global_map_file = c(ply);
+    roundtrip<msg::MapRequest>(req, [&](const msg::MapRequest& r) {
+        EXPECT_EQ(r.id, 7u);
+        EXPECT_EQ(r.command, 2);
+        EXPECT_EQ(std::string(r.map_dir), "/tmp/map");
+        EXPECT_EQ(std::string(r.global_map_file), "");
+    });
 }
 
 TEST_F(Dds, TransformAndPoseWithCovariance) {

@@ -106,29 +106,104 @@ components:
     EXPECT_LT((rel_est.translation() - rel_truth.translation()).norm(), 1.0);
 }
 
-TEST_F(OdometryPipeline, SlamBackEndSavesItsMapAndPath) {
+// The SLAM back end in the composed pipeline: map saved at shutdown and on request (the request
+// sent by the map_request component while the mission runs), corrected full-rate odometry, and a
+// second session continuing the saved map.
+TEST_F(OdometryPipeline, SlamBackEndSavesItsMapAndASecondSessionContinuesIt) {
     const std::string scenario = std::string(LTM_SOURCE_DIR) + "/components/simulator/scenarios/tiny_loop.yaml";
-    const std::string cfg = write("slam.yaml", R"(domain_id: 193
+    auto config = [&](int session, const std::string& extra_mapping, const std::string& tag) {
+        return write("slam" + tag + ".yaml", R"(domain_id: 193
 dds: {interfaces: [lo], multicast: false, peers: [127.0.0.1]}
+namespace: /robot
 topics: {points: stream}
 components:
   - name: sensor
     type: simulator
-    params: {scenario: )" + scenario + R"(, mode: fast}
+    params: {scenario: )" + scenario + ", mode: fast, session: " + std::to_string(session) + R"(}
   - name: odometry
     type: odometry
     params: {preset: vlp16}
   - name: mapping
     type: mapping
-    params: {map_dir: )" + (dir_ / "map").string() + ", global_map_file: " + (dir_ / "global_map.ply").string() + R"(}
+    params: {preset: vlp16, map_dir: )" + (dir_ / ("map" + tag)).string() + ", global_map_file: " +
+                                            (dir_ / ("global_map" + tag + ".ply")).string() + extra_mapping + R"(}
+  - name: request
+    type: map_request
+    params: {command: all, map_dir: )" + (dir_ / ("requested" + tag)).string() + ", global_map_file: " +
+                                            (dir_ / ("requested" + tag + ".ply")).string() + R"(}
   - name: slam
     type: trajectory_writer
-    params: {tum_file: )" + (dir_ / "slam_tum.txt").string() + R"(, input: path}
+    params: {tum_file: )" + (dir_ / ("slam" + tag + ".txt")).string() + R"(, input: path}
+  - name: odom
+    type: trajectory_writer
+    params: {tum_file: )" + (dir_ / ("odometry" + tag + ".txt")).string() + R"(}
+  - name: corrected
+    type: trajectory_writer
+    params: {tum_file: )" + (dir_ / ("corrected" + tag + ".txt")).string() + R"(}
+    remap: {odometry: corrected_odometry}
+)");
+    };
+    Process first({kHost, config(0, "", "1")}, (dir_ / "host1").string());
+    ASSERT_EQ(first.wait(300), 0) << first.err();
+    EXPECT_TRUE(fs::exists(dir_ / "map1" / "manifest.txt")) << first.err();
+    EXPECT_TRUE(fs::exists(dir_ / "global_map1.ply"));
+    // The request was answered while the mission ran: its map and PLY are where it asked.
+    EXPECT_NE(first.err().find("request "), std::string::npos) << first.err();
+    EXPECT_TRUE(fs::exists(dir_ / "requested1" / "manifest.txt")) << first.err();
+    EXPECT_TRUE(fs::exists(dir_ / "requested1.ply")) << first.err();
+    const common::Trajectory path = common::read_tum_trajectory((dir_ / "slam1.txt").string());
+    EXPECT_GT(path.size(), 10u);  // the keyframes, at their graph poses
+    // Every odometry pose comes out corrected, at the same stamp; in this small map the correction
+    // is small (accuracy: ./ltm demo and ./ltm bench slam).
+    const common::Trajectory odom = common::read_tum_trajectory((dir_ / "odometry1.txt").string());
+    const common::Trajectory corrected = common::read_tum_trajectory((dir_ / "corrected1.txt").string());
+    ASSERT_GT(odom.size(), 30u);
+    ASSERT_EQ(corrected.size(), odom.size());
+    for (std::size_t i = 0; i < odom.size(); ++i) {
+        EXPECT_DOUBLE_EQ(corrected[i].stamp, odom[i].stamp);
+        EXPECT_LT((corrected[i].pose.translation() - odom[i].pose.translation()).norm(), 0.5) << i;
+    }
+    const auto files = [](const fs::path& dir) {
+        std::size_t n = 0;
+        for (const auto& e : fs::recursive_directory_iterator(dir)) n += e.is_regular_file() ? 1 : 0;
+        return n;
+    };
+    const std::size_t first_files = files(dir_ / "map1");
+
+    // Thursday: the map of Monday continued (kept fixed), saved with both sessions in it.
+    Process second({kHost, config(1, ", load_map_dir: " + (dir_ / "map1").string(), "2")}, (dir_ / "host2").string());
+    ASSERT_EQ(second.wait(300), 0) << second.err();
+    EXPECT_NE(second.err().find("continuing the map of"), std::string::npos) << second.err();
+    EXPECT_GT(files(dir_ / "map2"), first_files);
+    EXPECT_EQ(files(dir_ / "map1"), first_files);  // the loaded map is not written to
+}
+
+TEST_F(OdometryPipeline, MapRequestWithoutAMappingComponentFailsWithOneLine) {
+    const std::string cfg = write("request.yaml", R"(domain_id: 194
+dds: {interfaces: [lo], multicast: false, peers: [127.0.0.1]}
+namespace: /robot
+components:
+  - name: request
+    type: map_request
+    params: {command: save, timeout_s: 1}
 )");
     Process host({kHost, cfg}, (dir_ / "host").string());
-    ASSERT_EQ(host.wait(300), 0) << host.err();
-    EXPECT_TRUE(fs::exists(dir_ / "map" / "manifest.txt")) << host.err();
-    EXPECT_TRUE(fs::exists(dir_ / "global_map.ply"));
-    const common::Trajectory path = common::read_tum_trajectory((dir_ / "slam_tum.txt").string());
-    EXPECT_GT(path.size(), 10u);  // the keyframes, at their graph poses
+    EXPECT_EQ(host.wait(60), 1) << host.err();
+    EXPECT_NE(host.err().find("no mapping component listens on '/robot/map_request'"), std::string::npos)
+        << host.err();
+}
+
+TEST_F(OdometryPipeline, DamagedMapToContinueIsRefusedBeforeAnythingRuns) {
+    fs::create_directories(dir_ / "broken");
+    std::ofstream((dir_ / "broken" / "manifest.txt").string()) << "not a manifest\n";
+    const std::string cfg = write("damaged.yaml", R"(domain_id: 195
+components:
+  - name: mapping
+    type: mapping
+    params: {load_map_dir: )" + (dir_ / "broken").string() + R"(}
+)");
+    Process host({kHost, cfg}, (dir_ / "host").string());
+    EXPECT_EQ(host.wait(60), 2) << host.err();
+    EXPECT_NE(host.err().find("mapping.load_map_dir: "), std::string::npos) << host.err();
+    EXPECT_NE(host.err().find("manifest.txt"), std::string::npos) << host.err();
 }

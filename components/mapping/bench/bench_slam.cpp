@@ -142,25 +142,9 @@ double ms_since(Clock::time_point t) {
     return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
 }
 
-// Mapping settings for the sensor preset (the benchmark's choice; the DDS adapter reads YAML).
+// Mapping settings for the sensor preset (the same presets as the mapping component's).
 mapping::MapperConfig mapper_config(const std::string& preset) {
-    mapping::MapperConfig c;
-    if (preset == "narrow") {
-        // A ~70 deg field of view, ranges under 40 m, keyframes every 0.5 m.
-        c.scan_context.max_range = 40.0;
-        c.scan_context.sensor_height = 1.0;
-        c.loop_detection.exclude_recent_seconds = 15.0;
-        c.loop_detection.exclude_recent_keyframes = 20;
-        c.loop_detection.max_distance = 0.4;
-        c.verification.downsample = 0.3;
-        c.verification.min_inliers = 200;
-        c.verification.coarse_factor = 4;
-        c.verification.max_correction_translation = 4.0;
-        c.loop_cooldown_keyframes = 4;
-    } else {
-        c.scan_context.sensor_height = 1.73;  // KITTI's HDL-64E
-    }
-    return c;
+    return mapping::mapper_preset(odometry::parse_sensor_preset(preset.empty() ? "hdl64" : preset));
 }
 
 // Verified intra-session pairs: "intra sA iA sB iB ... verified T_A_B(12)" (hku-avia-2session).

@@ -1,15 +1,22 @@
-// The SLAM back end as a component: `local_map` and `keyframe` in (from the odometry); loop
-// closures, the optimised `pose_graph` and the corrected keyframe trajectory (`path`) out. The
-// optimisation runs on this component's own thread, off the odometry's. At shutdown the map is
-// saved (`map_dir`) and the global voxel map written as PLY (`global_map_file`).
+// The SLAM back end as a component: `local_map`, `keyframe` and `odometry` in (from the odometry);
+// loop closures, the optimised `pose_graph`, the corrected keyframe trajectory (`path`), the
+// corrected full-rate odometry (`corrected_odometry`, frame `map`) and the `map_to_odom`
+// correction out. The optimisation runs on this component's own thread, off the odometry's.
+// The map is saved (`map_dir`) as it goes, on request (`map_request`) and at shutdown; the global
+// voxel map is written as PLY (`global_map_file`) on request and at shutdown. With `load_map_dir`
+// a saved map is continued in a new session.
+#include <filesystem>
 #include <memory>
+#include <optional>
 
 #include "common/convert/geometry.hpp"
 #include "common/convert/local_map.hpp"
 #include "common/core/io_error.hpp"
 #include "common/core/ply_io.hpp"
+#include "mapping/core/binary_io.hpp"
 #include "mapping/core/map_store.hpp"
 #include "mapping/core/mapper.hpp"
+#include "mapping/params/mapper_params.hpp"
 #include "runtime/component.hpp"
 
 namespace ltm::mapping {
@@ -24,29 +31,31 @@ public:
         auto& p = ctx.params();
         map_dir_ = p.path("map_dir", "", PathCheck::kParentExists);
         global_map_file_ = p.path("global_map_file", "", PathCheck::kParentExists);
+        const std::string load_dir = p.path("load_map_dir", "", PathCheck::kDirExists);
+        const bool freeze_loaded = p.get<bool>("freeze_loaded", true);
         frame_id_ = p.get<std::string>("frame_id", "map");
         const double save_period = p.get<double>("save_period_s", 30.0);
+        if (save_period < 0) p.fail("save_period_s", "must be >= 0 (0: save only on request and at shutdown)");
+        const MapperConfig config = load_mapper_config(p, "", "hdl64");
+        create_mapper(p, config, load_dir, freeze_loaded);
         if (!map_dir_.empty()) writer_ = std::make_unique<MapWriter>(map_dir_);
         // Saving as it goes keeps the save at shutdown small (only what changed is rewritten),
         // and a crash loses at most one period.
         if (writer_ && save_period > 0) ctx.add_timer(save_period, [this] { save(); });
-        MapperConfig config;
-        config.max_loops_per_keyframe = p.get<int>("max_loops_per_keyframe", config.max_loops_per_keyframe);
-        config.loop_cooldown_keyframes = p.get<int>("loop_cooldown_keyframes", config.loop_cooldown_keyframes);
-        config.keep_keyframe_points = p.get<bool>("keep_keyframe_points", config.keep_keyframe_points);
-        try {
-            mapper_ = std::make_unique<Mapper>(config);
-        } catch (const std::exception& e) {
-            p.fail("max_loops_per_keyframe", e.what());
-        }
         ctx.subscribe<msg::LocalMap>("local_map", TopicRole::kMap, [this](const msg::LocalMap& m) {
             const LocalMapResult r = mapper_->add_local_map(convert::from_msg(m));
             if (!r.added && !r.message.empty()) ctx_.log().debug(r.message);
         });
         ctx.subscribe<msg::Keyframe>("keyframe", TopicRole::kState, [this](const msg::Keyframe& m) { on_keyframe(m); });
+        ctx.subscribe<msg::Odometry>("odometry", TopicRole::kState, [this](const msg::Odometry& m) { on_odometry(m); });
+        ctx.subscribe<msg::MapRequest>("map_request", TopicRole::kState,
+                                       [this](const msg::MapRequest& m) { on_request(m); });
         graph_out_ = ctx.advertise<msg::PoseGraph>("pose_graph", TopicRole::kMap);
         path_out_ = ctx.advertise<msg::Path>("path", TopicRole::kMap);
         loop_out_ = ctx.advertise<msg::LoopClosure>("loop_closure", TopicRole::kState);
+        odometry_out_ = ctx.advertise<msg::Odometry>("corrected_odometry", TopicRole::kState);
+        correction_out_ = ctx.advertise<msg::TransformStamped>("map_to_odom", TopicRole::kState);
+        status_out_ = ctx.advertise<msg::Status>("status", TopicRole::kState);
     }
 
     void on_shutdown() override {
@@ -55,29 +64,115 @@ public:
         ctx_.log().info(std::to_string(mapper_->keyframes().size()) + " keyframes, " +
                         std::to_string(mapper_->local_map_count()) + " local maps, " +
                         std::to_string(mapper_->loops().size()) + " loops closed");
-        save();
-        try {
-            if (!global_map_file_.empty()) {
-                common::write_ply(global_map_file_, mapper_->global_map());
-                ctx_.log().info("global voxel map written to " + global_map_file_);
-            }
-        } catch (const common::IoError& e) {
-            ctx_.log().error(e.what());
-        }
+        std::string message;
+        save(map_dir_, &message);
+        write_global_map(global_map_file_, &message);
     }
 
 private:
-    void save() {
-        if (!writer_ || mapper_->revision() + mapper_->keyframes().size() + mapper_->local_map_count() == saved_state_)
-            return;
+    void create_mapper(runtime::Parameters& p, const MapperConfig& config, const std::string& load_dir,
+                       bool freeze_loaded) {
         try {
-            const SaveStats st = writer_->save(mapper_->snapshot());
-            saved_state_ = mapper_->revision() + mapper_->keyframes().size() + mapper_->local_map_count();
-            ctx_.log().info("map saved to " + map_dir_ + " (" + std::to_string(st.files_written) + " files written, " +
-                            std::to_string(st.bytes_total >> 20) + " MiB in all)");
+            if (load_dir.empty()) {
+                mapper_ = std::make_unique<Mapper>(config);
+                return;
+            }
+            LoadedMap loaded = load_map(load_dir);
+            // A damaged file is left alone: saving into the same directory would replace it.
+            std::error_code ec;
+            if (!loaded.refused.empty() && !map_dir_.empty() && std::filesystem::equivalent(load_dir, map_dir_, ec))
+                p.fail("load_map_dir", std::to_string(loaded.refused.size()) + " damaged file(s) in the map (" +
+                                           loaded.refused.front() +
+                                           "); set map_dir to another directory to continue without them");
+            for (const std::string& r : loaded.refused) ctx_.log().warn("loaded map: " + r + " (left out)");
+            mapper_ = std::make_unique<Mapper>(config, loaded.map, freeze_loaded);
+            ctx_.log().info("continuing the map of " + load_dir + " (" + std::to_string(mapper_->local_map_count()) +
+                            " local maps, " + std::to_string(mapper_->keyframes().size()) +
+                            " keyframes) in session " + std::to_string(mapper_->session()));
+        } catch (const MapFormatError& e) {
+            p.fail("load_map_dir", e.what());
+        } catch (const common::IoError& e) {
+            p.fail("load_map_dir", e.what());
+        } catch (const MapperConfigError& e) {
+            p.fail(std::string(e.what()).rfind("mapping.scan_context", 0) == 0 ? "scan_context" : "load_map_dir",
+                   e.what());
+        }
+    }
+
+    std::uint64_t state() const {
+        return mapper_->revision() + mapper_->keyframes().size() + mapper_->local_map_count();
+    }
+
+    // The periodic save: only when something changed.
+    void save() {
+        if (writer_ && state() != saved_state_) save(map_dir_, nullptr);
+    }
+
+    bool save(const std::string& dir, std::string* message) {
+        if (dir.empty()) return true;
+        try {
+            SaveStats st;
+            if (writer_ && dir == map_dir_) {
+                st = writer_->save(mapper_->snapshot());
+                saved_state_ = state();
+            } else {
+                st = save_map(dir, mapper_->snapshot());
+            }
+            const std::string line = "map saved to " + dir + " (" + std::to_string(st.files_written) +
+                                     " files written, " + std::to_string(st.bytes_total >> 20) + " MiB in all)";
+            ctx_.log().info(line);
+            if (message) *message += (message->empty() ? "" : "; ") + line;
+            return true;
         } catch (const common::IoError& e) {
             ctx_.log().error(std::string("map not saved: ") + e.what());
+            if (message) *message += (message->empty() ? "" : "; ") + std::string("map not saved: ") + e.what();
+            return false;
         }
+    }
+
+    bool write_global_map(const std::string& file, std::string* message) {
+        if (file.empty()) return true;
+        try {
+            GlobalMapStats stats;
+            common::write_ply(file, mapper_->global_map(&stats));
+            const std::string line = "global voxel map written to " + file;
+            ctx_.log().info(line);
+            if (message) *message += (message->empty() ? "" : "; ") + line;
+            return true;
+        } catch (const common::IoError& e) {
+            ctx_.log().error(e.what());
+            if (message) *message += (message->empty() ? "" : "; ") + std::string(e.what());
+            return false;
+        }
+    }
+
+    void on_request(const msg::MapRequest& m) {
+        const std::string dir = m.map_dir && *m.map_dir ? m.map_dir : map_dir_;
+        const std::string file = m.global_map_file && *m.global_map_file ? m.global_map_file : global_map_file_;
+        const bool want_map = m.command == ltm_msgs_msg_MapRequest_Constants_SAVE_MAP ||
+                              m.command == ltm_msgs_msg_MapRequest_Constants_SAVE_ALL;
+        const bool want_ply = m.command == ltm_msgs_msg_MapRequest_Constants_WRITE_GLOBAL_MAP ||
+                              m.command == ltm_msgs_msg_MapRequest_Constants_SAVE_ALL;
+        std::string message;
+        bool ok = true;
+        if (!want_map && !want_ply) {
+            ok = false;
+            message = "unknown command " + std::to_string(m.command);
+        } else if ((want_map && dir.empty()) && (!want_ply || file.empty())) {
+            ok = false;
+            message = "nowhere to write: neither the request nor the component's parameters name a map_dir" +
+                      std::string(want_ply ? " or a global_map_file" : "");
+        } else {
+            if (loops_since_optimise_ > 0) optimise();
+            if (want_map) ok = save(dir, &message) && ok;
+            if (want_ply) ok = write_global_map(file, &message) && ok;
+            if (message.empty()) {
+                ok = false;
+                message = "nowhere to write: no global_map_file in the request or the component's parameters";
+            }
+        }
+        status(ok ? ltm_msgs_msg_Status_Constants_OK : ltm_msgs_msg_Status_Constants_ERROR,
+               ok ? "map_request_done" : "map_request_failed", "request " + std::to_string(m.id) + ": " + message);
     }
 
     void on_keyframe(const msg::Keyframe& m) {
@@ -86,9 +181,63 @@ private:
             ctx_.log().warn("keyframe " + std::to_string(m.id) + " not added: " + r.message);
             return;
         }
+        current_map_ = m.local_map_id;
+        has_current_map_ = true;
+        if (!waiting_.empty()) {
+            if (const auto T = mapper_->T_world_odom(current_map_)) {
+                for (Waiting& w : waiting_) {
+                    w.message.child_frame_id = const_cast<char*>(w.child_frame_id.c_str());
+                    publish_corrected(w.message, *T);
+                }
+                waiting_.clear();
+            }
+        }
         for (const LoopClosure& loop : r.loops) publish_loop(loop, m.header.stamp);
         loops_since_optimise_ += r.loops.size();
         if (r.optimisation_due()) optimise();
+        publish_correction(m.header.stamp);
+    }
+
+    // The odometry pose corrected by the newest keyframe's local map: T_world_odom * T_odom_lidar.
+    // Poses before the first keyframe wait for it (the odometry publishes a frame's pose before its
+    // keyframe).
+    void on_odometry(const msg::Odometry& m) {
+        const std::optional<Eigen::Isometry3d> T_world_odom =
+            has_current_map_ ? mapper_->T_world_odom(current_map_) : std::nullopt;
+        if (!T_world_odom) {
+            if (waiting_.size() < kMaxWaiting) {
+                waiting_.push_back({m, m.child_frame_id ? m.child_frame_id : ""});
+                waiting_.back().message.header.frame_id = waiting_.back().message.child_frame_id = nullptr;
+            }
+            return;
+        }
+        publish_corrected(m, *T_world_odom);
+    }
+
+    void publish_corrected(const msg::Odometry& m, const Eigen::Isometry3d& T_world_odom) {
+        msg::Odometry out = m;
+        out.header.frame_id = const_cast<char*>(frame_id_.c_str());
+        out.pose.pose = convert::to_pose(T_world_odom * convert::to_isometry(m.pose.pose));
+        // Covariance of the pose in the new parent frame: rotated by the correction's rotation.
+        const Eigen::Matrix<double, 6, 6> cov = convert::from_array36(m.pose.covariance);
+        Eigen::Matrix<double, 6, 6> R = Eigen::Matrix<double, 6, 6>::Zero();
+        R.topLeftCorner<3, 3>() = R.bottomRightCorner<3, 3>() = T_world_odom.rotation();
+        convert::to_array36(R * cov * R.transpose(), out.pose.covariance);
+        odometry_out_.publish(out);
+    }
+
+    void publish_correction(const msg::Time& stamp) {
+        const std::optional<Eigen::Isometry3d> T = mapper_->T_world_odom(current_map_);
+        if (!T) return;
+        msg::TransformStamped t{};
+        t.header.stamp = stamp;
+        t.header.frame_id = const_cast<char*>(frame_id_.c_str());
+        std::string child = "odom";
+        t.child_frame_id = const_cast<char*>(child.c_str());
+        const msg::Pose p = convert::to_pose(*T);
+        t.transform.translation = {p.position.x, p.position.y, p.position.z};
+        t.transform.rotation = p.orientation;
+        correction_out_.publish(t);
     }
 
     void optimise() {
@@ -96,10 +245,22 @@ private:
         loops_since_optimise_ = 0;
         if (!s.solved) {
             ctx_.log().warn("pose graph not solved: " + s.message);
+            status(ltm_msgs_msg_Status_Constants_WARN, "not_solved", s.message);
             return;
         }
         publish_graph();
         publish_path();
+    }
+
+    void status(std::uint8_t level, const std::string& code, const std::string& message) {
+        msg::Status s{};
+        s.header.frame_id = const_cast<char*>(frame_id_.c_str());
+        std::string component = ctx_.name();
+        s.component = const_cast<char*>(component.c_str());
+        s.level = level;
+        s.code = const_cast<char*>(code.c_str());
+        s.message = const_cast<char*>(message.c_str());
+        status_out_.publish(s);
     }
 
     void publish_loop(const LoopClosure& loop, const msg::Time& stamp) {
@@ -176,13 +337,24 @@ private:
     std::size_t loops_since_optimise_ = 0;
     std::unique_ptr<MapWriter> writer_;
     std::uint64_t saved_state_ = 0;
+    struct Waiting {
+        msg::Odometry message;  // its strings pointed into the reader's sample: reset, kept below
+        std::string child_frame_id;
+    };
+    static constexpr std::size_t kMaxWaiting = 100;
+    std::vector<Waiting> waiting_;
+    std::uint64_t current_map_ = 0;
+    bool has_current_map_ = false;
     runtime::Publisher<msg::PoseGraph> graph_out_;
     runtime::Publisher<msg::Path> path_out_;
     runtime::Publisher<msg::LoopClosure> loop_out_;
+    runtime::Publisher<msg::Odometry> odometry_out_;
+    runtime::Publisher<msg::TransformStamped> correction_out_;
+    runtime::Publisher<msg::Status> status_out_;
 };
 
 }  // namespace
 }  // namespace ltm::mapping
 
 LTM_REGISTER_COMPONENT(ltm::mapping::MappingComponent, "mapping",
-                       "SLAM back end: Scan Context loops, pose graph, corrected path, map saved at shutdown")
+                       "SLAM back end: Scan Context loops, pose graph, corrected path and odometry, map saved")

@@ -20,6 +20,25 @@ bool non_negative(double v) { return v >= 0.0 && std::isfinite(v); }
 
 }  // namespace
 
+MapperConfig mapper_preset(odometry::SensorPreset preset) {
+    MapperConfig c;
+    if (preset == odometry::SensorPreset::kNarrow) {
+        c.scan_context.max_range = 40.0;
+        c.scan_context.sensor_height = 1.0;
+        c.loop_detection.exclude_recent_seconds = 15.0;
+        c.loop_detection.exclude_recent_keyframes = 20;
+        c.loop_detection.max_distance = 0.4;
+        c.verification.downsample = 0.3;
+        c.verification.min_inliers = 200;
+        c.verification.coarse_factor = 4;
+        c.verification.max_correction_translation = 4.0;
+        c.loop_cooldown_keyframes = 4;
+    } else {
+        c.scan_context.sensor_height = 1.73;  // KITTI's HDL-64E
+    }
+    return c;
+}
+
 std::string validate(const MapperConfig& c) {
     for (const std::string& e : {validate(c.scan_context, "mapping.scan_context"),
                                  validate(c.loop_detection, "mapping.loop_detection"),

@@ -53,6 +53,11 @@ struct MapperConfig {
     bool keep_keyframe_points = false;  // keep each keyframe's scan in the map (memory, files)
 };
 
+// The defaults for one of the odometry's sensor presets: `narrow` (Livox-like, ~70 deg field of
+// view, ranges under 40 m, keyframes every 0.5 m) changes the descriptor range and the loop search;
+// the spinning LiDARs keep the defaults with KITTI's sensor height.
+MapperConfig mapper_preset(odometry::SensorPreset preset);
+
 // Empty when valid; otherwise one line naming the first offending key ("mapping.pose_graph...").
 std::string validate(const MapperConfig& config);
 

@@ -12,7 +12,7 @@ OdometryConfig load_odometry_config(runtime::Parameters& params, const std::stri
     } catch (const ConfigError& e) {
         params.fail(pre + "preset", e.what());
     }
-    visit_fields(config, [&](const char* key, auto& field) { field = params.get(pre + key, field); });
+    visit_fields(config, [&](const std::string& key, auto& field) { field = params.get(pre + key, field); });
     const std::string problem = validate(config);
     if (!problem.empty()) {
         // validate() names the key as "odometry.<key> ...": point at that key's line.

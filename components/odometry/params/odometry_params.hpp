@@ -3,17 +3,36 @@
 // benchmark): an optional `preset` (hdl64, vlp32, vlp16, narrow) picks the base, every other key
 // mirrors the struct (`voxel_size`, `preprocess.max_range`, ...). Unknown keys, wrong types and
 // invalid values fail with file, line and key.
+#include <string>
+
 #include "odometry/core/odometry_config.hpp"
 #include "runtime/parameters.hpp"
 
 namespace ltm::odometry {
+
+// Calls v(key, field) for every field of a registration config, keys under `prefix` ("registration.").
+template <class Visitor>
+void visit_registration_fields(odometry::RegistrationConfig& r, const std::string& prefix, Visitor&& v) {
+    v(prefix + "imls_bandwidth", r.imls_bandwidth);
+    v(prefix + "max_correspondence_distance", r.max_correspondence_distance);
+    v(prefix + "min_normal_agreement", r.min_normal_agreement);
+    v(prefix + "kernel_scale", r.kernel_scale);
+    v(prefix + "stability_weighting", r.stability_weighting);
+    v(prefix + "min_stability", r.min_stability);
+    v(prefix + "max_iterations", r.max_iterations);
+    v(prefix + "convergence_translation", r.convergence_translation);
+    v(prefix + "convergence_rotation", r.convergence_rotation);
+    v(prefix + "min_correspondences", r.min_correspondences);
+    v(prefix + "kernel_adaptive_factor", r.kernel_adaptive_factor);
+    v(prefix + "degeneracy_ratio", r.degeneracy_ratio);
+    v(prefix + "degeneracy_length", r.degeneracy_length);
+}
 
 // Calls v(key, field) for every field of the config, by its dotted key.
 template <class Visitor>
 void visit_fields(OdometryConfig& c, Visitor&& v) {
     auto& p = c.preprocess;
     auto& x = c.voxel;
-    auto& r = c.registration;
     auto& d = c.divergence;
     auto& m = c.local_map;
     v("voxel_size", c.voxel_size);
@@ -32,19 +51,7 @@ void visit_fields(OdometryConfig& c, Visitor&& v) {
     v("voxel.min_extent", x.min_extent);
     v("voxel.max_points", x.max_points);
     v("voxel.initial_stability", x.initial_stability);
-    v("registration.imls_bandwidth", r.imls_bandwidth);
-    v("registration.max_correspondence_distance", r.max_correspondence_distance);
-    v("registration.min_normal_agreement", r.min_normal_agreement);
-    v("registration.kernel_scale", r.kernel_scale);
-    v("registration.stability_weighting", r.stability_weighting);
-    v("registration.min_stability", r.min_stability);
-    v("registration.max_iterations", r.max_iterations);
-    v("registration.convergence_translation", r.convergence_translation);
-    v("registration.convergence_rotation", r.convergence_rotation);
-    v("registration.min_correspondences", r.min_correspondences);
-    v("registration.kernel_adaptive_factor", r.kernel_adaptive_factor);
-    v("registration.degeneracy_ratio", r.degeneracy_ratio);
-    v("registration.degeneracy_length", r.degeneracy_length);
+    visit_registration_fields(c.registration, "registration.", v);
     v("divergence.max_translation_correction", d.max_translation_correction);
     v("divergence.max_rotation_correction", d.max_rotation_correction);
     v("divergence.max_final_step_translation", d.max_final_step_translation);

@@ -1,0 +1,101 @@
+// A one-shot client of the mapping component: once a mapping component listens on `map_request`,
+// asks it to save the map and/or write the global map, waits for its answer on `status` and
+// finishes (the host then exits 0). No answer within `timeout_s`, or a refused request, fails the
+// component (the host exits 1) with one line saying why. `./ltm map` runs it.
+#include <chrono>
+#include <stdexcept>
+#include <unistd.h>
+
+#include "runtime/component.hpp"
+
+namespace ltm::mapping {
+namespace {
+
+using runtime::PathCheck;
+using runtime::TopicRole;
+
+class MapRequestComponent : public runtime::Component {
+public:
+    explicit MapRequestComponent(runtime::ComponentContext& ctx) : ctx_(ctx) {
+        auto& p = ctx.params();
+        const std::string what = p.get<std::string>("command", "all");
+        if (what == "save") {
+            command_ = ltm_msgs_msg_MapRequest_Constants_SAVE_MAP;
+        } else if (what == "global_map") {
+            command_ = ltm_msgs_msg_MapRequest_Constants_WRITE_GLOBAL_MAP;
+        } else if (what == "all") {
+            command_ = ltm_msgs_msg_MapRequest_Constants_SAVE_ALL;
+        } else {
+            p.fail("command", "expected save, global_map or all, got '" + what + "'");
+        }
+        map_dir_ = p.path("map_dir", "", PathCheck::kParentExists);
+        global_map_file_ = p.path("global_map_file", "", PathCheck::kParentExists);
+        timeout_s_ = p.get<double>("timeout_s", 30.0);
+        if (!(timeout_s_ > 0)) p.fail("timeout_s", "must be > 0");
+        // Unique enough among requesters of one robot: the process id and the clock.
+        id_ = static_cast<std::uint32_t>(::getpid()) * 7919u +
+              static_cast<std::uint32_t>(std::chrono::steady_clock::now().time_since_epoch().count());
+        ctx.declare_source();
+        request_out_ = ctx.advertise<msg::MapRequest>("map_request", TopicRole::kState);
+        ctx.subscribe<msg::Status>("status", TopicRole::kState, [this](const msg::Status& s) { on_status(s); });
+        ctx.add_timer(0.1, [this] { tick(); });
+    }
+
+private:
+    void tick() {
+        if (done_) return;
+        const auto now = std::chrono::steady_clock::now();
+        if (!started_) {
+            started_ = true;
+            start_ = now;
+        }
+        if (!sent_ && request_out_.matched() > 0) {
+            msg::MapRequest r{};
+            r.id = id_;
+            r.command = command_;
+            r.map_dir = const_cast<char*>(map_dir_.c_str());
+            r.global_map_file = const_cast<char*>(global_map_file_.c_str());
+            request_out_.publish(r);
+            sent_ = true;
+            ctx_.log().info("request " + std::to_string(id_) + " sent");
+        }
+        if (std::chrono::duration<double>(now - start_).count() > timeout_s_) {
+            done_ = true;
+            throw std::runtime_error(sent_ ? "no answer from the mapping component within " + fmt(timeout_s_) + " s"
+                                           : "no mapping component listens on '" + request_out_.topic() +
+                                                 "' (is it running, on the same domain and namespace?)");
+        }
+    }
+
+    void on_status(const msg::Status& s) {
+        const std::string prefix = "request " + std::to_string(id_) + ": ";
+        const std::string message = s.message ? s.message : "";
+        if (done_ || message.rfind(prefix, 0) != 0) return;
+        done_ = true;
+        if (s.level == ltm_msgs_msg_Status_Constants_ERROR) throw std::runtime_error(message.substr(prefix.size()));
+        ctx_.log().info(message.substr(prefix.size()));
+        ctx_.finished();
+    }
+
+    static std::string fmt(double v) {
+        std::string s = std::to_string(v);
+        s.erase(s.find_last_not_of('0') + 1);
+        if (!s.empty() && s.back() == '.') s.pop_back();
+        return s;
+    }
+
+    runtime::ComponentContext& ctx_;
+    std::uint8_t command_ = ltm_msgs_msg_MapRequest_Constants_SAVE_ALL;
+    std::string map_dir_, global_map_file_;
+    double timeout_s_ = 30.0;
+    std::uint32_t id_ = 0;
+    bool started_ = false, sent_ = false, done_ = false;
+    std::chrono::steady_clock::time_point start_;
+    runtime::Publisher<msg::MapRequest> request_out_;
+};
+
+}  // namespace
+}  // namespace ltm::mapping
+
+LTM_REGISTER_COMPONENT(ltm::mapping::MapRequestComponent, "map_request",
+                       "asks a running mapping component to save its map / global map, waits for the answer")

@@ -1,0 +1,50 @@
+#include "mapping/params/mapper_params.hpp"
+
+namespace ltm::mapping {
+namespace {
+
+constexpr const char* kKindKey = "scan_context.kind";
+
+ScanContextKind parse_kind(runtime::Parameters& params, const std::string& key, ScanContextKind fallback) {
+    const std::string name =
+        params.get<std::string>(key, fallback == ScanContextKind::kMeanVariance ? "mean_variance" : "max_height");
+    if (name == "max_height") return ScanContextKind::kMaxHeight;
+    if (name == "mean_variance") return ScanContextKind::kMeanVariance;
+    params.fail(key, "expected max_height (Scan Context) or mean_variance (ScanContext++), got '" + name + "'");
+}
+
+}  // namespace
+
+MapperConfig load_mapper_config(runtime::Parameters& params, const std::string& prefix,
+                                const std::string& default_preset) {
+    const std::string pre = prefix.empty() ? "" : prefix + ".";
+    const std::string preset = params.get<std::string>(pre + "preset", default_preset);
+    MapperConfig config;
+    try {
+        config = mapper_preset(odometry::parse_sensor_preset(preset));
+    } catch (const std::exception& e) {
+        params.fail(pre + "preset", e.what());
+    }
+    config.scan_context.kind = parse_kind(params, pre + kKindKey, config.scan_context.kind);
+    visit_fields(config, [&](const std::string& key, auto& field) { field = params.get(pre + key, field); });
+    const std::string problem = validate(config);
+    if (!problem.empty()) {
+        // validate() names the key as "mapping.<key> ...": point at that key's line.
+        std::string key = problem.substr(0, problem.find(' '));
+        if (key.rfind("mapping.", 0) == 0) key = key.substr(8);
+        params.fail(pre + key, problem.substr(problem.find(' ') + 1));
+    }
+    return config;
+}
+
+MapperConfig load_mapper_config_file(const std::string& path, const std::string& preset) {
+    runtime::Parameters params = runtime::Parameters::from_file(path, "mapping");
+    const std::string prefix = params.has("mapping") ? "mapping" : "";
+    const std::string preset_key = prefix.empty() ? "preset" : "mapping.preset";
+    if (!preset.empty() && params.has(preset_key)) params.fail(preset_key, "--preset and the config's preset both given");
+    MapperConfig config = load_mapper_config(params, prefix, preset.empty() ? "hdl64" : preset);
+    params.check_all_used();
+    return config;
+}
+
+}  // namespace ltm::mapping
