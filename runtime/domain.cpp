@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "runtime/dds_error.hpp"
+#include "runtime/logging.hpp"
 #include "runtime/topic_names.hpp"
 
 namespace ltm::runtime {
@@ -35,7 +36,26 @@ std::string cyclone_xml(const DdsSettings& dds) {
     return xml;
 }
 
+namespace {
+
+// Cyclone's own log lines through ltm's logger ("warn  [dds] ..."). A reliable writer blocked by a
+// full keep-all reader is the `stream` role's intended back-pressure (the write is retried), not
+// a problem: Cyclone's warning about it is dropped.
+void cyclone_log(void*, const dds_log_data_t* data) {
+    // The text after Cyclone's own header (time, domain, thread).
+    const std::size_t skip = data->hdrsize <= data->size ? data->hdrsize : 0;
+    std::string message(data->message + skip, data->size - skip);
+    while (!message.empty() && (message.back() == '\n' || message.back() == ' ')) message.pop_back();
+    message.erase(0, message.find_first_not_of(' '));
+    if (message.find("could not deliver data on time") != std::string::npos) return;
+    const bool error = (data->priority & (DDS_LC_ERROR | DDS_LC_FATAL)) != 0;
+    log(error ? LogLevel::kError : LogLevel::kWarn, "dds", message);
+}
+
+}  // namespace
+
 Domain::Domain(const LaunchConfig& config) : config_(config), domain_id_(config.domain_id) {
+    dds_set_log_sink(&cyclone_log, nullptr);
     // ltm's settings first, then CYCLONEDDS_URI's (the user's word wins), then the launch config's.
     std::string xml = cyclone_xml(DdsSettings{});
     if (const char* uri = std::getenv("CYCLONEDDS_URI"); uri && *uri) xml += std::string(",") + uri;

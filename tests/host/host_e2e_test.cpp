@@ -218,6 +218,22 @@ TEST_F(HostTest, MissingLaunchFileIsOneLine) {
     EXPECT_EQ(host.err(), "ltm_host: " + path("nothing.yaml") + ":0: launch config: no such file\n");
 }
 
+TEST_F(HostTest, CycloneMessagesComeThroughTheHostsLogger) {
+    // A bad element in the user's Cyclone configuration: Cyclone's own message in ltm's log
+    // format, then one line saying what failed.
+    const std::string launch = write("dds.yaml", R"(domain_id: 158
+components:
+  - name: w
+    type: trajectory_writer
+    params: {tum_file: )" + path("x.txt") + "}\n");
+    ::setenv("CYCLONEDDS_URI", "<Tracing><Bogus>1</Bogus></Tracing>", 1);
+    Process host({kHost, launch}, path("host"));
+    ::unsetenv("CYCLONEDDS_URI");
+    EXPECT_EQ(host.wait(30), 2);
+    EXPECT_NE(host.err().find("error [dds] Bogus: unknown element (CYCLONEDDS_URI"), std::string::npos) << host.err();
+    EXPECT_NE(host.err().find("ltm_host: DDS: creating DDS domain 158"), std::string::npos) << host.err();
+}
+
 TEST_F(HostTest, SigtermShutsDownWithinTwoSecondsAndFlushes) {
     const std::string launch = write("loop.yaml", dds_section(153) + R"(
 components:

@@ -281,8 +281,11 @@ private:
         out.residual = static_cast<float>(loop.inlier_rms);
         out.accepted = true;
         loop_out_.publish(out);
+        const std::string other = loop.match_session == loop.query_session
+                                      ? ""
+                                      : " of session " + std::to_string(loop.match_session);
         ctx_.log().info("loop closed: scan " + std::to_string(loop.query_scan) + " with scan " +
-                        std::to_string(loop.match_scan) + " (" + std::to_string(loop.inliers) + " inliers)");
+                        std::to_string(loop.match_scan) + other + " (" + std::to_string(loop.inliers) + " inliers)");
     }
 
     void publish_graph() {
