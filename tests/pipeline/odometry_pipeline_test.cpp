@@ -176,6 +176,12 @@ components:
     EXPECT_NE(second.err().find("continuing the map of"), std::string::npos) << second.err();
     EXPECT_GT(files(dir_ / "map2"), first_files);
     EXPECT_EQ(files(dir_ / "map1"), first_files);  // the loaded map is not written to
+    // The path is this session's keyframes; every odometry pose comes out corrected.
+    const common::Trajectory path2 = common::read_tum_trajectory((dir_ / "slam2.txt").string());
+    ASSERT_FALSE(path2.empty());
+    EXPECT_GT(path2.front().stamp, path.back().stamp);  // Thursday's, not Monday's
+    EXPECT_EQ(common::read_tum_trajectory((dir_ / "corrected2.txt").string()).size(),
+              common::read_tum_trajectory((dir_ / "odometry2.txt").string()).size());
 }
 
 TEST_F(OdometryPipeline, MapRequestWithoutAMappingComponentFailsWithOneLine) {

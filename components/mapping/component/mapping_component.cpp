@@ -5,6 +5,7 @@
 // The map is saved (`map_dir`) as it goes, on request (`map_request`) and at shutdown; the global
 // voxel map is written as PLY (`global_map_file`) on request and at shutdown. With `load_map_dir`
 // a saved map is continued in a new session.
+#include <deque>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -45,6 +46,7 @@ public:
         ctx.subscribe<msg::LocalMap>("local_map", TopicRole::kMap, [this](const msg::LocalMap& m) {
             const LocalMapResult r = mapper_->add_local_map(convert::from_msg(m));
             if (!r.added && !r.message.empty()) ctx_.log().debug(r.message);
+            flush_waiting();
         });
         ctx.subscribe<msg::Keyframe>("keyframe", TopicRole::kState, [this](const msg::Keyframe& m) { on_keyframe(m); });
         ctx.subscribe<msg::Odometry>("odometry", TopicRole::kState, [this](const msg::Odometry& m) { on_odometry(m); });
@@ -183,15 +185,7 @@ private:
         }
         current_map_ = m.local_map_id;
         has_current_map_ = true;
-        if (!waiting_.empty()) {
-            if (const auto T = mapper_->T_world_odom(current_map_)) {
-                for (Waiting& w : waiting_) {
-                    w.message.child_frame_id = const_cast<char*>(w.child_frame_id.c_str());
-                    publish_corrected(w.message, *T);
-                }
-                waiting_.clear();
-            }
-        }
+        flush_waiting();
         for (const LoopClosure& loop : r.loops) publish_loop(loop, m.header.stamp);
         loops_since_optimise_ += r.loops.size();
         if (r.optimisation_due()) optimise();
@@ -199,19 +193,39 @@ private:
     }
 
     // The odometry pose corrected by the newest keyframe's local map: T_world_odom * T_odom_lidar.
-    // Poses before the first keyframe wait for it (the odometry publishes a frame's pose before its
-    // keyframe).
+    // Poses wait until that correction is known (the odometry publishes a frame's pose before its
+    // keyframe, and a new local map some time after its first keyframe).
     void on_odometry(const msg::Odometry& m) {
-        const std::optional<Eigen::Isometry3d> T_world_odom =
-            has_current_map_ ? mapper_->T_world_odom(current_map_) : std::nullopt;
-        if (!T_world_odom) {
-            if (waiting_.size() < kMaxWaiting) {
-                waiting_.push_back({m, m.child_frame_id ? m.child_frame_id : ""});
-                waiting_.back().message.header.frame_id = waiting_.back().message.child_frame_id = nullptr;
+        if (waiting_.empty()) {
+            if (const std::optional<Eigen::Isometry3d> T = correction()) {
+                publish_corrected(m, *T);
+                return;
             }
-            return;
         }
-        publish_corrected(m, *T_world_odom);
+        if (waiting_.size() == kMaxWaiting) {
+            waiting_.pop_front();
+            if (!warned_waiting_)
+                ctx_.log().warn("no local map for the odometry's poses yet: the oldest waiting ones are dropped");
+            warned_waiting_ = true;
+        }
+        waiting_.push_back({m, m.child_frame_id ? m.child_frame_id : ""});
+        waiting_.back().message.header.frame_id = waiting_.back().message.child_frame_id = nullptr;
+        flush_waiting();
+    }
+
+    std::optional<Eigen::Isometry3d> correction() const {
+        return has_current_map_ ? mapper_->T_world_odom(current_map_) : std::nullopt;
+    }
+
+    void flush_waiting() {
+        if (waiting_.empty()) return;
+        const std::optional<Eigen::Isometry3d> T = correction();
+        if (!T) return;
+        for (Waiting& w : waiting_) {
+            w.message.child_frame_id = const_cast<char*>(w.child_frame_id.c_str());
+            publish_corrected(w.message, *T);
+        }
+        waiting_.clear();
     }
 
     void publish_corrected(const msg::Odometry& m, const Eigen::Isometry3d& T_world_odom) {
@@ -318,14 +332,18 @@ private:
         graph_out_.publish(out);
     }
 
-    // The corrected trajectory: every keyframe at its optimised pose.
+    // The corrected trajectory of this session: its keyframes at their optimised poses.
     void publish_path() {
         const auto& keyframes = mapper_->keyframes();
-        std::vector<msg::PoseStamped> poses(keyframes.size());
+        std::vector<msg::PoseStamped> poses;
+        poses.reserve(keyframes.size());
         for (std::uint32_t i = 0; i < keyframes.size(); ++i) {
-            poses[i].header.stamp = convert::to_time(keyframes[i]->data.stamp);
-            poses[i].header.frame_id = const_cast<char*>(frame_id_.c_str());
-            poses[i].pose = convert::to_pose(mapper_->keyframe_pose(i));
+            if (keyframes[i]->session != mapper_->session()) continue;  // a loaded map's
+            msg::PoseStamped p{};
+            p.header.stamp = convert::to_time(keyframes[i]->data.stamp);
+            p.header.frame_id = const_cast<char*>(frame_id_.c_str());
+            p.pose = convert::to_pose(mapper_->keyframe_pose(i));
+            poses.push_back(p);
         }
         msg::Path path{};
         path.header.frame_id = const_cast<char*>(frame_id_.c_str());
@@ -344,8 +362,9 @@ private:
         msg::Odometry message;  // its strings pointed into the reader's sample: reset, kept below
         std::string child_frame_id;
     };
-    static constexpr std::size_t kMaxWaiting = 100;
-    std::vector<Waiting> waiting_;
+    static constexpr std::size_t kMaxWaiting = 1000;  // 100 s at 10 Hz
+    std::deque<Waiting> waiting_;
+    bool warned_waiting_ = false;
     std::uint64_t current_map_ = 0;
     bool has_current_map_ = false;
     runtime::Publisher<msg::PoseGraph> graph_out_;
