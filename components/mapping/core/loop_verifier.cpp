@@ -130,6 +130,9 @@ LoopVerification LoopVerifier::attempt(const std::vector<Eigen::Vector3f>& point
     std::ostringstream why;
     if (config_.refuse_degenerate && v.degenerate_directions > 0) {
         why << "registration is degenerate in " << v.degenerate_directions << " direction(s)";
+        why.precision(2);
+        for (const odometry::Vector6d& d : f.degenerate_directions)
+            why << " [" << d.transpose() << "]";
     } else if (v.correction_translation > config_.max_correction_translation ||
                v.correction_rotation > config_.max_correction_rotation) {
         why << "moved " << v.correction_translation << " m / " << v.correction_rotation
@@ -157,10 +160,22 @@ LoopVerification LoopVerifier::attempt(const std::vector<Eigen::Vector3f>& point
 LoopVerification LoopVerifier::verify(const std::vector<Eigen::Vector3f>& points,
                                       std::uint64_t map_key, const common::LocalMapData& map,
                                       const Eigen::Isometry3d& guess) {
+    return verify(points, map_key, map, GuessList{guess});
+}
+
+LoopVerification LoopVerifier::verify(const std::vector<Eigen::Vector3f>& points,
+                                      std::uint64_t map_key, const common::LocalMapData& map,
+                                      const GuessList& guesses) {
     LoopVerification best;
-    if (!guess.matrix().allFinite()) {
-        best.reason = "initial guess is not finite";
+    if (guesses.empty()) {
+        best.reason = "no initial guess";
         return best;
+    }
+    for (const Eigen::Isometry3d& guess : guesses) {
+        if (!guess.matrix().allFinite()) {
+            best.reason = "initial guess is not finite";
+            return best;
+        }
     }
     if (map.voxels.empty() || !(map.voxel_size > 0.0f)) {
         best.reason = "candidate local map has no voxels";
@@ -194,12 +209,15 @@ LoopVerification LoopVerifier::verify(const std::vector<Eigen::Vector3f>& points
         return best;
     }
     bool first = true;
-    for (const double offset : config_.yaw_offsets) {
-        LoopVerification v = attempt(sampled_, *t, yawed(guess, offset * kDegToRad));
-        const bool better = v.accepted != best.accepted ? v.accepted : v.inliers > best.inliers;
-        if (first || better) best = v;
-        first = false;
-        if (best.accepted && best.inlier_fraction > 0.8) break;  // no better start to look for
+    for (std::size_t g = 0; g < guesses.size() && !best.accepted; ++g) {
+        for (const double offset : config_.yaw_offsets) {
+            LoopVerification v = attempt(sampled_, *t, yawed(guesses[g], offset * kDegToRad));
+            v.guess = g;
+            const bool better = v.accepted != best.accepted ? v.accepted : v.inliers > best.inliers;
+            if (first || better) best = v;
+            first = false;
+            if (best.accepted && best.inlier_fraction > 0.8) break;  // no better start
+        }
     }
     return best;
 }

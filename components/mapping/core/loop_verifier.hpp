@@ -1,9 +1,10 @@
 #pragma once
 // Geometric verification of a loop candidate (METHOD.md section 3): the keyframe is registered
 // against the candidate's local map with the odometry's registration core (IMLS point-to-surface
-// Gauss-Newton), first with a wide reach from the descriptor's guess, then with the odometry's
-// fine settings; accepted with enough inliers (points whose IMLS distance is small at the final
-// pose), a large enough inlier fraction and a small inlier RMS.
+// Gauss-Newton), first with a wide reach from an initial guess (the graph's estimate within a
+// session, the descriptor's guess), then with the odometry's fine settings; accepted with enough
+// inliers (points whose IMLS distance is small at the final pose), a large enough inlier fraction
+// and a small inlier RMS.
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <deque>
@@ -80,9 +81,12 @@ struct LoopVerification {
     // Points on structure (the normal of their surface not vertical, in the grid frame) that have
     // a surface within reach, and those of them that are inliers.
     std::size_t structure_points = 0, structure_inliers = 0;
-    int iterations = 0;  // coarse + fine
+    int iterations = 0;     // coarse + fine
+    std::size_t guess = 0;  // index of the initial guess the result came from
     EIGEN_MAKE_ALIGNED_OPERATOR_NEW
 };
+
+using GuessList = std::vector<Eigen::Isometry3d, Eigen::aligned_allocator<Eigen::Isometry3d>>;
 
 class LoopVerifier {
   public:
@@ -96,6 +100,13 @@ class LoopVerifier {
     // candidate map's anchor frame. Never throws on bad data: the result says why it failed.
     LoopVerification verify(const std::vector<Eigen::Vector3f>& points, std::uint64_t map_key,
                             const common::LocalMapData& map, const Eigen::Isometry3d& guess);
+    // The same from several initial guesses, tried in order (each with the yaw offsets) until
+    // one is accepted; otherwise the best refused result. A registration's basin is a few
+    // metres: a guess close to the truth (the graph's estimate of a revisit within a session)
+    // succeeds where a descriptor's guess at the matched keyframe's place ends in a wrong
+    // minimum.
+    LoopVerification verify(const std::vector<Eigen::Vector3f>& points, std::uint64_t map_key,
+                            const common::LocalMapData& map, const GuessList& guesses);
 
   private:
     struct Cached {

@@ -98,5 +98,30 @@ TEST(LoopVerifier, SyntheticOtherSceneIsRefusedAndBadInputExplained) {
     EXPECT_NE(validate(bad).find("verification.min_inlier_fraction"), std::string::npos);
 }
 
+TEST(LoopVerifier, SeveralGuessesAreTriedInOrderUntilOneIsAccepted) {
+    const std::vector<Eigen::Vector3f> scene = test::with_dense_ground(test::synthetic_scene(43));
+    const Eigen::Isometry3d anchor = test::xy_yaw(0, 0, 0);
+    const common::LocalMapData map =
+        test::build_local_map(1, anchor, {test::view(scene, anchor, 50.0)}, {anchor}, 1.0, 50.0);
+    const Eigen::Isometry3d truth = test::xy_yaw(3.0, -2.0, 20.0);
+    const std::vector<Eigen::Vector3f> pts = test::view(scene, truth, 50.0);
+    LoopVerifier verifier{LoopVerifierConfig()};
+    // Far outside any basin (and beyond max_correction_translation): refused on its own.
+    const Eigen::Isometry3d far = truth * test::xy_yaw(15.0, 0.0, 90.0);
+    const Eigen::Isometry3d near = truth * test::xy_yaw(0.4, 0.3, 2.0);
+    EXPECT_FALSE(verifier.verify(pts, 1, map, far).accepted);
+    for (const bool far_first : {true, false}) {
+        const GuessList guesses = far_first ? GuessList{far, near} : GuessList{near, far};
+        const LoopVerification v = verifier.verify(pts, 1, map, guesses);
+        ASSERT_TRUE(v.accepted) << v.reason;
+        EXPECT_EQ(v.guess, far_first ? 1u : 0u);
+        const Eigen::Isometry3d err = truth.inverse() * v.T_anchor_lidar;
+        EXPECT_LT(err.translation().norm(), 0.05);
+        EXPECT_LT(rot_deg(err), 0.2);
+    }
+    EXPECT_NE(verifier.verify(pts, 1, map, GuessList{}).reason.find("no initial guess"),
+              std::string::npos);
+}
+
 }  // namespace
 }  // namespace ltm::mapping

@@ -262,9 +262,17 @@ void Mapper::verify(const common::KeyframeData& keyframe,
             r->rejected.push_back(rejection);
             continue;
         }
-        const Eigen::Isometry3d guess = yawed(match.data.T_anchor_lidar, c.yaw);
+        // The graph's estimate of the query anchor in the match anchor: within one session, the
+        // odometry bounds its error; it is a first guess and the consistency check below.
+        const Eigen::Isometry3d predicted =
+            graph_.find(match.node)->T_world_anchor.inverse() * graph_.find(node)->T_world_anchor;
+        const bool same_session = match.session == session_;
+        GuessList guesses;
+        const bool graph_guess = same_session && config_.verify_from_graph;
+        if (graph_guess) guesses.push_back(predicted * keyframe.T_anchor_lidar);
+        guesses.push_back(yawed(match.data.T_anchor_lidar, c.yaw));
         const LoopVerification v =
-            verifier_.verify(points, entry->second.serial, *entry->second.stored.data, guess);
+            verifier_.verify(points, entry->second.serial, *entry->second.stored.data, guesses);
         if (!v.accepted) {
             rejection.reason = v.reason;
             r->rejected.push_back(rejection);
@@ -275,13 +283,10 @@ void Mapper::verify(const common::KeyframeData& keyframe,
         e.to = node;
         e.kind = EdgeKind::kLoop;
         e.T_from_to = v.T_anchor_lidar * keyframe.T_anchor_lidar.inverse();
-        // Against the graph's estimate: within one session, the odometry bounds the disagreement.
-        const Eigen::Isometry3d predicted =
-            graph_.find(e.from)->T_world_anchor.inverse() * graph_.find(e.to)->T_world_anchor;
         const Eigen::Isometry3d D = predicted.inverse() * e.T_from_to;
         const double disagreement = D.translation().norm();
         const double disagreement_deg = Eigen::AngleAxisd(D.linear()).angle() * 180.0 / M_PI;
-        if (match.session == session_) {
+        if (same_session) {
             const LoopConsistencyConfig& lc = config_.loop_consistency;
             const double path = std::abs(path_at_[e.to] - path_at_[e.from]);
             const double max_t = lc.translation + lc.translation_per_m * path;
@@ -320,6 +325,7 @@ void Mapper::verify(const common::KeyframeData& keyframe,
         l.disagreement = disagreement;
         l.structure_points = v.structure_points;
         l.structure_inliers = v.structure_inliers;
+        l.from_graph_guess = graph_guess && v.guess == 0;
         r->loops.push_back(l);
         loops_.push_back(l);
     }

@@ -1,7 +1,8 @@
 #pragma once
 // The hierarchical SLAM back end (METHOD.md section 3, Eq. 9-10): a short facade over the modules
 //   keyframe -> Scan Context -> loop candidates (LoopDetector) -> geometric verification against
-//   the candidate's local map (LoopVerifier) -> loop edge in the PoseGraph;
+//   the candidate's local map (LoopVerifier; from the graph's estimate within a session, then
+//   from the descriptor's guess) -> loop edge in the PoseGraph;
 //   local map -> graph node (its anchor) with an odometry edge to the previous one;
 //   optimise() on demand -> corrected anchors, hence corrected poses and the global map.
 // Synchronous, no threads, no I/O. An adapter may run the optimisation elsewhere: take
@@ -39,9 +40,10 @@ struct LoopClosure {
     double descriptor_yaw = 0.0;  // [rad]
     std::size_t inliers = 0;
     double inlier_fraction = 0.0, inlier_rms = 0.0;
-    double correction_translation = 0.0;  // verification result vs the descriptor's guess [m]
+    double correction_translation = 0.0;  // verification result vs the guess it started from [m]
     double disagreement = 0.0;            // with the graph's estimate at the time [m]
     std::size_t structure_points = 0, structure_inliers = 0;  // see LoopVerification
+    bool from_graph_guess = false;  // verified from the graph's estimate, not the descriptor's
     EIGEN_MAKE_ALIGNED_OPERATOR_NEW
 };
 

@@ -50,6 +50,11 @@ struct MapperConfig {
     // After a keyframe closes a loop, this many following keyframes are not verified (their
     // descriptors are still kept): a revisit is closed every few keyframes, not at each one.
     int loop_cooldown_keyframes = 2;
+    // Within a session, the verification starts first from the graph's estimate of the keyframe
+    // in the candidate's anchor (the odometry with the loops so far, usually well within the
+    // registration's basin), then from the descriptor's guess (the matched keyframe's place
+    // turned by the descriptor's yaw, metres away on a revisit that does not retrace the path).
+    bool verify_from_graph = true;
     bool keep_keyframe_points = false;  // keep each keyframe's scan in the map (memory, files)
 };
 

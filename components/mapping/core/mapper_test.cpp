@@ -215,6 +215,60 @@ TEST(Mapper, SavedMapReloadsAndANewSessionClosesALoopAgainstIt) {
     EXPECT_LT(angle_deg(err), 0.5);
 }
 
+// A revisit a few metres beside the first pass, facing the other way: the descriptor's guess (the
+// matched keyframe's place) is 6 m from the truth, beyond the verifier's reach; the graph's
+// estimate (odometry 0.3 m off) is within it.
+TEST(Mapper, ARevisitBesideTheFirstPassIsVerifiedFromTheGraphsEstimate) {
+    const std::vector<Eigen::Vector3f> scene = test::with_dense_ground(test::synthetic_scene(44));
+    const Eigen::Isometry3d first = test::xy_yaw(0, 0, 0), again = test::xy_yaw(1.0, 6.0, 180.0);
+    const Eigen::Isometry3d drift = test::xy_yaw(0.3, -0.2, 1.0);  // odometry error at `again`
+    MapperConfig config;
+    config.loop_detection.exclude_recent_keyframes = 0;
+    config.loop_detection.exclude_recent_seconds = 0.0;
+    config.loop_detection.max_distance = 0.9;  // the views differ: any candidate will do
+    config.verification.max_correction_translation = 3.0;
+    config.odometry_edge.sigma_translation = 1.0;  // loop edge far more certain
+    config.odometry_edge.sigma_rotation = 5.0;
+    auto keyframe = [&](std::uint64_t id, const Eigen::Isometry3d& T_true,
+                        const Eigen::Isometry3d& T_odom) {
+        common::KeyframeData k;
+        k.id = id;
+        k.scan_index = id;
+        k.local_map_id = id;
+        k.stamp = double(id);
+        k.T_odom_lidar = T_odom;
+        k.T_anchor_lidar = Eigen::Isometry3d::Identity();
+        k.points = test::view(scene, T_true, 50.0);
+        return k;
+    };
+    for (const bool from_graph : {false, true}) {
+        config.verify_from_graph = from_graph;
+        Mapper mapper(config);
+        const common::KeyframeData k0 = keyframe(0, first, first);
+        ASSERT_TRUE(mapper.add_keyframe(k0).added);
+        ASSERT_TRUE(
+            mapper.add_local_map(test::build_local_map(0, first, {k0.points}, {first})).added);
+        const KeyframeResult r = mapper.add_keyframe(keyframe(1, again, drift * again));
+        ASSERT_TRUE(r.added) << r.message;
+        ASSERT_GE(r.candidates, 1u);
+        if (!from_graph) {
+            EXPECT_TRUE(r.loops.empty()) << "closed from the descriptor's guess";
+            ASSERT_FALSE(r.rejected.empty());
+            continue;
+        }
+        ASSERT_EQ(r.loops.size(), 1u) << (r.rejected.empty() ? "" : r.rejected[0].reason);
+        const LoopClosure& l = r.loops[0];
+        EXPECT_TRUE(l.from_graph_guess);
+        const Eigen::Isometry3d err = (first.inverse() * again).inverse() * l.T_match_query;
+        EXPECT_LT(err.translation().norm(), 0.05);
+        EXPECT_LT(angle_deg(err), 0.2);
+        // The loop edge moves the keyframe to the truth.
+        EXPECT_GT((mapper.keyframe_pose(1).translation() - again.translation()).norm(), 0.2);
+        ASSERT_TRUE(mapper.optimise().solved);
+        EXPECT_LT((mapper.keyframe_pose(1).translation() - again.translation()).norm(), 0.05);
+    }
+}
+
 TEST(Mapper, BadInputIsRefusedWithAReason) {
     Mapper mapper{MapperConfig()};
     common::KeyframeData k;

@@ -89,6 +89,18 @@ std::vector<Eigen::Vector3f> synthetic_scene(std::uint32_t seed, double extent) 
     return pts;
 }
 
+std::vector<Eigen::Vector3f> with_dense_ground(const std::vector<Eigen::Vector3f>& scene) {
+    std::vector<Eigen::Vector3f> out = scene;
+    for (const Eigen::Vector3f& p : scene) {
+        if (p.z() > -1.75f) continue;  // the ground is at z = -1.8 (+2 cm)
+        for (const Eigen::Vector3f& d :
+             {Eigen::Vector3f(0.25f, 0.0f, 0.0f), Eigen::Vector3f(0.0f, 0.25f, 0.0f),
+              Eigen::Vector3f(0.25f, 0.25f, 0.0f)})
+            out.push_back(p + d);
+    }
+    return out;
+}
+
 std::vector<Eigen::Vector3f> view(const std::vector<Eigen::Vector3f>& scene,
                                   const Eigen::Isometry3d& T_world_lidar, double range) {
     const Eigen::Isometry3f T = T_world_lidar.inverse().cast<float>();

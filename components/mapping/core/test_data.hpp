@@ -36,6 +36,9 @@ Eigen::Isometry3d xy_yaw(double x, double y, double yaw_deg);
 // A synthetic outdoor scene (world frame): ground, boxes ("buildings") of random size and
 // height, poles; fixed seed.
 std::vector<Eigen::Vector3f> synthetic_scene(std::uint32_t seed, double extent = 60.0);
+// The scene with its ground sampled four times as densely (the synthetic ground alone has too
+// few points a 1 m voxel for a normal, which leaves registrations free in z).
+std::vector<Eigen::Vector3f> with_dense_ground(const std::vector<Eigen::Vector3f>& scene);
 // What a sensor at T_world_lidar sees of it within `range` (no occlusion), in the LiDAR frame.
 std::vector<Eigen::Vector3f> view(const std::vector<Eigen::Vector3f>& scene,
                                   const Eigen::Isometry3d& T_world_lidar, double range);

@@ -74,6 +74,7 @@ void visit_fields(MapperConfig& c, Visitor&& v) {
     v("global_map.min_point_count", m.min_point_count);
     v("max_loops_per_keyframe", c.max_loops_per_keyframe);
     v("loop_cooldown_keyframes", c.loop_cooldown_keyframes);
+    v("verify_from_graph", c.verify_from_graph);
     v("keep_keyframe_points", c.keep_keyframe_points);
 }
 
