@@ -5,6 +5,8 @@
 //
 //   ltm_bench_slam DIR [--reference poses.txt [--calib calib.txt]] [--out OUTDIR]
 //       [--preset hdl64|vlp32|vlp16|narrow] [--config odometry.yaml] [--max-frames N]
+//   ltm_bench_slam --scenario FILE.yaml [--laps N] [options but --reference]   (scans rendered
+//       in-process by the simulator, its true poses as the reference; memory every km)
 //   ltm_bench_slam --graph-bench N     (optimisation time of a synthetic graph of N anchors)
 #include <algorithm>
 #include <chrono>
@@ -14,6 +16,7 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <memory>
 #include <numeric>
 #include <sstream>
 #include <string>
@@ -25,7 +28,9 @@
 #include "common/core/trajectory_io.hpp"
 #include "evaluation/core/ate.hpp"
 #include "mapping/bench/graph_bench.hpp"
+#include "mapping/bench/km_memory.hpp"
 #include "mapping/bench/revisits.hpp"
+#include "mapping/bench/sim_source.hpp"
 #include "mapping/core/binary_io.hpp"
 #include "mapping/core/map_store.hpp"
 #include "mapping/core/mapper.hpp"
@@ -42,6 +47,8 @@ using Clock = std::chrono::steady_clock;
 struct Args {
     std::string dir, out, reference, calib, preset, config;
     std::string pairs, session;
+    std::string scenario;  // --scenario: render the scans in-process
+    std::size_t laps = 0;
     std::size_t max_frames = 0, graph_bench = 0, snapshot_every = 10;
 };
 
@@ -52,6 +59,7 @@ struct Args {
         << "         [--preset hdl64|vlp32|vlp16|narrow] [--config odometry.yaml] [--max-frames "
            "N]\n"
         << "         [--snapshot-every K] [--pairs verified_pairs.txt --session s1]\n"
+        << "       ltm_bench_slam --scenario FILE.yaml [--laps N] [same options, no --reference]\n"
         << "       ltm_bench_slam --graph-bench N\n"
         << "  DIR: KITTI layout (velodyne/*.bin) or a PCD/PLY folder (Scans/*.pcd).\n"
         << "  --reference: KITTI-format poses, one a frame; with --calib they are camera poses.\n"
@@ -59,6 +67,8 @@ struct Args {
         << "    keyframes (default 10; 0: finished maps only), as the odometry component does.\n"
         << "  --pairs/--session: verified revisit pairs (hku-avia-2session format): the relative\n"
         << "    poses of the session's verified pairs are compared with the ICP-refined ones.\n"
+        << "  --scenario: scans rendered by the simulator (session 0), its true poses as the\n"
+        << "    reference; --laps N drives the route N times (route.laps). Memory every km.\n"
         << "  --graph-bench: time the optimisation of a synthetic graph of N anchors.\n";
     std::exit(2);
 }
@@ -97,6 +107,10 @@ Args parse(int argc, char** argv) {
             a.pairs = value();
         else if (k == "--session")
             a.session = value();
+        else if (k == "--scenario")
+            a.scenario = value();
+        else if (k == "--laps")
+            a.laps = number(value());
         else if (k == "-h" || k == "--help")
             usage("help requested");
         else if (!k.empty() && k[0] == '-')
@@ -106,7 +120,11 @@ Args parse(int argc, char** argv) {
         else
             usage("more than one DIR given");
     }
-    if (a.dir.empty() && a.graph_bench == 0) usage("no DIR given");
+    if (a.dir.empty() && a.scenario.empty() && a.graph_bench == 0) usage("no DIR given");
+    if (!a.dir.empty() && !a.scenario.empty()) usage("give DIR or --scenario, not both");
+    if (a.laps && a.scenario.empty()) usage("--laps needs --scenario");
+    if (!a.scenario.empty() && !a.reference.empty())
+        usage("--scenario brings its own reference (the true poses): no --reference");
     if (!a.calib.empty() && a.reference.empty()) usage("--calib needs --reference");
     if (a.pairs.empty() != a.session.empty()) usage("--pairs and --session go together");
     return a;
@@ -206,14 +224,31 @@ int run(const Args& a) {
                                odometry::parse_sensor_preset(a.preset.empty() ? "hdl64" : a.preset))
                          : odometry::load_odometry_config_file(a.config);
     const mapping::MapperConfig mc = mapper_config(a.preset);
-    sources::ScanFolderConfig folder;
-    folder.path = a.dir;
-    folder.format = sources::ScanFormat::kAuto;
-    const sources::ScanFolder data(folder);
-    const char* kind = data.format() == sources::ScanFormat::kKittiBin ? "kitti" : "pcd";
-    const std::size_t frames = a.max_frames ? std::min(a.max_frames, data.size()) : data.size();
-    std::printf("%s: %zu %s scans, odometry voxel %.2f m\n", a.dir.c_str(), frames,
-                kind, oc.voxel_size);
+    std::unique_ptr<sources::ScanFolder> folder_data;
+    std::unique_ptr<mapping::bench::SimSource> sim_data;
+    std::size_t available = 0;
+    const char* kind = "simulated";
+    if (a.scenario.empty()) {
+        sources::ScanFolderConfig folder;
+        folder.path = a.dir;
+        folder.format = sources::ScanFormat::kAuto;
+        folder_data = std::make_unique<sources::ScanFolder>(folder);
+        kind = folder_data->format() == sources::ScanFormat::kKittiBin ? "kitti" : "pcd";
+        available = folder_data->size();
+    } else {
+        mapping::bench::SimSourceOptions so;
+        so.scenario = a.scenario;
+        so.laps = int(a.laps);
+        sim_data = std::make_unique<mapping::bench::SimSource>(so);
+        available = sim_data->size();
+        std::printf("%s\n", sim_data->describe().c_str());
+    }
+    auto load = [&](std::size_t i) { return sim_data ? sim_data->load(i) : folder_data->load(i); };
+    const std::size_t frames = a.max_frames ? std::min(a.max_frames, available) : available;
+    std::printf("%s: %zu %s scans, odometry voxel %.2f m\n",
+                (a.scenario.empty() ? a.dir : a.scenario).c_str(), frames, kind, oc.voxel_size);
+    mapping::bench::KmMemoryLog km_log;
+    double path_so_far = 0.0;  // [m] odometry path
 
     odometry::Odometry odo(oc);
     mapping::Mapper mapper(mc);
@@ -235,12 +270,13 @@ int run(const Args& a) {
     };
     common::Progress progress("slam", frames);
     for (std::size_t i = 0; i < frames; ++i) {
-        const common::PointCloud cloud = data.load(i);
+        const common::PointCloud cloud = load(i);
         auto t0 = Clock::now();
         const odometry::FrameResult r = odo.register_frame(cloud);
         odometry_ms.add(ms_since(t0));
         odom[i] = r.T_odom_lidar;
         frame_map[i] = r.local_map_id;
+        if (i) path_so_far += (odom[i].translation() - odom[i - 1].translation()).norm();
         if (r.pose_valid()) {
             for (const odometry::LocalMap& m : odo.active_local_maps())
                 seen[m.id()].push_back(cloud.stamp);
@@ -297,6 +333,17 @@ int run(const Args& a) {
                     mapping::to_local_map_data(m, snapshot_revision, false, seen[m.id()]));
             }
         }
+        if (km_log.due(path_so_far)) {
+            mapping::bench::KmSample s;
+            s.km = path_so_far / 1000.0;
+            s.frame = i;
+            s.mapper_mib = double(mapper.memory_bytes()) / 1048576.0;
+            s.process = mapping::bench::process_memory();
+            s.local_maps = mapper.local_map_count();
+            s.keyframes = keyframes;
+            s.loops = mapper.loops().size();
+            km_log.add(s, stdout);
+        }
         progress.update(i + 1);
     }
     progress.finish();
@@ -325,6 +372,11 @@ int run(const Args& a) {
         "%zu refused\n",
         mapper.loops().size(), active, candidates, verifications, rejected);
     for (const auto& [why, n] : reasons) std::printf("  refused %zu: %s...\n", n, why.c_str());
+    const std::size_t from_graph =
+        std::count_if(mapper.loops().begin(), mapper.loops().end(),
+                      [](const mapping::LoopClosure& l) { return l.from_graph_guess; });
+    std::printf("  verified from the graph's estimate %zu, from the descriptor's guess %zu\n",
+                from_graph, mapper.loops().size() - from_graph);
     std::printf("odometry a frame: %s\n", odometry_ms.str().c_str());
     std::printf("loop detection a keyframe (descriptor + retrieval): %s\n", detect.str().c_str());
     std::printf("mapping a keyframe (detection + verification): %s\n", add.str().c_str());
@@ -334,9 +386,11 @@ int run(const Args& a) {
     const double mib = double(mapper.memory_bytes()) / 1048576.0;
     std::printf("memory: mapper %.1f MiB (%.1f MiB/km), peak resident %.1f MiB\n", mib,
                 path > 0 ? mib / (path / 1000.0) : 0.0, peak_memory_mib());
+    km_log.report(stdout);
 
-    if (!a.reference.empty()) {
-        common::PoseList ref = common::read_kitti_poses(a.reference);
+    if (!a.reference.empty() || sim_data) {
+        common::PoseList ref =
+            sim_data ? sim_data->reference() : common::read_kitti_poses(a.reference);
         if (!a.calib.empty())
             ref = common::camera_to_lidar_poses(ref, common::read_kitti_calib_tr(a.calib));
         ref.resize(std::min(ref.size(), frames));
@@ -364,12 +418,13 @@ int run(const Args& a) {
                 std::printf(
                     "  loop %lu -> %lu: err %.2f m, inl %zu frac %.2f rms %.3f, structure %zu/%zu "
                     "= %.2f, "
-                    "moved %.2f m, disagreed %.2f m\n",
+                    "moved %.2f m, disagreed %.2f m%s\n",
                     (unsigned long)l.query_scan, (unsigned long)l.match_scan,
                     e.translation().norm(), l.inliers, l.inlier_fraction, l.inlier_rms,
                     l.structure_inliers, l.structure_points,
                     l.structure_points ? double(l.structure_inliers) / l.structure_points : 0.0,
-                    l.correction_translation, l.disagreement);
+                    l.correction_translation, l.disagreement,
+                    l.from_graph_guess ? " (graph's guess)" : "");
             }
             if (bad) {
                 std::printf(
@@ -412,8 +467,10 @@ int run(const Args& a) {
         }
         t0 = Clock::now();
         const mapping::SaveStats s = mapping::save_map(a.out + "/map", mapper.snapshot());
-        std::printf("map: %s/map, %zu files, %.1f MiB, saved in %.0f ms\n", a.out.c_str(),
-                    s.files_written, double(s.bytes_total) / 1048576.0, ms_since(t0));
+        std::printf("map: %s/map, %zu files, %.1f MiB (%.1f MiB/km), saved in %.0f ms\n",
+                    a.out.c_str(), s.files_written, double(s.bytes_total) / 1048576.0,
+                    path > 0 ? double(s.bytes_total) / 1048576.0 / (path / 1000.0) : 0.0,
+                    ms_since(t0));
         mapping::GlobalMapStats gs;
         common::write_ply(a.out + "/global_map.ply", mapper.global_map(&gs));
         std::printf("global map: %zu voxels fused from %zu -> %s/global_map.ply\n", gs.fused_voxels,
@@ -435,6 +492,8 @@ int main(int argc, char** argv) {
     } catch (const ltm::mapping::MapperConfigError& e) {
         std::cerr << "error: " << e.what() << "\n";
     } catch (const ltm::mapping::MapFormatError& e) {
+        std::cerr << "error: " << e.what() << "\n";
+    } catch (const ltm::sim::ScenarioError& e) {
         std::cerr << "error: " << e.what() << "\n";
     }
     return 1;

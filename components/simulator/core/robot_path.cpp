@@ -13,6 +13,63 @@ std::string resolve_path(const std::string& path, const std::string& base_dir) {
     return base_dir + "/" + path;
 }
 
+namespace {
+
+// Unit direction from a to b; zero when they coincide.
+Eigen::Vector2d direction(const Waypoint& a, const Waypoint& b) {
+    const Eigen::Vector2d d(b.x - a.x, b.y - a.y);
+    return d.norm() > 1e-9 ? Eigen::Vector2d(d.normalized()) : Eigen::Vector2d::Zero();
+}
+
+bool reverses(const Eigen::Vector2d& d_in, const Eigen::Vector2d& d_out) {
+    return d_in.dot(d_out) < std::cos(120.0 * M_PI / 180.0);
+}
+
+// A turning loop at b for a robot heading d: right a little, round to the left, back to b.
+void append_turning_loop(const Waypoint& b, const Eigen::Vector2d& d, double radius,
+                         std::vector<Waypoint>& out) {
+    const Eigen::Vector2d p(b.x, b.y), n(-d.y(), d.x());
+    for (const Eigen::Vector2d& q :
+         {Eigen::Vector2d(p + 4 * radius * d - 2 * radius * n), Eigen::Vector2d(p + 6 * radius * d),
+          Eigen::Vector2d(p + 4 * radius * d + 2 * radius * n), p}) {
+        out.push_back({q.x(), q.y(), 0.0});
+    }
+}
+
+}  // namespace
+
+std::vector<Waypoint> route_laps(const RouteConfig& config) {
+    const std::vector<Waypoint>& w = config.waypoints;
+    if (config.laps <= 1 || w.size() < 2) return w;
+    // Heading on the last leg and on the first (skipping repeated points).
+    Eigen::Vector2d d_last = Eigen::Vector2d::Zero(), d_first = Eigen::Vector2d::Zero();
+    for (std::size_t i = w.size() - 1; i > 0 && d_last.isZero(); --i)
+        d_last = direction(w[i - 1], w[i]);
+    for (std::size_t i = 1; i < w.size() && d_first.isZero(); ++i)
+        d_first = direction(w[i - 1], w[i]);
+    const double radius = std::max(config.corner_radius, 2.0);
+    const Waypoint& last = w.back();
+    const Waypoint& first = w.front();
+    const Eigen::Vector2d leg = direction(last, first);
+    std::vector<Waypoint> between;  // driven after the last waypoint, before the first again
+    if (leg.isZero()) {  // a closed route: only the turn from the last leg into the first
+        if (reverses(d_last, d_first)) append_turning_loop(last, d_last, radius, between);
+    } else {
+        if (reverses(d_last, leg)) append_turning_loop(last, d_last, radius, between);
+        if (reverses(leg, d_first)) {
+            between.push_back({first.x, first.y, 0.0});
+            append_turning_loop(first, leg, radius, between);
+            between.pop_back();  // the loop ends at the first waypoint, which follows
+        }
+    }
+    std::vector<Waypoint> out = w;
+    for (int lap = 1; lap < config.laps; ++lap) {
+        out.insert(out.end(), between.begin(), between.end());
+        out.insert(out.end(), w.begin(), w.end());
+    }
+    return out;
+}
+
 RobotPath::RobotPath(const RouteConfig& config, const std::string& base_dir) {
     if (!config.poses_file.empty()) {
         init_file(config, base_dir);
@@ -25,8 +82,9 @@ void RobotPath::init_waypoints(const RouteConfig& config) {
     if (config.waypoints.size() < 2)
         throw ScenarioError("route: needs at least two waypoints or a poses_file");
     if (config.speed <= 0) throw ScenarioError("route.speed: must be > 0");
+    const std::vector<Waypoint> waypoints = route_laps(config);
     Points2 pts;
-    for (const auto& w : config.waypoints) pts.emplace_back(w.x, w.y);
+    for (const auto& w : waypoints) pts.emplace_back(w.x, w.y);
     std::vector<std::size_t> index;
     line_ = Polyline(round_corners(pts, config.corner_radius, 0.5, &index));
     if (line_.length() <= 0) throw ScenarioError("route: the waypoints do not move the robot");
@@ -36,8 +94,7 @@ void RobotPath::init_waypoints(const RouteConfig& config) {
     std::size_t leg = 0;
     for (std::size_t j = 1; j < line_.points().size(); ++j) {
         while (leg + 1 < index.size() && index[leg + 1] < j) ++leg;
-        const double v =
-            config.waypoints[leg].speed > 0 ? config.waypoints[leg].speed : config.speed;
+        const double v = waypoints[leg].speed > 0 ? waypoints[leg].speed : config.speed;
         vertex_time_[j] = vertex_time_[j - 1] + (line_.vertex_s(j) - line_.vertex_s(j - 1)) / v;
     }
 }

@@ -26,7 +26,8 @@ class RobotPath {
     Eigen::Vector2d plan_position(double t) const;
     // Arc length along centerline() at route time t (clamped).
     double arc_at(double t) const;
-    // Route time at which the robot passes waypoint i (waypoint routes; file routes: -1).
+    // Route time at which the robot passes waypoint i of route_laps() (the first lap's are the
+    // configured ones, 0..n-1; waypoint routes; file routes: -1).
     double waypoint_time(int i) const;
     int num_waypoints() const { return static_cast<int>(waypoint_vertex_.size()); }
     // Route times of scans in [t0, t1]: every 1/rate s (waypoints) or the file's times.
@@ -51,6 +52,12 @@ class RobotPath {
     common::PoseList poses_;                    // file routes: T_world_lidar
     std::vector<double> times_;                 // file routes: time of each pose [s]
 };
+
+// The waypoints driven by a waypoint route: config.waypoints once, or config.laps times with a
+// connecting leg between laps, straight from the last waypoint to the first. Where the robot
+// would have to reverse (a turn over 120 deg at either end of the leg) it drives a turning loop
+// ahead of it instead: out to 6 corner radii ahead and 2 to either side, back to the same point.
+std::vector<Waypoint> route_laps(const RouteConfig& config);
 
 // Resolves a scenario path: absolute as is, relative against base_dir.
 std::string resolve_path(const std::string& path, const std::string& base_dir);

@@ -44,6 +44,9 @@ std::string check_session(const SessionConfig& s, const std::string& key) {
         return key + ".route: give waypoints or a poses_file, not both";
     if (!(r.speed > 0)) return key + ".route.speed: must be > 0";
     if (!(r.corner_radius >= 0)) return key + ".route.corner_radius: must be >= 0";
+    if (r.laps < 1) return key + ".route.laps: must be >= 1";
+    if (r.laps > 1 && !r.poses_file.empty())
+        return key + ".route.laps: only waypoint routes can be repeated";
     for (std::size_t i = 0; i < r.waypoints.size(); ++i) {
         if (r.waypoints[i].speed < 0)
             return key + ".route.waypoints[" + std::to_string(i) + "]: speed must be >= 0";

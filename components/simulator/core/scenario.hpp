@@ -72,6 +72,10 @@ struct RouteConfig {
     std::string times_file;           // one time [s] a pose
     std::string calib_file;           // KITTI calib.txt: camera-frame poses become Tr^-1 P Tr
     bool camera_frame = true;  // poses_file holds camera-frame poses (then calib_file is needed)
+    // Waypoint routes: driven this many times. Between laps the robot drives straight from the
+    // last waypoint back to the first; where that would reverse its heading it turns in a loop
+    // ahead of it (route_laps() in robot_path.hpp).
+    int laps = 1;
 };
 
 // The robot is lifted at route time `at`, carried without the system being told, and put down

@@ -139,8 +139,9 @@ void read_world(const YamlReader& r, const Y& n, WorldConfig& w) {
 void read_route(const YamlReader& r, const Y& n, const std::string& k, RouteConfig& route) {
     r.expect_map(n, k,
                  {"speed", "corner_radius", "waypoints", "poses_file", "times_file", "calib_file",
-                  "camera_frame"});
+                  "camera_frame", "laps"});
     r.get(n, "speed", k, route.speed);
+    r.get(n, "laps", k, route.laps);
     r.get(n, "corner_radius", k, route.corner_radius);
     r.get(n, "poses_file", k, route.poses_file);
     r.get(n, "times_file", k, route.times_file);

@@ -92,6 +92,23 @@ TEST(ScenarioYaml, RejectsBadValuesWithOneLine) {
     check("{{{", "not valid YAML");
 }
 
+TEST(ScenarioYaml, RouteLaps) {
+    std::string t = kMinimal;
+    const ScenarioConfig one = parse_scenario(t, "test.yaml", ".");
+    EXPECT_EQ(one.sessions[0].route.laps, 1);
+    const std::string three = t.replace(t.find("waypoints"), 9, "laps: 3\n      waypoints");
+    EXPECT_EQ(parse_scenario(three, "test.yaml", ".").sessions[0].route.laps, 3);
+    t = three;
+    EXPECT_NE(error_of(t.replace(t.find("laps: 3"), 7, "laps: 0")).find("route.laps: must be >= 1"),
+              std::string::npos);
+    t = three;
+    EXPECT_NE(error_of(t.replace(t.find("laps: 3"), 7, "lap: 3")).find("route.lap: unknown key"),
+              std::string::npos);
+    const std::string file =
+        "sessions: [ {route: {laps: 2, poses_file: p.txt, times_file: t.txt}} ]\n";
+    EXPECT_NE(error_of(file).find("route.laps: only waypoint routes"), std::string::npos);
+}
+
 TEST(ScenarioYaml, MissingFilesGiveOneLine) {
     try {
         load_scenario("/nonexistent/dir/s.yaml");

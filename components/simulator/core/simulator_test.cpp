@@ -201,6 +201,49 @@ TEST(Simulator, KidnapsAndSessionTimes) {
     EXPECT_THROW(Simulator(sc, 2), ScenarioError);
 }
 
+// Laps: a route that ends heading east at (10, 0), east of its start (-10, 0) heading east, so
+// the leg back reverses the heading at both ends (as in site_loop.yaml).
+TEST(Simulator, LapsRepeatTheRouteThroughDrivableTurns) {
+    ScenarioConfig sc = small_world(5);
+    sc.sessions[0].actors.placed.clear();
+    RouteConfig& route = sc.sessions[0].route;
+    route.waypoints = {{-10, 0, 0}, {0, 0, 0}, {0, 15, 0}, {5, 15, 0}, {5, 0, 0}, {10, 0, 0}};
+    route.speed = 2.0;
+    route.corner_radius = 2.0;
+    route.laps = 3;
+    const std::vector<Waypoint> w = route_laps(route);
+    const std::size_t lap = 6 + 8;  // two turning loops of 4 points each
+    ASSERT_EQ(w.size(), 3 * 6 + 2 * 8);
+    for (std::size_t k = 0; k < 3; ++k) {
+        for (std::size_t i = 0; i < 6; ++i) {
+            EXPECT_EQ(w[k * lap + i].x, route.waypoints[i].x);
+            EXPECT_EQ(w[k * lap + i].y, route.waypoints[i].y);
+        }
+    }
+    RouteConfig single = route;
+    single.laps = 1;
+    const RobotPath one(single, "."), three(route, ".");
+    EXPECT_GT(three.duration(), 3 * one.duration());
+    // Lap 2 starts where lap 1 did (within the corner rounding there), heading the same way.
+    const double t2 = three.waypoint_time(static_cast<int>(lap));
+    EXPECT_LT((three.plan_position(t2) - Eigen::Vector2d(-10, 0)).norm(), 0.2);
+    EXPECT_GT(three.plan_position(t2 + 1.0).x(), -10.0 + 1.5);
+    // Drivable: the step between scans never exceeds the speed, the heading turns no faster
+    // than on a corner of the route's radius (reversing on the spot would turn 180 deg at once).
+    const Simulator sim(sc);
+    const double dt = 1.0 / sc.sensor.rate_hz;
+    std::size_t starts = 0;  // eastward passes of x = -5: once a lap, on the first leg
+    for (std::size_t i = 1; i < sim.num_scans(); ++i) {
+        const Eigen::Isometry3d a = sim.pose(i - 1), b = sim.pose(i);
+        // (1 % for the sensor riding on the ground normal of the gentle terrain)
+        ASSERT_LE((b.translation() - a.translation()).head<2>().norm(), 1.01 * 2.0 * dt);
+        const double turn = Eigen::AngleAxisd(a.linear().transpose() * b.linear()).angle();
+        ASSERT_LE(turn, 1.5 * 2.0 * dt / 2.0) << "scan " << i;  // 1.5 x speed / radius
+        starts += a.translation().x() < -5 && b.translation().x() >= -5;
+    }
+    EXPECT_EQ(starts, 3u);
+}
+
 TEST(Simulator, MissingTrajectoryFileIsOneLine) {
     ScenarioConfig sc = small_world(1);
     sc.sessions[0].route.waypoints.clear();
