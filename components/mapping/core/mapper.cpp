@@ -1,5 +1,7 @@
 #include "mapping/core/mapper.hpp"
 
+#include "mapping/core/drift_distance.hpp"
+
 #include <cmath>
 #include <sstream>
 #include <tuple>
@@ -257,6 +259,11 @@ void Mapper::verify(const common::KeyframeData& keyframe,
             rejection.reason = "candidate is in the same local map";
         } else if (entry == maps_.end()) {
             rejection.reason = "the candidate's local map was not received";
+        } else if (config_.max_loops_per_anchor_pair > 0 &&
+                   loops_between(match.node, node) >= config_.max_loops_per_anchor_pair) {
+            // Local maps are rigid: another loop between the same two anchors measures the same
+            // relative pose again (and costs a verification and an edge to optimise).
+            rejection.reason = "the two local maps are already joined by a loop";
         }
         if (!rejection.reason.empty()) {
             r->rejected.push_back(rejection);
@@ -288,14 +295,18 @@ void Mapper::verify(const common::KeyframeData& keyframe,
         const double disagreement_deg = Eigen::AngleAxisd(D.linear()).angle() * 180.0 / M_PI;
         if (same_session) {
             const LoopConsistencyConfig& lc = config_.loop_consistency;
-            const double path = std::abs(path_at_[e.to] - path_at_[e.from]);
+            // The odometry along which the graph's estimate can have drifted: from the nearest
+            // places already joined by loops (a lap of a route is not 1 km of drift).
+            const double path = drift_distance(graph_, e.from, e.to, [this](const PoseGraphEdge& o) {
+                return std::abs(path_at_[o.to] - path_at_[o.from]);
+            });
             const double max_t = lc.translation + lc.translation_per_m * path;
             const double max_r = lc.rotation + lc.rotation_per_m * path;
             if (disagreement > max_t || disagreement_deg > max_r) {
                 std::ostringstream why;
                 why << "disagrees with the graph by " << disagreement << " m / " << disagreement_deg
                     << " deg (limits " << max_t << " m / " << max_r << " deg after " << path
-                    << " m of odometry)";
+                    << " m of odometry from places already joined)";
                 rejection.reason = why.str();
                 r->rejected.push_back(rejection);
                 continue;
@@ -329,6 +340,16 @@ void Mapper::verify(const common::KeyframeData& keyframe,
         r->loops.push_back(l);
         loops_.push_back(l);
     }
+}
+
+int Mapper::loops_between(std::uint64_t a, std::uint64_t b) const {
+    int n = 0;
+    for (const PoseGraphEdge& e : graph_.edges()) {
+        if (e.kind == EdgeKind::kLoop && e.active &&
+            ((e.from == a && e.to == b) || (e.from == b && e.to == a)))
+            ++n;
+    }
+    return n;
 }
 
 OptimisationSummary Mapper::optimise() {

@@ -123,6 +123,7 @@ class Mapper {
         StoredLocalMap stored;
         std::uint64_t serial = 0;  // changes with every stored snapshot (verification cache key)
     };
+    int loops_between(std::uint64_t a, std::uint64_t b) const;  // active loop edges, either way
     std::uint64_t ensure_node(std::uint64_t local_map_id, const Eigen::Isometry3d& T_odom_anchor);
     void link_odometry(std::uint64_t local_map_id);
     void set_path(std::uint32_t session, std::uint64_t local_map_id);

@@ -73,6 +73,9 @@ std::string validate(const MapperConfig& c) {
         e << "mapping.loop_consistency.rotation must be > 0 and rotation_per_m >= 0";
     } else if (c.max_loops_per_keyframe < 1) {
         e << "mapping.max_loops_per_keyframe must be >= 1 (got " << c.max_loops_per_keyframe << ")";
+    } else if (c.max_loops_per_anchor_pair < 0) {
+        e << "mapping.max_loops_per_anchor_pair must be >= 0 (got " << c.max_loops_per_anchor_pair
+          << ")";
     } else if (c.loop_cooldown_keyframes < 0) {
         e << "mapping.loop_cooldown_keyframes must be >= 0 (got " << c.loop_cooldown_keyframes
           << ")";

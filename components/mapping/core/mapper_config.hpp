@@ -28,8 +28,9 @@ struct LoopEdgeConfig {
 };
 
 // A verified loop whose relative anchor pose disagrees with the graph's current estimate by more
-// than floor + per_m * (odometry path between the two anchors) is refused (same session only):
-// the odometry cannot have drifted that much, so the registration found another place.
+// than floor + per_m * (odometry between the two anchors, from the nearest places that loops
+// already join) is refused (same session only): the estimate cannot have drifted that much, so
+// the registration found another place.
 struct LoopConsistencyConfig {
     double translation = 2.0;         // [m]
     double translation_per_m = 0.03;  // [m/m]
@@ -55,6 +56,11 @@ struct MapperConfig {
     // registration's basin), then from the descriptor's guess (the matched keyframe's place
     // turned by the descriptor's yaw, metres away on a revisit that does not retrace the path).
     bool verify_from_graph = true;
+    // Loop edges kept between the same two local maps (0: no limit). Local maps are rigid, so each
+    // loop measures the same relative pose again; later candidates between them are not verified.
+    // Two rather than one: against an odometry edge that is off (a drift jump), a single loop
+    // edge pulls too weakly (KITTI forward/reverse test: 0.14 m with one, 0.06 m with two or more).
+    int max_loops_per_anchor_pair = 2;
     bool keep_keyframe_points = false;  // keep each keyframe's scan in the map (memory, files)
 };
 

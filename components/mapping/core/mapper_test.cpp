@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <map>
+
 #include <cmath>
 #include <filesystem>
 
@@ -127,6 +129,11 @@ TEST(Mapper, ClosesLoopsOnARealKittiSnippetReplayedInReverse) {
         if (l.query_scan >= 16 && l.match_scan < 16) ++back;
     }
     EXPECT_GE(back, 5u);  // the way back meets the way out again and again
+    // At most max_loops_per_anchor_pair loop edges join two local maps.
+    std::map<std::pair<std::uint64_t, std::uint64_t>, int> per_pair;
+    for (const LoopClosure& l : mapper.loops())
+        ++per_pair[{std::min(l.from_node, l.to_node), std::max(l.from_node, l.to_node)}];
+    for (const auto& [pair, n] : per_pair) EXPECT_LE(n, kitti_config().max_loops_per_anchor_pair);
 
     // Before optimisation the way back is off by the drift; after it, on the truth.
     auto worst = [&]() {

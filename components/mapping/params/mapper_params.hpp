@@ -75,6 +75,7 @@ void visit_fields(MapperConfig& c, Visitor&& v) {
     v("max_loops_per_keyframe", c.max_loops_per_keyframe);
     v("loop_cooldown_keyframes", c.loop_cooldown_keyframes);
     v("verify_from_graph", c.verify_from_graph);
+    v("max_loops_per_anchor_pair", c.max_loops_per_anchor_pair);
     v("keep_keyframe_points", c.keep_keyframe_points);
 }
 
