@@ -199,6 +199,24 @@ components:
         << host.err();
 }
 
+TEST_F(OdometryPipeline, MapRequestWithNowhereToWriteIsRefusedWithOneLine) {
+    const std::string cfg = write("nowhere.yaml", R"(domain_id: 197
+dds: {interfaces: [lo], multicast: false, peers: [127.0.0.1]}
+components:
+  - name: mapping
+    type: mapping
+  - name: request
+    type: map_request
+    params: {command: all, global_map_file: )" + (dir_ / "wanted.ply").string() + R"(}
+)");
+    Process host({kHost, cfg}, (dir_ / "host").string());
+    EXPECT_EQ(host.wait(60), 1) << host.err();
+    EXPECT_NE(host.err().find("nowhere to write: no map_dir in the request or the component's parameters"),
+              std::string::npos)
+        << host.err();
+    EXPECT_FALSE(fs::exists(dir_ / "wanted.ply"));  // all or nothing when a target is missing
+}
+
 TEST_F(OdometryPipeline, DamagedMapToContinueIsRefusedBeforeAnythingRuns) {
     fs::create_directories(dir_ / "broken");
     std::ofstream((dir_ / "broken" / "manifest.txt").string()) << "not a manifest\n";

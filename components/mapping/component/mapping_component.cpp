@@ -66,9 +66,8 @@ public:
         ctx_.log().info(std::to_string(mapper_->keyframes().size()) + " keyframes, " +
                         std::to_string(mapper_->local_map_count()) + " local maps, " +
                         std::to_string(mapper_->loops().size()) + " loops closed");
-        std::string message;
-        save(map_dir_, &message);
-        write_global_map(global_map_file_, &message);
+        save(map_dir_, nullptr);
+        write_global_map(global_map_file_, nullptr);
     }
 
 private:
@@ -110,7 +109,8 @@ private:
         if (writer_ && state() != saved_state_) save(map_dir_, nullptr);
     }
 
-    bool save(const std::string& dir, std::string* message) {
+    // Saves the map to `dir`; logs the outcome and appends it to `outcome` (one line a step).
+    bool save(const std::string& dir, std::string* outcome) {
         if (dir.empty()) return true;
         try {
             SaveStats st;
@@ -120,32 +120,32 @@ private:
             } else {
                 st = save_map(dir, mapper_->snapshot());
             }
-            const std::string line = "map saved to " + dir + " (" + std::to_string(st.files_written) +
-                                     " files written, " + std::to_string(st.bytes_total >> 20) + " MiB in all)";
-            ctx_.log().info(line);
-            if (message) *message += (message->empty() ? "" : "; ") + line;
-            return true;
+            return report(true, "map saved to " + dir + " (" + std::to_string(st.files_written) + " files written, " +
+                                    std::to_string(st.bytes_total >> 20) + " MiB in all)",
+                          outcome);
         } catch (const common::IoError& e) {
-            ctx_.log().error(std::string("map not saved: ") + e.what());
-            if (message) *message += (message->empty() ? "" : "; ") + std::string("map not saved: ") + e.what();
-            return false;
+            return report(false, std::string("map not saved: ") + e.what(), outcome);
         }
     }
 
-    bool write_global_map(const std::string& file, std::string* message) {
+    bool write_global_map(const std::string& file, std::string* outcome) {
         if (file.empty()) return true;
         try {
-            GlobalMapStats stats;
-            common::write_ply(file, mapper_->global_map(&stats));
-            const std::string line = "global voxel map written to " + file;
-            ctx_.log().info(line);
-            if (message) *message += (message->empty() ? "" : "; ") + line;
-            return true;
+            common::write_ply(file, mapper_->global_map());
+            return report(true, "global voxel map written to " + file, outcome);
         } catch (const common::IoError& e) {
-            ctx_.log().error(e.what());
-            if (message) *message += (message->empty() ? "" : "; ") + std::string(e.what());
-            return false;
+            return report(false, std::string("global voxel map not written: ") + e.what(), outcome);
         }
+    }
+
+    bool report(bool ok, const std::string& line, std::string* outcome) const {
+        if (ok) {
+            ctx_.log().info(line);
+        } else {
+            ctx_.log().error(line);
+        }
+        if (outcome) *outcome += (outcome->empty() ? "" : "; ") + line;
+        return ok;
     }
 
     void on_request(const msg::MapRequest& m) {
@@ -155,26 +155,21 @@ private:
                               m.command == ltm_msgs_msg_MapRequest_Constants_SAVE_ALL;
         const bool want_ply = m.command == ltm_msgs_msg_MapRequest_Constants_WRITE_GLOBAL_MAP ||
                               m.command == ltm_msgs_msg_MapRequest_Constants_SAVE_ALL;
-        std::string message;
-        bool ok = true;
+        std::string outcome;
+        bool ok = false;
         if (!want_map && !want_ply) {
-            ok = false;
-            message = "unknown command " + std::to_string(m.command);
-        } else if ((want_map && dir.empty()) && (!want_ply || file.empty())) {
-            ok = false;
-            message = "nowhere to write: neither the request nor the component's parameters name a map_dir" +
-                      std::string(want_ply ? " or a global_map_file" : "");
+            outcome = "unknown command " + std::to_string(m.command);
+        } else if ((want_map && dir.empty()) || (want_ply && file.empty())) {
+            outcome = std::string("nowhere to write: no ") + (want_map && dir.empty() ? "map_dir" : "global_map_file") +
+                      " in the request or the component's parameters";
         } else {
             if (loops_since_optimise_ > 0) optimise();
-            if (want_map) ok = save(dir, &message) && ok;
-            if (want_ply) ok = write_global_map(file, &message) && ok;
-            if (message.empty()) {
-                ok = false;
-                message = "nowhere to write: no global_map_file in the request or the component's parameters";
-            }
+            const bool map_ok = !want_map || save(dir, &outcome);
+            const bool ply_ok = !want_ply || write_global_map(file, &outcome);
+            ok = map_ok && ply_ok;
         }
         status(ok ? ltm_msgs_msg_Status_Constants_OK : ltm_msgs_msg_Status_Constants_ERROR,
-               ok ? "map_request_done" : "map_request_failed", "request " + std::to_string(m.id) + ": " + message);
+               ok ? "map_request_done" : "map_request_failed", "request " + std::to_string(m.id) + ": " + outcome);
     }
 
     void on_keyframe(const msg::Keyframe& m) {
