@@ -4,7 +4,8 @@
 // writes odometry.txt, slam.txt (LiDAR poses, KITTI format), loops.txt, the map and its PLY.
 //
 //   ltm_bench_slam DIR [--reference poses.txt [--calib calib.txt]] [--out OUTDIR]
-//       [--preset hdl64|vlp32|vlp16|narrow] [--config odometry.yaml] [--max-frames N]
+//       [--preset hdl64|vlp32|vlp16|narrow] [--config odometry.yaml] [--mapping-config mapping.yaml]
+//       [--max-frames N]
 //   ltm_bench_slam --scenario FILE.yaml [--laps N] [options but --reference]   (scans rendered
 //       in-process by the simulator, its true poses as the reference; memory every km)
 //   ltm_bench_slam --graph-bench N     (optimisation time of a synthetic graph of N anchors)
@@ -24,6 +25,7 @@
 #include "common/core/io_error.hpp"
 #include "common/core/kitti_io.hpp"
 #include "common/core/ply_io.hpp"
+#include "common/core/process_memory.hpp"
 #include "common/core/progress.hpp"
 #include "common/core/trajectory_io.hpp"
 #include "evaluation/core/ate.hpp"
@@ -37,6 +39,7 @@
 #include "mapping/core/odometry_bridge.hpp"
 #include "sources/core/scan_folder.hpp"
 #include "odometry/core/odometry.hpp"
+#include "mapping/params/mapper_params.hpp"
 #include "odometry/params/odometry_params.hpp"
 
 namespace {
@@ -45,7 +48,7 @@ using namespace ltm;
 using Clock = std::chrono::steady_clock;
 
 struct Args {
-    std::string dir, out, reference, calib, preset, config;
+    std::string dir, out, reference, calib, preset, config, mapping_config;
     std::string pairs, session;
     std::string scenario;  // --scenario: render the scans in-process
     std::size_t laps = 0;
@@ -56,7 +59,8 @@ struct Args {
     std::cerr
         << "error: " << error << "\n"
         << "usage: ltm_bench_slam DIR [--reference poses.txt [--calib calib.txt]] [--out OUTDIR]\n"
-        << "         [--preset hdl64|vlp32|vlp16|narrow] [--config odometry.yaml] [--max-frames "
+        << "         [--preset hdl64|vlp32|vlp16|narrow] [--config odometry.yaml]\n"
+        << "         [--mapping-config mapping.yaml] [--max-frames "
            "N]\n"
         << "         [--snapshot-every K] [--pairs verified_pairs.txt --session s1]\n"
         << "       ltm_bench_slam --scenario FILE.yaml [--laps N] [same options, no --reference]\n"
@@ -97,6 +101,8 @@ Args parse(int argc, char** argv) {
             a.preset = value();
         else if (k == "--config")
             a.config = value();
+        else if (k == "--mapping-config")
+            a.mapping_config = value();
         else if (k == "--max-frames")
             a.max_frames = number(value());
         else if (k == "--graph-bench")
@@ -130,15 +136,6 @@ Args parse(int argc, char** argv) {
     return a;
 }
 
-double peak_memory_mib() {
-    std::ifstream in("/proc/self/status");
-    std::string line;
-    while (std::getline(in, line)) {
-        if (line.rfind("VmHWM:", 0) == 0) return std::atof(line.c_str() + 6) / 1024.0;
-    }
-    return -1.0;
-}
-
 struct Stats {
     std::vector<double> v;
     const char* unit = "ms";
@@ -158,11 +155,6 @@ struct Stats {
 
 double ms_since(Clock::time_point t) {
     return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
-}
-
-// Mapping settings for the sensor preset (the same presets as the mapping component's).
-mapping::MapperConfig mapper_config(const std::string& preset) {
-    return mapping::mapper_preset(odometry::parse_sensor_preset(preset.empty() ? "hdl64" : preset));
 }
 
 // Verified intra-session pairs: "intra sA iA sB iB ... verified T_A_B(12)" (hku-avia-2session).
@@ -223,7 +215,11 @@ int run(const Args& a) {
         a.config.empty() ? odometry::preset_config(
                                odometry::parse_sensor_preset(a.preset.empty() ? "hdl64" : a.preset))
                          : odometry::load_odometry_config_file(a.config);
-    const mapping::MapperConfig mc = mapper_config(a.preset);
+    // The mapping component's keys and presets (a file's `mapping:` section or top level).
+    const mapping::MapperConfig mc = a.mapping_config.empty()
+                                         ? mapping::mapper_preset(odometry::parse_sensor_preset(
+                                               a.preset.empty() ? "hdl64" : a.preset))
+                                         : mapping::load_mapper_config_file(a.mapping_config, a.preset);
     std::unique_ptr<sources::ScanFolder> folder_data;
     std::unique_ptr<mapping::bench::SimSource> sim_data;
     std::size_t available = 0;
@@ -338,7 +334,7 @@ int run(const Args& a) {
             s.km = path_so_far / 1000.0;
             s.frame = i;
             s.mapper_mib = double(mapper.memory_bytes()) / 1048576.0;
-            s.process = mapping::bench::process_memory();
+            s.process = common::process_memory();
             s.local_maps = mapper.local_map_count();
             s.keyframes = keyframes;
             s.loops = mapper.loops().size();
@@ -385,7 +381,7 @@ int run(const Args& a) {
                 final_ms, final_opt.message.c_str());
     const double mib = double(mapper.memory_bytes()) / 1048576.0;
     std::printf("memory: mapper %.1f MiB (%.1f MiB/km), peak resident %.1f MiB\n", mib,
-                path > 0 ? mib / (path / 1000.0) : 0.0, peak_memory_mib());
+                path > 0 ? mib / (path / 1000.0) : 0.0, common::process_memory().peak_mib);
     km_log.report(stdout);
 
     if (!a.reference.empty() || sim_data) {
@@ -485,15 +481,7 @@ int main(int argc, char** argv) {
     const Args args = parse(argc, argv);
     try {
         return args.graph_bench ? graph_bench(args.graph_bench) : run(args);
-    } catch (const ltm::common::IoError& e) {
-        std::cerr << "error: " << e.what() << "\n";
-    } catch (const ltm::odometry::ConfigError& e) {
-        std::cerr << "error: " << e.what() << "\n";
-    } catch (const ltm::mapping::MapperConfigError& e) {
-        std::cerr << "error: " << e.what() << "\n";
-    } catch (const ltm::mapping::MapFormatError& e) {
-        std::cerr << "error: " << e.what() << "\n";
-    } catch (const ltm::sim::ScenarioError& e) {
+    } catch (const std::exception& e) {  // files, configurations, scenarios, maps: one line
         std::cerr << "error: " << e.what() << "\n";
     }
     return 1;

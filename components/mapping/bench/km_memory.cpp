@@ -7,17 +7,6 @@
 
 namespace ltm::mapping::bench {
 
-ProcessMemory process_memory() {
-    ProcessMemory m;
-    std::ifstream in("/proc/self/status");
-    std::string line;
-    while (std::getline(in, line)) {
-        if (line.rfind("VmRSS:", 0) == 0) m.resident_mib = std::atof(line.c_str() + 6) / 1024.0;
-        if (line.rfind("VmHWM:", 0) == 0) m.peak_mib = std::atof(line.c_str() + 6) / 1024.0;
-    }
-    return m;
-}
-
 double fit_slope(const std::vector<double>& x, const std::vector<double>& y) {
     const std::size_t n = std::min(x.size(), y.size());
     if (n < 2) return 0.0;

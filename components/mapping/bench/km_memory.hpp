@@ -7,20 +7,15 @@
 #include <cstdio>
 #include <vector>
 
-namespace ltm::mapping::bench {
+#include "common/core/process_memory.hpp"
 
-struct ProcessMemory {
-    double resident_mib = -1.0;  // VmRSS
-    double peak_mib = -1.0;      // VmHWM
-};
-// From /proc/self/status; -1 where unavailable.
-ProcessMemory process_memory();
+namespace ltm::mapping::bench {
 
 struct KmSample {
     double km = 0.0;
     std::size_t frame = 0;
     double mapper_mib = 0.0;
-    ProcessMemory process;
+    common::ProcessMemory process;
     std::size_t local_maps = 0, keyframes = 0, loops = 0;
 };
 

@@ -18,6 +18,7 @@
 
 #include "common/core/io_error.hpp"
 #include "common/core/kitti_io.hpp"
+#include "common/core/process_memory.hpp"
 #include "common/core/progress.hpp"
 #include "common/core/trajectory_io.hpp"
 #include "evaluation/core/ate.hpp"
@@ -104,16 +105,6 @@ double thread_cpu_seconds() {
     timespec ts{};
     clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
     return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
-}
-
-// Peak resident memory [MiB] (VmHWM of /proc/self/status), -1 when unavailable.
-double peak_memory_mib() {
-    std::ifstream in("/proc/self/status");
-    std::string line;
-    while (std::getline(in, line)) {
-        if (line.rfind("VmHWM:", 0) == 0) return std::atof(line.c_str() + 6) / 1024.0;
-    }
-    return -1.0;
 }
 
 odometry::OdometryConfig make_config(const Args& a) {
@@ -251,7 +242,7 @@ int run(const Args& a) {
         double(reg_points) / frames, double(its) / frames, double(coarse_its) / frames, retries,
         dropped_non_finite);
     std::printf("memory: peak resident %.1f MiB (VmHWM); local maps now %.1f MiB\n",
-                peak_memory_mib(), odo.memory_bytes() / 1048576.0);
+                common::process_memory().peak_mib, odo.memory_bytes() / 1048576.0);
     if (!a.out.empty()) {
         common::write_kitti_poses(a.out, poses);
         std::printf("poses: %s (T_odom_lidar, KITTI format)\n", a.out.c_str());
