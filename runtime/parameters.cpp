@@ -1,5 +1,6 @@
 #include "runtime/parameters.hpp"
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 
@@ -142,17 +143,49 @@ std::string Parameters::path(const std::string& key, const std::string& fallback
     return p;
 }
 
+namespace {
+
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+    std::vector<std::size_t> row(b.size() + 1);
+    for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+    for (std::size_t i = 1; i <= a.size(); ++i) {
+        std::size_t diagonal = row[0];
+        row[0] = i;
+        for (std::size_t j = 1; j <= b.size(); ++j) {
+            const std::size_t up = row[j];
+            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+            diagonal = up;
+        }
+    }
+    return row[b.size()];
+}
+
+// The known keys for an unknown one: all of them when few, else the closest few.
+std::string known_keys(const std::string& unknown, const std::set<std::string>& known) {
+    constexpr std::size_t kListAll = 12, kClosest = 3;
+    std::string out;
+    if (known.size() <= kListAll) {
+        for (const auto& k : known) out += (out.empty() ? "" : ", ") + k;
+        return " (known: " + out + ")";
+    }
+    std::vector<std::pair<std::size_t, std::string>> ranked;
+    for (const auto& k : known) ranked.push_back({edit_distance(unknown, k), k});
+    std::sort(ranked.begin(), ranked.end());
+    for (std::size_t i = 0; i < kClosest; ++i) out += (out.empty() ? "" : ", ") + ranked[i].second;
+    return " (closest of " + std::to_string(known.size()) + " known: " + out + ")";
+}
+
+}  // namespace
+
 void Parameters::check_all_used() const {
     if (!root_.IsDefined() || root_.IsNull()) return;
     std::vector<std::pair<std::string, YAML::Node>> all;
     leaves(root_, "", all);
     for (const auto& [key, node] : all) {
         if (used_->count(key)) continue;
-        std::string known;
-        for (const auto& u : *used_) known += (known.empty() ? "" : ", ") + u;
         throw ConfigError(file_, line_of(key), full(key),
-                          "unknown parameter" + (known.empty() ? std::string(" (this component takes none)")
-                                                               : " (known: " + known + ")"));
+                          "unknown parameter" + (used_->empty() ? std::string(" (this component takes none)")
+                                                                : known_keys(key, *used_)));
     }
 }
 
