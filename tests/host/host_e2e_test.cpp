@@ -8,6 +8,7 @@
 
 #include "common/core/kitti_io.hpp"
 #include "host/process.hpp"
+#include "host/temp_dir_test.hpp"
 
 namespace fs = std::filesystem;
 using ltm::tests::Process;
@@ -24,23 +25,9 @@ std::string dds_section(int domain) {
            "\ndds: {interfaces: [lo], multicast: false, peers: [127.0.0.1]}\n";
 }
 
-class HostTest : public ::testing::Test {
+class HostTest : public ltm::tests::TempDirTest {
 protected:
-    void SetUp() override {
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir_ = fs::temp_directory_path() / ("ltm_host_e2e_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override {
-        if (!HasFailure()) fs::remove_all(dir_);
-    }
-    std::string write(const std::string& name, const std::string& text) {
-        const std::string path = (dir_ / name).string();
-        std::ofstream(path) << text;
-        return path;
-    }
-    std::string path(const std::string& name) const { return (dir_ / name).string(); }
+    HostTest() : TempDirTest("ltm_host_e2e_") {}
     std::size_t count_files(const std::string& sub, const std::string& ext) const {
         std::size_t n = 0;
         if (!fs::is_directory(dir_ / sub)) return 0;
@@ -48,7 +35,6 @@ protected:
             if (e.path().extension() == ext) ++n;
         return n;
     }
-    fs::path dir_;
 };
 
 std::size_t ply_vertices(const std::string& path) {

@@ -7,6 +7,7 @@
 #include "common/core/kitti_io.hpp"
 #include "common/core/trajectory_io.hpp"
 #include "host/process.hpp"
+#include "host/temp_dir_test.hpp"
 
 namespace fs = std::filesystem;
 using ltm::tests::Process;
@@ -17,23 +18,9 @@ namespace {
 const std::string kHost = std::string(LTM_BINARY_DIR) + "/bin/ltm_host";
 const std::string kFixture = std::string(LTM_SOURCE_DIR) + "/tests/fixtures/kitti00_mini";
 
-class OdometryPipeline : public ::testing::Test {
+class OdometryPipeline : public ltm::tests::TempDirTest {
 protected:
-    void SetUp() override {
-        dir_ = fs::temp_directory_path() /
-               ("ltm_odometry_pipeline_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) +
-                "_" + std::to_string(::getpid()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override {
-        if (!HasFailure()) fs::remove_all(dir_);
-    }
-    std::string write(const std::string& name, const std::string& text) {
-        std::ofstream((dir_ / name).string()) << text;
-        return (dir_ / name).string();
-    }
-    fs::path dir_;
+    OdometryPipeline() : TempDirTest("ltm_odometry_pipeline_") {}
 };
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "host/process.hpp"
+#include "host/temp_dir_test.hpp"
 
 namespace fs = std::filesystem;
 using ltm::tests::Process;
@@ -50,21 +51,9 @@ std::string pipeline(const fs::path& out) {
 )";
 }
 
-class ReplayTest : public ::testing::Test {
+class ReplayTest : public ltm::tests::TempDirTest {
 protected:
-    void SetUp() override {
-        dir_ = fs::temp_directory_path() / ("ltm_replay_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) +
-                                            "_" + std::to_string(::getpid()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override {
-        if (!HasFailure()) fs::remove_all(dir_);
-    }
-    std::string write(const std::string& name, const std::string& text) {
-        std::ofstream((dir_ / name).string()) << text;
-        return (dir_ / name).string();
-    }
+    ReplayTest() : TempDirTest("ltm_replay_") {}
     // Live run: player -> pipeline, with the recorder on the sensor and truth topics.
     void live_run(int domain) {
         const std::string cfg = write("live.yaml", dds(domain) + R"(components:
@@ -90,7 +79,6 @@ protected:
         for (const auto& e : fs::recursive_directory_iterator(dir_ / "live")) files += e.is_regular_file();
         EXPECT_EQ(files, 7u);  // 3 clouds, 1 local map, the truth and the odometry (KITTI, TUM)
     }
-    fs::path dir_;
 };
 
 }  // namespace
