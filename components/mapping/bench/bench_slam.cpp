@@ -36,7 +36,7 @@
 #include "mapping/core/binary_io.hpp"
 #include "mapping/core/map_store.hpp"
 #include "mapping/core/mapper.hpp"
-#include "mapping/core/odometry_bridge.hpp"
+#include "odometry/core/local_map_export.hpp"
 #include "sources/core/scan_folder.hpp"
 #include "odometry/core/odometry.hpp"
 #include "mapping/params/mapper_params.hpp"
@@ -213,11 +213,11 @@ int graph_bench(std::size_t anchors) {
 int run(const Args& a) {
     odometry::OdometryConfig oc =
         a.config.empty() ? odometry::preset_config(
-                               odometry::parse_sensor_preset(a.preset.empty() ? "hdl64" : a.preset))
+                               common::parse_sensor_preset(a.preset.empty() ? "hdl64" : a.preset))
                          : odometry::load_odometry_config_file(a.config);
     // The mapping component's keys and presets (a file's `mapping:` section or top level).
     const mapping::MapperConfig mc = a.mapping_config.empty()
-                                         ? mapping::mapper_preset(odometry::parse_sensor_preset(
+                                         ? mapping::mapper_preset(common::parse_sensor_preset(
                                                a.preset.empty() ? "hdl64" : a.preset))
                                          : mapping::load_mapper_config_file(a.mapping_config, a.preset);
     std::unique_ptr<sources::ScanFolder> folder_data;
@@ -259,7 +259,7 @@ int run(const Args& a) {
     auto hand_over = [&](std::vector<odometry::LocalMap> maps) {
         for (const odometry::LocalMap& m : maps) {
             const mapping::LocalMapResult r = mapper.add_local_map(
-                mapping::to_local_map_data(m, snapshot_revision + 1, true, seen[m.id()]));
+                odometry::to_local_map_data(m, snapshot_revision + 1, true, seen[m.id()]));
             if (!r.added) std::fprintf(stderr, "local map %u: %s\n", m.id(), r.message.c_str());
             seen.erase(m.id());
         }
@@ -285,7 +285,7 @@ int run(const Args& a) {
             }
             if (map) {
                 const common::KeyframeData k =
-                    mapping::to_keyframe_data(*r.keyframe, map->T_odom_anchor(), i);
+                    odometry::to_keyframe_data(*r.keyframe, map->T_odom_anchor(), i);
                 t0 = Clock::now();
                 std::vector<mapping::LoopCandidate> c;
                 shadow.add(mapping::make_scan_context(k.points, mc.scan_context), 0, k.stamp, &c);
@@ -326,7 +326,7 @@ int run(const Args& a) {
             ++snapshot_revision;
             for (const odometry::LocalMap& m : odo.active_local_maps()) {
                 mapper.add_local_map(
-                    mapping::to_local_map_data(m, snapshot_revision, false, seen[m.id()]));
+                    odometry::to_local_map_data(m, snapshot_revision, false, seen[m.id()]));
             }
         }
         if (km_log.due(path_so_far)) {

@@ -5,7 +5,7 @@
 #include <sstream>
 #include <unordered_map>
 
-#include "odometry/core/voxel_hash.hpp"
+#include "registration/core/voxel_hash.hpp"
 
 namespace ltm::mapping {
 namespace {
@@ -43,7 +43,7 @@ common::PlyCloud build_global_map(const std::vector<PlacedLocalMap>& maps,
         if (!(g > 0.0)) g = 1.0;
     }
     const double inv = 1.0 / g;
-    std::unordered_map<odometry::VoxelKey, std::size_t> index;
+    std::unordered_map<registration::VoxelKey, std::size_t> index;
     std::vector<Cell> cells;
     GlobalMapStats st;
     for (const PlacedLocalMap& m : maps) {
@@ -57,8 +57,8 @@ common::PlyCloud build_global_map(const std::vector<PlacedLocalMap>& maps,
             if (!v.centre.allFinite()) continue;
             const Eigen::Vector3d p = T * v.centre.cast<double>();
             const Eigen::Vector3d q = (p * inv).array().floor();
-            if (!(q.cwiseAbs().maxCoeff() < double(odometry::kVoxelKeyLimit))) continue;
-            const odometry::VoxelKey key = odometry::pack_key(int(q.x()), int(q.y()), int(q.z()));
+            if (!(q.cwiseAbs().maxCoeff() < double(registration::kVoxelKeyLimit))) continue;
+            const registration::VoxelKey key = registration::pack_key(int(q.x()), int(q.y()), int(q.z()));
             const auto [it, inserted] = index.emplace(key, cells.size());
             if (inserted) cells.emplace_back();
             Cell& c = cells[it->second];

@@ -4,8 +4,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "odometry/core/imls.hpp"
-#include "odometry/core/registration.hpp"
+#include "registration/core/imls.hpp"
+#include "registration/core/registration.hpp"
 
 namespace ltm::mapping {
 namespace {
@@ -72,7 +72,7 @@ std::shared_ptr<RegistrationTarget> LoopVerifier::target(std::uint64_t key,
         return hit.target;
     }
     auto t = std::make_shared<RegistrationTarget>(
-        rebuild_registration_target(map, config_.min_planarity, config_.coarse_factor));
+        make_registration_target(map, config_.min_planarity, config_.coarse_factor));
     cache_.push_front({key, t});
     while (cache_.size() > std::size_t(config_.cache_size)) cache_.pop_back();
     return t;
@@ -83,33 +83,33 @@ LoopVerification LoopVerifier::attempt(const std::vector<Eigen::Vector3f>& point
                                        const Eigen::Isometry3d& guess) {
     LoopVerification v;
     v.points = points.size();
-    const odometry::VoxelGrid& first = t.coarse ? *t.coarse : t.fine;
-    odometry::Registration coarse(config_.coarse, first.voxel_size());
-    odometry::Registration fine(config_.fine, t.fine.voxel_size());
-    const odometry::RegistrationResult c =
+    const registration::VoxelGrid& first = t.coarse ? *t.coarse : t.fine;
+    registration::Registration coarse(config_.coarse, first.voxel_size());
+    registration::Registration fine(config_.fine, t.fine.voxel_size());
+    const registration::RegistrationResult c =
         coarse.align(points, first, t.T_anchor_grid.inverse() * guess);
     v.iterations = c.iterations;
     if (!c.ok()) {
-        v.reason = std::string("coarse registration: ") + odometry::to_string(c.status) + " (" +
+        v.reason = std::string("coarse registration: ") + registration::to_string(c.status) + " (" +
                    std::to_string(c.correspondences) + " correspondences)";
         return v;
     }
-    const odometry::RegistrationResult f = fine.align(points, t.fine, c.T_map_lidar);
+    const registration::RegistrationResult f = fine.align(points, t.fine, c.T_map_lidar);
     v.iterations += f.iterations;
-    if (f.status != odometry::RegistrationResult::Status::kConverged ||
+    if (f.status != registration::RegistrationResult::Status::kConverged ||
         !f.T_map_lidar.matrix().allFinite()) {
-        v.reason = std::string("fine registration: ") + odometry::to_string(f.status) + " (" +
+        v.reason = std::string("fine registration: ") + registration::to_string(f.status) + " (" +
                    std::to_string(f.correspondences) + " correspondences)";
         return v;
     }
     // Inliers at the final pose, with the fine IMLS settings.
-    const odometry::ImlsParams imls = fine.imls_params();
+    const registration::ImlsParams imls = fine.imls_params();
     const Eigen::Matrix3f R = f.T_map_lidar.linear().cast<float>();
     const Eigen::Vector3f tr = f.T_map_lidar.translation().cast<float>();
     double sq = 0.0;
-    odometry::ImlsResult r;
+    registration::ImlsResult r;
     for (const Eigen::Vector3f& p : points) {
-        if (!odometry::imls_distance(t.fine, R * p + tr, imls, &r)) continue;
+        if (!registration::imls_distance(t.fine, R * p + tr, imls, &r)) continue;
         const bool inlier = std::abs(r.distance) <= config_.inlier_distance;
         // Structure: not ground-like (the ground matches almost anywhere).
         if (std::abs(r.normal.z()) < 0.8f) {
@@ -131,7 +131,7 @@ LoopVerification LoopVerifier::attempt(const std::vector<Eigen::Vector3f>& point
     if (config_.refuse_degenerate && v.degenerate_directions > 0) {
         why << "registration is degenerate in " << v.degenerate_directions << " direction(s)";
         why.precision(2);
-        for (const odometry::Vector6d& d : f.degenerate_directions)
+        for (const registration::Vector6d& d : f.degenerate_directions)
             why << " [" << d.transpose() << "]";
     } else if (v.correction_translation > config_.max_correction_translation ||
                v.correction_rotation > config_.max_correction_rotation) {

@@ -1,6 +1,6 @@
 #pragma once
 // Geometric verification of a loop candidate (METHOD.md section 3): the keyframe is registered
-// against the candidate's local map with the odometry's registration core (IMLS point-to-surface
+// against the candidate's local map with the registration core (IMLS point-to-surface
 // Gauss-Newton), first with a wide reach from an initial guess (the graph's estimate within a
 // session, the descriptor's guess), then with the odometry's fine settings; accepted with enough
 // inliers (points whose IMLS distance is small at the final pose), a large enough inlier fraction
@@ -13,9 +13,9 @@
 #include <vector>
 
 #include "common/core/local_map_data.hpp"
-#include "mapping/core/odometry_bridge.hpp"
-#include "odometry/core/odometry_config.hpp"
-#include "odometry/core/preprocess.hpp"
+#include "mapping/core/registration_target.hpp"
+#include "registration/core/registration_config.hpp"
+#include "registration/core/preprocess.hpp"
 
 namespace ltm::mapping {
 
@@ -23,8 +23,8 @@ struct LoopVerifierConfig {
     // First pass, from the guess: on a coarse grid of coarse_factor voxels fitted to the map's
     // surfaces (0: on the fine grid with the coarse settings).
     int coarse_factor = 3;
-    odometry::RegistrationConfig coarse = coarse_defaults();
-    odometry::RegistrationConfig fine = fine_defaults();  // second pass: must converge
+    registration::RegistrationConfig coarse = coarse_defaults();
+    registration::RegistrationConfig fine = fine_defaults();  // second pass: must converge
     double min_planarity = 0.4;  // map voxels below this planarity are not used
     double downsample = 1.0;     // grid for the keyframe's points [m] (0: keep all)
     int max_points = 6000;       // cap on the registered points (evenly thinned)
@@ -48,13 +48,13 @@ struct LoopVerifierConfig {
     double max_correction_rotation = 30.0;
     int cache_size = 6;  // rebuilt local maps kept
 
-    static odometry::RegistrationConfig fine_defaults() {
-        odometry::RegistrationConfig c;  // the odometry's, with more iterations
+    static registration::RegistrationConfig fine_defaults() {
+        registration::RegistrationConfig c;  // the odometry's, with more iterations
         c.max_iterations = 50;
         return c;
     }
-    static odometry::RegistrationConfig coarse_defaults() {
-        odometry::RegistrationConfig c;  // distances for 3 m coarse voxels
+    static registration::RegistrationConfig coarse_defaults() {
+        registration::RegistrationConfig c;  // distances for 3 m coarse voxels
         c.max_correspondence_distance = 4.5;
         c.min_normal_agreement = 0.5;
         c.kernel_scale = 0.3;
@@ -119,7 +119,7 @@ class LoopVerifier {
 
     LoopVerifierConfig config_;
     std::deque<Cached> cache_;  // most recent first
-    odometry::VoxelDownsampler sampler_;
+    registration::VoxelDownsampler sampler_;
     std::vector<Eigen::Vector3f> sampled_;
 };
 

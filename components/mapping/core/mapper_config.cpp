@@ -20,9 +20,9 @@ bool non_negative(double v) { return v >= 0.0 && std::isfinite(v); }
 
 }  // namespace
 
-MapperConfig mapper_preset(odometry::SensorPreset preset) {
+MapperConfig mapper_preset(common::SensorPreset preset) {
     MapperConfig c;
-    if (preset == odometry::SensorPreset::kNarrow) {
+    if (preset == common::SensorPreset::kNarrow) {
         c.scan_context.max_range = 40.0;
         c.scan_context.sensor_height = 1.0;
         c.loop_detection.exclude_recent_seconds = 15.0;

@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "common/core/sensor_preset.hpp"
 #include "mapping/core/global_map.hpp"
 #include "mapping/core/loop_detector.hpp"
 #include "mapping/core/loop_verifier.hpp"
@@ -67,7 +68,7 @@ struct MapperConfig {
 // The defaults for one of the odometry's sensor presets: `narrow` (Livox-like, ~70 deg field of
 // view, ranges under 40 m, keyframes every 0.5 m) changes the descriptor range and the loop search;
 // the spinning LiDARs keep the defaults with KITTI's sensor height.
-MapperConfig mapper_preset(odometry::SensorPreset preset);
+MapperConfig mapper_preset(common::SensorPreset preset);
 
 // Empty when valid; otherwise one line naming the first offending key ("mapping.pose_graph...").
 std::string validate(const MapperConfig& config);

@@ -4,8 +4,7 @@
 #include <random>
 
 #include "common/core/kitti_io.hpp"
-#include "mapping/core/odometry_bridge.hpp"
-#include "odometry/core/local_map.hpp"
+#include "registration/core/voxel_grid.hpp"
 
 namespace ltm::mapping::test {
 
@@ -117,20 +116,34 @@ common::LocalMapData build_local_map(std::uint64_t id, const Eigen::Isometry3d& 
                                      const std::vector<std::vector<Eigen::Vector3f>>& scans,
                                      const common::PoseList& T_odom_lidar, double voxel_size,
                                      double half_extent) {
-    odometry::LocalMap map(std::uint32_t(id), T_odom_anchor, voxel_size, half_extent,
-                           odometry::VoxelConfig(), 0.0);
-    std::vector<double> stamps;
+    // As the odometry builds its local maps: the grid frame is the odometry frame shifted to the
+    // anchor position, and only points inside the box around the anchor count.
+    registration::VoxelGrid grid(voxel_size, registration::VoxelConfig());
+    const Eigen::Vector3d origin = T_odom_anchor.translation();
+    const auto in_box = [&](const Eigen::Vector3f& p) {
+        return (p.cwiseAbs().array() <= float(half_extent)).all();
+    };
+    common::LocalMapData d;
     for (std::size_t i = 0; i < scans.size(); ++i) {
         const Eigen::Isometry3d T = T_odom_lidar[i];
         const Eigen::Matrix3f R = T.linear().cast<float>();
-        const Eigen::Vector3f t = (T.translation() - map.origin()).cast<float>();
+        const Eigen::Vector3f t = (T.translation() - origin).cast<float>();
         std::vector<Eigen::Vector3f> pts;
         pts.reserve(scans[i].size());
         for (const Eigen::Vector3f& p : scans[i]) pts.push_back(R * p + t);
-        map.integrate(pts, t, 0.1 * double(i + 1));
-        stamps.push_back(0.1 * double(i + 1));
+        grid.integrate(pts, t, 0.1 * double(i + 1), in_box);
+        d.observation_times.push_back(0.1 * double(i + 1));
     }
-    return to_local_map_data(map, 1, true, stamps);
+    d.id = id;
+    d.revision = 1;
+    d.finished = true;
+    d.T_odom_anchor = T_odom_anchor;
+    d.T_anchor_grid = T_odom_anchor.inverse() * Eigen::Translation3d(origin);
+    d.bbox_min = Eigen::Vector3d::Constant(-half_extent);
+    d.bbox_max = Eigen::Vector3d::Constant(half_extent);
+    d.voxel_size = float(voxel_size);
+    d.voxels = grid.to_data();
+    return d;
 }
 
 }  // namespace ltm::mapping::test

@@ -1,6 +1,6 @@
 #pragma once
 // Test-only helpers of the mapping tests: real KITTI scans with their reference poses, synthetic
-// scenes, and local maps built from registered scans with the odometry's LocalMap.
+// scenes, and local maps built from registered scans as the odometry builds them.
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <string>
@@ -43,7 +43,7 @@ std::vector<Eigen::Vector3f> with_dense_ground(const std::vector<Eigen::Vector3f
 std::vector<Eigen::Vector3f> view(const std::vector<Eigen::Vector3f>& scene,
                                   const Eigen::Isometry3d& T_world_lidar, double range);
 
-// A local map (odometry LocalMap, voxel g, box half extent) anchored at T_odom_anchor, built by
+// A local map (voxel g, box half extent) anchored at T_odom_anchor, built by
 // integrating each scan (LiDAR frame) at its pose; returned as plain data.
 common::LocalMapData build_local_map(std::uint64_t id, const Eigen::Isometry3d& T_odom_anchor,
                                      const std::vector<std::vector<Eigen::Vector3f>>& scans,

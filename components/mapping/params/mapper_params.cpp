@@ -21,7 +21,7 @@ MapperConfig load_mapper_config(runtime::Parameters& params, const std::string& 
     const std::string preset = params.get<std::string>(pre + "preset", default_preset);
     MapperConfig config;
     try {
-        config = mapper_preset(odometry::parse_sensor_preset(preset));
+        config = mapper_preset(common::parse_sensor_preset(preset));
     } catch (const std::exception& e) {
         params.fail(pre + "preset", e.what());
     }

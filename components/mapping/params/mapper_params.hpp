@@ -6,7 +6,7 @@
 #include <string>
 
 #include "mapping/core/mapper_config.hpp"
-#include "odometry/params/odometry_params.hpp"
+#include "registration/core/registration_config.hpp"
 #include "runtime/parameters.hpp"
 
 namespace ltm::mapping {
@@ -32,8 +32,8 @@ void visit_fields(MapperConfig& c, Visitor&& v) {
     v("loop_detection.rebuild_every", d.rebuild_every);
     auto& r = c.verification;
     v("verification.coarse_factor", r.coarse_factor);
-    odometry::visit_registration_fields(r.coarse, "verification.coarse.", v);
-    odometry::visit_registration_fields(r.fine, "verification.fine.", v);
+    registration::visit_fields(r.coarse, "verification.coarse.", v);
+    registration::visit_fields(r.fine, "verification.fine.", v);
     v("verification.min_planarity", r.min_planarity);
     v("verification.downsample", r.downsample);
     v("verification.max_points", r.max_points);

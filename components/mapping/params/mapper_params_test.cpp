@@ -33,7 +33,7 @@ TEST(MapperParams, PresetThenOverrides) {
         "pose_graph: {loop_loss: huber}\nloop_cooldown_keyframes: 0\n");
     const MapperConfig c = load_mapper_config(p);
     EXPECT_NO_THROW(p.check_all_used());
-    const MapperConfig narrow = mapper_preset(odometry::SensorPreset::kNarrow);
+    const MapperConfig narrow = mapper_preset(common::SensorPreset::kNarrow);
     EXPECT_EQ(c.scan_context.kind, ScanContextKind::kMeanVariance);
     EXPECT_EQ(c.scan_context.rings, 24);
     EXPECT_EQ(c.verification.fine.max_iterations, 70);
@@ -47,7 +47,7 @@ TEST(MapperParams, PresetThenOverrides) {
     // Nothing given: the default preset.
     runtime::Parameters empty(YAML::Node(), "test.yaml", "mapping");
     const MapperConfig d = load_mapper_config(empty);
-    EXPECT_DOUBLE_EQ(d.scan_context.sensor_height, mapper_preset(odometry::SensorPreset::kHdl64).scan_context.sensor_height);
+    EXPECT_DOUBLE_EQ(d.scan_context.sensor_height, mapper_preset(common::SensorPreset::kHdl64).scan_context.sensor_height);
     EXPECT_EQ(d.scan_context.kind, ScanContextKind::kMaxHeight);
 }
 

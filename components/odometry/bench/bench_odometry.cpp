@@ -109,7 +109,7 @@ double thread_cpu_seconds() {
 
 odometry::OdometryConfig make_config(const Args& a) {
     const std::string preset = a.preset.empty() ? "hdl64" : a.preset;
-    odometry::OdometryConfig config = odometry::preset_config(odometry::parse_sensor_preset(preset));
+    odometry::OdometryConfig config = odometry::preset_config(common::parse_sensor_preset(preset));
     if (!a.config.empty()) config = odometry::load_odometry_config_file(a.config, a.preset);
     config.threads = a.threads;
     const std::string error = odometry::validate(config);

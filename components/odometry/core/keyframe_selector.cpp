@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "odometry/core/se3.hpp"
+#include "registration/core/se3.hpp"
 
 namespace ltm::odometry {
 
@@ -10,7 +10,7 @@ bool KeyframeSelector::check(const Eigen::Isometry3d& T) {
     if (has_last_) {
         const Eigen::Isometry3d delta = last_.inverse() * T;
         const bool far = delta.translation().norm() >= config_.distance;
-        const bool turned = rotation_angle(delta) * 180.0 / M_PI >= config_.angle;
+        const bool turned = registration::rotation_angle(delta) * 180.0 / M_PI >= config_.angle;
         if (!far && !turned) return false;
     }
     has_last_ = true;

@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include "odometry/core/se3.hpp"
+#include "registration/core/se3.hpp"
 
 namespace ltm::odometry {
 namespace {
@@ -23,7 +23,7 @@ TEST(KeyframeSelector, FirstPoseThenEveryDistanceOrAngle) {
     // Turning on the spot, 2.6 deg a step: every fourth step.
     count = 0;
     for (int i = 1; i <= 36; ++i) {
-        T.linear() = so3_exp(Eigen::Vector3d(0, 0, 2.6 * i * M_PI / 180.0));
+        T.linear() = registration::so3_exp(Eigen::Vector3d(0, 0, 2.6 * i * M_PI / 180.0));
         count += k.check(T);
     }
     EXPECT_EQ(count, 9);

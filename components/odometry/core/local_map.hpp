@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "odometry/core/odometry_config.hpp"
-#include "odometry/core/voxel_grid.hpp"
+#include "registration/core/voxel_grid.hpp"
 
 namespace ltm::odometry {
 
@@ -50,8 +50,8 @@ class LocalMap {
     void seed_from(const LocalMap& other);
 
     // The voxels (V_k), and the coarse grid (null when disabled).
-    const VoxelGrid& voxels() const { return voxels_; }
-    const VoxelGrid* coarse() const { return coarse_ ? &*coarse_ : nullptr; }
+    const registration::VoxelGrid& voxels() const { return voxels_; }
+    const registration::VoxelGrid* coarse() const { return coarse_ ? &*coarse_ : nullptr; }
     std::size_t memory_bytes() const;
 
   private:
@@ -62,8 +62,8 @@ class LocalMap {
     double half_extent_;
     double created_, last_update_;
     std::uint32_t scans_ = 0;
-    VoxelGrid voxels_;
-    std::optional<VoxelGrid> coarse_;
+    registration::VoxelGrid voxels_;
+    std::optional<registration::VoxelGrid> coarse_;
 };
 
 }  // namespace ltm::odometry

@@ -9,7 +9,7 @@ common::LocalMapData to_local_map_data(const LocalMap& map, std::uint32_t revisi
                                        bool finished,
                                        const std::vector<double>& observation_times) {
     common::LocalMapData d;
-    const VoxelGrid& grid = map.voxels();
+    const registration::VoxelGrid& grid = map.voxels();
     d.id = map.id();
     d.revision = revision;
     d.finished = finished;
@@ -20,22 +20,7 @@ common::LocalMapData to_local_map_data(const LocalMap& map, std::uint32_t revisi
     d.bbox_max = centre.array() + map.half_extent();
     d.voxel_size = float(grid.voxel_size());
     d.observation_times = observation_times;
-    d.voxels.resize(grid.size());
-    for (std::size_t i = 0; i < grid.size(); ++i) {
-        const Surfel& s = grid.surfels()[i];
-        const VoxelRecord& r = grid.records()[i];
-        common::VoxelData& v = d.voxels[i];
-        v.index = unpack_key(grid.keys()[i]);
-        v.centre = s.centre;
-        v.normal = s.usable ? s.normal : Eigen::Vector3f::Zero();
-        v.point_count = std::uint32_t(std::lround(std::max(0.0f, r.sums.weight)));
-        v.planarity = s.planarity;
-        v.stability = s.stability;
-        v.life.created = r.created;
-        v.life.last_seen = r.last_seen;
-        v.life.observations = r.observations;
-        v.life.health = 1.0f;
-    }
+    d.voxels = grid.to_data();
     return d;
 }
 

@@ -4,7 +4,7 @@
 
 #include <random>
 
-#include "odometry/core/test_scenes.hpp"
+#include "registration/core/test_scenes.hpp"
 
 namespace ltm::odometry {
 namespace {
@@ -20,7 +20,7 @@ std::vector<Vector3f> random_points(int n, float half, std::uint32_t seed) {
 }
 
 TEST(LocalMap, OriginIsTheAnchorSnappedToTheLattice) {
-    const auto anchor = test::make_pose(10.3, -4.7, 1.2, 0, 0, 30);
+    const auto anchor = registration::test::make_pose(10.3, -4.7, 1.2, 0, 0, 30);
     LocalMap map(3, anchor, 0.5, 20.0, VoxelConfig{}, 7.0);
     EXPECT_EQ(map.id(), 3u);
     EXPECT_TRUE(map.origin().isApprox(Eigen::Vector3d(10.5, -4.5, 1.0)));
@@ -37,7 +37,7 @@ TEST(LocalMap, IntegratesOnlyInsideTheBoxIntoBothGrids) {
     for (const auto& p : pts) inside += map.contains(p);
     EXPECT_LT(inside, pts.size());
     EXPECT_EQ(map.integrate(pts, Vector3f(0, 0, 5), 1.0), inside);
-    for (const VoxelGrid* g : {&map.voxels(), map.coarse()}) {
+    for (const registration::VoxelGrid* g : {&map.voxels(), map.coarse()}) {
         float weight = 0.0f;
         for (const auto& r : g->records()) weight += r.sums.weight;
         EXPECT_FLOAT_EQ(weight, float(inside));
@@ -51,7 +51,7 @@ TEST(LocalMap, IntegratesOnlyInsideTheBoxIntoBothGrids) {
 TEST(LocalMap, SeedCopiesTheVoxelsInsideTheNewBox) {
     LocalMap a(0, Eigen::Isometry3d::Identity(), 1.0, 10.0, VoxelConfig{}, 0.0);
     a.integrate(random_points(4000, 9.0f, 4), Vector3f(0, 0, 5), 1.0);
-    LocalMap b(1, test::make_pose(6.2, 0.0, 0.0, 0, 0, 0), 1.0, 5.0, VoxelConfig{}, 2.0);
+    LocalMap b(1, registration::test::make_pose(6.2, 0.0, 0.0, 0, 0, 0), 1.0, 5.0, VoxelConfig{}, 2.0);
     b.seed_from(a);
     ASSERT_GT(b.voxels().size(), 0u);
     const Eigen::Vector3f shift = (b.origin() - a.origin()).cast<float>();
@@ -61,9 +61,9 @@ TEST(LocalMap, SeedCopiesTheVoxelsInsideTheNewBox) {
         if (!b.contains(c_in_b)) continue;
         ++expected;
         Eigen::Vector3i v;
-        ASSERT_TRUE(voxel_coords(c_in_b, 1.0f, &v));
+        ASSERT_TRUE(registration::voxel_coords(c_in_b, 1.0f, &v));
         const std::uint32_t j = b.voxels().find(v);
-        ASSERT_NE(j, VoxelHash::kNone);
+        ASSERT_NE(j, registration::VoxelHash::kNone);
         EXPECT_LT((b.voxels().surfels()[j].centre + shift - a.voxels().surfels()[i].centre).norm(),
                   1e-4f);
         EXPECT_EQ(b.voxels().surfels()[j].normal, a.voxels().surfels()[i].normal);

@@ -29,13 +29,13 @@ Eigen::Isometry3d MotionModel::predict(double stamp) const {
     const double dt_prev = stamp_[1] - stamp_[0];
     const double dt = stamp - stamp_[1];
     if (!(dt_prev > 0.0) || !(dt >= 0.0)) return pose_[1];
-    return normalised(pose_[1] * scale_motion(delta, dt / dt_prev));
+    return normalised(pose_[1] * registration::scale_motion(delta, dt / dt_prev));
 }
 
-Vector6d MotionModel::velocity() const {
+registration::Vector6d MotionModel::velocity() const {
     const double dt_prev = stamp_[1] - stamp_[0];
-    if (count_ < 2 || !(dt_prev > 0.0)) return Vector6d::Zero();
-    return se3_log(pose_[0].inverse() * pose_[1]) / dt_prev;
+    if (count_ < 2 || !(dt_prev > 0.0)) return registration::Vector6d::Zero();
+    return registration::se3_log(pose_[0].inverse() * pose_[1]) / dt_prev;
 }
 
 }  // namespace ltm::odometry

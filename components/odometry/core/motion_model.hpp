@@ -4,7 +4,7 @@
 // frame).
 #include <Eigen/Geometry>
 
-#include "odometry/core/se3.hpp"
+#include "registration/core/se3.hpp"
 
 namespace ltm::odometry {
 
@@ -26,7 +26,7 @@ class MotionModel {
     // The pose at `stamp` (identity before the first pose, the last pose with only one).
     Eigen::Isometry3d predict(double stamp) const;
     // Body-frame twist per second [v; w] between the last two poses (zero with fewer).
-    Vector6d velocity() const;
+    registration::Vector6d velocity() const;
 
   private:
     PredictionMode mode_;

@@ -7,7 +7,7 @@ namespace {
 
 Eigen::Isometry3d pose(double x, double yaw) {
     Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-    T.linear() = so3_exp(Eigen::Vector3d(0, 0, yaw));
+    T.linear() = registration::so3_exp(Eigen::Vector3d(0, 0, yaw));
     T.translation() = Eigen::Vector3d(x, 0.5 * x, 0);
     return T;
 }
@@ -29,7 +29,7 @@ TEST(MotionModel, ConstantVelocityScaledByTime) {
     EXPECT_TRUE(m.predict(0.2).isApprox(b * delta, 1e-12));
     // A dropped frame: twice the time, twice the motion.
     EXPECT_TRUE(m.predict(0.3).isApprox(b * delta * delta, 1e-12));
-    EXPECT_TRUE(m.velocity().isApprox(se3_log(delta) / 0.1, 1e-12));
+    EXPECT_TRUE(m.velocity().isApprox(registration::se3_log(delta) / 0.1, 1e-12));
 }
 
 TEST(MotionModel, FrameAndNoneModesIgnoreTheStamps) {

@@ -63,7 +63,7 @@ Odometry::Odometry(const OdometryConfig& config, const Eigen::Isometry3d& T_odom
 FrameResult Odometry::reject(FrameResult result, FrameStatus status, std::string message) {
     result.status = status;
     result.message = std::move(message);
-    result.covariance = Matrix6d::Identity() * kUnknownVariance;
+    result.covariance = registration::Matrix6d::Identity() * kUnknownVariance;
     return result;
 }
 
@@ -84,7 +84,7 @@ FrameResult Odometry::register_frame(const common::PointCloud& cloud) {
         return reject(r, FrameStatus::kRejectedStamp, s.str());
     }
 
-    const Vector6d velocity = motion_.velocity();
+    const registration::Vector6d velocity = motion_.velocity();
     auto tick = std::chrono::steady_clock::now();
     auto lap = [&tick]() {
         const auto now = std::chrono::steady_clock::now();
@@ -133,7 +133,7 @@ FrameResult Odometry::register_frame(const common::PointCloud& cloud) {
         const Eigen::Isometry3d& last = motion_.last_pose();
         const Eigen::Isometry3d jump = last.inverse() * predicted;
         if ((!why.empty() || doubtful) && motion_.poses() == 2 &&
-            (jump.translation().norm() > 0.01 || rotation_angle(jump) > 0.1 / kRadToDeg)) {
+            (jump.translation().norm() > 0.01 || registration::rotation_angle(jump) > 0.1 / kRadToDeg)) {
             FrameResult second = r;
             const std::string retry = try_register(last, &second);
             attempts = 2;
@@ -162,7 +162,7 @@ FrameResult Odometry::register_frame(const common::PointCloud& cloud) {
     // The map gets the scan de-skewed with the motion just estimated (better than the predicted
     // one, and available from the second scan on).
     if (motion_.poses() > 0 && cloud.stamp > motion_.last_stamp()) {
-        const Vector6d estimated = se3_log(motion_.last_pose().inverse() * r.T_odom_lidar) /
+        const registration::Vector6d estimated = registration::se3_log(motion_.last_pose().inverse() * r.T_odom_lidar) /
                                    (cloud.stamp - motion_.last_stamp());
         preprocessor_.redeskew_map_points(estimated, &scan_);
         r.deskewed = scan_.deskewed;
@@ -195,21 +195,21 @@ std::string Odometry::try_register(const Eigen::Isometry3d& guess_odom, FrameRes
         for (std::size_t i = 0; i < scan_.registration_points.size(); i += 2) {
             coarse_points_.push_back(scan_.registration_points[i]);
         }
-        const RegistrationResult coarse =
+        const registration::RegistrationResult coarse =
             coarse_registration_.align(coarse_points_, *map.coarse(), guess);
         r->coarse_iterations = coarse.iterations;
         if (coarse.ok()) guess = coarse.T_map_lidar;
     }
-    const RegistrationResult reg =
+    const registration::RegistrationResult reg =
         registration_.align(scan_.registration_points, map.voxels(), guess);
     r->iterations = reg.iterations;
     r->correspondences = reg.correspondences;
     r->residual_rms = reg.residual_rms;
-    r->converged = reg.status == RegistrationResult::Status::kConverged;
+    r->converged = reg.status == registration::RegistrationResult::Status::kConverged;
     const Eigen::Isometry3d estimate = T_odom_map * reg.T_map_lidar;
     const Eigen::Isometry3d correction = guess_odom.inverse() * estimate;
     const double dt = correction.translation().norm();
-    const double dr = rotation_angle(correction) * kRadToDeg;
+    const double dr = registration::rotation_angle(correction) * kRadToDeg;
     const DivergenceConfig& d = config_.divergence;
     std::ostringstream why;
     if (!reg.ok()) {

@@ -13,9 +13,9 @@
 #include "odometry/core/local_map_set.hpp"
 #include "odometry/core/motion_model.hpp"
 #include "odometry/core/odometry_config.hpp"
-#include "odometry/core/parallel.hpp"
-#include "odometry/core/preprocess.hpp"
-#include "odometry/core/registration.hpp"
+#include "registration/core/parallel.hpp"
+#include "registration/core/preprocess.hpp"
+#include "registration/core/registration.hpp"
 
 namespace ltm::odometry {
 
@@ -43,8 +43,8 @@ struct FrameResult {
     // The estimate when pose_valid(); otherwise the prediction carried forward (do not publish).
     Eigen::Isometry3d T_odom_lidar = Eigen::Isometry3d::Identity();
     // Of [position (m); rotation vector (rad)], both in odometry axes: R_true = Exp(dr) R.
-    Matrix6d covariance = Matrix6d::Identity();
-    std::vector<Vector6d> degenerate_directions;  // unit, [dt; dr * degeneracy_length]
+    registration::Matrix6d covariance = registration::Matrix6d::Identity();
+    std::vector<registration::Vector6d> degenerate_directions;  // unit, [dt; dr * degeneracy_length]
     double min_information = 0.0;  // of the weakest direction (see RegistrationResult)
     std::size_t input_points = 0;
     std::size_t dropped_non_finite = 0;
@@ -107,10 +107,10 @@ class Odometry {
 
     OdometryConfig config_;
     Eigen::Isometry3d initial_pose_;
-    ParallelFor parallel_;
-    Preprocessor preprocessor_;
-    Registration registration_;
-    Registration coarse_registration_;  // used when the maps have a coarse grid
+    registration::ParallelFor parallel_;
+    registration::Preprocessor preprocessor_;
+    registration::Registration registration_;
+    registration::Registration coarse_registration_;  // used when the maps have a coarse grid
     MotionModel motion_;
     LocalMapSet maps_;
     KeyframeSelector keyframes_;
@@ -118,7 +118,7 @@ class Odometry {
     double typical_rms_ = 0.0;  // running mean of the tracked frames' residual RMS [m]
     bool has_stamp_ = false;
     double last_stamp_ = 0.0;
-    PreprocessedScan scan_;  // reused buffers
+    registration::PreprocessedScan scan_;  // reused buffers
     std::vector<Eigen::Vector3f> coarse_points_;
 };
 

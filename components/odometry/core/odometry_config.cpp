@@ -46,16 +46,6 @@ OdometryConfig preset_config(SensorPreset preset) {
     return c;
 }
 
-std::vector<std::string> sensor_preset_names() { return {"hdl64", "vlp32", "vlp16", "narrow"}; }
-
-SensorPreset parse_sensor_preset(const std::string& name) {
-    if (name == "hdl64") return SensorPreset::kHdl64;
-    if (name == "vlp32") return SensorPreset::kVlp32;
-    if (name == "vlp16") return SensorPreset::kVlp16;
-    if (name == "narrow") return SensorPreset::kNarrow;
-    throw ConfigError("unknown sensor preset '" + name + "' (known: hdl64, vlp32, vlp16, narrow)");
-}
-
 namespace {
 
 // Collects the first violated rule, naming the key as it appears in YAML.

@@ -10,7 +10,7 @@
 
 #include "common/core/kitti_io.hpp"
 #include "common/core/trajectory_io.hpp"
-#include "odometry/core/test_scenes.hpp"
+#include "registration/core/test_scenes.hpp"
 
 namespace ltm::odometry {
 namespace {
@@ -20,14 +20,14 @@ constexpr double kRadToDeg = 180.0 / M_PI;
 
 // A drive along the synthetic street: 1 m a frame at 10 Hz, gentle weaving.
 Isometry3d street_pose(int i) {
-    return test::make_pose(1.0 * i, 0.4 * std::sin(i / 5.0), 1.8, 0.0, 0.0,
+    return registration::test::make_pose(1.0 * i, 0.4 * std::sin(i / 5.0), 1.8, 0.0, 0.0,
                            3.0 * std::sin(i / 8.0));
 }
 
-common::PointCloud street_scan(const test::Scene& scene, int i) {
-    test::ScanPattern pattern;
+common::PointCloud street_scan(const registration::test::Scene& scene, int i) {
+    registration::test::ScanPattern pattern;
     common::PointCloud c =
-        test::scan_scene(scene, pattern, street_pose(i), street_pose(i), 100 + i);
+        registration::test::scan_scene(scene, pattern, street_pose(i), street_pose(i), 100 + i);
     c.stamp = 0.1 * i;
     return c;
 }
@@ -36,17 +36,17 @@ void expect_near_pose(const Isometry3d& est, const Isometry3d& truth, double t_t
                       double r_tol_deg, const std::string& what) {
     const Isometry3d d = truth.inverse() * est;
     EXPECT_LT(d.translation().norm(), t_tol) << what;
-    EXPECT_LT(rotation_angle(d) * kRadToDeg, r_tol_deg) << what;
+    EXPECT_LT(registration::rotation_angle(d) * kRadToDeg, r_tol_deg) << what;
 }
 
 class StreetOdometry : public testing::Test {
   protected:
-    static void SetUpTestSuite() { scene_ = new test::Scene(test::street_scene()); }
+    static void SetUpTestSuite() { scene_ = new registration::test::Scene(registration::test::street_scene()); }
     static void TearDownTestSuite() { delete scene_; }
-    static const test::Scene& scene() { return *scene_; }
-    static test::Scene* scene_;
+    static const registration::test::Scene& scene() { return *scene_; }
+    static registration::test::Scene* scene_;
 };
-test::Scene* StreetOdometry::scene_ = nullptr;
+registration::test::Scene* StreetOdometry::scene_ = nullptr;
 
 TEST_F(StreetOdometry, TracksAndHandsOverLocalMapsWithBoundedMemory) {
     OdometryConfig config;
@@ -189,10 +189,10 @@ TEST(Odometry, DeskewsScansWithPerPointTimes) {
     // Starting at rest and accelerating into a 135 deg/s turn within 1.5 s, in the room: each
     // revolution smears its scan by up to 13 deg. De-skewing uses the constant-velocity motion,
     // which lags an accelerating turn, so some error remains; without it the error is far larger.
-    const test::Scene scene = test::room_scene();
-    test::ScanPattern pattern;
+    const registration::test::Scene scene = registration::test::room_scene();
+    registration::test::ScanPattern pattern;
     auto pose = [](double t) {
-        return test::make_pose(-6.0 + 1.5 * t * t, 1.0, 1.5, 0, 0, 45.0 * t * t);
+        return registration::test::make_pose(-6.0 + 1.5 * t * t, 1.0, 1.5, 0, 0, 45.0 * t * t);
     };
     double rot_on = 0.0, rot_off = 0.0, trans_on = 0.0;
     for (const bool deskew : {true, false}) {
@@ -202,13 +202,13 @@ TEST(Odometry, DeskewsScansWithPerPointTimes) {
         for (int i = 0; i < 15; ++i) {
             const double t = 0.1 * i;
             common::PointCloud c =
-                test::scan_scene(scene, pattern, pose(t), pose(t + 0.1), 7 + i, true);
+                registration::test::scan_scene(scene, pattern, pose(t), pose(t + 0.1), 7 + i, true);
             c.stamp = t;
             const FrameResult r = odo.register_frame(c);
             ASSERT_TRUE(r.pose_valid()) << r.message;
             EXPECT_EQ(r.deskewed, deskew && i >= 1) << i;  // needs a motion estimate
             const Isometry3d d = pose(t).inverse() * r.T_odom_lidar;
-            (deskew ? rot_on : rot_off) = rotation_angle(d) * kRadToDeg;
+            (deskew ? rot_on : rot_off) = registration::rotation_angle(d) * kRadToDeg;
             if (deskew) trans_on = std::max(trans_on, d.translation().norm());
         }
     }

@@ -8,8 +8,8 @@ OdometryConfig load_odometry_config(runtime::Parameters& params, const std::stri
     const std::string preset = params.get<std::string>(pre + "preset", default_preset);
     OdometryConfig config;
     try {
-        config = preset_config(parse_sensor_preset(preset));
-    } catch (const ConfigError& e) {
+        config = preset_config(common::parse_sensor_preset(preset));
+    } catch (const std::invalid_argument& e) {
         params.fail(pre + "preset", e.what());
     }
     visit_fields(config, [&](const std::string& key, auto& field) { field = params.get(pre + key, field); });

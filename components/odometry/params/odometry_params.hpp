@@ -10,24 +10,6 @@
 
 namespace ltm::odometry {
 
-// Calls v(key, field) for every field of a registration config, keys under `prefix` ("registration.").
-template <class Visitor>
-void visit_registration_fields(odometry::RegistrationConfig& r, const std::string& prefix, Visitor&& v) {
-    v(prefix + "imls_bandwidth", r.imls_bandwidth);
-    v(prefix + "max_correspondence_distance", r.max_correspondence_distance);
-    v(prefix + "min_normal_agreement", r.min_normal_agreement);
-    v(prefix + "kernel_scale", r.kernel_scale);
-    v(prefix + "stability_weighting", r.stability_weighting);
-    v(prefix + "min_stability", r.min_stability);
-    v(prefix + "max_iterations", r.max_iterations);
-    v(prefix + "convergence_translation", r.convergence_translation);
-    v(prefix + "convergence_rotation", r.convergence_rotation);
-    v(prefix + "min_correspondences", r.min_correspondences);
-    v(prefix + "kernel_adaptive_factor", r.kernel_adaptive_factor);
-    v(prefix + "degeneracy_ratio", r.degeneracy_ratio);
-    v(prefix + "degeneracy_length", r.degeneracy_length);
-}
-
 // Calls v(key, field) for every field of the config, by its dotted key.
 template <class Visitor>
 void visit_fields(OdometryConfig& c, Visitor&& v) {
@@ -51,7 +33,7 @@ void visit_fields(OdometryConfig& c, Visitor&& v) {
     v("voxel.min_extent", x.min_extent);
     v("voxel.max_points", x.max_points);
     v("voxel.initial_stability", x.initial_stability);
-    visit_registration_fields(c.registration, "registration.", v);
+    registration::visit_fields(c.registration, "registration.", v);
     v("divergence.max_translation_correction", d.max_translation_correction);
     v("divergence.max_rotation_correction", d.max_rotation_correction);
     v("divergence.max_final_step_translation", d.max_final_step_translation);

@@ -1,0 +1,17 @@
+#pragma once
+// Named sensor presets shared by every module that tunes itself to a LiDAR type (odometry,
+// mapping, localisation): "hdl64" (Velodyne HDL-64E, the default), "vlp32", "vlp16" and "narrow"
+// (Livox Avia type, ~70 deg field of view). Each module maps a preset to its own settings.
+#include <string>
+#include <vector>
+
+namespace ltm::common {
+
+enum class SensorPreset { kHdl64, kVlp32, kVlp16, kNarrow };
+
+// Throws std::invalid_argument naming the known presets.
+SensorPreset parse_sensor_preset(const std::string& name);
+const char* to_string(SensorPreset preset);
+std::vector<std::string> sensor_preset_names();
+
+}  // namespace ltm::common

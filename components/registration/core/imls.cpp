@@ -1,0 +1,83 @@
+#include "registration/core/imls.hpp"
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+
+namespace ltm::registration {
+namespace {
+
+// exp(x) for x <= 0 to about 1e-4 relative (2^(x log2 e): exponent bits plus a cubic for the
+// fraction); the weights need no more, and std::exp was a tenth of the registration time.
+inline float fast_exp_neg(float x) {
+    if (x < -80.0f) return 0.0f;
+    const float y = x * 1.44269504f;  // log2(e)
+    const float fi = std::floor(y);
+    const float f = y - fi;                                                       // [0, 1)
+    const float p = 1.0f + f * (0.6951786f + f * (0.2261237f + f * 0.0781523f));  // 2^f
+    std::int32_t bits;
+    std::memcpy(&bits, &p, sizeof bits);
+    bits += std::int32_t(fi) << 23;
+    float out;
+    std::memcpy(&out, &bits, sizeof out);
+    return out;
+}
+
+}  // namespace
+
+int usable_neighbours(const VoxelGrid& grid, const Eigen::Vector3f& x, std::uint32_t* out) {
+    const std::vector<Surfel>& surfels = grid.surfels();
+    int n = 0;
+    grid.for_each_neighbour(x, [&](std::uint32_t i) {
+        if (surfels[i].usable) out[n++] = i;
+    });
+    return n;
+}
+
+bool imls_from_neighbours(const std::vector<Surfel>& surfels, const std::uint32_t* found, int n,
+                          const Eigen::Vector3f& x, const ImlsParams& params, ImlsResult* result) {
+    std::uint32_t nearest = 0;
+    float best = params.max_distance * params.max_distance;
+    bool any = false;
+    for (int k = 0; k < n; ++k) {
+        const float d2 = (x - surfels[found[k]].centre).squaredNorm();
+        if (d2 < best) {
+            best = d2;
+            nearest = found[k];
+            any = true;
+        }
+    }
+    if (!any) return false;
+    const Eigen::Vector3f& nx = surfels[nearest].normal;
+    const float inv_h2 = 1.0f / (params.bandwidth * params.bandwidth);
+    float num = 0.0f, den = 0.0f;
+    int used = 0;
+    for (int k = 0; k < n; ++k) {
+        const Surfel& s = surfels[found[k]];
+        const float agreement = s.normal.dot(nx);
+        if (std::abs(agreement) < params.min_normal_agreement) continue;
+        const Eigen::Vector3f d = x - s.centre;
+        const float w = fast_exp_neg(-d.squaredNorm() * inv_h2);
+        const float signed_distance = d.dot(s.normal);
+        num += agreement >= 0.0f ? w * signed_distance : -w * signed_distance;
+        den += w;
+        ++used;
+    }
+    if (!(den > 0.0f)) return false;
+    result->distance = num / den;
+    result->normal = nx;
+    result->projection = x - result->distance * nx;
+    result->stability = surfels[nearest].stability;
+    result->nearest = nearest;
+    result->neighbours = used;
+    return true;
+}
+
+bool imls_distance(const VoxelGrid& grid, const Eigen::Vector3f& x, const ImlsParams& params,
+                   ImlsResult* result) {
+    std::uint32_t found[27];
+    const int n = usable_neighbours(grid, x, found);
+    return imls_from_neighbours(grid.surfels(), found, n, x, params, result);
+}
+
+}  // namespace ltm::registration

@@ -1,0 +1,131 @@
+#include "registration/core/preprocess.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace ltm::registration {
+namespace {
+
+constexpr int kDeskewBins = 256;  // exact poses at bin edges, linear blend in between
+
+bool cell_key(const Eigen::Vector3f& p, float inv_cell, VoxelKey* key) {
+    Eigen::Vector3i v;
+    if (!voxel_coords(p, inv_cell, &v)) return false;
+    *key = pack_key(v.x(), v.y(), v.z());
+    return true;
+}
+
+}  // namespace
+
+void VoxelDownsampler::run(const std::vector<Eigen::Vector3f>& in, double cell,
+                           std::vector<Eigen::Vector3f>* out) {
+    out->clear();
+    cells_.reserve(in.size() / 4 + 16);
+    cells_.clear();
+    const float inv = float(1.0 / cell);
+    for (const Eigen::Vector3f& p : in) {
+        VoxelKey key;
+        if (cell_key(p, inv, &key) && cells_.insert(key, 0).second) out->push_back(p);
+    }
+}
+
+Preprocessor::Preprocessor(const PreprocessConfig& config, double voxel_size)
+    : config_(config),
+      map_cell_(config.map_sample_fraction * voxel_size),
+      registration_cell_(config.registration_sample_fraction * voxel_size) {}
+
+void Preprocessor::run(const common::PointCloud& cloud, const Vector6d* velocity,
+                       PreprocessedScan* out) {
+    const bool with_time = cloud.has_time() && cloud.time.size() == cloud.points.size();
+    out->input_points = cloud.size();
+    out->dropped_non_finite = 0;
+    out->dropped_range = 0;
+    out->deskewed = false;
+    cropped_.clear();
+    cropped_times_.clear();
+    const float min2 = float(config_.min_range * config_.min_range);
+    const float max2 = float(config_.max_range * config_.max_range);
+    for (std::size_t i = 0; i < cloud.points.size(); ++i) {
+        const Eigen::Vector3f& p = cloud.points[i];
+        if (!p.allFinite() || (with_time && !std::isfinite(cloud.time[i]))) {
+            ++out->dropped_non_finite;
+            continue;
+        }
+        const float r2 = p.squaredNorm();
+        if (r2 < min2 || r2 > max2) {
+            ++out->dropped_range;
+            continue;
+        }
+        cropped_.push_back(p);
+        if (with_time) cropped_times_.push_back(cloud.time[i]);
+    }
+
+    // Map grid: the first point of each cell.
+    out->map_points.clear();
+    map_times_.clear();
+    cells_.reserve(cropped_.size() / 4 + 16);
+    cells_.clear();
+    const float inv = float(1.0 / map_cell_);
+    keys_.resize(cropped_.size());
+    for (std::size_t i = 0; i < cropped_.size(); ++i) {
+        if (!cell_key(cropped_[i], inv, &keys_[i])) keys_[i] = ~VoxelKey(0);
+    }
+    constexpr std::size_t kAhead = 8;  // prefetch distance: hides the hash's cache misses
+    for (std::size_t i = 0; i < cropped_.size(); ++i) {
+        if (i + kAhead < cropped_.size()) cells_.prefetch(keys_[i + kAhead]);
+        if (keys_[i] == ~VoxelKey(0) || !cells_.insert(keys_[i], 0).second) continue;
+        out->map_points.push_back(cropped_[i]);
+        if (with_time) map_times_.push_back(cropped_times_[i]);
+    }
+    raw_map_points_.clear();
+    if (with_time && config_.deskew) raw_map_points_ = out->map_points;
+    if (with_time && config_.deskew && velocity != nullptr && velocity->allFinite()) {
+        deskew(map_times_, *velocity, &out->map_points);
+        out->deskewed = true;
+    }
+
+    registration_sampler_.run(out->map_points, registration_cell_, &out->registration_points);
+    const std::size_t cap = std::size_t(config_.max_registration_points);
+    auto& reg = out->registration_points;
+    if (cap > 0 && reg.size() > cap) {
+        // Even stride over the (spatially ordered) points keeps the coverage uniform.
+        const double stride = double(reg.size()) / double(cap);
+        for (std::size_t k = 0; k < cap; ++k) reg[k] = reg[std::size_t(k * stride)];
+        reg.resize(cap);
+    }
+}
+
+void Preprocessor::redeskew_map_points(const Vector6d& velocity, PreprocessedScan* out) {
+    if (raw_map_points_.empty() || raw_map_points_.size() != out->map_points.size() ||
+        !velocity.allFinite()) {
+        return;
+    }
+    out->map_points = raw_map_points_;
+    deskew(map_times_, velocity, &out->map_points);
+    out->deskewed = true;
+}
+
+void Preprocessor::deskew(const std::vector<float>& times, const Vector6d& velocity,
+                          std::vector<Eigen::Vector3f>* points) {
+    if (times.empty()) return;
+    const auto [lo, hi] = std::minmax_element(times.begin(), times.end());
+    const double t0 = *lo, span = std::max(double(*hi) - t0, 1e-9);
+    const double bin = span / kDeskewBins;
+    // Pose of the sensor at time t relative to the stamp: Exp(t * velocity).
+    std::vector<Eigen::Matrix3f> R(kDeskewBins + 1);
+    std::vector<Eigen::Vector3f> t(kDeskewBins + 1);
+    for (int k = 0; k <= kDeskewBins; ++k) {
+        const Eigen::Isometry3d T = se3_exp((t0 + k * bin) * velocity);
+        R[k] = T.linear().cast<float>();
+        t[k] = T.translation().cast<float>();
+    }
+    for (std::size_t i = 0; i < points->size(); ++i) {
+        const double f = (times[i] - t0) / bin;
+        const int k = std::clamp(int(f), 0, kDeskewBins - 1);
+        const float a = float(f - k);
+        const Eigen::Vector3f& p = (*points)[i];
+        (*points)[i] = (1.0f - a) * (R[k] * p + t[k]) + a * (R[k + 1] * p + t[k + 1]);
+    }
+}
+
+}  // namespace ltm::registration

@@ -1,0 +1,59 @@
+#pragma once
+// Scan pre-processing (Algorithm 1, before registration): drop non-finite points, range crop,
+// voxel down-sampling (a fine grid for the map update, a coarser one for registration), and
+// de-skew when the scan has per-point times. Buffers are reused: no allocation once warm.
+#include <Eigen/Core>
+#include <vector>
+
+#include "common/core/point_cloud.hpp"
+#include "registration/core/registration_config.hpp"
+#include "registration/core/se3.hpp"
+#include "registration/core/voxel_hash.hpp"
+
+namespace ltm::registration {
+
+struct PreprocessedScan {
+    std::vector<Eigen::Vector3f> map_points;           // LiDAR frame at the scan stamp
+    std::vector<Eigen::Vector3f> registration_points;  // LiDAR frame at the scan stamp
+    std::size_t input_points = 0;
+    std::size_t dropped_non_finite = 0;
+    std::size_t dropped_range = 0;
+    bool deskewed = false;
+};
+
+// Keeps the first point of each occupied cell of a grid of edge `cell` [m].
+class VoxelDownsampler {
+  public:
+    void run(const std::vector<Eigen::Vector3f>& in, double cell,
+             std::vector<Eigen::Vector3f>* out);
+
+  private:
+    VoxelHash cells_;
+};
+
+class Preprocessor {
+  public:
+    Preprocessor(const PreprocessConfig& config, double voxel_size);
+
+    // velocity: the body-frame twist per second [v; w] used to de-skew (null: no de-skew).
+    // De-skew happens only when the cloud has per-point times and the config asks for it.
+    void run(const common::PointCloud& cloud, const Vector6d* velocity, PreprocessedScan* out);
+    // De-skews the map points of the last run() again, from the raw points, with another velocity
+    // (the motion estimated by registration, better than the prediction). No-op without times.
+    void redeskew_map_points(const Vector6d& velocity, PreprocessedScan* out);
+
+  private:
+    void deskew(const std::vector<float>& kept_times, const Vector6d& velocity,
+                std::vector<Eigen::Vector3f>* points);
+
+    PreprocessConfig config_;
+    double map_cell_, registration_cell_;
+    std::vector<Eigen::Vector3f> cropped_;
+    std::vector<float> cropped_times_, map_times_;
+    std::vector<Eigen::Vector3f> raw_map_points_;  // map points before de-skewing
+    std::vector<VoxelKey> keys_;                   // map-grid key of each cropped point
+    VoxelHash cells_;
+    VoxelDownsampler registration_sampler_;
+};
+
+}  // namespace ltm::registration
