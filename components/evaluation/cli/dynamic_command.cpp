@@ -46,8 +46,8 @@ LabelledMap truth_from_scans(const Args& args, Report& report) {
     const std::filesystem::path label_dir =
         args.get("labels", (std::filesystem::path(seq) / "labels").string());
     const std::string scheme_name = args.choice("label-scheme", {"ltm", "semantickitti"}, "ltm");
-    const LabelScheme scheme =
-        scheme_name == "ltm" ? LabelScheme::kLtmSim : LabelScheme::kSemanticKitti;
+    const common::LabelScheme scheme =
+        scheme_name == "ltm" ? common::LabelScheme::kLtmSim : common::LabelScheme::kSemanticKitti;
     const std::string calib =
         args.get("calib", (std::filesystem::path(seq) / "calib.txt").string());
     const std::string poses_frame = args.choice("poses-frame", {"lidar", "camera"}, "lidar");

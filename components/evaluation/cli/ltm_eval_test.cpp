@@ -11,7 +11,7 @@
 #include "common/core/ply_io.hpp"
 #include "common/core/trajectory_io.hpp"
 #include "evaluation/core/eval_io.hpp"
-#include "evaluation/core/point_labels.hpp"
+#include "common/core/point_labels.hpp"
 
 namespace ltm::eval {
 namespace {
@@ -114,8 +114,8 @@ TEST(LtmEvalCli, DynamicOnATinyLabelledRun) {
     scan.points = {{1, 0, 0}, {2, 0, 0}, {3, 0, 0}, {5, 5, 0}};
     common::write_kitti_bin((d / "velodyne" / "000000.bin").string(), scan);
     write_labels((d / "labels" / "000000.label").string(),
-                 {make_label(kSimStatic, 0), make_label(kSimStatic, 0), make_label(kSimStatic, 0),
-                  make_label(kSimMovingActor, 1)});
+                 {common::make_label(common::kSimStatic, 0), common::make_label(common::kSimStatic, 0), common::make_label(common::kSimStatic, 0),
+                  common::make_label(common::kSimMovingActor, 1)});
     common::write_kitti_poses((d / "poses.txt").string(), {Eigen::Isometry3d::Identity()});
     common::PlyCloud map;
     map.points = {{1, 0, 0}, {2, 0, 0}, {5, 5, 0}};

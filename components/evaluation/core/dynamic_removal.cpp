@@ -7,7 +7,7 @@
 namespace ltm::eval {
 
 bool append_labelled_scan(const common::PointCloud& cloud, const std::vector<std::uint32_t>& labels,
-                          const Eigen::Isometry3d& T_world_sensor, LabelScheme scheme,
+                          const Eigen::Isometry3d& T_world_sensor, common::LabelScheme scheme,
                           bool changed_is_dynamic, double max_range, LabelledMap& map) {
     if (labels.size() != cloud.size()) return false;
     const Eigen::Isometry3f T = T_world_sensor.cast<float>();
@@ -17,7 +17,7 @@ bool append_labelled_scan(const common::PointCloud& cloud, const std::vector<std
         if (!p.allFinite()) continue;
         if (max_range > 0.0 && p.cast<double>().squaredNorm() > max_r2) continue;
         map.points.push_back(T * p);
-        map.dynamic.push_back(is_dynamic_label(labels[i], scheme, changed_is_dynamic) ? 1 : 0);
+        map.dynamic.push_back(common::is_dynamic_label(labels[i], scheme, changed_is_dynamic) ? 1 : 0);
     }
     return true;
 }

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "common/core/point_cloud.hpp"
-#include "evaluation/core/point_labels.hpp"
+#include "common/core/point_labels.hpp"
 
 namespace ltm::eval {
 
@@ -37,7 +37,7 @@ struct DynamicRemovalResult {
 // skipped when max_range > 0 (the benchmark keeps SemanticKITTI points within 50 m).
 // Returns false (map untouched) when labels.size() != cloud.size().
 bool append_labelled_scan(const common::PointCloud& cloud, const std::vector<std::uint32_t>& labels,
-                          const Eigen::Isometry3d& T_world_sensor, LabelScheme scheme,
+                          const Eigen::Isometry3d& T_world_sensor, common::LabelScheme scheme,
                           bool changed_is_dynamic, double max_range, LabelledMap& map);
 
 DynamicRemovalResult evaluate_dynamic_removal(const LabelledMap& truth,

@@ -6,7 +6,7 @@
 #include <fstream>
 
 #include "common/core/io_error.hpp"
-#include "evaluation/core/point_labels.hpp"
+#include "common/core/point_labels.hpp"
 
 namespace ltm::eval {
 namespace {
@@ -19,7 +19,7 @@ std::string temp_file(const std::string& name, const std::string& text) {
 
 TEST(EvalIo, LabelsRoundTrip) {
     const std::string path = testing::TempDir() + "ltm_eval_io_labels.label";
-    const std::vector<std::uint32_t> labels = {make_label(kSimMovingActor, 4), 252u, 0u};
+    const std::vector<std::uint32_t> labels = {common::make_label(common::kSimMovingActor, 4), 252u, 0u};
     write_labels(path, labels);
     EXPECT_EQ(read_labels(path), labels);
     EXPECT_THROW(read_labels(temp_file("bad.label", "abc")), common::IoError);

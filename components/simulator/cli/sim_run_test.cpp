@@ -7,7 +7,7 @@
 
 #include "common/core/kitti_io.hpp"
 #include "common/core/trajectory_io.hpp"
-#include "evaluation/core/point_labels.hpp"
+#include "common/core/point_labels.hpp"
 
 namespace ltm::sim::cli {
 namespace {

@@ -5,7 +5,7 @@
 #include <map>
 #include <set>
 
-#include "evaluation/core/point_labels.hpp"
+#include "common/core/point_labels.hpp"
 #include "simulator/core/scenario_yaml.hpp"
 #include "simulator/core/simulator.hpp"
 
@@ -66,9 +66,9 @@ TEST(SessionChanges, ChangedObjectsAreLabelledInBothSessions) {
         for (std::size_t i = 0; i < sim.num_scans(); i += 2) {
             ASSERT_TRUE(sim.scan(i, scan));
             for (const std::uint32_t l : scan.labels) {
-                if (eval::label_class(l) != eval::kSimChangedObject) continue;
-                EXPECT_TRUE(sim.plan().is_changed(eval::label_object_id(l)));
-                seen.insert(eval::label_object_id(l));
+                if (common::label_class(l) != common::kSimChangedObject) continue;
+                EXPECT_TRUE(sim.plan().is_changed(common::label_object_id(l)));
+                seen.insert(common::label_object_id(l));
             }
         }
         EXPECT_GE(seen.size(), 2u) << "session " << session;

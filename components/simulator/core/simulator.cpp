@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "evaluation/core/point_labels.hpp"
+#include "common/core/point_labels.hpp"
 #include "simulator/core/layout.hpp"
 
 namespace ltm::sim {
@@ -77,8 +77,8 @@ Simulator::Simulator(const ScenarioConfig& scenario, int session)
                             " objects exceed the label format's " + std::to_string(kFirstActorId) +
                             " (reduce margin or densities)");
     }
-    class_of_.assign(max_id + 1, eval::kSimStatic);
-    for (const std::uint32_t id : plan_.changed_ids) class_of_[id] = eval::kSimChangedObject;
+    class_of_.assign(max_id + 1, common::kSimStatic);
+    for (const std::uint32_t id : plan_.changed_ids) class_of_[id] = common::kSimChangedObject;
 
     terrain_ = std::move(layout.terrain);
     Mesh mesh;
@@ -161,10 +161,10 @@ common::PlyMesh Simulator::truth_mesh() const {
 
 std::uint32_t Simulator::label_of(const SurfaceHit& hit) const {
     if (hit.actor)
-        return eval::make_label(eval::kSimMovingActor, static_cast<std::uint16_t>(hit.object));
+        return common::make_label(common::kSimMovingActor, static_cast<std::uint16_t>(hit.object));
     const std::uint16_t cls =
-        hit.object < class_of_.size() ? class_of_[hit.object] : eval::kSimStatic;
-    return eval::make_label(cls, static_cast<std::uint16_t>(hit.object));
+        hit.object < class_of_.size() ? class_of_[hit.object] : common::kSimStatic;
+    return common::make_label(cls, static_cast<std::uint16_t>(hit.object));
 }
 
 }  // namespace ltm::sim

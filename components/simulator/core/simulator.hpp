@@ -24,7 +24,7 @@ namespace ltm::sim {
 struct SimScan {
     std::size_t index = 0;              // scan number within the session
     common::PointCloud cloud;           // LiDAR frame; intensity; time when configured
-    std::vector<std::uint32_t> labels;  // one per point (evaluation/core/point_labels.hpp)
+    std::vector<std::uint32_t> labels;  // one per point (common/core/point_labels.hpp)
     std::vector<std::uint16_t> rings;   // one per point: beam (spinning) or laser (rosette)
     Eigen::Isometry3d T_world_lidar = Eigen::Isometry3d::Identity();  // true pose at the stamp
     bool after_kidnap = false;  // first scan after the robot was moved without being told

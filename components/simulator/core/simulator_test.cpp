@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "evaluation/core/point_labels.hpp"
+#include "common/core/point_labels.hpp"
 #include "simulator/core/scenario_yaml.hpp"
 
 namespace ltm::sim {
@@ -104,7 +104,7 @@ TEST(Simulator, StaticPointsLieOnTheTruthMesh) {
     ASSERT_EQ(scan.rings.size(), scan.cloud.size());
     int checked = 0;
     for (std::size_t k = 0; k < scan.cloud.size(); k += 97) {
-        if (eval::label_class(scan.labels[k]) == eval::kSimMovingActor) continue;
+        if (common::label_class(scan.labels[k]) == common::kSimMovingActor) continue;
         const Eigen::Vector3d p = scan.T_world_lidar * scan.cloud.points[k].cast<double>();
         EXPECT_LT(distance_to_mesh(truth, p), 5e-3) << "point " << k;
         ++checked;
@@ -124,7 +124,7 @@ TEST(Simulator, MotionDistortionFollowsThePulseTime) {
     ASSERT_TRUE(scan.cloud.has_time());
     int checked = 0;
     for (std::size_t k = 0; k < scan.cloud.size(); k += 131) {
-        if (eval::label_class(scan.labels[k]) == eval::kSimMovingActor) continue;
+        if (common::label_class(scan.labels[k]) == common::kSimMovingActor) continue;
         const Eigen::Vector3d p =
             sim.pose_at(4, scan.cloud.time[k]) * scan.cloud.points[k].cast<double>();
         EXPECT_LT(distance_to_mesh(truth, p), 0.03) << "point " << k;  // pose steps of period / 128
@@ -156,11 +156,11 @@ TEST(Simulator, MovingActorPointsAreLabelledAndOnTheActor) {
                 (T_actor_world * scan.T_world_lidar * scan.cloud.points[k].cast<double>())
                     .cast<float>();
             const bool in_box = box.exteriorDistance(q) < 0.01f;
-            const bool labelled = eval::label_class(scan.labels[k]) == eval::kSimMovingActor;
+            const bool labelled = common::label_class(scan.labels[k]) == common::kSimMovingActor;
             if (labelled) {
                 ++moving;
                 EXPECT_TRUE(in_box) << "scan " << i << " point " << k;
-                EXPECT_EQ(eval::label_object_id(scan.labels[k]), walker.id());
+                EXPECT_EQ(common::label_object_id(scan.labels[k]), walker.id());
             } else if (in_box && q.z() > 0.1f) {
                 ++inside_unlabelled;
             }

@@ -19,7 +19,7 @@
 // motorcyclist, on-rails, bus, truck, other-vehicle); everything else is static.
 #include <cstdint>
 
-namespace ltm::eval {
+namespace ltm::common {
 
 constexpr std::uint16_t kSimNone = 0;
 constexpr std::uint16_t kSimStatic = 1;
@@ -48,4 +48,4 @@ inline bool is_dynamic_label(std::uint32_t label, LabelScheme scheme,
     return c == kSimMovingActor || (changed_is_dynamic && c == kSimChangedObject);
 }
 
-}  // namespace ltm::eval
+}  // namespace ltm::common
