@@ -30,6 +30,30 @@ void leaves(const YAML::Node& node, const std::string& prefix, std::vector<std::
     }
 }
 
+// The node at parts[i..] below `node`. A key may itself hold dots: `keyframe.distance: 1` is the
+// same parameter as `keyframe: {distance: 1}` (leaves() reports both as "keyframe.distance").
+// *key_line: the line of the last key on the way.
+YAML::Node find_dotted(const YAML::Node& node, const std::vector<std::string>& parts, std::size_t i,
+                       int* key_line) {
+    if (i == parts.size()) return node;
+    if (!node.IsMap()) return YAML::Node(YAML::NodeType::Undefined);
+    for (const auto& kv : node) {
+        const std::string k = kv.first.as<std::string>();
+        std::string joined;
+        for (std::size_t j = i; j < parts.size() && joined.size() < k.size(); ++j) {
+            joined += (j > i ? "." : "") + parts[j];
+            if (joined != k) continue;
+            int line = kv.first.Mark().line + 1;
+            const YAML::Node found = find_dotted(kv.second, parts, j + 1, &line);
+            if (found.IsDefined()) {
+                *key_line = line;
+                return found;
+            }
+        }
+    }
+    return YAML::Node(YAML::NodeType::Undefined);
+}
+
 }  // namespace
 
 std::string expand_env(const std::string& text) {
@@ -74,16 +98,8 @@ Parameters Parameters::from_file(const std::string& path, const std::string& pre
 
 YAML::Node Parameters::lookup(const std::string& key) const {
     // Const access only: a non-const operator[] would insert the key into the config.
-    YAML::Node node;
-    node.reset(root_);
-    for (const auto& part : split_dots(key)) {
-        if (!node.IsMap()) return YAML::Node(YAML::NodeType::Undefined);
-        const YAML::Node& parent = node;
-        const YAML::Node child = parent[part];
-        if (!child.IsDefined()) return YAML::Node(YAML::NodeType::Undefined);
-        node.reset(child);
-    }
-    return node;
+    int line = 0;
+    return find_dotted(root_, split_dots(key), 0, &line);
 }
 
 bool Parameters::has(const std::string& key) const {
@@ -96,6 +112,7 @@ int Parameters::line_of(const std::string& key) const {
     const YAML::Node cur = root_;
     if (!cur.IsDefined() || cur.IsNull()) return 0;
     int line = cur.Mark().line + 1;
+    if (find_dotted(root_, split_dots(key), 0, &line).IsDefined()) return line;
     YAML::Node node;
     node.reset(root_);
     for (const auto& part : split_dots(key)) {
@@ -181,7 +198,11 @@ void Parameters::check_all_used() const {
     if (!root_.IsDefined() || root_.IsNull()) return;
     std::vector<std::pair<std::string, YAML::Node>> all;
     leaves(root_, "", all);
+    std::set<std::string> seen;
     for (const auto& [key, node] : all) {
+        if (!seen.insert(key).second)
+            throw ConfigError(file_, node.Mark().line + 1, full(key),
+                              "given twice (as a dotted key and nested)");
         if (used_->count(key)) continue;
         throw ConfigError(file_, line_of(key), full(key),
                           "unknown parameter" + (used_->empty() ? std::string(" (this component takes none)")

@@ -102,3 +102,19 @@ TEST(Parameters, FromFile) {
     EXPECT_DOUBLE_EQ(p.get<double>("voxel_size", 1.0), 0.5);
     EXPECT_EQ(error_of([&] { Parameters::from_file("/no/such.yaml", "odometry"); }), "/no/such.yaml:0: odometry: no such file");
 }
+
+TEST(Parameters, DottedKeysAreTheSameParameterAsNestedOnes) {
+    // `keyframe.distance: 0.3` used to pass the unknown-key check yet read as absent.
+    Parameters p = make("rate: 1\nkeyframe.distance: 0.3\ngroup:\n  inner.size: 4\n");
+    EXPECT_DOUBLE_EQ(p.get<double>("keyframe.distance", 1.0), 0.3);
+    EXPECT_DOUBLE_EQ(p.get<double>("group.inner.size", 0.0), 4.0);
+    EXPECT_TRUE(p.has("keyframe.distance"));
+    EXPECT_FALSE(p.has("keyframe.angle"));
+    p.get<double>("rate", 0);
+    EXPECT_NO_THROW(p.check_all_used());
+    EXPECT_EQ(error_of([&] { p.get<int>("keyframe.distance", 0); }),
+              "test.yaml:2: comp.keyframe.distance: expected an integer, got '0.3'");
+    Parameters both = make("keyframe.distance: 0.3\nkeyframe:\n  distance: 0.5\n");
+    both.get<double>("keyframe.distance", 1.0);
+    EXPECT_NE(error_of([&] { both.check_all_used(); }).find("given twice"), std::string::npos);
+}

@@ -36,11 +36,11 @@
 #include "mapping/core/binary_io.hpp"
 #include "mapping/core/map_store.hpp"
 #include "mapping/core/mapper.hpp"
-#include "odometry/core/local_map_export.hpp"
 #include "sources/core/scan_folder.hpp"
 #include "odometry/core/odometry.hpp"
 #include "mapping/params/mapper_params.hpp"
 #include "odometry/params/odometry_params.hpp"
+#include "slam/core/slam_pipeline.hpp"
 
 namespace {
 
@@ -246,89 +246,68 @@ int run(const Args& a) {
     mapping::bench::KmMemoryLog km_log;
     double path_so_far = 0.0;  // [m] odometry path
 
-    odometry::Odometry odo(oc);
-    mapping::Mapper mapper(mc);
+    slam::SlamPipelineConfig pc;
+    pc.odometry = oc;
+    pc.mapping = mc;
+    pc.handover.snapshot_every_keyframes = int(a.snapshot_every);
+    slam::SlamPipeline pipeline(pc);
+    const mapping::Mapper& mapper = pipeline.mapper();
     mapping::LoopDetector shadow(mc.scan_context, mc.loop_detection);  // detection timing alone
     common::PoseList odom(frames);
     std::vector<std::uint64_t> frame_map(frames, 0);
-    std::map<std::uint32_t, std::vector<double>> seen;  // local map -> stamps of its scans
     Stats detect, add, verify, optimise, odometry_ms;
     std::size_t keyframes = 0, candidates = 0, verifications = 0, rejected = 0;
     std::map<std::string, std::size_t> reasons;  // refusals by reason (numbers cut off)
-    std::uint32_t snapshot_revision = 0;
-    auto hand_over = [&](std::vector<odometry::LocalMap> maps) {
-        for (const odometry::LocalMap& m : maps) {
-            const mapping::LocalMapResult r = mapper.add_local_map(
-                odometry::to_local_map_data(m, snapshot_revision + 1, true, seen[m.id()]));
-            if (!r.added) std::fprintf(stderr, "local map %u: %s\n", m.id(), r.message.c_str());
-            seen.erase(m.id());
+    auto report_maps = [](const std::vector<common::LocalMapData>& maps,
+                          const std::vector<mapping::LocalMapResult>& results) {
+        for (std::size_t k = 0; k < results.size(); ++k) {
+            if (!results[k].added && maps[k].finished)
+                std::fprintf(stderr, "local map %lu: %s\n", (unsigned long)maps[k].id,
+                             results[k].message.c_str());
         }
     };
     common::Progress progress("slam", frames);
     for (std::size_t i = 0; i < frames; ++i) {
         const common::PointCloud cloud = load(i);
-        auto t0 = Clock::now();
-        const odometry::FrameResult r = odo.register_frame(cloud);
-        odometry_ms.add(ms_since(t0));
+        const slam::SlamFrame f = pipeline.process(cloud);
+        const odometry::FrameResult& r = f.odometry;
+        odometry_ms.add(f.odometry_ms);
         odom[i] = r.T_odom_lidar;
         frame_map[i] = r.local_map_id;
         if (i) path_so_far += (odom[i].translation() - odom[i - 1].translation()).norm();
-        if (r.pose_valid()) {
-            for (const odometry::LocalMap& m : odo.active_local_maps())
-                seen[m.id()].push_back(cloud.stamp);
-        }
         if (!r.message.empty()) std::fprintf(stderr, "frame %zu: %s\n", i, r.message.c_str());
-        if (r.keyframe) {
-            const odometry::LocalMap* map = nullptr;
-            for (const odometry::LocalMap& m : odo.active_local_maps()) {
-                if (m.id() == r.keyframe->local_map_id) map = &m;
+        if (f.keyframe) {
+            const common::KeyframeData& k = *f.handover.keyframe;
+            const mapping::KeyframeResult& kr = *f.keyframe;
+            auto t0 = Clock::now();
+            std::vector<mapping::LoopCandidate> c;
+            shadow.add(mapping::make_scan_context(k.points, mc.scan_context), 0, k.stamp, &c);
+            const double detection = ms_since(t0);
+            detect.add(detection);
+            add.add(f.keyframe_ms);
+            ++keyframes;
+            candidates += kr.candidates;
+            rejected += kr.rejected.size();
+            for (const mapping::LoopRejection& j : kr.rejected) {
+                if (std::getenv("LTM_BENCH_LOOPS")) {
+                    std::printf("  refused %zu -> %lu (distance %.3f): %s\n", i,
+                                (unsigned long)mapper.keyframes()[j.match_keyframe]->data.scan_index,
+                                j.descriptor_distance, j.reason.c_str());
+                }
+                std::string why = j.reason.substr(0, j.reason.find_first_of("0123456789"));
+                ++reasons[why];
             }
-            if (map) {
-                const common::KeyframeData k =
-                    odometry::to_keyframe_data(*r.keyframe, map->T_odom_anchor(), i);
-                t0 = Clock::now();
-                std::vector<mapping::LoopCandidate> c;
-                shadow.add(mapping::make_scan_context(k.points, mc.scan_context), 0, k.stamp, &c);
-                const double detection = ms_since(t0);
-                detect.add(detection);
-                t0 = Clock::now();
-                const mapping::KeyframeResult kr = mapper.add_keyframe(k);
-                const double total = ms_since(t0);
-                add.add(total);
-                ++keyframes;
-                candidates += kr.candidates;
-                rejected += kr.rejected.size();
-                for (const mapping::LoopRejection& j : kr.rejected) {
-                    if (std::getenv("LTM_BENCH_LOOPS")) {
-                        std::printf(
-                            "  refused %zu -> %lu (distance %.3f): %s\n", i,
-                            (unsigned long)mapper.keyframes()[j.match_keyframe]->data.scan_index,
-                            j.descriptor_distance, j.reason.c_str());
-                    }
-                    std::string why = j.reason.substr(0, j.reason.find_first_of("0123456789"));
-                    ++reasons[why];
-                }
-                if (kr.verified) {
-                    ++verifications;
-                    verify.add(std::max(0.0, total - detection));
-                }
-                if (kr.optimisation_due()) {
-                    t0 = Clock::now();
-                    const mapping::OptimisationSummary s = mapper.optimise();
-                    optimise.add(ms_since(t0));
-                    if (!s.solved)
-                        std::fprintf(stderr, "optimisation failed: %s\n", s.message.c_str());
-                }
+            if (kr.verified) {
+                ++verifications;
+                verify.add(std::max(0.0, f.keyframe_ms - detection));
             }
         }
-        hand_over(odo.take_finished_local_maps());
-        if (r.keyframe && a.snapshot_every && keyframes % a.snapshot_every == 0) {
-            ++snapshot_revision;
-            for (const odometry::LocalMap& m : odo.active_local_maps()) {
-                mapper.add_local_map(
-                    odometry::to_local_map_data(m, snapshot_revision, false, seen[m.id()]));
-            }
+        if (f.optimisation) {
+            optimise.add(f.optimise_ms);
+            if (!f.optimisation->solved)
+                std::fprintf(stderr, "optimisation failed: %s\n", f.optimisation->message.c_str());
         }
+        report_maps(f.handover.local_maps, f.local_maps);
         if (km_log.due(path_so_far)) {
             mapping::bench::KmSample s;
             s.km = path_so_far / 1000.0;
@@ -343,10 +322,9 @@ int run(const Args& a) {
         progress.update(i + 1);
     }
     progress.finish();
-    odo.finish_local_maps();
-    hand_over(odo.take_finished_local_maps());
     auto t0 = Clock::now();
-    const mapping::OptimisationSummary final_opt = mapper.optimise();
+    std::vector<mapping::LocalMapResult> last;
+    const mapping::OptimisationSummary final_opt = pipeline.finish(&last);
     const double final_ms = ms_since(t0);
 
     common::PoseList slam(frames);

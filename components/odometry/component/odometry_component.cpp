@@ -1,13 +1,14 @@
 // LiDAR odometry as a component: `points` (PointCloud2) in; `odometry` (nav_msgs/Odometry with
-// covariance), `keyframe`, `local_map` (finished maps, and snapshots of the active one) and
-// `status` (skipped, rejected or diverged scans) out. Parameters: the odometry's (preset and
-// keys, see odometry/params) plus the frames and the snapshot period.
+// covariance), `keyframe`, `local_map` (finished maps, and snapshots of the active ones, with their
+// observation times: the hand-over policy of odometry/core/map_handover.hpp, the same as the
+// offline pipeline's) and `status` (skipped, rejected or diverged scans) out. Parameters: the
+// odometry's (preset and keys, see odometry/params) plus the frames and the snapshot period.
 #include <memory>
 
 #include "common/convert/geometry.hpp"
 #include "common/convert/local_map.hpp"
 #include "common/convert/pointcloud2.hpp"
-#include "odometry/core/local_map_export.hpp"
+#include "odometry/core/map_handover.hpp"
 #include "odometry/core/odometry.hpp"
 #include "odometry/params/odometry_params.hpp"
 #include "runtime/component.hpp"
@@ -23,20 +24,23 @@ public:
         auto& p = ctx.params();
         odom_frame_ = p.get<std::string>("frame_id", "odom");
         child_frame_ = p.get<std::string>("child_frame_id", "lidar");
-        const double snapshot_period = p.get<double>("snapshot_period_s", 2.0);
+        HandoverConfig handover;
+        handover.snapshot_every_keyframes =
+            p.get<int>("snapshot_every_keyframes", handover.snapshot_every_keyframes);
+        if (handover.snapshot_every_keyframes < 0)
+            p.fail("snapshot_every_keyframes", "must be >= 0 (0: finished maps only)");
+        handover_ = MapHandover(handover);
         odometry_ = std::make_unique<Odometry>(load_odometry_config(p));
         ctx.subscribe<msg::PointCloud2>("points", TopicRole::kSensor, [this](const msg::PointCloud2& m) { on_points(m); });
         odometry_out_ = ctx.advertise<msg::Odometry>("odometry", TopicRole::kState);
         keyframe_out_ = ctx.advertise<msg::Keyframe>("keyframe", TopicRole::kState);
         local_map_out_ = ctx.advertise<msg::LocalMap>("local_map", TopicRole::kMap);
         status_out_ = ctx.advertise<msg::Status>("status", TopicRole::kState);
-        if (snapshot_period > 0) ctx.add_timer(snapshot_period, [this] { publish_snapshot(); });
     }
 
     void on_shutdown() override {
         // Hand every map on: the active ones are finished here, nothing built is lost.
-        odometry_->finish_local_maps();
-        publish_finished();
+        for (const common::LocalMapData& m : handover_.finish(*odometry_)) publish_local_map(m);
         ctx_.log().info(std::to_string(frames_) + " scans, " + std::to_string(tracked_) + " tracked, " +
                         std::to_string(frames_ - tracked_) + " not (see status), " +
                         std::to_string(maps_published_) + " local maps published");
@@ -62,13 +66,9 @@ private:
             status(ltm_msgs_msg_Status_Constants_WARN, "degenerate",
                    "scan " + std::to_string(index) + ": " + std::to_string(r.degenerate_directions.size()) +
                        " degenerate direction(s)", r.stamp);
-        if (r.keyframe) {
-            Eigen::Isometry3d anchor = Eigen::Isometry3d::Identity();
-            for (const auto& map : odometry_->active_local_maps())
-                if (map.id() == r.keyframe->local_map_id) anchor = map.T_odom_anchor();
-            keyframe_out_.publish(keyframes_.build(to_keyframe_data(*r.keyframe, anchor, index), odom_frame_, child_frame_));
-        }
-        publish_finished();
+        const Handover h = handover_.after_frame(*odometry_, r, index);
+        if (h.keyframe) keyframe_out_.publish(keyframes_.build(*h.keyframe, odom_frame_, child_frame_));
+        for (const common::LocalMapData& m : h.local_maps) publish_local_map(m);
     }
 
     void publish_odometry(const FrameResult& r) {
@@ -93,21 +93,10 @@ private:
         odometry_out_.publish(o);
     }
 
-    void publish_finished() {
-        for (const LocalMap& map : odometry_->take_finished_local_maps()) {
-            local_map_out_.publish(maps_.build(to_local_map_data(map, ++revision_, true), map.last_update(), odom_frame_));
-            ++maps_published_;
-        }
-    }
-
-    void publish_snapshot() {
-        if (!odometry_->initialised() || odometry_->active_local_maps().empty()) return;
-        const LocalMap& active = odometry_->active_local_maps().back();
-        // Only when it changed since the last snapshot: an idle pipeline stays quiet.
-        if (active.id() == snapshot_map_ && active.scans_integrated() == snapshot_scans_) return;
-        snapshot_map_ = active.id();
-        snapshot_scans_ = active.scans_integrated();
-        local_map_out_.publish(maps_.build(to_local_map_data(active, ++revision_, false), active.last_update(), odom_frame_));
+    void publish_local_map(const common::LocalMapData& m) {
+        const double stamp = m.observation_times.empty() ? 0.0 : m.observation_times.back();
+        local_map_out_.publish(maps_.build(m, stamp, odom_frame_));
+        maps_published_ += m.finished;
     }
 
     void status(std::uint8_t level, const std::string& code, const std::string& text, double stamp) {
@@ -124,6 +113,7 @@ private:
 
     runtime::ComponentContext& ctx_;
     std::unique_ptr<Odometry> odometry_;
+    MapHandover handover_;
     std::string odom_frame_, child_frame_;
     common::PointCloud cloud_;
     convert::LocalMapBuilder maps_;
@@ -136,8 +126,6 @@ private:
     double last_stamp_ = 0.0;
     bool has_last_ = false;
     std::uint64_t frames_ = 0, tracked_ = 0, warnings_ = 0, maps_published_ = 0;
-    std::uint32_t revision_ = 0;
-    std::uint32_t snapshot_map_ = ~0u, snapshot_scans_ = 0;
 };
 
 }  // namespace

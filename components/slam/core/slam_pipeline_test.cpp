@@ -1,0 +1,69 @@
+#include "slam/core/slam_pipeline.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "registration/core/test_scenes.hpp"
+
+namespace ltm::slam {
+namespace {
+
+// Along the synthetic street, 1 m a scan, weaving gently.
+Eigen::Isometry3d street_pose(int i) {
+    return registration::test::make_pose(1.0 * i, 0.4 * std::sin(i / 5.0), 1.8, 0.0, 0.0,
+                                         3.0 * std::sin(i / 8.0));
+}
+
+TEST(SlamPipeline, HandsEveryMapAndKeyframeToTheMapperWithObservationTimes) {
+    const registration::test::Scene scene = registration::test::street_scene();
+    SlamPipelineConfig config;
+    config.odometry.local_map.half_extent = 40.0;
+    config.odometry.local_map.switch_distance = 12.0;
+    config.odometry.keyframe.distance = 2.0;
+    config.handover.snapshot_every_keyframes = 4;
+    SlamPipeline pipeline(config);
+    const int scans = 48;
+    std::size_t keyframes = 0, maps = 0, tracked = 0;
+    for (int i = 0; i < scans; ++i) {
+        const Eigen::Isometry3d T = street_pose(i);
+        common::PointCloud c = registration::test::scan_scene(
+            scene, registration::test::ScanPattern(), T, T, 300 + i);
+        c.stamp = 0.1 * i;
+        const SlamFrame f = pipeline.process(c);
+        EXPECT_EQ(f.scan_index, std::uint64_t(i));
+        tracked += f.odometry.pose_valid();
+        EXPECT_EQ(f.keyframe.has_value(), f.handover.keyframe.has_value());
+        if (f.keyframe) {
+            ++keyframes;
+            EXPECT_TRUE(f.keyframe->added) << f.keyframe->message;
+        }
+        ASSERT_EQ(f.local_maps.size(), f.handover.local_maps.size());
+        for (std::size_t k = 0; k < f.local_maps.size(); ++k) {
+            EXPECT_TRUE(f.local_maps[k].added) << f.local_maps[k].message;
+            EXPECT_FALSE(f.handover.local_maps[k].observation_times.empty());
+            ++maps;
+        }
+    }
+    std::vector<mapping::LocalMapResult> last;
+    const mapping::OptimisationSummary s = pipeline.finish(&last);
+    EXPECT_TRUE(s.solved) << s.message;
+    EXPECT_FALSE(last.empty());
+    EXPECT_EQ(tracked, std::size_t(scans));
+    EXPECT_EQ(pipeline.mapper().keyframes().size(), keyframes);
+    EXPECT_EQ(pipeline.handover().keyframes(), keyframes);
+    EXPECT_GT(maps, 0u);
+    // Every stored local map carries the stamps of the scans that updated it, in order.
+    const mapping::MapData saved = pipeline.mapper().snapshot();
+    ASSERT_GE(saved.local_maps.size(), 3u);
+    for (const auto& m : saved.local_maps) {
+        ASSERT_TRUE(m.data);
+        EXPECT_TRUE(m.data->finished);
+        ASSERT_FALSE(m.data->observation_times.empty()) << "map " << m.data->id;
+        for (std::size_t k = 1; k < m.data->observation_times.size(); ++k)
+            EXPECT_LT(m.data->observation_times[k - 1], m.data->observation_times[k]);
+    }
+}
+
+}  // namespace
+}  // namespace ltm::slam
