@@ -17,6 +17,10 @@ Logger g_log("host");
 }  // namespace
 
 void block_stop_signals() {
+    // A shell starts background jobs with SIGINT ignored; an ignored signal is discarded even while
+    // blocked, so restore the default action first: the host waits for both with sigtimedwait.
+    signal(SIGINT, SIG_DFL);
+    signal(SIGTERM, SIG_DFL);
     sigset_t set;
     sigemptyset(&set);
     sigaddset(&set, SIGINT);

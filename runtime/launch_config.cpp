@@ -101,6 +101,19 @@ void apply_override(YAML::Node root, const std::string& arg) {
             std::string name = map_scalar(entry, "name");
             if (name.empty()) name = map_scalar(entry, "type");
             if (name == comp) {
+                // NAME.remap.FROM=TO: a topic remap of the component, not a parameter.
+                const std::string rest = key.substr(dot + 1);
+                if (rest.rfind("remap.", 0) == 0 && rest.size() > 6) {
+                    if (!value.IsScalar())
+                        throw ConfigError("<command line>", 0, "--set " + key, "expected a topic name");
+                    YAML::Node remap = entry["remap"];
+                    if (!remap.IsMap()) {
+                        remap = YAML::Node(YAML::NodeType::Map);
+                        entry["remap"] = remap;
+                    }
+                    entry["remap"][rest.substr(6)] = value;
+                    return;
+                }
                 YAML::Node params = entry["params"];
                 if (!params.IsMap()) {
                     params = YAML::Node(YAML::NodeType::Map);

@@ -79,6 +79,23 @@ TEST(LaunchConfig, OverridesFromTheCommandLine) {
     EXPECT_EQ(c.domain_id, 9);
 }
 
+TEST(LaunchConfig, RemapsAndTopLevelMapsFromTheCommandLine) {
+    const LaunchConfig c =
+        load_launch_config(write_temp(kGood), {"player.remap.points=/other/points", "trajectory_writer.remap.odometry=/x",
+                                               "dds={interfaces: [lo], multicast: false, peers: [127.0.0.2]}"});
+    EXPECT_EQ(c.components[0].remaps.at("points"), "/other/points");
+    EXPECT_EQ(c.components[1].remaps.at("odometry"), "/x");
+    for (const auto& kv : c.components[0].params) EXPECT_NE(kv.first.as<std::string>(), "remap");
+    ASSERT_EQ(c.dds.peers.size(), 1u);
+    EXPECT_EQ(c.dds.peers[0], "127.0.0.2");
+    try {
+        load_launch_config(write_temp(kGood), {"player.remap.points=[a, b]"});
+        FAIL();
+    } catch (const ConfigError& e) {
+        EXPECT_EQ(std::string(e.what()), "<command line>:0: --set player.remap.points: expected a topic name");
+    }
+}
+
 TEST(LaunchConfig, BadConfigurationsNameLineAndKey) {
     EXPECT_EQ(error_of("domain_id: 1\ncomponentz: []\n"),
               ":2: componentz: unknown key (known: components, dds, domain_id, exit_when_sources_done, "
