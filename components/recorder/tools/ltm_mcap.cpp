@@ -1,17 +1,11 @@
-// ltm_mcap: MCAP files of ltm recordings, without DDS.
-//   ltm_mcap info FILE
-//   ltm_mcap verify FILE
-//   ltm_mcap recover IN -o OUT [--compression zstd|lz4|none]
-//   ltm_mcap manifest FILE [-o OUT.json]
-//   ltm_mcap write-test-file OUT [--manifest M.json] [--compression C] [--chunk-size BYTES]
-//                            [--messages N]
-#include <cstdlib>
+// ltm_mcap: MCAP files of ltm recordings, without DDS: info, verify, recover, manifest,
+// write-test-file (`ltm_mcap --help`, `ltm_mcap COMMAND --help`).
 #include <fstream>
 #include <iostream>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "common/cli/cli.hpp"
 #include "common/core/io_error.hpp"
 #include "recorder/core/mcap_info.hpp"
 #include "recorder/core/mcap_reader.hpp"
@@ -21,94 +15,53 @@
 namespace {
 
 using namespace ltm::recorder;
-
-int usage() {
-    std::cerr << "usage: ltm_mcap info FILE\n"
-                 "       ltm_mcap verify FILE\n"
-                 "       ltm_mcap recover IN -o OUT [--compression zstd|lz4|none]\n"
-                 "       ltm_mcap manifest FILE [-o OUT.json]\n"
-                 "       ltm_mcap write-test-file OUT [--manifest M.json] [--compression C]\n"
-                 "                                [--chunk-size BYTES] [--messages N]\n";
-    return 2;
-}
+namespace cli = ltm::common::cli;
 
 struct Args {
-    std::vector<std::string> positional;
-    std::string out, manifest, compression;
+    std::string file, out, manifest, compression;
     std::size_t chunk_size = 0, messages = 0;
 };
 
-Args parse(int argc, char** argv) {
-    Args a;
-    for (int i = 2; i < argc; ++i) {
-        const std::string k = argv[i];
-        auto value = [&]() -> std::string {
-            if (i + 1 >= argc) throw std::invalid_argument(k + " needs a value");
-            return argv[++i];
-        };
-        if (k == "-o" || k == "--output")
-            a.out = value();
-        else if (k == "--manifest")
-            a.manifest = value();
-        else if (k == "--compression")
-            a.compression = value();
-        else if (k == "--chunk-size")
-            a.chunk_size = std::stoul(value());
-        else if (k == "--messages")
-            a.messages = std::stoul(value());
-        else if (!k.empty() && k[0] == '-')
-            throw std::invalid_argument("unknown option " + k);
-        else
-            a.positional.push_back(k);
-    }
-    return a;
-}
-
+// --compression, already checked to be zstd, lz4 or none (zstd when absent).
 Compression compression_arg(const std::string& text) {
     Compression c = Compression::kZstd;
-    if (!text.empty() && !parse_compression(text, c)) {
-        throw std::invalid_argument("--compression must be zstd, lz4 or none, not '" + text + "'");
-    }
+    if (!text.empty()) parse_compression(text, c);
     return c;
 }
 
 int cmd_info(const Args& a) {
-    if (a.positional.size() != 1) return usage();
-    const McapInfo in = info(a.positional[0]);
+    const McapInfo in = info(a.file);
     print_info(in, std::cout);
     if (!in.problems.empty()) {
-        std::cerr << a.positional[0] << ": " << in.problems.front() << "\n";
+        std::cerr << a.file << ": " << in.problems.front() << "\n";
     }
     return 0;
 }
 
 int cmd_verify(const Args& a) {
-    if (a.positional.size() != 1) return usage();
-    McapReader reader(a.positional[0]);
+    McapReader reader(a.file);
     const VerifyReport rep = reader.verify();
     if (rep.ok) {
-        std::cout << a.positional[0] << ": OK (" << rep.messages << " messages in " << rep.chunks
+        std::cout << a.file << ": OK (" << rep.messages << " messages in " << rep.chunks
                   << " chunks; CRCs, message indexes and summary checked)\n";
         return 0;
     }
-    for (const auto& p : rep.problems) std::cout << a.positional[0] << ": " << p << "\n";
+    for (const auto& p : rep.problems) std::cout << a.file << ": " << p << "\n";
     return 1;
 }
 
 int cmd_recover(const Args& a) {
-    if (a.positional.size() != 1 || a.out.empty()) return usage();
     McapWriterConfig config;
     config.compression = compression_arg(a.compression);
-    const RecoverResult r = recover(a.positional[0], a.out, config, a.compression.empty());
-    if (!r.problems.empty()) std::cerr << a.positional[0] << ": " << r.problems.front() << "\n";
+    const RecoverResult r = recover(a.file, a.out, config, a.compression.empty());
+    if (!r.problems.empty()) std::cerr << a.file << ": " << r.problems.front() << "\n";
     std::cout << "recovered " << r.messages << " messages in " << r.chunks << " chunks into "
               << a.out << "\n";
     return 0;
 }
 
 int cmd_manifest(const Args& a) {
-    if (a.positional.size() != 1) return usage();
-    McapReader reader(a.positional[0]);
+    McapReader reader(a.file);
     if (a.out.empty()) {
         tools::write_manifest(reader, std::cout);
     } else {
@@ -116,23 +69,22 @@ int cmd_manifest(const Args& a) {
         if (!f) throw ltm::common::IoError(a.out, "cannot write");
         tools::write_manifest(reader, f);
     }
-    for (const auto& p : reader.problems()) std::cerr << a.positional[0] << ": " << p << "\n";
+    for (const auto& p : reader.problems()) std::cerr << a.file << ": " << p << "\n";
     return reader.problems().empty() ? 0 : 1;
 }
 
 int cmd_write_test_file(const Args& a) {
-    if (a.positional.size() != 1) return usage();
     tools::TestFileOptions o;
     o.compression = compression_arg(a.compression);
     if (a.chunk_size) o.chunk_size = a.chunk_size;
     if (a.messages) o.messages = a.messages;
     if (a.manifest.empty()) {
         std::ofstream devnull("/dev/null");
-        tools::write_test_file(a.positional[0], o, devnull);
+        tools::write_test_file(a.file, o, devnull);
     } else {
         std::ofstream f(a.manifest);
         if (!f) throw ltm::common::IoError(a.manifest, "cannot write");
-        tools::write_test_file(a.positional[0], o, f);
+        tools::write_test_file(a.file, o, f);
     }
     return 0;
 }
@@ -140,17 +92,47 @@ int cmd_write_test_file(const Args& a) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    if (argc < 2) return usage();
-    const std::string cmd = argv[1];
+    CLI::App app{"MCAP files of ltm recordings, without DDS", "ltm_mcap"};
+    cli::configure(app);
+    app.require_subcommand(1);
+    Args a;
+    const std::string compression_help = "chunk compression (default zstd)";
+    const auto file = [&](CLI::App* c, const char* name, const char* help) {
+        c->add_option(name, a.file, help)->required();
+        return c;
+    };
+    file(app.add_subcommand("info", "summary: channels, messages, chunks, time range"), "FILE",
+         "the recording");
+    file(app.add_subcommand("verify", "check CRCs, message indexes and the summary"), "FILE",
+         "the recording");
+    CLI::App* recover =
+        file(app.add_subcommand("recover",
+                                "copy every readable message of a damaged file into a new one"),
+             "IN", "the damaged recording");
+    recover->add_option("-o,--output", a.out, "the recovered file")->required();
+    recover->add_option("--compression", a.compression, compression_help)
+        ->check(cli::one_of({"zstd", "lz4", "none"}));
+    CLI::App* manifest =
+        file(app.add_subcommand("manifest", "JSON manifest of every message (channel, times, CRC)"),
+             "FILE", "the recording");
+    manifest->add_option("-o,--output", a.out, "write it here instead of to stdout");
+    CLI::App* test_file = file(
+        app.add_subcommand("write-test-file", "a deterministic file for interoperability tests"),
+        "OUT", "the file to write");
+    test_file->add_option("--manifest", a.manifest, "write the manifest of what it wrote here");
+    test_file->add_option("--compression", a.compression, compression_help)
+        ->check(cli::one_of({"zstd", "lz4", "none"}));
+    test_file->add_option("--chunk-size", a.chunk_size, "chunk size [bytes] (0: 65536)");
+    test_file->add_option("--messages", a.messages, "messages to write (0: 600)");
+    if (const int code = cli::parse(app, argc, argv); code >= 0) return code;
+
+    const std::string cmd = app.get_subcommands().front()->get_name();
     try {
-        const Args a = parse(argc, argv);
         if (cmd == "info") return cmd_info(a);
         if (cmd == "verify") return cmd_verify(a);
         if (cmd == "recover") return cmd_recover(a);
         if (cmd == "manifest") return cmd_manifest(a);
-        if (cmd == "write-test-file") return cmd_write_test_file(a);
-        std::cerr << "ltm_mcap: unknown command '" << cmd << "'\n";
-        return usage();
+        return cmd_write_test_file(a);
     } catch (const std::exception& e) {
         std::cerr << "ltm_mcap " << cmd << ": " << e.what() << "\n";
         return 1;

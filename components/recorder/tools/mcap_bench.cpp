@@ -19,6 +19,7 @@
 #include <thread>
 #include <vector>
 
+#include "common/cli/cli.hpp"
 #include "common/core/kitti_io.hpp"
 #include "recorder/async/async_mcap_writer.hpp"
 #include "recorder/core/mcap_reader.hpp"
@@ -26,6 +27,7 @@
 
 namespace fs = std::filesystem;
 using namespace ltm::recorder;
+namespace cli = ltm::common::cli;
 using Clock = std::chrono::steady_clock;
 
 namespace {
@@ -130,22 +132,14 @@ int main(int argc, char** argv) {
     double seconds = 10.0;
     std::string out_dir = "/tmp";
     std::string kitti = std::string(LTM_SOURCE_DIR) + "/../shared/data/kitti/sequences/00";
-    for (int i = 1; i + 1 < argc; i += 2) {
-        const std::string k = argv[i], v = argv[i + 1];
-        if (k == "--frames")
-            frames = std::stoul(v);
-        else if (k == "--seconds")
-            seconds = std::stod(v);
-        else if (k == "--out")
-            out_dir = v;
-        else if (k == "--kitti")
-            kitti = v;
-        else {
-            std::cerr << "usage: ltm_mcap_bench [--frames N (0: skip flat out)] [--seconds S] "
-                         "[--out DIR] [--kitti DIR]\n";
-            return 2;
-        }
-    }
+    CLI::App app{"MCAP recording throughput and CPU for LiDAR-sized CDR payloads",
+                 "ltm_mcap_bench"};
+    cli::configure(app);
+    app.add_option("--frames", frames, "scans written flat out (0: skip that part)");
+    app.add_option("--seconds", seconds, "duration of the 10 Hz part [s]")->check(cli::at_least(0));
+    app.add_option("--out", out_dir, "folder of the temporary recording");
+    app.add_option("--kitti", kitti, "KITTI sequence whose scans are the payloads");
+    if (const int code = cli::parse(app, argc, argv); code >= 0) return code;
     std::string source;
     const auto scans = load_scans(kitti, source);
     double avg = 0;

@@ -7,16 +7,12 @@
 #include <string>
 #include <vector>
 
+#include "common/cli/cli.hpp"
 #include "simulator/cli/sim_run.hpp"
 #include "simulator/core/scenario_yaml.hpp"
 #include "simulator/core/simulator.hpp"
 
 namespace {
-
-const char* kUsage =
-    "usage: ltm_sim_bench [--scenario FILE] [--scans N] [--sensors "
-    "hdl64e,vlp32c,vlp16,livox_avia]\n"
-    "  default scenario: scenarios/kitti00_path.yaml (a street scene); N = 50 scans per sensor.\n";
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -29,24 +25,16 @@ int main(int argc, char** argv) {
     std::string scenario = LTM_SOURCE_DIR "/components/simulator/scenarios/kitti00_path.yaml";
     std::string sensors = "hdl64e,vlp32c,vlp16,livox_avia";
     int scans = 50;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        if (a == "-h" || a == "--help" || i + 1 >= argc) {
-            std::cout << kUsage;
-            return a == "-h" || a == "--help" ? 0 : 2;
-        }
-        const std::string v = argv[++i];
-        if (a == "--scenario")
-            scenario = v;
-        else if (a == "--scans")
-            scans = std::max(1, std::atoi(v.c_str()));
-        else if (a == "--sensors")
-            sensors = v;
-        else {
-            std::cerr << "ltm_sim_bench: " << a << ": unknown option\n" << kUsage;
-            return 2;
-        }
-    }
+    CLI::App app{
+        "Simulator speed per sensor model on one core: world build time, scans a second "
+        "and points a scan",
+        "ltm_sim_bench"};
+    common::cli::configure(app);
+    app.add_option("--scenario", scenario, "the scenario (a street scene by default)");
+    app.add_option("--scans", scans, "scans per sensor, spread along the route")
+        ->check(common::cli::at_least(1));
+    app.add_option("--sensors", sensors, "sensor presets, comma-separated");
+    if (const int code = common::cli::parse(app, argc, argv); code >= 0) return code;
     std::printf("%-12s %10s %12s %12s %12s %10s\n", "sensor", "build [s]", "scans/s", "ms/scan",
                 "points/scan", "triangles");
     std::stringstream list(sensors);

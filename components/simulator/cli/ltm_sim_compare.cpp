@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "common/cli/cli.hpp"
 #include "common/core/io_error.hpp"
 #include "common/core/kitti_io.hpp"
 #include "simulator/cli/scan_stats.hpp"
@@ -13,15 +14,12 @@
 
 namespace {
 
-const char* kUsage =
-    "usage: ltm_sim_compare [--kitti SEQ_DIR] [--kitti-more DIR,DIR] [--scenario FILE] [--seed N]\n"
-    "                       [--frames A:B] [--stride N]\n"
-    "  Columns: the real scans in SEQ_DIR (default: the shared KITTI 00 snippet, frames 0-15);\n"
-    "  the real scans of the other folders (default: the shared 04, 05, 07 snippets, to show how\n"
-    "  much real streets differ);\n"
-    "  the simulated scans A..B-1 (default 0:16: the same stretch of the KITTI 00 path, since\n"
-    "  scenarios/kitti00_path.yaml drives it); and every N-th simulated scan of the whole route\n"
-    "  (default 100), the typical street rather than one place.\n";
+const char* kDescription =
+    "Simulated HDL-64E street scans beside real KITTI scans, all computed the same way. Columns:\n"
+    "the real scans of --kitti (the shared KITTI 00 snippet, frames 0-15); those of --kitti-more\n"
+    "(the shared 04, 05, 07 snippets: how much real streets differ); the simulated scans\n"
+    "--frames (the same stretch of the KITTI 00 path, which scenarios/kitti00_path.yaml\n"
+    "drives); every --stride-th simulated scan of the route (the typical street).";
 
 }  // namespace
 
@@ -35,37 +33,16 @@ int main(int argc, char** argv) {
     options.first = 0;
     options.last = 16;
     std::size_t stride = 100;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        if (a == "-h" || a == "--help") {
-            std::cout << kUsage;
-            return 0;
-        }
-        if (i + 1 >= argc) {
-            std::cerr << "ltm_sim_compare: " << a << ": needs a value\n" << kUsage;
-            return 2;
-        }
-        const std::string v = argv[++i];
-        std::string error;
-        if (a == "--kitti") {
-            kitti = v;
-        } else if (a == "--kitti-more") {
-            more = v;
-        } else if (a == "--scenario") {
-            options.scenario = v;
-        } else if (a == "--stride") {
-            stride = static_cast<std::size_t>(std::max(1, std::atoi(v.c_str())));
-        } else if (a == "--frames" || a == "--seed") {
-            if (!sim::cli::parse_sim_args({"ltm_sim", options.scenario, "--out", "-", a, v},
-                                          options, error)) {
-                std::cerr << "ltm_sim_compare: " << error << "\n";
-                return 2;
-            }
-        } else {
-            std::cerr << "ltm_sim_compare: " << a << ": unknown option\n" << kUsage;
-            return 2;
-        }
-    }
+    CLI::App app{kDescription, "ltm_sim_compare"};
+    common::cli::configure(app);
+    app.add_option("--kitti", kitti, "KITTI sequence folder of the real scans");
+    app.add_option("--kitti-more", more, "more real sequence folders, comma-separated");
+    app.add_option("--scenario", options.scenario, "the simulated scenario");
+    sim::cli::add_seed_option(app, options);
+    sim::cli::add_frames_option(app, options, "simulated scans A..B-1 (default 0:16)");
+    app.add_option("--stride", stride, "every N-th scan of the route")
+        ->check(common::cli::at_least(1));
+    if (const int code = common::cli::parse(app, argc, argv); code >= 0) return code;
     const std::vector<double> edges = {0, 2.5, 5, 7.5, 10, 15, 20, 30, 40, 50, 60, 80, 100};
     try {
         std::vector<sim::cli::ScanStats> real, others, here, along;

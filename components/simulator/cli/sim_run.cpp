@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <iostream>
 
+#include "common/cli/cli.hpp"
 #include "common/core/io_error.hpp"
 #include "common/core/kitti_io.hpp"
 #include "common/core/ply_io.hpp"
@@ -22,6 +23,17 @@ bool parse_count(const std::string& s, std::size_t& out) {
     return true;
 }
 
+// "A:B", "A:" or ":B" with A < B into first, last; false when it is none of them.
+bool parse_frames(const std::string& v, std::size_t& first, std::size_t& last) {
+    const std::size_t colon = v.find(':');
+    if (colon == std::string::npos) return false;
+    const std::string lo = v.substr(0, colon), hi = v.substr(colon + 1);
+    first = 0;
+    last = std::numeric_limits<std::size_t>::max();
+    return (lo.empty() || parse_count(lo, first)) && (hi.empty() || parse_count(hi, last)) &&
+           first < last;
+}
+
 std::string frame_name(std::size_t i, const char* ext) {
     char buf[48];
     std::snprintf(buf, sizeof buf, "%06zu%s", i, ext);
@@ -30,70 +42,48 @@ std::string frame_name(std::size_t i, const char* ext) {
 
 }  // namespace
 
-std::string sim_usage() {
-    return "usage: ltm_sim SCENARIO.yaml [--seed N] [--session K] [--frames A:B] [--sensor NAME] "
-           "[--quiet] --out DIR\n"
-           "  writes DIR/velodyne/NNNNNN.bin, labels/, times.txt, poses.txt (KITTI, LiDAR frame),\n"
-           "  poses_tum.txt, calib.txt (identity), truth_mesh.ply, scenario.yaml, objects.txt,\n"
-           "  changes.txt, actors.txt, kidnaps.txt. --frames A:B writes scans A..B-1 (A: or :B\n"
-           "  allowed) numbered from 0. Sensors: " +
-           sensor_preset_names() + "\n";
+void add_seed_option(CLI::App& app, SimRunOptions& o) {
+    app.add_option("--seed", o.seed, "random seed (default: the scenario's)")
+        ->default_str("")
+        ->each([&o](const std::string&) { o.has_seed = true; });
 }
 
-bool parse_sim_args(const std::vector<std::string>& args, SimRunOptions& o, std::string& error) {
-    auto bad = [&](const std::string& message) {
-        error = message;
-        return false;
-    };
-    for (std::size_t i = 1; i < args.size(); ++i) {
-        const std::string& a = args[i];
-        const bool takes_value =
-            a == "--seed" || a == "--session" || a == "--frames" || a == "--sensor" || a == "--out";
-        if (takes_value && i + 1 >= args.size()) return bad(a + ": needs a value");
-        const std::string v = takes_value ? args[++i] : std::string();
-        std::size_t n = 0;
-        if (a == "--seed") {
-            if (!parse_count(v, n))
-                return bad("--seed: expected a non-negative integer, got '" + v + "'");
-            o.has_seed = true;
-            o.seed = n;
-        } else if (a == "--session") {
-            if (!parse_count(v, n)) return bad("--session: expected 0, 1, ..., got '" + v + "'");
-            o.session = static_cast<int>(n);
-        } else if (a == "--frames") {
-            const std::size_t colon = v.find(':');
-            const std::string lo = colon == std::string::npos ? v : v.substr(0, colon);
-            const std::string hi = colon == std::string::npos ? "" : v.substr(colon + 1);
-            const bool ok = colon != std::string::npos &&
-                            (lo.empty() || parse_count(lo, o.first)) &&
-                            (hi.empty() || parse_count(hi, o.last));
-            if (!ok || o.first >= o.last) {
-                return bad("--frames: expected A:B with A < B (e.g. 0:100, 50:), got '" + v + "'");
-            }
-        } else if (a == "--sensor") {
-            o.sensor = v;
-        } else if (a == "--out") {
-            o.out = v;
-        } else if (a == "--quiet") {
-            o.quiet = true;
-        } else if (!a.empty() && a[0] == '-') {
-            return bad(a + ": unknown option");
-        } else if (o.scenario.empty()) {
-            o.scenario = a;
-        } else {
-            return bad(a + ": only one scenario file is allowed");
-        }
-    }
-    if (o.scenario.empty()) return bad("missing the scenario file");
-    if (o.out.empty()) return bad("missing --out DIR");
-    return true;
+void add_frames_option(CLI::App& app, SimRunOptions& o, const std::string& help) {
+    app.add_option_function<std::string>(
+           "--frames", [&o](const std::string& v) { parse_frames(v, o.first, o.last); }, help)
+        ->type_name("A:B")
+        ->check(CLI::Validator(
+            [](std::string& v) -> std::string {
+                std::size_t first = 0, last = 0;
+                if (parse_frames(v, first, last)) return "";
+                return "expected A:B with A < B (e.g. 0:100, 50:), got '" + v + "'";
+            },
+            ""));
+}
+
+void add_sim_options(CLI::App& app, SimRunOptions& o) {
+    common::cli::configure(app);
+    app.footer(
+        "Writes DIR/velodyne/NNNNNN.bin, labels/, times.txt, poses.txt (KITTI, LiDAR frame),\n"
+        "poses_tum.txt, calib.txt (identity), truth_mesh.ply, scenario.yaml, objects.txt,\n"
+        "changes.txt, actors.txt, kidnaps.txt.");
+    app.add_option("SCENARIO", o.scenario, "the scenario (YAML)")->required();
+    add_seed_option(app, o);
+    app.add_option("--session", o.session, "session of the scenario")
+        ->check(common::cli::at_least(0));
+    add_frames_option(app, o, "scans A..B-1 (A: or :B allowed), written numbered from 0");
+    app.add_option("--sensor", o.sensor,
+                   "sensor preset replacing the scenario's: " + sensor_preset_names());
+    app.add_flag("--quiet", o.quiet, "no summary and no progress");
+    app.add_option("--out", o.out, "the output folder")->required();
 }
 
 ScenarioConfig load_with_options(const SimRunOptions& o) {
     ScenarioConfig sc = load_scenario(o.scenario);
     if (o.has_seed) sc.seed = o.seed;
     if (!o.sensor.empty() && !replace_sensor(o.sensor, sc.sensor)) {
-        throw ScenarioError("--sensor " + o.sensor + ": unknown (known: " + sensor_preset_names() + ")");
+        throw ScenarioError("--sensor " + o.sensor + ": unknown (known: " + sensor_preset_names() +
+                            ")");
     }
     return sc;
 }
@@ -176,19 +166,10 @@ int run_sim(const SimRunOptions& o) {
 }
 
 int sim_main(int argc, char** argv) {
-    std::vector<std::string> args(argv, argv + argc);
-    for (const auto& a : args) {
-        if (a == "-h" || a == "--help") {
-            std::cout << sim_usage();
-            return 0;
-        }
-    }
     SimRunOptions o;
-    std::string error;
-    if (!parse_sim_args(args, o, error)) {
-        std::cerr << "ltm_sim: " << error << "\n" << sim_usage();
-        return 2;
-    }
+    CLI::App app{"Writes one session of a simulated scenario as a KITTI-layout folder", "ltm_sim"};
+    add_sim_options(app, o);
+    if (const int code = common::cli::parse(app, argc, argv); code >= 0) return code;
     return run_sim(o);
 }
 

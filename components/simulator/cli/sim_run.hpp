@@ -8,6 +8,10 @@
 
 #include "simulator/core/scenario.hpp"
 
+namespace CLI {
+class App;
+}
+
 namespace ltm::sim::cli {
 
 struct SimRunOptions {
@@ -22,10 +26,12 @@ struct SimRunOptions {
     bool quiet = false;  // no summary and no progress
 };
 
-// Parses the command line (argv[0] is the program). False with a one-line `error` on bad input.
-bool parse_sim_args(const std::vector<std::string>& args, SimRunOptions& options,
-                    std::string& error);
-std::string sim_usage();
+// Declares ltm_sim's command line on `app`: the scenario, --seed, --session, --frames, --sensor,
+// --quiet and --out, filling `options` when the app parses.
+void add_sim_options(CLI::App& app, SimRunOptions& options);
+// The --seed N and --frames A:B options alone (other tools that run a scenario use them).
+void add_seed_option(CLI::App& app, SimRunOptions& options);
+void add_frames_option(CLI::App& app, SimRunOptions& options, const std::string& help);
 
 // Loads the scenario with the options applied (seed, sensor). Throws ScenarioError.
 ScenarioConfig load_with_options(const SimRunOptions& options);

@@ -4,20 +4,26 @@
 
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
+#include "common/cli/cli.hpp"
 #include "common/core/kitti_io.hpp"
-#include "common/core/trajectory_io.hpp"
 #include "common/core/point_labels.hpp"
+#include "common/core/trajectory_io.hpp"
 
 namespace ltm::sim::cli {
 namespace {
 
 const std::string kTiny = LTM_SOURCE_DIR "/components/simulator/scenarios/tiny_loop.yaml";
 
-std::vector<std::string> argv_of(std::initializer_list<std::string> args) {
-    std::vector<std::string> v{"ltm_sim"};
-    v.insert(v.end(), args);
-    return v;
+// Parses a command line as ltm_sim does: the exit code (-1: go on) and what went to stderr.
+int parse_sim_args(const std::vector<std::string>& args, SimRunOptions& o, std::string& error) {
+    CLI::App app{"ltm_sim", "ltm_sim"};
+    add_sim_options(app, o);
+    std::ostringstream out, err;
+    const int code = common::cli::parse(app, args, out, err);
+    error = err.str();
+    return code;
 }
 
 std::size_t file_size(const std::string& path) { return std::filesystem::file_size(path); }
@@ -25,9 +31,10 @@ std::size_t file_size(const std::string& path) { return std::filesystem::file_si
 TEST(SimRun, ParsesOptions) {
     SimRunOptions o;
     std::string error;
-    ASSERT_TRUE(parse_sim_args(argv_of({"s.yaml", "--seed", "9", "--session", "1", "--frames",
-                                        "5:", "--sensor", "vlp16", "--out", "d"}),
-                               o, error))
+    ASSERT_EQ(parse_sim_args({"s.yaml", "--seed", "9", "--session", "1", "--frames",
+                              "5:", "--sensor", "vlp16", "--out", "d"},
+                             o, error),
+              -1)
         << error;
     EXPECT_EQ(o.scenario, "s.yaml");
     EXPECT_TRUE(o.has_seed);
@@ -37,17 +44,24 @@ TEST(SimRun, ParsesOptions) {
     EXPECT_EQ(o.last, std::numeric_limits<std::size_t>::max());
     EXPECT_EQ(o.sensor, "vlp16");
     EXPECT_EQ(o.out, "d");
-    for (const auto& bad :
-         {argv_of({"s.yaml"}), argv_of({"--out", "d"}),
-          argv_of({"s.yaml", "--out", "d", "--frames", "9:3"}),
-          argv_of({"s.yaml", "--out", "d", "--seed", "x"}),
-          argv_of({"s.yaml", "--out", "d", "--fast"}), argv_of({"s.yaml", "--out"})}) {
+    const std::vector<std::pair<std::vector<std::string>, std::string>> bad = {
+        {{"s.yaml"}, "--out: is required"},
+        {{"--out", "d"}, "SCENARIO: is required"},
+        {{"s.yaml", "--out", "d", "--frames", "9:3"},
+         "--frames: expected A:B with A < B (e.g. 0:100, 50:), got '9:3'"},
+        {{"s.yaml", "--out", "d", "--seed", "x"},
+         "--seed: expected a non-negative integer, got 'x'"},
+        {{"s.yaml", "--out", "d", "--session", "-1"}, "--session: must be at least 0, not -1"},
+        {{"s.yaml", "--out", "d", "--fast"}, "--fast: unknown option"},
+        {{"s.yaml", "t.yaml", "--out", "d"}, "t.yaml: unexpected argument"},
+        {{"s.yaml", "--out"}, "--out: needs a value"}};
+    for (const auto& [args, message] : bad) {
         SimRunOptions b;
-        error.clear();
-        EXPECT_FALSE(parse_sim_args(bad, b, error));
-        EXPECT_FALSE(error.empty());
-        EXPECT_EQ(error.find('\n'), std::string::npos);
+        EXPECT_EQ(parse_sim_args(args, b, error), 2);
+        EXPECT_EQ(error, "ltm_sim: " + message + "\n");
     }
+    SimRunOptions h;
+    EXPECT_EQ(parse_sim_args({"--help"}, h, error), 0);
 }
 
 TEST(SimRun, WritesAKittiFolderThatReadsBack) {
@@ -55,8 +69,9 @@ TEST(SimRun, WritesAKittiFolderThatReadsBack) {
     std::filesystem::remove_all(out);
     SimRunOptions o;
     std::string error;
-    ASSERT_TRUE(parse_sim_args(
-        argv_of({kTiny, "--session", "1", "--frames", "0:4", "--quiet", "--out", out}), o, error));
+    ASSERT_EQ(parse_sim_args({kTiny, "--session", "1", "--frames", "0:4", "--quiet", "--out", out},
+                             o, error),
+              -1);
     ASSERT_EQ(run_sim(o), 0);
     const auto scans = common::list_kitti_scans(out);
     ASSERT_EQ(scans.size(), 4u);
