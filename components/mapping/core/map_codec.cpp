@@ -75,8 +75,9 @@ ScanContextConfig get_descriptor_config(ByteReader& r) {
     c.max_range = r.get_f64("descriptor.max_range");
     c.min_range = r.get_f64("descriptor.min_range");
     c.sensor_height = r.get_f64("descriptor.sensor_height");
-    const std::string error = validate(c, "descriptor");
-    if (!error.empty()) r.fail_at("descriptor", at, error);
+    if (const auto problem = validate(c)) {
+        r.fail_at("descriptor." + problem->key, at, problem->problem);
+    }
     return c;
 }
 
