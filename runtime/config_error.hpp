@@ -1,11 +1,15 @@
 #pragma once
-#include "common/core/config_check.hpp"
+#include <stdexcept>
+#include <string>
 
 namespace ltm::runtime {
 
-// A bad launch configuration or parameter: the project's one configuration error
-// (common/core/config_check.hpp). what() is the one line the host prints:
+// A bad launch configuration or parameter. what() is the one line the host prints:
 // "FILE:LINE: KEY: PROBLEM".
-using ConfigError = common::ConfigError;
+class ConfigError : public std::runtime_error {
+public:
+    ConfigError(const std::string& file, int line, const std::string& key, const std::string& problem)
+        : std::runtime_error(file + ":" + std::to_string(line) + ": " + key + ": " + problem) {}
+};
 
 }  // namespace ltm::runtime

@@ -1,9 +1,9 @@
-#include "recorder/core/crc32.hpp"
+#include "common/core/crc32.hpp"
 
 #include <array>
 #include <cstring>
 
-namespace ltm::recorder {
+namespace ltm::common {
 namespace {
 
 // Slicing-by-8 tables: table[k][b] is the CRC of byte b followed by k zero bytes.
@@ -47,4 +47,4 @@ std::uint32_t crc32_update(std::uint32_t state, const void* data, std::size_t si
     return c;
 }
 
-}  // namespace ltm::recorder
+}  // namespace ltm::common

@@ -3,7 +3,7 @@
 #include <cstddef>
 #include <cstdint>
 
-namespace ltm::recorder {
+namespace ltm::common {
 
 // Running CRC: start from crc32_init(), feed bytes with crc32_update(), read with crc32_final().
 constexpr std::uint32_t crc32_init() { return 0xFFFFFFFFu; }
@@ -15,4 +15,4 @@ inline std::uint32_t crc32(const void* data, std::size_t size) {
     return crc32_final(crc32_update(crc32_init(), data, size));
 }
 
-}  // namespace ltm::recorder
+}  // namespace ltm::common

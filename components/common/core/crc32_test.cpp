@@ -1,11 +1,11 @@
-#include "recorder/core/crc32.hpp"
+#include "common/core/crc32.hpp"
 
 #include <gtest/gtest.h>
 
 #include <random>
 #include <vector>
 
-namespace ltm::recorder {
+namespace ltm::common {
 namespace {
 
 // Bit-by-bit reference (the definition).
@@ -39,4 +39,4 @@ TEST(Crc32, MatchesBitwiseReferenceAndIsIncremental) {
 }
 
 }  // namespace
-}  // namespace ltm::recorder
+}  // namespace ltm::common

@@ -1,4 +1,5 @@
 #pragma once
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 
@@ -6,13 +7,33 @@ namespace ltm::common {
 
 // A file that cannot be read or written. what() is one line naming the file and the problem.
 class IoError : public std::runtime_error {
-public:
+  public:
     IoError(const std::string& path, const std::string& problem)
         : std::runtime_error(path + ": " + problem), path_(path) {}
     const std::string& path() const { return path_; }
 
-private:
+  private:
     std::string path_;
+};
+
+// Bytes that do not hold what they should (damaged, truncated, from something else).
+// what() is one line: "source: field at byte N: problem", or "source: problem" when the problem
+// is not about one field. The source is a file, or a record ("Channel record").
+class FormatError : public IoError {
+  public:
+    FormatError(const std::string& source, const std::string& field, std::uint64_t offset,
+                const std::string& problem)
+        : IoError(source, field + " at byte " + std::to_string(offset) + ": " + problem),
+          field_(field),
+          offset_(offset) {}
+    FormatError(const std::string& source, const std::string& problem) : IoError(source, problem) {}
+    const std::string& file() const { return path(); }
+    const std::string& field() const { return field_; }  // "" when not about one field
+    std::uint64_t offset() const { return offset_; }
+
+  private:
+    std::string field_;
+    std::uint64_t offset_ = 0;
 };
 
 }  // namespace ltm::common

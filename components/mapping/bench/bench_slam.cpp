@@ -33,7 +33,6 @@
 #include "mapping/bench/km_memory.hpp"
 #include "mapping/bench/revisits.hpp"
 #include "mapping/bench/sim_source.hpp"
-#include "mapping/core/binary_io.hpp"
 #include "mapping/core/map_store.hpp"
 #include "mapping/core/mapper.hpp"
 #include "sources/core/scan_folder.hpp"

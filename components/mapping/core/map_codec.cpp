@@ -2,478 +2,466 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
+#include <cstring>
 #include <unordered_set>
 
-#include "mapping/core/binary_io.hpp"
+#include "common/core/byte_io.hpp"
 
 namespace ltm::mapping {
 namespace {
 
+using common::ByteReader;
+using common::ByteWriter;
+
 constexpr char kLocalMapMagic[8] = {'L', 'T', 'M', '-', 'L', 'M', 'A', 'P'};
 constexpr char kGraphMagic[8] = {'L', 'T', 'M', '-', 'G', 'R', 'P', 'H'};
 constexpr char kKeyframesMagic[8] = {'L', 'T', 'M', '-', 'K', 'F', 'R', 'M'};
-constexpr std::size_t kChunk = 4096;
+constexpr std::size_t kChunk = 4096;  // items a section
+
+// Each record below is described once, for both directions: ByteWriter runs it over a const
+// record and writes, ByteReader runs it over a fresh record, reads and checks. The checks are
+// no-ops when writing; what only reading does (allocating, the checks that need more than one
+// field) is under `if constexpr (IO::kReading)`.
 
 std::string range_name(const char* what, std::size_t a, std::size_t b) {
-    std::ostringstream s;
-    s << what << "[" << a << ".." << b << "]";
-    return s.str();
+    return std::string(what) + "[" + std::to_string(a) + ".." + std::to_string(b) + "]";
 }
 
-std::string item(const std::string& what, std::size_t i, const char* field) {
-    std::ostringstream s;
-    s << what << "[" << i << "]." << field;
-    return s.str();
+std::string as_string(const ByteWriter& w) {
+    return std::string(w.bytes().begin(), w.bytes().end());
 }
 
-void put_magic(ByteWriter& w, const char* magic) {
-    w.put_bytes(magic, 8);
-    w.put<std::uint32_t>(kMapFormatVersion);
+// A value stored as `Stored` (a count or setting held as int in memory, as uint32 in the file).
+template <class Stored, class IO, class T>
+void value_as(IO& io, T& v, const char* field) {
+    Stored s = static_cast<Stored>(v);
+    io.value(s, field);
+    if constexpr (IO::kReading) v = static_cast<T>(s);
 }
 
-void check_magic(ByteReader& r, const char* magic, const char* kind) {
+// A bool as a uint8 0 or 1.
+template <class IO, class B>
+void flag(IO& io, B& b, const char* field) {
+    const std::uint64_t at = io.offset();
+    std::uint8_t v = b ? 1 : 0;
+    io.value(v, field);
+    io.check(v <= 1, field, at, "must be 0 or 1");
+    if constexpr (IO::kReading) b = v == 1;
+}
+
+// An enumeration as a uint8 in [0, max].
+template <class IO, class E>
+void kind(IO& io, E& e, unsigned max, const char* field) {
+    const std::uint64_t at = io.offset();
+    std::uint8_t v = static_cast<std::uint8_t>(e);
+    io.value(v, field);
+    io.check(v <= max, field, at, [&] { return "unknown kind " + std::to_string(v); });
+    if constexpr (IO::kReading) e = static_cast<E>(v);
+}
+
+template <class IO, class V>
+void vec3(IO& io, V& v, const char* field) {
+    for (int i = 0; i < 3; ++i) io.value(v[i], field);
+}
+
+// A rigid transform: 12 doubles, the 3x4 matrix row-major; when read, a rotation (det +1).
+template <class IO, class T>
+void pose(IO& io, T& pose, const char* field) {
+    const std::uint64_t at = io.offset();
+    for (int r = 0; r < 3; ++r) {
+        for (int c = 0; c < 4; ++c) io.value(pose.matrix()(r, c), field);
+    }
+    if constexpr (IO::kReading) {
+        const Eigen::Matrix3d R = pose.linear();
+        io.check((R.transpose() * R - Eigen::Matrix3d::Identity()).norm() <= 1e-5 &&
+                     R.determinant() >= 0.0,
+                 field, at, "rotation is not orthonormal");
+    }
+}
+
+// Float rounding: |n_old . n_new| of two unit normals may come out a hair above 1.
+template <class IO, class F>
+void unit_interval(IO& io, F& v, const char* field) {
+    const std::uint64_t at = io.offset();
+    io.value(v, field);
+    io.check(v >= -1e-3f && v <= 1.001f, field, at,
+             [&] { return "must be in [0, 1] (got " + std::to_string(v) + ")"; });
+}
+
+// The magic of the file's kind and the format version.
+template <class IO>
+void file_start(IO& io, const char (&magic)[8], const char* what) {
     char m[8];
-    r.get_bytes(m, 8, "magic");
-    if (std::memcmp(m, magic, 8) != 0)
-        r.fail_at("magic", 0, std::string("not an ltm ") + kind + " file");
-    const std::uint64_t at = r.offset();
-    const std::uint32_t version = r.get<std::uint32_t>("format version");
-    if (version != kMapFormatVersion) {
-        r.fail_at("format version", at,
-                  "version " + std::to_string(version) + " is not supported (this build reads " +
-                      std::to_string(kMapFormatVersion) + ")");
-    }
+    std::memcpy(m, magic, 8);
+    io.raw(m, 8, "magic");
+    io.check(std::memcmp(m, magic, 8) == 0, "magic", 0,
+             [&] { return std::string("not an ltm ") + what + " file"; });
+    const std::uint64_t at = io.offset();
+    std::uint32_t version = kMapFormatVersion;
+    io.value(version, "format version");
+    io.check(version == kMapFormatVersion, "format version", at, [&] {
+        return "version " + std::to_string(version) + " is not supported (this build reads " +
+               std::to_string(kMapFormatVersion) + ")";
+    });
 }
-
-float unit_interval(ByteReader& r, const std::string& field) {
-    const std::uint64_t at = r.offset();
-    const float v = r.get_f32(field);
-    // Float rounding: |n_old . n_new| of two unit normals may come out a hair above 1.
-    if (v < -1e-3f || v > 1.001f)
-        r.fail_at(field, at, "must be in [0, 1] (got " + std::to_string(v) + ")");
-    return v;
-}
-
-void put_descriptor_config(ByteWriter& w, const ScanContextConfig& c) {
-    w.put<std::uint8_t>(std::uint8_t(c.kind));
-    w.put<std::uint32_t>(std::uint32_t(c.rings));
-    w.put<std::uint32_t>(std::uint32_t(c.sectors));
-    w.put<double>(c.max_range);
-    w.put<double>(c.min_range);
-    w.put<double>(c.sensor_height);
-}
-
-ScanContextConfig get_descriptor_config(ByteReader& r) {
-    ScanContextConfig c;
-    const std::uint64_t at = r.offset();
-    const std::uint8_t kind = r.get<std::uint8_t>("descriptor.kind");
-    if (kind > 1) r.fail_at("descriptor.kind", at, "unknown kind " + std::to_string(kind));
-    c.kind = ScanContextKind(kind);
-    c.rings = int(r.get<std::uint32_t>("descriptor.rings"));
-    c.sectors = int(r.get<std::uint32_t>("descriptor.sectors"));
-    c.max_range = r.get_f64("descriptor.max_range");
-    c.min_range = r.get_f64("descriptor.min_range");
-    c.sensor_height = r.get_f64("descriptor.sensor_height");
-    if (const auto problem = validate(c)) {
-        r.fail_at("descriptor." + problem->key, at, problem->problem);
-    }
-    return c;
-}
-
-}  // namespace
 
 // ---------------------------------------------------------------------------------------------
 // Local maps.
 
-std::string encode_local_map(const StoredLocalMap& m) {
-    const common::LocalMapData& d = *m.data;
-    ByteWriter w;
-    put_magic(w, kLocalMapMagic);
-    w.begin_section();
-    w.put<std::uint64_t>(m.node);
-    w.put<std::uint32_t>(m.session);
-    w.put<std::uint64_t>(d.id);
-    w.put<std::uint32_t>(d.revision);
-    w.put<std::uint8_t>(d.finished ? 1 : 0);
-    w.put_pose(d.T_odom_anchor);
-    w.put_pose(d.T_anchor_grid);
-    w.put_vec3d(d.bbox_min);
-    w.put_vec3d(d.bbox_max);
-    w.put<float>(d.voxel_size);
-    w.put<std::uint32_t>(std::uint32_t(d.observation_times.size()));
-    w.put<std::uint64_t>(d.voxels.size());
-    w.end_section();
-    w.begin_section();
-    for (const double t : d.observation_times) w.put<double>(t);
-    w.end_section();
-    for (std::size_t a = 0; a < d.voxels.size(); a += kChunk) {
-        w.begin_section();
-        for (std::size_t i = a; i < std::min(d.voxels.size(), a + kChunk); ++i) {
-            const common::VoxelData& v = d.voxels[i];
-            w.put_vec3i(v.index);
-            w.put_vec3f(v.centre);
-            w.put_vec3f(v.normal);
-            w.put<std::uint32_t>(v.point_count);
-            w.put<float>(v.planarity);
-            w.put<float>(v.stability);
-            w.put<double>(v.life.created);
-            w.put<double>(v.life.last_seen);
-            w.put<std::uint32_t>(v.life.observations);
-            w.put<float>(v.life.health);
-            w.put<std::uint16_t>(std::uint16_t(std::min<std::size_t>(v.life.seen.size(), 65535)));
-            for (std::size_t k = 0; k < std::min<std::size_t>(v.life.seen.size(), 65535); ++k) {
-                w.put<std::uint16_t>(v.life.seen[k]);
-            }
-        }
-        w.end_section();
+template <class IO, class V>
+void voxel(IO& io, V& v, float voxel_size, std::uint32_t n_times) {
+    vec3(io, v.index, "index");
+    const std::uint64_t at_centre = io.offset();
+    vec3(io, v.centre, "centre");
+    if constexpr (IO::kReading) {
+        const float g = voxel_size;
+        const Eigen::Vector3f lo = v.index.template cast<float>() * g;
+        const float tol = std::max(1e-3f * g, 1e-6f * v.centre.cwiseAbs().maxCoeff());
+        io.check(!((v.centre - lo).array() < -tol).any() &&
+                     !((lo.array() + g - v.centre.array()) < -tol).any(),
+                 "centre", at_centre, "outside the voxel's cell");
     }
-    return std::move(w.bytes());
+    const std::uint64_t at_normal = io.offset();
+    vec3(io, v.normal, "normal");
+    if constexpr (IO::kReading) {
+        const float nn = v.normal.norm();
+        io.check(nn == 0.0f || std::abs(nn - 1.0f) <= 1e-3f, "normal", at_normal,
+                 "neither zero nor a unit vector");
+    }
+    io.value(v.point_count, "point_count");
+    unit_interval(io, v.planarity, "planarity");
+    unit_interval(io, v.stability, "stability");
+    io.value(v.life.created, "life.created");
+    const std::uint64_t at_last = io.offset();
+    io.value(v.life.last_seen, "life.last_seen");
+    io.check(v.life.last_seen >= v.life.created, "life.last_seen", at_last, "before life.created");
+    io.value(v.life.observations, "life.observations");
+    unit_interval(io, v.life.health, "life.health");
+    // At most 65535 indices are stored.
+    std::uint16_t n_seen =
+        static_cast<std::uint16_t>(std::min<std::size_t>(v.life.seen.size(), 65535));
+    io.value(n_seen, "life.seen count");
+    if constexpr (IO::kReading) v.life.seen.resize(n_seen);
+    for (std::uint16_t k = 0; k < n_seen; ++k) {
+        const std::uint64_t at = io.offset();
+        io.value(v.life.seen[k], "life.seen");
+        io.check(v.life.seen[k] < n_times, "life.seen", at, [&] {
+            return "index " + std::to_string(v.life.seen[k]) + " beyond the " +
+                   std::to_string(n_times) + " observation times";
+        });
+    }
 }
 
-StoredLocalMap decode_local_map(const std::string& bytes, const std::string& file) {
-    ByteReader r(file, bytes.data(), bytes.size());
-    check_magic(r, kLocalMapMagic, "local map");
-    StoredLocalMap m;
-    auto d = std::make_shared<common::LocalMapData>();
-    ByteReader h = r.section("header");
-    m.node = h.get<std::uint64_t>("header.node");
-    m.session = h.get<std::uint32_t>("header.session");
-    d->id = h.get<std::uint64_t>("header.id");
-    d->revision = h.get<std::uint32_t>("header.revision");
-    const std::uint64_t at_finished = h.offset();
-    const std::uint8_t finished = h.get<std::uint8_t>("header.finished");
-    if (finished > 1) h.fail_at("header.finished", at_finished, "must be 0 or 1");
-    d->finished = finished == 1;
-    d->T_odom_anchor = h.get_pose("header.T_odom_anchor");
-    d->T_anchor_grid = h.get_pose("header.T_anchor_grid");
-    d->bbox_min = h.get_vec3d("header.bbox_min");
-    const std::uint64_t at_max = h.offset();
-    d->bbox_max = h.get_vec3d("header.bbox_max");
-    if ((d->bbox_max.array() < d->bbox_min.array()).any()) {
-        h.fail_at("header.bbox_max", at_max, "below bbox_min");
-    }
-    const std::uint64_t at_size = h.offset();
-    d->voxel_size = h.get_f32("header.voxel_size");
-    if (!(d->voxel_size > 0.0f)) h.fail_at("header.voxel_size", at_size, "must be > 0");
-    const std::uint32_t n_times = h.get<std::uint32_t>("header.observation_count");
-    const std::uint64_t at_voxels = h.offset();
-    const std::uint64_t n_voxels = h.get<std::uint64_t>("header.voxel_count");
-    h.expect_end("header");
-    // Each voxel takes at least 74 bytes: a count beyond the file is damage, not a big map.
-    if (n_voxels > bytes.size() / 74) {
-        h.fail_at("header.voxel_count", at_voxels,
-                  std::to_string(n_voxels) + " voxels cannot fit in a file of " +
-                      std::to_string(bytes.size()) + " bytes");
-    }
-    ByteReader t = r.section("observation_times");
-    d->observation_times.resize(n_times);
-    for (std::uint32_t i = 0; i < n_times; ++i) {
-        d->observation_times[i] = t.get_f64("observation_times[" + std::to_string(i) + "]");
-    }
-    t.expect_end("observation_times");
-    d->voxels.resize(std::size_t(n_voxels));
-    const float g = d->voxel_size;
+// m: StoredLocalMap (node, session), d: its LocalMapData.
+template <class IO, class M, class D>
+void local_map_file(IO& io, M& m, D& d) {
+    file_start(io, kLocalMapMagic, "local map");
+    std::uint32_t n_times = static_cast<std::uint32_t>(d.observation_times.size());
+    std::uint64_t n_voxels = d.voxels.size();
+    io.section("header", [&](auto& h) {
+        h.item("header");
+        h.value(m.node, "node");
+        h.value(m.session, "session");
+        h.value(d.id, "id");
+        h.value(d.revision, "revision");
+        flag(h, d.finished, "finished");
+        pose(h, d.T_odom_anchor, "T_odom_anchor");
+        pose(h, d.T_anchor_grid, "T_anchor_grid");
+        vec3(h, d.bbox_min, "bbox_min");
+        const std::uint64_t at_max = h.offset();
+        vec3(h, d.bbox_max, "bbox_max");
+        h.check(!(d.bbox_max.array() < d.bbox_min.array()).any(), "bbox_max", at_max,
+                "below bbox_min");
+        const std::uint64_t at_size = h.offset();
+        h.value(d.voxel_size, "voxel_size");
+        h.check(d.voxel_size > 0.0f, "voxel_size", at_size, "must be > 0");
+        h.value(n_times, "observation_count");
+        const std::uint64_t at_voxels = h.offset();
+        h.value(n_voxels, "voxel_count");
+        if constexpr (IO::kReading) {
+            // Each voxel takes at least 74 bytes: a count beyond the file is damage.
+            h.check(n_voxels <= h.source_size() / 74, "voxel_count", at_voxels, [&] {
+                return std::to_string(n_voxels) + " voxels cannot fit in a file of " +
+                       std::to_string(h.source_size()) + " bytes";
+            });
+            d.observation_times.resize(n_times);
+            d.voxels.resize(static_cast<std::size_t>(n_voxels));
+        }
+    });
+    io.section("observation_times", [&](auto& t) {
+        for (std::uint32_t i = 0; i < n_times; ++i) {
+            t.item("observation_times", i);
+            t.value(d.observation_times[i]);
+        }
+    });
     for (std::size_t a = 0; a < n_voxels; a += kChunk) {
         const std::size_t b = std::min<std::size_t>(n_voxels, a + kChunk);
-        ByteReader s = r.section(range_name("voxels", a, b - 1));
-        for (std::size_t i = a; i < b; ++i) {
-            common::VoxelData& v = d->voxels[i];
-            v.index = s.get_vec3i(item("voxels", i, "index"));
-            const std::uint64_t at_c = s.offset();
-            v.centre = s.get_vec3f(item("voxels", i, "centre"));
-            const Eigen::Vector3f lo = v.index.cast<float>() * g;
-            const float tol = std::max(1e-3f * g, 1e-6f * v.centre.cwiseAbs().maxCoeff());
-            if (((v.centre - lo).array() < -tol).any() ||
-                ((lo.array() + g - v.centre.array()) < -tol).any()) {
-                s.fail_at(item("voxels", i, "centre"), at_c, "outside the voxel's cell");
+        io.section(range_name("voxels", a, b - 1), [&](auto& s) {
+            for (std::size_t i = a; i < b; ++i) {
+                s.item("voxels", i);
+                voxel(s, d.voxels[i], d.voxel_size, n_times);
             }
-            const std::uint64_t at_n = s.offset();
-            v.normal = s.get_vec3f(item("voxels", i, "normal"));
-            const float nn = v.normal.norm();
-            if (nn != 0.0f && std::abs(nn - 1.0f) > 1e-3f) {
-                s.fail_at(item("voxels", i, "normal"), at_n, "neither zero nor a unit vector");
-            }
-            v.point_count = s.get<std::uint32_t>(item("voxels", i, "point_count"));
-            v.planarity = unit_interval(s, item("voxels", i, "planarity"));
-            v.stability = unit_interval(s, item("voxels", i, "stability"));
-            v.life.created = s.get_f64(item("voxels", i, "life.created"));
-            const std::uint64_t at_last = s.offset();
-            v.life.last_seen = s.get_f64(item("voxels", i, "life.last_seen"));
-            if (v.life.last_seen < v.life.created) {
-                s.fail_at(item("voxels", i, "life.last_seen"), at_last, "before life.created");
-            }
-            v.life.observations = s.get<std::uint32_t>(item("voxels", i, "life.observations"));
-            v.life.health = unit_interval(s, item("voxels", i, "life.health"));
-            const std::uint16_t n_seen = s.get<std::uint16_t>(item("voxels", i, "life.seen count"));
-            v.life.seen.resize(n_seen);
-            for (std::uint16_t k = 0; k < n_seen; ++k) {
-                const std::uint64_t at_k = s.offset();
-                v.life.seen[k] = s.get<std::uint16_t>(item("voxels", i, "life.seen"));
-                if (v.life.seen[k] >= n_times) {
-                    s.fail_at(item("voxels", i, "life.seen"), at_k,
-                              "index " + std::to_string(v.life.seen[k]) + " beyond the " +
-                                  std::to_string(n_times) + " observation times");
-                }
-            }
-        }
-        s.expect_end(range_name("voxels", a, b - 1));
+        });
     }
-    r.expect_end("end of file");
-    m.data = std::move(d);
-    return m;
+    io.expect_end("end of file");
 }
 
 // ---------------------------------------------------------------------------------------------
 // The graph.
 
-std::string encode_graph(std::uint64_t revision, const std::vector<PoseGraphNode>& nodes,
-                         const std::vector<PoseGraphEdge>& edges) {
-    ByteWriter w;
-    put_magic(w, kGraphMagic);
-    w.begin_section();
-    w.put<std::uint64_t>(revision);
-    w.put<std::uint64_t>(nodes.size());
-    w.put<std::uint64_t>(edges.size());
-    w.end_section();
-    for (std::size_t a = 0; a < nodes.size(); a += kChunk) {
-        w.begin_section();
-        for (std::size_t i = a; i < std::min(nodes.size(), a + kChunk); ++i) {
-            const PoseGraphNode& n = nodes[i];
-            w.put<std::uint64_t>(n.id);
-            w.put<std::uint64_t>(n.local_map_id);
-            w.put<std::uint32_t>(n.session);
-            w.put<std::uint8_t>(n.fixed ? 1 : 0);
-            w.put_pose(n.T_odom_anchor);
-            w.put_pose(n.T_world_anchor);
-        }
-        w.end_section();
+// ids: reading, the node ids read so far (each once).
+template <class IO, class N>
+void node(IO& io, N& n, std::unordered_set<std::uint64_t>& ids) {
+    const std::uint64_t at = io.offset();
+    io.value(n.id, "id");
+    if constexpr (IO::kReading) {
+        io.check(ids.insert(n.id).second, "id", at,
+                 [&] { return "node id " + std::to_string(n.id) + " repeated"; });
     }
-    for (std::size_t a = 0; a < edges.size(); a += kChunk) {
-        w.begin_section();
-        for (std::size_t i = a; i < std::min(edges.size(), a + kChunk); ++i) {
-            const PoseGraphEdge& e = edges[i];
-            w.put<std::uint64_t>(e.from);
-            w.put<std::uint64_t>(e.to);
-            w.put<std::uint8_t>(std::uint8_t(e.kind));
-            w.put<std::uint8_t>(e.active ? 1 : 0);
-            w.put_pose(e.T_from_to);
-            for (int k = 0; k < 36; ++k) w.put<double>(e.information.data()[k]);
-            w.put<std::uint64_t>(e.query_keyframe);
-            w.put<std::uint64_t>(e.match_keyframe);
-            w.put<double>(e.error_translation);
-            w.put<double>(e.error_rotation);
-        }
-        w.end_section();
-    }
-    return std::move(w.bytes());
+    io.value(n.local_map_id, "local_map_id");
+    io.value(n.session, "session");
+    flag(io, n.fixed, "fixed");
+    pose(io, n.T_odom_anchor, "T_odom_anchor");
+    pose(io, n.T_world_anchor, "T_world_anchor");
 }
 
-void decode_graph(const std::string& bytes, const std::string& file, std::uint64_t* revision,
-                  std::vector<PoseGraphNode>* nodes, std::vector<PoseGraphEdge>* edges) {
-    ByteReader r(file, bytes.data(), bytes.size());
-    check_magic(r, kGraphMagic, "graph");
-    ByteReader h = r.section("header");
-    *revision = h.get<std::uint64_t>("header.revision");
-    const std::uint64_t at_n = h.offset();
-    const std::uint64_t n_nodes = h.get<std::uint64_t>("header.node_count");
-    const std::uint64_t at_e = h.offset();
-    const std::uint64_t n_edges = h.get<std::uint64_t>("header.edge_count");
-    h.expect_end("header");
-    if (n_nodes > bytes.size() / 200)
-        h.fail_at("header.node_count", at_n, "more nodes than the file can hold");
-    if (n_edges > bytes.size() / 400)
-        h.fail_at("header.edge_count", at_e, "more edges than the file can hold");
-    nodes->assign(std::size_t(n_nodes), PoseGraphNode());
+// ids: reading, the graph's node ids.
+template <class IO, class E>
+void edge(IO& io, E& e, const std::unordered_set<std::uint64_t>& ids) {
+    const std::uint64_t at_from = io.offset();
+    io.value(e.from, "from");
+    const std::uint64_t at_to = io.offset();
+    io.value(e.to, "to");
+    if constexpr (IO::kReading) {
+        io.check(ids.count(e.from) > 0, "from", at_from,
+                 [&] { return "no node " + std::to_string(e.from); });
+        io.check(ids.count(e.to) > 0, "to", at_to,
+                 [&] { return "no node " + std::to_string(e.to); });
+        io.check(e.to != e.from, "to", at_to, "an edge from a node to itself");
+    }
+    kind(io, e.kind, 1, "kind");
+    flag(io, e.active, "active");
+    pose(io, e.T_from_to, "T_from_to");
+    const std::uint64_t at_info = io.offset();
+    for (int k = 0; k < 36; ++k) io.value(e.information.data()[k], "information");
+    if constexpr (IO::kReading) {
+        const Matrix6d& I = e.information;
+        io.check((I - I.transpose()).cwiseAbs().maxCoeff() <=
+                         1e-9 * std::max(1.0, I.cwiseAbs().maxCoeff()) &&
+                     !(I.diagonal().array() < 0.0).any(),
+                 "information", at_info, "not a symmetric information matrix");
+    }
+    io.value(e.query_keyframe, "query_keyframe");
+    io.value(e.match_keyframe, "match_keyframe");
+    io.value(e.error_translation, "error_translation");
+    io.value(e.error_rotation, "error_rotation");
+}
+
+template <class IO, class R, class Nodes, class Edges>
+void graph_file(IO& io, R& revision, Nodes& nodes, Edges& edges) {
+    file_start(io, kGraphMagic, "graph");
+    std::uint64_t n_nodes = nodes.size(), n_edges = edges.size();
+    io.section("header", [&](auto& h) {
+        h.item("header");
+        h.value(revision, "revision");
+        const std::uint64_t at_nodes = h.offset();
+        h.value(n_nodes, "node_count");
+        const std::uint64_t at_edges = h.offset();
+        h.value(n_edges, "edge_count");
+        if constexpr (IO::kReading) {
+            h.check(n_nodes <= h.source_size() / 200, "node_count", at_nodes,
+                    "more nodes than the file can hold");
+            h.check(n_edges <= h.source_size() / 400, "edge_count", at_edges,
+                    "more edges than the file can hold");
+            nodes.assign(static_cast<std::size_t>(n_nodes), PoseGraphNode());
+            edges.assign(static_cast<std::size_t>(n_edges), PoseGraphEdge());
+        }
+    });
     std::unordered_set<std::uint64_t> ids;
     for (std::size_t a = 0; a < n_nodes; a += kChunk) {
         const std::size_t b = std::min<std::size_t>(n_nodes, a + kChunk);
-        ByteReader s = r.section(range_name("nodes", a, b - 1));
-        for (std::size_t i = a; i < b; ++i) {
-            PoseGraphNode& n = (*nodes)[i];
-            const std::uint64_t at_id = s.offset();
-            n.id = s.get<std::uint64_t>(item("nodes", i, "id"));
-            if (!ids.insert(n.id).second) {
-                s.fail_at(item("nodes", i, "id"), at_id,
-                          "node id " + std::to_string(n.id) + " repeated");
+        io.section(range_name("nodes", a, b - 1), [&](auto& s) {
+            for (std::size_t i = a; i < b; ++i) {
+                s.item("nodes", i);
+                node(s, nodes[i], ids);
             }
-            n.local_map_id = s.get<std::uint64_t>(item("nodes", i, "local_map_id"));
-            n.session = s.get<std::uint32_t>(item("nodes", i, "session"));
-            const std::uint64_t at_f = s.offset();
-            const std::uint8_t fixed = s.get<std::uint8_t>(item("nodes", i, "fixed"));
-            if (fixed > 1) s.fail_at(item("nodes", i, "fixed"), at_f, "must be 0 or 1");
-            n.fixed = fixed == 1;
-            n.T_odom_anchor = s.get_pose(item("nodes", i, "T_odom_anchor"));
-            n.T_world_anchor = s.get_pose(item("nodes", i, "T_world_anchor"));
-        }
-        s.expect_end(range_name("nodes", a, b - 1));
+        });
     }
-    edges->assign(std::size_t(n_edges), PoseGraphEdge());
     for (std::size_t a = 0; a < n_edges; a += kChunk) {
         const std::size_t b = std::min<std::size_t>(n_edges, a + kChunk);
-        ByteReader s = r.section(range_name("edges", a, b - 1));
-        for (std::size_t i = a; i < b; ++i) {
-            PoseGraphEdge& e = (*edges)[i];
-            const std::uint64_t at_from = s.offset();
-            e.from = s.get<std::uint64_t>(item("edges", i, "from"));
-            if (!ids.count(e.from))
-                s.fail_at(item("edges", i, "from"), at_from, "no node " + std::to_string(e.from));
-            const std::uint64_t at_to = s.offset();
-            e.to = s.get<std::uint64_t>(item("edges", i, "to"));
-            if (!ids.count(e.to))
-                s.fail_at(item("edges", i, "to"), at_to, "no node " + std::to_string(e.to));
-            if (e.to == e.from)
-                s.fail_at(item("edges", i, "to"), at_to, "an edge from a node to itself");
-            const std::uint64_t at_k = s.offset();
-            const std::uint8_t kind = s.get<std::uint8_t>(item("edges", i, "kind"));
-            if (kind > 1)
-                s.fail_at(item("edges", i, "kind"), at_k, "unknown kind " + std::to_string(kind));
-            e.kind = EdgeKind(kind);
-            const std::uint64_t at_a = s.offset();
-            const std::uint8_t active = s.get<std::uint8_t>(item("edges", i, "active"));
-            if (active > 1) s.fail_at(item("edges", i, "active"), at_a, "must be 0 or 1");
-            e.active = active == 1;
-            e.T_from_to = s.get_pose(item("edges", i, "T_from_to"));
-            const std::uint64_t at_i = s.offset();
-            for (int k = 0; k < 36; ++k)
-                e.information.data()[k] = s.get_f64(item("edges", i, "information"));
-            if ((e.information - e.information.transpose()).cwiseAbs().maxCoeff() >
-                    1e-9 * std::max(1.0, e.information.cwiseAbs().maxCoeff()) ||
-                (e.information.diagonal().array() < 0.0).any()) {
-                s.fail_at(item("edges", i, "information"), at_i,
-                          "not a symmetric information matrix");
+        io.section(range_name("edges", a, b - 1), [&](auto& s) {
+            for (std::size_t i = a; i < b; ++i) {
+                s.item("edges", i);
+                edge(s, edges[i], ids);
             }
-            e.query_keyframe = s.get<std::uint64_t>(item("edges", i, "query_keyframe"));
-            e.match_keyframe = s.get<std::uint64_t>(item("edges", i, "match_keyframe"));
-            e.error_translation = s.get_f64(item("edges", i, "error_translation"));
-            e.error_rotation = s.get_f64(item("edges", i, "error_rotation"));
-        }
-        s.expect_end(range_name("edges", a, b - 1));
+        });
     }
-    r.expect_end("end of file");
+    io.expect_end("end of file");
 }
 
 // ---------------------------------------------------------------------------------------------
 // Keyframes.
 
+template <class IO, class C>
+void descriptor_config(IO& io, C& c) {
+    const std::uint64_t at = io.offset();
+    kind(io, c.kind, 1, "kind");
+    value_as<std::uint32_t>(io, c.rings, "rings");
+    value_as<std::uint32_t>(io, c.sectors, "sectors");
+    io.value(c.max_range, "max_range");
+    io.value(c.min_range, "min_range");
+    io.value(c.sensor_height, "sensor_height");
+    if constexpr (IO::kReading) {
+        const std::string problem = validate(c, "descriptor");
+        if (!problem.empty()) io.fail_at(nullptr, at, problem);
+    }
+}
+
+// cfg: the file header's descriptor settings.
+template <class IO, class K>
+void keyframe(IO& io, K& k, const ScanContextConfig& cfg) {
+    io.value(k.session, "session");
+    io.value(k.node, "node");
+    io.value(k.data.id, "id");
+    io.value(k.data.scan_index, "scan_index");
+    io.value(k.data.local_map_id, "local_map_id");
+    io.value(k.data.stamp, "stamp");
+    pose(io, k.data.T_odom_lidar, "T_odom_lidar");
+    pose(io, k.data.T_anchor_lidar, "T_anchor_lidar");
+    auto& sc = k.descriptor;
+    const std::uint64_t at_d = io.offset();
+    kind(io, sc.kind, 1, "descriptor.kind");
+    value_as<std::uint32_t>(io, sc.rings, "descriptor.rings");
+    value_as<std::uint32_t>(io, sc.sectors, "descriptor.sectors");
+    const bool mean_variance = sc.kind == ScanContextKind::kMeanVariance;
+    if constexpr (IO::kReading) {
+        io.check(sc.kind == cfg.kind && sc.rings == cfg.rings && sc.sectors == cfg.sectors,
+                 "descriptor", at_d, "shape differs from the file header's");
+        const std::size_t bins = std::size_t(cfg.rings) * std::size_t(cfg.sectors);
+        sc.value.resize(bins);
+        if (mean_variance) sc.spread.resize(bins);
+        sc.occupied.resize(bins);
+    }
+    for (std::size_t b = 0; b < sc.value.size(); ++b) {
+        const std::uint64_t at = io.offset();
+        io.value(sc.value[b], "descriptor.value");
+        io.check(mean_variance || sc.value[b] >= 0.0f, "descriptor.value", at, "negative height");
+    }
+    if (mean_variance) {
+        for (std::size_t b = 0; b < sc.spread.size(); ++b) {
+            const std::uint64_t at = io.offset();
+            io.value(sc.spread[b], "descriptor.spread");
+            io.check(sc.spread[b] >= 0.0f, "descriptor.spread", at, "negative");
+        }
+    }
+    for (std::size_t b = 0; b < sc.occupied.size(); ++b) {
+        const std::uint64_t at = io.offset();
+        io.value(sc.occupied[b], "descriptor.occupied");
+        io.check(sc.occupied[b] <= 1, "descriptor.occupied", at, "must be 0 or 1");
+    }
+    const std::uint64_t at_p = io.offset();
+    std::uint32_t n_points = static_cast<std::uint32_t>(k.data.points.size());
+    io.value(n_points, "point_count");
+    if constexpr (IO::kReading) {
+        io.check(std::uint64_t(n_points) * 12 == io.remaining(), "point_count", at_p, [&] {
+            return std::to_string(n_points) + " points do not fill the " +
+                   std::to_string(io.remaining()) + " bytes left in the section";
+        });
+        k.data.points.resize(n_points);
+    }
+    for (std::uint32_t p = 0; p < n_points; ++p) vec3(io, k.data.points[p], "points");
+}
+
+// Writing: keyframes[first, first + count) of `list`; reading: appends them to `list`.
+// expected: reading, the manifest's descriptor settings (checked when not null).
+template <class IO, class C, class List>
+void keyframes_file(IO& io, C& config, List& list, std::uint64_t& first, std::uint64_t& count,
+                    const ScanContextConfig* expected) {
+    file_start(io, kKeyframesMagic, "keyframes");
+    io.section("header", [&](auto& h) {
+        h.item("header");
+        h.value(first, "first");
+        const std::uint64_t at_count = h.offset();
+        h.value(count, "count");
+        const std::uint64_t at_cfg = h.offset();
+        h.item("descriptor");
+        descriptor_config(h, config);
+        if constexpr (IO::kReading) {
+            h.item("header");
+            h.check(
+                !expected || (config.kind == expected->kind && config.rings == expected->rings &&
+                              config.sectors == expected->sectors),
+                "descriptor", at_cfg, "descriptor settings differ from the manifest's");
+            const std::size_t bins = std::size_t(config.rings) * std::size_t(config.sectors);
+            h.check(count <= h.source_size() / (100 + bins), "count", at_count,
+                    "more keyframes than the file can hold");
+            list.reserve(static_cast<std::size_t>(count));
+        }
+    });
+    for (std::uint64_t j = 0; j < count; ++j) {
+        const std::size_t i = static_cast<std::size_t>(first + j);
+        const std::string name = "keyframes[" + std::to_string(i) + "]";
+        if constexpr (IO::kReading) {
+            auto k = std::make_shared<StoredKeyframe>();
+            io.section(name, [&](auto& s) {
+                s.item("keyframes", i);
+                keyframe(s, *k, config);
+            });
+            list.push_back(std::move(k));
+        } else {
+            io.section(name, [&](auto& s) { keyframe(s, *list[i], config); });
+        }
+    }
+    io.expect_end("end of file");
+}
+
+}  // namespace
+
+std::string encode_local_map(const StoredLocalMap& map) {
+    ByteWriter w;
+    local_map_file(w, map, *map.data);
+    return as_string(w);
+}
+
+StoredLocalMap decode_local_map(const std::string& bytes, const std::string& file) {
+    ByteReader r(file, bytes.data(), bytes.size());
+    StoredLocalMap m;
+    auto d = std::make_shared<common::LocalMapData>();
+    local_map_file(r, m, *d);
+    m.data = std::move(d);
+    return m;
+}
+
+std::string encode_graph(std::uint64_t revision, const std::vector<PoseGraphNode>& nodes,
+                         const std::vector<PoseGraphEdge>& edges) {
+    ByteWriter w;
+    graph_file(w, revision, nodes, edges);
+    return as_string(w);
+}
+
+void decode_graph(const std::string& bytes, const std::string& file, std::uint64_t* revision,
+                  std::vector<PoseGraphNode>* nodes, std::vector<PoseGraphEdge>* edges) {
+    ByteReader r(file, bytes.data(), bytes.size());
+    graph_file(r, *revision, *nodes, *edges);
+}
+
 std::string encode_keyframes(const ScanContextConfig& config,
                              const std::vector<std::shared_ptr<const StoredKeyframe>>& keyframes,
                              std::size_t first, std::size_t count) {
     ByteWriter w;
-    put_magic(w, kKeyframesMagic);
-    w.begin_section();
-    w.put<std::uint64_t>(first);
-    w.put<std::uint64_t>(count);
-    put_descriptor_config(w, config);
-    w.end_section();
-    for (std::size_t i = first; i < first + count; ++i) {
-        const StoredKeyframe& k = *keyframes[i];
-        w.begin_section();
-        w.put<std::uint32_t>(k.session);
-        w.put<std::uint64_t>(k.node);
-        w.put<std::uint64_t>(k.data.id);
-        w.put<std::uint64_t>(k.data.scan_index);
-        w.put<std::uint64_t>(k.data.local_map_id);
-        w.put<double>(k.data.stamp);
-        w.put_pose(k.data.T_odom_lidar);
-        w.put_pose(k.data.T_anchor_lidar);
-        const ScanContext& sc = k.descriptor;
-        w.put<std::uint8_t>(std::uint8_t(sc.kind));
-        w.put<std::uint32_t>(std::uint32_t(sc.rings));
-        w.put<std::uint32_t>(std::uint32_t(sc.sectors));
-        w.put_bytes(sc.value.data(), sc.value.size() * sizeof(float));
-        if (sc.kind == ScanContextKind::kMeanVariance) {
-            w.put_bytes(sc.spread.data(), sc.spread.size() * sizeof(float));
-        }
-        w.put_bytes(sc.occupied.data(), sc.occupied.size());
-        w.put<std::uint32_t>(std::uint32_t(k.data.points.size()));
-        for (const Eigen::Vector3f& p : k.data.points) w.put_vec3f(p);
-        w.end_section();
-    }
-    return std::move(w.bytes());
+    std::uint64_t first64 = first, count64 = count;
+    keyframes_file(w, config, keyframes, first64, count64, nullptr);
+    return as_string(w);
 }
 
 std::vector<std::shared_ptr<const StoredKeyframe>> decode_keyframes(
     const std::string& bytes, const std::string& file, const ScanContextConfig* expected,
     std::uint64_t* first) {
     ByteReader r(file, bytes.data(), bytes.size());
-    check_magic(r, kKeyframesMagic, "keyframes");
-    ByteReader h = r.section("header");
-    *first = h.get<std::uint64_t>("header.first");
-    const std::uint64_t at_count = h.offset();
-    const std::uint64_t count = h.get<std::uint64_t>("header.count");
-    const std::uint64_t at_cfg = h.offset();
-    const ScanContextConfig cfg = get_descriptor_config(h);
-    h.expect_end("header");
-    if (expected && (cfg.kind != expected->kind || cfg.rings != expected->rings ||
-                     cfg.sectors != expected->sectors)) {
-        h.fail_at("header.descriptor", at_cfg, "descriptor settings differ from the manifest's");
-    }
-    const std::size_t bins = std::size_t(cfg.rings) * std::size_t(cfg.sectors);
-    if (count > bytes.size() / (100 + bins))
-        h.fail_at("header.count", at_count, "more keyframes than the file can hold");
+    ScanContextConfig config;
     std::vector<std::shared_ptr<const StoredKeyframe>> out;
-    out.reserve(std::size_t(count));
-    for (std::uint64_t j = 0; j < count; ++j) {
-        const std::size_t i = std::size_t(*first + j);
-        ByteReader s = r.section("keyframes[" + std::to_string(i) + "]");
-        auto k = std::make_shared<StoredKeyframe>();
-        k->session = s.get<std::uint32_t>(item("keyframes", i, "session"));
-        k->node = s.get<std::uint64_t>(item("keyframes", i, "node"));
-        k->data.id = s.get<std::uint64_t>(item("keyframes", i, "id"));
-        k->data.scan_index = s.get<std::uint64_t>(item("keyframes", i, "scan_index"));
-        k->data.local_map_id = s.get<std::uint64_t>(item("keyframes", i, "local_map_id"));
-        k->data.stamp = s.get_f64(item("keyframes", i, "stamp"));
-        k->data.T_odom_lidar = s.get_pose(item("keyframes", i, "T_odom_lidar"));
-        k->data.T_anchor_lidar = s.get_pose(item("keyframes", i, "T_anchor_lidar"));
-        ScanContext& sc = k->descriptor;
-        const std::uint64_t at_d = s.offset();
-        sc.kind = ScanContextKind(s.get<std::uint8_t>(item("keyframes", i, "descriptor.kind")));
-        sc.rings = int(s.get<std::uint32_t>(item("keyframes", i, "descriptor.rings")));
-        sc.sectors = int(s.get<std::uint32_t>(item("keyframes", i, "descriptor.sectors")));
-        if (sc.kind != cfg.kind || sc.rings != cfg.rings || sc.sectors != cfg.sectors) {
-            s.fail_at(item("keyframes", i, "descriptor"), at_d,
-                      "shape differs from the file header's");
-        }
-        sc.value.resize(bins);
-        for (std::size_t b = 0; b < bins; ++b) {
-            const std::uint64_t at_v = s.offset();
-            sc.value[b] = s.get_f32(item("keyframes", i, "descriptor.value"));
-            if (sc.kind == ScanContextKind::kMaxHeight && sc.value[b] < 0.0f) {
-                s.fail_at(item("keyframes", i, "descriptor.value"), at_v, "negative height");
-            }
-        }
-        if (sc.kind == ScanContextKind::kMeanVariance) {
-            sc.spread.resize(bins);
-            for (std::size_t b = 0; b < bins; ++b) {
-                const std::uint64_t at_v = s.offset();
-                sc.spread[b] = s.get_f32(item("keyframes", i, "descriptor.spread"));
-                if (sc.spread[b] < 0.0f)
-                    s.fail_at(item("keyframes", i, "descriptor.spread"), at_v, "negative");
-            }
-        }
-        sc.occupied.resize(bins);
-        for (std::size_t b = 0; b < bins; ++b) {
-            const std::uint64_t at_o = s.offset();
-            sc.occupied[b] = s.get<std::uint8_t>(item("keyframes", i, "descriptor.occupied"));
-            if (sc.occupied[b] > 1)
-                s.fail_at(item("keyframes", i, "descriptor.occupied"), at_o, "must be 0 or 1");
-        }
-        const std::uint64_t at_p = s.offset();
-        const std::uint32_t n_points = s.get<std::uint32_t>(item("keyframes", i, "point_count"));
-        if (std::uint64_t(n_points) * 12 != s.remaining()) {
-            s.fail_at(item("keyframes", i, "point_count"), at_p,
-                      std::to_string(n_points) + " points do not fill the " +
-                          std::to_string(s.remaining()) + " bytes left in the section");
-        }
-        k->data.points.resize(n_points);
-        for (std::uint32_t p = 0; p < n_points; ++p) {
-            k->data.points[p] = s.get_vec3f(item("keyframes", i, "points"));
-        }
-        s.expect_end("keyframes[" + std::to_string(i) + "]");
-        out.push_back(std::move(k));
-    }
-    r.expect_end("end of file");
+    std::uint64_t count = 0;
+    keyframes_file(r, config, out, *first, count, expected);
     return out;
 }
 

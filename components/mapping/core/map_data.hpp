@@ -7,6 +7,7 @@
 #include <memory>
 #include <vector>
 
+#include "common/core/io_error.hpp"
 #include "common/core/local_map_data.hpp"
 #include "mapping/core/pose_graph.hpp"
 #include "mapping/core/scan_context.hpp"
@@ -14,6 +15,9 @@
 namespace ltm::mapping {
 
 constexpr std::uint32_t kMapFormatVersion = 1;
+
+// A damaged map file: what() is "file: field at byte N: problem" (one line).
+using MapFormatError = common::FormatError;
 
 struct StoredKeyframe {
     std::uint32_t session = 0;

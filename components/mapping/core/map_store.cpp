@@ -9,8 +9,8 @@
 #include <sstream>
 #include <unordered_set>
 
+#include "common/core/file_io.hpp"
 #include "common/core/io_error.hpp"
-#include "mapping/core/binary_io.hpp"
 #include "mapping/core/map_codec.hpp"
 
 namespace ltm::mapping {
@@ -36,6 +36,24 @@ struct Manifest {
     ScanContextConfig descriptor;
     std::vector<FileEntry> files;
 };
+
+// FNV-1a 64 of a whole file: names files and checks them against the manifest. (A CRC-32 of a
+// file made of CRC-protected sections would not do: a section's bytes and its own CRC change
+// together in a way that leaves the CRC of the whole unchanged.)
+std::uint64_t fnv1a64(const std::string& bytes) {
+    std::uint64_t h = 0xcbf29ce484222325ull;
+    for (const char c : bytes) {
+        h ^= std::uint8_t(c);
+        h *= 0x100000001b3ull;
+    }
+    return h;
+}
+
+std::string hex64(std::uint64_t v) {
+    char buf[17];
+    std::snprintf(buf, sizeof(buf), "%016llx", static_cast<unsigned long long>(v));
+    return buf;
+}
 
 std::string padded(std::uint64_t v, int width) {
     std::ostringstream s;
@@ -112,9 +130,8 @@ Manifest parse_manifest(const std::string& text) {
                     "<sensor_height>'");
             }
             d.kind = ScanContextKind(kind);
-            if (const auto problem = validate(d)) {
-                fail("descriptor." + problem->key + ": " + problem->problem);
-            }
+            const std::string error = validate(d, "descriptor");
+            if (!error.empty()) fail(error);
             descriptor = true;
         } else if (key == "graph" || key == "keyframes" || key == "local_map") {
             FileEntry e;
@@ -212,7 +229,7 @@ SaveStats MapWriter::save(const MapData& map) {
             if (fs::exists(path, ec) && fs::file_size(path, ec) == e.size) {
                 ++stats.files_kept;  // the same content is already there (named by its CRC)
             } else {
-                write_file_atomic(path.string(), bytes);
+                common::write_file_atomic(path.string(), bytes);
                 ++stats.files_written;
                 stats.bytes_written += bytes.size();
             }
@@ -245,7 +262,7 @@ SaveStats MapWriter::save(const MapData& map) {
         manifest.files.push_back(e);
     }
     const std::string text = write_manifest_text(manifest);
-    write_file_atomic((fs::path(dir_) / kManifest).string(), text);
+    common::write_file_atomic((fs::path(dir_) / kManifest).string(), text);
     ++stats.files_written;
     stats.bytes_written += text.size();
     cache_.swap(cache);
@@ -280,14 +297,14 @@ LoadedMap load_map(const std::string& dir) {
     LoadedMap out;
     const fs::path root(dir);
     if (!fs::is_directory(root)) throw MapFormatError(dir, "not a directory");
-    const Manifest manifest = parse_manifest(read_file((root / kManifest).string(), kManifest));
+    const Manifest manifest = parse_manifest(common::read_file((root / kManifest).string(), kManifest));
     MapData& map = out.map;
     map.descriptor_config = manifest.descriptor;
 
     // The graph first: without it nothing can be placed.
     for (const FileEntry& e : manifest.files) {
         if (e.kind != "graph") continue;
-        const std::string bytes = read_file((root / e.file).string(), e.file);
+        const std::string bytes = common::read_file((root / e.file).string(), e.file);
         std::uint64_t revision = 0;
         decode_graph(bytes, e.file, &revision, &map.nodes, &map.edges);
         check_entry(e, bytes);
@@ -304,7 +321,7 @@ LoadedMap load_map(const std::string& dir) {
     for (const FileEntry& e : manifest.files) {
         if (e.kind == "graph") continue;
         try {
-            const std::string bytes = read_file((root / e.file).string(), e.file);
+            const std::string bytes = common::read_file((root / e.file).string(), e.file);
             if (e.kind == "keyframes") {
                 std::uint64_t first = 0;
                 auto keyframes = decode_keyframes(bytes, e.file, &manifest.descriptor, &first);
@@ -339,7 +356,7 @@ LoadedMap load_map(const std::string& dir) {
                 }
                 map.local_maps.push_back(std::move(m));
             }
-        } catch (const MapFormatError& error) {
+        } catch (const common::IoError& error) {  // unreadable or damaged (MapFormatError)
             out.refused.push_back(error.what());
         }
     }

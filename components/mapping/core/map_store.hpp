@@ -5,7 +5,7 @@
 //   graph_<hash>.bin                   the pose graph
 //   keyframes_<first>_<hash>.bin       keyframes with their descriptors, in chunks
 //   local_maps/lm_<node>_<hash>.bin    one file a local map (voxels with their life records)
-// Inside each file, every section carries its own CRC-32 (binary_io.hpp).
+// Inside each file, every section carries its own CRC-32 (map_codec.hpp).
 // Files are named by their content, written atomically (temporary file, fsync, rename), and the
 // manifest goes last: a crash during a save leaves the previous map intact. Files the new
 // manifest does not name are removed afterwards. Unchanged local maps are not written again.
@@ -63,7 +63,8 @@ struct LoadedMap {
     std::vector<std::string> refused;
 };
 
-// Throws MapFormatError when the manifest or the graph is missing or damaged.
+// Throws MapFormatError when the manifest or the graph is damaged, common::IoError when one of
+// them cannot be read.
 LoadedMap load_map(const std::string& dir);
 
 }  // namespace ltm::mapping

@@ -7,7 +7,7 @@
 #include <fstream>
 #include <random>
 
-#include "mapping/core/binary_io.hpp"
+#include "common/core/file_io.hpp"
 #include "mapping/core/map_codec.hpp"
 #include "mapping/core/test_data.hpp"
 
@@ -215,7 +215,9 @@ TEST(MapStore, SavedMapReloadsIdentical) {
         if (!e.is_regular_file()) continue;
         const fs::path other = again / fs::relative(e.path(), dir);
         ASSERT_TRUE(fs::exists(other)) << other;
-        EXPECT_EQ(read_file(e.path().string(), "a"), read_file(other.string(), "b")) << other;
+        EXPECT_EQ(common::read_file(e.path().string(), "a"),
+                  common::read_file(other.string(), "b"))
+            << other;
     }
 }
 
@@ -312,7 +314,7 @@ TEST(MapStore, TruncatedOrMismatchedFilesAreRefused) {
 TEST(MapStore, DamagedManifestOrGraphFailsTheLoadWithAPreciseMessage) {
     const fs::path dir = fresh_dir("manifest");
     save_map(dir.string(), sample_map());
-    const std::string manifest = read_file((dir / "manifest.txt").string(), "m");
+    const std::string manifest = common::read_file((dir / "manifest.txt").string(), "m");
     // Truncated (no end line).
     std::ofstream(dir / "manifest.txt", std::ios::trunc) << manifest.substr(0, manifest.size() / 2);
     try {

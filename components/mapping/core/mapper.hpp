@@ -19,7 +19,6 @@
 #include <unordered_map>
 #include <vector>
 
-#include "common/core/io_error.hpp"
 #include "common/core/local_map_data.hpp"
 #include "common/core/ply_io.hpp"
 #include "mapping/core/loop_detector.hpp"
@@ -73,12 +72,11 @@ struct LocalMapResult {
 
 class Mapper {
   public:
-    // Throws common::ConfigError (naming the key) on an invalid configuration.
+    // Throws MapperConfigError (naming the key) on an invalid configuration.
     explicit Mapper(const MapperConfig& config);
     // Continues a loaded map in a new session: its keyframes are searchable at once and, with
-    // `freeze_loaded`, its anchors are held fixed. Throws common::ConfigError (key
-    // mapping.scan_context) when the map's descriptors do not match config.scan_context, and
-    // common::IoError when its graph holds an invalid or repeated node.
+    // `freeze_loaded`, its anchors are held fixed. Throws MapperConfigError when the map's
+    // descriptors do not match config.scan_context.
     Mapper(const MapperConfig& config, const MapData& loaded, bool freeze_loaded = true);
 
     const MapperConfig& config() const { return config_; }

@@ -23,7 +23,8 @@ RegistrationConfig coarse_config(const OdometryConfig& config) {
 }
 
 const OdometryConfig& checked(const OdometryConfig& config) {
-    common::throw_if(validate(config), "odometry");
+    const std::string error = validate(config);
+    if (!error.empty()) throw ConfigError(error);
     return config;
 }
 

@@ -6,7 +6,7 @@
 #include <set>
 
 #include "common/core/io_error.hpp"
-#include "recorder/core/crc32.hpp"
+#include "common/core/crc32.hpp"
 
 namespace ltm::recorder {
 namespace {
@@ -112,8 +112,8 @@ bool McapReader::open_summary() {
     std::vector<std::uint8_t> summary;
     file_->read(footer_.summary_start, footer_at - footer_.summary_start, summary);
     if (footer_.summary_crc != 0) {
-        std::uint32_t crc = crc32_update(crc32_init(), summary.data(), summary.size());
-        crc = crc32_final(crc32_update(crc, tail.data(), kRecordPrefix + 16));
+        std::uint32_t crc = common::crc32_update(common::crc32_init(), summary.data(), summary.size());
+        crc = common::crc32_final(common::crc32_update(crc, tail.data(), kRecordPrefix + 16));
         if (crc != footer_.summary_crc) {
             char buf[160];
             std::snprintf(buf, sizeof buf,

@@ -12,7 +12,7 @@
 
 #include "common/core/io_error.hpp"
 #include "recorder/core/compression.hpp"
-#include "recorder/core/crc32.hpp"
+#include "common/core/crc32.hpp"
 
 namespace ltm::recorder {
 
@@ -62,7 +62,7 @@ std::string decode_chunk(const std::uint8_t* content, std::size_t size, bool che
         return "cannot decompress (" + error + ")";
     }
     if (check_crc && chunk.uncompressed_crc != 0) {
-        const std::uint32_t got = crc32(records.data(), records.size());
+        const std::uint32_t got = common::crc32(records.data(), records.size());
         if (got != chunk.uncompressed_crc) {
             char buf[96];
             std::snprintf(buf, sizeof buf, "CRC mismatch (stored %08x, computed %08x)",
@@ -104,10 +104,10 @@ class Scanner {
     Scanner(const FileSource& file, const ScanOptions& options) : file_(file), options_(options) {}
 
     ScanResult run() {
-        crc_ = crc32_init();
+        crc_ = common::crc32_init();
         std::vector<std::uint8_t> magic;
         file_.read(0, kMagicSize, magic);  // the reader checked it already
-        crc_ = crc32_update(crc_, magic.data(), magic.size());
+        crc_ = common::crc32_update(crc_, magic.data(), magic.size());
         std::uint64_t pos = kMagicSize;
         r_.readable_end = pos;
         bool first = true;
@@ -146,8 +146,8 @@ class Scanner {
                 data_end(pos);
                 break;
             }
-            crc_ = crc32_update(crc_, prefix_.data(), prefix_.size());
-            crc_ = crc32_update(crc_, content_.data(), content_.size());
+            crc_ = common::crc32_update(crc_, prefix_.data(), prefix_.size());
+            crc_ = common::crc32_update(crc_, content_.data(), content_.size());
             if (!record(op, pos, len, first)) break;
             first = false;
             pos += kRecordPrefix + len;
@@ -167,7 +167,7 @@ class Scanner {
         r_.data_end_offset = pos;
         std::uint32_t stored = 0;
         if (content_.size() >= 4) std::memcpy(&stored, content_.data(), 4);
-        const std::uint32_t computed = crc32_final(crc_);
+        const std::uint32_t computed = common::crc32_final(crc_);
         if (options_.check_crcs && stored != 0 && stored != computed) {
             char buf[160];
             std::snprintf(buf, sizeof buf,

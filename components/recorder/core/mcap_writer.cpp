@@ -9,7 +9,7 @@
 #include <stdexcept>
 
 #include "common/core/io_error.hpp"
-#include "recorder/core/crc32.hpp"
+#include "common/core/crc32.hpp"
 
 namespace ltm::recorder {
 
@@ -38,7 +38,7 @@ McapWriter::McapWriter(const std::string& path, McapWriterConfig config)
     if (fd_ < 0) throw common::IoError(path, std::string("cannot create: ") + std::strerror(errno));
     std::vector<std::uint8_t> head(kMcapMagic, kMcapMagic + kMagicSize);
     write_header(head, Header{config_.profile, config_.library});
-    data_crc_ = crc32_init();
+    data_crc_ = common::crc32_init();
     if (!write_bytes(head.data(), head.size())) {
         const int err = errno;
         ::close(fd_);
@@ -130,7 +130,7 @@ WriteStatus McapWriter::flush() {
 }
 
 bool McapWriter::write_bytes(const std::uint8_t* p, std::size_t n) {
-    data_crc_ = crc32_update(data_crc_, p, n);
+    data_crc_ = common::crc32_update(data_crc_, p, n);
     while (n > 0) {
         const ssize_t got = ::write(fd_, p, n);
         if (got < 0) {
@@ -154,7 +154,7 @@ WriteStatus McapWriter::write_chunk() {
     rec.message_start_time = chunk_start_time_;
     rec.message_end_time = chunk_end_time_;
     rec.uncompressed_size = chunk_.size();
-    rec.uncompressed_crc = crc32(chunk_.data(), chunk_.size());
+    rec.uncompressed_crc = common::crc32(chunk_.data(), chunk_.size());
     rec.compression = compression_name(config_.compression);
     const std::vector<std::uint8_t>* body = &chunk_;
     if (config_.compression != Compression::kNone) {
@@ -226,7 +226,7 @@ WriteStatus McapWriter::write_chunk() {
 
 bool McapWriter::write_tail() {
     std::vector<std::uint8_t> tail;
-    write_data_end(tail, crc32_final(data_crc_));
+    write_data_end(tail, common::crc32_final(data_crc_));
     const std::uint64_t summary_start = pos_ + tail.size();
     const std::size_t summary_begin = tail.size();
     std::vector<SummaryOffset> offsets;
@@ -257,7 +257,7 @@ bool McapWriter::write_tail() {
     write_footer(tail, Footer{summary_start, summary_offset_start, 0});
     // The summary CRC covers the summary, the summary offsets and the footer up to summary_crc.
     const std::uint32_t crc =
-        crc32(tail.data() + summary_begin, footer_begin + kRecordPrefix + 16 - summary_begin);
+        common::crc32(tail.data() + summary_begin, footer_begin + kRecordPrefix + 16 - summary_begin);
     std::memcpy(tail.data() + footer_begin + kRecordPrefix + 16, &crc, 4);
     tail.insert(tail.end(), kMcapMagic, kMcapMagic + kMagicSize);
     return write_bytes(tail.data(), tail.size());

@@ -10,7 +10,7 @@
 
 #include "common/core/io_error.hpp"
 #include "recorder/core/compression.hpp"
-#include "recorder/core/crc32.hpp"
+#include "common/core/crc32.hpp"
 #include "recorder/core/mcap_reader.hpp"
 #include "recorder/core/test_util.hpp"
 
@@ -48,7 +48,7 @@ std::size_t check_layout(const std::vector<std::uint8_t>& f, std::size_t chunk_s
     EXPECT_EQ(f[footer_at], static_cast<std::uint8_t>(Op::kFooter));
     Footer footer;
     EXPECT_TRUE(parse_footer(f.data() + footer_at + kRecordPrefix, kFooterContent, footer));
-    EXPECT_EQ(footer.summary_crc, crc32(f.data() + footer.summary_start,
+    EXPECT_EQ(footer.summary_crc, common::crc32(f.data() + footer.summary_start,
                                         footer_at + kRecordPrefix + 16 - footer.summary_start));
     const std::vector<Rec> data = walk(f, 8, footer.summary_start);
     EXPECT_EQ(data.front().op, static_cast<std::uint8_t>(Op::kHeader));
@@ -59,7 +59,7 @@ std::size_t check_layout(const std::vector<std::uint8_t>& f, std::size_t chunk_s
     EXPECT_EQ(data_end.op, static_cast<std::uint8_t>(Op::kDataEnd));
     std::uint32_t data_crc = 0;
     std::memcpy(&data_crc, data_end.content, 4);
-    EXPECT_EQ(data_crc, crc32(f.data(), data_end.offset));
+    EXPECT_EQ(data_crc, common::crc32(f.data(), data_end.offset));
 
     // Data section: Header, then Chunk followed by its MessageIndex records, then DataEnd.
     std::map<std::uint64_t, std::size_t> chunk_at;  // offset -> position in data
@@ -80,7 +80,7 @@ std::size_t check_layout(const std::vector<std::uint8_t>& f, std::size_t chunk_s
         EXPECT_TRUE(
             decompress(c.compression, c.records, c.records_size, c.uncompressed_size, records, err))
             << err;
-        EXPECT_EQ(c.uncompressed_crc, crc32(records.data(), records.size()));
+        EXPECT_EQ(c.uncompressed_crc, common::crc32(records.data(), records.size()));
         EXPECT_LT(records.size(), chunk_size + max_record);
         // Inside: Schema before the Channel that uses it, Channel before its messages.
         std::set<std::uint16_t> schemas, channels;
