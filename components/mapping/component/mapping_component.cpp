@@ -14,6 +14,7 @@
 #include "common/convert/local_map.hpp"
 #include "common/core/io_error.hpp"
 #include "common/core/ply_io.hpp"
+#include "mapping/core/binary_io.hpp"
 #include "mapping/core/map_store.hpp"
 #include "mapping/core/mapper.hpp"
 #include "mapping/params/mapper_params.hpp"
@@ -93,9 +94,9 @@ private:
             p.fail("load_map_dir", e.what());
         } catch (const common::IoError& e) {
             p.fail("load_map_dir", e.what());
-        } catch (const MapperConfigError& e) {
-            p.fail(std::string(e.what()).rfind("mapping.scan_context", 0) == 0 ? "scan_context" : "load_map_dir",
-                   e.what());
+        } catch (const common::ConfigError& e) {
+            // The configuration does not fit the loaded map: the key is under the mapper's section.
+            p.fail(e.key().substr(e.key().find('.') + 1), e.problem());
         }
     }
 

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 #include <unordered_map>
 
 #include "registration/core/voxel_hash.hpp"
@@ -20,16 +19,11 @@ struct Cell {
 
 }  // namespace
 
-std::string validate(const GlobalMapConfig& c, const std::string& prefix) {
-    std::ostringstream e;
-    if (!(c.voxel_size >= 0.0) || !std::isfinite(c.voxel_size)) {
-        e << prefix << ".voxel_size must be >= 0 (got " << c.voxel_size << ")";
-    } else if (!(c.min_planarity >= 0.0 && c.min_planarity <= 1.0)) {
-        e << prefix << ".min_planarity must be in [0, 1] (got " << c.min_planarity << ")";
-    } else if (c.min_point_count < 0) {
-        e << prefix << ".min_point_count must be >= 0 (got " << c.min_point_count << ")";
-    }
-    return e.str();
+std::optional<common::ConfigProblem> validate(const GlobalMapConfig& config) {
+    GlobalMapConfig c = config;  // visit_fields takes a mutable config (loaders write through it)
+    common::ConfigChecker k;
+    visit_fields(c, "", k);
+    return k.problem();
 }
 
 common::PlyCloud build_global_map(const std::vector<PlacedLocalMap>& maps,

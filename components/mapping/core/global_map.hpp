@@ -4,9 +4,11 @@
 // (T_world_anchor * T_anchor_grid); voxels of overlapping maps that land in the same cell of a
 // world grid are fused (centres and sign-aligned normals averaged, weighted by point count).
 #include <Eigen/Geometry>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "common/core/config_check.hpp"
 #include "common/core/local_map_data.hpp"
 #include "common/core/ply_io.hpp"
 
@@ -19,7 +21,19 @@ struct GlobalMapConfig {
     int min_point_count = 1;       // leave out voxels with fewer points
 };
 
-std::string validate(const GlobalMapConfig& config, const std::string& prefix = "global_map");
+// Calls v(key, field, rule) for every field, keys under `prefix` ("global_map."); the rule is the
+// field's (common/core/config_check.hpp).
+template <class Visitor>
+void visit_fields(GlobalMapConfig& c, const std::string& prefix, Visitor&& v) {
+    using namespace common::rules;
+    v(prefix + "voxel_size", c.voxel_size, non_negative);
+    v(prefix + "with_normal_only", c.with_normal_only, unchecked);
+    v(prefix + "min_planarity", c.min_planarity, unit);
+    v(prefix + "min_point_count", c.min_point_count, non_negative);
+}
+
+// The first field that breaks its rule (key relative: "voxel_size"); nullopt when valid.
+std::optional<common::ConfigProblem> validate(const GlobalMapConfig& config);
 
 struct PlacedLocalMap {
     const common::LocalMapData* map = nullptr;

@@ -90,7 +90,10 @@ TEST(GlobalMap, FiltersAndValidation) {
     EXPECT_EQ(build_global_map(placed, all).points.size(), 0u);
     GlobalMapConfig bad;
     bad.min_planarity = 2.0;
-    EXPECT_NE(validate(bad).find("global_map.min_planarity"), std::string::npos);
+    ASSERT_TRUE(validate(bad));
+    EXPECT_EQ(validate(bad)->key, "min_planarity");
+    EXPECT_EQ(validate(bad)->problem, "must be in [0, 1] (got 2)");
+    EXPECT_FALSE(validate(GlobalMapConfig()));
 }
 
 }  // namespace

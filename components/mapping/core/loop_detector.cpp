@@ -1,37 +1,21 @@
 #include "mapping/core/loop_detector.hpp"
 
 #include <algorithm>
-#include <sstream>
-#include <stdexcept>
 
 namespace ltm::mapping {
 
-std::string validate(const LoopDetectorConfig& c, const std::string& prefix) {
-    std::ostringstream e;
-    if (c.candidates < 1) {
-        e << prefix << ".candidates must be >= 1 (got " << c.candidates << ")";
-    } else if (!(c.max_distance > 0.0)) {
-        e << prefix << ".max_distance must be > 0 (got " << c.max_distance << ")";
-    } else if (c.exclude_recent_keyframes < 0) {
-        e << prefix << ".exclude_recent_keyframes must be >= 0 (got " << c.exclude_recent_keyframes
-          << ")";
-    } else if (!(c.exclude_recent_seconds >= 0.0)) {
-        e << prefix << ".exclude_recent_seconds must be >= 0 (got " << c.exclude_recent_seconds
-          << ")";
-    } else if (c.max_results < 1) {
-        e << prefix << ".max_results must be >= 1 (got " << c.max_results << ")";
-    } else if (c.rebuild_every < 1) {
-        e << prefix << ".rebuild_every must be >= 1 (got " << c.rebuild_every << ")";
-    }
-    return e.str();
+std::optional<common::ConfigProblem> validate(const LoopDetectorConfig& config) {
+    LoopDetectorConfig c = config;  // visit_fields takes a mutable config (loaders write through it)
+    common::ConfigChecker k;
+    visit_fields(c, "", k);
+    return k.problem();
 }
 
 namespace {
 
 const LoopDetectorConfig& checked(const ScanContextConfig& sc, const LoopDetectorConfig& c) {
-    std::string error = validate(sc);
-    if (error.empty()) error = validate(c);
-    if (!error.empty()) throw std::invalid_argument(error);
+    common::throw_if(validate(sc), "scan_context");
+    common::throw_if(validate(c), "loop_detection");
     return c;
 }
 

@@ -6,6 +6,7 @@
 // The caller verifies candidates geometrically.
 #include <cstdint>
 #include <deque>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,8 +24,21 @@ struct LoopDetectorConfig {
     int rebuild_every = 64;                // keys added between k-d tree rebuilds
 };
 
-std::string validate(const LoopDetectorConfig& config,
-                     const std::string& prefix = "loop_detection");
+// Calls v(key, field, rule) for every field, keys under `prefix` ("loop_detection."); the rule is
+// the field's (common/core/config_check.hpp). An infinite limit is no limit.
+template <class Visitor>
+void visit_fields(LoopDetectorConfig& c, const std::string& prefix, Visitor&& v) {
+    using namespace common::rules;
+    v(prefix + "candidates", c.candidates, at_least(1));
+    v(prefix + "max_distance", c.max_distance, positive.or_infinite());
+    v(prefix + "exclude_recent_keyframes", c.exclude_recent_keyframes, non_negative);
+    v(prefix + "exclude_recent_seconds", c.exclude_recent_seconds, non_negative.or_infinite());
+    v(prefix + "max_results", c.max_results, at_least(1));
+    v(prefix + "rebuild_every", c.rebuild_every, at_least(1));
+}
+
+// The first field that breaks its rule (key relative: "candidates"); nullopt when valid.
+std::optional<common::ConfigProblem> validate(const LoopDetectorConfig& config);
 
 struct LoopCandidate {
     std::uint32_t match = 0;  // index of the earlier keyframe (order of add())
@@ -35,7 +49,7 @@ struct LoopCandidate {
 
 class LoopDetector {
   public:
-    // Throws std::invalid_argument (naming the key) on an invalid configuration.
+    // Throws common::ConfigError (naming the key) on an invalid configuration.
     LoopDetector(const ScanContextConfig& sc_config, const LoopDetectorConfig& config);
 
     const ScanContextConfig& scan_context_config() const { return sc_config_; }

@@ -91,8 +91,8 @@ TEST(LoopDetector, InvalidConfigurationNamesTheKey) {
     try {
         LoopDetector d(ScanContextConfig(), cfg);
         FAIL() << "accepted candidates = 0";
-    } catch (const std::invalid_argument& e) {
-        EXPECT_NE(std::string(e.what()).find("loop_detection.candidates"), std::string::npos);
+    } catch (const common::ConfigError& e) {
+        EXPECT_STREQ(e.what(), "loop_detection.candidates: must be >= 1 (got 0)");
     }
 }
 

@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <sstream>
-#include <stdexcept>
 
 #include "registration/core/imls.hpp"
 #include "registration/core/registration.hpp"
@@ -13,8 +12,7 @@ namespace {
 constexpr double kDegToRad = M_PI / 180.0;
 
 const LoopVerifierConfig& checked(const LoopVerifierConfig& c) {
-    const std::string error = validate(c);
-    if (!error.empty()) throw std::invalid_argument(error);
+    common::throw_if(validate(c), "verification");
     return c;
 }
 
@@ -26,38 +24,11 @@ Eigen::Isometry3d yawed(const Eigen::Isometry3d& T, double yaw) {
 
 }  // namespace
 
-std::string validate(const LoopVerifierConfig& c, const std::string& prefix) {
-    std::ostringstream e;
-    if (!(c.downsample >= 0.0)) {
-        e << prefix << ".downsample must be >= 0 (got " << c.downsample << ")";
-    } else if (c.max_points < 100) {
-        e << prefix << ".max_points must be >= 100 (got " << c.max_points << ")";
-    } else if (c.yaw_offsets.empty()) {
-        e << prefix << ".yaw_offsets must hold at least one value";
-    } else if (!(c.inlier_distance > 0.0)) {
-        e << prefix << ".inlier_distance must be > 0 (got " << c.inlier_distance << ")";
-    } else if (c.min_inliers < 1) {
-        e << prefix << ".min_inliers must be >= 1 (got " << c.min_inliers << ")";
-    } else if (!(c.min_inlier_fraction >= 0.0 && c.min_inlier_fraction <= 1.0)) {
-        e << prefix << ".min_inlier_fraction must be in [0, 1] (got " << c.min_inlier_fraction
-          << ")";
-    } else if (!(c.max_inlier_rms > 0.0)) {
-        e << prefix << ".max_inlier_rms must be > 0 (got " << c.max_inlier_rms << ")";
-    } else if (c.coarse_factor != 0 && (c.coarse_factor < 2 || c.coarse_factor > 16)) {
-        e << prefix << ".coarse_factor must be 0 or in [2, 16] (got " << c.coarse_factor << ")";
-    } else if (!(c.max_correction_translation > 0.0) || !(c.max_correction_rotation > 0.0)) {
-        e << prefix << ".max_correction_translation/rotation must be > 0";
-    } else if (!(c.min_structure_inlier_ratio >= 0.0 && c.min_structure_inlier_ratio <= 1.0)) {
-        e << prefix << ".min_structure_inlier_ratio must be in [0, 1] (got "
-          << c.min_structure_inlier_ratio << ")";
-    } else if (c.min_structure_points < 0) {
-        e << prefix << ".min_structure_points must be >= 0 (got " << c.min_structure_points << ")";
-    } else if (c.cache_size < 1) {
-        e << prefix << ".cache_size must be >= 1 (got " << c.cache_size << ")";
-    } else if (c.coarse.max_iterations < 1 || c.fine.max_iterations < 1) {
-        e << prefix << ".coarse/fine.max_iterations must be >= 1";
-    }
-    return e.str();
+std::optional<common::ConfigProblem> validate(const LoopVerifierConfig& config) {
+    LoopVerifierConfig c = config;  // visit_fields takes a mutable config (loaders write through it)
+    common::ConfigChecker k;
+    visit_fields(c, "", k);
+    return k.problem();
 }
 
 LoopVerifier::LoopVerifier(const LoopVerifierConfig& config) : config_(checked(config)) {}

@@ -9,9 +9,11 @@
 #include <cstdint>
 #include <deque>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "common/core/config_check.hpp"
 #include "common/core/local_map_data.hpp"
 #include "mapping/core/registration_target.hpp"
 #include "registration/core/registration_config.hpp"
@@ -66,7 +68,32 @@ struct LoopVerifierConfig {
     }
 };
 
-std::string validate(const LoopVerifierConfig& config, const std::string& prefix = "verification");
+// Calls v(key, field, rule) for every field, keys under `prefix` ("verification."); the rule is the
+// field's (common/core/config_check.hpp). An infinite limit is no limit.
+template <class Visitor>
+void visit_fields(LoopVerifierConfig& c, const std::string& prefix, Visitor&& v) {
+    using namespace common::rules;
+    v(prefix + "coarse_factor", c.coarse_factor, zero_or_in(2, 16));
+    registration::visit_fields(c.coarse, prefix + "coarse.", v);
+    registration::visit_fields(c.fine, prefix + "fine.", v);
+    v(prefix + "min_planarity", c.min_planarity, unchecked);
+    v(prefix + "downsample", c.downsample, non_negative.or_infinite());
+    v(prefix + "max_points", c.max_points, at_least(100));
+    v(prefix + "yaw_offsets", c.yaw_offsets, not_empty);
+    v(prefix + "inlier_distance", c.inlier_distance, positive.or_infinite());
+    v(prefix + "min_inliers", c.min_inliers, at_least(1));
+    v(prefix + "min_inlier_fraction", c.min_inlier_fraction, unit);
+    v(prefix + "max_inlier_rms", c.max_inlier_rms, positive.or_infinite());
+    v(prefix + "min_structure_inlier_ratio", c.min_structure_inlier_ratio, unit);
+    v(prefix + "min_structure_points", c.min_structure_points, non_negative);
+    v(prefix + "refuse_degenerate", c.refuse_degenerate, unchecked);
+    v(prefix + "max_correction_translation", c.max_correction_translation, positive.or_infinite());
+    v(prefix + "max_correction_rotation", c.max_correction_rotation, positive.or_infinite());
+    v(prefix + "cache_size", c.cache_size, at_least(1));
+}
+
+// The first field that breaks its rule (key relative: "min_inliers"); nullopt when valid.
+std::optional<common::ConfigProblem> validate(const LoopVerifierConfig& config);
 
 struct LoopVerification {
     bool accepted = false;
@@ -90,7 +117,7 @@ using GuessList = std::vector<Eigen::Isometry3d, Eigen::aligned_allocator<Eigen:
 
 class LoopVerifier {
   public:
-    // Throws std::invalid_argument (naming the key) on an invalid configuration.
+    // Throws common::ConfigError (naming the key) on an invalid configuration.
     explicit LoopVerifier(const LoopVerifierConfig& config);
 
     const LoopVerifierConfig& config() const { return config_; }

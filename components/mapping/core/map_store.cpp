@@ -130,8 +130,9 @@ Manifest parse_manifest(const std::string& text) {
                     "<sensor_height>'");
             }
             d.kind = ScanContextKind(kind);
-            const std::string error = validate(d, "descriptor");
-            if (!error.empty()) fail(error);
+            if (const auto problem = validate(d)) {
+                fail("descriptor." + problem->key + " " + problem->problem);
+            }
             descriptor = true;
         } else if (key == "graph" || key == "keyframes" || key == "local_map") {
             FileEntry e;

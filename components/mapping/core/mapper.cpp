@@ -12,8 +12,7 @@ namespace ltm::mapping {
 namespace {
 
 const MapperConfig& checked(const MapperConfig& config) {
-    const std::string error = validate(config);
-    if (!error.empty()) throw MapperConfigError(error);
+    common::throw_if(validate(config), "mapping");
     return config;
 }
 
@@ -52,17 +51,17 @@ Mapper::Mapper(const MapperConfig& config, const MapData& loaded, bool freeze_lo
         std::abs(a.max_range - b.max_range) > 1e-9 || std::abs(a.min_range - b.min_range) > 1e-9 ||
         std::abs(a.sensor_height - b.sensor_height) > 1e-9) {
         std::ostringstream e;
-        e << "mapping.scan_context differs from the loaded map's descriptors (" << a.rings << " x "
-          << a.sectors << ", kind " << int(a.kind) << ", max_range " << a.max_range
-          << ", sensor_height " << a.sensor_height << ")";
-        throw MapperConfigError(e.str());
+        e << "differs from the loaded map's descriptors (" << a.rings << " x " << a.sectors
+          << ", kind " << int(a.kind) << ", max_range " << a.max_range << ", sensor_height "
+          << a.sensor_height << ")";
+        throw common::ConfigError("mapping.scan_context", e.str());
     }
     std::uint32_t last_session = 0;
     for (PoseGraphNode n : loaded.nodes) {
         n.fixed = n.fixed || freeze_loaded;
         if (!graph_.add_node(n))
-            throw MapperConfigError("loaded map: node " + std::to_string(n.id) +
-                                    " is invalid or repeated");
+            throw common::IoError("loaded map",
+                                  "node " + std::to_string(n.id) + " is invalid or repeated");
         chains_[n.session][n.local_map_id] = n.id;
         next_node_ = std::max(next_node_, n.id + 1);
         last_session = std::max(last_session, n.session);

@@ -19,6 +19,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "common/core/io_error.hpp"
 #include "common/core/local_map_data.hpp"
 #include "common/core/ply_io.hpp"
 #include "mapping/core/loop_detector.hpp"
@@ -72,11 +73,12 @@ struct LocalMapResult {
 
 class Mapper {
   public:
-    // Throws MapperConfigError (naming the key) on an invalid configuration.
+    // Throws common::ConfigError (naming the key) on an invalid configuration.
     explicit Mapper(const MapperConfig& config);
     // Continues a loaded map in a new session: its keyframes are searchable at once and, with
-    // `freeze_loaded`, its anchors are held fixed. Throws MapperConfigError when the map's
-    // descriptors do not match config.scan_context.
+    // `freeze_loaded`, its anchors are held fixed. Throws common::ConfigError (key
+    // mapping.scan_context) when the map's descriptors do not match config.scan_context, and
+    // common::IoError when its graph holds an invalid or repeated node.
     Mapper(const MapperConfig& config, const MapData& loaded, bool freeze_loaded = true);
 
     const MapperConfig& config() const { return config_; }

@@ -1,7 +1,6 @@
 #include "mapping/core/mapper_config.hpp"
 
 #include <cmath>
-#include <sstream>
 
 namespace ltm::mapping {
 namespace {
@@ -14,9 +13,6 @@ Matrix6d diagonal_information(double sigma_t, double sigma_r_rad) {
     I.diagonal().tail<3>().setConstant(1.0 / (sigma_r_rad * sigma_r_rad));
     return I;
 }
-
-bool positive(double v) { return v > 0.0 && std::isfinite(v); }
-bool non_negative(double v) { return v >= 0.0 && std::isfinite(v); }
 
 }  // namespace
 
@@ -39,48 +35,16 @@ MapperConfig mapper_preset(common::SensorPreset preset) {
     return c;
 }
 
-std::string validate(const MapperConfig& c) {
-    for (const std::string& e : {validate(c.scan_context, "mapping.scan_context"),
-                                 validate(c.loop_detection, "mapping.loop_detection"),
-                                 validate(c.verification, "mapping.verification"),
-                                 validate(c.pose_graph, "mapping.pose_graph"),
-                                 validate(c.global_map, "mapping.global_map")}) {
-        if (!e.empty()) return e;
-    }
-    std::ostringstream e;
-    const OdometryEdgeConfig& o = c.odometry_edge;
-    const LoopEdgeConfig& l = c.loop_edge;
-    if (!positive(o.sigma_translation)) {
-        e << "mapping.odometry_edge.sigma_translation must be > 0 (got " << o.sigma_translation
-          << ")";
-    } else if (!non_negative(o.sigma_translation_per_m)) {
-        e << "mapping.odometry_edge.sigma_translation_per_m must be >= 0 (got "
-          << o.sigma_translation_per_m << ")";
-    } else if (!positive(o.sigma_rotation)) {
-        e << "mapping.odometry_edge.sigma_rotation must be > 0 (got " << o.sigma_rotation << ")";
-    } else if (!non_negative(o.sigma_rotation_per_m)) {
-        e << "mapping.odometry_edge.sigma_rotation_per_m must be >= 0 (got "
-          << o.sigma_rotation_per_m << ")";
-    } else if (!positive(l.sigma_translation)) {
-        e << "mapping.loop_edge.sigma_translation must be > 0 (got " << l.sigma_translation << ")";
-    } else if (!positive(l.sigma_rotation)) {
-        e << "mapping.loop_edge.sigma_rotation must be > 0 (got " << l.sigma_rotation << ")";
-    } else if (!positive(c.loop_consistency.translation) ||
-               !non_negative(c.loop_consistency.translation_per_m)) {
-        e << "mapping.loop_consistency.translation must be > 0 and translation_per_m >= 0";
-    } else if (!positive(c.loop_consistency.rotation) ||
-               !non_negative(c.loop_consistency.rotation_per_m)) {
-        e << "mapping.loop_consistency.rotation must be > 0 and rotation_per_m >= 0";
-    } else if (c.max_loops_per_keyframe < 1) {
-        e << "mapping.max_loops_per_keyframe must be >= 1 (got " << c.max_loops_per_keyframe << ")";
-    } else if (c.max_loops_per_anchor_pair < 0) {
-        e << "mapping.max_loops_per_anchor_pair must be >= 0 (got " << c.max_loops_per_anchor_pair
-          << ")";
-    } else if (c.loop_cooldown_keyframes < 0) {
-        e << "mapping.loop_cooldown_keyframes must be >= 0 (got " << c.loop_cooldown_keyframes
-          << ")";
-    }
-    return e.str();
+std::optional<common::ConfigProblem> validate(const MapperConfig& config) {
+    common::ConfigChecker k;
+    k.include(validate(config.scan_context), "scan_context.");
+    k.include(validate(config.loop_detection), "loop_detection.");
+    k.include(validate(config.verification), "verification.");
+    k.include(validate(config.pose_graph), "pose_graph.");
+    k.include(validate(config.global_map), "global_map.");
+    MapperConfig c = config;  // visit_own_fields takes a mutable config (loaders write through it)
+    visit_own_fields(c, k);
+    return k.problem();
 }
 
 Matrix6d odometry_information(const OdometryEdgeConfig& c, double distance) {

@@ -1,9 +1,10 @@
 #pragma once
 // Configuration of the mapping back end (METHOD.md section 3): one plain struct with defaults for
 // a Velodyne HDL-64E on a car (KITTI), and the information of odometry and loop edges.
-#include <stdexcept>
+#include <optional>
 #include <string>
 
+#include "common/core/config_check.hpp"
 #include "common/core/sensor_preset.hpp"
 #include "mapping/core/global_map.hpp"
 #include "mapping/core/loop_detector.hpp"
@@ -70,13 +71,45 @@ struct MapperConfig {
 // the spinning LiDARs keep the defaults with KITTI's sensor height.
 MapperConfig mapper_preset(common::SensorPreset preset);
 
-// Empty when valid; otherwise one line naming the first offending key ("mapping.pose_graph...").
-std::string validate(const MapperConfig& config);
+// Calls v(key, field, rule) for the mapper's own fields (edges, loop consistency, loop policy), by
+// the dotted key as in YAML; the rule is the field's (common/core/config_check.hpp).
+template <class Visitor>
+void visit_own_fields(MapperConfig& c, Visitor&& v) {
+    using namespace common::rules;
+    auto& o = c.odometry_edge;
+    v("odometry_edge.sigma_translation", o.sigma_translation, positive);
+    v("odometry_edge.sigma_translation_per_m", o.sigma_translation_per_m, non_negative);
+    v("odometry_edge.sigma_rotation", o.sigma_rotation, positive);
+    v("odometry_edge.sigma_rotation_per_m", o.sigma_rotation_per_m, non_negative);
+    v("loop_edge.sigma_translation", c.loop_edge.sigma_translation, positive);
+    v("loop_edge.sigma_rotation", c.loop_edge.sigma_rotation, positive);
+    auto& k = c.loop_consistency;
+    v("loop_consistency.translation", k.translation, positive);
+    v("loop_consistency.translation_per_m", k.translation_per_m, non_negative);
+    v("loop_consistency.rotation", k.rotation, positive);
+    v("loop_consistency.rotation_per_m", k.rotation_per_m, non_negative);
+    v("max_loops_per_keyframe", c.max_loops_per_keyframe, at_least(1));
+    v("loop_cooldown_keyframes", c.loop_cooldown_keyframes, non_negative);
+    v("verify_from_graph", c.verify_from_graph, unchecked);
+    v("max_loops_per_anchor_pair", c.max_loops_per_anchor_pair, non_negative);
+    v("keep_keyframe_points", c.keep_keyframe_points, unchecked);
+}
 
-class MapperConfigError : public std::invalid_argument {
-  public:
-    using std::invalid_argument::invalid_argument;
-};
+// Every field but the Scan Context kind (an enum: loaders read it as a name): the parts', then the
+// mapper's own.
+template <class Visitor>
+void visit_fields(MapperConfig& c, Visitor&& v) {
+    visit_fields(c.scan_context, "scan_context.", v);
+    visit_fields(c.loop_detection, "loop_detection.", v);
+    visit_fields(c.verification, "verification.", v);
+    visit_fields(c.pose_graph, "pose_graph.", v);
+    visit_fields(c.global_map, "global_map.", v);
+    visit_own_fields(c, v);
+}
+
+// The first problem, the key as in YAML ("scan_context.rings"); nullopt when valid. The Mapper
+// throws common::ConfigError under "mapping".
+std::optional<common::ConfigProblem> validate(const MapperConfig& config);
 
 // 6x6 information matrices of e = [dt; dr] (pose_graph.hpp).
 Matrix6d odometry_information(const OdometryEdgeConfig& config, double distance);

@@ -298,9 +298,31 @@ TEST(Mapper, BadInputIsRefusedWithAReason) {
     try {
         Mapper m2(bad);
         FAIL();
-    } catch (const MapperConfigError& e) {
-        EXPECT_NE(std::string(e.what()).find("mapping.odometry_edge.sigma_rotation"),
-                  std::string::npos);
+    } catch (const common::ConfigError& e) {
+        EXPECT_STREQ(e.what(), "mapping.odometry_edge.sigma_rotation: must be > 0 (got 0)");
+    }
+}
+
+TEST(Mapper, LoadedMapThatDoesNotFitIsRefusedNamingTheKey) {
+    MapData loaded;
+    loaded.descriptor_config.rings = 24;  // the config keeps 20
+    try {
+        Mapper m(MapperConfig(), loaded);
+        ADD_FAILURE() << "descriptors of another shape accepted";
+    } catch (const common::ConfigError& e) {
+        EXPECT_EQ(e.key(), "mapping.scan_context");
+        EXPECT_EQ(e.problem().rfind("differs from the loaded map's descriptors (24 x 60", 0), 0u)
+            << e.problem();
+    }
+    loaded.descriptor_config = MapperConfig().scan_context;
+    PoseGraphNode node;
+    node.id = 3;
+    loaded.nodes = {node, node};  // repeated
+    try {
+        Mapper m(MapperConfig(), loaded);
+        ADD_FAILURE() << "a repeated node accepted";
+    } catch (const common::IoError& e) {
+        EXPECT_STREQ(e.what(), "loaded map: node 3 is invalid or repeated");
     }
 }
 

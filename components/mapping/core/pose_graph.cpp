@@ -6,8 +6,6 @@
 #include <cmath>
 #include <memory>
 #include <numeric>
-#include <sstream>
-#include <stdexcept>
 
 namespace ltm::mapping {
 namespace {
@@ -78,27 +76,15 @@ const char* to_string(EdgeKind kind) {
     return "unknown";
 }
 
-std::string validate(const PoseGraphConfig& c, const std::string& prefix) {
-    std::ostringstream e;
-    if (c.loop_loss != "cauchy" && c.loop_loss != "huber" && c.loop_loss != "none") {
-        e << prefix << ".loop_loss must be cauchy, huber or none (got '" << c.loop_loss << "')";
-    } else if (!(c.loop_loss_scale > 0.0)) {
-        e << prefix << ".loop_loss_scale must be > 0 (got " << c.loop_loss_scale << ")";
-    } else if (c.max_iterations < 1) {
-        e << prefix << ".max_iterations must be >= 1 (got " << c.max_iterations << ")";
-    } else if (!(c.outlier_translation > 0.0)) {
-        e << prefix << ".outlier_translation must be > 0 (got " << c.outlier_translation << ")";
-    } else if (!(c.outlier_rotation > 0.0)) {
-        e << prefix << ".outlier_rotation must be > 0 (got " << c.outlier_rotation << ")";
-    } else if (c.max_outlier_rounds < 0) {
-        e << prefix << ".max_outlier_rounds must be >= 0 (got " << c.max_outlier_rounds << ")";
-    }
-    return e.str();
+std::optional<common::ConfigProblem> validate(const PoseGraphConfig& config) {
+    PoseGraphConfig c = config;  // visit_fields takes a mutable config (loaders write through it)
+    common::ConfigChecker k;
+    visit_fields(c, "", k);
+    return k.problem();
 }
 
 PoseGraph::PoseGraph(const PoseGraphConfig& config) : config_(config) {
-    const std::string error = validate(config);
-    if (!error.empty()) throw std::invalid_argument(error);
+    common::throw_if(validate(config), "pose_graph");
 }
 
 const PoseGraphNode* PoseGraph::find(std::uint64_t id) const {

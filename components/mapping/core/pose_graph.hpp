@@ -11,9 +11,12 @@
 // edge's 6x6 information.
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <unordered_map>
 #include <vector>
+
+#include "common/core/config_check.hpp"
 
 namespace ltm::mapping {
 
@@ -55,7 +58,21 @@ struct PoseGraphConfig {
     int max_outlier_rounds = 3;        // solves after the first one, while outliers are found
 };
 
-std::string validate(const PoseGraphConfig& config, const std::string& prefix = "pose_graph");
+// Calls v(key, field, rule) for every field, keys under `prefix` ("pose_graph."); the rule is the
+// field's (common/core/config_check.hpp). An infinite outlier bound rejects no loop.
+template <class Visitor>
+void visit_fields(PoseGraphConfig& c, const std::string& prefix, Visitor&& v) {
+    using namespace common::rules;
+    v(prefix + "loop_loss", c.loop_loss, one_of({"cauchy", "huber", "none"}));
+    v(prefix + "loop_loss_scale", c.loop_loss_scale, positive.or_infinite());
+    v(prefix + "max_iterations", c.max_iterations, at_least(1));
+    v(prefix + "outlier_translation", c.outlier_translation, positive.or_infinite());
+    v(prefix + "outlier_rotation", c.outlier_rotation, positive.or_infinite());
+    v(prefix + "max_outlier_rounds", c.max_outlier_rounds, non_negative);
+}
+
+// The first field that breaks its rule (key relative: "loop_loss"); nullopt when valid.
+std::optional<common::ConfigProblem> validate(const PoseGraphConfig& config);
 
 struct OptimisationSummary {
     bool solved = false;  // Ceres reported a usable solution

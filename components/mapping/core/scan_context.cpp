@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <sstream>
 
 namespace ltm::mapping {
 namespace {
@@ -66,26 +65,14 @@ bool comparable(const ScanContext& q, const ScanContext& c) {
 
 }  // namespace
 
-std::string validate(const ScanContextConfig& c, const std::string& prefix) {
-    std::ostringstream e;
-    if (c.rings < 1 || c.rings > 1000) {
-        e << prefix << ".rings must be in [1, 1000] (got " << c.rings << ")";
-    } else if (c.sectors < 4 || c.sectors > 3600) {
-        e << prefix << ".sectors must be in [4, 3600] (got " << c.sectors << ")";
-    } else if (!(c.max_range > 0.0) || !std::isfinite(c.max_range)) {
-        e << prefix << ".max_range must be > 0 (got " << c.max_range << ")";
-    } else if (!(c.min_range >= 0.0) || !(c.min_range < c.max_range)) {
-        e << prefix << ".min_range must be in [0, max_range) (got " << c.min_range << ")";
-    } else if (!std::isfinite(c.sensor_height)) {
-        e << prefix << ".sensor_height must be finite";
-    } else if (!(c.empty_bin_cost > 0.0)) {
-        e << prefix << ".empty_bin_cost must be > 0 (got " << c.empty_bin_cost << ")";
-    } else if (c.shift_search_radius < 0) {
-        e << prefix << ".shift_search_radius must be >= 0 (got " << c.shift_search_radius << ")";
-    } else if (c.kind != ScanContextKind::kMaxHeight && c.kind != ScanContextKind::kMeanVariance) {
-        e << prefix << ".kind is unknown";
-    }
-    return e.str();
+std::optional<common::ConfigProblem> validate(const ScanContextConfig& config) {
+    ScanContextConfig c = config;  // visit_fields takes a mutable config (loaders write through it)
+    common::ConfigChecker k;
+    visit_fields(c, "", k);
+    k.require(c.min_range < c.max_range, "min_range", "must be smaller than max_range");
+    k.require(c.kind == ScanContextKind::kMaxHeight || c.kind == ScanContextKind::kMeanVariance,
+              "kind", "is unknown");
+    return k.problem();
 }
 
 ScanContext make_scan_context(const std::vector<Eigen::Vector3f>& points,

@@ -10,8 +10,11 @@
 // The ring key (per ring, the mean over sectors) is yaw-invariant: it indexes the k-d tree.
 #include <Eigen/Core>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
+
+#include "common/core/config_check.hpp"
 
 namespace ltm::mapping {
 
@@ -32,8 +35,23 @@ struct ScanContextConfig {
     int shift_search_radius = 0;
 };
 
-// Empty when valid; otherwise one line naming the offending key ("scan_context.rings ...").
-std::string validate(const ScanContextConfig& config, const std::string& prefix = "scan_context");
+// Calls v(key, field, rule) for every field but the kind (an enum: loaders read it as a name), keys
+// under `prefix` ("scan_context."); the rule is the field's (common/core/config_check.hpp).
+template <class Visitor>
+void visit_fields(ScanContextConfig& c, const std::string& prefix, Visitor&& v) {
+    using namespace common::rules;
+    v(prefix + "rings", c.rings, in_range(1, 1000));
+    v(prefix + "sectors", c.sectors, in_range(4, 3600));
+    v(prefix + "max_range", c.max_range, positive);
+    v(prefix + "min_range", c.min_range, non_negative);  // and < max_range
+    v(prefix + "sensor_height", c.sensor_height, finite);
+    v(prefix + "empty_bin_cost", c.empty_bin_cost, positive.or_infinite());
+    v(prefix + "shift_search_radius", c.shift_search_radius, non_negative);
+}
+
+// The first field that breaks its rule, then the rules across fields (and the kind); keys relative
+// ("rings"). nullopt when valid.
+std::optional<common::ConfigProblem> validate(const ScanContextConfig& config);
 
 struct ScanContext {
     ScanContextKind kind = ScanContextKind::kMaxHeight;

@@ -184,13 +184,25 @@ TEST(ScanContext, EmptyAndNonFiniteInputGiveAnEmptyButValidDescriptor) {
 }
 
 TEST(ScanContext, ValidateNamesTheKey) {
+    EXPECT_FALSE(validate(ScanContextConfig()));
     ScanContextConfig c;
     c.rings = 0;
-    EXPECT_NE(validate(c).find("scan_context.rings"), std::string::npos);
+    ASSERT_TRUE(validate(c));
+    EXPECT_EQ(validate(c)->key, "rings");
+    EXPECT_EQ(validate(c)->problem, "must be in [1, 1000] (got 0)");
     c = ScanContextConfig();
-    c.min_range = 90.0;
-    EXPECT_NE(validate(c).find("scan_context.min_range"), std::string::npos);
-    EXPECT_EQ(validate(ScanContextConfig()), "");
+    c.sensor_height = std::nan("");
+    EXPECT_EQ(validate(c)->key, "sensor_height");
+    EXPECT_EQ(validate(c)->problem, "must be finite (got nan)");
+    c = ScanContextConfig();
+    c.empty_bin_cost = std::numeric_limits<double>::infinity();  // an infinite cost is allowed
+    EXPECT_FALSE(validate(c));
+    c.min_range = 90.0;  // across fields: min_range < max_range
+    EXPECT_EQ(validate(c)->key, "min_range");
+    EXPECT_EQ(validate(c)->problem, "must be smaller than max_range");
+    c = ScanContextConfig();
+    c.kind = ScanContextKind(7);
+    EXPECT_EQ(validate(c)->key, "kind");
 }
 
 }  // namespace

@@ -26,14 +26,10 @@ MapperConfig load_mapper_config(runtime::Parameters& params, const std::string& 
         params.fail(pre + "preset", e.what());
     }
     config.scan_context.kind = parse_kind(params, pre + kKindKey, config.scan_context.kind);
-    visit_fields(config, [&](const std::string& key, auto& field) { field = params.get(pre + key, field); });
-    const std::string problem = validate(config);
-    if (!problem.empty()) {
-        // validate() names the key as "mapping.<key> ...": point at that key's line.
-        std::string key = problem.substr(0, problem.find(' '));
-        if (key.rfind("mapping.", 0) == 0) key = key.substr(8);
-        params.fail(pre + key, problem.substr(problem.find(' ') + 1));
-    }
+    visit_fields(config, [&](const std::string& key, auto& field, const auto& /*rule*/) {
+        field = params.get(pre + key, field);
+    });
+    if (const auto problem = validate(config)) params.fail(pre + problem->key, problem->problem);
     return config;
 }
 

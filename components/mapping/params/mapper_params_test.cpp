@@ -69,7 +69,7 @@ TEST(MapperParams, EveryFieldIsReadByItsOwnKey) {
     YAML::Node root(YAML::NodeType::Map);  // not a default Node: copies of that do not share
     std::set<std::string> keys;
     int counter = 0;
-    visit_fields(expected, [&](const std::string& key, auto& field) {
+    visit_fields(expected, [&](const std::string& key, auto& field, const auto&) {
         using T = std::decay_t<decltype(field)>;
         EXPECT_TRUE(keys.insert(key).second) << "key visited twice: " << key;
         ++counter;
@@ -96,7 +96,7 @@ TEST(MapperParams, EveryFieldIsReadByItsOwnKey) {
     EXPECT_GT(counter, 60);
     runtime::Parameters p(root, "test.yaml", "mapping");
     MapperConfig read;
-    visit_fields(read, [&](const std::string& key, auto& field) { field = p.get(key, field); });
+    visit_fields(read, [&](const std::string& key, auto& field, const auto&) { field = p.get(key, field); });
     EXPECT_NO_THROW(p.check_all_used());
     std::map<std::string, std::string> want, got;
     auto text = [](const auto& v) {
@@ -108,8 +108,8 @@ TEST(MapperParams, EveryFieldIsReadByItsOwnKey) {
         }
         return s.str();
     };
-    visit_fields(expected, [&](const std::string& key, auto& field) { want[key] = text(field); });
-    visit_fields(read, [&](const std::string& key, auto& field) { got[key] = text(field); });
+    visit_fields(expected, [&](const std::string& key, auto& field, const auto&) { want[key] = text(field); });
+    visit_fields(read, [&](const std::string& key, auto& field, const auto&) { got[key] = text(field); });
     EXPECT_EQ(want, got);
 }
 
@@ -134,6 +134,29 @@ TEST(MapperParams, RejectsWhatItDoesNotKnowNamingFileLineAndKey) {
     EXPECT_NE(error_of("max_loops_per_keyframe: 0").find("test.yaml:1: mapping.max_loops_per_keyframe: must be >= 1"),
               std::string::npos)
         << error_of("max_loops_per_keyframe: 0");
+}
+
+TEST(MapperParams, EachKindOfRuleFromYamlNamesFileLineAndKey) {
+    EXPECT_EQ(error_of("a: 1\nscan_context: {sectors: 2}"),
+              "test.yaml:2: mapping.scan_context.sectors: must be in [4, 3600] (got 2)");
+    EXPECT_EQ(error_of("scan_context:\n  max_range: 30\n  min_range: 40"),
+              "test.yaml:3: mapping.scan_context.min_range: must be smaller than max_range");
+    EXPECT_EQ(error_of("verification:\n  yaw_offsets: []"),
+              "test.yaml:2: mapping.verification.yaw_offsets: must hold at least one value");
+    EXPECT_EQ(error_of("verification:\n  coarse:\n    min_normal_agreement: 2"),
+              "test.yaml:3: mapping.verification.coarse.min_normal_agreement: must be in [0, 1] (got 2)");
+    EXPECT_EQ(error_of("verification: {coarse_factor: 1}"),
+              "test.yaml:1: mapping.verification.coarse_factor: must be 0 or in [2, 16] (got 1)");
+    EXPECT_EQ(error_of("pose_graph: {loop_loss: tukey}"),
+              "test.yaml:1: mapping.pose_graph.loop_loss: must be cauchy, huber or none (got 'tukey')");
+    EXPECT_EQ(error_of("odometry_edge: {sigma_rotation: .nan}"),
+              "test.yaml:1: mapping.odometry_edge.sigma_rotation: must be > 0 (got nan)");
+    EXPECT_EQ(error_of("loop_edge: {sigma_translation: .inf}"),
+              "test.yaml:1: mapping.loop_edge.sigma_translation: must be > 0 (got inf)");
+    // A limit that may be infinite (no limit): accepted as before.
+    EXPECT_EQ(error_of("loop_detection: {exclude_recent_seconds: .inf}\n"
+                       "pose_graph: {outlier_translation: .inf}"),
+              "");
 }
 
 TEST(MapperParams, FileWithOrWithoutTheMappingSection) {

@@ -112,8 +112,7 @@ odometry::OdometryConfig make_config(const Args& a) {
     odometry::OdometryConfig config = odometry::preset_config(common::parse_sensor_preset(preset));
     if (!a.config.empty()) config = odometry::load_odometry_config_file(a.config, a.preset);
     config.threads = a.threads;
-    const std::string error = odometry::validate(config);
-    if (!error.empty()) throw odometry::ConfigError(error);
+    common::throw_if(odometry::validate(config), "odometry");
     return config;
 }
 
@@ -259,9 +258,7 @@ int main(int argc, char** argv) {
         return run(args);
     } catch (const ltm::common::IoError& e) {
         std::cerr << "error: " << e.what() << "\n";
-    } catch (const ltm::odometry::ConfigError& e) {
-        std::cerr << "error: " << e.what() << "\n";
-    } catch (const ltm::runtime::ConfigError& e) {
+    } catch (const ltm::common::ConfigError& e) {
         std::cerr << "error: " << e.what() << "\n";
     }
     return 1;

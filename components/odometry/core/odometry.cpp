@@ -23,8 +23,7 @@ RegistrationConfig coarse_config(const OdometryConfig& config) {
 }
 
 const OdometryConfig& checked(const OdometryConfig& config) {
-    const std::string error = validate(config);
-    if (!error.empty()) throw ConfigError(error);
+    common::throw_if(validate(config), "odometry");
     return config;
 }
 

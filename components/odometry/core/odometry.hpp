@@ -72,7 +72,7 @@ struct FrameResult {
 
 class Odometry {
   public:
-    // Throws ConfigError (naming the key) on an invalid configuration.
+    // Throws common::ConfigError (naming the key) on an invalid configuration.
     explicit Odometry(const OdometryConfig& config, const Eigen::Isometry3d& T_odom_lidar_initial =
                                                         Eigen::Isometry3d::Identity());
 

@@ -1,10 +1,11 @@
 #pragma once
 // Configuration of the LiDAR odometry (METHOD.md sections 1-2): one plain struct with defaults for
 // a Velodyne HDL-64E, plus named presets for other sensors. No I/O in here: the adapter loads YAML.
-#include <stdexcept>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "common/core/config_check.hpp"
 #include "common/core/sensor_preset.hpp"
 #include "registration/core/registration_config.hpp"
 
@@ -60,13 +61,36 @@ struct OdometryConfig {
 using common::SensorPreset;
 OdometryConfig preset_config(SensorPreset preset);
 
-class ConfigError : public std::invalid_argument {
-  public:
-    using std::invalid_argument::invalid_argument;
-};
+// Calls v(key, field, rule) for every field of the config, by its dotted key as in YAML; the rule
+// is the field's (common/core/config_check.hpp).
+template <class Visitor>
+void visit_fields(OdometryConfig& c, Visitor&& v) {
+    using namespace common::rules;
+    v("voxel_size", c.voxel_size, positive);
+    v("prediction", c.prediction, one_of({"time", "frame", "none"}));
+    v("coarse_voxel_factor", c.coarse_voxel_factor, zero_or_in(2, 16));
+    v("min_scan_points", c.min_scan_points, at_least(6));
+    v("threads", c.threads, at_least(1));
+    registration::visit_fields(c.preprocess, "preprocess.", v);
+    registration::visit_fields(c.voxel, "voxel.", v);
+    registration::visit_fields(c.registration, "registration.", v);
+    auto& d = c.divergence;
+    v("divergence.max_translation_correction", d.max_translation_correction, positive);
+    v("divergence.max_rotation_correction", d.max_rotation_correction, positive);
+    v("divergence.max_final_step_translation", d.max_final_step_translation, positive);
+    v("divergence.max_final_step_rotation", d.max_final_step_rotation, positive);
+    v("divergence.retry_residual_ratio", d.retry_residual_ratio, at_least(1));
+    auto& m = c.local_map;
+    v("local_map.half_extent", m.half_extent, positive);
+    v("local_map.switch_distance", m.switch_distance, positive);
+    v("local_map.max_active_maps", m.max_active_maps, at_least(1));
+    v("keyframe.distance", c.keyframe.distance, non_negative);
+    v("keyframe.angle", c.keyframe.angle, non_negative);
+}
 
-// Empty when valid; otherwise one line naming the first offending key (e.g.
-// "odometry.voxel_size must be > 0 (got -1)").
-std::string validate(const OdometryConfig& config);
+// The first field that breaks its rule, then the rules across fields; the key as in YAML
+// ("preprocess.max_range"). nullopt when valid. Odometry throws common::ConfigError under
+// "odometry".
+std::optional<common::ConfigProblem> validate(const OdometryConfig& config);
 
 }  // namespace ltm::odometry

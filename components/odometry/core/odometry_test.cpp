@@ -223,8 +223,9 @@ TEST(Odometry, InvalidConfigurationThrowsNamingTheKey) {
     try {
         Odometry odo(config);
         FAIL() << "no exception";
-    } catch (const ConfigError& e) {
-        EXPECT_NE(std::string(e.what()).find("odometry.voxel_size"), std::string::npos) << e.what();
+    } catch (const common::ConfigError& e) {
+        EXPECT_EQ(std::string(e.what()), "odometry.voxel_size: must be > 0 (got -1)");
+        EXPECT_EQ(e.key(), "odometry.voxel_size");
     }
 }
 

@@ -12,14 +12,10 @@ OdometryConfig load_odometry_config(runtime::Parameters& params, const std::stri
     } catch (const std::invalid_argument& e) {
         params.fail(pre + "preset", e.what());
     }
-    visit_fields(config, [&](const std::string& key, auto& field) { field = params.get(pre + key, field); });
-    const std::string problem = validate(config);
-    if (!problem.empty()) {
-        // validate() names the key as "odometry.<key> ...": point at that key's line.
-        std::string key = problem.substr(0, problem.find(' '));
-        if (key.rfind("odometry.", 0) == 0) key = key.substr(9);
-        params.fail(pre + key, problem.substr(problem.find(' ') + 1));
-    }
+    visit_fields(config, [&](const std::string& key, auto& field, const auto& /*rule*/) {
+        field = params.get(pre + key, field);
+    });
+    if (const auto problem = validate(config)) params.fail(pre + problem->key, problem->problem);
     return config;
 }
 

@@ -54,6 +54,22 @@ TEST(OdometryParams, RejectsWhatItDoesNotKnowNamingFileLineAndKey) {
               std::string::npos);
 }
 
+TEST(OdometryParams, RulesOfFieldsAndAcrossFieldsPointAtTheKeysLine) {
+    EXPECT_EQ(error_of("prediction: linear"),
+              "test.yaml:1: odometry.prediction: must be time, frame or none (got 'linear')");
+    EXPECT_EQ(error_of("threads: 2\nregistration:\n  min_correspondences: 3"),
+              "test.yaml:3: odometry.registration.min_correspondences: must be >= 6 (got 3)");
+    EXPECT_EQ(error_of("preprocess:\n  min_range: 5\n  max_range: 4"),
+              "test.yaml:3: odometry.preprocess.max_range: must exceed min_range");
+    EXPECT_EQ(error_of("local_map:\n  half_extent: 30\n  switch_distance: 40"),
+              "test.yaml:3: odometry.local_map.switch_distance: must be smaller than "
+              "local_map.half_extent");
+    // A key the file does not give: the line of the parameters' map.
+    EXPECT_EQ(error_of("voxel_size: 0.5\nlocal_map: {half_extent: 10}"),
+              "test.yaml:2: odometry.local_map.switch_distance: must be smaller than "
+              "local_map.half_extent");
+}
+
 TEST(OdometryParams, UnderAPrefixAsInALaunchConfig) {
     runtime::Parameters p = params_of("frame_id: odom\nodometry: {preset: vlp16, keyframe: {distance: 3.0}}\n");
     const OdometryConfig c = load_odometry_config(p, "odometry");

@@ -3,7 +3,10 @@
 // of a map and the IMLS Gauss-Newton registration. Plain structs with defaults for a Velodyne
 // HDL-64E; the odometry, the loop verification and the localisation each hold their own copies.
 
+#include <optional>
 #include <string>
+
+#include "common/core/config_check.hpp"
 
 namespace ltm::registration {
 
@@ -48,22 +51,52 @@ struct RegistrationConfig {
     double degeneracy_length = 5.0;  // [m]
 };
 
-// Calls v(key, field) for every field of a registration config, keys under `prefix` ("registration.").
+// visit_fields: calls v(key, field, rule) for every field of a config, keys under `prefix`
+// ("registration."); the rule is the field's (common/core/config_check.hpp). Loaders read the
+// fields through it, validate() checks them with it.
+template <class Visitor>
+void visit_fields(PreprocessConfig& p, const std::string& prefix, Visitor&& v) {
+    using namespace common::rules;
+    v(prefix + "min_range", p.min_range, non_negative);
+    v(prefix + "max_range", p.max_range, positive);
+    v(prefix + "map_sample_fraction", p.map_sample_fraction, positive);
+    v(prefix + "registration_sample_fraction", p.registration_sample_fraction, positive);
+    v(prefix + "max_registration_points", p.max_registration_points, non_negative);
+    v(prefix + "deskew", p.deskew, unchecked);
+}
+
+template <class Visitor>
+void visit_fields(VoxelConfig& x, const std::string& prefix, Visitor&& v) {
+    using namespace common::rules;
+    v(prefix + "min_points_for_normal", x.min_points_for_normal, at_least(3));
+    v(prefix + "min_planarity", x.min_planarity, unit);
+    v(prefix + "min_extent", x.min_extent, unit);
+    v(prefix + "max_points", x.max_points, positive);  // and >= min_points_for_normal
+    v(prefix + "initial_stability", x.initial_stability, unit);
+}
+
 template <class Visitor>
 void visit_fields(RegistrationConfig& r, const std::string& prefix, Visitor&& v) {
-    v(prefix + "imls_bandwidth", r.imls_bandwidth);
-    v(prefix + "max_correspondence_distance", r.max_correspondence_distance);
-    v(prefix + "min_normal_agreement", r.min_normal_agreement);
-    v(prefix + "kernel_scale", r.kernel_scale);
-    v(prefix + "stability_weighting", r.stability_weighting);
-    v(prefix + "min_stability", r.min_stability);
-    v(prefix + "max_iterations", r.max_iterations);
-    v(prefix + "convergence_translation", r.convergence_translation);
-    v(prefix + "convergence_rotation", r.convergence_rotation);
-    v(prefix + "min_correspondences", r.min_correspondences);
-    v(prefix + "kernel_adaptive_factor", r.kernel_adaptive_factor);
-    v(prefix + "degeneracy_ratio", r.degeneracy_ratio);
-    v(prefix + "degeneracy_length", r.degeneracy_length);
+    using namespace common::rules;
+    v(prefix + "imls_bandwidth", r.imls_bandwidth, positive);
+    v(prefix + "max_correspondence_distance", r.max_correspondence_distance, positive);
+    v(prefix + "min_normal_agreement", r.min_normal_agreement, unit);
+    v(prefix + "kernel_scale", r.kernel_scale, positive);
+    v(prefix + "stability_weighting", r.stability_weighting, unchecked);
+    v(prefix + "min_stability", r.min_stability, unit);
+    v(prefix + "max_iterations", r.max_iterations, at_least(1));
+    v(prefix + "convergence_translation", r.convergence_translation, positive);
+    v(prefix + "convergence_rotation", r.convergence_rotation, positive);
+    v(prefix + "min_correspondences", r.min_correspondences, at_least(6));
+    v(prefix + "kernel_adaptive_factor", r.kernel_adaptive_factor, non_negative);
+    v(prefix + "degeneracy_ratio", r.degeneracy_ratio, unit);
+    v(prefix + "degeneracy_length", r.degeneracy_length, positive);
 }
+
+// The first field that breaks its rule, then the rules across fields; keys relative to the
+// config ("max_range"). nullopt when valid.
+std::optional<common::ConfigProblem> validate(const PreprocessConfig& config);
+std::optional<common::ConfigProblem> validate(const VoxelConfig& config);
+std::optional<common::ConfigProblem> validate(const RegistrationConfig& config);
 
 }  // namespace ltm::registration
