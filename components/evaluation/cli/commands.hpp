@@ -1,21 +1,20 @@
 #pragma once
-// The ltm_eval subcommands: each takes the arguments after its name, prints its numbers and
-// returns the process exit code. They throw UsageError or common::IoError on bad input.
-#include <string>
-#include <vector>
+// The ltm_eval subcommands: each declares its options on a subcommand of `app` and returns the
+// function that runs it once the command line is parsed (it prints its numbers and returns the
+// exit code). They throw common::cli::UsageError or common::IoError on bad input.
+#include <functional>
+
+#include "common/cli/cli.hpp"
 
 namespace ltm::eval::cli {
 
-int run_traj(const std::vector<std::string>& args);
-int run_dynamic(const std::vector<std::string>& args);
-int run_mesh(const std::vector<std::string>& args);
-int run_loops(const std::vector<std::string>& args);
-int run_reloc(const std::vector<std::string>& args);
+using common::cli::UsageError;
+using Run = std::function<int()>;
 
-extern const char* const kTrajUsage;
-extern const char* const kDynamicUsage;
-extern const char* const kMeshUsage;
-extern const char* const kLoopsUsage;
-extern const char* const kRelocUsage;
+Run add_traj(CLI::App& app);
+Run add_dynamic(CLI::App& app);
+Run add_mesh(CLI::App& app);
+Run add_loops(CLI::App& app);
+Run add_reloc(CLI::App& app);
 
 }  // namespace ltm::eval::cli

@@ -2,13 +2,13 @@
 #include <algorithm>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 
 #include "common/core/io_error.hpp"
 #include "common/core/kitti_io.hpp"
 #include "common/core/pcl_cloud_io.hpp"
 #include "common/core/ply_io.hpp"
 #include "common/core/progress.hpp"
-#include "evaluation/cli/args.hpp"
 #include "evaluation/cli/commands.hpp"
 #include "evaluation/cli/report.hpp"
 #include "evaluation/cli/trajectory_input.hpp"
@@ -17,51 +17,41 @@
 
 namespace ltm::eval::cli {
 
-const char* const kDynamicUsage =
-    "usage: ltm_eval dynamic --map CLEANED.pcd|.ply (--scans SEQ_DIR | --truth GT.pcd|.ply)\n"
-    "  --map FILE               the output map to score (world frame)\n"
-    "  --scans DIR              KITTI-layout run: DIR/velodyne/*.bin, DIR/labels/*.label\n"
-    "  --labels DIR             label folder (default DIR/labels)\n"
-    "  --poses FILE             scan poses (default DIR/poses.txt), KITTI format\n"
-    "  --poses-frame lidar|camera  frame of the poses (default lidar; camera needs the calib)\n"
-    "  --calib FILE             KITTI calib.txt (default DIR/calib.txt)\n"
-    "  --label-scheme ltm|semantickitti  (default ltm: class 2 = moving actor)\n"
-    "  --changed-is-dynamic     count objects changed between sessions (class 3) as dynamic\n"
-    "  --first N, --count N     scans used (default all that have labels)\n"
-    "  --max-range M            skip points farther from the sensor (default 0: none; the\n"
-    "                           DynamicMap benchmark uses 50 for SemanticKITTI)\n"
-    "  --truth FILE             instead of scans: a labelled map, intensity 1 = dynamic\n"
-    "                           (the DynamicMap benchmark's gt_cloud.pcd)\n"
-    "  --match-distance M       kept if an output point is this near (default 0.05)\n"
-    "  --write-truth FILE.ply   write the labelled truth map (intensity 1 = dynamic)\n"
-    "  --write-static FILE.ply  write its static points (a perfect cleaned map)\n"
-    "  --out DIR                write metrics.txt, metrics.json\n";
-
 namespace {
 
-LabelledMap truth_from_scans(const Args& args, Report& report) {
-    const std::string dir = args.get("scans");
+struct DynamicOptions {
+    std::string map, scans, labels, poses, poses_frame = "lidar", calib, label_scheme = "ltm";
+    bool changed_is_dynamic = false;
+    std::size_t first = 0, count = 0;
+    bool has_count = false;
+    double max_range = 0.0;
+    std::string truth;
+    DynamicRemovalConfig config;
+    std::string write_truth, write_static, out;
+};
+
+LabelledMap truth_from_scans(const DynamicOptions& o, Report& report) {
+    const std::string& dir = o.scans;
     const std::vector<std::string> scans = common::list_kitti_scans(dir);
     const std::string seq = common::kitti_sequence_dir(dir);
     const std::filesystem::path label_dir =
-        args.get("labels", (std::filesystem::path(seq) / "labels").string());
-    const std::string scheme_name = args.choice("label-scheme", {"ltm", "semantickitti"}, "ltm");
+        o.labels.empty() ? std::filesystem::path(seq) / "labels" : std::filesystem::path(o.labels);
+    const std::string& scheme_name = o.label_scheme;
     const common::LabelScheme scheme =
         scheme_name == "ltm" ? common::LabelScheme::kLtmSim : common::LabelScheme::kSemanticKitti;
     const std::string calib =
-        args.get("calib", (std::filesystem::path(seq) / "calib.txt").string());
-    const std::string poses_frame = args.choice("poses-frame", {"lidar", "camera"}, "lidar");
-    const common::PoseList poses =
-        convert_frame(common::read_kitti_poses(
-                          args.get("poses", (std::filesystem::path(seq) / "poses.txt").string())),
-                      poses_frame, "lidar", poses_frame == "camera" ? calib : "");
+        o.calib.empty() ? (std::filesystem::path(seq) / "calib.txt").string() : o.calib;
+    const std::string& poses_frame = o.poses_frame;
+    const common::PoseList poses = convert_frame(
+        common::read_kitti_poses(
+            o.poses.empty() ? (std::filesystem::path(seq) / "poses.txt").string() : o.poses),
+        poses_frame, "lidar", poses_frame == "camera" ? calib : "");
 
-    const auto first = static_cast<std::size_t>(std::max(0L, args.integer("first", 0)));
+    const std::size_t first = o.first;
     std::size_t end = scans.size();
-    if (args.has("count"))
-        end = std::min(end, first + static_cast<std::size_t>(args.integer("count", 0)));
-    const double max_range = args.number("max-range", 0.0);
-    const bool changed = args.has("changed-is-dynamic");
+    if (o.has_count) end = std::min(end, first + o.count);
+    const double max_range = o.max_range;
+    const bool changed = o.changed_is_dynamic;
 
     const auto label_of = [&](std::size_t i) {
         return (label_dir / (std::filesystem::path(scans[i]).stem().string() + ".label")).string();
@@ -70,7 +60,7 @@ LabelledMap truth_from_scans(const Args& args, Report& report) {
     // snippets label only their first frames).
     for (std::size_t i = first; i < end; ++i) {
         if (std::filesystem::exists(label_of(i))) continue;
-        if (args.has("count")) throw common::IoError(label_of(i), "missing label file");
+        if (o.has_count) throw common::IoError(label_of(i), "missing label file");
         end = i;
     }
 
@@ -117,30 +107,21 @@ void write_cloud(const std::string& path, const LabelledMap& map, bool static_on
     common::write_ply(path, ply);
 }
 
-}  // namespace
-
-int run_dynamic(const std::vector<std::string>& argv) {
-    const Args args(
-        argv,
-        {"map", "scans", "labels", "poses", "poses-frame", "calib", "label-scheme", "first",
-         "count", "max-range", "truth", "match-distance", "write-truth", "write-static", "out"},
-        {"changed-is-dynamic"});
-    if (args.has("scans") == args.has("truth"))
+int run_dynamic(const DynamicOptions& o) {
+    if (o.scans.empty() == o.truth.empty())
         throw UsageError("give either --scans DIR or --truth FILE");
-    Report report("ltm_eval dynamic: " + args.get("map", "(no map)"));
+    Report report("ltm_eval dynamic: " + (o.map.empty() ? "(no map)" : o.map));
     report.section("input");
     const LabelledMap truth =
-        args.has("scans") ? truth_from_scans(args, report) : truth_from_cloud(args.get("truth"));
-    if (args.has("write-truth")) write_cloud(args.get("write-truth"), truth, false);
-    if (args.has("write-static")) write_cloud(args.get("write-static"), truth, true);
-    if (!args.has("map")) {
-        if (args.has("write-truth") || args.has("write-static")) return 0;
-        throw UsageError("--map is required");
+        !o.scans.empty() ? truth_from_scans(o, report) : truth_from_cloud(o.truth);
+    if (!o.write_truth.empty()) write_cloud(o.write_truth, truth, false);
+    if (!o.write_static.empty()) write_cloud(o.write_static, truth, true);
+    if (o.map.empty()) {
+        if (!o.write_truth.empty() || !o.write_static.empty()) return 0;
+        throw UsageError("--map", "is required");
     }
-    const common::PointCloud output = common::load_cloud_file(args.get("map"));
-    DynamicRemovalConfig config;
-    config.match_distance = args.number("match-distance", config.match_distance);
-    if (config.match_distance <= 0.0) throw UsageError("--match-distance must be positive");
+    const common::PointCloud output = common::load_cloud_file(o.map);
+    const DynamicRemovalConfig& config = o.config;
     const DynamicRemovalResult r = evaluate_dynamic_removal(truth, output.points, config);
 
     report.add_count("truth_points", truth.points.size());
@@ -157,8 +138,47 @@ int run_dynamic(const std::vector<std::string>& argv) {
     report.add("HA", r.ha_pct, "%");
     if (r.dynamic_points == 0) report.note("no dynamic point in the truth: DA, AA, HA are 0");
     std::cout << report.text();
-    if (args.has("out")) report.write(args.get("out"));
+    if (!o.out.empty()) report.write(o.out);
     return 0;
+}
+
+}  // namespace
+
+Run add_dynamic(CLI::App& parent) {
+    CLI::App* app = parent.add_subcommand("dynamic", "dynamic-object removal: SA, DA, AA");
+    app->footer("Give --scans (a labelled KITTI-layout run) or --truth (a labelled map).");
+    auto o = std::make_shared<DynamicOptions>();
+    app->add_option("--map", o->map, "the output map to score (world frame), .pcd or .ply");
+    app->add_option("--scans", o->scans,
+                    "KITTI-layout run: DIR/velodyne/*.bin, DIR/labels/*.label");
+    app->add_option("--labels", o->labels, "label folder (default DIR/labels)");
+    app->add_option("--poses", o->poses, "scan poses, KITTI format (default DIR/poses.txt)");
+    app->add_option("--poses-frame", o->poses_frame, "frame of the poses (camera needs the calib)")
+        ->check(common::cli::one_of({"lidar", "camera"}));
+    app->add_option("--calib", o->calib, "KITTI calib.txt (default DIR/calib.txt)");
+    app->add_option("--label-scheme", o->label_scheme, "ltm: class 2 = moving actor")
+        ->check(common::cli::one_of({"ltm", "semantickitti"}));
+    app->add_flag("--changed-is-dynamic", o->changed_is_dynamic,
+                  "count objects changed between sessions (class 3) as dynamic");
+    app->add_option("--first", o->first, "first scan used");
+    app->add_option("--count", o->count, "scans used (default: all that have labels)")
+        ->default_str("")
+        ->each([o](const std::string&) { o->has_count = true; });
+    app->add_option("--max-range", o->max_range,
+                    "skip points farther from the sensor (0: none; the DynamicMap benchmark uses "
+                    "50 for SemanticKITTI)");
+    app->add_option("--truth", o->truth,
+                    "instead of scans: a labelled map, intensity 1 = dynamic (the DynamicMap "
+                    "benchmark's gt_cloud.pcd)");
+    app->add_option("--match-distance", o->config.match_distance,
+                    "kept if an output point is this near [m]")
+        ->check(common::cli::positive());
+    app->add_option("--write-truth", o->write_truth,
+                    "write the labelled truth map (.ply, intensity 1 = dynamic)");
+    app->add_option("--write-static", o->write_static,
+                    "write its static points (.ply, a perfect cleaned map)");
+    app->add_option("--out", o->out, "write metrics.txt, metrics.json here");
+    return [o] { return run_dynamic(*o); };
 }
 
 }  // namespace ltm::eval::cli

@@ -1,8 +1,8 @@
 // ltm_eval loops: precision, recall and F1 of detected loops against ground-truth revisits.
 #include <filesystem>
 #include <iostream>
+#include <memory>
 
-#include "evaluation/cli/args.hpp"
 #include "evaluation/cli/commands.hpp"
 #include "evaluation/cli/report.hpp"
 #include "evaluation/cli/trajectory_input.hpp"
@@ -14,41 +14,27 @@
 
 namespace ltm::eval::cli {
 
-const char* const kLoopsUsage =
-    "usage: ltm_eval loops --loops LOOPS.txt --reference REF [options]\n"
-    "  --loops FILE               one loop a line: `query match [score]` (frame indices)\n"
-    "  --reference FILE           ground-truth poses of the query session (KITTI format)\n"
-    "  --match-reference FILE     cross-session loops: ground truth of the matched session, in\n"
-    "                             the same world frame (no frame gap applies)\n"
-    "  --reference-frame lidar|camera, --calib FILE   frame of the poses (default lidar)\n"
-    "  --revisit-radius M         same place within this distance (default 5)\n"
-    "  --min-gap N                within a session, loops need this many frames (default 50)\n"
-    "  --estimate FILE            estimated poses: the figure draws loops on them (aligned)\n"
-    "  --out DIR                  write metrics.txt, metrics.json, loops.svg\n";
+namespace {
 
-int run_loops(const std::vector<std::string>& argv) {
-    const Args args(argv,
-                    {"loops", "reference", "match-reference", "reference-frame", "calib",
-                     "revisit-radius", "min-gap", "estimate", "out"},
-                    {});
-    const std::string frame = args.choice("reference-frame", {"lidar", "camera"}, "lidar");
-    const auto load = [&](const std::string& path) {
-        return convert_frame(poses_of(load_trajectory(path, "kitti").poses), frame, "lidar",
-                             args.get("calib"));
-    };
-    const std::vector<LoopPair> loops = read_loop_pairs(args.required("loops"));
-    const common::PoseList ref = load(args.required("reference"));
+struct LoopsOptions {
+    std::string loops, reference, match_reference, reference_frame = "lidar", calib, estimate, out;
     PlaceRecognitionConfig config;
-    config.revisit_radius = args.number("revisit-radius", config.revisit_radius);
-    const long gap = args.integer("min-gap", static_cast<long>(config.min_frame_gap));
-    if (gap < 0) throw UsageError("--min-gap must not be negative");
-    config.min_frame_gap = static_cast<std::size_t>(gap);
+};
 
-    const bool cross = args.has("match-reference");
+int run_loops(const LoopsOptions& o) {
+    const auto load = [&](const std::string& path) {
+        return convert_frame(poses_of(load_trajectory(path, "kitti").poses), o.reference_frame,
+                             "lidar", o.calib);
+    };
+    const std::vector<LoopPair> loops = read_loop_pairs(o.loops);
+    const common::PoseList ref = load(o.reference);
+    const PlaceRecognitionConfig& config = o.config;
+
+    const bool cross = !o.match_reference.empty();
     const PlaceRecognitionResult r =
-        cross ? evaluate_cross_session_loops(loops, ref, load(args.get("match-reference")), config)
+        cross ? evaluate_cross_session_loops(loops, ref, load(o.match_reference), config)
               : evaluate_loops(loops, ref, config);
-    Report report("ltm_eval loops: " + args.get("loops"));
+    Report report("ltm_eval loops: " + o.loops);
     report.section("input");
     report.add_text("mode", cross ? "cross-session" : "single session");
     report.add_count("loops_in_file", loops.size());
@@ -66,24 +52,48 @@ int run_loops(const std::vector<std::string>& argv) {
     report.add("recall", r.recall);
     report.add("f1", r.f1);
     std::cout << report.text();
-    if (!args.has("out")) return 0;
-    report.write(args.get("out"));
+    if (o.out.empty()) return 0;
+    report.write(o.out);
     if (!cross) {
         TrajectoryFigure f;
         f.title = "Detected loops (green true, red false)";
         f.reference = ref;
         f.estimate = ref;
-        if (args.has("estimate")) {
-            common::PoseList est = load(args.get("estimate"));
+        if (!o.estimate.empty()) {
+            common::PoseList est = load(o.estimate);
             f.estimate = transform_poses(compute_ate_detail(est, ref).T_ref_est, est);
         }
         f.loops = loops;
         f.loop_correct = r.correct;
         f.plane = TopViewPlane::kXY;
-        write_text_file((std::filesystem::path(args.get("out")) / "loops.svg").string(),
-                        trajectory_svg(f));
+        write_text_file((std::filesystem::path(o.out) / "loops.svg").string(), trajectory_svg(f));
     }
     return 0;
+}
+
+}  // namespace
+
+Run add_loops(CLI::App& parent) {
+    CLI::App* app = parent.add_subcommand("loops", "place recognition: precision, recall, F1");
+    auto o = std::make_shared<LoopsOptions>();
+    app->add_option("--loops", o->loops, "one loop a line: `query match [score]` (frame indices)")
+        ->required();
+    app->add_option("--reference", o->reference,
+                    "ground-truth poses of the query session (KITTI format)")
+        ->required();
+    app->add_option("--match-reference", o->match_reference,
+                    "cross-session loops: ground truth of the matched session, in the same world "
+                    "frame (no frame gap applies)");
+    app->add_option("--reference-frame", o->reference_frame, "frame of the poses")
+        ->check(common::cli::one_of({"lidar", "camera"}));
+    app->add_option("--calib", o->calib, "KITTI calib.txt for the camera frame");
+    app->add_option("--revisit-radius", o->config.revisit_radius, "same place within this [m]");
+    app->add_option("--min-gap", o->config.min_frame_gap,
+                    "within a session, loops need this many frames");
+    app->add_option("--estimate", o->estimate,
+                    "estimated poses: the figure draws loops on them (aligned)");
+    app->add_option("--out", o->out, "write metrics.txt, metrics.json, loops.svg here");
+    return [o] { return run_loops(*o); };
 }
 
 }  // namespace ltm::eval::cli

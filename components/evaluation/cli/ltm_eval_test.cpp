@@ -9,9 +9,9 @@
 
 #include "common/core/kitti_io.hpp"
 #include "common/core/ply_io.hpp"
+#include "common/core/point_labels.hpp"
 #include "common/core/trajectory_io.hpp"
 #include "evaluation/core/eval_io.hpp"
-#include "common/core/point_labels.hpp"
 
 namespace ltm::eval {
 namespace {
@@ -25,7 +25,8 @@ struct CliRun {
 
 CliRun run(const std::string& args) {
     // One file per process: ctest runs this binary's tests in parallel processes.
-    const std::string log = testing::TempDir() + "ltm_eval_cli_output_" + std::to_string(::getpid()) + ".txt";
+    const std::string log =
+        testing::TempDir() + "ltm_eval_cli_output_" + std::to_string(::getpid()) + ".txt";
     const std::string cmd =
         std::string(LTM_BINARY_DIR) + "/bin/ltm_eval " + args + " > " + log + " 2>&1";
     const int status = std::system(cmd.c_str());
@@ -82,12 +83,49 @@ TEST(LtmEvalCli, TrajWritesMetricsAndFigures) {
 TEST(LtmEvalCli, BadInputGivesOneLineAndAnExitCode) {
     const CliRun unknown = run("traj --bogus 1");
     EXPECT_EQ(unknown.code, 2);
-    EXPECT_NE(unknown.output.find("unknown option --bogus"), std::string::npos);
+    EXPECT_EQ(unknown.output, "ltm_eval traj: --bogus: unknown option\n");
+    const CliRun no_value = run("traj --estimate a --reference b --delta");
+    EXPECT_EQ(no_value.code, 2);
+    EXPECT_EQ(no_value.output, "ltm_eval traj: --delta: needs a value\n");
+    const CliRun not_a_number = run("mesh --mesh a --truth b --threshold 1cm");
+    EXPECT_EQ(not_a_number.code, 2);
+    EXPECT_EQ(not_a_number.output, "ltm_eval mesh: --threshold: expected a number, got '1cm'\n");
+    const CliRun too_small = run("traj --estimate a --reference b --delta 0");
+    EXPECT_EQ(too_small.code, 2);
+    EXPECT_EQ(too_small.output, "ltm_eval traj: --delta: must be at least 1, not 0\n");
+    const CliRun choice = run("traj --estimate a --reference b --format csv");
+    EXPECT_EQ(choice.code, 2);
+    EXPECT_EQ(choice.output, "ltm_eval traj: --format: must be kitti|tum, not 'csv'\n");
+    const CliRun required = run("loops --loops l.txt");
+    EXPECT_EQ(required.code, 2);
+    EXPECT_EQ(required.output, "ltm_eval loops: --reference: is required\n");
+    const CliRun neither = run("dynamic --map m.ply");
+    EXPECT_EQ(neither.code, 2);
+    EXPECT_EQ(neither.output, "ltm_eval dynamic: give either --scans DIR or --truth FILE\n");
     const CliRun missing = run("traj --estimate /nonexistent/a.txt --reference /nonexistent/b.txt");
     EXPECT_EQ(missing.code, 1);
     EXPECT_NE(missing.output.find("/nonexistent/a.txt: cannot open"), std::string::npos);
-    EXPECT_EQ(run("nosuchcommand").code, 2);
+    EXPECT_EQ(run("nosuchcommand").output,
+              "ltm_eval: nosuchcommand: unknown command (traj, dynamic, mesh, loops, reloc)\n");
+    EXPECT_EQ(run("").output,
+              "ltm_eval: a command is required (traj, dynamic, mesh, loops, reloc)\n");
+    EXPECT_EQ(run("").code, 2);
     EXPECT_EQ(run("traj --estimate a --reference b --reference-frame camera").code, 1);
+}
+
+TEST(LtmEvalCli, HelpListsTheCommandsAndTheirOptions) {
+    const CliRun top = run("--help");
+    EXPECT_EQ(top.code, 0);
+    for (const char* c : {"traj", "dynamic", "mesh", "loops", "reloc"})
+        EXPECT_NE(top.output.find(c), std::string::npos) << c;
+    const CliRun traj = run("traj --help");
+    EXPECT_EQ(traj.code, 0);
+    for (const char* o : {"--estimate", "--reference", "--format", "--max-dt", "--eval-frame",
+                          "--calib", "--frames", "--delta", "--no-align", "--loops",
+                          "--revisit-radius", "--min-gap", "--plane", "--title", "--out"})
+        EXPECT_NE(traj.output.find(o), std::string::npos) << o;
+    EXPECT_NE(run("dynamic --help").output.find("--changed-is-dynamic"), std::string::npos);
+    EXPECT_NE(run("reloc -h").output.find("--max-rotation"), std::string::npos);
 }
 
 TEST(LtmEvalCli, MeshOffsetByHand) {
@@ -113,9 +151,11 @@ TEST(LtmEvalCli, DynamicOnATinyLabelledRun) {
     common::PointCloud scan;
     scan.points = {{1, 0, 0}, {2, 0, 0}, {3, 0, 0}, {5, 5, 0}};
     common::write_kitti_bin((d / "velodyne" / "000000.bin").string(), scan);
-    write_labels((d / "labels" / "000000.label").string(),
-                 {common::make_label(common::kSimStatic, 0), common::make_label(common::kSimStatic, 0), common::make_label(common::kSimStatic, 0),
-                  common::make_label(common::kSimMovingActor, 1)});
+    write_labels(
+        (d / "labels" / "000000.label").string(),
+        {common::make_label(common::kSimStatic, 0), common::make_label(common::kSimStatic, 0),
+         common::make_label(common::kSimStatic, 0),
+         common::make_label(common::kSimMovingActor, 1)});
     common::write_kitti_poses((d / "poses.txt").string(), {Eigen::Isometry3d::Identity()});
     common::PlyCloud map;
     map.points = {{1, 0, 0}, {2, 0, 0}, {5, 5, 0}};

@@ -1,7 +1,7 @@
 // ltm_eval mesh: accuracy, completeness and Chamfer-L1 of a mesh against the true surface.
 #include <iostream>
+#include <memory>
 
-#include "evaluation/cli/args.hpp"
 #include "evaluation/cli/commands.hpp"
 #include "evaluation/cli/report.hpp"
 #include "evaluation/core/mesh_io.hpp"
@@ -9,27 +9,20 @@
 
 namespace ltm::eval::cli {
 
-const char* const kMeshUsage =
-    "usage: ltm_eval mesh --mesh MESH.ply --truth TRUTH.ply [options]\n"
-    "  --samples N       samples on each surface (default 200000)\n"
-    "  --threshold M     distance for precision / recall / F-score (default 0.1)\n"
-    "  --seed N          sampling seed (default 1)\n"
-    "  --out DIR         write metrics.txt, metrics.json\n"
-    "  A PLY without faces is taken as a point cloud (its points are its samples).\n";
+namespace {
 
-int run_mesh(const std::vector<std::string>& argv) {
-    const Args args(argv, {"mesh", "truth", "samples", "threshold", "seed", "out"}, {});
+struct MeshOptions {
+    std::string mesh, truth, out;
     MeshMetricConfig config;
-    const long samples = args.integer("samples", static_cast<long>(config.samples));
-    if (samples < 1) throw UsageError("--samples must be positive");
-    config.samples = static_cast<std::size_t>(samples);
-    config.threshold = args.number("threshold", config.threshold);
-    config.seed = static_cast<std::uint64_t>(args.integer("seed", 1));
-    const common::PlyMesh mesh = read_mesh_file(args.required("mesh"));
-    const common::PlyMesh truth = read_mesh_file(args.required("truth"));
+};
+
+int run_mesh(const MeshOptions& o) {
+    const MeshMetricConfig& config = o.config;
+    const common::PlyMesh mesh = read_mesh_file(o.mesh);
+    const common::PlyMesh truth = read_mesh_file(o.truth);
 
     const MeshMetricResult r = evaluate_mesh(mesh, truth, config);
-    Report report("ltm_eval mesh: " + args.get("mesh") + " vs " + args.get("truth"));
+    Report report("ltm_eval mesh: " + o.mesh + " vs " + o.truth);
     report.section("input");
     report.add_count("mesh_vertices", mesh.vertices.size());
     report.add_count("mesh_triangles", mesh.triangles.size());
@@ -52,8 +45,26 @@ int run_mesh(const std::vector<std::string>& argv) {
     report.add("recall", r.recall_pct, "%");
     report.add("fscore", r.fscore_pct, "%");
     std::cout << report.text();
-    if (args.has("out")) report.write(args.get("out"));
+    if (!o.out.empty()) report.write(o.out);
     return 0;
+}
+
+}  // namespace
+
+Run add_mesh(CLI::App& parent) {
+    CLI::App* app =
+        parent.add_subcommand("mesh", "mesh accuracy, completeness, Chamfer-L1 against the truth");
+    app->footer("A PLY without faces is taken as a point cloud (its points are its samples).");
+    auto o = std::make_shared<MeshOptions>();
+    app->add_option("--mesh", o->mesh, "the mesh to score (.ply)")->required();
+    app->add_option("--truth", o->truth, "the true surface (.ply)")->required();
+    app->add_option("--samples", o->config.samples, "samples on each surface")
+        ->check(common::cli::at_least(1));
+    app->add_option("--threshold", o->config.threshold,
+                    "distance for precision / recall / F-score [m]");
+    app->add_option("--seed", o->config.seed, "sampling seed");
+    app->add_option("--out", o->out, "write metrics.txt, metrics.json here");
+    return [o] { return run_mesh(*o); };
 }
 
 }  // namespace ltm::eval::cli

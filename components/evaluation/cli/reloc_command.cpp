@@ -1,7 +1,7 @@
 // ltm_eval reloc: relocalisation success rate and time against ground truth.
 #include <iostream>
+#include <memory>
 
-#include "evaluation/cli/args.hpp"
 #include "evaluation/cli/commands.hpp"
 #include "evaluation/cli/report.hpp"
 #include "evaluation/cli/trajectory_input.hpp"
@@ -11,32 +11,21 @@
 
 namespace ltm::eval::cli {
 
-const char* const kRelocUsage =
-    "usage: ltm_eval reloc --attempts ATTEMPTS.txt --reference REF [options]\n"
-    "  --attempts FILE            one attempt a line: `frame time_s ok [12 pose numbers]`\n"
-    "                             (ok 1 with the KITTI 3x4 pose, 0 when it gave up)\n"
-    "  --reference FILE           ground-truth poses (KITTI format), in the attempts' frame\n"
-    "  --reference-frame lidar|camera, --calib FILE   (default lidar)\n"
-    "  --max-translation M        success tolerance (default 0.5)\n"
-    "  --max-rotation DEG         success tolerance (default 5)\n"
-    "  --out DIR                  write metrics.txt, metrics.json\n";
+namespace {
 
-int run_reloc(const std::vector<std::string>& argv) {
-    const Args args(argv,
-                    {"attempts", "reference", "reference-frame", "calib", "max-translation",
-                     "max-rotation", "out"},
-                    {});
-    const std::string frame = args.choice("reference-frame", {"lidar", "camera"}, "lidar");
-    const RelocAttempts attempts = read_reloc_attempts(args.required("attempts"));
-    const common::PoseList ref =
-        convert_frame(poses_of(load_trajectory(args.required("reference"), "kitti").poses), frame,
-                      "lidar", args.get("calib"));
+struct RelocOptions {
+    std::string attempts, reference, reference_frame = "lidar", calib, out;
     RelocConfig config;
-    config.max_translation = args.number("max-translation", config.max_translation);
-    config.max_rotation_deg = args.number("max-rotation", config.max_rotation_deg);
+};
+
+int run_reloc(const RelocOptions& o) {
+    const RelocAttempts attempts = read_reloc_attempts(o.attempts);
+    const common::PoseList ref = convert_frame(
+        poses_of(load_trajectory(o.reference, "kitti").poses), o.reference_frame, "lidar", o.calib);
+    const RelocConfig& config = o.config;
     const RelocResult r = evaluate_relocalisation(attempts, ref, config);
 
-    Report report("ltm_eval reloc: " + args.get("attempts"));
+    Report report("ltm_eval reloc: " + o.attempts);
     report.section("input");
     report.add("max_translation", config.max_translation, "m");
     report.add("max_rotation", config.max_rotation_deg, "deg");
@@ -55,8 +44,29 @@ int run_reloc(const std::vector<std::string>& argv) {
     report.add("translation_error_mean_success", r.translation_error.mean, "m");
     report.add("rotation_error_mean_success", r.rotation_error_deg.mean, "deg");
     std::cout << report.text();
-    if (args.has("out")) report.write(args.get("out"));
+    if (!o.out.empty()) report.write(o.out);
     return 0;
+}
+
+}  // namespace
+
+Run add_reloc(CLI::App& parent) {
+    CLI::App* app = parent.add_subcommand("reloc", "relocalisation success rate and time");
+    auto o = std::make_shared<RelocOptions>();
+    app->add_option("--attempts", o->attempts,
+                    "one attempt a line: `frame time_s ok [12 pose numbers]` (ok 1 with the KITTI "
+                    "3x4 pose, 0 when it gave up)")
+        ->required();
+    app->add_option("--reference", o->reference,
+                    "ground-truth poses (KITTI format), in the attempts' frame")
+        ->required();
+    app->add_option("--reference-frame", o->reference_frame, "frame of the poses")
+        ->check(common::cli::one_of({"lidar", "camera"}));
+    app->add_option("--calib", o->calib, "KITTI calib.txt for the camera frame");
+    app->add_option("--max-translation", o->config.max_translation, "success tolerance [m]");
+    app->add_option("--max-rotation", o->config.max_rotation_deg, "success tolerance [deg]");
+    app->add_option("--out", o->out, "write metrics.txt, metrics.json here");
+    return [o] { return run_reloc(*o); };
 }
 
 }  // namespace ltm::eval::cli

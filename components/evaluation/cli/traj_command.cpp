@@ -1,9 +1,9 @@
 // ltm_eval traj: ATE, RPE and the KITTI metric of an estimated trajectory, with figures.
 #include <filesystem>
 #include <iostream>
+#include <memory>
 
 #include "common/core/trajectory_io.hpp"
-#include "evaluation/cli/args.hpp"
 #include "evaluation/cli/commands.hpp"
 #include "evaluation/cli/report.hpp"
 #include "evaluation/cli/trajectory_input.hpp"
@@ -17,53 +17,85 @@
 
 namespace ltm::eval::cli {
 
-const char* const kTrajUsage =
-    "usage: ltm_eval traj --estimate EST --reference REF [options]\n"
-    "  --format kitti|tum          both files' format (default kitti: pose i = frame i;\n"
-    "                              tum: poses paired by nearest stamp within --max-dt)\n"
-    "  --estimate-format F, --reference-format F   per file\n"
-    "  --max-dt S                  TUM pairing tolerance [s] (default 0.02)\n"
-    "  --estimate-frame lidar|camera, --reference-frame lidar|camera   frames of the files\n"
-    "                              (default lidar; KITTI ground truth is camera)\n"
-    "  --eval-frame lidar|camera   frame the metrics are computed in (default lidar)\n"
-    "  --calib calib.txt           KITTI calibration (Tr) for frame conversions\n"
-    "  --frames N                  only the first N pose pairs\n"
-    "  --delta N                   RPE frame delta (default 1)\n"
-    "  --no-align                  ATE without the Umeyama SE(3) alignment\n"
-    "  --loops FILE                detected loops `query match [score]`: drawn, and scored\n"
-    "  --revisit-radius M, --min-gap N   loop scoring (default 5 m, 50 frames)\n"
-    "  --plane auto|xy|xz|yz       top-view plane (default xy in lidar, xz in camera frame)\n"
-    "  --title TEXT                figure title\n"
-    "  --out DIR                   write metrics.txt, metrics.json, trajectory.svg, errors.svg,\n"
-    "                              estimate_aligned.txt\n";
+namespace {
 
-int run_traj(const std::vector<std::string>& argv) {
-    const Args args(argv,
-                    {"estimate", "reference", "format", "estimate-format", "reference-format",
-                     "max-dt", "estimate-frame", "reference-frame", "eval-frame", "calib", "frames",
-                     "delta", "loops", "revisit-radius", "min-gap", "plane", "title", "out"},
-                    {"no-align"});
-    const std::string format = args.choice("format", {"kitti", "tum"}, "kitti");
-    const std::string est_format = args.choice("estimate-format", {"kitti", "tum"}, format);
-    const std::string ref_format = args.choice("reference-format", {"kitti", "tum"}, format);
-    const std::vector<std::string> frames{"lidar", "camera"};
-    const std::string est_frame = args.choice("estimate-frame", frames, "lidar");
-    const std::string ref_frame = args.choice("reference-frame", frames, "lidar");
-    const std::string eval_frame = args.choice("eval-frame", frames, "lidar");
-    const std::string calib = args.get("calib");
-    const long max_frames = args.integer("frames", -1);
-    const long delta = args.integer("delta", 1);
-    if (delta < 1) throw UsageError("--delta must be at least 1");
-    const bool align = !args.has("no-align");
+struct TrajOptions {
+    std::string estimate, reference, format = "kitti", estimate_format, reference_format;
+    double max_dt = 0.02;
+    std::string estimate_frame = "lidar", reference_frame = "lidar", eval_frame = "lidar", calib;
+    long frames = -1;  // all
+    long delta = 1;
+    bool no_align = false;
+    std::string loops;
+    PlaceRecognitionConfig loop_scoring;
+    std::string plane, title, out;
+};
 
-    const LoadedTrajectory est_in = load_trajectory(args.required("estimate"), est_format);
-    const LoadedTrajectory ref_in = load_trajectory(args.required("reference"), ref_format);
+int run_traj(const TrajOptions& o);
+
+}  // namespace
+
+Run add_traj(CLI::App& parent) {
+    CLI::App* app = parent.add_subcommand("traj", "trajectory: ATE, RPE, KITTI metric, figures");
+    auto o = std::make_shared<TrajOptions>();
+    const auto formats = common::cli::one_of({"kitti", "tum"});
+    const auto frames = common::cli::one_of({"lidar", "camera"});
+    app->add_option("--estimate", o->estimate, "estimated poses")->required();
+    app->add_option("--reference", o->reference, "reference poses")->required();
+    app->add_option("--format", o->format,
+                    "both files' format (kitti: pose i = frame i; tum: poses paired by nearest "
+                    "stamp within --max-dt)")
+        ->check(formats);
+    app->add_option("--estimate-format", o->estimate_format, "the estimate's (default --format)")
+        ->check(formats);
+    app->add_option("--reference-format", o->reference_format, "the reference's (default --format)")
+        ->check(formats);
+    app->add_option("--max-dt", o->max_dt, "TUM pairing tolerance [s]");
+    app->add_option("--estimate-frame", o->estimate_frame, "frame of the estimate")->check(frames);
+    app->add_option("--reference-frame", o->reference_frame,
+                    "frame of the reference (KITTI ground truth is camera)")
+        ->check(frames);
+    app->add_option("--eval-frame", o->eval_frame, "frame the metrics are computed in")
+        ->check(frames);
+    app->add_option("--calib", o->calib, "KITTI calibration (Tr) for frame conversions");
+    app->add_option("--frames", o->frames, "only the first N pose pairs")
+        ->default_str("all")
+        ->check(common::cli::at_least(0));
+    app->add_option("--delta", o->delta, "RPE frame delta")->check(common::cli::at_least(1));
+    app->add_flag("--no-align", o->no_align, "ATE without the Umeyama SE(3) alignment");
+    app->add_option("--loops", o->loops, "detected loops `query match [score]`: drawn, and scored");
+    app->add_option("--revisit-radius", o->loop_scoring.revisit_radius, "loop scoring [m]");
+    app->add_option("--min-gap", o->loop_scoring.min_frame_gap, "loop scoring [frames]");
+    app->add_option("--plane", o->plane,
+                    "top-view plane (default xy in the lidar, xz in the camera frame)")
+        ->check(common::cli::one_of({"auto", "xy", "xz", "yz"}));
+    app->add_option("--title", o->title, "figure title");
+    app->add_option("--out", o->out,
+                    "write metrics.txt, metrics.json, trajectory.svg, errors.svg, "
+                    "estimate_aligned.txt here");
+    return [o] { return run_traj(*o); };
+}
+
+namespace {
+
+int run_traj(const TrajOptions& o) {
+    const std::string est_format = o.estimate_format.empty() ? o.format : o.estimate_format;
+    const std::string ref_format = o.reference_format.empty() ? o.format : o.reference_format;
+    const std::string& est_frame = o.estimate_frame;
+    const std::string& ref_frame = o.reference_frame;
+    const std::string& eval_frame = o.eval_frame;
+    const std::string& calib = o.calib;
+    const long max_frames = o.frames;
+    const long delta = o.delta;
+    const bool align = !o.no_align;
+
+    const LoadedTrajectory est_in = load_trajectory(o.estimate, est_format);
+    const LoadedTrajectory ref_in = load_trajectory(o.reference, ref_format);
     common::PoseList est, ref;
-    Report report("ltm_eval traj: " + args.get("estimate") + " vs " + args.get("reference"));
+    Report report("ltm_eval traj: " + o.estimate + " vs " + o.reference);
     report.section("input");
     if (est_in.stamped && ref_in.stamped) {
-        const PairedPoses paired =
-            pair_by_stamp(est_in.poses, ref_in.poses, args.number("max-dt", 0.02));
+        const PairedPoses paired = pair_by_stamp(est_in.poses, ref_in.poses, o.max_dt);
         est = paired.estimate;
         ref = paired.reference;
         report.add_count("unpaired_estimate_poses", paired.unmatched);
@@ -129,12 +161,9 @@ int run_traj(const std::vector<std::string>& argv) {
 
     std::vector<LoopPair> loops;
     std::vector<bool> loop_correct;
-    if (args.has("loops")) {
-        loops = read_loop_pairs(args.get("loops"));
-        PlaceRecognitionConfig pc;
-        pc.revisit_radius = args.number("revisit-radius", pc.revisit_radius);
-        pc.min_frame_gap = static_cast<std::size_t>(args.integer("min-gap", 50));
-        const PlaceRecognitionResult pr = evaluate_loops(loops, ref, pc);
+    if (!o.loops.empty()) {
+        loops = read_loop_pairs(o.loops);
+        const PlaceRecognitionResult pr = evaluate_loops(loops, ref, o.loop_scoring);
         loop_correct = pr.correct;
         report.section("loops");
         report.add_count("detected", pr.detected);
@@ -146,20 +175,19 @@ int run_traj(const std::vector<std::string>& argv) {
     }
 
     std::cout << report.text();
-    if (!args.has("out")) return 0;
-    const std::filesystem::path out = args.get("out");
+    if (o.out.empty()) return 0;
+    const std::filesystem::path out = o.out;
     report.write(out.string());
     common::write_kitti_poses((out / "estimate_aligned.txt").string(),
                               transform_poses(ate.T_ref_est, est));
 
     TrajectoryFigure tf;
-    tf.title = args.get("title", "Trajectory top view (" + eval_frame + " frame)");
+    tf.title = o.title.empty() ? "Trajectory top view (" + eval_frame + " frame)" : o.title;
     tf.reference = ref;
     tf.estimate = transform_poses(ate.T_ref_est, est);
     tf.loops = loops;
     tf.loop_correct = loop_correct;
-    const std::string plane =
-        args.choice("plane", {"auto", "xy", "xz", "yz"}, eval_frame == "camera" ? "xz" : "xy");
+    const std::string plane = !o.plane.empty() ? o.plane : eval_frame == "camera" ? "xz" : "xy";
     tf.plane = plane == "xy"   ? TopViewPlane::kXY
                : plane == "xz" ? TopViewPlane::kXZ
                : plane == "yz" ? TopViewPlane::kYZ
@@ -167,7 +195,7 @@ int run_traj(const std::vector<std::string>& argv) {
     write_text_file((out / "trajectory.svg").string(), trajectory_svg(tf));
 
     ErrorFigure ef;
-    ef.title = args.get("title", "Error along the trajectory");
+    ef.title = o.title.empty() ? "Error along the trajectory" : o.title;
     ef.distance = dist;
     ef.position_error = ate.errors;
     rpe_errors(est, ref, 1, ef.step_translation, ef.step_rotation_deg);
@@ -177,4 +205,5 @@ int run_traj(const std::vector<std::string>& argv) {
     return 0;
 }
 
+}  // namespace
 }  // namespace ltm::eval::cli

@@ -1,5 +1,6 @@
 #include "evaluation/cli/trajectory_input.hpp"
 
+#include "common/cli/cli.hpp"
 #include "common/core/kitti_io.hpp"
 #include "evaluation/core/frames.hpp"
 
@@ -22,8 +23,8 @@ common::PoseList convert_frame(const common::PoseList& poses, const std::string&
                                const std::string& to, const std::string& calib) {
     if (from == to) return poses;
     if (calib.empty())
-        throw UsageError("converting poses from the " + from + " to the " + to +
-                         " frame needs --calib calib.txt");
+        throw common::cli::UsageError("converting poses from the " + from + " to the " + to +
+                                      " frame needs --calib calib.txt");
     const Eigen::Isometry3d Tr = common::read_kitti_calib_tr(calib);
     return from == "camera" ? camera_to_lidar(poses, Tr) : lidar_to_camera(poses, Tr);
 }

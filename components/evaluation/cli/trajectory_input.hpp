@@ -3,7 +3,6 @@
 #include <string>
 
 #include "common/core/trajectory_io.hpp"
-#include "evaluation/cli/args.hpp"
 
 namespace ltm::eval::cli {
 

@@ -14,6 +14,7 @@
 #include "common/convert/local_map.hpp"
 #include "common/core/io_error.hpp"
 #include "common/core/ply_io.hpp"
+#include "mapping/core/binary_io.hpp"
 #include "mapping/core/map_store.hpp"
 #include "mapping/core/mapper.hpp"
 #include "mapping/params/mapper_params.hpp"
