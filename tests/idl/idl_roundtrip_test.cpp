@@ -7,9 +7,16 @@
 #include <string>
 #include <vector>
 
+#include "common/convert/dds_string.hpp"
 #include "common/convert/geometry.hpp"
 #include "common/convert/local_map.hpp"
+#include "common/convert/loop_closure.hpp"
+#include "common/convert/odometry.hpp"
+#include "common/convert/path.hpp"
 #include "common/convert/pointcloud2.hpp"
+#include "common/convert/pose_graph.hpp"
+#include "common/convert/status.hpp"
+#include "common/convert/transform.hpp"
 #include "runtime/messages.hpp"
 
 using namespace ltm;
@@ -369,6 +376,73 @@ TEST_F(Dds, TransformAndPoseWithCovariance) {
     roundtrip<msg::PoseWithCovarianceStamped>(p, [&](const msg::PoseWithCovarianceStamped& r) {
         EXPECT_EQ(r.pose.covariance[14], 0.01);
         EXPECT_TRUE(convert::to_isometry(r.pose.pose).isApprox(some_pose(2), 1e-12));
+    });
+}
+
+// The owned messages of the builders go out through Cyclone and read back the same.
+TEST_F(Dds, BuiltMessagesThroughDds) {
+    const msg::Time stamp{1700000000, 123456789};
+    convert::StatusData st{stamp, "odom", "robot/odometry", convert::StatusLevel::kError, "bad_cloud",
+                           "scan 3: short data"};
+    roundtrip<msg::Status>(*convert::to_msg(st), [&](const msg::Status& r) {
+        const convert::StatusData o = convert::from_msg(r);
+        EXPECT_EQ(o.stamp.nanosec, stamp.nanosec);
+        EXPECT_EQ(o.component, st.component);
+        EXPECT_EQ(o.level, st.level);
+        EXPECT_EQ(o.code, st.code);
+        EXPECT_EQ(o.message, st.message);
+    });
+    convert::TransformData tf{stamp, "map", "odom", some_pose(2)};
+    roundtrip<msg::TransformStamped>(*convert::to_msg(tf), [&](const msg::TransformStamped& r) {
+        const convert::TransformData o = convert::from_msg(r);
+        EXPECT_EQ(o.parent_frame_id, "map");
+        EXPECT_EQ(o.child_frame_id, "odom");
+        EXPECT_TRUE(o.T_parent_child.isApprox(tf.T_parent_child, 1e-12));
+    });
+    common::Trajectory path;
+    for (int i = 0; i < 50; ++i) path.push_back({10.0 + 0.1 * i, some_pose(i)});
+    roundtrip<msg::Path>(*convert::to_msg(path, "map"), [&](const msg::Path& r) {
+        const common::Trajectory o = convert::from_msg(r);
+        ASSERT_EQ(o.size(), path.size());
+        EXPECT_EQ(convert::to_string(r.poses._buffer[49].header.frame_id), "map");
+        EXPECT_TRUE(o[49].pose.isApprox(path[49].pose, 1e-12));
+    });
+    convert::OdometryData od;
+    od.stamp = stamp;
+    od.frame_id = "map";
+    od.child_frame_id = "lidar";
+    od.T_parent_child = some_pose(1);
+    od.pose_covariance.setIdentity();
+    od.linear_velocity = {1, 2, 3};
+    roundtrip<msg::Odometry>(*convert::to_msg(od), [&](const msg::Odometry& r) {
+        const convert::OdometryData o = convert::from_msg(r);
+        EXPECT_EQ(o.child_frame_id, "lidar");
+        EXPECT_EQ(o.pose_covariance, od.pose_covariance);
+        EXPECT_EQ(o.linear_velocity, od.linear_velocity);
+    });
+    convert::PoseGraphData g;
+    g.frame_id = "map";
+    g.revision = 3;
+    for (std::uint64_t i = 0; i < 20; ++i) g.anchors.push_back({i, some_pose(i)});
+    g.edges.push_back({0, 19, convert::GraphEdgeKind::kLoop, some_pose(5), Eigen::Matrix<double, 6, 6>::Identity()});
+    roundtrip<msg::PoseGraph>(*convert::to_msg(g), [&](const msg::PoseGraph& r) {
+        const convert::PoseGraphData o = convert::from_msg(r);
+        ASSERT_EQ(o.anchors.size(), 20u);
+        ASSERT_EQ(o.edges.size(), 1u);
+        EXPECT_EQ(o.edges[0].kind, convert::GraphEdgeKind::kLoop);
+        EXPECT_TRUE(o.anchors[19].T_map_anchor.isApprox(g.anchors[19].T_map_anchor, 1e-12));
+    });
+    convert::LoopClosureData l;
+    l.frame_id = "map";
+    l.from_map_id = 1;
+    l.to_map_id = 30;
+    l.score = 0.12f;
+    l.accepted = true;
+    roundtrip<msg::LoopClosure>(*convert::to_msg(l), [&](const msg::LoopClosure& r) {
+        const convert::LoopClosureData o = convert::from_msg(r);
+        EXPECT_EQ(o.to_map_id, 30u);
+        EXPECT_EQ(o.score, 0.12f);
+        EXPECT_TRUE(o.accepted);
     });
 }
 

@@ -1,5 +1,6 @@
 #include "common/convert/local_map.hpp"
 
+#include "common/convert/dds_string.hpp"
 #include "common/convert/geometry.hpp"
 
 namespace ltm::convert {
@@ -20,7 +21,7 @@ common::LocalMapData from_msg(const msg::LocalMap& m) {
     d.bbox_min = to_vec(m.bbox_min);
     d.bbox_max = to_vec(m.bbox_max);
     d.voxel_size = m.voxel_size;
-    d.observation_times.assign(m.observation_times._buffer, m.observation_times._buffer + m.observation_times._length);
+    d.observation_times = to_vector(m.observation_times);
     d.voxels.resize(m.voxels._length);
     for (std::uint32_t i = 0; i < m.voxels._length; ++i) {
         const msg::Voxel& v = m.voxels._buffer[i];
@@ -35,7 +36,7 @@ common::LocalMapData from_msg(const msg::LocalMap& m) {
         o.life.last_seen = v.life.last_seen;
         o.life.observations = v.life.observations;
         o.life.health = v.life.health;
-        o.life.seen.assign(v.life.seen._buffer, v.life.seen._buffer + v.life.seen._length);
+        o.life.seen = to_vector(v.life.seen);
     }
     return d;
 }
@@ -73,13 +74,12 @@ const msg::LocalMap& LocalMapBuilder::build(const common::LocalMapData& d, doubl
         o.life.last_seen = v.life.last_seen;
         o.life.observations = v.life.observations;
         o.life.health = v.life.health;
-        o.life.seen._buffer = const_cast<std::uint16_t*>(v.life.seen.data());
-        o.life.seen._length = o.life.seen._maximum = static_cast<std::uint32_t>(v.life.seen.size());
+        borrow_sequence(o.life.seen, v.life.seen);
     }
     frame_id_ = frame_id;
     message_ = msg::LocalMap{};
     message_.header.stamp = to_time(stamp);
-    message_.header.frame_id = const_cast<char*>(frame_id_.c_str());
+    message_.header.frame_id = borrow_string(frame_id_);
     message_.id = d.id;
     message_.revision = d.revision;
     message_.finished = d.finished;
@@ -88,11 +88,8 @@ const msg::LocalMap& LocalMapBuilder::build(const common::LocalMapData& d, doubl
     message_.bbox_min = to_point(d.bbox_min);
     message_.bbox_max = to_point(d.bbox_max);
     message_.voxel_size = d.voxel_size;
-    message_.observation_times._buffer = const_cast<double*>(d.observation_times.data());
-    message_.observation_times._length = message_.observation_times._maximum =
-        static_cast<std::uint32_t>(d.observation_times.size());
-    message_.voxels._buffer = voxels_.data();
-    message_.voxels._length = message_.voxels._maximum = static_cast<std::uint32_t>(voxels_.size());
+    borrow_sequence(message_.observation_times, d.observation_times);
+    borrow_sequence(message_.voxels, voxels_);
     return message_;
 }
 
@@ -105,7 +102,7 @@ const msg::Keyframe& KeyframeBuilder::build(const common::KeyframeData& k, const
     frame_id_ = frame_id;
     message_ = msg::Keyframe{};
     message_.header.stamp = to_time(k.stamp);
-    message_.header.frame_id = const_cast<char*>(frame_id_.c_str());
+    message_.header.frame_id = borrow_string(frame_id_);
     message_.id = k.id;
     message_.scan_index = k.scan_index;
     message_.local_map_id = k.local_map_id;

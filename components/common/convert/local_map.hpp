@@ -12,7 +12,9 @@ namespace ltm::convert {
 common::LocalMapData from_msg(const msg::LocalMap& m);
 common::KeyframeData from_msg(const msg::Keyframe& m);
 
-// Builds a LocalMap message over buffers it owns; valid until the next build().
+// Builds a LocalMap message over buffers it owns and the map's own vectors (borrowed, see
+// dds_string.hpp: never pass it to a free function); valid until the next build() and while `map`
+// lives unchanged.
 class LocalMapBuilder {
 public:
     const msg::LocalMap& build(const common::LocalMapData& map, double stamp, const std::string& frame_id);

@@ -1,5 +1,6 @@
 #include "common/convert/pointcloud2.hpp"
 
+#include "common/convert/dds_string.hpp"
 #include "common/convert/geometry.hpp"
 
 namespace ltm::convert {
@@ -44,8 +45,8 @@ const msg::PointCloud2& PointCloud2Builder::build(const common::PointCloud& clou
     common::encode_points(cloud, layout_, data_);
     fields_.resize(layout_.fields.size());
     for (std::size_t i = 0; i < fields_.size(); ++i) {
-        const auto& f = layout_.fields[i];
-        fields_[i].name = const_cast<char*>(f.name.c_str());
+        auto& f = layout_.fields[i];
+        fields_[i].name = borrow_string(f.name);
         fields_[i].offset = f.offset;
         fields_[i].datatype = f.datatype;
         fields_[i].count = f.count;
@@ -53,16 +54,14 @@ const msg::PointCloud2& PointCloud2Builder::build(const common::PointCloud& clou
     frame_id_ = cloud.frame_id;
     message_ = msg::PointCloud2{};
     message_.header.stamp = to_time(cloud.stamp);
-    message_.header.frame_id = const_cast<char*>(frame_id_.c_str());
+    message_.header.frame_id = borrow_string(frame_id_);
     message_.height = 1;
     message_.width = static_cast<std::uint32_t>(cloud.size());
-    message_.fields._buffer = fields_.data();
-    message_.fields._length = message_.fields._maximum = static_cast<std::uint32_t>(fields_.size());
+    borrow_sequence(message_.fields, fields_);
     message_.is_bigendian = false;
     message_.point_step = layout_.point_step;
     message_.row_step = layout_.point_step * message_.width;
-    message_.data._buffer = data_.data();
-    message_.data._length = message_.data._maximum = static_cast<std::uint32_t>(data_.size());
+    borrow_sequence(message_.data, data_);
     message_.is_dense = true;
     return message_;
 }

@@ -13,7 +13,8 @@ namespace ltm::convert {
 // Returns "" on success, else a one-line reason (unsupported layout, inconsistent sizes).
 std::string from_pointcloud2(const msg::PointCloud2& message, common::PointCloud& out);
 
-// Builds PointCloud2 messages over buffers it owns; the message stays valid until the next build().
+// Builds PointCloud2 messages over buffers it owns (borrowed, see dds_string.hpp: never pass the
+// message to a free function); the message stays valid until the next build().
 class PointCloud2Builder {
 public:
     const msg::PointCloud2& build(const common::PointCloud& cloud);

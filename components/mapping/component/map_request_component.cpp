@@ -6,6 +6,9 @@
 #include <stdexcept>
 #include <unistd.h>
 
+#include "common/convert/dds_string.hpp"
+#include "common/convert/owned_message.hpp"
+#include "common/convert/status.hpp"
 #include "runtime/component.hpp"
 
 namespace ltm::mapping {
@@ -50,12 +53,12 @@ private:
             start_ = now;
         }
         if (!sent_ && request_out_.matched() > 0) {
-            msg::MapRequest r{};
-            r.id = id_;
-            r.command = command_;
-            r.map_dir = const_cast<char*>(map_dir_.c_str());
-            r.global_map_file = const_cast<char*>(global_map_file_.c_str());
-            request_out_.publish(r);
+            convert::Owned<msg::MapRequest> r;
+            r->id = id_;
+            r->command = command_;
+            convert::set_string(r->map_dir, map_dir_);
+            convert::set_string(r->global_map_file, global_map_file_);
+            request_out_.publish(*r);
             sent_ = true;
             ctx_.log().info("request " + std::to_string(id_) + " sent");
         }
@@ -67,12 +70,13 @@ private:
         }
     }
 
-    void on_status(const msg::Status& s) {
+    void on_status(const msg::Status& m) {
         const std::string prefix = "request " + std::to_string(id_) + ": ";
-        const std::string message = s.message ? s.message : "";
+        const convert::StatusData s = convert::from_msg(m);
+        const std::string& message = s.message;
         if (done_ || message.rfind(prefix, 0) != 0) return;
         done_ = true;
-        if (s.level == ltm_msgs_msg_Status_Constants_ERROR) throw std::runtime_error(message.substr(prefix.size()));
+        if (s.level == convert::StatusLevel::kError) throw std::runtime_error(message.substr(prefix.size()));
         ctx_.log().info(message.substr(prefix.size()));
         ctx_.finished();
     }

@@ -10,11 +10,17 @@
 #include <memory>
 #include <optional>
 
+#include "common/convert/dds_string.hpp"
 #include "common/convert/geometry.hpp"
 #include "common/convert/local_map.hpp"
+#include "common/convert/loop_closure.hpp"
+#include "common/convert/odometry.hpp"
+#include "common/convert/path.hpp"
+#include "common/convert/pose_graph.hpp"
+#include "common/convert/status.hpp"
+#include "common/convert/transform.hpp"
 #include "common/core/io_error.hpp"
 #include "common/core/ply_io.hpp"
-#include "mapping/core/binary_io.hpp"
 #include "mapping/core/map_store.hpp"
 #include "mapping/core/mapper.hpp"
 #include "mapping/params/mapper_params.hpp"
@@ -23,6 +29,7 @@
 namespace ltm::mapping {
 namespace {
 
+using convert::StatusLevel;
 using runtime::PathCheck;
 using runtime::TopicRole;
 
@@ -149,8 +156,10 @@ private:
     }
 
     void on_request(const msg::MapRequest& m) {
-        const std::string dir = m.map_dir && *m.map_dir ? m.map_dir : map_dir_;
-        const std::string file = m.global_map_file && *m.global_map_file ? m.global_map_file : global_map_file_;
+        const std::string requested_dir = convert::to_string(m.map_dir);
+        const std::string requested_file = convert::to_string(m.global_map_file);
+        const std::string dir = requested_dir.empty() ? map_dir_ : requested_dir;
+        const std::string file = requested_file.empty() ? global_map_file_ : requested_file;
         const bool want_map = m.command == ltm_msgs_msg_MapRequest_Constants_SAVE_MAP ||
                               m.command == ltm_msgs_msg_MapRequest_Constants_SAVE_ALL;
         const bool want_ply = m.command == ltm_msgs_msg_MapRequest_Constants_WRITE_GLOBAL_MAP ||
@@ -168,7 +177,7 @@ private:
             const bool ply_ok = !want_ply || write_global_map(file, &outcome);
             ok = map_ok && ply_ok;
         }
-        status(ok ? ltm_msgs_msg_Status_Constants_OK : ltm_msgs_msg_Status_Constants_ERROR,
+        status(ok ? StatusLevel::kOk : StatusLevel::kError,
                ok ? "map_request_done" : "map_request_failed", "request " + std::to_string(m.id) + ": " + outcome);
     }
 
@@ -193,7 +202,7 @@ private:
     void on_odometry(const msg::Odometry& m) {
         if (waiting_.empty()) {
             if (const std::optional<Eigen::Isometry3d> T = correction()) {
-                publish_corrected(m, *T);
+                publish_corrected(convert::from_msg(m), *T);
                 return;
             }
         }
@@ -203,8 +212,7 @@ private:
                 ctx_.log().warn("no local map for the odometry's poses yet: the oldest waiting ones are dropped");
             warned_waiting_ = true;
         }
-        waiting_.push_back({m, m.child_frame_id ? m.child_frame_id : ""});
-        waiting_.back().message.header.frame_id = waiting_.back().message.child_frame_id = nullptr;
+        waiting_.push_back(convert::from_msg(m));
         flush_waiting();
     }
 
@@ -216,37 +224,24 @@ private:
         if (waiting_.empty()) return;
         const std::optional<Eigen::Isometry3d> T = correction();
         if (!T) return;
-        for (Waiting& w : waiting_) {
-            w.message.child_frame_id = const_cast<char*>(w.child_frame_id.c_str());
-            publish_corrected(w.message, *T);
-        }
+        for (convert::OdometryData& o : waiting_) publish_corrected(std::move(o), *T);
         waiting_.clear();
     }
 
-    void publish_corrected(const msg::Odometry& m, const Eigen::Isometry3d& T_world_odom) {
-        msg::Odometry out = m;
-        out.header.frame_id = const_cast<char*>(frame_id_.c_str());
-        out.pose.pose = convert::to_pose(T_world_odom * convert::to_isometry(m.pose.pose));
+    void publish_corrected(convert::OdometryData o, const Eigen::Isometry3d& T_world_odom) {
+        o.frame_id = frame_id_;
+        o.T_parent_child = T_world_odom * o.T_parent_child;
         // Covariance of the pose in the new parent frame: rotated by the correction's rotation.
-        const Eigen::Matrix<double, 6, 6> cov = convert::from_array36(m.pose.covariance);
         Eigen::Matrix<double, 6, 6> R = Eigen::Matrix<double, 6, 6>::Zero();
         R.topLeftCorner<3, 3>() = R.bottomRightCorner<3, 3>() = T_world_odom.rotation();
-        convert::to_array36(R * cov * R.transpose(), out.pose.covariance);
-        odometry_out_.publish(out);
+        o.pose_covariance = R * o.pose_covariance * R.transpose();
+        odometry_out_.publish(*convert::to_msg(o));
     }
 
     void publish_correction(const msg::Time& stamp) {
         const std::optional<Eigen::Isometry3d> T = mapper_->T_world_odom(current_map_);
         if (!T) return;
-        msg::TransformStamped t{};
-        t.header.stamp = stamp;
-        t.header.frame_id = const_cast<char*>(frame_id_.c_str());
-        std::string child = "odom";
-        t.child_frame_id = const_cast<char*>(child.c_str());
-        const msg::Pose p = convert::to_pose(*T);
-        t.transform.translation = {p.position.x, p.position.y, p.position.z};
-        t.transform.rotation = p.orientation;
-        correction_out_.publish(t);
+        correction_out_.publish(*convert::to_msg(convert::TransformData{stamp, frame_id_, "odom", *T}));
     }
 
     void optimise() {
@@ -254,42 +249,35 @@ private:
         loops_since_optimise_ = 0;
         if (!s.solved) {
             ctx_.log().warn("pose graph not solved: " + s.message);
-            status(ltm_msgs_msg_Status_Constants_WARN, "not_solved", s.message);
+            status(StatusLevel::kWarn, "not_solved", s.message);
             return;
         }
         publish_graph();
         publish_path();
     }
 
-    void status(std::uint8_t level, const std::string& code, const std::string& message) {
-        msg::Status s{};
-        s.header.frame_id = const_cast<char*>(frame_id_.c_str());
-        std::string component = ctx_.name();
-        s.component = const_cast<char*>(component.c_str());
-        s.level = level;
-        s.code = const_cast<char*>(code.c_str());
-        s.message = const_cast<char*>(message.c_str());
-        status_out_.publish(s);
+    void status(StatusLevel level, const std::string& code, const std::string& message) {
+        status_out_.publish(
+            *convert::to_msg(convert::StatusData{{}, frame_id_, ctx_.name(), level, code, message}));
     }
 
     void publish_loop(const LoopClosure& loop, const msg::Time& stamp) {
-        msg::LoopClosure out{};
-        out.header.stamp = stamp;
-        out.header.frame_id = const_cast<char*>(frame_id_.c_str());
-        const auto& nodes = mapper_->graph().nodes();
-        for (const auto& n : nodes) {
+        convert::LoopClosureData out;
+        out.stamp = stamp;
+        out.frame_id = frame_id_;
+        for (const auto& n : mapper_->graph().nodes()) {
             if (n.id == loop.from_node) out.from_map_id = n.local_map_id;
             if (n.id == loop.to_node) out.to_map_id = n.local_map_id;
         }
         out.from_keyframe_id = loop.match_keyframe;
         out.to_keyframe_id = loop.query_keyframe;
-        out.relative_pose = convert::to_pose(loop.T_from_to);
-        convert::to_array36(loop_information(mapper_->config().loop_edge), out.information);
+        out.T_from_to = loop.T_from_to;
+        out.information = loop_information(mapper_->config().loop_edge);
         out.score = static_cast<float>(loop.descriptor_distance);
         out.fitness = static_cast<float>(loop.inlier_fraction);
         out.residual = static_cast<float>(loop.inlier_rms);
         out.accepted = true;
-        loop_out_.publish(out);
+        loop_out_.publish(*convert::to_msg(out));
         const std::string other = loop.match_session == loop.query_session
                                       ? ""
                                       : " of session " + std::to_string(loop.match_session);
@@ -299,52 +287,33 @@ private:
 
     void publish_graph() {
         const PoseGraph& g = mapper_->graph();
-        std::vector<msg::AnchorPose> anchors;
+        convert::PoseGraphData out;
+        out.frame_id = frame_id_;
+        out.revision = static_cast<std::uint32_t>(mapper_->revision());
         std::map<std::uint64_t, std::uint64_t> map_of;
         for (const auto& n : g.nodes()) {
-            anchors.push_back({n.local_map_id, convert::to_pose(n.T_world_anchor)});
+            out.anchors.push_back({n.local_map_id, n.T_world_anchor});
             map_of[n.id] = n.local_map_id;
         }
-        std::vector<msg::PoseGraphEdge> edges;
         for (const auto& e : g.edges()) {
             if (!e.active) continue;
-            msg::PoseGraphEdge out{};
-            out.from_id = map_of[e.from];
-            out.to_id = map_of[e.to];
-            out.kind = e.kind == EdgeKind::kOdometry ? ltm_msgs_msg_PoseGraphEdge_Constants_ODOMETRY
-                                                     : ltm_msgs_msg_PoseGraphEdge_Constants_LOOP;
-            out.relative_pose = convert::to_pose(e.T_from_to);
-            convert::to_array36(e.information, out.information);
-            edges.push_back(out);
+            const auto kind = e.kind == EdgeKind::kOdometry ? convert::GraphEdgeKind::kOdometry
+                                                            : convert::GraphEdgeKind::kLoop;
+            out.edges.push_back({map_of[e.from], map_of[e.to], kind, e.T_from_to, e.information});
         }
-        msg::PoseGraph out{};
-        out.header.frame_id = const_cast<char*>(frame_id_.c_str());
-        out.revision = static_cast<std::uint32_t>(mapper_->revision());
-        out.anchors._buffer = anchors.data();
-        out.anchors._length = out.anchors._maximum = static_cast<std::uint32_t>(anchors.size());
-        out.edges._buffer = edges.data();
-        out.edges._length = out.edges._maximum = static_cast<std::uint32_t>(edges.size());
-        graph_out_.publish(out);
+        graph_out_.publish(*convert::to_msg(out));
     }
 
     // The corrected trajectory of this session: its keyframes at their optimised poses.
     void publish_path() {
         const auto& keyframes = mapper_->keyframes();
-        std::vector<msg::PoseStamped> poses;
+        common::Trajectory poses;
         poses.reserve(keyframes.size());
         for (std::uint32_t i = 0; i < keyframes.size(); ++i) {
             if (keyframes[i]->session != mapper_->session()) continue;  // a loaded map's
-            msg::PoseStamped p{};
-            p.header.stamp = convert::to_time(keyframes[i]->data.stamp);
-            p.header.frame_id = const_cast<char*>(frame_id_.c_str());
-            p.pose = convert::to_pose(mapper_->keyframe_pose(i));
-            poses.push_back(p);
+            poses.push_back({keyframes[i]->data.stamp, mapper_->keyframe_pose(i)});
         }
-        msg::Path path{};
-        path.header.frame_id = const_cast<char*>(frame_id_.c_str());
-        path.poses._buffer = poses.data();
-        path.poses._length = path.poses._maximum = static_cast<std::uint32_t>(poses.size());
-        path_out_.publish(path);
+        path_out_.publish(*convert::to_msg(poses, frame_id_));
     }
 
     runtime::ComponentContext& ctx_;
@@ -353,12 +322,8 @@ private:
     std::size_t loops_since_optimise_ = 0;
     std::unique_ptr<MapWriter> writer_;
     std::uint64_t saved_state_ = 0;
-    struct Waiting {
-        msg::Odometry message;  // its strings pointed into the reader's sample: reset, kept below
-        std::string child_frame_id;
-    };
     static constexpr std::size_t kMaxWaiting = 1000;  // 100 s at 10 Hz
-    std::deque<Waiting> waiting_;
+    std::deque<convert::OdometryData> waiting_;
     bool warned_waiting_ = false;
     std::uint64_t current_map_ = 0;
     bool has_current_map_ = false;

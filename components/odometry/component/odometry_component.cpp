@@ -7,7 +7,9 @@
 
 #include "common/convert/geometry.hpp"
 #include "common/convert/local_map.hpp"
+#include "common/convert/odometry.hpp"
 #include "common/convert/pointcloud2.hpp"
+#include "common/convert/status.hpp"
 #include "odometry/core/map_handover.hpp"
 #include "odometry/core/odometry.hpp"
 #include "odometry/params/odometry_params.hpp"
@@ -16,6 +18,7 @@
 namespace ltm::odometry {
 namespace {
 
+using convert::StatusLevel;
 using runtime::TopicRole;
 
 class OdometryComponent : public runtime::Component {
@@ -51,7 +54,7 @@ private:
         const std::uint64_t index = frames_++;
         const std::string err = convert::from_pointcloud2(m, cloud_);
         if (!err.empty()) {
-            status(ltm_msgs_msg_Status_Constants_ERROR, "bad_cloud", "scan " + std::to_string(index) + ": " + err, cloud_.stamp);
+            status(StatusLevel::kError, "bad_cloud", "scan " + std::to_string(index) + ": " + err, cloud_.stamp);
             return;
         }
         const FrameResult r = odometry_->register_frame(cloud_);
@@ -59,11 +62,11 @@ private:
             ++tracked_;
             publish_odometry(r);
         } else {
-            status(ltm_msgs_msg_Status_Constants_WARN, to_string(r.status),
+            status(StatusLevel::kWarn, to_string(r.status),
                    "scan " + std::to_string(index) + ": " + r.message, r.stamp);
         }
         if (r.degenerate())
-            status(ltm_msgs_msg_Status_Constants_WARN, "degenerate",
+            status(StatusLevel::kWarn, "degenerate",
                    "scan " + std::to_string(index) + ": " + std::to_string(r.degenerate_directions.size()) +
                        " degenerate direction(s)", r.stamp);
         const Handover h = handover_.after_frame(*odometry_, r, index);
@@ -72,25 +75,24 @@ private:
     }
 
     void publish_odometry(const FrameResult& r) {
-        msg::Odometry o{};
-        o.header.stamp = convert::to_time(r.stamp);
-        o.header.frame_id = const_cast<char*>(odom_frame_.c_str());
-        o.child_frame_id = const_cast<char*>(child_frame_.c_str());
-        o.pose.pose = convert::to_pose(r.T_odom_lidar);
-        convert::to_array36(r.covariance, o.pose.covariance);
+        convert::OdometryData o;
+        o.stamp = convert::to_time(r.stamp);
+        o.frame_id = odom_frame_;
+        o.child_frame_id = child_frame_;
+        o.T_parent_child = r.T_odom_lidar;
+        o.pose_covariance = r.covariance;
         if (has_last_ && r.stamp > last_stamp_) {
             // Twist in the child frame, from the last two poses.
             const double dt = r.stamp - last_stamp_;
             const Eigen::Isometry3d delta = last_pose_.inverse() * r.T_odom_lidar;
             const Eigen::AngleAxisd aa(delta.rotation());
-            const Eigen::Vector3d v = delta.translation() / dt, w = aa.axis() * aa.angle() / dt;
-            o.twist.twist.linear = {v.x(), v.y(), v.z()};
-            o.twist.twist.angular = {w.x(), w.y(), w.z()};
+            o.linear_velocity = delta.translation() / dt;
+            o.angular_velocity = aa.axis() * aa.angle() / dt;
         }
         last_pose_ = r.T_odom_lidar;
         last_stamp_ = r.stamp;
         has_last_ = true;
-        odometry_out_.publish(o);
+        odometry_out_.publish(*convert::to_msg(o));
     }
 
     void publish_local_map(const common::LocalMapData& m) {
@@ -99,16 +101,10 @@ private:
         maps_published_ += m.finished;
     }
 
-    void status(std::uint8_t level, const std::string& code, const std::string& text, double stamp) {
+    void status(StatusLevel level, const std::string& code, const std::string& text, double stamp) {
         if (++warnings_ <= 10 || (warnings_ & (warnings_ - 1)) == 0) ctx_.log().warn(text);
-        msg::Status s{};
-        s.header.stamp = convert::to_time(stamp);
-        s.header.frame_id = const_cast<char*>(odom_frame_.c_str());
-        s.component = const_cast<char*>(ctx_.name().c_str());
-        s.level = level;
-        s.code = const_cast<char*>(code.c_str());
-        s.message = const_cast<char*>(text.c_str());
-        status_out_.publish(s);
+        status_out_.publish(
+            *convert::to_msg(convert::StatusData{convert::to_time(stamp), odom_frame_, ctx_.name(), level, code, text}));
     }
 
     runtime::ComponentContext& ctx_;

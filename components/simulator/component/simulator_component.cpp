@@ -6,7 +6,7 @@
 #include <future>
 #include <memory>
 
-#include "common/convert/geometry.hpp"
+#include "common/convert/path.hpp"
 #include "common/convert/pointcloud2.hpp"
 #include "common/core/progress.hpp"
 #include "runtime/component.hpp"
@@ -97,11 +97,7 @@ private:
         ahead_.pop_front();
         scan_.cloud.frame_id = frame_id_;
         points_.publish(builder_.build(scan_.cloud));
-        msg::PoseStamped ps{};
-        ps.header.stamp = convert::to_time(scan_.cloud.stamp);
-        ps.header.frame_id = const_cast<char*>(world_frame_id_.c_str());
-        ps.pose = convert::to_pose(scan_.T_world_lidar);
-        ground_truth_.publish(ps);
+        ground_truth_.publish(*convert::to_msg(common::StampedPose{scan_.cloud.stamp, scan_.T_world_lidar}, world_frame_id_));
         progress_->update(i + 1 - first_);
     }
 

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "common/convert/dds_string.hpp"
 #include "common/convert/geometry.hpp"
 #include "common/convert/local_map.hpp"
 #include "common/convert/pointcloud2.hpp"
@@ -100,20 +101,21 @@ private:
     }
 
     void on_mesh(const msg::Mesh& m) {
-        if (m.vertices._length % 3 || m.triangles._length % 3 ||
-            (m.normals._length && m.normals._length != m.vertices._length)) {
+        const auto vertices = convert::view(m.vertices), normals = convert::view(m.normals);
+        const auto triangles = convert::view(m.triangles);
+        if (vertices.size() % 3 || triangles.size() % 3 || (!normals.empty() && normals.size() != vertices.size())) {
             ++rejected_;
             ctx_.log().warn("rejected mesh chunk " + std::to_string(m.local_map_id) + ": sizes not multiples of 3");
             return;
         }
         common::PlyMesh mesh;
         const Eigen::Isometry3f T = convert::to_isometry(m.anchor).cast<float>();
-        for (std::uint32_t i = 0; i < m.vertices._length; i += 3)
-            mesh.vertices.push_back(T * Eigen::Vector3f(m.vertices._buffer[i], m.vertices._buffer[i + 1], m.vertices._buffer[i + 2]));
-        for (std::uint32_t i = 0; i < m.normals._length; i += 3)
-            mesh.normals.push_back(T.linear() * Eigen::Vector3f(m.normals._buffer[i], m.normals._buffer[i + 1], m.normals._buffer[i + 2]));
-        for (std::uint32_t i = 0; i < m.triangles._length; i += 3)
-            mesh.triangles.emplace_back(m.triangles._buffer[i], m.triangles._buffer[i + 1], m.triangles._buffer[i + 2]);
+        for (std::uint32_t i = 0; i < vertices.size(); i += 3)
+            mesh.vertices.push_back(T * Eigen::Vector3f(vertices[i], vertices[i + 1], vertices[i + 2]));
+        for (std::uint32_t i = 0; i < normals.size(); i += 3)
+            mesh.normals.push_back(T.linear() * Eigen::Vector3f(normals[i], normals[i + 1], normals[i + 2]));
+        for (std::uint32_t i = 0; i < triangles.size(); i += 3)
+            mesh.triangles.emplace_back(triangles[i], triangles[i + 1], triangles[i + 2]);
         try {
             common::write_ply(dir_ + "/mesh_" + std::to_string(m.local_map_id) + ".ply", mesh);
             ++meshes_;

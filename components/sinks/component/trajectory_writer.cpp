@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "common/convert/geometry.hpp"
+#include "common/convert/path.hpp"
 #include "common/core/io_error.hpp"
 #include "runtime/component.hpp"
 #include "sinks/core/trajectory_file.hpp"
@@ -34,17 +35,12 @@ public:
             });
         } else if (input == "pose") {
             ctx.subscribe<msg::PoseStamped>("pose", TopicRole::kState, [this](const msg::PoseStamped& m) {
-                append(convert::to_seconds(m.header.stamp), convert::to_isometry(m.pose));
+                const common::StampedPose p = convert::from_msg(m);
+                append(p.stamp, p.pose);
             });
         } else if (input == "path") {
             ctx.subscribe<msg::Path>("path", TopicRole::kMap, [this](const msg::Path& m) {
-                common::Trajectory t;
-                for (std::uint32_t i = 0; i < m.poses._length; ++i) {
-                    common::StampedPose sp;
-                    sp.stamp = convert::to_seconds(m.poses._buffer[i].header.stamp);
-                    sp.pose = convert::to_isometry(m.poses._buffer[i].pose);
-                    t.push_back(sp);
-                }
+                const common::Trajectory t = convert::from_msg(m);
                 for (auto& f : files_) f->rewrite(t);
             });
         } else {

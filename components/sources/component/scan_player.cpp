@@ -2,7 +2,7 @@
 
 #include <thread>
 
-#include "common/convert/geometry.hpp"
+#include "common/convert/path.hpp"
 #include "common/core/io_error.hpp"
 
 namespace ltm::sources {
@@ -98,11 +98,7 @@ void ScanPlayer::step() {
     if (points_.publish(builder_.build(cloud))) ++published_;
     progress_->update(published_);
     if (ground_truth_.valid()) {
-        msg::PoseStamped ps{};
-        ps.header.stamp = convert::to_time(cloud.stamp);
-        ps.header.frame_id = const_cast<char*>(world_frame_id_.c_str());
-        ps.pose = convert::to_pose(folder_->pose(i));
-        ground_truth_.publish(ps);
+        ground_truth_.publish(*convert::to_msg(common::StampedPose{cloud.stamp, folder_->pose(i)}, world_frame_id_));
     }
 }
 
