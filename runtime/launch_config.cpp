@@ -92,6 +92,7 @@ void apply_override(YAML::Node root, const std::string& arg) {
     } catch (const YAML::Exception& e) {
         throw ConfigError("<command line>", 0, "--set " + key, "value is not valid YAML");
     }
+    check_plain_keys(value, "<command line>");
     const std::size_t dot = key.find('.');
     const YAML::Node& croot = root;
     if (dot != std::string::npos && croot["components"].IsSequence()) {
@@ -160,6 +161,7 @@ LaunchConfig load_launch_config(const std::string& path, const std::vector<std::
         throw ConfigError(path, 0, "yaml", e.what());
     }
     if (!root.IsMap()) throw ConfigError(path, 1, "launch config", "expected a map at the top level");
+    check_plain_keys(root, path);
     for (const auto& o : overrides) apply_override(root, o);
     const std::string& f = path;
     const YAML::Node& croot = root;  // const access: a missing key must not be inserted

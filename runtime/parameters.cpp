@@ -56,6 +56,18 @@ YAML::Node find_dotted(const YAML::Node& node, const std::vector<std::string>& p
 
 }  // namespace
 
+void check_plain_keys(const YAML::Node& node, const std::string& file) {
+    if (node.IsSequence()) {
+        for (const auto& e : node) check_plain_keys(e, file);
+    } else if (node.IsMap()) {
+        for (const auto& kv : node) {
+            if (!kv.first.IsScalar())
+                throw ConfigError(file, kv.first.Mark().line + 1, "yaml", "a key must be plain text");
+            check_plain_keys(kv.second, file);
+        }
+    }
+}
+
 std::string expand_env(const std::string& text) {
     std::string out;
     std::size_t i = 0;
@@ -90,7 +102,9 @@ Parameters::Parameters(YAML::Node node, std::string file, std::string prefix)
 Parameters Parameters::from_file(const std::string& path, const std::string& prefix) {
     if (!std::filesystem::is_regular_file(path)) throw ConfigError(path, 0, prefix, "no such file");
     try {
-        return Parameters(YAML::LoadFile(path), path, prefix);
+        const YAML::Node root = YAML::LoadFile(path);
+        check_plain_keys(root, path);
+        return Parameters(root, path, prefix);
     } catch (const YAML::ParserException& e) {
         throw ConfigError(path, e.mark.line + 1, prefix, e.msg);
     }

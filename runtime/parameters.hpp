@@ -53,6 +53,10 @@ private:
     std::shared_ptr<std::set<std::string>> used_;
 };
 
+// Refuses a map key that is not plain text ("? [a, b]: 1"): keys are named by their text.
+// Throws ConfigError at the key's line.
+void check_plain_keys(const YAML::Node& node, const std::string& file);
+
 // ${VAR} and ${VAR:-default} in a string, from the environment.
 std::string expand_env(const std::string& text);
 

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "common/core/one_line.hpp"
 #include "simulator/core/geometry2d.hpp"
 #include "simulator/core/objects.hpp"
 #include "simulator/core/sensor_model.hpp"
@@ -15,10 +16,11 @@
 
 namespace ltm::sim {
 
-// A scenario that cannot be used. what() is one line naming the key or file at fault.
+// A scenario that cannot be used. what() is one line naming the key or file at fault (control
+// characters quoted from the file are escaped).
 class ScenarioError : public std::runtime_error {
   public:
-    using std::runtime_error::runtime_error;
+    explicit ScenarioError(const std::string& what) : std::runtime_error(common::one_line(what)) {}
 };
 
 enum class WorldStyle { kSubstation, kTown };

@@ -16,6 +16,7 @@ void YamlReader::expect_map(const YAML::Node& node, const std::string& key,
     if (!node || node.IsNull()) return;
     if (!node.IsMap()) fail(node, key, "expected a map of keys");
     for (auto it = node.begin(); it != node.end(); ++it) {
+        if (!it->first.IsScalar()) fail(it->first, key, "expected plain names as keys");
         const std::string name = it->first.as<std::string>();
         bool ok = false;
         for (const char* a : allowed) ok = ok || name == a;
