@@ -2,13 +2,8 @@
 // ATE before and after loop closure, the loops found (and, with a reference, the revisits closed
 // or missed and the false loops), loop detection, verification and optimisation times, memory;
 // writes odometry.txt, slam.txt (LiDAR poses, KITTI format), loops.txt, the map and its PLY.
-//
-//   ltm_bench_slam DIR [--reference poses.txt [--calib calib.txt]] [--out OUTDIR]
-//       [--preset hdl64|vlp32|vlp16|narrow] [--config odometry.yaml] [--mapping-config mapping.yaml]
-//       [--max-frames N]
-//   ltm_bench_slam --scenario FILE.yaml [--laps N] [options but --reference]   (scans rendered
-//       in-process by the simulator, its true poses as the reference; memory every km)
-//   ltm_bench_slam --graph-bench N     (optimisation time of a synthetic graph of N anchors)
+// Also over scans a scenario renders in-process (--scenario, --laps), and --graph-bench N.
+// Options: `ltm_bench_slam --help`.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -22,6 +17,7 @@
 #include <sstream>
 #include <string>
 
+#include "common/cli/cli.hpp"
 #include "common/core/io_error.hpp"
 #include "common/core/kitti_io.hpp"
 #include "common/core/ply_io.hpp"
@@ -35,11 +31,11 @@
 #include "mapping/bench/sim_source.hpp"
 #include "mapping/core/map_store.hpp"
 #include "mapping/core/mapper.hpp"
-#include "sources/core/scan_folder.hpp"
-#include "odometry/core/odometry.hpp"
 #include "mapping/params/mapper_params.hpp"
+#include "odometry/core/odometry.hpp"
 #include "odometry/params/odometry_params.hpp"
 #include "slam/core/slam_pipeline.hpp"
+#include "sources/core/scan_folder.hpp"
 
 namespace {
 
@@ -54,85 +50,51 @@ struct Args {
     std::size_t max_frames = 0, graph_bench = 0, snapshot_every = 10;
 };
 
-[[noreturn]] void usage(const std::string& error) {
-    std::cerr
-        << "error: " << error << "\n"
-        << "usage: ltm_bench_slam DIR [--reference poses.txt [--calib calib.txt]] [--out OUTDIR]\n"
-        << "         [--preset hdl64|vlp32|vlp16|narrow] [--config odometry.yaml]\n"
-        << "         [--mapping-config mapping.yaml] [--max-frames "
-           "N]\n"
-        << "         [--snapshot-every K] [--pairs verified_pairs.txt --session s1]\n"
-        << "       ltm_bench_slam --scenario FILE.yaml [--laps N] [same options, no --reference]\n"
-        << "       ltm_bench_slam --graph-bench N\n"
-        << "  DIR: KITTI layout (velodyne/*.bin) or a PCD/PLY folder (Scans/*.pcd).\n"
-        << "  --reference: KITTI-format poses, one a frame; with --calib they are camera poses.\n"
-        << "  --snapshot-every: hand snapshots of the active local maps to the mapper every K\n"
-        << "    keyframes (default 10; 0: finished maps only), as the odometry component does.\n"
-        << "  --pairs/--session: verified revisit pairs (hku-avia-2session format): the relative\n"
-        << "    poses of the session's verified pairs are compared with the ICP-refined ones.\n"
-        << "  --scenario: scans rendered by the simulator (session 0), its true poses as the\n"
-        << "    reference; --laps N drives the route N times (route.laps). Memory every km.\n"
-        << "  --graph-bench: time the optimisation of a synthetic graph of N anchors.\n";
-    std::exit(2);
+// Declares the command line on `app`, filling `a`.
+void add_options(CLI::App& app, Args& a) {
+    namespace cli = common::cli;
+    cli::configure(app);
+    app.footer(
+        "DIR: KITTI layout (velodyne/*.bin) or a PCD/PLY folder (Scans/*.pcd); or --scenario:\n"
+        "scans rendered by the simulator (session 0), its true poses as the reference, memory\n"
+        "every km; or --graph-bench N: the optimisation of a synthetic graph of N anchors.\n"
+        "LTM_BENCH_LOOPS=1 prints every loop and refusal.");
+    CLI::Option* dir = app.add_option("DIR", a.dir, "the scans");
+    CLI::Option* reference = app.add_option(
+        "--reference", a.reference, "KITTI-format poses, one a frame (camera poses with --calib)");
+    app.add_option("--calib", a.calib, "the reference is in the camera frame of this calib.txt")
+        ->needs(reference);
+    app.add_option("--out", a.out, "write poses, loops, the map and its PLY here");
+    app.add_option("--preset", a.preset, "sensor preset: hdl64, vlp32, vlp16 or narrow")
+        ->default_str("hdl64");
+    app.add_option("--config", a.config, "odometry keys overriding the preset (YAML)");
+    app.add_option("--mapping-config", a.mapping_config, "the mapping component's keys (YAML)");
+    app.add_option("--max-frames", a.max_frames, "only the first N scans (0: all)");
+    app.add_option("--snapshot-every", a.snapshot_every,
+                   "hand snapshots of the active local maps to the mapper every K keyframes, as "
+                   "the odometry component does (0: finished maps only)");
+    CLI::Option* pairs = app.add_option(
+        "--pairs", a.pairs,
+        "verified revisit pairs (hku-avia-2session format): their relative poses are compared "
+        "with the ICP-refined ones");
+    CLI::Option* session = app.add_option("--session", a.session, "the session of --pairs");
+    pairs->needs(session);
+    session->needs(pairs);
+    CLI::Option* scenario =
+        app.add_option("--scenario", a.scenario, "render the scans of this scenario in-process");
+    scenario->excludes(dir);
+    app.add_option("--laps", a.laps, "drive the route N times (route.laps)")->needs(scenario);
+    app.add_option("--graph-bench", a.graph_bench,
+                   "time the optimisation of a synthetic graph of N anchors");
 }
 
-Args parse(int argc, char** argv) {
-    Args a;
-    for (int i = 1; i < argc; ++i) {
-        const std::string k = argv[i];
-        auto value = [&]() -> std::string {
-            if (i + 1 >= argc) usage(k + " needs a value");
-            return argv[++i];
-        };
-        auto number = [&](const std::string& v) -> std::size_t {
-            char* end = nullptr;
-            const long n = std::strtol(v.c_str(), &end, 10);
-            if (v.empty() || *end != '\0' || n < 0) usage(k + " needs a non-negative integer");
-            return std::size_t(n);
-        };
-        if (k == "--out")
-            a.out = value();
-        else if (k == "--reference")
-            a.reference = value();
-        else if (k == "--calib")
-            a.calib = value();
-        else if (k == "--preset")
-            a.preset = value();
-        else if (k == "--config")
-            a.config = value();
-        else if (k == "--mapping-config")
-            a.mapping_config = value();
-        else if (k == "--max-frames")
-            a.max_frames = number(value());
-        else if (k == "--graph-bench")
-            a.graph_bench = number(value());
-        else if (k == "--snapshot-every")
-            a.snapshot_every = number(value());
-        else if (k == "--pairs")
-            a.pairs = value();
-        else if (k == "--session")
-            a.session = value();
-        else if (k == "--scenario")
-            a.scenario = value();
-        else if (k == "--laps")
-            a.laps = number(value());
-        else if (k == "-h" || k == "--help")
-            usage("help requested");
-        else if (!k.empty() && k[0] == '-')
-            usage("unknown option " + k);
-        else if (a.dir.empty())
-            a.dir = k;
-        else
-            usage("more than one DIR given");
-    }
-    if (a.dir.empty() && a.scenario.empty() && a.graph_bench == 0) usage("no DIR given");
-    if (!a.dir.empty() && !a.scenario.empty()) usage("give DIR or --scenario, not both");
-    if (a.laps && a.scenario.empty()) usage("--laps needs --scenario");
+// The rules across options that CLI11 does not state; throws common::cli::UsageError.
+void check_options(const Args& a) {
+    if (a.dir.empty() && a.scenario.empty() && a.graph_bench == 0)
+        throw common::cli::UsageError("DIR", "is required (or --scenario FILE, --graph-bench N)");
     if (!a.scenario.empty() && !a.reference.empty())
-        usage("--scenario brings its own reference (the true poses): no --reference");
-    if (!a.calib.empty() && a.reference.empty()) usage("--calib needs --reference");
-    if (a.pairs.empty() != a.session.empty()) usage("--pairs and --session go together");
-    return a;
+        throw common::cli::UsageError("--reference",
+                                      "--scenario brings its own reference (the true poses)");
 }
 
 struct Stats {
@@ -215,10 +177,10 @@ int run(const Args& a) {
                                common::parse_sensor_preset(a.preset.empty() ? "hdl64" : a.preset))
                          : odometry::load_odometry_config_file(a.config);
     // The mapping component's keys and presets (a file's `mapping:` section or top level).
-    const mapping::MapperConfig mc = a.mapping_config.empty()
-                                         ? mapping::mapper_preset(common::parse_sensor_preset(
-                                               a.preset.empty() ? "hdl64" : a.preset))
-                                         : mapping::load_mapper_config_file(a.mapping_config, a.preset);
+    const mapping::MapperConfig mc =
+        a.mapping_config.empty() ? mapping::mapper_preset(common::parse_sensor_preset(
+                                       a.preset.empty() ? "hdl64" : a.preset))
+                                 : mapping::load_mapper_config_file(a.mapping_config, a.preset);
     std::unique_ptr<sources::ScanFolder> folder_data;
     std::unique_ptr<mapping::bench::SimSource> sim_data;
     std::size_t available = 0;
@@ -289,9 +251,10 @@ int run(const Args& a) {
             rejected += kr.rejected.size();
             for (const mapping::LoopRejection& j : kr.rejected) {
                 if (std::getenv("LTM_BENCH_LOOPS")) {
-                    std::printf("  refused %zu -> %lu (distance %.3f): %s\n", i,
-                                (unsigned long)mapper.keyframes()[j.match_keyframe]->data.scan_index,
-                                j.descriptor_distance, j.reason.c_str());
+                    std::printf(
+                        "  refused %zu -> %lu (distance %.3f): %s\n", i,
+                        (unsigned long)mapper.keyframes()[j.match_keyframe]->data.scan_index,
+                        j.descriptor_distance, j.reason.c_str());
                 }
                 std::string why = j.reason.substr(0, j.reason.find_first_of("0123456789"));
                 ++reasons[why];
@@ -455,11 +418,22 @@ int run(const Args& a) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    const Args args = parse(argc, argv);
+    Args args;
+    CLI::App app{
+        "Odometry + mapping (loop closure, pose graph) over a folder of scans or a "
+        "simulated scenario",
+        "ltm_bench_slam"};
+    add_options(app, args);
+    if (const int code = common::cli::parse(app, argc, argv); code >= 0) return code;
+    try {
+        check_options(args);
+    } catch (const common::cli::UsageError& e) {
+        return common::cli::usage_error(app, e);
+    }
     try {
         return args.graph_bench ? graph_bench(args.graph_bench) : run(args);
     } catch (const std::exception& e) {  // files, configurations, scenarios, maps: one line
-        std::cerr << "error: " << e.what() << "\n";
+        std::cerr << "ltm_bench_slam: " << e.what() << "\n";
     }
     return 1;
 }

@@ -1,10 +1,6 @@
 // ltm_bench_odometry: runs the odometry core over a folder of scans and reports speed, peak memory
 // and, with a reference trajectory, accuracy (ATE after SE(3) alignment, frame-to-frame relative
-// errors, KITTI metric).
-//
-//   ltm_bench_odometry DIR [--threads N] [--out poses.txt] [--reference poses.txt
-//       [--calib calib.txt]] [--preset hdl64|vlp32|vlp16|narrow] [--config file.yaml]
-//       [--max-frames N] [--frame-log frames.csv]
+// errors, KITTI metric). Options: `ltm_bench_odometry --help`.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -16,6 +12,7 @@
 #include <numeric>
 #include <string>
 
+#include "common/cli/cli.hpp"
 #include "common/core/io_error.hpp"
 #include "common/core/kitti_io.hpp"
 #include "common/core/process_memory.hpp"
@@ -24,9 +21,9 @@
 #include "evaluation/core/ate.hpp"
 #include "evaluation/core/kitti_metric.hpp"
 #include "evaluation/core/rpe.hpp"
-#include "sources/core/scan_folder.hpp"
 #include "odometry/core/odometry.hpp"
 #include "odometry/params/odometry_params.hpp"
+#include "sources/core/scan_folder.hpp"
 
 namespace {
 
@@ -39,65 +36,25 @@ struct Args {
     std::size_t max_frames = 0;
 };
 
-[[noreturn]] void usage(const std::string& error) {
-    std::cerr
-        << "error: " << error << "\n"
-        << "usage: ltm_bench_odometry DIR [--threads N] [--out poses.txt]\n"
-        << "         [--reference poses.txt [--calib calib.txt]]\n"
-        << "         [--preset hdl64|vlp32|vlp16|narrow] [--config file.yaml]\n"
-        << "         [--max-frames N] [--frame-log frames.csv]\n"
-        << "  DIR: KITTI layout (velodyne/*.bin) or a PCD/PLY folder (Scans/*.pcd).\n"
-        << "  --reference: KITTI-format poses, one line a frame (the first N lines are used);\n"
-        << "    with --calib (KITTI calib.txt) they are camera poses, converted to the LiDAR.\n"
-        << "  --config overrides the preset (default hdl64) with the keys of its odometry "
-           "section.\n";
-    std::exit(2);
-}
-
-Args parse(int argc, char** argv) {
-    Args a;
-    for (int i = 1; i < argc; ++i) {
-        const std::string k = argv[i];
-        auto value = [&]() -> std::string {
-            if (i + 1 >= argc) usage(k + " needs a value");
-            return argv[++i];
-        };
-        auto number = [&](const std::string& v) -> long {
-            char* end = nullptr;
-            const long n = std::strtol(v.c_str(), &end, 10);
-            if (v.empty() || *end != '\0' || n < 0) usage(k + " needs a non-negative integer");
-            return n;
-        };
-        if (k == "--threads") {
-            a.threads = int(number(value()));
-        } else if (k == "--out") {
-            a.out = value();
-        } else if (k == "--reference") {
-            a.reference = value();
-        } else if (k == "--calib") {
-            a.calib = value();
-        } else if (k == "--preset") {
-            a.preset = value();
-        } else if (k == "--config") {
-            a.config = value();
-        } else if (k == "--max-frames") {
-            a.max_frames = std::size_t(number(value()));
-        } else if (k == "--frame-log") {
-            a.frame_log = value();
-        } else if (k == "-h" || k == "--help") {
-            usage("help requested");
-        } else if (!k.empty() && k[0] == '-') {
-            usage("unknown option " + k);
-        } else if (a.dir.empty()) {
-            a.dir = k;
-        } else {
-            usage("more than one DIR given");
-        }
-    }
-    if (a.dir.empty()) usage("no DIR given");
-    if (!a.calib.empty() && a.reference.empty()) usage("--calib needs --reference");
-    if (a.threads < 1) usage("--threads must be at least 1");
-    return a;
+// Declares the command line on `app`, filling `a`.
+void add_options(CLI::App& app, Args& a) {
+    common::cli::configure(app);
+    app.footer(
+        "DIR: KITTI layout (velodyne/*.bin) or a PCD/PLY folder (Scans/*.pcd).\n"
+        "--reference: KITTI-format poses, one line a frame (the first N lines are used); with\n"
+        "--calib (KITTI calib.txt) they are camera poses, converted to the LiDAR.");
+    app.add_option("DIR", a.dir, "the scans")->required();
+    app.add_option("--threads", a.threads, "worker threads")->check(common::cli::at_least(1));
+    app.add_option("--out", a.out, "write the LiDAR poses here (KITTI format)");
+    CLI::Option* reference =
+        app.add_option("--reference", a.reference, "reference poses: report accuracy");
+    app.add_option("--calib", a.calib, "the reference is in the camera frame of this calib.txt")
+        ->needs(reference);
+    app.add_option("--preset", a.preset, "sensor preset: hdl64, vlp32, vlp16 or narrow")
+        ->default_str("hdl64");
+    app.add_option("--config", a.config, "odometry keys overriding the preset (YAML)");
+    app.add_option("--max-frames", a.max_frames, "only the first N scans (0: all)");
+    app.add_option("--frame-log", a.frame_log, "per-frame times and sizes (CSV)");
 }
 
 // CPU time of the calling thread [s] (unlike wall time, not inflated by other processes).
@@ -152,9 +109,9 @@ int run(const Args& a) {
     const sources::ScanFolder data(folder);
     const char* kind = data.format() == sources::ScanFormat::kKittiBin ? "kitti" : "pcd";
     const std::size_t frames = a.max_frames ? std::min(a.max_frames, data.size()) : data.size();
-    std::printf("%s: %zu %s scans%s, %d thread(s), voxel %.2f m\n", a.dir.c_str(), frames,
-                kind, data.has_times() ? "" : " (no times.txt: 10 Hz assumed)",
-                config.threads, config.voxel_size);
+    std::printf("%s: %zu %s scans%s, %d thread(s), voxel %.2f m\n", a.dir.c_str(), frames, kind,
+                data.has_times() ? "" : " (no times.txt: 10 Hz assumed)", config.threads,
+                config.voxel_size);
     std::ofstream log;
     if (!a.frame_log.empty()) {
         log.open(a.frame_log);
@@ -253,13 +210,19 @@ int run(const Args& a) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    const Args args = parse(argc, argv);
+    Args args;
+    CLI::App app{
+        "Runs the odometry core over a folder of scans: speed, peak memory and, with a "
+        "reference, accuracy (ATE, RPE, KITTI metric)",
+        "ltm_bench_odometry"};
+    add_options(app, args);
+    if (const int code = common::cli::parse(app, argc, argv); code >= 0) return code;
     try {
         return run(args);
     } catch (const ltm::common::IoError& e) {
-        std::cerr << "error: " << e.what() << "\n";
+        std::cerr << "ltm_bench_odometry: " << e.what() << "\n";
     } catch (const ltm::common::ConfigError& e) {
-        std::cerr << "error: " << e.what() << "\n";
+        std::cerr << "ltm_bench_odometry: " << e.what() << "\n";
     }
     return 1;
 }
