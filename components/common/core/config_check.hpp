@@ -82,6 +82,7 @@ inline constexpr Rule non_negative{Rule::Kind::kRange, 0.0};                // f
 inline constexpr Rule unit{Rule::Kind::kRange, 0.0, 1.0};                   // in [0, 1]
 inline constexpr Rule not_empty{Rule::Kind::kNotEmpty};                     // a list
 constexpr Rule at_least(double lo) { return Rule(Rule::Kind::kRange, lo); }
+constexpr Rule above(double lo) { return Rule(Rule::Kind::kRange, lo, Rule::kInf, true); }
 constexpr Rule in_range(double lo, double hi) { return Rule(Rule::Kind::kRange, lo, hi); }
 constexpr Rule zero_or_in(double lo, double hi) { return Rule(Rule::Kind::kZeroOrRange, lo, hi); }
 inline OneOf one_of(std::vector<std::string> names) { return OneOf{std::move(names)}; }

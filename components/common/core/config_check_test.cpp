@@ -12,6 +12,7 @@ struct Example {
     double limit = 10.0;
     double low = 0.25, high = 0.5;
     int count = 3;
+    double spacing = 2.0;
     int factor = 0;
     std::string mode = "fast";
     std::vector<double> offsets = {0.0};
@@ -27,6 +28,7 @@ void visit_fields(Example& c, Visitor&& v) {
     v("low", c.low, non_negative);
     v("high", c.high, unit.or_infinite());  // in [0, 1]: infinity still outside
     v("count", c.count, in_range(1, 1000));
+    v("spacing", c.spacing, above(1));
     v("factor", c.factor, zero_or_in(2, 16));
     v("mode", c.mode, one_of({"fast", "slow", "off"}));
     v("offsets", c.offsets, not_empty);
@@ -71,6 +73,7 @@ TEST(ConfigCheck, EachKindOfRuleNamesTheKeyAndTheValue) {
     EXPECT_EQ(with([](Example& e) { e.count = 1001; }), "count: must be in [1, 1000] (got 1001)");
     EXPECT_EQ(with([](Example& e) { e.count = 1000000; }),
               "count: must be in [1, 1000] (got 1000000)");  // an int printed as one
+    EXPECT_EQ(with([](Example& e) { e.spacing = 1.0; }), "spacing: must be > 1 (got 1)");
     EXPECT_EQ(with([](Example& e) { e.factor = 2; }), "");
     EXPECT_EQ(with([](Example& e) { e.factor = 1; }), "factor: must be 0 or in [2, 16] (got 1)");
     EXPECT_EQ(with([](Example& e) { e.factor = 17; }), "factor: must be 0 or in [2, 16] (got 17)");

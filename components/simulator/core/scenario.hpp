@@ -4,10 +4,12 @@
 // by hand in tests; every field has a default and a unit.
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "common/core/config_check.hpp"
 #include "common/core/one_line.hpp"
 #include "simulator/core/geometry2d.hpp"
 #include "simulator/core/objects.hpp"
@@ -135,7 +137,8 @@ struct ScenarioConfig {
     std::string base_dir = ".";  // relative file paths are resolved against this folder
 };
 
-// Empty when usable, else a one-line reason naming the field (e.g. "sessions[1].route: ...").
-std::string validate_scenario(const ScenarioConfig& scenario);
+// The first problem, naming the key as in the scenario YAML (e.g. "sessions[1].route.speed");
+// nullopt when usable.
+std::optional<common::ConfigProblem> validate_scenario(const ScenarioConfig& scenario);
 
 }  // namespace ltm::sim

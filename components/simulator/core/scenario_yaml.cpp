@@ -1,5 +1,6 @@
 #include "simulator/core/scenario_yaml.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -199,6 +200,32 @@ void read_changes(const YamlReader& r, const Y& n, const std::string& k, Changes
     if (n["remove_at"]) c.remove_at = points2(r, n["remove_at"], k + ".remove_at");
 }
 
+// The node of a key as validate_scenario() names it ("sessions[0].route.speed"), or of the deepest
+// part of it the file has (a default value has no line of its own).
+Y node_of(const Y& root, const std::string& key) {
+    Y node;
+    node.reset(root);  // reset, not assignment: assigning a node would change the document
+    for (std::size_t i = 0; i < key.size();) {
+        Y next;
+        if (key[i] == '[') {
+            const std::size_t close = key.find(']', i);
+            const std::size_t index = std::stoul(key.substr(i + 1, close - i - 1));
+            if (!node.IsSequence() || index >= node.size()) break;
+            next.reset(static_cast<const Y&>(node)[index]);
+            i = close + 1;
+        } else {
+            if (key[i] == '.') ++i;
+            const std::size_t end = std::min(key.find_first_of(".[", i), key.size());
+            const std::string name = key.substr(i, end - i);
+            if (!node.IsMap() || !static_cast<const Y&>(node)[name]) break;
+            next.reset(static_cast<const Y&>(node)[name]);
+            i = end;
+        }
+        node.reset(next);
+    }
+    return node;
+}
+
 SessionConfig read_session(const YamlReader& r, const Y& n, const std::string& k) {
     r.expect_map(
         n, k, {"name", "start_time", "route", "kidnaps", "kidnapped_start", "actors", "changes"});
@@ -254,8 +281,8 @@ ScenarioConfig parse_scenario(const std::string& text, const std::string& source
     for (std::size_t i = 0; i < sessions.size(); ++i) {
         sc.sessions.push_back(read_session(r, sessions[i], YamlReader::index("sessions", i)));
     }
-    if (const std::string problem = validate_scenario(sc); !problem.empty()) {
-        throw ScenarioError(source + ": " + problem);
+    if (const auto problem = validate_scenario(sc)) {
+        r.fail(node_of(root, problem->key), problem->key, problem->problem);
     }
     return sc;
 }

@@ -31,7 +31,7 @@ TEST(ScenarioYaml, ShippedScenariosLoad) {
         const ScenarioConfig sc = load_scenario(kScenarios + name + ".yaml");
         EXPECT_EQ(sc.name, name);
         EXPECT_FALSE(sc.sessions.empty());
-        EXPECT_EQ(validate_scenario(sc), "");
+        EXPECT_FALSE(validate_scenario(sc)) << validate_scenario(sc)->key;
     }
     const ScenarioConfig sessions = load_scenario(kScenarios + "site_sessions.yaml");
     ASSERT_EQ(sessions.sessions.size(), 2u);
@@ -107,6 +107,28 @@ TEST(ScenarioYaml, RouteLaps) {
     const std::string file =
         "sessions: [ {route: {laps: 2, poses_file: p.txt, times_file: t.txt}} ]\n";
     EXPECT_NE(error_of(file).find("route.laps: only waypoint routes"), std::string::npos);
+}
+
+TEST(ScenarioYaml, RulesBrokenNameTheLineOfTheKey) {
+    std::string t = kMinimal;
+    EXPECT_EQ(error_of(t.replace(t.find("rate: 5"), 7, "rate: -1")),
+              "test.yaml:3: sensor.rate: must be > 0 (got -1)");
+    t = kMinimal;
+    EXPECT_EQ(error_of(t.replace(t.find("sessions:"), 9, "world: {town: {tree_spacing: 1}}\nsessions:")),
+              "test.yaml:4: world.town.tree_spacing: must be > 1 (got 1)");
+    t = kMinimal;  // across fields
+    EXPECT_EQ(error_of(t.replace(t.find("rate: 5"), 7, "max_range: 0.5")),
+              "test.yaml:3: sensor.max_range: must exceed min_range");
+    EXPECT_EQ(error_of(std::string(kMinimal) + "    kidnaps: [{at: 3, pause: -1, resume_at: 5}]\n"),
+              "test.yaml:7: sessions[0].kidnaps[0].pause: must be >= 0 (got -1)");
+    EXPECT_EQ(error_of(std::string(kMinimal) + "    changes: {add_parked: -2}\n"),
+              "test.yaml:7: sessions[0].changes.add_parked: must be >= 0 (got -2)");
+    t = kMinimal;
+    EXPECT_EQ(error_of(t.replace(t.find("2.5"), 3, "-1")),
+              "test.yaml:6: sessions[0].route.waypoints[1]: speed must be >= 0");
+    ScenarioConfig none;  // built in code: the key alone
+    ASSERT_TRUE(validate_scenario(none));
+    EXPECT_EQ(validate_scenario(none)->key, "sessions");
 }
 
 TEST(ScenarioYaml, MissingFilesGiveOneLine) {

@@ -29,8 +29,8 @@ std::string session_key(int k) { return "sessions[" + std::to_string(k) + "]"; }
 
 Simulator::Simulator(const ScenarioConfig& scenario, int session)
     : scenario_(scenario), session_(session), sensor_(scenario.sensor) {
-    if (const std::string problem = validate_scenario(scenario_); !problem.empty()) {
-        throw ScenarioError(problem);
+    if (const auto problem = validate_scenario(scenario_)) {
+        throw ScenarioError(problem->key + ": " + problem->problem);
     }
     const int n_sessions = static_cast<int>(scenario_.sessions.size());
     if (session < 0 || session >= n_sessions) {
