@@ -73,7 +73,8 @@ Eigen::Isometry3d some_pose(double k) {
     return T;
 }
 
-char* c(std::string& s) { return const_cast<char*>(s.c_str()); }
+// A view of `s` for hand-filled messages (borrowed: these are never freed through the message).
+char* c(std::string& s) { return convert::borrow_string(s); }
 
 }  // namespace
 

@@ -9,6 +9,7 @@
 #include <random>
 #include <vector>
 
+#include "common/convert/geometry.hpp"
 #include "common/convert/pointcloud2.hpp"
 #include "runtime/component.hpp"
 
@@ -71,8 +72,7 @@ public:
                 common::PointCloud c;
                 convert::from_pointcloud2(m, c);
             }
-            const double stamp = m.header.stamp.sec + 1e-9 * m.header.stamp.nanosec;
-            latencies_ms_.push_back((monotonic_s() - stamp) * 1e3);
+            latencies_ms_.push_back((monotonic_s() - convert::to_seconds(m.header.stamp)) * 1e3);
         });
     }
 

@@ -34,4 +34,14 @@ OdometryData from_msg(const msg::Odometry& m) {
     return o;
 }
 
+OdometryData reparent(OdometryData o, const Eigen::Isometry3d& T_frame_parent,
+                      const std::string& frame_id) {
+    o.frame_id = frame_id;
+    o.T_parent_child = T_frame_parent * o.T_parent_child;
+    OdometryData::Matrix6d R = OdometryData::Matrix6d::Zero();
+    R.topLeftCorner<3, 3>() = R.bottomRightCorner<3, 3>() = T_frame_parent.rotation();
+    o.pose_covariance = R * o.pose_covariance * R.transpose();
+    return o;
+}
+
 }  // namespace ltm::convert

@@ -23,4 +23,9 @@ struct OdometryData {
 Owned<msg::Odometry> to_msg(const OdometryData& odometry);
 OdometryData from_msg(const msg::Odometry& message);
 
+// The same odometry with `frame_id` as its parent, given T_frame_parent (the old parent's pose in
+// the new one): the pose is moved and its covariance rotated; the twist, in the child frame, stays.
+OdometryData reparent(OdometryData odometry, const Eigen::Isometry3d& T_frame_parent,
+                      const std::string& frame_id);
+
 }  // namespace ltm::convert

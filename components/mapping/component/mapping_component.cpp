@@ -11,16 +11,14 @@
 #include <optional>
 
 #include "common/convert/dds_string.hpp"
-#include "common/convert/geometry.hpp"
 #include "common/convert/local_map.hpp"
-#include "common/convert/loop_closure.hpp"
 #include "common/convert/odometry.hpp"
 #include "common/convert/path.hpp"
-#include "common/convert/pose_graph.hpp"
 #include "common/convert/status.hpp"
 #include "common/convert/transform.hpp"
 #include "common/core/io_error.hpp"
 #include "common/core/ply_io.hpp"
+#include "mapping/component/mapper_messages.hpp"
 #include "mapping/core/map_store.hpp"
 #include "mapping/core/mapper.hpp"
 #include "mapping/params/mapper_params.hpp"
@@ -224,18 +222,12 @@ private:
         if (waiting_.empty()) return;
         const std::optional<Eigen::Isometry3d> T = correction();
         if (!T) return;
-        for (convert::OdometryData& o : waiting_) publish_corrected(std::move(o), *T);
+        for (const convert::OdometryData& o : waiting_) publish_corrected(o, *T);
         waiting_.clear();
     }
 
-    void publish_corrected(convert::OdometryData o, const Eigen::Isometry3d& T_world_odom) {
-        o.frame_id = frame_id_;
-        o.T_parent_child = T_world_odom * o.T_parent_child;
-        // Covariance of the pose in the new parent frame: rotated by the correction's rotation.
-        Eigen::Matrix<double, 6, 6> R = Eigen::Matrix<double, 6, 6>::Zero();
-        R.topLeftCorner<3, 3>() = R.bottomRightCorner<3, 3>() = T_world_odom.rotation();
-        o.pose_covariance = R * o.pose_covariance * R.transpose();
-        odometry_out_.publish(*convert::to_msg(o));
+    void publish_corrected(const convert::OdometryData& o, const Eigen::Isometry3d& T_world_odom) {
+        odometry_out_.publish(*convert::to_msg(convert::reparent(o, T_world_odom, frame_id_)));
     }
 
     void publish_correction(const msg::Time& stamp) {
@@ -262,22 +254,7 @@ private:
     }
 
     void publish_loop(const LoopClosure& loop, const msg::Time& stamp) {
-        convert::LoopClosureData out;
-        out.stamp = stamp;
-        out.frame_id = frame_id_;
-        for (const auto& n : mapper_->graph().nodes()) {
-            if (n.id == loop.from_node) out.from_map_id = n.local_map_id;
-            if (n.id == loop.to_node) out.to_map_id = n.local_map_id;
-        }
-        out.from_keyframe_id = loop.match_keyframe;
-        out.to_keyframe_id = loop.query_keyframe;
-        out.T_from_to = loop.T_from_to;
-        out.information = loop_information(mapper_->config().loop_edge);
-        out.score = static_cast<float>(loop.descriptor_distance);
-        out.fitness = static_cast<float>(loop.inlier_fraction);
-        out.residual = static_cast<float>(loop.inlier_rms);
-        out.accepted = true;
-        loop_out_.publish(*convert::to_msg(out));
+        loop_out_.publish(*convert::to_msg(loop_data(*mapper_, loop, stamp, frame_id_)));
         const std::string other = loop.match_session == loop.query_session
                                       ? ""
                                       : " of session " + std::to_string(loop.match_session);
@@ -285,36 +262,10 @@ private:
                         std::to_string(loop.match_scan) + other + " (" + std::to_string(loop.inliers) + " inliers)");
     }
 
-    void publish_graph() {
-        const PoseGraph& g = mapper_->graph();
-        convert::PoseGraphData out;
-        out.frame_id = frame_id_;
-        out.revision = static_cast<std::uint32_t>(mapper_->revision());
-        std::map<std::uint64_t, std::uint64_t> map_of;
-        for (const auto& n : g.nodes()) {
-            out.anchors.push_back({n.local_map_id, n.T_world_anchor});
-            map_of[n.id] = n.local_map_id;
-        }
-        for (const auto& e : g.edges()) {
-            if (!e.active) continue;
-            const auto kind = e.kind == EdgeKind::kOdometry ? convert::GraphEdgeKind::kOdometry
-                                                            : convert::GraphEdgeKind::kLoop;
-            out.edges.push_back({map_of[e.from], map_of[e.to], kind, e.T_from_to, e.information});
-        }
-        graph_out_.publish(*convert::to_msg(out));
-    }
+    void publish_graph() { graph_out_.publish(*convert::to_msg(graph_data(*mapper_, frame_id_))); }
 
     // The corrected trajectory of this session: its keyframes at their optimised poses.
-    void publish_path() {
-        const auto& keyframes = mapper_->keyframes();
-        common::Trajectory poses;
-        poses.reserve(keyframes.size());
-        for (std::uint32_t i = 0; i < keyframes.size(); ++i) {
-            if (keyframes[i]->session != mapper_->session()) continue;  // a loaded map's
-            poses.push_back({keyframes[i]->data.stamp, mapper_->keyframe_pose(i)});
-        }
-        path_out_.publish(*convert::to_msg(poses, frame_id_));
-    }
+    void publish_path() { path_out_.publish(*convert::to_msg(session_path(*mapper_), frame_id_)); }
 
     runtime::ComponentContext& ctx_;
     std::unique_ptr<Mapper> mapper_;
