@@ -25,14 +25,17 @@ class FormatError : public IoError {
                 const std::string& problem)
         : IoError(source, field + " at byte " + std::to_string(offset) + ": " + problem),
           field_(field),
+          problem_(problem),
           offset_(offset) {}
-    FormatError(const std::string& source, const std::string& problem) : IoError(source, problem) {}
+    FormatError(const std::string& source, const std::string& problem)
+        : IoError(source, problem), problem_(problem) {}
     const std::string& file() const { return path(); }
     const std::string& field() const { return field_; }  // "" when not about one field
     std::uint64_t offset() const { return offset_; }
+    const std::string& problem() const { return problem_; }  // without source, field and offset
 
   private:
-    std::string field_;
+    std::string field_, problem_;
     std::uint64_t offset_ = 0;
 };
 

@@ -312,9 +312,8 @@ void descriptor_config(IO& io, C& c) {
     io.value(c.min_range, "min_range");
     io.value(c.sensor_height, "sensor_height");
     if constexpr (IO::kReading) {
-        if (const auto problem = validate(c)) {
-            io.fail_at(nullptr, at, "descriptor." + problem->key + " " + problem->problem);
-        }
+        if (const auto problem = validate(c))
+            io.fail_at(problem->key.c_str(), at, problem->problem);
     }
 }
 

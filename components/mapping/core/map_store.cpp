@@ -131,7 +131,7 @@ Manifest parse_manifest(const std::string& text) {
             }
             d.kind = ScanContextKind(kind);
             if (const auto problem = validate(d)) {
-                fail("descriptor." + problem->key + " " + problem->problem);
+                fail("descriptor." + problem->key + ": " + problem->problem);
             }
             descriptor = true;
         } else if (key == "graph" || key == "keyframes" || key == "local_map") {

@@ -5,8 +5,8 @@
 #include <cstring>
 #include <set>
 
-#include "common/core/io_error.hpp"
 #include "common/core/crc32.hpp"
+#include "common/core/io_error.hpp"
 
 namespace ltm::recorder {
 namespace {
@@ -95,11 +95,11 @@ bool McapReader::open_summary() {
     const std::uint64_t footer_at = size - tail_size;
     std::uint64_t len = 0;
     std::memcpy(&len, tail.data() + 1, 8);
-    if (tail[0] != static_cast<std::uint8_t>(Op::kFooter) || len != kFooterContent ||
-        !parse_footer(tail.data() + kRecordPrefix, kFooterContent, footer_)) {
+    if (tail[0] != static_cast<std::uint8_t>(Op::kFooter) || len != kFooterContent) {
         problems_.push_back("malformed Footer" + at(footer_at) + "; reading by linear scan");
         return false;
     }
+    parse_footer(tail.data() + kRecordPrefix, kFooterContent, footer_);  // its size was checked
     complete_ = true;
     if (footer_.summary_start == 0) return false;  // complete, but without a summary: scan
     if (footer_.summary_start < kMagicSize + kRecordPrefix || footer_.summary_start > footer_at) {
@@ -128,62 +128,69 @@ bool McapReader::open_summary() {
     }
     bool has_statistics = false, bad = false;
     std::vector<ChunkInfo> chunks;
-    const std::string walk = for_each_record(
-        summary.data(), summary.size(),
-        [&](std::uint8_t op, const std::uint8_t* c, std::size_t n, std::size_t off) {
-            bool ok = true;
-            switch (static_cast<Op>(op)) {
-                case Op::kSchema: {
-                    Schema s;
-                    ok = parse_schema(c, n, s);
-                    if (ok && s.id != 0) schemas_[s.id] = s;
-                    break;
-                }
-                case Op::kChannel: {
-                    Channel ch;
-                    ok = parse_channel(c, n, ch);
-                    if (ok) channels_[ch.id] = ch;
-                    break;
-                }
-                case Op::kStatistics:
-                    ok = parse_statistics(c, n, statistics_);
-                    has_statistics = has_statistics || ok;
-                    break;
-                case Op::kChunkIndex: {
-                    ChunkIndex ci;
-                    ok = parse_chunk_index(c, n, ci);
-                    if (ok && (ci.chunk_start_offset > footer_.summary_start ||
-                               ci.chunk_length > footer_.summary_start - ci.chunk_start_offset)) {
-                        ok = false;
-                    }
-                    if (ok) {
-                        ChunkInfo info;
-                        info.offset = ci.chunk_start_offset;
-                        info.length = ci.chunk_length;
-                        info.start_time = ci.message_start_time;
-                        info.end_time = ci.message_end_time;
-                        info.compression = ci.compression;
-                        info.compressed_size = ci.compressed_size;
-                        info.uncompressed_size = ci.uncompressed_size;
-                        info.message_index_offsets = ci.message_index_offsets;
-                        info.message_index_length = ci.message_index_length;
-                        chunks.push_back(std::move(info));
-                    }
-                    break;
-                }
-                default:
-                    break;
-            }
-            if (!ok && !bad) {
-                bad = true;
-                problems_.push_back("malformed " + describe_op(op) + " record in the summary" +
-                                    at(footer_.summary_start + off) + "; reading by linear scan");
-            }
-        });
-    if (!walk.empty() && !bad) {
+    const auto malformed = [&](std::uint8_t op, std::size_t off, const std::string& why) {
+        if (bad) return;
         bad = true;
-        problems_.push_back("summary at byte " + std::to_string(footer_.summary_start) + ": " +
-                            walk + "; reading by linear scan");
+        problems_.push_back("malformed " + describe_op(op) + " record in the summary" +
+                            at(footer_.summary_start + off) + " (" + why +
+                            "); reading by linear scan");
+    };
+    try {
+        for_each_record(
+            summary.data(), summary.size(),
+            [&](std::uint8_t op, const std::uint8_t* c, std::size_t n, std::size_t off) {
+                try {
+                    switch (static_cast<Op>(op)) {
+                        case Op::kSchema: {
+                            Schema s;
+                            parse_schema(c, n, s);
+                            if (s.id != 0) schemas_[s.id] = s;
+                            break;
+                        }
+                        case Op::kChannel: {
+                            Channel ch;
+                            parse_channel(c, n, ch);
+                            channels_[ch.id] = ch;
+                            break;
+                        }
+                        case Op::kStatistics:
+                            parse_statistics(c, n, statistics_);
+                            has_statistics = true;
+                            break;
+                        case Op::kChunkIndex: {
+                            ChunkIndex ci;
+                            parse_chunk_index(c, n, ci);
+                            if (ci.chunk_start_offset > footer_.summary_start ||
+                                ci.chunk_length > footer_.summary_start - ci.chunk_start_offset) {
+                                malformed(op, off, "the chunk lies beyond the data section");
+                                break;
+                            }
+                            ChunkInfo info;
+                            info.offset = ci.chunk_start_offset;
+                            info.length = ci.chunk_length;
+                            info.start_time = ci.message_start_time;
+                            info.end_time = ci.message_end_time;
+                            info.compression = ci.compression;
+                            info.compressed_size = ci.compressed_size;
+                            info.uncompressed_size = ci.uncompressed_size;
+                            info.message_index_offsets = ci.message_index_offsets;
+                            info.message_index_length = ci.message_index_length;
+                            chunks.push_back(std::move(info));
+                            break;
+                        }
+                        default:
+                            break;
+                    }
+                } catch (const common::FormatError& e) {
+                    malformed(op, off, describe(e));
+                }
+            });
+    } catch (const common::FormatError& e) {
+        if (!bad) {
+            bad = true;
+            problems_.push_back("summary at byte " + std::to_string(footer_.summary_start) + ": " +
+                                describe(e) + "; reading by linear scan");
+        }
     }
     if (bad) {
         complete_ = false;
@@ -202,9 +209,12 @@ bool McapReader::open_summary() {
     std::uint64_t hlen = 0;
     if (file_->read(kMagicSize, kRecordPrefix, prefix)) std::memcpy(&hlen, prefix.data() + 1, 8);
     std::vector<std::uint8_t> hbytes;
-    if (hlen > footer_.summary_start || !file_->read(kMagicSize + kRecordPrefix, hlen, hbytes) ||
-        !parse_header(hbytes.data(), hbytes.size(), header_)) {
-        problems_.push_back("malformed Header at byte 8");
+    try {
+        if (hlen > footer_.summary_start || !file_->read(kMagicSize + kRecordPrefix, hlen, hbytes))
+            throw common::FormatError("Header record", "beyond the summary or the file");
+        parse_header(hbytes.data(), hbytes.size(), header_);
+    } catch (const common::FormatError& e) {
+        problems_.push_back("malformed Header at byte 8 (" + describe(e) + ")");
     }
     std::sort(chunks.begin(), chunks.end(),
               [](const ChunkInfo& a, const ChunkInfo& b) { return a.offset < b.offset; });

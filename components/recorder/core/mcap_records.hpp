@@ -1,15 +1,15 @@
 #pragma once
 // MCAP records (https://mcap.dev/spec, major version 0): opcodes, record structs, and their
-// little-endian serialisation. Written from the specification; no MCAP library is used.
+// little-endian serialisation (common/core/byte_io.hpp: each record's layout is described once,
+// for writing and parsing). Written from the specification; no MCAP library is used.
 #include <cstddef>
 #include <cstdint>
-#include <cstring>
 #include <map>
 #include <string>
 #include <utility>
 #include <vector>
 
-static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "MCAP I/O assumes a little-endian host");
+#include "common/core/io_error.hpp"
 
 namespace ltm::recorder {
 
@@ -125,75 +125,6 @@ struct Footer {
     std::uint32_t summary_crc = 0;           // 0: not available
 };
 
-// Appends little-endian fields to a byte vector.
-class ByteWriter {
-  public:
-    explicit ByteWriter(std::vector<std::uint8_t>& out) : out_(out) {}
-    void u8(std::uint8_t v) { out_.push_back(v); }
-    void u16(std::uint16_t v) { raw(&v, 2); }
-    void u32(std::uint32_t v) { raw(&v, 4); }
-    void u64(std::uint64_t v) { raw(&v, 8); }
-    void str(const std::string& s) {
-        u32(static_cast<std::uint32_t>(s.size()));
-        raw(s.data(), s.size());
-    }
-    void raw(const void* p, std::size_t n) {
-        const auto* b = static_cast<const std::uint8_t*>(p);
-        out_.insert(out_.end(), b, b + n);
-    }
-    // Starts a record; finish it with end_record(start) once its content is written.
-    std::size_t begin_record(Op op) {
-        const std::size_t start = out_.size();
-        u8(static_cast<std::uint8_t>(op));
-        u64(0);
-        return start;
-    }
-    void end_record(std::size_t start) {
-        const std::uint64_t len = out_.size() - start - kRecordPrefix;
-        std::memcpy(out_.data() + start + 1, &len, 8);
-    }
-    std::size_t size() const { return out_.size(); }
-
-  private:
-    std::vector<std::uint8_t>& out_;
-};
-
-// Reads little-endian fields from a bounded span; every read checks the bounds and a failed read
-// leaves ok() false (and the values zero) instead of reading past the end.
-class ByteReader {
-  public:
-    ByteReader(const std::uint8_t* p, std::size_t n) : p_(p), n_(n) {}
-    bool ok() const { return ok_; }
-    std::size_t pos() const { return pos_; }
-    std::size_t remaining() const { return n_ - pos_; }
-    const std::uint8_t* here() const { return p_ + pos_; }
-    std::uint8_t u8() { return fixed<std::uint8_t>(); }
-    std::uint16_t u16() { return fixed<std::uint16_t>(); }
-    std::uint32_t u32() { return fixed<std::uint32_t>(); }
-    std::uint64_t u64() { return fixed<std::uint64_t>(); }
-    std::string str();
-    bool skip(std::uint64_t n);
-    // A uint32 byte length followed by that many bytes; returns the span (nullptr on failure).
-    const std::uint8_t* span32(std::uint32_t& len);
-
-  private:
-    template <typename T>
-    T fixed() {
-        T v{};
-        if (!ok_ || n_ - pos_ < sizeof(T)) {
-            ok_ = false;
-            return v;
-        }
-        std::memcpy(&v, p_ + pos_, sizeof(T));
-        pos_ += sizeof(T);
-        return v;
-    }
-    const std::uint8_t* p_;
-    std::size_t n_;
-    std::size_t pos_ = 0;
-    bool ok_ = true;
-};
-
 // Serialisers: append one whole record (prefix included) and return its length in bytes.
 std::size_t write_header(std::vector<std::uint8_t>& out, const Header& h);
 std::size_t write_schema(std::vector<std::uint8_t>& out, const Schema& s);
@@ -211,18 +142,23 @@ std::size_t write_data_end(std::vector<std::uint8_t>& out, std::uint32_t data_cr
 // Footer record (prefix included); the summary CRC covers the footer up to summary_crc.
 std::size_t write_footer(std::vector<std::uint8_t>& out, const Footer& f);
 
-// Parsers of a record's content (prefix excluded). Each returns false when the content is too
-// short or inconsistent; extra trailing bytes are allowed (fields added by later versions).
-bool parse_header(const std::uint8_t* p, std::size_t n, Header& h);
-bool parse_schema(const std::uint8_t* p, std::size_t n, Schema& s);
-bool parse_channel(const std::uint8_t* p, std::size_t n, Channel& c);
-bool parse_message(const std::uint8_t* p, std::size_t n, MessageRecord& m);
-bool parse_chunk(const std::uint8_t* p, std::size_t n, ChunkRecord& c);
-bool parse_message_index(const std::uint8_t* p, std::size_t n, std::uint16_t& channel_id,
+// Parsers of a record's content (prefix excluded). Each throws common::FormatError when the
+// content is too short or inconsistent (source "Channel record", offsets within the content);
+// extra trailing bytes are allowed (fields added by later versions).
+void parse_header(const std::uint8_t* p, std::size_t n, Header& h);
+void parse_schema(const std::uint8_t* p, std::size_t n, Schema& s);
+void parse_channel(const std::uint8_t* p, std::size_t n, Channel& c);
+void parse_message(const std::uint8_t* p, std::size_t n, MessageRecord& m);
+void parse_chunk(const std::uint8_t* p, std::size_t n, ChunkRecord& c);
+void parse_message_index(const std::uint8_t* p, std::size_t n, std::uint16_t& channel_id,
                          std::vector<std::pair<std::uint64_t, std::uint64_t>>& entries);
-bool parse_chunk_index(const std::uint8_t* p, std::size_t n, ChunkIndex& c);
-bool parse_statistics(const std::uint8_t* p, std::size_t n, Statistics& s);
-bool parse_summary_offset(const std::uint8_t* p, std::size_t n, SummaryOffset& s);
-bool parse_footer(const std::uint8_t* p, std::size_t n, Footer& f);
+void parse_chunk_index(const std::uint8_t* p, std::size_t n, ChunkIndex& c);
+void parse_statistics(const std::uint8_t* p, std::size_t n, Statistics& s);
+void parse_summary_offset(const std::uint8_t* p, std::size_t n, SummaryOffset& s);
+void parse_footer(const std::uint8_t* p, std::size_t n, Footer& f);
+
+// An error of a record's content for a problem line: "topic at +12: truncated: needs 9 bytes,
+// 3 left".
+std::string describe(const common::FormatError& e);
 
 }  // namespace ltm::recorder

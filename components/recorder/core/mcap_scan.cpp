@@ -10,9 +10,10 @@
 #include <cstring>
 #include <set>
 
+#include "common/core/byte_io.hpp"
+#include "common/core/crc32.hpp"
 #include "common/core/io_error.hpp"
 #include "recorder/core/compression.hpp"
-#include "common/core/crc32.hpp"
 
 namespace ltm::recorder {
 
@@ -53,46 +54,46 @@ std::string describe_op(std::uint8_t op) {
     return buf;
 }
 
-std::string decode_chunk(const std::uint8_t* content, std::size_t size, bool check_crc,
-                         ChunkRecord& chunk, std::vector<std::uint8_t>& records) {
-    if (!parse_chunk(content, size, chunk)) return "malformed Chunk record";
+void decode_chunk(const std::uint8_t* content, std::size_t size, bool check_crc,
+                  ChunkRecord& chunk, std::vector<std::uint8_t>& records) {
+    parse_chunk(content, size, chunk);
+    const std::uint64_t at = static_cast<std::uint64_t>(chunk.records - content);
     std::string error;
     if (!decompress(chunk.compression, chunk.records, static_cast<std::size_t>(chunk.records_size),
                     chunk.uncompressed_size, records, error)) {
-        return "cannot decompress (" + error + ")";
+        throw common::FormatError("Chunk record", "records", at, "cannot decompress (" + error + ")");
     }
     if (check_crc && chunk.uncompressed_crc != 0) {
         const std::uint32_t got = common::crc32(records.data(), records.size());
         if (got != chunk.uncompressed_crc) {
-            char buf[96];
-            std::snprintf(buf, sizeof buf, "CRC mismatch (stored %08x, computed %08x)",
-                          chunk.uncompressed_crc, got);
-            return buf;
+            throw common::FormatError("Chunk record", "records", at,
+                                      "CRC mismatch (stored " + common::hex32(chunk.uncompressed_crc) +
+                                          ", computed " + common::hex32(got) + ")");
         }
     }
-    return "";
 }
 
-std::string for_each_record(
+void for_each_record(
     const std::uint8_t* p, std::size_t n,
     const std::function<void(std::uint8_t, const std::uint8_t*, std::size_t, std::size_t)>& fn) {
     std::size_t pos = 0;
     while (pos < n) {
         if (n - pos < kRecordPrefix) {
-            return "partial record header at +" + std::to_string(pos);
+            throw common::FormatError("records", "record header", pos,
+                                      "partial (" + std::to_string(n - pos) + " of " +
+                                          std::to_string(kRecordPrefix) + " bytes)");
         }
         const std::uint8_t op = p[pos];
         std::uint64_t len = 0;
         std::memcpy(&len, p + pos + 1, 8);
         if (len > n - pos - kRecordPrefix) {
-            return describe_op(op) + " record at +" + std::to_string(pos) + " claims " +
-                   std::to_string(len) + " bytes, only " + std::to_string(n - pos - kRecordPrefix) +
-                   " remain";
+            throw common::FormatError("records", describe_op(op) + " record", pos,
+                                      "claims " + std::to_string(len) + " bytes, only " +
+                                          std::to_string(n - pos - kRecordPrefix) + " remain");
         }
         fn(op, p + pos + kRecordPrefix, static_cast<std::size_t>(len), pos);
         pos += kRecordPrefix + static_cast<std::size_t>(len);
     }
-    return "";
 }
 
 namespace {
@@ -185,8 +186,14 @@ class Scanner {
         const std::string at = " at byte " + std::to_string(pos);
         switch (static_cast<Op>(op)) {
             case Op::kHeader:
-                if (!first || !parse_header(c, n, r_.header)) {
-                    problem("malformed or repeated Header" + at);
+                if (!first) {
+                    problem("repeated Header" + at);
+                    return false;
+                }
+                try {
+                    parse_header(c, n, r_.header);
+                } catch (const common::FormatError& e) {
+                    problem("malformed Header" + at + " (" + describe(e) + ")");
                     return false;
                 }
                 return true;
@@ -212,8 +219,14 @@ class Scanner {
 
     void schema(const std::uint8_t* c, std::size_t n, const std::string& at) {
         Schema s;
-        if (!parse_schema(c, n, s) || s.id == 0) {
-            problem("malformed Schema record" + at);
+        try {
+            parse_schema(c, n, s);
+        } catch (const common::FormatError& e) {
+            problem("malformed Schema record" + at + " (" + describe(e) + ")");
+            return;
+        }
+        if (s.id == 0) {
+            problem("malformed Schema record" + at + " (id 0)");
             return;
         }
         const auto [it, inserted] = r_.schemas.emplace(s.id, s);
@@ -224,8 +237,10 @@ class Scanner {
 
     void channel(const std::uint8_t* c, std::size_t n, const std::string& at) {
         Channel ch;
-        if (!parse_channel(c, n, ch)) {
-            problem("malformed Channel record" + at);
+        try {
+            parse_channel(c, n, ch);
+        } catch (const common::FormatError& e) {
+            problem("malformed Channel record" + at + " (" + describe(e) + ")");
             return;
         }
         const auto [it, inserted] = r_.channels.emplace(ch.id, ch);
@@ -255,8 +270,10 @@ class Scanner {
     void loose_message(const std::uint8_t* c, std::size_t n, std::uint64_t pos,
                        const std::string& at) {
         MessageRecord m;
-        if (!parse_message(c, n, m)) {
-            problem("malformed Message record" + at);
+        try {
+            parse_message(c, n, m);
+        } catch (const common::FormatError& e) {
+            problem("malformed Message record" + at + " (" + describe(e) + ")");
             return;
         }
         if (!count(m, at)) return;
@@ -283,9 +300,10 @@ class Scanner {
     void chunk(const std::uint8_t* c, std::size_t n, std::uint64_t pos, const std::string& at) {
         finish_chunk_checks();
         ChunkRecord rec;
-        const std::string err = decode_chunk(c, n, options_.check_crcs, rec, records_);
-        if (!err.empty()) {
-            problem("Chunk" + at + ": " + err + "; skipped");
+        try {
+            decode_chunk(c, n, options_.check_crcs, rec, records_);
+        } catch (const common::FormatError& e) {
+            problem("Chunk" + at + ": " + describe(e) + "; skipped");
             r_.bad_chunks.push_back(pos);
             skipping_indexes_ = true;  // its MessageIndex records follow
             return;
@@ -300,31 +318,36 @@ class Scanner {
         info.compressed_size = rec.records_size;
         info.uncompressed_size = rec.uncompressed_size;
         std::map<std::uint16_t, IndexEntries> expected;
-        bool bad_inner = false;
-        const std::string walk = for_each_record(
-            records_.data(), records_.size(),
-            [&](std::uint8_t op, const std::uint8_t* rc, std::size_t rn, std::size_t off) {
-                const std::string inner = at + " +" + std::to_string(off);
-                if (op == static_cast<std::uint8_t>(Op::kSchema))
-                    schema(rc, rn, inner);
-                else if (op == static_cast<std::uint8_t>(Op::kChannel))
-                    channel(rc, rn, inner);
-                else if (op == static_cast<std::uint8_t>(Op::kMessage)) {
-                    MessageRecord m;
-                    if (!parse_message(rc, rn, m)) {
-                        bad_inner = true;
-                        return;
+        std::string bad_inner;  // the first malformed record inside
+        try {
+            for_each_record(
+                records_.data(), records_.size(),
+                [&](std::uint8_t op, const std::uint8_t* rc, std::size_t rn, std::size_t off) {
+                    const std::string inner = at + " +" + std::to_string(off);
+                    if (op == static_cast<std::uint8_t>(Op::kSchema))
+                        schema(rc, rn, inner);
+                    else if (op == static_cast<std::uint8_t>(Op::kChannel))
+                        channel(rc, rn, inner);
+                    else if (op == static_cast<std::uint8_t>(Op::kMessage)) {
+                        MessageRecord m;
+                        try {
+                            parse_message(rc, rn, m);
+                        } catch (const common::FormatError& e) {
+                            if (bad_inner.empty()) {
+                                bad_inner = "Message at +" + std::to_string(off) + ": " + describe(e);
+                            }
+                            return;
+                        }
+                        if (count(m, " in Chunk" + inner)) {
+                            ++info.messages;
+                            expected[m.channel_id].emplace_back(m.log_time, off);
+                        }
                     }
-                    if (count(m, " in Chunk" + inner)) {
-                        ++info.messages;
-                        expected[m.channel_id].emplace_back(m.log_time, off);
-                    }
-                }
-            });
-        if (!walk.empty() || bad_inner) {
-            problem("Chunk" + at + ": malformed records inside (" +
-                    (walk.empty() ? std::string("bad Message") : walk) + ")");
+                });
+        } catch (const common::FormatError& e) {
+            if (bad_inner.empty()) bad_inner = describe(e);
         }
+        if (!bad_inner.empty()) problem("Chunk" + at + ": malformed records inside (" + bad_inner + ")");
         r_.chunks.push_back(info);
         ++r_.statistics.chunk_count;
         if (options_.check_message_indexes) {
@@ -339,8 +362,10 @@ class Scanner {
         if (!options_.check_message_indexes || skipping_indexes_) return;
         std::uint16_t ch = 0;
         IndexEntries entries;
-        if (!parse_message_index(c, n, ch, entries)) {
-            problem("malformed MessageIndex" + at);
+        try {
+            parse_message_index(c, n, ch, entries);
+        } catch (const common::FormatError& e) {
+            problem("malformed MessageIndex" + at + " (" + describe(e) + ")");
             return;
         }
         if (!checking_indexes_) {

@@ -44,13 +44,14 @@ struct ChunkInfo {
 };
 
 // Decodes one Chunk record's content (prefix excluded) into its uncompressed records, checking
-// the CRC when asked and stored. Returns "" on success, else the problem (no offset).
-std::string decode_chunk(const std::uint8_t* content, std::size_t size, bool check_crc,
-                         ChunkRecord& chunk, std::vector<std::uint8_t>& records);
+// the CRC when asked and stored. Throws common::FormatError (source "Chunk record").
+void decode_chunk(const std::uint8_t* content, std::size_t size, bool check_crc,
+                  ChunkRecord& chunk, std::vector<std::uint8_t>& records);
 
 // Calls fn(opcode, content, content_length, record_offset) for each record of a buffer of
-// records. Returns "" or the problem ("record at +N overruns ...").
-std::string for_each_record(
+// records. Throws common::FormatError (source "records", offset within the buffer) at a record
+// that overruns the buffer, after fn has seen the records before it.
+void for_each_record(
     const std::uint8_t* p, std::size_t n,
     const std::function<void(std::uint8_t, const std::uint8_t*, std::size_t, std::size_t)>& fn);
 

@@ -8,8 +8,8 @@
 #include <cstring>
 #include <stdexcept>
 
-#include "common/core/io_error.hpp"
 #include "common/core/crc32.hpp"
+#include "common/core/io_error.hpp"
 
 namespace ltm::recorder {
 

@@ -8,9 +8,9 @@
 
 #include <cstring>
 
+#include "common/core/crc32.hpp"
 #include "common/core/io_error.hpp"
 #include "recorder/core/compression.hpp"
-#include "common/core/crc32.hpp"
 #include "recorder/core/mcap_reader.hpp"
 #include "recorder/core/test_util.hpp"
 
@@ -47,13 +47,13 @@ std::size_t check_layout(const std::vector<std::uint8_t>& f, std::size_t chunk_s
     const std::size_t footer_at = n - 8 - kFooterRecord;
     EXPECT_EQ(f[footer_at], static_cast<std::uint8_t>(Op::kFooter));
     Footer footer;
-    EXPECT_TRUE(parse_footer(f.data() + footer_at + kRecordPrefix, kFooterContent, footer));
+    EXPECT_NO_THROW(parse_footer(f.data() + footer_at + kRecordPrefix, kFooterContent, footer));
     EXPECT_EQ(footer.summary_crc, common::crc32(f.data() + footer.summary_start,
                                         footer_at + kRecordPrefix + 16 - footer.summary_start));
     const std::vector<Rec> data = walk(f, 8, footer.summary_start);
     EXPECT_EQ(data.front().op, static_cast<std::uint8_t>(Op::kHeader));
     Header header;
-    EXPECT_TRUE(parse_header(data.front().content, data.front().len, header));
+    EXPECT_NO_THROW(parse_header(data.front().content, data.front().len, header));
     EXPECT_EQ(header.library, "ltm");
     const Rec& data_end = data.back();
     EXPECT_EQ(data_end.op, static_cast<std::uint8_t>(Op::kDataEnd));
@@ -74,7 +74,7 @@ std::size_t check_layout(const std::vector<std::uint8_t>& f, std::size_t chunk_s
         EXPECT_EQ(r.op, static_cast<std::uint8_t>(Op::kChunk)) << "record at " << r.offset;
         chunk_at[r.offset] = i;
         ChunkRecord c;
-        EXPECT_TRUE(parse_chunk(r.content, r.len, c));
+        EXPECT_NO_THROW(parse_chunk(r.content, r.len, c));
         std::vector<std::uint8_t> records;
         std::string err;
         EXPECT_TRUE(
@@ -89,17 +89,17 @@ std::size_t check_layout(const std::vector<std::uint8_t>& f, std::size_t chunk_s
         for (const Rec& in : walk(records, 0, records.size())) {
             if (in.op == static_cast<std::uint8_t>(Op::kSchema)) {
                 Schema s;
-                EXPECT_TRUE(parse_schema(in.content, in.len, s));
+                EXPECT_NO_THROW(parse_schema(in.content, in.len, s));
                 schemas.insert(s.id);
             } else if (in.op == static_cast<std::uint8_t>(Op::kChannel)) {
                 Channel ch;
-                EXPECT_TRUE(parse_channel(in.content, in.len, ch));
+                EXPECT_NO_THROW(parse_channel(in.content, in.len, ch));
                 EXPECT_TRUE(ch.schema_id == 0 || schemas.count(ch.schema_id));
                 channels.insert(ch.id);
             } else {
                 EXPECT_EQ(in.op, static_cast<std::uint8_t>(Op::kMessage));
                 MessageRecord m;
-                EXPECT_TRUE(parse_message(in.content, in.len, m));
+                EXPECT_NO_THROW(parse_message(in.content, in.len, m));
                 EXPECT_TRUE(channels.count(m.channel_id));
                 index[m.channel_id].emplace_back(m.log_time, in.offset);
                 lo = std::min(lo, m.log_time);
@@ -114,7 +114,7 @@ std::size_t check_layout(const std::vector<std::uint8_t>& f, std::size_t chunk_s
         for (; k < data.size() && data[k].op == static_cast<std::uint8_t>(Op::kMessageIndex); ++k) {
             std::uint16_t ch = 0;
             std::vector<std::pair<std::uint64_t, std::uint64_t>> e;
-            EXPECT_TRUE(parse_message_index(data[k].content, data[k].len, ch, e));
+            EXPECT_NO_THROW(parse_message_index(data[k].content, data[k].len, ch, e));
             auto expect = index[ch];
             std::stable_sort(expect.begin(), expect.end(),
                              [](const auto& a, const auto& b) { return a.first < b.first; });
@@ -137,21 +137,21 @@ std::size_t check_layout(const std::vector<std::uint8_t>& f, std::size_t chunk_s
     EXPECT_EQ(offsets.size(), groups.size());
     for (const Rec& r : offsets) {
         SummaryOffset so;
-        EXPECT_TRUE(parse_summary_offset(r.content, r.len, so));
+        EXPECT_NO_THROW(parse_summary_offset(r.content, r.len, so));
         EXPECT_EQ(groups[so.group_opcode], std::make_pair(so.group_start, so.group_length));
     }
     std::size_t chunk_indexes = 0;
     for (const Rec& r : summary) {
         if (r.op == static_cast<std::uint8_t>(Op::kStatistics)) {
             Statistics st;
-            EXPECT_TRUE(parse_statistics(r.content, r.len, st));
+            EXPECT_NO_THROW(parse_statistics(r.content, r.len, st));
             EXPECT_EQ(st.message_count, messages);
             EXPECT_EQ(st.chunk_count, chunk_at.size());
         }
         if (r.op != static_cast<std::uint8_t>(Op::kChunkIndex)) continue;
         ++chunk_indexes;
         ChunkIndex ci;
-        EXPECT_TRUE(parse_chunk_index(r.content, r.len, ci));
+        EXPECT_NO_THROW(parse_chunk_index(r.content, r.len, ci));
         EXPECT_TRUE(chunk_at.count(ci.chunk_start_offset));
         const Rec& c = data[chunk_at[ci.chunk_start_offset]];
         EXPECT_EQ(ci.chunk_length, kRecordPrefix + c.len);

@@ -84,35 +84,43 @@ void MessageCursor::load(std::size_t rank) {
             return;
         }
         ChunkRecord rec;
-        const std::string err = decode_chunk(raw.data() + kRecordPrefix, raw.size() - kRecordPrefix,
-                                             check_crcs_, rec, l->bytes);
-        if (!err.empty()) {
-            reader_->report("Chunk " + at + ": " + err + "; skipped");
+        try {
+            decode_chunk(raw.data() + kRecordPrefix, raw.size() - kRecordPrefix, check_crcs_, rec,
+                         l->bytes);
+        } catch (const common::FormatError& e) {
+            reader_->report("Chunk " + at + ": " + describe(e) + "; skipped");
             return;
         }
     }
     ++chunks_loaded_;
-    const std::string walk = for_each_record(
-        l->bytes.data(), l->bytes.size(),
-        [&](std::uint8_t op, const std::uint8_t* c, std::size_t n, std::size_t off) {
-            if (op == static_cast<std::uint8_t>(Op::kSchema)) {
-                Schema s;
-                if (parse_schema(c, n, s) && s.id != 0) reader_->learn(s);
-            } else if (op == static_cast<std::uint8_t>(Op::kChannel)) {
-                Channel ch;
-                if (parse_channel(c, n, ch)) {
-                    reader_->learn(ch);
-                    if (!all_channels_ && topics_.count(ch.topic)) wanted_.insert(ch.id);
+    // Malformed records inside are skipped (the scan and verify report them).
+    try {
+        for_each_record(
+            l->bytes.data(), l->bytes.size(),
+            [&](std::uint8_t op, const std::uint8_t* c, std::size_t n, std::size_t off) {
+                try {
+                    if (op == static_cast<std::uint8_t>(Op::kSchema)) {
+                        Schema s;
+                        parse_schema(c, n, s);
+                        if (s.id != 0) reader_->learn(s);
+                    } else if (op == static_cast<std::uint8_t>(Op::kChannel)) {
+                        Channel ch;
+                        parse_channel(c, n, ch);
+                        reader_->learn(ch);
+                        if (!all_channels_ && topics_.count(ch.topic)) wanted_.insert(ch.id);
+                    } else if (op == static_cast<std::uint8_t>(Op::kMessage)) {
+                        MessageRecord m;
+                        parse_message(c, n, m);
+                        if (m.log_time < start_time_ || m.log_time > end_time_) return;
+                        if (!all_channels_ && !wanted_.count(m.channel_id)) return;
+                        l->entries.push_back(Loaded::Entry{m.log_time, off});
+                    }
+                } catch (const common::FormatError&) {
                 }
-            } else if (op == static_cast<std::uint8_t>(Op::kMessage)) {
-                MessageRecord m;
-                if (!parse_message(c, n, m)) return;
-                if (m.log_time < start_time_ || m.log_time > end_time_) return;
-                if (!all_channels_ && !wanted_.count(m.channel_id)) return;
-                l->entries.push_back(Loaded::Entry{m.log_time, off});
-            }
-        });
-    if (!walk.empty()) reader_->report("Chunk " + at + ": " + walk + "; read up to there");
+            });
+    } catch (const common::FormatError& e) {
+        reader_->report("Chunk " + at + ": " + describe(e) + "; read up to there");
+    }
     if (l->entries.empty()) return;
     std::sort(l->entries.begin(), l->entries.end(), [](const auto& a, const auto& b) {
         return a.log_time != b.log_time ? a.log_time < b.log_time : a.offset < b.offset;
