@@ -31,8 +31,8 @@ ConfigError::ConfigError(const std::string& section, const ConfigProblem& proble
 
 std::string Rule::range_text() const {
     if (hi_ == kInf) return (lo_open_ ? "> " : ">= ") + text_of(lo_);
-    return std::string(kind_ == Kind::kZeroOrRange ? "0 or " : "") + "in " + (lo_open_ ? "(" : "[") +
-           text_of(lo_) + ", " + text_of(hi_) + "]";
+    return std::string(kind_ == Kind::kZeroOrRange ? "0 or " : "") + "in " +
+           (lo_open_ ? "(" : "[") + text_of(lo_) + ", " + text_of(hi_) + "]";
 }
 
 std::string Rule::broken_by(double v) const {

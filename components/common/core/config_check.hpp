@@ -9,6 +9,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace ltm::common {
@@ -96,7 +97,7 @@ class ConfigChecker {
     void operator()(const std::string& key, int value, const Rule& rule);
     void operator()(const std::string& key, const std::vector<double>& value, const Rule& rule);
     void operator()(const std::string& key, const std::string& value, const OneOf& rule);
-    void operator()(const std::string&, bool, const Rule&) {}  // a switch: any value
+    void operator()(const std::string&, bool, const Rule&) {}                // a switch: any value
     void operator()(const std::string&, const std::string&, const Rule&) {}  // free text
 
     // A rule across fields: when `ok` is false, `key` has `problem`.

@@ -30,7 +30,8 @@ TEST(OdometryConfig, EachFieldRuleNamesTheKey) {
         change(c);
         return problem_of(c);
     };
-    EXPECT_EQ(with([](OdometryConfig& c) { c.voxel_size = -1; }), "voxel_size: must be > 0 (got -1)");
+    EXPECT_EQ(with([](OdometryConfig& c) { c.voxel_size = -1; }),
+              "voxel_size: must be > 0 (got -1)");
     EXPECT_EQ(with([](OdometryConfig& c) { c.voxel_size = std::nan(""); }),
               "voxel_size: must be > 0 (got nan)");
     EXPECT_EQ(with([](OdometryConfig& c) { c.prediction = "linear"; }),

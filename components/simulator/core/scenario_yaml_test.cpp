@@ -114,8 +114,8 @@ TEST(ScenarioYaml, RulesBrokenNameTheLineOfTheKey) {
     EXPECT_EQ(error_of(t.replace(t.find("rate: 5"), 7, "rate: -1")),
               "test.yaml:3: sensor.rate: must be > 0 (got -1)");
     t = kMinimal;
-    EXPECT_EQ(error_of(t.replace(t.find("sessions:"), 9, "world: {town: {tree_spacing: 1}}\nsessions:")),
-              "test.yaml:4: world.town.tree_spacing: must be > 1 (got 1)");
+    t.replace(t.find("sessions:"), 9, "world: {town: {tree_spacing: 1}}\nsessions:");
+    EXPECT_EQ(error_of(t), "test.yaml:4: world.town.tree_spacing: must be > 1 (got 1)");
     t = kMinimal;  // across fields
     EXPECT_EQ(error_of(t.replace(t.find("rate: 5"), 7, "max_range: 0.5")),
               "test.yaml:3: sensor.max_range: must exceed min_range");
