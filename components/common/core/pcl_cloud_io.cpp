@@ -73,6 +73,102 @@ void check_pcd_header(const std::string& path) {
     }
 }
 
+// PCL 1.13's PLYReader asserts on a list property in the vertex element, ignores lines it does
+// not know, and allocates what a header claims before reading: the header is checked here first
+// (the keywords PCL understands, known types, and, for binary files, enough bytes for every
+// element's fixed-size part).
+void check_ply_header(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw IoError(path, "cannot open");
+    auto fail = [&](int lineno, const std::string& problem) {
+        throw IoError(path, "PLY header line " + std::to_string(lineno) + ": " + problem);
+    };
+    auto type_size = [](const std::string& t) -> std::size_t {
+        if (t == "char" || t == "uchar" || t == "int8" || t == "uint8") return 1;
+        if (t == "short" || t == "ushort" || t == "int16" || t == "uint16") return 2;
+        if (t == "int" || t == "uint" || t == "float" || t == "int32" || t == "uint32" || t == "float32")
+            return 4;
+        if (t == "double" || t == "float64") return 8;
+        return 0;
+    };
+    struct Element {
+        std::string name;
+        std::uint64_t count = 0;
+        std::uint64_t min_row = 0;  // bytes of a row in a binary file (lists: their count only)
+        std::size_t properties = 0;
+    };
+    std::vector<Element> elements;
+    std::string line, format;
+    std::uint64_t header_bytes = 0;
+    int lineno = 0;
+    bool end = false;
+    while (!end && lineno < 1000 && std::getline(in, line)) {
+        ++lineno;
+        header_bytes += line.size() + 1;
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        std::istringstream ss(line);
+        std::string key;
+        ss >> key;
+        if (lineno == 1) {
+            if (key != "ply") throw IoError(path, "not a PLY file: no 'ply' on the first line");
+            continue;
+        }
+        if (key == "comment" || key == "obj_info") continue;
+        if (key == "format") {
+            std::string version;
+            ss >> format >> version;
+            if (format != "ascii" && format != "binary_little_endian" && format != "binary_big_endian")
+                fail(lineno, "unknown format");
+        } else if (key == "element") {
+            Element e;
+            std::string count;
+            if (!(ss >> e.name >> count) || count.find_first_not_of("0123456789") != std::string::npos ||
+                count.size() > 12)
+                fail(lineno, "expected 'element NAME COUNT'");
+            e.count = std::stoull(count);
+            elements.push_back(e);
+        } else if (key == "property") {
+            if (elements.empty()) fail(lineno, "a property before any element");
+            Element& e = elements.back();
+            std::string type, name;
+            ss >> type;
+            if (type == "list") {
+                std::string count_type, item_type;
+                ss >> count_type >> item_type >> name;
+                if (type_size(count_type) == 0 || type_size(item_type) == 0 || name.empty())
+                    fail(lineno, "expected 'property list COUNT_TYPE TYPE NAME' with known types");
+                if (e.name == "vertex") fail(lineno, "a list property in the vertex element is not supported");
+                e.min_row += type_size(count_type);
+            } else {
+                ss >> name;
+                if (type_size(type) == 0 || name.empty()) fail(lineno, "expected 'property TYPE NAME' with a known type");
+                e.min_row += type_size(type);
+            }
+            ++e.properties;
+        } else if (key == "end_header") {
+            end = true;
+        } else {
+            fail(lineno, "unknown keyword '" + key.substr(0, 32) + "'");
+        }
+    }
+    if (!end) throw IoError(path, "PLY header has no end_header line");
+    if (format.empty()) throw IoError(path, "PLY header has no format line");
+    const std::uint64_t file_bytes = std::filesystem::file_size(path);
+    const std::uint64_t data_bytes = file_bytes > header_bytes ? file_bytes - header_bytes : 0;
+    std::uint64_t need = 0;  // binary: bytes; ascii: values (each at least one character)
+    for (const Element& e : elements) {
+        const std::uint64_t per_row = format == "ascii" ? e.properties : e.min_row;
+        if (per_row > 0 && e.count > data_bytes / per_row)
+            throw IoError(path, "truncated: element " + e.name + " of " + std::to_string(e.count) +
+                                    " rows does not fit in the " + std::to_string(data_bytes) +
+                                    " bytes after the header");
+        need += e.count * per_row;
+    }
+    if (need > data_bytes)
+        throw IoError(path, "truncated: the elements need " + std::to_string(need) + " bytes, " +
+                                std::to_string(data_bytes) + " follow the header");
+}
+
 }  // namespace
 
 bool is_cloud_file(const std::string& path) {
@@ -92,6 +188,7 @@ PointCloud load_cloud_file(const std::string& path) {
         pcl::PCDReader reader;
         rc = reader.read(path, blob);
     } else if (ext == ".ply") {
+        check_ply_header(path);
         pcl::PLYReader reader;
         rc = reader.read(path, blob);
     } else {
@@ -125,12 +222,27 @@ PointCloud load_cloud_file(const std::string& path) {
             return nullptr;
         };
         const PointField* fx[3] = {off("x"), off("y"), off("z")};
-        if (!fx[0] || !fx[1] || !fx[2]) throw IoError(path, "no x y z fields");
+        if (layout.big_endian) throw IoError(path, "big-endian point data is not supported");
+        for (const PointField* f : fx) {  // each coordinate float32 or float64, inside the point
+            if (!f) throw IoError(path, "no x y z fields");
+            if (f->datatype != 7 && f->datatype != 8)
+                throw IoError(path, "field '" + f->name + "' is datatype " + std::to_string(f->datatype) +
+                                        ", need float32 (7) or float64 (8)");
+            if (f->offset + std::size_t{f->datatype == 8 ? 8u : 4u} > blob.point_step)
+                throw IoError(path, "field '" + f->name + "' does not fit in point_step " +
+                                        std::to_string(blob.point_step));
+        }
         for (std::size_t i = 0; i < n; ++i)
             for (int k = 0; k < 3; ++k) {
-                double d;
-                std::memcpy(&d, blob.data.data() + i * blob.point_step + fx[k]->offset, 8);
-                const float v = static_cast<float>(d);
+                const std::uint8_t* p = blob.data.data() + i * blob.point_step + fx[k]->offset;
+                float v;
+                if (fx[k]->datatype == 8) {
+                    double d;
+                    std::memcpy(&d, p, 8);
+                    v = static_cast<float>(d);
+                } else {
+                    std::memcpy(&v, p, 4);
+                }
                 std::memcpy(packed.data() + i * l2.point_step + 4 * k, &v, 4);
             }
         const std::string err = decode_points(l2, packed.data(), n, 0.0, cloud);
