@@ -8,6 +8,7 @@
 #include "common/core/trajectory_io.hpp"
 #include "host/process.hpp"
 #include "host/temp_dir_test.hpp"
+#include "mapping/core/map_store.hpp"
 
 namespace fs = std::filesystem;
 using ltm::tests::Process;
@@ -217,4 +218,25 @@ components:
     EXPECT_EQ(host.wait(60), 2) << host.err();
     EXPECT_NE(host.err().find("mapping.load_map_dir: "), std::string::npos) << host.err();
     EXPECT_NE(host.err().find("manifest.txt"), std::string::npos) << host.err();
+}
+
+TEST_F(OdometryPipeline, MapOfOtherDescriptorsIsRefusedAtTheScanContextKey) {
+    mapping::MapData map;  // saved with 24 rings; the component keeps the default 20
+    map.descriptor_config.rings = 24;
+    mapping::save_map((dir_ / "rings24").string(), map);
+    const std::string cfg = write("rings.yaml", R"(domain_id: 196
+components:
+  - name: mapping
+    type: mapping
+    params:
+      load_map_dir: )" + (dir_ / "rings24").string() + R"(
+      scan_context: {sectors: 60}
+)");
+    Process host({kHost, cfg}, (dir_ / "host").string());
+    EXPECT_EQ(host.wait(60), 2) << host.err();
+    // The key's own line (the scan_context map), not load_map_dir's.
+    EXPECT_NE(host.err().find("rings.yaml:7: mapping.scan_context: differs from the loaded map's "
+                              "descriptors (24 x 60"),
+              std::string::npos)
+        << host.err();
 }
