@@ -5,37 +5,20 @@
 #include <filesystem>
 #include <functional>
 #include <iomanip>
-#include <set>
 #include <sstream>
 #include <unordered_set>
 
 #include "common/core/file_io.hpp"
 #include "common/core/io_error.hpp"
 #include "mapping/core/map_codec.hpp"
+#include "mapping/core/map_manifest.hpp"
 
 namespace ltm::mapping {
 namespace {
 
 namespace fs = std::filesystem;
 
-constexpr const char* kManifest = "manifest.txt";
 constexpr std::uint64_t kFirstHeaderField = 16;  // magic, version, section length
-
-struct FileEntry {
-    std::string kind;  // graph, keyframes, local_map
-    std::string file;  // relative to the map directory
-    std::uint64_t size = 0;
-    std::uint64_t hash = 0;              // FNV-1a 64 of the file
-    std::uint64_t node = 0;              // local_map
-    std::uint64_t first = 0, count = 0;  // keyframes
-    int line = 0;
-};
-
-struct Manifest {
-    std::uint64_t revision = 0;
-    ScanContextConfig descriptor;
-    std::vector<FileEntry> files;
-};
 
 // FNV-1a 64 of a whole file: names files and checks them against the manifest. (A CRC-32 of a
 // file made of CRC-protected sections would not do: a section's bytes and its own CRC change
@@ -61,123 +44,8 @@ std::string padded(std::uint64_t v, int width) {
     return s.str();
 }
 
-bool safe_relative(const std::string& f) {
-    return !f.empty() && f[0] != '/' && f.find("..") == std::string::npos &&
-           f.find_first_of(" \t\r\n") == std::string::npos;
-}
-
-std::string write_manifest_text(const Manifest& m) {
-    std::ostringstream s;
-    s.precision(17);
-    s << "ltm_map " << kMapFormatVersion << "\n";
-    s << "revision " << m.revision << "\n";
-    s << "descriptor " << int(m.descriptor.kind) << " " << m.descriptor.rings << " "
-      << m.descriptor.sectors << " " << m.descriptor.max_range << " " << m.descriptor.min_range
-      << " " << m.descriptor.sensor_height << "\n";
-    for (const FileEntry& f : m.files) {
-        if (f.kind == "graph") {
-            s << "graph " << f.file << " " << f.size << " " << hex64(f.hash) << "\n";
-        } else if (f.kind == "keyframes") {
-            s << "keyframes " << f.file << " " << f.size << " " << hex64(f.hash) << " " << f.first
-              << " " << f.count << "\n";
-        } else {
-            s << "local_map " << f.node << " " << f.file << " " << f.size << " " << hex64(f.hash)
-              << "\n";
-        }
-    }
-    s << "end " << m.files.size() << "\n";
-    return s.str();
-}
-
-Manifest parse_manifest(const std::string& text) {
-    Manifest m;
-    std::istringstream in(text);
-    std::string line;
-    int number = 0;
-    std::uint64_t offset = 0;
-    bool header = false, descriptor = false, end = false, graph = false;
-    auto fail = [&](const std::string& problem) {
-        throw MapFormatError(kManifest, "line " + std::to_string(number), offset, problem);
-    };
-    while (std::getline(in, line)) {
-        ++number;
-        const std::uint64_t line_offset = offset;
-        offset += line.size() + 1;
-        std::istringstream f(line);
-        std::string key;
-        if (!(f >> key)) continue;
-        offset = line_offset;  // errors point at the start of the line
-        if (end) fail("text after 'end'");
-        if (!header) {
-            std::uint32_t version = 0;
-            if (key != "ltm_map" || !(f >> version)) fail("expected 'ltm_map <version>' first");
-            if (version != kMapFormatVersion) {
-                fail("format version " + std::to_string(version) +
-                     " is not supported (this build reads " + std::to_string(kMapFormatVersion) +
-                     ")");
-            }
-            header = true;
-        } else if (key == "revision") {
-            if (!(f >> m.revision)) fail("expected 'revision <n>'");
-        } else if (key == "descriptor") {
-            int kind = -1;
-            ScanContextConfig& d = m.descriptor;
-            if (!(f >> kind >> d.rings >> d.sectors >> d.max_range >> d.min_range >>
-                  d.sensor_height) ||
-                kind < 0 || kind > 1) {
-                fail(
-                    "expected 'descriptor <kind 0|1> <rings> <sectors> <max_range> <min_range> "
-                    "<sensor_height>'");
-            }
-            d.kind = ScanContextKind(kind);
-            if (const auto problem = validate(d)) {
-                fail("descriptor." + problem->key + ": " + problem->problem);
-            }
-            descriptor = true;
-        } else if (key == "graph" || key == "keyframes" || key == "local_map") {
-            FileEntry e;
-            e.kind = key;
-            e.line = number;
-            std::string hash;
-            bool ok = true;
-            if (key == "local_map") ok = bool(f >> e.node);
-            ok = ok && bool(f >> e.file >> e.size >> hash);
-            if (key == "keyframes") ok = ok && bool(f >> e.first >> e.count);
-            if (!ok || hash.size() != 16 ||
-                hash.find_first_not_of("0123456789abcdef") != std::string::npos) {
-                fail("malformed '" + key + "' entry");
-            }
-            e.hash = std::stoull(hash, nullptr, 16);
-            if (!safe_relative(e.file))
-                fail("file name '" + e.file + "' is not a plain relative path");
-            if (key == "graph") {
-                if (graph) fail("a second graph entry");
-                graph = true;
-            }
-            m.files.push_back(e);
-        } else if (key == "end") {
-            std::size_t n = 0;
-            if (!(f >> n) || n != m.files.size()) {
-                fail("'end' counts " + std::to_string(n) + " entries, the manifest has " +
-                     std::to_string(m.files.size()));
-            }
-            end = true;
-        } else {
-            fail("unknown entry '" + key + "'");
-        }
-        std::string extra;
-        if (f >> extra) fail("unexpected '" + extra + "' at the end of the line");
-        offset = line_offset + line.size() + 1;
-    }
-    if (!header) throw MapFormatError(kManifest, "empty: not an ltm map manifest");
-    if (!end) throw MapFormatError(kManifest, "truncated: no 'end' line (an interrupted write?)");
-    if (!descriptor) throw MapFormatError(kManifest, "no 'descriptor' line");
-    if (!graph) throw MapFormatError(kManifest, "no 'graph' entry");
-    return m;
-}
-
 // The file's bytes, checked against the manifest after decoding (which locates damage better).
-void check_entry(const FileEntry& e, const std::string& bytes) {
+void check_entry(const ManifestEntry& e, const std::string& bytes) {
     if (bytes.size() != e.size) {
         throw MapFormatError(e.file, "size: " + std::to_string(bytes.size()) +
                                          " bytes, the manifest says " + std::to_string(e.size) +
@@ -210,8 +78,8 @@ SaveStats MapWriter::save(const MapData& map) {
     // Writes (or keeps) one file; `key` names it in the cache.
     auto emit = [&](const std::string& key, const std::string& kind, const std::string& prefix,
                     std::shared_ptr<const void> first, std::shared_ptr<const void> last,
-                    const std::function<std::string()>& encode) -> FileEntry {
-        FileEntry e;
+                    const std::function<std::string()>& encode) -> ManifestEntry {
+        ManifestEntry e;
         e.kind = kind;
         const auto hit = cache_.find(key);
         if (first && hit != cache_.end() && hit->second.first.lock() == first &&
@@ -246,7 +114,7 @@ SaveStats MapWriter::save(const MapData& map) {
     const std::size_t per = options_.keyframes_per_file;
     for (std::size_t a = 0; a < map.keyframes.size(); a += per) {
         const std::size_t n = std::min(per, map.keyframes.size() - a);
-        FileEntry e =
+        ManifestEntry e =
             emit("kf:" + std::to_string(a) + ":" + std::to_string(n), "keyframes",
                  "keyframes_" + padded(a, 8) + "_", map.keyframes[a], map.keyframes[a + n - 1],
                  [&] { return encode_keyframes(map.descriptor_config, map.keyframes, a, n); });
@@ -256,21 +124,21 @@ SaveStats MapWriter::save(const MapData& map) {
     }
     for (const StoredLocalMap& m : map.local_maps) {
         if (!m.data) continue;
-        FileEntry e = emit("lm:" + std::to_string(m.node), "local_map",
+        ManifestEntry e = emit("lm:" + std::to_string(m.node), "local_map",
                            "local_maps/lm_" + padded(m.node, 8) + "_", m.data, m.data,
                            [&] { return encode_local_map(m); });
         e.node = m.node;
         manifest.files.push_back(e);
     }
-    const std::string text = write_manifest_text(manifest);
-    common::write_file_atomic((fs::path(dir_) / kManifest).string(), text);
+    const std::string text = write_manifest(manifest);
+    common::write_file_atomic((fs::path(dir_) / kManifestFile).string(), text);
     ++stats.files_written;
     stats.bytes_written += text.size();
     cache_.swap(cache);
 
     // Files of earlier saves that the new manifest does not name.
     std::unordered_set<std::string> keep;
-    for (const FileEntry& e : manifest.files) keep.insert(e.file);
+    for (const ManifestEntry& e : manifest.files) keep.insert(e.file);
     for (const char* sub : {"", "local_maps"}) {
         const fs::path folder = fs::path(dir_) / sub;
         for (const fs::directory_entry& entry : fs::directory_iterator(folder, ec)) {
@@ -298,12 +166,12 @@ LoadedMap load_map(const std::string& dir) {
     LoadedMap out;
     const fs::path root(dir);
     if (!fs::is_directory(root)) throw MapFormatError(dir, "not a directory");
-    const Manifest manifest = parse_manifest(common::read_file((root / kManifest).string(), kManifest));
+    const Manifest manifest = parse_manifest(common::read_file((root / kManifestFile).string(), kManifestFile));
     MapData& map = out.map;
     map.descriptor_config = manifest.descriptor;
 
     // The graph first: without it nothing can be placed.
-    for (const FileEntry& e : manifest.files) {
+    for (const ManifestEntry& e : manifest.files) {
         if (e.kind != "graph") continue;
         const std::string bytes = common::read_file((root / e.file).string(), e.file);
         std::uint64_t revision = 0;
@@ -319,7 +187,7 @@ LoadedMap load_map(const std::string& dir) {
     std::unordered_set<std::uint64_t> nodes;
     for (const PoseGraphNode& n : map.nodes) nodes.insert(n.id);
 
-    for (const FileEntry& e : manifest.files) {
+    for (const ManifestEntry& e : manifest.files) {
         if (e.kind == "graph") continue;
         try {
             const std::string bytes = common::read_file((root / e.file).string(), e.file);

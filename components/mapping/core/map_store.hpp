@@ -2,10 +2,11 @@
 // A map directory (format kMapFormatVersion):
 //   manifest.txt                       what the map is made of: every file with its size and
 //                                      FNV-1a 64 hash, the revision and the descriptor settings
+//                                      (map_manifest.hpp)
 //   graph_<hash>.bin                   the pose graph
 //   keyframes_<first>_<hash>.bin       keyframes with their descriptors, in chunks
 //   local_maps/lm_<node>_<hash>.bin    one file a local map (voxels with their life records)
-// Inside each file, every section carries its own CRC-32 (map_codec.hpp).
+// Inside each binary file, every section carries its own CRC-32 (map_codec.hpp).
 // Files are named by their content, written atomically (temporary file, fsync, rename), and the
 // manifest goes last: a crash during a save leaves the previous map intact. Files the new
 // manifest does not name are removed afterwards. Unchanged local maps are not written again.

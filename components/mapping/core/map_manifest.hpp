@@ -1,0 +1,42 @@
+#pragma once
+// manifest.txt of a map directory (map_store.hpp): what the map is made of, one line a fact,
+//   ltm_map <format version>
+//   revision <n>
+//   descriptor <kind 0|1> <rings> <sectors> <max_range> <min_range> <sensor_height>
+//   graph <file> <size> <hash>
+//   keyframes <file> <size> <hash> <first> <count>     (any number of these two)
+//   local_map <node> <file> <size> <hash>
+//   end <number of file entries>
+// Hashes are FNV-1a 64 of the file, 16 lower-case hex digits. The layout is described once, in
+// map_manifest.cpp, and that description both writes and parses it.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "mapping/core/map_data.hpp"
+
+namespace ltm::mapping {
+
+inline constexpr const char* kManifestFile = "manifest.txt";
+
+struct ManifestEntry {
+    std::string kind;  // graph, keyframes, local_map
+    std::string file;  // relative to the map directory
+    std::uint64_t size = 0;
+    std::uint64_t hash = 0;              // FNV-1a 64 of the file
+    std::uint64_t node = 0;              // local_map
+    std::uint64_t first = 0, count = 0;  // keyframes
+};
+
+struct Manifest {
+    std::uint64_t revision = 0;
+    ScanContextConfig descriptor;
+    std::vector<ManifestEntry> files;  // exactly one graph
+};
+
+std::string write_manifest(const Manifest& manifest);
+// Throws MapFormatError naming the line and its byte offset ("manifest.txt: line 2 at byte 10:
+// ...") when the text is not a whole, valid manifest.
+Manifest parse_manifest(const std::string& text);
+
+}  // namespace ltm::mapping
