@@ -3,6 +3,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "common/core/one_line.hpp"
+
 namespace ltm::common {
 namespace {
 
@@ -16,11 +18,11 @@ std::string text_of(const T& value) {
 }  // namespace
 
 ConfigError::ConfigError(const std::string& key, const std::string& problem)
-    : std::invalid_argument(key + ": " + problem), key_(key), problem_(problem) {}
+    : std::invalid_argument(one_line(key + ": " + problem)), key_(key), problem_(problem) {}
 
 ConfigError::ConfigError(const std::string& file, int line, const std::string& key,
                          const std::string& problem)
-    : std::invalid_argument(file + ":" + std::to_string(line) + ": " + key + ": " + problem),
+    : std::invalid_argument(one_line(file + ":" + std::to_string(line) + ": " + key + ": " + problem)),
       file_(file),
       line_(line),
       key_(key),

@@ -21,7 +21,7 @@ struct ConfigProblem {
 };
 
 // A refused configuration. what() is one line naming the key: "KEY: PROBLEM" for a config built
-// in code, "FILE:LINE: KEY: PROBLEM" for a value read from a file.
+// in code, "FILE:LINE: KEY: PROBLEM" for a value read from a file (control characters escaped).
 class ConfigError : public std::invalid_argument {
   public:
     ConfigError(const std::string& key, const std::string& problem);
