@@ -6,12 +6,31 @@ set -euo pipefail
 BIN="$(cd "$(dirname "$0")" && pwd)"
 HOST="$BIN/ltm_host"
 POINTS=120000; COUNT=150; RATE=10
+usage() {
+    echo "Measures the spine: host start-up, PointCloud2 latency in one process and between two,"
+    echo "idle CPU"
+    printf 'Usage: ltm_bench_dds [OPTIONS]\n\nOptions:\n'
+    printf '  %-30s%s\n' "-h,--help" "Print this help message and exit" \
+        "--points UINT=$POINTS" "points a scan" "--count UINT=$COUNT" "scans sent" \
+        "--rate FLOAT=$RATE" "scans a second"
+}
+# The usage errors of every ltm tool: one line, exit code 2.
+fail() { echo "ltm_bench_dds: $*" >&2; exit 2; }
 while [ $# -gt 0 ]; do
     case "$1" in
-        --points) POINTS="$2"; shift 2 ;;
-        --count) COUNT="$2"; shift 2 ;;
-        --rate) RATE="$2"; shift 2 ;;
-        *) echo "usage: ltm_bench_dds [--points N] [--count N] [--rate HZ]" >&2; exit 2 ;;
+        -h|--help) usage; exit 0 ;;
+        --points|--count|--rate)
+            [ $# -ge 2 ] || fail "$1: needs a value"
+            if [ "$1" = --rate ]; then
+                [[ "$2" =~ ^[0-9]+([.][0-9]+)?$ ]] || fail "$1: expected a number, got '$2'"
+                RATE="$2"
+            else
+                [[ "$2" =~ ^[0-9]+$ ]] || fail "$1: expected a non-negative integer, got '$2'"
+                if [ "$1" = --points ]; then POINTS="$2"; else COUNT="$2"; fi
+            fi
+            shift 2 ;;
+        -*) fail "$1: unknown option" ;;
+        *) fail "$1: unexpected argument" ;;
     esac
 done
 WORK="$(mktemp -d)"
@@ -24,7 +43,8 @@ sink_entry() { echo "  - {name: sink, type: bench_latency_sink, params: {report:
 
 echo "== start-up: ltm_host --check on launch_configs/kitti_composed.yaml (10 runs)"
 ROOT="$(cd "$BIN/../.." 2>/dev/null && pwd)"
-export LTM_ROOT="${LTM_ROOT:-$ROOT}" LTM_DATA="${LTM_DATA:-$LTM_ROOT/tests/fixtures/kitti00_mini}" LTM_OUT="$WORK/out"
+export LTM_ROOT="${LTM_ROOT:-$ROOT}"  # its own line: the next one reads it
+export LTM_DATA="${LTM_DATA:-$LTM_ROOT/tests/fixtures/kitti00_mini}" LTM_OUT="$WORK/out"
 times=()
 for _ in $(seq 10); do
     s=$(date +%s%N); "$HOST" "$LTM_ROOT/launch_configs/kitti_composed.yaml" --check >/dev/null; e=$(date +%s%N)
