@@ -125,8 +125,8 @@ SaveStats MapWriter::save(const MapData& map) {
     for (const StoredLocalMap& m : map.local_maps) {
         if (!m.data) continue;
         ManifestEntry e = emit("lm:" + std::to_string(m.node), "local_map",
-                           "local_maps/lm_" + padded(m.node, 8) + "_", m.data, m.data,
-                           [&] { return encode_local_map(m); });
+                               "local_maps/lm_" + padded(m.node, 8) + "_", m.data, m.data,
+                               [&] { return encode_local_map(m); });
         e.node = m.node;
         manifest.files.push_back(e);
     }
@@ -166,7 +166,8 @@ LoadedMap load_map(const std::string& dir) {
     LoadedMap out;
     const fs::path root(dir);
     if (!fs::is_directory(root)) throw MapFormatError(dir, "not a directory");
-    const Manifest manifest = parse_manifest(common::read_file((root / kManifestFile).string(), kManifestFile));
+    const Manifest manifest =
+        parse_manifest(common::read_file((root / kManifestFile).string(), kManifestFile));
     MapData& map = out.map;
     map.descriptor_config = manifest.descriptor;
 

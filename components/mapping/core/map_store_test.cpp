@@ -215,8 +215,7 @@ TEST(MapStore, SavedMapReloadsIdentical) {
         if (!e.is_regular_file()) continue;
         const fs::path other = again / fs::relative(e.path(), dir);
         ASSERT_TRUE(fs::exists(other)) << other;
-        EXPECT_EQ(common::read_file(e.path().string(), "a"),
-                  common::read_file(other.string(), "b"))
+        EXPECT_EQ(common::read_file(e.path().string(), "a"), common::read_file(other.string(), "b"))
             << other;
     }
 }

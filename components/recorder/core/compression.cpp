@@ -3,44 +3,43 @@
 #include <lz4frame.h>
 #include <zstd.h>
 
+#include <stdexcept>
+
+#include "common/core/io_error.hpp"
+
 namespace ltm::recorder {
 namespace {
 
 // Larger uncompressed sizes are treated as a corrupt chunk header, not allocated.
 constexpr std::uint64_t kMaxChunkBytes = std::uint64_t{2} << 30;
 
-bool decompress_zstd(const std::uint8_t* in, std::size_t n, std::uint64_t size,
-                     std::vector<std::uint8_t>& out, std::string& error) {
+[[noreturn]] void damaged(const char* compression, const std::string& problem) {
+    throw common::FormatError(compression, problem);
+}
+
+void decompress_zstd(const std::uint8_t* in, std::size_t n, std::uint64_t size,
+                     std::vector<std::uint8_t>& out) {
     const unsigned long long declared = ZSTD_getFrameContentSize(in, n);
-    if (declared == ZSTD_CONTENTSIZE_ERROR) {
-        error = "not a zstd frame";
-        return false;
-    }
+    if (declared == ZSTD_CONTENTSIZE_ERROR) damaged("zstd", "not a zstd frame");
     if (declared != ZSTD_CONTENTSIZE_UNKNOWN && declared != size) {
-        error = "zstd frame holds " + std::to_string(declared) + " bytes, chunk header says " +
-                std::to_string(size);
-        return false;
+        damaged("zstd", "the frame holds " + std::to_string(declared) +
+                            " bytes, the chunk header says " + std::to_string(size));
     }
     out.resize(size);
     const std::size_t got = ZSTD_decompress(out.data(), out.size(), in, n);
-    if (ZSTD_isError(got)) {
-        error = std::string("zstd: ") + ZSTD_getErrorName(got);
-        return false;
-    }
+    if (ZSTD_isError(got)) damaged("zstd", ZSTD_getErrorName(got));
     if (got != size) {
-        error = "zstd gave " + std::to_string(got) + " bytes, expected " + std::to_string(size);
-        return false;
+        damaged("zstd", "gave " + std::to_string(got) + " bytes, expected " + std::to_string(size));
     }
-    return true;
 }
 
-bool decompress_lz4(const std::uint8_t* in, std::size_t n, std::uint64_t size,
-                    std::vector<std::uint8_t>& out, std::string& error) {
+void decompress_lz4(const std::uint8_t* in, std::size_t n, std::uint64_t size,
+                    std::vector<std::uint8_t>& out) {
     LZ4F_dctx* ctx = nullptr;
     if (LZ4F_isError(LZ4F_createDecompressionContext(&ctx, LZ4F_VERSION))) {
-        error = "lz4: cannot create a context";
-        return false;
+        throw std::runtime_error("lz4: cannot create a decompression context");
     }
+    std::string error;
     out.resize(size);
     std::size_t in_pos = 0, out_pos = 0;
     bool ok = true;
@@ -49,7 +48,7 @@ bool decompress_lz4(const std::uint8_t* in, std::size_t n, std::uint64_t size,
         const std::size_t hint =
             LZ4F_decompress(ctx, out.data() + out_pos, &dst, in + in_pos, &src, nullptr);
         if (LZ4F_isError(hint)) {
-            error = std::string("lz4: ") + LZ4F_getErrorName(hint);
+            error = LZ4F_getErrorName(hint);
             ok = false;
             break;
         }
@@ -57,18 +56,18 @@ bool decompress_lz4(const std::uint8_t* in, std::size_t n, std::uint64_t size,
         out_pos += dst;
         if (hint == 0) break;  // frame complete
         if (src == 0 && dst == 0) {
-            error = out_pos == out.size() ? "lz4 frame holds more bytes than the chunk header says"
-                                          : "lz4 frame is cut short";
+            error = out_pos == out.size() ? "the frame holds more bytes than the chunk header says"
+                                          : "the frame is cut short";
             ok = false;
             break;
         }
     }
     LZ4F_freeDecompressionContext(ctx);
     if (ok && out_pos != size) {
-        error = "lz4 gave " + std::to_string(out_pos) + " bytes, expected " + std::to_string(size);
+        error = "gave " + std::to_string(out_pos) + " bytes, expected " + std::to_string(size);
         ok = false;
     }
-    return ok;
+    if (!ok) damaged("lz4", error);
 }
 
 }  // namespace
@@ -103,23 +102,22 @@ Compressor::Compressor(Compression kind, int level) : kind_(kind), level_(level)
 
 Compressor::~Compressor() { ZSTD_freeCCtx(static_cast<ZSTD_CCtx*>(zstd_ctx_)); }
 
-bool Compressor::compress(const std::uint8_t* in, std::size_t size, std::vector<std::uint8_t>& out,
-                          std::string& error) {
+void Compressor::compress(const std::uint8_t* in, std::size_t size,
+                          std::vector<std::uint8_t>& out) {
     switch (kind_) {
         case Compression::kNone:
             out.assign(in, in + size);
-            return true;
+            return;
         case Compression::kZstd: {
             out.resize(ZSTD_compressBound(size));
             const std::size_t got =
                 ZSTD_compressCCtx(static_cast<ZSTD_CCtx*>(zstd_ctx_), out.data(), out.size(), in,
                                   size, level_ > 0 ? level_ : 1);
             if (ZSTD_isError(got)) {
-                error = std::string("zstd: ") + ZSTD_getErrorName(got);
-                return false;
+                throw std::runtime_error(std::string("zstd: ") + ZSTD_getErrorName(got));
             }
             out.resize(got);
-            return true;
+            return;
         }
         case Compression::kLz4: {
             LZ4F_preferences_t prefs{};
@@ -129,36 +127,33 @@ bool Compressor::compress(const std::uint8_t* in, std::size_t size, std::vector<
             out.resize(LZ4F_compressFrameBound(size, &prefs));
             const std::size_t got = LZ4F_compressFrame(out.data(), out.size(), in, size, &prefs);
             if (LZ4F_isError(got)) {
-                error = std::string("lz4: ") + LZ4F_getErrorName(got);
-                return false;
+                throw std::runtime_error(std::string("lz4: ") + LZ4F_getErrorName(got));
             }
             out.resize(got);
-            return true;
+            return;
         }
     }
-    error = "unknown compression";
-    return false;
+    throw std::runtime_error("unknown compression");
 }
 
-bool decompress(const std::string& compression, const std::uint8_t* in, std::size_t in_size,
-                std::uint64_t size, std::vector<std::uint8_t>& out, std::string& error) {
-    if (size > kMaxChunkBytes) {
-        error = "implausible uncompressed size " + std::to_string(size);
-        return false;
-    }
+void decompress(const std::string& compression, const std::uint8_t* in, std::size_t in_size,
+                std::uint64_t size, std::vector<std::uint8_t>& out) {
+    const char* name = compression.empty() ? "uncompressed records" : compression.c_str();
+    if (size > kMaxChunkBytes)
+        damaged(name, "implausible uncompressed size " + std::to_string(size));
     if (compression.empty()) {
         if (in_size != size) {
-            error = "uncompressed chunk holds " + std::to_string(in_size) + " bytes, header says " +
-                    std::to_string(size);
-            return false;
+            damaged(name, "the chunk holds " + std::to_string(in_size) +
+                              " bytes, its header says " + std::to_string(size));
         }
         out.assign(in, in + in_size);
-        return true;
+    } else if (compression == "zstd") {
+        decompress_zstd(in, in_size, size, out);
+    } else if (compression == "lz4") {
+        decompress_lz4(in, in_size, size, out);
+    } else {
+        damaged(name, "unsupported compression");
     }
-    if (compression == "zstd") return decompress_zstd(in, in_size, size, out, error);
-    if (compression == "lz4") return decompress_lz4(in, in_size, size, out, error);
-    error = "unsupported compression '" + compression + "'";
-    return false;
 }
 
 }  // namespace ltm::recorder

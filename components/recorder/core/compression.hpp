@@ -26,9 +26,8 @@ class Compressor {
     Compressor& operator=(const Compressor&) = delete;
 
     Compression kind() const { return kind_; }
-    // Replaces out with the compressed bytes; false (with error set) on failure.
-    bool compress(const std::uint8_t* in, std::size_t size, std::vector<std::uint8_t>& out,
-                  std::string& error);
+    // Replaces out with the compressed bytes; throws std::runtime_error when the library fails.
+    void compress(const std::uint8_t* in, std::size_t size, std::vector<std::uint8_t>& out);
 
   private:
     Compression kind_;
@@ -37,9 +36,10 @@ class Compressor {
 };
 
 // Decompresses a chunk's records. `compression` is the name read from the file and `size` the
-// Chunk's uncompressed_size; out is resized to exactly `size` bytes. On failure returns false
-// with a short reason in error (unknown compression, corrupt stream, size mismatch).
-bool decompress(const std::string& compression, const std::uint8_t* in, std::size_t in_size,
-                std::uint64_t size, std::vector<std::uint8_t>& out, std::string& error);
+// Chunk's uncompressed_size; out is resized to exactly `size` bytes. Throws common::FormatError
+// ("zstd: the frame is cut short", "bz2: unsupported compression") when the bytes cannot be
+// decompressed to that size.
+void decompress(const std::string& compression, const std::uint8_t* in, std::size_t in_size,
+                std::uint64_t size, std::vector<std::uint8_t>& out);
 
 }  // namespace ltm::recorder

@@ -4,6 +4,8 @@
 
 #include <random>
 
+#include "common/core/io_error.hpp"
+
 namespace ltm::recorder {
 namespace {
 
@@ -31,14 +33,13 @@ TEST(Compression, RoundTripsEveryKind) {
         for (std::size_t n : {0u, 1u, 1000u, 5000000u}) {
             const auto in = sample(n, static_cast<std::uint32_t>(n));
             std::vector<std::uint8_t> packed, out;
-            std::string err;
-            ASSERT_TRUE(comp.compress(in.data(), in.size(), packed, err)) << err;
+            ASSERT_NO_THROW(comp.compress(in.data(), in.size(), packed));
             if (kind != Compression::kNone && n == 5000000u) {
                 EXPECT_LT(packed.size(), n / 2);
             }
-            ASSERT_TRUE(
-                decompress(compression_name(kind), packed.data(), packed.size(), n, out, err))
-                << compression_name(kind) << " " << n << ": " << err;
+            ASSERT_NO_THROW(
+                decompress(compression_name(kind), packed.data(), packed.size(), n, out))
+                << compression_name(kind) << " " << n;
             EXPECT_EQ(out, in);
         }
     }
@@ -49,25 +50,30 @@ TEST(Compression, DetectsDamageAndWrongSizes) {
     for (const Compression kind : {Compression::kZstd, Compression::kLz4}) {
         Compressor comp(kind, 0);
         std::vector<std::uint8_t> packed, out;
-        std::string err;
-        ASSERT_TRUE(comp.compress(in.data(), in.size(), packed, err));
-        EXPECT_FALSE(decompress(compression_name(kind), packed.data(), packed.size(), in.size() + 1,
-                                out, err));
-        EXPECT_FALSE(err.empty());
-        EXPECT_FALSE(decompress(compression_name(kind), packed.data(), packed.size() / 2, in.size(),
-                                out, err));
-        err.clear();
+        ASSERT_NO_THROW(comp.compress(in.data(), in.size(), packed));
+        const std::string name = compression_name(kind);
+        try {
+            decompress(name, packed.data(), packed.size(), in.size() + 1, out);
+            ADD_FAILURE() << "a wrong size was accepted";
+        } catch (const common::FormatError& e) {
+            EXPECT_EQ(std::string(e.what()).rfind(name + ": ", 0), 0u) << e.what();
+        }
+        EXPECT_THROW(decompress(name, packed.data(), packed.size() / 2, in.size(), out),
+                     common::FormatError);
         auto broken = packed;
         broken[0] ^= 0xFF;  // frame magic
-        EXPECT_FALSE(
-            decompress(compression_name(kind), broken.data(), broken.size(), in.size(), out, err));
-        EXPECT_FALSE(err.empty());
+        EXPECT_THROW(decompress(name, broken.data(), broken.size(), in.size(), out),
+                     common::FormatError);
     }
     std::vector<std::uint8_t> out;
-    std::string err;
-    EXPECT_FALSE(decompress("bz2", in.data(), in.size(), in.size(), out, err));
-    EXPECT_NE(err.find("bz2"), std::string::npos);
-    EXPECT_FALSE(decompress("zstd", in.data(), 10, std::uint64_t{1} << 40, out, err));
+    try {
+        decompress("bz2", in.data(), in.size(), in.size(), out);
+        ADD_FAILURE() << "bz2 was accepted";
+    } catch (const common::FormatError& e) {
+        EXPECT_STREQ(e.what(), "bz2: unsupported compression");
+    }
+    EXPECT_THROW(decompress("zstd", in.data(), 10, std::uint64_t{1} << 40, out),
+                 common::FormatError);
 }
 
 }  // namespace

@@ -112,7 +112,8 @@ bool McapReader::open_summary() {
     std::vector<std::uint8_t> summary;
     file_->read(footer_.summary_start, footer_at - footer_.summary_start, summary);
     if (footer_.summary_crc != 0) {
-        std::uint32_t crc = common::crc32_update(common::crc32_init(), summary.data(), summary.size());
+        std::uint32_t crc =
+            common::crc32_update(common::crc32_init(), summary.data(), summary.size());
         crc = common::crc32_final(common::crc32_update(crc, tail.data(), kRecordPrefix + 16));
         if (crc != footer_.summary_crc) {
             char buf[160];

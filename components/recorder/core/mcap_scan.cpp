@@ -54,21 +54,24 @@ std::string describe_op(std::uint8_t op) {
     return buf;
 }
 
-void decode_chunk(const std::uint8_t* content, std::size_t size, bool check_crc,
-                  ChunkRecord& chunk, std::vector<std::uint8_t>& records) {
+void decode_chunk(const std::uint8_t* content, std::size_t size, bool check_crc, ChunkRecord& chunk,
+                  std::vector<std::uint8_t>& records) {
     parse_chunk(content, size, chunk);
     const std::uint64_t at = static_cast<std::uint64_t>(chunk.records - content);
-    std::string error;
-    if (!decompress(chunk.compression, chunk.records, static_cast<std::size_t>(chunk.records_size),
-                    chunk.uncompressed_size, records, error)) {
-        throw common::FormatError("Chunk record", "records", at, "cannot decompress (" + error + ")");
+    try {
+        decompress(chunk.compression, chunk.records, static_cast<std::size_t>(chunk.records_size),
+                   chunk.uncompressed_size, records);
+    } catch (const common::FormatError& e) {
+        throw common::FormatError("Chunk record", "records", at,
+                                  std::string("cannot decompress (") + e.what() + ")");
     }
     if (check_crc && chunk.uncompressed_crc != 0) {
         const std::uint32_t got = common::crc32(records.data(), records.size());
         if (got != chunk.uncompressed_crc) {
             throw common::FormatError("Chunk record", "records", at,
-                                      "CRC mismatch (stored " + common::hex32(chunk.uncompressed_crc) +
-                                          ", computed " + common::hex32(got) + ")");
+                                      "CRC mismatch (stored " +
+                                          common::hex32(chunk.uncompressed_crc) + ", computed " +
+                                          common::hex32(got) + ")");
         }
     }
 }
@@ -334,7 +337,8 @@ class Scanner {
                             parse_message(rc, rn, m);
                         } catch (const common::FormatError& e) {
                             if (bad_inner.empty()) {
-                                bad_inner = "Message at +" + std::to_string(off) + ": " + describe(e);
+                                bad_inner =
+                                    "Message at +" + std::to_string(off) + ": " + describe(e);
                             }
                             return;
                         }
@@ -347,7 +351,8 @@ class Scanner {
         } catch (const common::FormatError& e) {
             if (bad_inner.empty()) bad_inner = describe(e);
         }
-        if (!bad_inner.empty()) problem("Chunk" + at + ": malformed records inside (" + bad_inner + ")");
+        if (!bad_inner.empty())
+            problem("Chunk" + at + ": malformed records inside (" + bad_inner + ")");
         r_.chunks.push_back(info);
         ++r_.statistics.chunk_count;
         if (options_.check_message_indexes) {

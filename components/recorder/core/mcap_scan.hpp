@@ -45,8 +45,8 @@ struct ChunkInfo {
 
 // Decodes one Chunk record's content (prefix excluded) into its uncompressed records, checking
 // the CRC when asked and stored. Throws common::FormatError (source "Chunk record").
-void decode_chunk(const std::uint8_t* content, std::size_t size, bool check_crc,
-                  ChunkRecord& chunk, std::vector<std::uint8_t>& records);
+void decode_chunk(const std::uint8_t* content, std::size_t size, bool check_crc, ChunkRecord& chunk,
+                  std::vector<std::uint8_t>& records);
 
 // Calls fn(opcode, content, content_length, record_offset) for each record of a buffer of
 // records. Throws common::FormatError (source "records", offset within the buffer) at a record

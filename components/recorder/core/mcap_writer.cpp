@@ -158,9 +158,10 @@ WriteStatus McapWriter::write_chunk() {
     rec.compression = compression_name(config_.compression);
     const std::vector<std::uint8_t>* body = &chunk_;
     if (config_.compression != Compression::kNone) {
-        std::string err;
-        if (!compressor_.compress(chunk_.data(), chunk_.size(), compressed_, err)) {
-            return fail(0, "compression failed: " + err, good_pos, good_crc);
+        try {
+            compressor_.compress(chunk_.data(), chunk_.size(), compressed_);
+        } catch (const std::runtime_error& e) {
+            return fail(0, std::string("compression failed: ") + e.what(), good_pos, good_crc);
         }
         body = &compressed_;
     }
@@ -256,8 +257,8 @@ bool McapWriter::write_tail() {
     const std::size_t footer_begin = tail.size();
     write_footer(tail, Footer{summary_start, summary_offset_start, 0});
     // The summary CRC covers the summary, the summary offsets and the footer up to summary_crc.
-    const std::uint32_t crc =
-        common::crc32(tail.data() + summary_begin, footer_begin + kRecordPrefix + 16 - summary_begin);
+    const std::uint32_t crc = common::crc32(tail.data() + summary_begin,
+                                            footer_begin + kRecordPrefix + 16 - summary_begin);
     std::memcpy(tail.data() + footer_begin + kRecordPrefix + 16, &crc, 4);
     tail.insert(tail.end(), kMcapMagic, kMcapMagic + kMagicSize);
     return write_bytes(tail.data(), tail.size());
