@@ -4,6 +4,7 @@
 //   tool: --flag: problem
 // A tool declares its options, calls parse() and then does its work:
 //   CLI::App app{"what the tool does", "ltm_tool"};
+//   cli::configure(app);  // before the options: their defaults apply to each
 //   app.add_option("--frames", frames, "how many")->check(cli::at_least(1));
 //   if (const int code = cli::parse(app, argc, argv); code >= 0) return code;
 #include <CLI/CLI.hpp>

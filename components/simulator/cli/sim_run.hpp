@@ -1,10 +1,9 @@
 #pragma once
-// `ltm_sim SCENARIO.yaml [--seed N] [--session K] [--frames A:B] [--sensor NAME] --out DIR`:
-// one session of a scenario written as a KITTI-layout folder with its ground truth.
+// `ltm_sim SCENARIO.yaml [--seed N] [--session K] [--frames A:B] [--sensor NAME] [--quiet]
+// --out DIR`: one session of a scenario written as a KITTI-layout folder with its ground truth.
 #include <cstdint>
 #include <limits>
 #include <string>
-#include <vector>
 
 #include "simulator/core/scenario.hpp"
 
