@@ -52,24 +52,46 @@ void check_pcd_header(const std::string& path) {
     if (keys["SIZE"].size() != nf || keys["TYPE"].size() != nf ||
         (!keys["COUNT"].empty() && keys["COUNT"].size() != nf))
         throw IoError(path, "PCD header: FIELDS, SIZE, TYPE and COUNT differ in length");
-    std::size_t step = 0;
+    // Counts as digits only (atol would wrap a huge POINTS into a small or negative one).
+    auto count = [&](const std::string& text, std::uint64_t max, const char* what) {
+        if (text.empty() || text.size() > 10 || text.find_first_not_of("0123456789") != std::string::npos ||
+            std::stoull(text) > max)
+            throw IoError(path, std::string("PCD header: bad ") + what + " '" + text.substr(0, 32) + "'");
+        return std::stoull(text);
+    };
+    constexpr std::uint64_t kMaxU32 = 0xffffffffu;
+    std::uint64_t step = 0;
     for (std::size_t i = 0; i < nf; ++i) {
-        const long size = std::atol(keys["SIZE"][i].c_str());
-        const long count = keys["COUNT"].empty() ? 1 : std::atol(keys["COUNT"][i].c_str());
+        const std::uint64_t size = count(keys["SIZE"][i], 8, "SIZE");
+        const std::uint64_t n = keys["COUNT"].empty() ? 1 : count(keys["COUNT"][i], 65535, "COUNT");
         if (size != 1 && size != 2 && size != 4 && size != 8) throw IoError(path, "PCD header: bad SIZE");
-        if (count < 1) throw IoError(path, "PCD header: bad COUNT");
-        step += static_cast<std::size_t>(size * count);
+        if (n < 1) throw IoError(path, "PCD header: bad COUNT");
+        step += size * n;
     }
-    const long points = std::atol(keys["POINTS"][0].c_str());
-    if (points < 0) throw IoError(path, "PCD header: bad POINTS");
-    if (keys["DATA"][0] == "binary") {
-        const auto file_size = std::filesystem::file_size(path);
-        const std::size_t need = header_bytes + static_cast<std::size_t>(points) * step;
-        if (file_size < need)
+    const std::uint64_t points = count(keys["POINTS"][0], kMaxU32, "POINTS");
+    const std::uint64_t width = count(keys["WIDTH"][0], kMaxU32, "WIDTH");
+    const std::uint64_t height = keys["HEIGHT"].empty() ? 1 : count(keys["HEIGHT"][0], kMaxU32, "HEIGHT");
+    if (width * height != points)
+        throw IoError(path, "PCD header: WIDTH x HEIGHT is not POINTS");
+    const std::uint64_t file_size = std::filesystem::file_size(path);
+    const std::uint64_t data_bytes = file_size > header_bytes ? file_size - header_bytes : 0;
+    const std::string& data = keys["DATA"][0];
+    // What PCL allocates (points x step) must be backed by the file: every byte when binary, a
+    // character a point when ascii, a generous compression ratio when binary_compressed.
+    if (data == "binary") {
+        if (data_bytes < points * step)
             throw IoError(path, "truncated: " + std::to_string(file_size) + " bytes, header says " +
-                                    std::to_string(need));
-    } else if (keys["DATA"][0] != "ascii" && keys["DATA"][0] != "binary_compressed") {
-        throw IoError(path, "PCD header: unknown DATA '" + keys["DATA"][0] + "'");
+                                    std::to_string(header_bytes + points * step));
+    } else if (data == "ascii") {
+        if (points > data_bytes)
+            throw IoError(path, "truncated: " + std::to_string(points) + " points in " +
+                                    std::to_string(data_bytes) + " bytes of text");
+    } else if (data == "binary_compressed") {
+        if (points * step > 1024 * data_bytes)
+            throw IoError(path, "truncated: " + std::to_string(points * step) + " bytes of points in " +
+                                    std::to_string(data_bytes) + " compressed bytes");
+    } else {
+        throw IoError(path, "PCD header: unknown DATA '" + data.substr(0, 32) + "'");
     }
 }
 
