@@ -96,11 +96,11 @@ option_without_value() {
     local err rc
     err="$("$LTM" run robot_composed.yaml --out 2>&1)"
     rc=$?
-    [ "$rc" = 2 ] && [ "$(echo "$err" | wc -l)" = 1 ] && [[ "$err" == *"--out needs a value"* ]] ||
+    [ "$rc" = 2 ] && [ "$(echo "$err" | wc -l)" = 1 ] && [[ "$err" == *"--out: needs a value"* ]] ||
         { echo "  rc=$rc: $err"; return 1; }
     err="$("$LTM" record --topics /a -o 2>&1)"
     rc=$?
-    [ "$rc" = 2 ] && [[ "$err" == *"-o needs a value"* ]] || { echo "  rc=$rc: $err"; return 1; }
+    [ "$rc" = 2 ] && [[ "$err" == *"-o: needs a value"* ]] || { echo "  rc=$rc: $err"; return 1; }
     err="$("$LTM" replay x.mcap --remap /a 2>&1)"
     rc=$?
     [ "$rc" = 2 ] && [[ "$err" == *"FROM:=TO"* ]] || { echo "  rc=$rc: $err"; return 1; }
