@@ -46,6 +46,17 @@ void check_pcd_header(const std::string& path) {
         while (ss >> v) keys[key].push_back(v);
         if (key == "DATA") break;
     }
+    // PCL reads on after DATA while lines are empty, comments or start like a header key, and
+    // parses those again as header lines; such a line is refused here.
+    static const char* const kPclKeys[] = {"VERSION", "FIELDS", "COLUMNS", "SIZE", "TYPE", "COUNT",
+                                           "WIDTH", "HEIGHT", "VIEWPOINT", "POINTS", "DATA"};
+    for (int more = 0; more < 64 && std::getline(in, line); ++more) {
+        if (line.empty() || line[0] == '#') continue;
+        for (const char* k : kPclKeys)
+            if (line.rfind(k, 0) == 0)
+                throw IoError(path, std::string("PCD header: a ") + k + " line after DATA");
+        break;
+    }
     for (const char* k : {"FIELDS", "SIZE", "TYPE", "WIDTH", "POINTS", "DATA"})
         if (keys[k].empty()) throw IoError(path, std::string("PCD header has no ") + k + " line");
     const std::size_t nf = keys["FIELDS"].size();
