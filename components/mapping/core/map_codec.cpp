@@ -175,11 +175,16 @@ void local_map_file(IO& io, M& m, D& d) {
         const std::uint64_t at_size = h.offset();
         h.value(d.voxel_size, "voxel_size");
         h.check(d.voxel_size > 0.0f, "voxel_size", at_size, "must be > 0");
+        const std::uint64_t at_times = h.offset();
         h.value(n_times, "observation_count");
         const std::uint64_t at_voxels = h.offset();
         h.value(n_voxels, "voxel_count");
         if constexpr (IO::kReading) {
-            // Each voxel takes at least 74 bytes: a count beyond the file is damage.
+            // Each time takes 8 bytes, each voxel at least 74: a count beyond the file is damage.
+            h.check(n_times <= h.source_size() / 8, "observation_count", at_times, [&] {
+                return std::to_string(n_times) + " observation times cannot fit in a file of " +
+                       std::to_string(h.source_size()) + " bytes";
+            });
             h.check(n_voxels <= h.source_size() / 74, "voxel_count", at_voxels, [&] {
                 return std::to_string(n_voxels) + " voxels cannot fit in a file of " +
                        std::to_string(h.source_size()) + " bytes";

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <random>
 
+#include "common/core/crc32.hpp"
 #include "common/core/file_io.hpp"
 #include "mapping/core/map_codec.hpp"
 #include "mapping/core/test_data.hpp"
@@ -286,6 +287,29 @@ TEST(MapStore, InvalidFieldIsNamedWithItsOffset) {
         FAIL();
     } catch (const MapFormatError& e) {
         EXPECT_EQ(e.field(), "voxels[8].life.last_seen");
+    }
+}
+
+TEST(MapStore, CountsBeyondTheFileAreRefusedBeforeAnythingIsAllocated) {
+    std::string bytes = encode_local_map({4, 0, random_local_map(3, 1, 50)});
+    // The header section (from byte 16): node, session, id, revision, finished, two poses, the
+    // box, the voxel size, then the observation count at byte 285. A count of 2^32 - 1 under a
+    // valid checksum.
+    const std::uint32_t huge = 0xFFFFFFFFu;
+    std::memcpy(&bytes[285], &huge, 4);
+    std::uint32_t length = 0;
+    std::memcpy(&length, &bytes[12], 4);
+    const std::uint32_t crc = common::crc32(bytes.data() + 16, length);
+    std::memcpy(&bytes[16 + length], &crc, 4);
+    try {
+        decode_local_map(bytes, "lm.bin");
+        FAIL() << "a count beyond the file was accepted";
+    } catch (const MapFormatError& e) {
+        EXPECT_EQ(e.field(), "header.observation_count");
+        EXPECT_EQ(e.offset(), 285u);
+        EXPECT_NE(std::string(e.what()).find("4294967295 observation times cannot fit"),
+                  std::string::npos)
+            << e.what();
     }
 }
 
