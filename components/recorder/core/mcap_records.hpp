@@ -76,7 +76,6 @@ struct MessageRecord {
     const std::uint8_t* data = nullptr;
     std::size_t size = 0;
 };
-inline constexpr std::size_t kMessageFixed = 2 + 4 + 8 + 8;
 
 // A Chunk record's fields; records points into the record's bytes (compressed).
 struct ChunkRecord {
