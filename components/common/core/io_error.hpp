@@ -3,13 +3,16 @@
 #include <stdexcept>
 #include <string>
 
+#include "common/core/one_line.hpp"
+
 namespace ltm::common {
 
-// A file that cannot be read or written. what() is one line naming the file and the problem.
+// A file that cannot be read or written. what() is one line naming the file and the problem
+// (control characters quoted from the file are escaped).
 class IoError : public std::runtime_error {
   public:
     IoError(const std::string& path, const std::string& problem)
-        : std::runtime_error(path + ": " + problem), path_(path) {}
+        : std::runtime_error(one_line(path + ": " + problem)), path_(path) {}
     const std::string& path() const { return path_; }
 
   private:

@@ -21,7 +21,8 @@ namespace {
 
 std::string lower_extension(const std::string& path) {
     std::string ext = std::filesystem::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return std::tolower(c); });
     return ext;
 }
 
@@ -36,20 +37,27 @@ void check_pcd_header(const std::string& path) {
     for (int lineno = 1; lineno <= 64 && std::getline(in, line); ++lineno) {
         header_bytes += line.size() + 1;
         if (line.empty() || line[0] == '#') continue;
+        // PCL splits header lines at spaces, tabs and carriage returns only.
+        for (const char c : line)
+            if ((static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\r') || c == 0x7f)
+                throw IoError(path, "PCD header line " + std::to_string(lineno) +
+                                        ": a control character");
         std::istringstream ss(line);
         std::string key, v;
         ss >> key;
-        if (key != "VERSION" && key != "FIELDS" && key != "SIZE" && key != "TYPE" && key != "COUNT" &&
-            key != "WIDTH" && key != "HEIGHT" && key != "VIEWPOINT" && key != "POINTS" && key != "DATA")
-            throw IoError(path, "not a PCD file: unexpected '" + key.substr(0, 32) + "' on header line " +
-                                    std::to_string(lineno));
+        if (key != "VERSION" && key != "FIELDS" && key != "SIZE" && key != "TYPE" &&
+            key != "COUNT" && key != "WIDTH" && key != "HEIGHT" && key != "VIEWPOINT" &&
+            key != "POINTS" && key != "DATA")
+            throw IoError(path, "not a PCD file: unexpected '" + key.substr(0, 32) +
+                                    "' on header line " + std::to_string(lineno));
         while (ss >> v) keys[key].push_back(v);
         if (key == "DATA") break;
     }
     // PCL reads on after DATA while lines are empty, comments or start like a header key, and
     // parses those again as header lines; such a line is refused here.
-    static const char* const kPclKeys[] = {"VERSION", "FIELDS", "COLUMNS", "SIZE", "TYPE", "COUNT",
-                                           "WIDTH", "HEIGHT", "VIEWPOINT", "POINTS", "DATA"};
+    static const char* const kPclKeys[] = {"VERSION",   "FIELDS", "COLUMNS", "SIZE",
+                                           "TYPE",      "COUNT",  "WIDTH",   "HEIGHT",
+                                           "VIEWPOINT", "POINTS", "DATA"};
     for (int more = 0; more < 64 && std::getline(in, line); ++more) {
         if (line.empty() || line[0] == '#') continue;
         for (const char* k : kPclKeys)
@@ -65,9 +73,10 @@ void check_pcd_header(const std::string& path) {
         throw IoError(path, "PCD header: FIELDS, SIZE, TYPE and COUNT differ in length");
     // Counts as digits only (atol would wrap a huge POINTS into a small or negative one).
     auto count = [&](const std::string& text, std::uint64_t max, const char* what) {
-        if (text.empty() || text.size() > 10 || text.find_first_not_of("0123456789") != std::string::npos ||
-            std::stoull(text) > max)
-            throw IoError(path, std::string("PCD header: bad ") + what + " '" + text.substr(0, 32) + "'");
+        if (text.empty() || text.size() > 10 ||
+            text.find_first_not_of("0123456789") != std::string::npos || std::stoull(text) > max)
+            throw IoError(path,
+                          std::string("PCD header: bad ") + what + " '" + text.substr(0, 32) + "'");
         return std::stoull(text);
     };
     constexpr std::uint64_t kMaxU32 = 0xffffffffu;
@@ -75,15 +84,16 @@ void check_pcd_header(const std::string& path) {
     for (std::size_t i = 0; i < nf; ++i) {
         const std::uint64_t size = count(keys["SIZE"][i], 8, "SIZE");
         const std::uint64_t n = keys["COUNT"].empty() ? 1 : count(keys["COUNT"][i], 65535, "COUNT");
-        if (size != 1 && size != 2 && size != 4 && size != 8) throw IoError(path, "PCD header: bad SIZE");
+        if (size != 1 && size != 2 && size != 4 && size != 8)
+            throw IoError(path, "PCD header: bad SIZE");
         if (n < 1) throw IoError(path, "PCD header: bad COUNT");
         step += size * n;
     }
     const std::uint64_t points = count(keys["POINTS"][0], kMaxU32, "POINTS");
     const std::uint64_t width = count(keys["WIDTH"][0], kMaxU32, "WIDTH");
-    const std::uint64_t height = keys["HEIGHT"].empty() ? 1 : count(keys["HEIGHT"][0], kMaxU32, "HEIGHT");
-    if (width * height != points)
-        throw IoError(path, "PCD header: WIDTH x HEIGHT is not POINTS");
+    const std::uint64_t height =
+        keys["HEIGHT"].empty() ? 1 : count(keys["HEIGHT"][0], kMaxU32, "HEIGHT");
+    if (width * height != points) throw IoError(path, "PCD header: WIDTH x HEIGHT is not POINTS");
     const std::uint64_t file_size = std::filesystem::file_size(path);
     const std::uint64_t data_bytes = file_size > header_bytes ? file_size - header_bytes : 0;
     const std::string& data = keys["DATA"][0];
@@ -98,9 +108,25 @@ void check_pcd_header(const std::string& path) {
             throw IoError(path, "truncated: " + std::to_string(points) + " points in " +
                                     std::to_string(data_bytes) + " bytes of text");
     } else if (data == "binary_compressed") {
+        // Two sizes lead the data; PCL trusts them (an uncompressed size of 0 made it copy from a
+        // null buffer).
+        std::uint32_t sizes[2] = {0, 0};  // compressed, uncompressed
+        in.clear();
+        in.seekg(static_cast<std::streamoff>(header_bytes));
+        if (!in.read(reinterpret_cast<char*>(sizes), sizeof sizes))
+            throw IoError(path, "truncated: no compressed sizes after the header");
+        if (sizes[1] != points * step)
+            throw IoError(path, "PCD binary_compressed: uncompressed size " +
+                                    std::to_string(sizes[1]) + ", the header says " +
+                                    std::to_string(points * step));
+        if (sizes[0] > data_bytes - sizeof sizes || (sizes[1] > 0 && sizes[0] == 0))
+            throw IoError(path, "PCD binary_compressed: compressed size " +
+                                    std::to_string(sizes[0]) + " does not fit the " +
+                                    std::to_string(data_bytes - sizeof sizes) + " bytes after it");
         if (points * step > 1024 * data_bytes)
-            throw IoError(path, "truncated: " + std::to_string(points * step) + " bytes of points in " +
-                                    std::to_string(data_bytes) + " compressed bytes");
+            throw IoError(path, "truncated: " + std::to_string(points * step) +
+                                    " bytes of points in " + std::to_string(data_bytes) +
+                                    " compressed bytes");
     } else {
         throw IoError(path, "PCD header: unknown DATA '" + data.substr(0, 32) + "'");
     }
@@ -119,7 +145,8 @@ void check_ply_header(const std::string& path) {
     auto type_size = [](const std::string& t) -> std::size_t {
         if (t == "char" || t == "uchar" || t == "int8" || t == "uint8") return 1;
         if (t == "short" || t == "ushort" || t == "int16" || t == "uint16") return 2;
-        if (t == "int" || t == "uint" || t == "float" || t == "int32" || t == "uint32" || t == "float32")
+        if (t == "int" || t == "uint" || t == "float" || t == "int32" || t == "uint32" ||
+            t == "float32")
             return 4;
         if (t == "double" || t == "float64") return 8;
         return 0;
@@ -150,13 +177,14 @@ void check_ply_header(const std::string& path) {
         if (key == "format") {
             std::string version;
             ss >> format >> version;
-            if (format != "ascii" && format != "binary_little_endian" && format != "binary_big_endian")
+            if (format != "ascii" && format != "binary_little_endian" &&
+                format != "binary_big_endian")
                 fail(lineno, "unknown format");
         } else if (key == "element") {
             Element e;
             std::string count;
-            if (!(ss >> e.name >> count) || count.find_first_not_of("0123456789") != std::string::npos ||
-                count.size() > 12)
+            if (!(ss >> e.name >> count) ||
+                count.find_first_not_of("0123456789") != std::string::npos || count.size() > 12)
                 fail(lineno, "expected 'element NAME COUNT'");
             e.count = std::stoull(count);
             elements.push_back(e);
@@ -170,11 +198,13 @@ void check_ply_header(const std::string& path) {
                 ss >> count_type >> item_type >> name;
                 if (type_size(count_type) == 0 || type_size(item_type) == 0 || name.empty())
                     fail(lineno, "expected 'property list COUNT_TYPE TYPE NAME' with known types");
-                if (e.name == "vertex") fail(lineno, "a list property in the vertex element is not supported");
+                if (e.name == "vertex")
+                    fail(lineno, "a list property in the vertex element is not supported");
                 e.min_row += type_size(count_type);
             } else {
                 ss >> name;
-                if (type_size(type) == 0 || name.empty()) fail(lineno, "expected 'property TYPE NAME' with a known type");
+                if (type_size(type) == 0 || name.empty())
+                    fail(lineno, "expected 'property TYPE NAME' with a known type");
                 e.min_row += type_size(type);
             }
             ++e.properties;
@@ -241,7 +271,8 @@ PointCloud load_cloud_file(const std::string& path) {
     }
     // Accept float64 coordinates (some PLY writers) by converting them first.
     const std::size_t n = static_cast<std::size_t>(blob.width) * blob.height;
-    if (blob.data.size() < n * blob.point_step) throw IoError(path, "point data shorter than its header says");
+    if (blob.data.size() < n * blob.point_step)
+        throw IoError(path, "point data shorter than its header says");
     bool doubles = false;
     for (const auto& f : layout.fields)
         if ((f.name == "x" || f.name == "y" || f.name == "z") && f.datatype == 8) doubles = true;
@@ -259,7 +290,8 @@ PointCloud load_cloud_file(const std::string& path) {
         for (const PointField* f : fx) {  // each coordinate float32 or float64, inside the point
             if (!f) throw IoError(path, "no x y z fields");
             if (f->datatype != 7 && f->datatype != 8)
-                throw IoError(path, "field '" + f->name + "' is datatype " + std::to_string(f->datatype) +
+                throw IoError(path, "field '" + f->name + "' is datatype " +
+                                        std::to_string(f->datatype) +
                                         ", need float32 (7) or float64 (8)");
             if (f->offset + std::size_t{f->datatype == 8 ? 8u : 4u} > blob.point_step)
                 throw IoError(path, "field '" + f->name + "' does not fit in point_step " +

@@ -94,6 +94,7 @@ void MessageCursor::load(std::size_t rank) {
     }
     ++chunks_loaded_;
     // Malformed records inside are skipped (the scan and verify report them).
+    std::size_t early = 0;
     try {
         for_each_record(
             l->bytes.data(), l->bytes.size(),
@@ -113,6 +114,12 @@ void MessageCursor::load(std::size_t rank) {
                         parse_message(c, n, m);
                         if (m.log_time < start_time_ || m.log_time > end_time_) return;
                         if (!all_channels_ && !wanted_.count(m.channel_id)) return;
+                        // Earlier than its chunk says: merging by the chunks' start times could
+                        // no longer keep log-time order.
+                        if (m.log_time < ci.start_time) {
+                            ++early;
+                            return;
+                        }
                         l->entries.push_back(Loaded::Entry{m.log_time, off});
                     }
                 } catch (const common::FormatError&) {
@@ -121,6 +128,10 @@ void MessageCursor::load(std::size_t rank) {
     } catch (const common::FormatError& e) {
         reader_->report("Chunk " + at + ": " + describe(e) + "; read up to there");
     }
+    if (early > 0)
+        reader_->report("Chunk " + at + ": " + std::to_string(early) +
+                        " messages logged before the chunk's start time " +
+                        std::to_string(ci.start_time) + "; skipped");
     if (l->entries.empty()) return;
     std::sort(l->entries.begin(), l->entries.end(), [](const auto& a, const auto& b) {
         return a.log_time != b.log_time ? a.log_time < b.log_time : a.offset < b.offset;
