@@ -12,10 +12,11 @@
 namespace {
 
 class Bytes {
-public:
+  public:
     void u8(std::uint8_t v) { b_.push_back(v); }
     void align(std::size_t n) {
-        while ((b_.size() - 4) % n) b_.push_back(0);  // alignment counts from after the encapsulation
+        while ((b_.size() - 4) % n)
+            b_.push_back(0);  // alignment counts from after the encapsulation
     }
     void u32(std::uint32_t v) {
         align(4);
@@ -29,15 +30,16 @@ public:
     }
     std::vector<std::uint8_t>& data() { return b_; }
 
-private:
+  private:
     std::vector<std::uint8_t> b_;
 };
 
 // Takes the serialized form of one sample written on `topic` (same participant, so matching is
 // immediate and synchronous).
 std::vector<std::uint8_t> serialize(dds_entity_t participant, const ltm::msg::PointCloud2& sample) {
-    const dds_entity_t topic = dds_create_topic(participant, &sensor_msgs_msg_dds__PointCloud2__desc,
-                                                "rt/ltm_test/cdr_layout", nullptr, nullptr);
+    const dds_entity_t topic =
+        dds_create_topic(participant, &sensor_msgs_msg_dds__PointCloud2__desc,
+                         "rt/ltm_test/cdr_layout", nullptr, nullptr);
     EXPECT_GT(topic, 0);
     dds_qos_t* qos = dds_create_qos();
     dds_qset_reliability(qos, DDS_RELIABILITY_RELIABLE, DDS_SECS(1));
@@ -64,7 +66,8 @@ TEST(CdrLayout, PointCloud2MatchesHandWrittenRos2Layout) {
     // A private domain on loopback only: no traffic leaves this process.
     const dds_domainid_t domain_id = 211;
     const char* xml =
-        "<CycloneDDS><Domain Id=\"any\"><General><Interfaces><NetworkInterface name=\"lo\"/></Interfaces>"
+        "<CycloneDDS><Domain Id=\"any\"><General><Interfaces><NetworkInterface "
+        "name=\"lo\"/></Interfaces>"
         "<AllowMulticast>false</AllowMulticast></General></Domain></CycloneDDS>";
     const dds_entity_t domain = dds_create_domain(domain_id, xml);
     ASSERT_GT(domain, 0) << dds_strretcode(domain);
@@ -92,21 +95,30 @@ TEST(CdrLayout, PointCloud2MatchesHandWrittenRos2Layout) {
 
     Bytes b;
     // Encapsulation: CDR_LE (0x0001); options carry the number of padding bytes at the end.
-    b.u8(0x00); b.u8(0x01); b.u8(0x00); b.u8(0x00);
-    b.i32(1700000000);                // header.stamp.sec
-    b.u32(123456789u);                // header.stamp.nanosec
-    b.str("velodyne");                // header.frame_id
-    b.u32(1);                         // height
-    b.u32(2);                         // width
-    b.u32(2);                         // fields: length
-    b.str("x"); b.u32(0); b.u8(7); b.u32(1);          // name, offset, datatype, count
-    b.str("intensity"); b.u32(12); b.u8(7); b.u32(1);
-    b.u8(0);                          // is_bigendian
-    b.u32(16);                        // point_step
-    b.u32(32);                        // row_step
-    b.u32(5);                         // data: length
+    b.u8(0x00);
+    b.u8(0x01);
+    b.u8(0x00);
+    b.u8(0x00);
+    b.i32(1700000000);  // header.stamp.sec
+    b.u32(123456789u);  // header.stamp.nanosec
+    b.str("velodyne");  // header.frame_id
+    b.u32(1);           // height
+    b.u32(2);           // width
+    b.u32(2);           // fields: length
+    b.str("x");
+    b.u32(0);
+    b.u8(7);
+    b.u32(1);  // name, offset, datatype, count
+    b.str("intensity");
+    b.u32(12);
+    b.u8(7);
+    b.u32(1);
+    b.u8(0);    // is_bigendian
+    b.u32(16);  // point_step
+    b.u32(32);  // row_step
+    b.u32(5);   // data: length
     for (std::uint8_t v : payload) b.u8(v);
-    b.u8(1);                          // is_dense
+    b.u8(1);  // is_dense
     std::vector<std::uint8_t>& expected = b.data();
     const std::size_t padding = (4 - (expected.size() % 4)) % 4;
 
@@ -119,7 +131,8 @@ TEST(CdrLayout, PointCloud2MatchesHandWrittenRos2Layout) {
         EXPECT_EQ(actual[3] & 0x3, padding);
         expected[3] = actual[3];
     }
-    EXPECT_EQ(std::vector<std::uint8_t>(actual.begin(), actual.begin() + expected.size()), expected);
+    EXPECT_EQ(std::vector<std::uint8_t>(actual.begin(), actual.begin() + expected.size()),
+              expected);
     dds_delete(participant);
     dds_delete(domain);
 }

@@ -25,7 +25,7 @@
 namespace ltm::runtime {
 
 class Component {
-public:
+  public:
     virtual ~Component() = default;
     virtual void on_activate() {}
     virtual void on_deactivate() {}

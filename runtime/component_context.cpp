@@ -6,8 +6,12 @@
 
 namespace ltm::runtime {
 
-ComponentContext::ComponentContext(Domain& domain, const LaunchConfig& config, const ComponentSpec& spec)
-    : domain_(domain), config_(config), spec_(spec), params_(spec.params, config.file, spec.name),
+ComponentContext::ComponentContext(Domain& domain, const LaunchConfig& config,
+                                   const ComponentSpec& spec)
+    : domain_(domain),
+      config_(config),
+      spec_(spec),
+      params_(spec.params, config.file, spec.name),
       log_(spec.name) {
     for (const auto& [from, to] : spec_.remaps) remap_used_[from] = false;
 }
@@ -46,11 +50,13 @@ void ComponentContext::check_remaps_used() const {
         for (const auto& w : writers_) topics += (topics.empty() ? "" : ", ") + w->topic;
         throw ConfigError(config_.file, spec_.remap_lines.at(from), spec_.name + ".remap." + from,
                           "component type '" + spec_.type + "' has no topic '" + from + "'" +
-                              (topics.empty() ? std::string(" (it has no topics)") : " (its topics: " + topics + ")"));
+                              (topics.empty() ? std::string(" (it has no topics)")
+                                              : " (its topics: " + topics + ")"));
     }
 }
 
-dds_entity_t ComponentContext::topic_entity(const std::string& topic, const dds_topic_descriptor_t* desc,
+dds_entity_t ComponentContext::topic_entity(const std::string& topic,
+                                            const dds_topic_descriptor_t* desc,
                                             std::string& absolute) {
     absolute = resolve(topic);
     try {
@@ -69,7 +75,8 @@ ComponentContext::Subscription& ComponentContext::add_reader(const std::string& 
     fill_reader_qos(profile, qos.get());
     s.reader = check_dds(dds_create_reader(domain_.participant(), t, qos.get(), nullptr),
                          "creating a reader for " + s.topic);
-    s.readcond = check_dds(dds_create_readcondition(s.reader, DDS_ANY_STATE), "creating a read condition");
+    s.readcond =
+        check_dds(dds_create_readcondition(s.reader, DDS_ANY_STATE), "creating a read condition");
     subscriptions_.push_back(std::move(s));
     attach(subscriptions_.back());
     return subscriptions_.back();
@@ -87,7 +94,8 @@ void ComponentContext::attach_waitset(dds_entity_t waitset) {
 }
 
 void ComponentContext::attach(const Subscription& s) {
-    if (waitset_ > 0) check_dds(dds_waitset_attach(waitset_, s.readcond, 0), "attaching a read condition");
+    if (waitset_ > 0)
+        check_dds(dds_waitset_attach(waitset_, s.readcond, 0), "attaching a read condition");
 }
 
 QosProfile ComponentContext::role_profile(const std::string& topic, TopicRole declared) {
@@ -99,18 +107,21 @@ void ComponentContext::subscribe_raw(const std::string& topic, const dds_topic_d
     add_reader(topic, desc, profile).raw_handler = std::move(handler);
 }
 
-void ComponentContext::subscribe_reader(dds_entity_t reader, std::function<void(const void*)> handler) {
+void ComponentContext::subscribe_reader(dds_entity_t reader,
+                                        std::function<void(const void*)> handler) {
     Subscription s;
     s.topic = "(built-in)";
     s.reader = reader;
-    s.readcond = check_dds(dds_create_readcondition(reader, DDS_ANY_STATE), "creating a read condition");
+    s.readcond =
+        check_dds(dds_create_readcondition(reader, DDS_ANY_STATE), "creating a read condition");
     s.handler = std::move(handler);
     subscriptions_.push_back(std::move(s));
     attach(subscriptions_.back());
 }
 
 template <class Handle>
-std::shared_ptr<Handle> ComponentContext::make_writer(const std::string& topic, const dds_topic_descriptor_t* desc,
+std::shared_ptr<Handle> ComponentContext::make_writer(const std::string& topic,
+                                                      const dds_topic_descriptor_t* desc,
                                                       const QosProfile& profile) {
     auto h = std::make_shared<Handle>();
     const dds_entity_t t = topic_entity(topic, desc, h->topic);
@@ -184,7 +195,8 @@ bool write_with_backpressure(WriterHandle& h, Write&& write) {
             return true;
         }
         // Back-pressure: a keep-all reader's queue is full. Retry until it drains or we stop.
-        if (rc == DDS_RETCODE_TIMEOUT && h.profile.keep_all && !(h.stop && h.stop->load())) continue;
+        if (rc == DDS_RETCODE_TIMEOUT && h.profile.keep_all && !(h.stop && h.stop->load()))
+            continue;
         const std::uint64_t n = ++h.failed;
         if (n <= 3 || (n & (n - 1)) == 0)
             h.log.warn("publishing on " + h.topic + " failed (" + dds_strretcode(rc) + "), " +

@@ -5,12 +5,12 @@
 
 #include <atomic>
 #include <chrono>
-#include <deque>
 #include <condition_variable>
-#include <mutex>
+#include <deque>
 #include <functional>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -24,7 +24,7 @@
 namespace ltm::runtime {
 
 class ComponentContext {
-public:
+  public:
     ComponentContext(Domain& domain, const LaunchConfig& config, const ComponentSpec& spec);
     ~ComponentContext();
     ComponentContext(const ComponentContext&) = delete;
@@ -39,9 +39,11 @@ public:
 
     // An input: `handler` runs on this component's thread for every sample taken.
     template <class T>
-    void subscribe(const std::string& topic, TopicRole role, std::function<void(const T&)> handler) {
-        add_subscription(topic, role, MessageTraits<T>::descriptor(),
-                         [h = std::move(handler)](const void* sample) { h(*static_cast<const T*>(sample)); });
+    void subscribe(const std::string& topic, TopicRole role,
+                   std::function<void(const T&)> handler) {
+        add_subscription(
+            topic, role, MessageTraits<T>::descriptor(),
+            [h = std::move(handler)](const void* sample) { h(*static_cast<const T*>(sample)); });
     }
     // An output.
     template <class T>
@@ -51,11 +53,13 @@ public:
 
     // Raw CDR input (serialized bytes with their encapsulation header), for recording: `qos` as
     // given. May also be called while running, from the component's own thread.
-    using RawHandler = std::function<void(const std::vector<std::uint8_t>& cdr, const dds_sample_info_t& info)>;
-    void subscribe_raw(const std::string& topic, const dds_topic_descriptor_t* desc, const QosProfile& qos,
-                       RawHandler handler);
+    using RawHandler =
+        std::function<void(const std::vector<std::uint8_t>& cdr, const dds_sample_info_t& info)>;
+    void subscribe_raw(const std::string& topic, const dds_topic_descriptor_t* desc,
+                       const QosProfile& qos, RawHandler handler);
     // Raw CDR output, for replay.
-    std::shared_ptr<RawWriterHandle> advertise_raw(const std::string& topic, const dds_topic_descriptor_t* desc,
+    std::shared_ptr<RawWriterHandle> advertise_raw(const std::string& topic,
+                                                   const dds_topic_descriptor_t* desc,
                                                    const QosProfile& qos);
     // A reader the component created itself (a built-in topic such as DCPSPublication); the
     // context owns it from now on and `handler` gets each valid sample on the component's thread.
@@ -91,8 +95,8 @@ public:
         dds_entity_t reader = 0;
         dds_entity_t readcond = 0;
         std::function<void(const void*)> handler;  // typed samples
-        RawHandler raw_handler;                     // or raw CDR
-        std::vector<std::uint8_t> buffer;           // reused by raw takes
+        RawHandler raw_handler;                    // or raw CDR
+        std::vector<std::uint8_t> buffer;          // reused by raw takes
     };
     struct Timer {
         double period_s = 0;
@@ -106,16 +110,20 @@ public:
     void request_stop();
     const std::vector<std::shared_ptr<WriterHandle>>& writers() const { return writers_; }
 
-private:
-    void add_subscription(const std::string& topic, TopicRole role, const dds_topic_descriptor_t* desc,
+  private:
+    void add_subscription(const std::string& topic, TopicRole role,
+                          const dds_topic_descriptor_t* desc,
                           std::function<void(const void*)> handler);
     std::shared_ptr<WriterHandle> add_writer(const std::string& topic, TopicRole role,
                                              const dds_topic_descriptor_t* desc);
     [[noreturn]] void fail_topic(const std::string& topic, const std::string& problem) const;
-    dds_entity_t topic_entity(const std::string& topic, const dds_topic_descriptor_t* desc, std::string& absolute);
-    Subscription& add_reader(const std::string& topic, const dds_topic_descriptor_t* desc, const QosProfile& profile);
+    dds_entity_t topic_entity(const std::string& topic, const dds_topic_descriptor_t* desc,
+                              std::string& absolute);
+    Subscription& add_reader(const std::string& topic, const dds_topic_descriptor_t* desc,
+                             const QosProfile& profile);
     template <class Handle>
-    std::shared_ptr<Handle> make_writer(const std::string& topic, const dds_topic_descriptor_t* desc,
+    std::shared_ptr<Handle> make_writer(const std::string& topic,
+                                        const dds_topic_descriptor_t* desc,
                                         const QosProfile& profile);
 
     Domain& domain_;

@@ -20,8 +20,8 @@ struct Loan {
 
 }  // namespace
 
-ComponentRunner::ComponentRunner(Domain& domain, const LaunchConfig& config, const ComponentSpec& spec,
-                                 const ComponentInfo& info)
+ComponentRunner::ComponentRunner(Domain& domain, const LaunchConfig& config,
+                                 const ComponentSpec& spec, const ComponentInfo& info)
     : spec_(spec) {
     ctx_ = std::make_unique<ComponentContext>(domain, config, spec_);
     try {
@@ -29,12 +29,14 @@ ComponentRunner::ComponentRunner(Domain& domain, const LaunchConfig& config, con
     } catch (const ConfigError&) {
         throw;
     } catch (const std::exception& e) {
-        throw ConfigError(config.file, spec.line, spec.name, std::string("cannot configure: ") + e.what());
+        throw ConfigError(config.file, spec.line, spec.name,
+                          std::string("cannot configure: ") + e.what());
     }
     ctx_->params().check_all_used();
     ctx_->check_remaps_used();
     waitset_ = check_dds(dds_create_waitset(domain.participant()), "creating a waitset");
-    guard_ = check_dds(dds_create_guardcondition(domain.participant()), "creating a guard condition");
+    guard_ =
+        check_dds(dds_create_guardcondition(domain.participant()), "creating a guard condition");
     check_dds(dds_waitset_attach(waitset_, guard_, 0), "attaching the guard condition");
     ctx_->attach_waitset(waitset_);
 }
@@ -85,7 +87,8 @@ bool ComponentRunner::idle() const {
 void ComponentRunner::fail(const std::string& where, const std::string& what) {
     {
         std::lock_guard<std::mutex> lock(mutex_);
-        failure_ = "component '" + spec_.name + "' (" + spec_.type + ") threw in " + where + ": " + what;
+        failure_ =
+            "component '" + spec_.name + "' (" + spec_.type + ") threw in " + where + ": " + what;
     }
     ctx_->log().error(failure());
     failed_ = true;
@@ -163,7 +166,8 @@ void ComponentRunner::run() {
                 }
                 if (now >= t.next) {
                     t.fn();
-                    const auto period = std::chrono::duration_cast<clock::duration>(std::chrono::duration<double>(t.period_s));
+                    const auto period = std::chrono::duration_cast<clock::duration>(
+                        std::chrono::duration<double>(t.period_s));
                     t.next += period;
                     now = clock::now();
                     if (t.next < now) t.next = now + period;  // fell behind: do not burst
@@ -182,7 +186,8 @@ void ComponentRunner::run() {
             timeout = 0;
         } else if (next != clock::time_point::max()) {
             timeout = std::max<dds_duration_t>(
-                0, std::chrono::duration_cast<std::chrono::nanoseconds>(next - clock::now()).count());
+                0,
+                std::chrono::duration_cast<std::chrono::nanoseconds>(next - clock::now()).count());
         }
         if (timeout != 0) {
             waiting_ = true;

@@ -16,7 +16,7 @@
 namespace ltm::runtime {
 
 class ComponentRunner {
-public:
+  public:
     // Configures the component (runs its constructor). Throws ConfigError for bad parameters,
     // unknown remaps or a constructor that refused.
     ComponentRunner(Domain& domain, const LaunchConfig& config, const ComponentSpec& spec,
@@ -25,8 +25,8 @@ public:
     ComponentRunner(const ComponentRunner&) = delete;
     ComponentRunner& operator=(const ComponentRunner&) = delete;
 
-    void start();                 // activate: the thread starts and calls on_activate
-    void request_stop();          // deactivate + shutdown follow on the component's thread
+    void start();         // activate: the thread starts and calls on_activate
+    void request_stop();  // deactivate + shutdown follow on the component's thread
     // Waits until the thread has run on_shutdown and ended; false when the deadline passed.
     bool wait_done(std::chrono::steady_clock::time_point deadline);
 
@@ -40,9 +40,9 @@ public:
     bool idle() const;
     std::uint64_t dispatched() const { return dispatched_; }
 
-private:
+  private:
     void run();
-    bool dispatch_one_round();    // takes at most one sample from each reader; true when any
+    bool dispatch_one_round();  // takes at most one sample from each reader; true when any
     void fail(const std::string& where, const std::string& what);
 
     ComponentSpec spec_;

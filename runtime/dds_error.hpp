@@ -8,12 +8,12 @@ namespace ltm::runtime {
 
 // A DDS call that failed: what() names the call and dds_strretcode's reason.
 class DdsError : public std::runtime_error {
-public:
+  public:
     DdsError(const std::string& what, dds_return_t rc)
         : std::runtime_error(what + ": " + dds_strretcode(rc)), rc_(rc) {}
     dds_return_t code() const { return rc_; }
 
-private:
+  private:
     dds_return_t rc_;
 };
 

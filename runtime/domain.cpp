@@ -13,8 +13,9 @@ std::string cyclone_xml(const DdsSettings& dds) {
     // Socket buffers large enough for bursts of 1-2 MB scans (the OS may grant less: rmem_max).
     // Warnings off: a writer waiting for a full keep-all reader (the `stream` role's intended
     // back-pressure) would be reported every max_blocking_s. Errors still show.
-    std::string xml = "<CycloneDDS><Domain Id=\"any\"><Internal><SocketReceiveBufferSize max=\"8MiB\"/>"
-                      "</Internal><Tracing><Verbosity>severe</Verbosity></Tracing>";
+    std::string xml =
+        "<CycloneDDS><Domain Id=\"any\"><Internal><SocketReceiveBufferSize max=\"8MiB\"/>"
+        "</Internal><Tracing><Verbosity>severe</Verbosity></Tracing>";
     if (!dds.custom) return xml + "</Domain></CycloneDDS>";
     xml += "<General>";
     if (!dds.interfaces.empty()) {
@@ -22,9 +23,11 @@ std::string cyclone_xml(const DdsSettings& dds) {
         for (const auto& i : dds.interfaces) xml += "<NetworkInterface name=\"" + i + "\"/>";
         xml += "</Interfaces>";
         // Loopback only: large datagrams cost nothing there and cut per-fragment overhead.
-        if (dds.interfaces.size() == 1 && dds.interfaces[0] == "lo") xml += "<MaxMessageSize>65000B</MaxMessageSize>";
+        if (dds.interfaces.size() == 1 && dds.interfaces[0] == "lo")
+            xml += "<MaxMessageSize>65000B</MaxMessageSize>";
     }
-    xml += std::string("<AllowMulticast>") + (dds.multicast ? "default" : "false") + "</AllowMulticast>";
+    xml += std::string("<AllowMulticast>") + (dds.multicast ? "default" : "false") +
+           "</AllowMulticast>";
     xml += "</General><Discovery>";
     if (!dds.peers.empty()) {
         xml += "<ParticipantIndex>auto</ParticipantIndex><MaxAutoParticipantIndex>" +
@@ -45,7 +48,8 @@ void cyclone_log(void*, const dds_log_data_t* data) {
     // The text after Cyclone's own header (time, domain, thread).
     const std::size_t skip = data->hdrsize <= data->size ? data->hdrsize : 0;
     std::string message(data->message + skip, data->size - skip);
-    while (!message.empty() && (message.back() == '\n' || message.back() == ' ')) message.pop_back();
+    while (!message.empty() && (message.back() == '\n' || message.back() == ' '))
+        message.pop_back();
     message.erase(0, message.find_first_not_of(' '));
     if (message.find("could not deliver data on time") != std::string::npos) return;
     const bool error = (data->priority & (DDS_LC_ERROR | DDS_LC_FATAL)) != 0;
@@ -61,8 +65,10 @@ Domain::Domain(const LaunchConfig& config) : config_(config), domain_id_(config.
     if (const char* uri = std::getenv("CYCLONEDDS_URI"); uri && *uri) xml += std::string(",") + uri;
     if (config.dds.custom) xml += "," + cyclone_xml(config.dds);
     domain_ = dds_create_domain(static_cast<dds_domainid_t>(domain_id_), xml.c_str());
-    check_dds(domain_, "creating DDS domain " + std::to_string(domain_id_) + " (launch config dds settings, CYCLONEDDS_URI)");
-    participant_ = dds_create_participant(static_cast<dds_domainid_t>(domain_id_), nullptr, nullptr);
+    check_dds(domain_, "creating DDS domain " + std::to_string(domain_id_) +
+                           " (launch config dds settings, CYCLONEDDS_URI)");
+    participant_ =
+        dds_create_participant(static_cast<dds_domainid_t>(domain_id_), nullptr, nullptr);
     if (participant_ < 0) {
         const dds_return_t rc = participant_;
         if (domain_ > 0) dds_delete(domain_);
@@ -81,7 +87,8 @@ dds_entity_t Domain::topic(const std::string& dds_name, const dds_topic_descript
     if (it != topics_.end()) {
         if (it->second.second != desc)
             throw std::invalid_argument("topic '" + dds_name + "' already has type " +
-                                        it->second.second->m_typename + ", not " + desc->m_typename);
+                                        it->second.second->m_typename + ", not " +
+                                        desc->m_typename);
         return it->second.first;
     }
     const dds_entity_t t = dds_create_topic(participant_, desc, dds_name.c_str(), nullptr, nullptr);

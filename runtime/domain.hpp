@@ -11,7 +11,7 @@
 namespace ltm::runtime {
 
 class Domain {
-public:
+  public:
     // Creates the domain (with the launch config's DDS settings) and the participant.
     // Throws DdsError naming what failed.
     explicit Domain(const LaunchConfig& config);
@@ -30,7 +30,7 @@ public:
     QosProfile profile(const std::string& absolute_name, TopicRole declared) const;
     TopicRole role(const std::string& absolute_name, TopicRole declared) const;
 
-private:
+  private:
     const LaunchConfig& config_;
     int domain_id_;
     dds_entity_t domain_ = 0, participant_ = 0;

@@ -39,16 +39,18 @@ Host::Host(LaunchConfig config) : config_(std::move(config)) {
     for (const auto& spec : config_.components) {
         if (!ComponentRegistry::instance().find(spec.type)) {
             std::string known;
-            for (const auto* i : ComponentRegistry::instance().all()) known += (known.empty() ? "" : ", ") + i->type;
+            for (const auto* i : ComponentRegistry::instance().all())
+                known += (known.empty() ? "" : ", ") + i->type;
             throw ConfigError(config_.file, spec.type_line, spec.name + ".type",
                               "unknown component type '" + spec.type + "' (known: " + known + ")");
         }
     }
     domain_ = std::make_unique<Domain>(config_);
     for (const auto& spec : config_.components)
-        runners_.push_back(std::make_unique<ComponentRunner>(*domain_, config_, spec,
-                                                             *ComponentRegistry::instance().find(spec.type)));
-    startup_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        runners_.push_back(std::make_unique<ComponentRunner>(
+            *domain_, config_, spec, *ComponentRegistry::instance().find(spec.type)));
+    startup_ms_ =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
 Host::~Host() {
@@ -77,15 +79,15 @@ bool Host::handle_failures(int& exit_code) {
         const std::string name = r->name();
         if (config_.on_error == ErrorPolicy::kRestart && restarts_[name] < config_.max_restarts) {
             ++restarts_[name];
-            g_log.warn("restarting component '" + name + "' (" + std::to_string(restarts_[name]) + " of " +
-                       std::to_string(config_.max_restarts) + ")");
+            g_log.warn("restarting component '" + name + "' (" + std::to_string(restarts_[name]) +
+                       " of " + std::to_string(config_.max_restarts) + ")");
             const ComponentSpec* spec = nullptr;
             for (const auto& s : config_.components)
                 if (s.name == name) spec = &s;
             r.reset();
             try {
-                r = std::make_unique<ComponentRunner>(*domain_, config_, *spec,
-                                                      *ComponentRegistry::instance().find(spec->type));
+                r = std::make_unique<ComponentRunner>(
+                    *domain_, config_, *spec, *ComponentRegistry::instance().find(spec->type));
                 r->start();
             } catch (const std::exception& e) {
                 g_log.error("component '" + name + "' cannot restart: " + e.what());
@@ -107,8 +109,8 @@ int Host::run() {
     using clock = std::chrono::steady_clock;
     for (auto& r : runners_) r->start();
     g_log.info("running " + std::to_string(runners_.size()) + " components on DDS domain " +
-               std::to_string(config_.domain_id) + " (configured in " + std::to_string(static_cast<int>(startup_ms_)) +
-               " ms)");
+               std::to_string(config_.domain_id) + " (configured in " +
+               std::to_string(static_cast<int>(startup_ms_)) + " ms)");
     bool has_sources = false;
     for (const auto& r : runners_) has_sources |= r->is_source();
 
@@ -124,7 +126,8 @@ int Host::run() {
         const timespec wait{0, 50'000'000};
         const int sig = sigtimedwait(&set, nullptr, &wait);
         if (sig == SIGINT || sig == SIGTERM) {
-            g_log.info(std::string("received ") + (sig == SIGINT ? "SIGINT" : "SIGTERM") + ", shutting down");
+            g_log.info(std::string("received ") + (sig == SIGINT ? "SIGINT" : "SIGTERM") +
+                       ", shutting down");
             signalled = true;
             break;
         }
@@ -149,23 +152,28 @@ int Host::run() {
             if (!idle || total != idle_count) {
                 idle_count = total;
                 idle_since = clock::now();
-            } else if (clock::now() - idle_since > std::chrono::duration<double>(config_.idle_exit_s)) {
-                g_log.info("no input for " + std::to_string(config_.idle_exit_s) + " s; shutting down");
+            } else if (clock::now() - idle_since >
+                       std::chrono::duration<double>(config_.idle_exit_s)) {
+                g_log.info("no input for " + std::to_string(config_.idle_exit_s) +
+                           " s; shutting down");
                 break;
             }
         }
     }
 
     // A signal asks for a quick stop; a finished run may take longer for final saves.
-    const double budget = (signalled || stop_) ? config_.shutdown_timeout_s : config_.finish_timeout_s;
-    const auto deadline = clock::now() + std::chrono::duration_cast<clock::duration>(std::chrono::duration<double>(budget));
+    const double budget =
+        (signalled || stop_) ? config_.shutdown_timeout_s : config_.finish_timeout_s;
+    const auto deadline = clock::now() + std::chrono::duration_cast<clock::duration>(
+                                             std::chrono::duration<double>(budget));
     // Stop in launch-config order (sources first, sinks last): what a component publishes while
     // it shuts down (its last local map, say) still reaches the components listed after it.
     bool timed_out = false;
     for (auto& r : runners_) {
         r->request_stop();
         if (!r->wait_done(deadline)) {
-            g_log.error("component '" + r->name() + "' did not stop within " + std::to_string(budget) + " s");
+            g_log.error("component '" + r->name() + "' did not stop within " +
+                        std::to_string(budget) + " s");
             timed_out = true;
             break;
         }
@@ -173,7 +181,8 @@ int Host::run() {
     if (timed_out) {
         // Give the others what is left of a short grace to flush their outputs.
         for (auto& r : runners_) r->request_stop();
-        for (auto& r : runners_) r->wait_done(std::max(deadline, clock::now()) + std::chrono::milliseconds(200));
+        for (auto& r : runners_)
+            r->wait_done(std::max(deadline, clock::now()) + std::chrono::milliseconds(200));
     }
     if (timed_out) {
         // A stuck component thread cannot be joined; leave without running destructors.

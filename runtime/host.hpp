@@ -13,7 +13,7 @@
 namespace ltm::runtime {
 
 class Host {
-public:
+  public:
     // Creates the participant and configures every component. Throws ConfigError (one line:
     // file:line: key: problem) or DdsError; nothing runs before every component is configured.
     explicit Host(LaunchConfig config);
@@ -30,7 +30,7 @@ public:
     std::size_t component_count() const { return runners_.size(); }
     double startup_ms() const { return startup_ms_; }
 
-private:
+  private:
     bool all_drained();
     bool handle_failures(int& exit_code);
 

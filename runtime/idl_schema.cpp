@@ -19,7 +19,9 @@ void inline_file(const std::string& file, std::set<std::string>& done, std::stri
             inline_file(line.substr(10, end - 10), done, out);
             continue;
         }
-        if (line.rfind("#ifndef ", 0) == 0 || line.rfind("#define ", 0) == 0 || line.rfind("#endif", 0) == 0) continue;
+        if (line.rfind("#ifndef ", 0) == 0 || line.rfind("#define ", 0) == 0 ||
+            line.rfind("#endif", 0) == 0)
+            continue;
         body += line + "\n";
     }
     out += "// " + file + "\n" + body;

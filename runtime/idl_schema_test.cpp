@@ -26,5 +26,6 @@ TEST(IdlSchema, SelfContainedInDependencyOrder) {
 }
 
 TEST(IdlSchema, EveryKnownTypeHasItsIdl) {
-    for (const auto& t : known_message_types()) EXPECT_FALSE(idl_schema_text(t.ros_name).empty()) << t.ros_name;
+    for (const auto& t : known_message_types())
+        EXPECT_FALSE(idl_schema_text(t.ros_name).empty()) << t.ros_name;
 }

@@ -32,8 +32,8 @@ void check_keys(const std::string& file, const YAML::Node& map, const std::strin
 }
 
 template <class T>
-T scalar(const std::string& file, const YAML::Node& map, const std::string& key, const std::string& where,
-         const T& fallback) {
+T scalar(const std::string& file, const YAML::Node& map, const std::string& key,
+         const std::string& where, const T& fallback) {
     const YAML::Node& cmap = map;
     const YAML::Node n = cmap[key];
     if (!n.IsDefined() || n.IsNull()) return fallback;
@@ -46,16 +46,18 @@ T scalar(const std::string& file, const YAML::Node& map, const std::string& key,
     }
 }
 
-std::vector<std::string> string_list(const std::string& file, const YAML::Node& map, const std::string& key,
-                                     const std::string& where) {
+std::vector<std::string> string_list(const std::string& file, const YAML::Node& map,
+                                     const std::string& key, const std::string& where) {
     const YAML::Node& cmap = map;
     const YAML::Node n = cmap[key];
     std::vector<std::string> out;
     if (!n.IsDefined() || n.IsNull()) return out;
     if (!n.IsSequence())
-        throw ConfigError(file, key_line(map, key), where + "." + key, "expected a list of strings");
+        throw ConfigError(file, key_line(map, key), where + "." + key,
+                          "expected a list of strings");
     for (const auto& e : n) {
-        if (!e.IsScalar()) throw ConfigError(file, line_of(e), where + "." + key, "expected a list of strings");
+        if (!e.IsScalar())
+            throw ConfigError(file, line_of(e), where + "." + key, "expected a list of strings");
         out.push_back(e.as<std::string>());
     }
     return out;
@@ -65,7 +67,8 @@ std::vector<std::string> string_list(const std::string& file, const YAML::Node& 
 std::string map_scalar(const YAML::Node& map, const std::string& key) {
     if (!map.IsMap()) return "";
     for (const auto& kv : map)
-        if (kv.first.as<std::string>() == key && kv.second.IsScalar()) return kv.second.as<std::string>();
+        if (kv.first.as<std::string>() == key && kv.second.IsScalar())
+            return kv.second.as<std::string>();
     return "";
 }
 
@@ -106,7 +109,8 @@ void apply_override(YAML::Node root, const std::string& arg) {
                 const std::string rest = key.substr(dot + 1);
                 if (rest.rfind("remap.", 0) == 0 && rest.size() > 6) {
                     if (!value.IsScalar())
-                        throw ConfigError("<command line>", 0, "--set " + key, "expected a topic name");
+                        throw ConfigError("<command line>", 0, "--set " + key,
+                                          "expected a topic name");
                     YAML::Node remap = entry["remap"];
                     if (!remap.IsMap()) {
                         remap = YAML::Node(YAML::NodeType::Map);
@@ -132,26 +136,32 @@ void apply_override(YAML::Node root, const std::string& arg) {
     set_dotted(root, key, value);
 }
 
-QosProfile load_profile(const std::string& file, const YAML::Node& n, const std::string& where, QosProfile p) {
+QosProfile load_profile(const std::string& file, const YAML::Node& n, const std::string& where,
+                        QosProfile p) {
     if (!n.IsMap()) throw ConfigError(file, line_of(n), where, "expected a map");
-    check_keys(file, n, where, {"reliable", "transient_local", "keep_all", "depth", "max_blocking_s"});
+    check_keys(file, n, where,
+               {"reliable", "transient_local", "keep_all", "depth", "max_blocking_s"});
     p.reliable = scalar<bool>(file, n, "reliable", where, p.reliable);
     p.transient_local = scalar<bool>(file, n, "transient_local", where, p.transient_local);
     p.keep_all = scalar<bool>(file, n, "keep_all", where, p.keep_all);
     p.depth = scalar<int>(file, n, "depth", where, p.depth);
     p.max_blocking_s = scalar<double>(file, n, "max_blocking_s", where, p.max_blocking_s);
-    if (p.depth < 1) throw ConfigError(file, key_line(n, "depth"), where + ".depth", "must be at least 1");
+    if (p.depth < 1)
+        throw ConfigError(file, key_line(n, "depth"), where + ".depth", "must be at least 1");
     if (p.max_blocking_s <= 0)
-        throw ConfigError(file, key_line(n, "max_blocking_s"), where + ".max_blocking_s", "must be positive");
+        throw ConfigError(file, key_line(n, "max_blocking_s"), where + ".max_blocking_s",
+                          "must be positive");
     return p;
 }
 
 }  // namespace
 
-LaunchConfig load_launch_config(const std::string& path, const std::vector<std::string>& overrides) {
+LaunchConfig load_launch_config(const std::string& path,
+                                const std::vector<std::string>& overrides) {
     LaunchConfig cfg;
     cfg.file = path;
-    if (!std::filesystem::is_regular_file(path)) throw ConfigError(path, 0, "launch config", "no such file");
+    if (!std::filesystem::is_regular_file(path))
+        throw ConfigError(path, 0, "launch config", "no such file");
     YAML::Node root;
     try {
         root = YAML::LoadFile(path);
@@ -160,14 +170,16 @@ LaunchConfig load_launch_config(const std::string& path, const std::vector<std::
     } catch (const YAML::Exception& e) {
         throw ConfigError(path, 0, "yaml", e.what());
     }
-    if (!root.IsMap()) throw ConfigError(path, 1, "launch config", "expected a map at the top level");
+    if (!root.IsMap())
+        throw ConfigError(path, 1, "launch config", "expected a map at the top level");
     check_plain_keys(root, path);
     for (const auto& o : overrides) apply_override(root, o);
     const std::string& f = path;
     const YAML::Node& croot = root;  // const access: a missing key must not be inserted
     check_keys(f, root, "",
-               {"domain_id", "namespace", "dds", "qos", "topics", "on_component_error", "max_restarts",
-                "exit_when_sources_done", "idle_exit_s", "shutdown_timeout_s", "finish_timeout_s", "components"});
+               {"domain_id", "namespace", "dds", "qos", "topics", "on_component_error",
+                "max_restarts", "exit_when_sources_done", "idle_exit_s", "shutdown_timeout_s",
+                "finish_timeout_s", "components"});
 
     cfg.domain_id = scalar<int>(f, root, "domain_id", "", 0);
     if (cfg.domain_id < 0 || cfg.domain_id > 232)
@@ -190,7 +202,8 @@ LaunchConfig load_launch_config(const std::string& path, const std::vector<std::
 
     if (const YAML::Node dds = croot["dds"]; dds.IsDefined() && !dds.IsNull()) {
         if (!dds.IsMap()) throw ConfigError(f, line_of(dds), "dds", "expected a map");
-        check_keys(f, dds, "dds", {"interfaces", "peers", "multicast", "max_participant_index", "extra_xml"});
+        check_keys(f, dds, "dds",
+                   {"interfaces", "peers", "multicast", "max_participant_index", "extra_xml"});
         cfg.dds.custom = true;
         cfg.dds.interfaces = string_list(f, dds, "interfaces", "dds");
         cfg.dds.peers = string_list(f, dds, "peers", "dds");
@@ -207,11 +220,13 @@ LaunchConfig load_launch_config(const std::string& path, const std::vector<std::
         for (const auto& kv : qos) {
             TopicRole r;
             parse_role(kv.first.as<std::string>(), r);
-            cfg.qos[r] = load_profile(f, kv.second, "qos." + kv.first.as<std::string>(), cfg.qos[r]);
+            cfg.qos[r] =
+                load_profile(f, kv.second, "qos." + kv.first.as<std::string>(), cfg.qos[r]);
         }
     }
     if (const YAML::Node topics = croot["topics"]; topics.IsDefined() && !topics.IsNull()) {
-        if (!topics.IsMap()) throw ConfigError(f, line_of(topics), "topics", "expected a map of name: role");
+        if (!topics.IsMap())
+            throw ConfigError(f, line_of(topics), "topics", "expected a map of name: role");
         for (const auto& kv : topics) {
             const std::string name = kv.first.as<std::string>();
             TopicRole r;
@@ -228,7 +243,8 @@ LaunchConfig load_launch_config(const std::string& path, const std::vector<std::
                           "expected a non-empty list of components");
     std::set<std::string> names;
     for (const auto& entry : comps) {
-        if (!entry.IsMap()) throw ConfigError(f, line_of(entry), "components", "each entry must be a map");
+        if (!entry.IsMap())
+            throw ConfigError(f, line_of(entry), "components", "each entry must be a map");
         check_keys(f, entry, "components[]", {"name", "type", "params", "remap"});
         ComponentSpec spec;
         spec.line = line_of(entry);
@@ -237,11 +253,14 @@ LaunchConfig load_launch_config(const std::string& path, const std::vector<std::
         if (spec.type.empty()) throw ConfigError(f, spec.line, "components[].type", "missing");
         spec.name = scalar<std::string>(f, entry, "name", "components[]", spec.type);
         if (!names.insert(spec.name).second)
-            throw ConfigError(f, key_line(entry, "name"), spec.name, "two components with this name");
-        if (const YAML::Node params = entry["params"]; params.IsDefined()) spec.params.reset(params);
+            throw ConfigError(f, key_line(entry, "name"), spec.name,
+                              "two components with this name");
+        if (const YAML::Node params = entry["params"]; params.IsDefined())
+            spec.params.reset(params);
         if (const YAML::Node remap = entry["remap"]; remap.IsDefined() && !remap.IsNull()) {
             if (!remap.IsMap())
-                throw ConfigError(f, line_of(remap), spec.name + ".remap", "expected a map of from: to");
+                throw ConfigError(f, line_of(remap), spec.name + ".remap",
+                                  "expected a map of from: to");
             for (const auto& kv : remap) {
                 const std::string from = kv.first.as<std::string>();
                 if (!kv.second.IsScalar())

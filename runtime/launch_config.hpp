@@ -16,17 +16,17 @@ struct DdsSettings {
     std::vector<std::string> interfaces;  // e.g. [lo]
     std::vector<std::string> peers;       // unicast discovery peers, e.g. [127.0.0.1]
     bool multicast = true;
-    int max_participant_index = 20;       // unicast discovery probes this many ports a peer
-    std::string extra_xml;                // appended inside <Domain>, for anything else
+    int max_participant_index = 20;  // unicast discovery probes this many ports a peer
+    std::string extra_xml;           // appended inside <Domain>, for anything else
 };
 
 struct ComponentSpec {
-    std::string name;                     // instance name, unique in the host
-    std::string type;                     // registered component type
-    YAML::Node params;                    // the `params:` map (may be null)
+    std::string name;                           // instance name, unique in the host
+    std::string type;                           // registered component type
+    YAML::Node params;                          // the `params:` map (may be null)
     std::map<std::string, std::string> remaps;  // declared topic -> new name
     std::map<std::string, int> remap_lines;     // for error messages
-    int line = 0;                         // line of the entry
+    int line = 0;                               // line of the entry
     int type_line = 0;
 };
 
@@ -35,21 +35,24 @@ enum class ErrorPolicy { kStop, kRestart };
 struct LaunchConfig {
     std::string file;
     int domain_id = 0;
-    std::string ns;                       // namespace of every relative topic name
+    std::string ns;  // namespace of every relative topic name
     DdsSettings dds;
-    std::map<TopicRole, QosProfile> qos;  // a profile for every role
+    std::map<TopicRole, QosProfile> qos;           // a profile for every role
     std::map<std::string, TopicRole> topic_roles;  // absolute name -> role override
     ErrorPolicy on_error = ErrorPolicy::kStop;
     int max_restarts = 3;
-    bool exit_when_sources_done = true;   // stop once every source finished and all input is processed
-    double idle_exit_s = 0.0;             // hosts without sources: stop after this long without input (0: never)
-    double shutdown_timeout_s = 2.0;     // after SIGINT/SIGTERM
-    double finish_timeout_s = 60.0;      // after the sources finished or the idle exit (final saves)
+    bool exit_when_sources_done =
+        true;  // stop once every source finished and all input is processed
+    double idle_exit_s =
+        0.0;  // hosts without sources: stop after this long without input (0: never)
+    double shutdown_timeout_s = 2.0;  // after SIGINT/SIGTERM
+    double finish_timeout_s = 60.0;   // after the sources finished or the idle exit (final saves)
     std::vector<ComponentSpec> components;
 };
 
 // Reads and validates a launch config. `overrides` are "--set" arguments: "name.key=value" sets a
 // parameter of component `name`, "key=value" a top-level key. Throws ConfigError (file:line: key:).
-LaunchConfig load_launch_config(const std::string& path, const std::vector<std::string>& overrides = {});
+LaunchConfig load_launch_config(const std::string& path,
+                                const std::vector<std::string>& overrides = {});
 
 }  // namespace ltm::runtime

@@ -14,7 +14,8 @@ namespace {
 
 std::string write_temp(const std::string& text) {
     static int n = 0;
-    const std::string path = ::testing::TempDir() + "launch_" + std::to_string(::getpid()) + "_" + std::to_string(n++) + ".yaml";
+    const std::string path = ::testing::TempDir() + "launch_" + std::to_string(::getpid()) + "_" +
+                             std::to_string(n++) + ".yaml";
     std::ofstream(path) << text;
     return path;
 }
@@ -73,16 +74,18 @@ TEST(LaunchConfig, ParsesEverySection) {
 }
 
 TEST(LaunchConfig, OverridesFromTheCommandLine) {
-    const LaunchConfig c = load_launch_config(write_temp(kGood), {"player.rate=4", "player.new.deep=x", "domain_id=9"});
+    const LaunchConfig c = load_launch_config(
+        write_temp(kGood), {"player.rate=4", "player.new.deep=x", "domain_id=9"});
     EXPECT_EQ(c.components[0].params["rate"].as<double>(), 4.0);
     EXPECT_EQ(c.components[0].params["new"]["deep"].as<std::string>(), "x");
     EXPECT_EQ(c.domain_id, 9);
 }
 
 TEST(LaunchConfig, RemapsAndTopLevelMapsFromTheCommandLine) {
-    const LaunchConfig c =
-        load_launch_config(write_temp(kGood), {"player.remap.points=/other/points", "trajectory_writer.remap.odometry=/x",
-                                               "dds={interfaces: [lo], multicast: false, peers: [127.0.0.2]}"});
+    const LaunchConfig c = load_launch_config(
+        write_temp(kGood),
+        {"player.remap.points=/other/points", "trajectory_writer.remap.odometry=/x",
+         "dds={interfaces: [lo], multicast: false, peers: [127.0.0.2]}"});
     EXPECT_EQ(c.components[0].remaps.at("points"), "/other/points");
     EXPECT_EQ(c.components[1].remaps.at("odometry"), "/x");
     for (const auto& kv : c.components[0].params) EXPECT_NE(kv.first.as<std::string>(), "remap");
@@ -92,17 +95,22 @@ TEST(LaunchConfig, RemapsAndTopLevelMapsFromTheCommandLine) {
         load_launch_config(write_temp(kGood), {"player.remap.points=[a, b]"});
         FAIL();
     } catch (const ConfigError& e) {
-        EXPECT_EQ(std::string(e.what()), "<command line>:0: --set player.remap.points: expected a topic name");
+        EXPECT_EQ(std::string(e.what()),
+                  "<command line>:0: --set player.remap.points: expected a topic name");
     }
 }
 
 TEST(LaunchConfig, BadConfigurationsNameLineAndKey) {
-    EXPECT_EQ(error_of("domain_id: 1\ncomponentz: []\n"),
-              ":2: componentz: unknown key (known: components, dds, domain_id, exit_when_sources_done, "
-              "finish_timeout_s, idle_exit_s, max_restarts, namespace, on_component_error, qos, shutdown_timeout_s, "
-              "topics)");
-    EXPECT_EQ(error_of("domain_id: x\ncomponents: [{type: a}]\n"), ":1: domain_id: expected an integer");
-    EXPECT_EQ(error_of("components: []\n"), ":1: components: expected a non-empty list of components");
+    EXPECT_EQ(
+        error_of("domain_id: 1\ncomponentz: []\n"),
+        ":2: componentz: unknown key (known: components, dds, domain_id, exit_when_sources_done, "
+        "finish_timeout_s, idle_exit_s, max_restarts, namespace, on_component_error, qos, "
+        "shutdown_timeout_s, "
+        "topics)");
+    EXPECT_EQ(error_of("domain_id: x\ncomponents: [{type: a}]\n"),
+              ":1: domain_id: expected an integer");
+    EXPECT_EQ(error_of("components: []\n"),
+              ":1: components: expected a non-empty list of components");
     EXPECT_EQ(error_of("components:\n  - {type: a, name: x}\n  - {type: b, name: x}\n"),
               ":3: x: two components with this name");
     EXPECT_EQ(error_of("topics: {points: fast}\ncomponents: [{type: a}]\n"),
@@ -113,7 +121,8 @@ TEST(LaunchConfig, BadConfigurationsNameLineAndKey) {
               ":1: qos.sensor.depht: unkn");
     EXPECT_EQ(error_of("components:\n  - type: a\n    parms: {}\n"),
               ":3: components[].parms: unknown key (known: name, params, remap, type)");
-    EXPECT_EQ(error_of("components: [{type: a}]\nbad: [\n"), ":3: yaml: end of sequence flow not found");
+    EXPECT_EQ(error_of("components: [{type: a}]\nbad: [\n"),
+              ":3: yaml: end of sequence flow not found");
 }
 
 TEST(LaunchConfig, MissingFileAndBadOverride) {
@@ -129,7 +138,8 @@ TEST(LaunchConfig, MissingFileAndBadOverride) {
         FAIL();
     } catch (const ConfigError& e) {
         EXPECT_EQ(std::string(e.what()),
-                  "<command line>:0: --set nobody.rate: no component named 'nobody' in the launch config");
+                  "<command line>:0: --set nobody.rate: no component named 'nobody' in the launch "
+                  "config");
     }
 }
 

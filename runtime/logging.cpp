@@ -19,14 +19,15 @@ void log(LogLevel level, const std::string& who, const std::string& message) {
     const auto now = std::chrono::system_clock::now();
     const std::time_t t = std::chrono::system_clock::to_time_t(now);
     const int ms = static_cast<int>(
-        std::chrono::duration_cast<std::chrono::milliseconds>(now.time_since_epoch()).count() % 1000);
+        std::chrono::duration_cast<std::chrono::milliseconds>(now.time_since_epoch()).count() %
+        1000);
     std::tm tm{};
     localtime_r(&t, &tm);
     char stamp[32];
     std::strftime(stamp, sizeof stamp, "%H:%M:%S", &tm);
     // One fprintf per line: lines from different threads do not interleave.
-    std::fprintf(stderr, "%s.%03d %-5s [%s] %s\n", stamp, ms, names[static_cast<int>(level)], who.c_str(),
-                 message.c_str());
+    std::fprintf(stderr, "%s.%03d %-5s [%s] %s\n", stamp, ms, names[static_cast<int>(level)],
+                 who.c_str(), message.c_str());
 }
 
 }  // namespace ltm::runtime

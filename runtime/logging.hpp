@@ -11,7 +11,7 @@ LogLevel log_level();
 void log(LogLevel level, const std::string& who, const std::string& message);
 
 class Logger {
-public:
+  public:
     explicit Logger(std::string who) : who_(std::move(who)) {}
     void debug(const std::string& m) const { log(LogLevel::kDebug, who_, m); }
     void info(const std::string& m) const { log(LogLevel::kInfo, who_, m); }
@@ -19,7 +19,7 @@ public:
     void error(const std::string& m) const { log(LogLevel::kError, who_, m); }
     const std::string& who() const { return who_; }
 
-private:
+  private:
     std::string who_;
 };
 

@@ -5,18 +5,33 @@ namespace {
 
 template <class T>
 MessageTypeInfo info() {
-    return {MessageTraits<T>::ros_name, MessageTraits<T>::descriptor()->m_typename, MessageTraits<T>::descriptor()};
+    return {MessageTraits<T>::ros_name, MessageTraits<T>::descriptor()->m_typename,
+            MessageTraits<T>::descriptor()};
 }
 
 }  // namespace
 
 const std::vector<MessageTypeInfo>& known_message_types() {
     static const std::vector<MessageTypeInfo> types = {
-        info<msg::Time>(), info<msg::Header>(), info<msg::PointCloud2>(), info<msg::Point>(),
-        info<msg::Pose>(), info<msg::PoseStamped>(), info<msg::PoseWithCovarianceStamped>(),
-        info<msg::TransformStamped>(), info<msg::Twist>(), info<msg::Odometry>(), info<msg::Path>(),
-        info<msg::Keyframe>(), info<msg::LocalMap>(), info<msg::LoopClosure>(), info<msg::PoseGraph>(),
-        info<msg::LocalisationStatus>(), info<msg::MapChangeSet>(), info<msg::Mesh>(), info<msg::Status>(),
+        info<msg::Time>(),
+        info<msg::Header>(),
+        info<msg::PointCloud2>(),
+        info<msg::Point>(),
+        info<msg::Pose>(),
+        info<msg::PoseStamped>(),
+        info<msg::PoseWithCovarianceStamped>(),
+        info<msg::TransformStamped>(),
+        info<msg::Twist>(),
+        info<msg::Odometry>(),
+        info<msg::Path>(),
+        info<msg::Keyframe>(),
+        info<msg::LocalMap>(),
+        info<msg::LoopClosure>(),
+        info<msg::PoseGraph>(),
+        info<msg::LocalisationStatus>(),
+        info<msg::MapChangeSet>(),
+        info<msg::Mesh>(),
+        info<msg::Status>(),
         info<msg::MapRequest>(),
     };
     return types;

@@ -24,10 +24,10 @@
 #include "ltm_msgs/msg/LocalisationStatus.h"
 #include "ltm_msgs/msg/LoopClosure.h"
 #include "ltm_msgs/msg/MapChangeSet.h"
+#include "ltm_msgs/msg/MapRequest.h"
 #include "ltm_msgs/msg/Mesh.h"
 #include "ltm_msgs/msg/PlaceDescriptor.h"
 #include "ltm_msgs/msg/PoseGraph.h"
-#include "ltm_msgs/msg/MapRequest.h"
 #include "ltm_msgs/msg/Status.h"
 #include "nav_msgs/msg/Odometry.h"
 #include "nav_msgs/msg/Path.h"
@@ -76,11 +76,11 @@ namespace ltm::runtime {
 template <class T>
 struct MessageTraits;  // descriptor() and ros_name for every top-level message type
 
-#define LTM_MESSAGE_TRAITS(CType, RosName)                                              \
-    template <>                                                                         \
-    struct MessageTraits<CType> {                                                       \
-        static const dds_topic_descriptor_t* descriptor() { return &CType##_desc; }    \
-        static constexpr const char* ros_name = RosName;                                \
+#define LTM_MESSAGE_TRAITS(CType, RosName)                                          \
+    template <>                                                                     \
+    struct MessageTraits<CType> {                                                   \
+        static const dds_topic_descriptor_t* descriptor() { return &CType##_desc; } \
+        static constexpr const char* ros_name = RosName;                            \
     };
 
 LTM_MESSAGE_TRAITS(builtin_interfaces_msg_dds__Time_, "builtin_interfaces/msg/Time")
@@ -89,7 +89,8 @@ LTM_MESSAGE_TRAITS(sensor_msgs_msg_dds__PointCloud2_, "sensor_msgs/msg/PointClou
 LTM_MESSAGE_TRAITS(geometry_msgs_msg_dds__Point_, "geometry_msgs/msg/Point")
 LTM_MESSAGE_TRAITS(geometry_msgs_msg_dds__Pose_, "geometry_msgs/msg/Pose")
 LTM_MESSAGE_TRAITS(geometry_msgs_msg_dds__PoseStamped_, "geometry_msgs/msg/PoseStamped")
-LTM_MESSAGE_TRAITS(geometry_msgs_msg_dds__PoseWithCovarianceStamped_, "geometry_msgs/msg/PoseWithCovarianceStamped")
+LTM_MESSAGE_TRAITS(geometry_msgs_msg_dds__PoseWithCovarianceStamped_,
+                   "geometry_msgs/msg/PoseWithCovarianceStamped")
 LTM_MESSAGE_TRAITS(geometry_msgs_msg_dds__TransformStamped_, "geometry_msgs/msg/TransformStamped")
 LTM_MESSAGE_TRAITS(geometry_msgs_msg_dds__Twist_, "geometry_msgs/msg/Twist")
 LTM_MESSAGE_TRAITS(nav_msgs_msg_dds__Odometry_, "nav_msgs/msg/Odometry")
@@ -106,8 +107,8 @@ LTM_MESSAGE_TRAITS(ltm_msgs_msg_dds__MapRequest_, "ltm_msgs/msg/MapRequest")
 
 // The table of known top-level types: for `--all` recording, replay and `ltm_host --list-types`.
 struct MessageTypeInfo {
-    std::string ros_name;     // "sensor_msgs/msg/PointCloud2"
-    std::string dds_name;     // "sensor_msgs::msg::dds_::PointCloud2_"
+    std::string ros_name;  // "sensor_msgs/msg/PointCloud2"
+    std::string dds_name;  // "sensor_msgs::msg::dds_::PointCloud2_"
     const dds_topic_descriptor_t* descriptor;
 };
 const std::vector<MessageTypeInfo>& known_message_types();

@@ -19,9 +19,11 @@ std::vector<std::string> split_dots(const std::string& key) {
 }
 
 // Every leaf key of a map, dotted; a nested map contributes its own leaves.
-void leaves(const YAML::Node& node, const std::string& prefix, std::vector<std::pair<std::string, YAML::Node>>& out) {
+void leaves(const YAML::Node& node, const std::string& prefix,
+            std::vector<std::pair<std::string, YAML::Node>>& out) {
     for (const auto& kv : node) {
-        const std::string k = prefix.empty() ? kv.first.as<std::string>() : prefix + "." + kv.first.as<std::string>();
+        const std::string k =
+            prefix.empty() ? kv.first.as<std::string>() : prefix + "." + kv.first.as<std::string>();
         if (kv.second.IsMap() && kv.second.size() > 0) {
             leaves(kv.second, k, out);
         } else {
@@ -62,7 +64,8 @@ void check_plain_keys(const YAML::Node& node, const std::string& file) {
     } else if (node.IsMap()) {
         for (const auto& kv : node) {
             if (!kv.first.IsScalar())
-                throw ConfigError(file, kv.first.Mark().line + 1, "yaml", "a key must be plain text");
+                throw ConfigError(file, kv.first.Mark().line + 1, "yaml",
+                                  "a key must be plain text");
             check_plain_keys(kv.second, file);
         }
     }
@@ -93,7 +96,9 @@ std::string expand_env(const std::string& text) {
 }
 
 Parameters::Parameters(YAML::Node node, std::string file, std::string prefix)
-    : root_(node), file_(std::move(file)), prefix_(std::move(prefix)),
+    : root_(node),
+      file_(std::move(file)),
+      prefix_(std::move(prefix)),
       used_(std::make_shared<std::set<std::string>>()) {
     if (root_.IsDefined() && !root_.IsNull() && !root_.IsMap())
         throw ConfigError(file_, root_.Mark().line + 1, prefix_, "parameters must be a map");
@@ -154,7 +159,8 @@ std::string Parameters::path(const std::string& key, const std::string& fallback
     if (p.empty()) return p;
     namespace fs = std::filesystem;
     switch (check) {
-        case PathCheck::kNone: break;
+        case PathCheck::kNone:
+            break;
         case PathCheck::kFileExists:
             if (!fs::is_regular_file(p)) fail(key, "no such file: " + p);
             break;
@@ -184,7 +190,8 @@ std::size_t edit_distance(const std::string& a, const std::string& b) {
         row[0] = i;
         for (std::size_t j = 1; j <= b.size(); ++j) {
             const std::size_t up = row[j];
-            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+            row[j] =
+                std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
             diagonal = up;
         }
     }
@@ -218,9 +225,10 @@ void Parameters::check_all_used() const {
             throw ConfigError(file_, node.Mark().line + 1, full(key),
                               "given twice (as a dotted key and nested)");
         if (used_->count(key)) continue;
-        throw ConfigError(file_, line_of(key), full(key),
-                          "unknown parameter" + (used_->empty() ? std::string(" (this component takes none)")
-                                                                : known_keys(key, *used_)));
+        throw ConfigError(
+            file_, line_of(key), full(key),
+            "unknown parameter" + (used_->empty() ? std::string(" (this component takes none)")
+                                                  : known_keys(key, *used_)));
     }
 }
 

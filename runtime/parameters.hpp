@@ -16,7 +16,7 @@ namespace ltm::runtime {
 enum class PathCheck { kNone, kFileExists, kDirExists, kParentExists };
 
 class Parameters {
-public:
+  public:
     // `node` is a map (or null: no parameters); `prefix` names it in messages ("kitti_player").
     Parameters(YAML::Node node, std::string file, std::string prefix);
     // The top-level map of a YAML file (a tool's --config). Throws ConfigError (file:line).
@@ -41,7 +41,7 @@ public:
     const std::string& file() const { return file_; }
     const std::string& prefix() const { return prefix_; }
 
-private:
+  private:
     YAML::Node lookup(const std::string& key) const;
     int line_of(const std::string& key) const;
     std::string full(const std::string& key) const { return prefix_ + "." + key; }

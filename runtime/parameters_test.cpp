@@ -24,7 +24,8 @@ std::string error_of(const std::function<void()>& f) {
 }  // namespace
 
 TEST(Parameters, TypedValuesAndDefaults) {
-    Parameters p = make("rate: 2.5\ncount: 3\nname: abc\nflag: true\nlist: [1, 2.5]\ngroup:\n  size: 0.5\n");
+    Parameters p =
+        make("rate: 2.5\ncount: 3\nname: abc\nflag: true\nlist: [1, 2.5]\ngroup:\n  size: 0.5\n");
     EXPECT_DOUBLE_EQ(p.get<double>("rate", 1.0), 2.5);
     EXPECT_EQ(p.get<int>("count", 0), 3);
     EXPECT_EQ(p.get<std::string>("name", ""), "abc");
@@ -41,11 +42,14 @@ TEST(Parameters, IllTypedValueNamesFileLineAndKey) {
     EXPECT_EQ(error_of([&] { p.get<double>("rate", 1.0); }),
               "test.yaml:2: comp.rate: expected a number, got 'fast'");
     Parameters q = make("n: 2.5\n");
-    EXPECT_EQ(error_of([&] { q.get<int>("n", 0); }), "test.yaml:1: comp.n: expected an integer, got '2.5'");
+    EXPECT_EQ(error_of([&] { q.get<int>("n", 0); }),
+              "test.yaml:1: comp.n: expected an integer, got '2.5'");
     Parameters r = make("n: -1\n");
-    EXPECT_NE(error_of([&] { r.get<unsigned>("n", 0u); }).find("expected a non-negative integer"), std::string::npos);
+    EXPECT_NE(error_of([&] { r.get<unsigned>("n", 0u); }).find("expected a non-negative integer"),
+              std::string::npos);
     Parameters s = make("s: [1, 2]\n");
-    EXPECT_EQ(error_of([&] { s.get<std::string>("s", ""); }), "test.yaml:1: comp.s: expected a string");
+    EXPECT_EQ(error_of([&] { s.get<std::string>("s", ""); }),
+              "test.yaml:1: comp.s: expected a string");
 }
 
 TEST(Parameters, UnknownKeysAreRejectedWithTheirLine) {
@@ -58,18 +62,21 @@ TEST(Parameters, UnknownKeysAreRejectedWithTheirLine) {
 
 TEST(Parameters, ManyKnownKeysNameTheClosestOnes) {
     Parameters p = make("scan_context: {rigns: 3}\n");
-    for (const char* k : {"scan_context.rings", "scan_context.sectors", "scan_context.kind", "pose_graph.loop_loss",
-                          "pose_graph.max_iterations", "loop_edge.sigma_rotation", "loop_edge.sigma_translation",
-                          "frame_id", "map_dir", "global_map_file", "load_map_dir", "save_period_s", "preset"})
+    for (const char* k :
+         {"scan_context.rings", "scan_context.sectors", "scan_context.kind", "pose_graph.loop_loss",
+          "pose_graph.max_iterations", "loop_edge.sigma_rotation", "loop_edge.sigma_translation",
+          "frame_id", "map_dir", "global_map_file", "load_map_dir", "save_period_s", "preset"})
         p.get<std::string>(k, "");
     EXPECT_EQ(error_of([&] { p.check_all_used(); }),
-              "test.yaml:1: comp.scan_context.rigns: unknown parameter (closest of 13 known: scan_context.rings, "
+              "test.yaml:1: comp.scan_context.rigns: unknown parameter (closest of 13 known: "
+              "scan_context.rings, "
               "scan_context.kind, scan_context.sectors)");
 }
 
 TEST(Parameters, RequiredAndPaths) {
     Parameters p = make("file: /definitely/not/here.txt\ndir: /tmp\n");
-    EXPECT_EQ(error_of([&] { p.require<double>("rate"); }), "test.yaml:1: comp.rate: required parameter is missing");
+    EXPECT_EQ(error_of([&] { p.require<double>("rate"); }),
+              "test.yaml:1: comp.rate: required parameter is missing");
     EXPECT_EQ(error_of([&] { p.path("file", "", PathCheck::kFileExists); }),
               "test.yaml:1: comp.file: no such file: /definitely/not/here.txt");
     EXPECT_EQ(p.path("dir", "", PathCheck::kDirExists), "/tmp");
@@ -94,13 +101,16 @@ TEST(Parameters, LookupsNeverAddKeys) {
 }
 
 TEST(Parameters, FromFile) {
-    const std::string path = ::testing::TempDir() + "params_" + std::to_string(::getpid()) + ".yaml";
+    const std::string path =
+        ::testing::TempDir() + "params_" + std::to_string(::getpid()) + ".yaml";
     { std::ofstream(path) << "voxel_size: 0.5\nbad: [\n"; }
-    EXPECT_NE(error_of([&] { Parameters::from_file(path, "odometry"); }).find(":3: odometry: "), std::string::npos);
+    EXPECT_NE(error_of([&] { Parameters::from_file(path, "odometry"); }).find(":3: odometry: "),
+              std::string::npos);
     { std::ofstream(path) << "voxel_size: 0.5\n"; }
     Parameters p = Parameters::from_file(path, "odometry");
     EXPECT_DOUBLE_EQ(p.get<double>("voxel_size", 1.0), 0.5);
-    EXPECT_EQ(error_of([&] { Parameters::from_file("/no/such.yaml", "odometry"); }), "/no/such.yaml:0: odometry: no such file");
+    EXPECT_EQ(error_of([&] { Parameters::from_file("/no/such.yaml", "odometry"); }),
+              "/no/such.yaml:0: odometry: no such file");
 }
 
 TEST(Parameters, DottedKeysAreTheSameParameterAsNestedOnes) {

@@ -16,7 +16,7 @@ namespace ltm::runtime {
 
 struct WriterHandle {
     dds_entity_t writer = 0;
-    std::string topic;               // absolute ROS name
+    std::string topic;  // absolute ROS name
     QosProfile profile;
     const std::atomic<bool>* stop = nullptr;
     Logger log{""};
@@ -24,7 +24,8 @@ struct WriterHandle {
     std::atomic<std::uint64_t> failed{0};
 };
 
-// Writes one sample; blocks (in slices of max_blocking_s) on a keep-all topic whose readers are full.
+// Writes one sample; blocks (in slices of max_blocking_s) on a keep-all topic whose readers are
+// full.
 bool write_sample(WriterHandle& handle, const void* sample);
 
 // A writer of raw CDR bytes (replay).
@@ -36,7 +37,7 @@ bool write_raw(RawWriterHandle& handle, const std::uint8_t* cdr, std::size_t siz
 
 template <class T>
 class Publisher {
-public:
+  public:
     Publisher() = default;
     explicit Publisher(std::shared_ptr<WriterHandle> h) : h_(std::move(h)) {}
     bool publish(const T& message) { return h_ && write_sample(*h_, &message); }
@@ -45,11 +46,13 @@ public:
     // Readers currently matched (in this process or elsewhere).
     std::uint32_t matched() const {
         dds_publication_matched_status_t st{};
-        return (h_ && dds_get_publication_matched_status(h_->writer, &st) == DDS_RETCODE_OK) ? st.current_count : 0;
+        return (h_ && dds_get_publication_matched_status(h_->writer, &st) == DDS_RETCODE_OK)
+                   ? st.current_count
+                   : 0;
     }
     std::uint64_t published() const { return h_ ? h_->published.load() : 0; }
 
-private:
+  private:
     std::shared_ptr<WriterHandle> h_;
 };
 

@@ -26,16 +26,21 @@ QosProfile default_profile(TopicRole role) {
 
 const char* role_name(TopicRole role) {
     switch (role) {
-        case TopicRole::kSensor: return "sensor";
-        case TopicRole::kState: return "state";
-        case TopicRole::kMap: return "map";
-        case TopicRole::kStream: return "stream";
+        case TopicRole::kSensor:
+            return "sensor";
+        case TopicRole::kState:
+            return "state";
+        case TopicRole::kMap:
+            return "map";
+        case TopicRole::kStream:
+            return "stream";
     }
     return "?";
 }
 
 bool parse_role(const std::string& text, TopicRole& role) {
-    for (TopicRole r : {TopicRole::kSensor, TopicRole::kState, TopicRole::kMap, TopicRole::kStream}) {
+    for (TopicRole r :
+         {TopicRole::kSensor, TopicRole::kState, TopicRole::kMap, TopicRole::kStream}) {
         if (text == role_name(r)) {
             role = r;
             return true;
@@ -49,7 +54,8 @@ namespace {
 void fill_common(const QosProfile& p, dds_qos_t* qos) {
     dds_qset_reliability(qos, p.reliable ? DDS_RELIABILITY_RELIABLE : DDS_RELIABILITY_BEST_EFFORT,
                          static_cast<dds_duration_t>(p.max_blocking_s * 1e9));
-    dds_qset_durability(qos, p.transient_local ? DDS_DURABILITY_TRANSIENT_LOCAL : DDS_DURABILITY_VOLATILE);
+    dds_qset_durability(
+        qos, p.transient_local ? DDS_DURABILITY_TRANSIENT_LOCAL : DDS_DURABILITY_VOLATILE);
     if (p.keep_all) {
         dds_qset_history(qos, DDS_HISTORY_KEEP_ALL, 0);
     } else {

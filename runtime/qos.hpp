@@ -17,8 +17,8 @@ struct QosProfile {
     bool reliable = true;
     bool transient_local = false;
     bool keep_all = false;
-    int depth = 10;                // keep-last depth, or the reader's queue bound for keep-all
-    double max_blocking_s = 0.1;   // a blocked reliable write returns after this and is retried
+    int depth = 10;               // keep-last depth, or the reader's queue bound for keep-all
+    double max_blocking_s = 0.1;  // a blocked reliable write returns after this and is retried
 };
 
 QosProfile default_profile(TopicRole role);
@@ -28,14 +28,14 @@ bool parse_role(const std::string& text, TopicRole& role);
 
 // Owning wrapper of a dds_qos_t.
 class Qos {
-public:
+  public:
     Qos() : q_(dds_create_qos()) {}
     ~Qos() { dds_delete_qos(q_); }
     Qos(const Qos&) = delete;
     Qos& operator=(const Qos&) = delete;
     dds_qos_t* get() const { return q_; }
 
-private:
+  private:
     dds_qos_t* q_;
 };
 

@@ -12,7 +12,8 @@ namespace ltm::runtime {
 
 const ddsi_sertype* sertype_of(dds_entity_t participant, const dds_topic_descriptor_t* desc) {
     static std::mutex mutex;
-    static std::map<std::pair<dds_entity_t, const dds_topic_descriptor_t*>, const ddsi_sertype*> cache;
+    static std::map<std::pair<dds_entity_t, const dds_topic_descriptor_t*>, const ddsi_sertype*>
+        cache;
     std::lock_guard<std::mutex> lock(mutex);
     const auto key = std::make_pair(participant, desc);
     if (auto it = cache.find(key); it != cache.end()) return it->second;
@@ -20,8 +21,9 @@ const ddsi_sertype* sertype_of(dds_entity_t participant, const dds_topic_descrip
     const std::string name = std::string("ltm_private/sertype_probe/") + desc->m_typename;
     std::string topic_name;
     for (char c : name) topic_name += (c == ':') ? '_' : c;
-    const dds_entity_t topic = check_dds(dds_create_topic(participant, desc, topic_name.c_str(), nullptr, nullptr),
-                                         "creating the probe topic of " + std::string(desc->m_typename));
+    const dds_entity_t topic =
+        check_dds(dds_create_topic(participant, desc, topic_name.c_str(), nullptr, nullptr),
+                  "creating the probe topic of " + std::string(desc->m_typename));
     dds_qos_t* qos = dds_create_qos();
     dds_qset_reliability(qos, DDS_RELIABILITY_RELIABLE, DDS_SECS(1));
     // Local only: nothing of the probe leaves the process.
@@ -43,12 +45,15 @@ const ddsi_sertype* sertype_of(dds_entity_t participant, const dds_topic_descrip
     if (writer > 0) dds_delete(writer);
     if (reader > 0) dds_delete(reader);
     // The probe topic stays: it keeps the sertype referenced while the participant lives.
-    if (!type) throw DdsError(std::string("probing the serialization of ") + desc->m_typename, DDS_RETCODE_ERROR);
+    if (!type)
+        throw DdsError(std::string("probing the serialization of ") + desc->m_typename,
+                       DDS_RETCODE_ERROR);
     cache[key] = type;
     return type;
 }
 
-dds_return_t write_cdr(dds_entity_t writer, const ddsi_sertype* type, const std::uint8_t* cdr, std::size_t size) {
+dds_return_t write_cdr(dds_entity_t writer, const ddsi_sertype* type, const std::uint8_t* cdr,
+                       std::size_t size) {
     ddsrt_iovec_t iov;
     iov.iov_base = const_cast<std::uint8_t*>(cdr);
     iov.iov_len = size;

@@ -17,7 +17,8 @@ namespace ltm::runtime {
 const ddsi_sertype* sertype_of(dds_entity_t participant, const dds_topic_descriptor_t* desc);
 
 // Writes `size` bytes of serialized CDR through `writer`, whose topic has `type`.
-dds_return_t write_cdr(dds_entity_t writer, const ddsi_sertype* type, const std::uint8_t* cdr, std::size_t size);
+dds_return_t write_cdr(dds_entity_t writer, const ddsi_sertype* type, const std::uint8_t* cdr,
+                       std::size_t size);
 
 // Takes one sample from `reader` as CDR bytes into `out`; returns 1, 0 (none) or a DDS error.
 // `info.valid_data` is false for disposals (then `out` is empty).

@@ -9,7 +9,8 @@ using namespace ltm::runtime;
 
 TEST(RawCdr, TakeAndRewriteIsLossless) {
     const char* xml =
-        "<CycloneDDS><Domain Id=\"any\"><General><Interfaces><NetworkInterface name=\"lo\"/></Interfaces>"
+        "<CycloneDDS><Domain Id=\"any\"><General><Interfaces><NetworkInterface "
+        "name=\"lo\"/></Interfaces>"
         "<AllowMulticast>false</AllowMulticast></General></Domain></CycloneDDS>";
     const dds_entity_t domain = dds_create_domain(213, xml);
     const dds_entity_t pp = dds_create_participant(213, nullptr, nullptr);
@@ -19,8 +20,10 @@ TEST(RawCdr, TakeAndRewriteIsLossless) {
     dds_qset_reliability(qos, DDS_RELIABILITY_RELIABLE, DDS_SECS(1));
     const dds_entity_t t1 = dds_create_topic(pp, desc, "rt/ltm_test/raw_in", nullptr, nullptr);
     const dds_entity_t t2 = dds_create_topic(pp, desc, "rt/ltm_test/raw_out", nullptr, nullptr);
-    const dds_entity_t w1 = dds_create_writer(pp, t1, qos, nullptr), r1 = dds_create_reader(pp, t1, qos, nullptr);
-    const dds_entity_t w2 = dds_create_writer(pp, t2, qos, nullptr), r2 = dds_create_reader(pp, t2, qos, nullptr);
+    const dds_entity_t w1 = dds_create_writer(pp, t1, qos, nullptr),
+                       r1 = dds_create_reader(pp, t1, qos, nullptr);
+    const dds_entity_t w2 = dds_create_writer(pp, t2, qos, nullptr),
+                       r2 = dds_create_reader(pp, t2, qos, nullptr);
     dds_delete_qos(qos);
 
     char frame[] = "odom", child[] = "lidar";
@@ -37,8 +40,8 @@ TEST(RawCdr, TakeAndRewriteIsLossless) {
     ASSERT_EQ(take_cdr(r1, cdr, info), 1);
     ASSERT_TRUE(info.valid_data);
     ASSERT_GT(cdr.size(), 4u);
-    EXPECT_EQ(cdr[1], 0x01);  // CDR little endian
-    EXPECT_EQ(take_cdr(r1, cdr, info) , 0);  // nothing left
+    EXPECT_EQ(cdr[1], 0x01);                // CDR little endian
+    EXPECT_EQ(take_cdr(r1, cdr, info), 0);  // nothing left
     ASSERT_EQ(dds_write(w1, &o), DDS_RETCODE_OK);
     ASSERT_EQ(take_cdr(r1, cdr, info), 1);
 

@@ -11,8 +11,8 @@ std::string normalise_namespace(const std::string& ns) {
     return out;
 }
 
-std::string resolve_name(const std::string& name, const std::string& ns, const std::string& component,
-                         std::string& error) {
+std::string resolve_name(const std::string& name, const std::string& ns,
+                         const std::string& component, std::string& error) {
     error.clear();
     if (name.empty()) {
         error = "empty topic name";
@@ -29,7 +29,8 @@ std::string resolve_name(const std::string& name, const std::string& ns, const s
     } else {
         abs = normalise_namespace(ns) + "/" + name;
     }
-    // ROS names: alphanumerics, '_' and '/' separators; no empty tokens, tokens not starting with a digit.
+    // ROS names: alphanumerics, '_' and '/' separators; no empty tokens, tokens not starting with a
+    // digit.
     bool token_start = true;
     for (std::size_t i = 0; i < abs.size(); ++i) {
         const char c = abs[i];
@@ -42,7 +43,8 @@ std::string resolve_name(const std::string& name, const std::string& ns, const s
             continue;
         }
         if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_')) {
-            error = "'" + name + "': character '" + std::string(1, c) + "' not allowed in a topic name";
+            error =
+                "'" + name + "': character '" + std::string(1, c) + "' not allowed in a topic name";
             return "";
         }
         if (token_start && std::isdigit(static_cast<unsigned char>(c))) {

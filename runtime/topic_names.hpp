@@ -9,8 +9,8 @@ namespace ltm::runtime {
 std::string normalise_namespace(const std::string& ns);
 // Absolute ROS name of `name` for a component `component` in namespace `ns`.
 // Returns "" and sets `error` when the name is invalid.
-std::string resolve_name(const std::string& name, const std::string& ns, const std::string& component,
-                         std::string& error);
+std::string resolve_name(const std::string& name, const std::string& ns,
+                         const std::string& component, std::string& error);
 // "/robot/points" -> "rt/robot/points".
 std::string dds_topic_name(const std::string& absolute_name);
 

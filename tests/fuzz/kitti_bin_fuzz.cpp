@@ -14,7 +14,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const std::string path = ltm::fuzz::write_input(data, size, "scan.bin");
     try {
         const ltm::common::PointCloud cloud = ltm::common::read_kitti_bin(path);
-        if (cloud.size() * 16 != size || !cloud.consistent() || cloud.intensity.size() != cloud.size())
+        if (cloud.size() * 16 != size || !cloud.consistent() ||
+            cloud.intensity.size() != cloud.size())
             ltm::fuzz::finding("a .bin of " + std::to_string(size) + " bytes read as " +
                                std::to_string(cloud.size()) + " points");
     } catch (const IoError& e) {

@@ -21,12 +21,14 @@ using ltm::runtime::ConfigError;
 namespace {
 
 // Dotted keys of the scalar-keyed leaves of `node` (at most 64, depth 8).
-void leaf_keys(const YAML::Node& node, const std::string& prefix, int depth, std::vector<std::string>& out) {
+void leaf_keys(const YAML::Node& node, const std::string& prefix, int depth,
+               std::vector<std::string>& out) {
     if (!node.IsMap() || depth > 8) return;
     for (const auto& kv : node) {
         if (out.size() >= 64) return;
         if (!kv.first.IsScalar()) continue;
-        const std::string key = prefix.empty() ? kv.first.Scalar() : prefix + "." + kv.first.Scalar();
+        const std::string key =
+            prefix.empty() ? kv.first.Scalar() : prefix + "." + kv.first.Scalar();
         if (kv.second.IsMap() && kv.second.size() > 0)
             leaf_keys(kv.second, key, depth + 1, out);
         else

@@ -1,7 +1,7 @@
 // Fuzz target: loading a saved map (mapping/core: map_store, map_codec). The first byte picks the
 // kind of file the rest is:
-//   0 a local map, 1 the pose graph, 2 a keyframe file (each decoded from memory), 3 manifest.txt of
-//   a map folder that otherwise holds the files of mapping/core/testdata/map_v1 (load_map).
+//   0 a local map, 1 the pose graph, 2 a keyframe file (each decoded from memory), 3 manifest.txt
+//   of a map folder that otherwise holds the files of mapping/core/testdata/map_v1 (load_map).
 // Promise: the decoded content or a one-line MapFormatError (a refused local-map or keyframe file
 // of a folder is a one-line entry of LoadedMap::refused). What decodes re-encodes to bytes that
 // decode and encode to the same bytes again (one description for both directions).
@@ -31,12 +31,15 @@ const std::string& map_dir() {
 }
 
 void same_again(const std::string& first, const std::string& second, const char* what) {
-    if (first != second) ltm::fuzz::finding(std::string(what) + ": encode(decode(bytes)) changes the bytes");
+    if (first != second)
+        ltm::fuzz::finding(std::string(what) + ": encode(decode(bytes)) changes the bytes");
 }
 
 void local_map(const std::string& bytes) {
-    const std::string once = ltm::mapping::encode_local_map(ltm::mapping::decode_local_map(bytes, "lm.bin"));
-    same_again(once, ltm::mapping::encode_local_map(ltm::mapping::decode_local_map(once, "again.bin")),
+    const std::string once =
+        ltm::mapping::encode_local_map(ltm::mapping::decode_local_map(bytes, "lm.bin"));
+    same_again(once,
+               ltm::mapping::encode_local_map(ltm::mapping::decode_local_map(once, "again.bin")),
                "local map");
 }
 
@@ -85,10 +88,18 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const std::string bytes(reinterpret_cast<const char*>(data) + 1, size - 1);
     try {
         switch (data[0] % 4) {
-            case 0: local_map(bytes); break;
-            case 1: graph(bytes); break;
-            case 2: keyframes(bytes); break;
-            default: folder(data + 1, size - 1); break;
+            case 0:
+                local_map(bytes);
+                break;
+            case 1:
+                graph(bytes);
+                break;
+            case 2:
+                keyframes(bytes);
+                break;
+            default:
+                folder(data + 1, size - 1);
+                break;
         }
     } catch (const MapFormatError& e) {
         ltm::fuzz::expect_one_line(e);

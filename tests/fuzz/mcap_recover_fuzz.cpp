@@ -30,8 +30,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
             ltm::fuzz::finding("the recovered file is not complete: " + reader.problem());
         const ltm::recorder::VerifyReport report = reader.verify();
         if (!report.ok)
-            ltm::fuzz::finding("the recovered file does not verify: " +
-                               (report.problems.empty() ? std::string("?") : report.problems.front()));
+            ltm::fuzz::finding(
+                "the recovered file does not verify: " +
+                (report.problems.empty() ? std::string("?") : report.problems.front()));
         if (report.messages != result.messages)
             ltm::fuzz::finding("recover() reports " + std::to_string(result.messages) +
                                " messages, the output holds " + std::to_string(report.messages));

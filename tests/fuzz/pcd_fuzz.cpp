@@ -1,6 +1,6 @@
-// Fuzz target: PCD files through load_cloud_file (common/core/pcl_cloud_io, PCL underneath). It takes
-// a path, so the input is written to a scratch file named *.pcd.
-// Promise: a consistent cloud or a one-line IoError; never a crash inside PCL.
+// Fuzz target: PCD files through load_cloud_file (common/core/pcl_cloud_io, PCL underneath). It
+// takes a path, so the input is written to a scratch file named *.pcd. Promise: a consistent cloud
+// or a one-line IoError; never a crash inside PCL.
 #include <cstddef>
 #include <cstdint>
 

@@ -15,8 +15,8 @@
 
 namespace {
 
-const char* const kNames[] = {"x", "y", "z", "intensity", "t", "time", "timestamp", "offset_time",
-                              "rgb", "i", ""};
+const char* const kNames[] = {"x",         "y",           "z",   "intensity", "t", "time",
+                              "timestamp", "offset_time", "rgb", "i",         ""};
 
 struct Bytes {
     const std::uint8_t* p;
@@ -44,7 +44,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     m.is_bigendian = in.take<std::uint8_t>() & 1;
     std::vector<ltm::msg::PointField> fields(in.take<std::uint8_t>() % 9);
     for (auto& f : fields) {
-        f.name = const_cast<char*>(kNames[in.take<std::uint8_t>() % (sizeof kNames / sizeof *kNames)]);
+        f.name =
+            const_cast<char*>(kNames[in.take<std::uint8_t>() % (sizeof kNames / sizeof *kNames)]);
         f.offset = in.take<std::uint32_t>();
         f.datatype = in.take<std::uint8_t>();
         f.count = in.take<std::uint32_t>();
@@ -63,7 +64,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     ltm::common::PointCloud cloud;
     const std::string err = ltm::convert::from_pointcloud2(m, cloud);
     if (!err.empty()) {
-        if (err.find('\n') != std::string::npos) ltm::fuzz::finding("a reason of more than one line: " + err);
+        if (err.find('\n') != std::string::npos)
+            ltm::fuzz::finding("a reason of more than one line: " + err);
         return 0;
     }
     if (cloud.size() != static_cast<std::size_t>(m.width) * m.height || !cloud.consistent())

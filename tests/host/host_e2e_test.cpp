@@ -26,7 +26,7 @@ std::string dds_section(int domain) {
 }
 
 class HostTest : public ltm::tests::TempDirTest {
-protected:
+  protected:
     HostTest() : TempDirTest("ltm_host_e2e_") {}
     std::size_t count_files(const std::string& sub, const std::string& ext) const {
         std::size_t n = 0;
@@ -84,8 +84,10 @@ TEST_F(HostTest, CloudFolderPlayerWithPosesFeedsTheTrajectoryWriter) {
     std::string poses;
     for (int i = 0; i < 4; ++i) {
         std::ofstream ply(path("scans/" + std::to_string(100 + i) + ".ply"));
-        ply << "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\nproperty float z\n"
-               "property float intensity\nend_header\n" << i << " 0 0 1\n0 " << i << " 0 2\n";
+        ply << "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float "
+               "y\nproperty float z\n"
+               "property float intensity\nend_header\n"
+            << i << " 0 0 1\n0 " << i << " 0 2\n";
         poses += "1 0 0 " + std::to_string(i) + " 0 1 0 0 0 0 1 0\n";
     }
     std::ofstream(path("poses.txt")) << poses;
@@ -94,10 +96,13 @@ topics: {points: stream, ground_truth: stream}
 components:
   - name: player
     type: cloud_folder_player
-    params: {path: )" + path("scans") + ", poses_file: " + path("poses.txt") + R"(, mode: fast, period_s: 0.5}
+    params: {path: )" + path("scans") +
+                                                        ", poses_file: " + path("poses.txt") +
+                                                        R"(, mode: fast, period_s: 0.5}
   - name: traj
     type: trajectory_writer
-    params: {kitti_file: )" + path("traj.txt") + ", tum_file: " + path("traj_tum.txt") + R"(, input: pose}
+    params: {kitti_file: )" + path("traj.txt") + ", tum_file: " +
+                                                        path("traj_tum.txt") + R"(, input: pose}
     remap: {pose: ground_truth}
   - name: writer
     type: cloud_writer
@@ -115,7 +120,8 @@ components:
 }
 
 TEST_F(HostTest, SimulatorStreamsLiveThroughTheHost) {
-    const std::string scenario = std::string(LTM_SOURCE_DIR) + "/components/simulator/scenarios/tiny_loop.yaml";
+    const std::string scenario =
+        std::string(LTM_SOURCE_DIR) + "/components/simulator/scenarios/tiny_loop.yaml";
     const std::string launch = write("sim.yaml", dds_section(161) + R"(
 topics: {points: stream, ground_truth: stream}
 components:
@@ -143,11 +149,14 @@ components:
 TEST_F(HostTest, EveryShippedLaunchConfigIsValid) {
     setenv("LTM_DATA", kFixture.c_str(), 1);
     setenv("LTM_OUT", path("out").c_str(), 1);
-    setenv("LTM_SCENARIO", (std::string(LTM_SOURCE_DIR) + "/components/simulator/scenarios/tiny_loop.yaml").c_str(), 1);
+    setenv("LTM_SCENARIO",
+           (std::string(LTM_SOURCE_DIR) + "/components/simulator/scenarios/tiny_loop.yaml").c_str(),
+           1);
     std::size_t checked = 0;
     for (const auto& e : fs::directory_iterator(std::string(LTM_SOURCE_DIR) + "/launch_configs")) {
         if (e.path().extension() != ".yaml") continue;
-        Process host({kHost, e.path().string(), "--check"}, path("check_" + e.path().stem().string()));
+        Process host({kHost, e.path().string(), "--check"},
+                     path("check_" + e.path().stem().string()));
         EXPECT_EQ(host.wait(120), 0) << e.path() << ": " << host.err();
         ++checked;
     }
@@ -156,8 +165,8 @@ TEST_F(HostTest, EveryShippedLaunchConfigIsValid) {
 
 struct BadCase {
     const char* name;
-    const char* components;     // YAML of the components list
-    const char* expected;       // regex on the single stderr line
+    const char* components;  // YAML of the components list
+    const char* expected;    // regex on the single stderr line
 };
 
 void PrintTo(const BadCase& c, std::ostream* os) { *os << c.name; }
@@ -171,7 +180,9 @@ TEST_P(BadConfigTest, ExitsNonZeroWithOneLineNamingFileLineAndKey) {
     EXPECT_EQ(host.wait(30), 2);
     const std::string err = host.err();
     EXPECT_EQ(lines(err), 1u) << err;
-    EXPECT_TRUE(std::regex_search(err, std::regex(std::string("^ltm_host: ") + launch + c.expected))) << err;
+    EXPECT_TRUE(
+        std::regex_search(err, std::regex(std::string("^ltm_host: ") + launch + c.expected)))
+        << err;
     EXPECT_FALSE(fs::exists(path("never")));
 }
 
@@ -184,11 +195,14 @@ INSTANTIATE_TEST_SUITE_P(
                 "  - name: w\n    type: cloud_writer\n    params: {dir: /tmp/never, evry: 2}\n",
                 ":6: w\\.evry: unknown parameter \\(known: dir, every, format, inputs\\)"},
         BadCase{"IllTypedParameter",
-                "  - name: w\n    type: cloud_writer\n    params:\n      dir: /tmp/never\n      every: often\n",
+                "  - name: w\n    type: cloud_writer\n    params:\n      dir: /tmp/never\n      "
+                "every: often\n",
                 ":8: w\\.every: expected an integer, got 'often'"},
         BadCase{"RemapOfUnknownTopic",
-                "  - name: w\n    type: cloud_writer\n    params: {dir: /tmp/never}\n    remap: {pointz: /a}\n",
-                ":7: w\\.remap\\.pointz: component type 'cloud_writer' has no topic 'pointz' \\(its topics: "
+                "  - name: w\n    type: cloud_writer\n    params: {dir: /tmp/never}\n    remap: "
+                "{pointz: /a}\n",
+                ":7: w\\.remap\\.pointz: component type 'cloud_writer' has no topic 'pointz' "
+                "\\(its topics: "
                 "/points, /local_map, /mesh\\)"},
         BadCase{"MissingFolder",
                 "  - name: p\n    type: kitti_player\n    params: {path: /no/such/folder}\n",
@@ -201,7 +215,8 @@ INSTANTIATE_TEST_SUITE_P(
 TEST_F(HostTest, MissingLaunchFileIsOneLine) {
     Process host({kHost, path("nothing.yaml")}, path("host"));
     EXPECT_EQ(host.wait(30), 2);
-    EXPECT_EQ(host.err(), "ltm_host: " + path("nothing.yaml") + ":0: launch config: no such file\n");
+    EXPECT_EQ(host.err(),
+              "ltm_host: " + path("nothing.yaml") + ":0: launch config: no such file\n");
 }
 
 TEST_F(HostTest, CycloneMessagesComeThroughTheHostsLogger) {
@@ -216,19 +231,26 @@ components:
     Process host({kHost, launch}, path("host"));
     ::unsetenv("CYCLONEDDS_URI");
     EXPECT_EQ(host.wait(30), 2);
-    EXPECT_NE(host.err().find("error [dds] Bogus: unknown element (CYCLONEDDS_URI"), std::string::npos) << host.err();
-    EXPECT_NE(host.err().find("ltm_host: DDS: creating DDS domain 158"), std::string::npos) << host.err();
+    EXPECT_NE(host.err().find("error [dds] Bogus: unknown element (CYCLONEDDS_URI"),
+              std::string::npos)
+        << host.err();
+    EXPECT_NE(host.err().find("ltm_host: DDS: creating DDS domain 158"), std::string::npos)
+        << host.err();
 }
 
 TEST_F(HostTest, SigtermShutsDownWithinTwoSecondsAndFlushes) {
-    const std::string launch = write("loop.yaml", dds_section(153) + R"(
+    const std::string launch =
+        write("loop.yaml", dds_section(153) + R"(
 components:
   - name: player
     type: kitti_player
-    params: {path: )" + kFixture + ", poses_file: " + kFixture + R"(/poses_semantickitti.txt, loop: true, rate: 2.0}
+    params: {path: )" + kFixture +
+                               ", poses_file: " + kFixture +
+                               R"(/poses_semantickitti.txt, loop: true, rate: 2.0}
   - name: traj
     type: trajectory_writer
-    params: {tum_file: )" + path("gt_tum.txt") + R"(, input: pose}
+    params: {tum_file: )" + path("gt_tum.txt") +
+                               R"(, input: pose}
     remap: {pose: ground_truth}
 )");
     Process host({kHost, launch}, path("host"));
@@ -239,9 +261,11 @@ components:
     const auto t0 = std::chrono::steady_clock::now();
     host.signal(SIGTERM);
     const int rc = host.wait(10);
-    const double took = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double took =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     EXPECT_EQ(rc, 0) << host.err();
-    EXPECT_LT(took, 2.0 + 1.0) << "shutdown took " << took << " s";  // 2 s budget plus process slack
+    EXPECT_LT(took, 2.0 + 1.0) << "shutdown took " << took
+                               << " s";  // 2 s budget plus process slack
     EXPECT_NE(host.err().find("received SIGTERM"), std::string::npos);
     EXPECT_NE(host.err().find("stopped cleanly"), std::string::npos);
     std::ifstream tum(path("gt_tum.txt"));
@@ -267,10 +291,14 @@ components:
     Process host({kTestHost, launch}, path("host"));
     EXPECT_EQ(host.wait(60), 1);
     const std::string err = host.err();
-    EXPECT_NE(err.find("component 'faulty' (test_faulty) threw in its handler of /points: injected fault"),
-              std::string::npos) << err;
+    EXPECT_NE(
+        err.find(
+            "component 'faulty' (test_faulty) threw in its handler of /points: injected fault"),
+        std::string::npos)
+        << err;
     EXPECT_NE(err.find("stopping (on_component_error: stop)"), std::string::npos) << err;
-    EXPECT_NE(err.find("[writer] wrote"), std::string::npos) << "the other components were not shut down: " << err;
+    EXPECT_NE(err.find("[writer] wrote"), std::string::npos)
+        << "the other components were not shut down: " << err;
 }
 
 TEST_F(HostTest, RestartPolicyRestartsThenGivesUp) {
@@ -285,7 +313,8 @@ components:
     Process host({kTestHost, launch}, path("host"));
     EXPECT_EQ(host.wait(60), 1);
     const std::string err = host.err();
-    EXPECT_NE(err.find("threw in on_activate: injected fault in activate"), std::string::npos) << err;
+    EXPECT_NE(err.find("threw in on_activate: injected fault in activate"), std::string::npos)
+        << err;
     EXPECT_NE(err.find("restarting component 'faulty' (1 of 1)"), std::string::npos) << err;
     EXPECT_NE(err.find("component 'faulty' failed too often; stopping"), std::string::npos) << err;
 }
@@ -303,9 +332,11 @@ components:
     const auto t0 = std::chrono::steady_clock::now();
     host.signal(SIGINT);
     EXPECT_EQ(host.wait(20), 3);
-    const double took = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double took =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     EXPECT_LT(took, 2.0 + 1.0);
-    EXPECT_NE(host.err().find("component 'stuck' did not stop within 2"), std::string::npos) << host.err();
+    EXPECT_NE(host.err().find("component 'stuck' did not stop within 2"), std::string::npos)
+        << host.err();
 }
 
 TEST_F(HostTest, UnsupportedPointCloudLayoutIsRejectedCleanly) {
@@ -319,7 +350,8 @@ components:
 )");
     Process host({kTestHost, launch}, path("host"));
     EXPECT_EQ(host.wait(60), 0) << host.err();
-    EXPECT_NE(host.err().find("rejected point cloud 0: field 'x' is datatype 8, need float32 (7)"), std::string::npos)
+    EXPECT_NE(host.err().find("rejected point cloud 0: field 'x' is datatype 8, need float32 (7)"),
+              std::string::npos)
         << host.err();
     EXPECT_EQ(count_files("clouds", ".ply"), 0u);
 }
@@ -329,7 +361,8 @@ class TwoProcessTest : public HostTest, public ::testing::WithParamInterface<boo
 TEST_P(TwoProcessTest, SamplesCrossBetweenHosts) {
     const bool loopback_unicast = GetParam();
     const int domain = loopback_unicast ? 158 : 159;
-    const std::string dds = loopback_unicast ? dds_section(domain) : "domain_id: " + std::to_string(domain) + "\n";
+    const std::string dds =
+        loopback_unicast ? dds_section(domain) : "domain_id: " + std::to_string(domain) + "\n";
     const std::string robot = write("robot.yaml", dds + R"(
 topics: {points: stream}
 components:
@@ -353,4 +386,6 @@ components:
 }
 
 INSTANTIATE_TEST_SUITE_P(Discovery, TwoProcessTest, ::testing::Values(false, true),
-                         [](const auto& info) { return info.param ? "LoopbackUnicastPeers" : "DefaultDiscovery"; });
+                         [](const auto& info) {
+                             return info.param ? "LoopbackUnicastPeers" : "DefaultDiscovery";
+                         });

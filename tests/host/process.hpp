@@ -1,12 +1,12 @@
 #pragma once
 // Runs a program as a child process for end-to-end tests: stderr and stdout to files, a timeout,
 // signals.
+#include <fcntl.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
-#include <fcntl.h>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -16,8 +16,9 @@
 namespace ltm::tests {
 
 class Process {
-public:
-    Process(const std::vector<std::string>& argv, const std::string& log_prefix) : log_(log_prefix) {
+  public:
+    Process(const std::vector<std::string>& argv, const std::string& log_prefix)
+        : log_(log_prefix) {
         pid_ = fork();
         if (pid_ == 0) {
             const int err = open((log_ + ".err").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
@@ -41,7 +42,8 @@ public:
     void signal(int sig) { kill(pid_, sig); }
     // Exit code (128 + signal when killed); -1 when still running after `timeout_s` (then killed).
     int wait(double timeout_s) {
-        const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+        const auto deadline =
+            std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
         while (std::chrono::steady_clock::now() < deadline) {
             int status = 0;
             if (waitpid(pid_, &status, WNOHANG) == pid_) {
@@ -69,7 +71,7 @@ public:
         return ss.str();
     }
 
-private:
+  private:
     pid_t pid_ = -1;
     bool exited_ = false;
     std::string log_;

@@ -11,7 +11,7 @@
 namespace ltm::tests {
 
 class TempDirTest : public ::testing::Test {
-protected:
+  protected:
     explicit TempDirTest(std::string prefix) : prefix_(std::move(prefix)) {}
     void SetUp() override {
         const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
@@ -33,7 +33,7 @@ protected:
 
     std::filesystem::path dir_;
 
-private:
+  private:
     std::string prefix_;
 };
 

@@ -13,35 +13,41 @@ using runtime::TopicRole;
 
 // Counts scans on `points`; throws at the `throw_at`-th (1-based) one, or in on_activate.
 class Faulty : public runtime::Component {
-public:
+  public:
     explicit Faulty(runtime::ComponentContext& ctx) {
         throw_at_ = ctx.params().get<int>("throw_at", 1);
         if (ctx.params().get<bool>("throw_in_activate", false)) throw_at_ = 0;
-        ctx.subscribe<msg::PointCloud2>("points", TopicRole::kSensor, [this](const msg::PointCloud2&) {
-            if (++count_ == throw_at_) throw std::runtime_error("injected fault");
-        });
+        ctx.subscribe<msg::PointCloud2>("points", TopicRole::kSensor,
+                                        [this](const msg::PointCloud2&) {
+                                            if (++count_ == throw_at_)
+                                                throw std::runtime_error("injected fault");
+                                        });
     }
     void on_activate() override {
         if (throw_at_ == 0) throw std::runtime_error("injected fault in activate");
     }
 
-private:
+  private:
     int throw_at_ = 1, count_ = 0;
 };
 
 // Blocks in on_shutdown for `seconds`: the host must not wait for it forever.
 class Stuck : public runtime::Component {
-public:
-    explicit Stuck(runtime::ComponentContext& ctx) { seconds_ = ctx.params().get<double>("seconds", 30.0); }
-    void on_shutdown() override { std::this_thread::sleep_for(std::chrono::duration<double>(seconds_)); }
+  public:
+    explicit Stuck(runtime::ComponentContext& ctx) {
+        seconds_ = ctx.params().get<double>("seconds", 30.0);
+    }
+    void on_shutdown() override {
+        std::this_thread::sleep_for(std::chrono::duration<double>(seconds_));
+    }
 
-private:
+  private:
     double seconds_;
 };
 
 // Publishes one PointCloud2 whose x y z are float64, then finishes.
 class BadCloudSource : public runtime::Component {
-public:
+  public:
     explicit BadCloudSource(runtime::ComponentContext& ctx) : ctx_(ctx) {
         out_ = ctx.advertise<msg::PointCloud2>("points", TopicRole::kStream);
         ctx.declare_source();
@@ -68,7 +74,7 @@ public:
         });
     }
 
-private:
+  private:
     runtime::ComponentContext& ctx_;
     runtime::Publisher<msg::PointCloud2> out_;
 };
@@ -78,4 +84,5 @@ private:
 
 LTM_REGISTER_COMPONENT(ltm::tests::Faulty, "test_faulty", "test: throws on its n-th input scan")
 LTM_REGISTER_COMPONENT(ltm::tests::Stuck, "test_stuck", "test: blocks in on_shutdown")
-LTM_REGISTER_COMPONENT(ltm::tests::BadCloudSource, "test_bad_cloud_source", "test: publishes a float64 PointCloud2")
+LTM_REGISTER_COMPONENT(ltm::tests::BadCloudSource, "test_bad_cloud_source",
+                       "test: publishes a float64 PointCloud2")

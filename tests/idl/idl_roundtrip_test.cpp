@@ -24,10 +24,11 @@ using namespace ltm;
 namespace {
 
 class Dds : public ::testing::Test {
-protected:
+  protected:
     static void SetUpTestSuite() {
         const char* xml =
-            "<CycloneDDS><Domain Id=\"any\"><General><Interfaces><NetworkInterface name=\"lo\"/></Interfaces>"
+            "<CycloneDDS><Domain Id=\"any\"><General><Interfaces><NetworkInterface "
+            "name=\"lo\"/></Interfaces>"
             "<AllowMulticast>false</AllowMulticast></General></Domain></CycloneDDS>";
         domain_ = dds_create_domain(212, xml);
         participant_ = dds_create_participant(212, nullptr, nullptr);
@@ -43,7 +44,8 @@ protected:
         ASSERT_GT(participant_, 0);
         static int n = 0;
         const std::string name = "rt/ltm_test/roundtrip_" + std::to_string(n++);
-        const dds_entity_t topic = dds_create_topic(participant_, runtime::MessageTraits<T>::descriptor(), name.c_str(), nullptr, nullptr);
+        const dds_entity_t topic = dds_create_topic(
+            participant_, runtime::MessageTraits<T>::descriptor(), name.c_str(), nullptr, nullptr);
         ASSERT_GT(topic, 0);
         dds_qos_t* qos = dds_create_qos();
         dds_qset_reliability(qos, DDS_RELIABILITY_RELIABLE, DDS_SECS(1));
@@ -68,7 +70,8 @@ dds_entity_t Dds::participant_ = 0;
 
 Eigen::Isometry3d some_pose(double k) {
     Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-    T.linear() = Eigen::AngleAxisd(0.3 * k, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+    T.linear() =
+        Eigen::AngleAxisd(0.3 * k, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
     T.translation() = Eigen::Vector3d(k, -2 * k, 0.5 * k);
     return T;
 }
@@ -383,7 +386,11 @@ TEST_F(Dds, TransformAndPoseWithCovariance) {
 // The owned messages of the builders go out through Cyclone and read back the same.
 TEST_F(Dds, BuiltMessagesThroughDds) {
     const msg::Time stamp{1700000000, 123456789};
-    convert::StatusData st{stamp, "odom", "robot/odometry", convert::StatusLevel::kError, "bad_cloud",
+    convert::StatusData st{stamp,
+                           "odom",
+                           "robot/odometry",
+                           convert::StatusLevel::kError,
+                           "bad_cloud",
                            "scan 3: short data"};
     roundtrip<msg::Status>(*convert::to_msg(st), [&](const msg::Status& r) {
         const convert::StatusData o = convert::from_msg(r);
@@ -425,7 +432,8 @@ TEST_F(Dds, BuiltMessagesThroughDds) {
     g.frame_id = "map";
     g.revision = 3;
     for (std::uint64_t i = 0; i < 20; ++i) g.anchors.push_back({i, some_pose(i)});
-    g.edges.push_back({0, 19, convert::GraphEdgeKind::kLoop, some_pose(5), Eigen::Matrix<double, 6, 6>::Identity()});
+    g.edges.push_back({0, 19, convert::GraphEdgeKind::kLoop, some_pose(5),
+                       Eigen::Matrix<double, 6, 6>::Identity()});
     roundtrip<msg::PoseGraph>(*convert::to_msg(g), [&](const msg::PoseGraph& r) {
         const convert::PoseGraphData o = convert::from_msg(r);
         ASSERT_EQ(o.anchors.size(), 20u);

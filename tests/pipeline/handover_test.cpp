@@ -23,7 +23,7 @@ const std::string kHost = std::string(LTM_BINARY_DIR) + "/bin/ltm_host";
 const std::string kFixture = std::string(LTM_SOURCE_DIR) + "/tests/fixtures/kitti00_mini";
 
 class Handover : public ltm::tests::TempDirTest {
-protected:
+  protected:
     Handover() : TempDirTest("ltm_handover_") {}
 };
 
@@ -72,7 +72,8 @@ components:
     params: {preset: hdl64, min_scan_points: 50, threads: 1, keyframe: {distance: 0.3}, snapshot_every_keyframes: 1}
   - name: mapping
     type: mapping
-    params: {preset: hdl64, map_dir: )" + (dir_ / "map").string() + R"(, save_period_s: 0}
+    params: {preset: hdl64, map_dir: )" + (dir_ / "map").string() +
+                                                   R"(, save_period_s: 0}
 )");
     Process host({kHost, cfg}, (dir_ / "host").string());
     ASSERT_EQ(host.wait(120), 0) << host.err();

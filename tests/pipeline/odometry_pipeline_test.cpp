@@ -20,7 +20,7 @@ const std::string kHost = std::string(LTM_BINARY_DIR) + "/bin/ltm_host";
 const std::string kFixture = std::string(LTM_SOURCE_DIR) + "/tests/fixtures/kitti00_mini";
 
 class OdometryPipeline : public ltm::tests::TempDirTest {
-protected:
+  protected:
     OdometryPipeline() : TempDirTest("ltm_odometry_pipeline_") {}
 };
 
@@ -39,7 +39,8 @@ components:
     params: {preset: hdl64, min_scan_points: 50}
   - name: traj
     type: trajectory_writer
-    params: {kitti_file: )" + (dir_ / "odometry.txt").string() + R"(}
+    params: {kitti_file: )" + (dir_ / "odometry.txt").string() +
+                                                    R"(}
   - name: maps
     type: cloud_writer
     params: {dir: )" + (dir_ / "maps").string() + R"(, inputs: [local_map]}
@@ -51,18 +52,21 @@ components:
     ASSERT_EQ(est.size(), 3u);
     // Against SemanticKITTI's poses in the LiDAR frame (both start at the first scan).
     const common::PoseList ref = common::camera_to_lidar_poses(
-        common::read_kitti_poses(kFixture + "/poses_semantickitti.txt"), common::read_kitti_calib_tr(kFixture + "/calib.txt"));
+        common::read_kitti_poses(kFixture + "/poses_semantickitti.txt"),
+        common::read_kitti_calib_tr(kFixture + "/calib.txt"));
     for (std::size_t i = 0; i < 3; ++i) {
         const Eigen::Isometry3d rel_est = est[0].inverse() * est[i];
         const Eigen::Isometry3d rel_ref = ref[0].inverse() * ref[i];
         EXPECT_LT((rel_est.translation() - rel_ref.translation()).norm(), 0.05) << "scan " << i;
     }
     // The local map was handed on at shutdown and written.
-    EXPECT_TRUE(fs::exists(dir_ / "maps" / "local_map_0.ply") || fs::exists(dir_ / "maps" / "local_map_1.ply"));
+    EXPECT_TRUE(fs::exists(dir_ / "maps" / "local_map_0.ply") ||
+                fs::exists(dir_ / "maps" / "local_map_1.ply"));
 }
 
 TEST_F(OdometryPipeline, SimulatedWorldThroughTheHost) {
-    const std::string scenario = std::string(LTM_SOURCE_DIR) + "/components/simulator/scenarios/tiny_loop.yaml";
+    const std::string scenario =
+        std::string(LTM_SOURCE_DIR) + "/components/simulator/scenarios/tiny_loop.yaml";
     const std::string cfg = write("sim.yaml", R"(domain_id: 192
 dds: {interfaces: [lo], multicast: false, peers: [127.0.0.1]}
 topics: {points: stream, ground_truth: stream}
@@ -75,10 +79,12 @@ components:
     params: {preset: vlp16}
   - name: traj
     type: trajectory_writer
-    params: {kitti_file: )" + (dir_ / "odometry.txt").string() + R"(}
+    params: {kitti_file: )" + (dir_ / "odometry.txt").string() +
+                                                  R"(}
   - name: truth
     type: trajectory_writer
-    params: {kitti_file: )" + (dir_ / "truth.txt").string() + R"(, input: pose}
+    params: {kitti_file: )" + (dir_ / "truth.txt").string() +
+                                                  R"(, input: pose}
     remap: {pose: ground_truth}
 )");
     Process host({kHost, cfg}, (dir_ / "host").string());
@@ -98,36 +104,44 @@ components:
 // sent by the map_request component while the mission runs), corrected full-rate odometry, and a
 // second session continuing the saved map.
 TEST_F(OdometryPipeline, SlamBackEndSavesItsMapAndASecondSessionContinuesIt) {
-    const std::string scenario = std::string(LTM_SOURCE_DIR) + "/components/simulator/scenarios/tiny_loop.yaml";
+    const std::string scenario =
+        std::string(LTM_SOURCE_DIR) + "/components/simulator/scenarios/tiny_loop.yaml";
     auto config = [&](int session, const std::string& extra_mapping, const std::string& tag) {
-        return write("slam" + tag + ".yaml", R"(domain_id: 193
+        return write("slam" + tag + ".yaml",
+                     R"(domain_id: 193
 dds: {interfaces: [lo], multicast: false, peers: [127.0.0.1]}
 namespace: /robot
 topics: {points: stream}
 components:
   - name: sensor
     type: simulator
-    params: {scenario: )" + scenario + ", mode: fast, session: " + std::to_string(session) + R"(}
+    params: {scenario: )" +
+                         scenario + ", mode: fast, session: " + std::to_string(session) + R"(}
   - name: odometry
     type: odometry
     params: {preset: vlp16}
   - name: mapping
     type: mapping
-    params: {preset: vlp16, map_dir: )" + (dir_ / ("map" + tag)).string() + ", global_map_file: " +
-                                            (dir_ / ("global_map" + tag + ".ply")).string() + extra_mapping + R"(}
+    params: {preset: vlp16, map_dir: )" +
+                         (dir_ / ("map" + tag)).string() + ", global_map_file: " +
+                         (dir_ / ("global_map" + tag + ".ply")).string() + extra_mapping + R"(}
   - name: request
     type: map_request
-    params: {command: all, map_dir: )" + (dir_ / ("requested" + tag)).string() + ", global_map_file: " +
-                                            (dir_ / ("requested" + tag + ".ply")).string() + R"(}
+    params: {command: all, map_dir: )" +
+                         (dir_ / ("requested" + tag)).string() + ", global_map_file: " +
+                         (dir_ / ("requested" + tag + ".ply")).string() + R"(}
   - name: slam
     type: trajectory_writer
-    params: {tum_file: )" + (dir_ / ("slam" + tag + ".txt")).string() + R"(, input: path}
+    params: {tum_file: )" +
+                         (dir_ / ("slam" + tag + ".txt")).string() + R"(, input: path}
   - name: odom
     type: trajectory_writer
-    params: {tum_file: )" + (dir_ / ("odometry" + tag + ".txt")).string() + R"(}
+    params: {tum_file: )" +
+                         (dir_ / ("odometry" + tag + ".txt")).string() + R"(}
   - name: corrected
     type: trajectory_writer
-    params: {tum_file: )" + (dir_ / ("corrected" + tag + ".txt")).string() + R"(}
+    params: {tum_file: )" +
+                         (dir_ / ("corrected" + tag + ".txt")).string() + R"(}
     remap: {odometry: corrected_odometry}
 )");
     };
@@ -144,7 +158,8 @@ components:
     // Every odometry pose comes out corrected, at the same stamp; in this small map the correction
     // is small (accuracy: ./ltm demo and ./ltm bench slam).
     const common::Trajectory odom = common::read_tum_trajectory((dir_ / "odometry1.txt").string());
-    const common::Trajectory corrected = common::read_tum_trajectory((dir_ / "corrected1.txt").string());
+    const common::Trajectory corrected =
+        common::read_tum_trajectory((dir_ / "corrected1.txt").string());
     ASSERT_GT(odom.size(), 30u);
     ASSERT_EQ(corrected.size(), odom.size());
     for (std::size_t i = 0; i < odom.size(); ++i) {
@@ -153,13 +168,15 @@ components:
     }
     const auto files = [](const fs::path& dir) {
         std::size_t n = 0;
-        for (const auto& e : fs::recursive_directory_iterator(dir)) n += e.is_regular_file() ? 1 : 0;
+        for (const auto& e : fs::recursive_directory_iterator(dir))
+            n += e.is_regular_file() ? 1 : 0;
         return n;
     };
     const std::size_t first_files = files(dir_ / "map1");
 
     // Thursday: the map of Monday continued (kept fixed), saved with both sessions in it.
-    Process second({kHost, config(1, ", load_map_dir: " + (dir_ / "map1").string(), "2")}, (dir_ / "host2").string());
+    Process second({kHost, config(1, ", load_map_dir: " + (dir_ / "map1").string(), "2")},
+                   (dir_ / "host2").string());
     ASSERT_EQ(second.wait(300), 0) << second.err();
     EXPECT_NE(second.err().find("continuing the map of"), std::string::npos) << second.err();
     EXPECT_GT(files(dir_ / "map2"), first_files);
@@ -183,7 +200,8 @@ components:
 )");
     Process host({kHost, cfg}, (dir_ / "host").string());
     EXPECT_EQ(host.wait(60), 1) << host.err();
-    EXPECT_NE(host.err().find("no mapping component listens on '/robot/map_request'"), std::string::npos)
+    EXPECT_NE(host.err().find("no mapping component listens on '/robot/map_request'"),
+              std::string::npos)
         << host.err();
 }
 
@@ -195,11 +213,13 @@ components:
     type: mapping
   - name: request
     type: map_request
-    params: {command: all, global_map_file: )" + (dir_ / "wanted.ply").string() + R"(}
+    params: {command: all, global_map_file: )" + (dir_ / "wanted.ply").string() +
+                                                      R"(}
 )");
     Process host({kHost, cfg}, (dir_ / "host").string());
     EXPECT_EQ(host.wait(60), 1) << host.err();
-    EXPECT_NE(host.err().find("nowhere to write: no map_dir in the request or the component's parameters"),
+    EXPECT_NE(host.err().find(
+                  "nowhere to write: no map_dir in the request or the component's parameters"),
               std::string::npos)
         << host.err();
     EXPECT_FALSE(fs::exists(dir_ / "wanted.ply"));  // all or nothing when a target is missing
@@ -212,7 +232,8 @@ TEST_F(OdometryPipeline, DamagedMapToContinueIsRefusedBeforeAnythingRuns) {
 components:
   - name: mapping
     type: mapping
-    params: {load_map_dir: )" + (dir_ / "broken").string() + R"(}
+    params: {load_map_dir: )" + (dir_ / "broken").string() +
+                                                      R"(}
 )");
     Process host({kHost, cfg}, (dir_ / "host").string());
     EXPECT_EQ(host.wait(60), 2) << host.err();
@@ -229,7 +250,8 @@ components:
   - name: mapping
     type: mapping
     params:
-      load_map_dir: )" + (dir_ / "rings24").string() + R"(
+      load_map_dir: )" + (dir_ / "rings24").string() +
+                                                    R"(
       scan_context: {sectors: 60}
 )");
     Process host({kHost, cfg}, (dir_ / "host").string());

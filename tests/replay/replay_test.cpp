@@ -40,29 +40,37 @@ std::string pipeline(const fs::path& out) {
     params: {preset: hdl64, min_scan_points: 50}
   - name: odometry_writer
     type: trajectory_writer
-    params: {kitti_file: )" + (out / "odometry.txt").string() + R"(, tum_file: )" + (out / "odometry_tum.txt").string() + R"(}
+    params: {kitti_file: )" +
+           (out / "odometry.txt").string() + R"(, tum_file: )" +
+           (out / "odometry_tum.txt").string() + R"(}
   - name: writer
     type: cloud_writer
-    params: {dir: )" + (out / "clouds").string() + R"(}
+    params: {dir: )" +
+           (out / "clouds").string() + R"(}
   - name: traj
     type: trajectory_writer
-    params: {tum_file: )" + (out / "ground_truth_tum.txt").string() + R"(, input: pose}
+    params: {tum_file: )" +
+           (out / "ground_truth_tum.txt").string() + R"(, input: pose}
     remap: {pose: ground_truth}
 )";
 }
 
 class ReplayTest : public ltm::tests::TempDirTest {
-protected:
+  protected:
     ReplayTest() : TempDirTest("ltm_replay_") {}
     // Live run: player -> pipeline, with the recorder on the sensor and truth topics.
     void live_run(int domain) {
-        const std::string cfg = write("live.yaml", dds(domain) + R"(components:
+        const std::string cfg =
+            write("live.yaml", dds(domain) + R"(components:
   - name: player
     type: kitti_player
-    params: {path: )" + kFixture + ", poses_file: " + kFixture + R"(/poses_semantickitti.txt, mode: fast, wait_for_readers: 3}
+    params: {path: )" + kFixture +
+                                   ", poses_file: " + kFixture +
+                                   R"(/poses_semantickitti.txt, mode: fast, wait_for_readers: 3}
   - name: recorder
     type: recorder
-    params: {file: )" + (dir_ / "run.mcap").string() + R"(, topics: [points, ground_truth]}
+    params: {file: )" + (dir_ / "run.mcap").string() +
+                                   R"(, topics: [points, ground_truth]}
 )" + pipeline(dir_ / "live"));
         Process host({kHost, cfg}, (dir_ / "live").string());
         ASSERT_EQ(host.wait(120), 0) << host.err();
@@ -73,10 +81,12 @@ protected:
             if (!e.is_regular_file()) continue;
             const fs::path rel = fs::relative(e.path(), dir_ / "live");
             ASSERT_TRUE(fs::exists(dir_ / run / rel)) << rel << " missing in " << run;
-            EXPECT_EQ(read_file(e.path()), read_file(dir_ / run / rel)) << rel << " differs in " << run;
+            EXPECT_EQ(read_file(e.path()), read_file(dir_ / run / rel))
+                << rel << " differs in " << run;
         }
         std::size_t files = 0;
-        for (const auto& e : fs::recursive_directory_iterator(dir_ / "live")) files += e.is_regular_file();
+        for (const auto& e : fs::recursive_directory_iterator(dir_ / "live"))
+            files += e.is_regular_file();
         EXPECT_EQ(files, 7u);  // 3 clouds, 1 local map, the truth and the odometry (KITTI, TUM)
     }
 };
@@ -88,7 +98,8 @@ TEST_F(ReplayTest, ComposedReplayEqualsTheLiveRunBitForBit) {
     const std::string cfg = write("replay.yaml", dds(182) + R"(components:
   - name: replay
     type: replayer
-    params: {file: )" + (dir_ / "run.mcap").string() + R"(, fast: true}
+    params: {file: )" + (dir_ / "run.mcap").string() +
+                                                     R"(, fast: true}
 )" + pipeline(dir_ / "replayed"));
     Process host({kHost, cfg}, (dir_ / "replay").string());
     ASSERT_EQ(host.wait(120), 0) << host.err();
@@ -103,7 +114,8 @@ TEST_F(ReplayTest, SplitReplayEqualsTheLiveRunBitForBit) {
     type: replayer
     params: {file: )" + (dir_ / "run.mcap").string() + R"(, fast: true, wait_for_readers: 3}
 )");
-    const std::string base = write("base.yaml", dds(184) + "idle_exit_s: 2\ncomponents:\n" + pipeline(dir_ / "split"));
+    const std::string base =
+        write("base.yaml", dds(184) + "idle_exit_s: 2\ncomponents:\n" + pipeline(dir_ / "split"));
     Process b({kHost, base}, (dir_ / "base").string());
     Process r({kHost, robot}, (dir_ / "robot").string());
     ASSERT_EQ(r.wait(120), 0) << r.err();
@@ -116,14 +128,16 @@ TEST_F(ReplayTest, TimedReplayReportsItsTimingError) {
     const std::string cfg = write("timed.yaml", dds(186) + R"(components:
   - name: replay
     type: replayer
-    params: {file: )" + (dir_ / "run.mcap").string() + R"(, rate: 1.0}
+    params: {file: )" + (dir_ / "run.mcap").string() +
+                                                    R"(, rate: 1.0}
   - name: writer
     type: cloud_writer
     params: {dir: )" + (dir_ / "timed").string() + R"(}
 )");
     Process host({kHost, cfg}, (dir_ / "timed").string());
     ASSERT_EQ(host.wait(120), 0) << host.err();
-    EXPECT_NE(host.err().find("timing error against the recording x1.0"), std::string::npos) << host.err();
+    EXPECT_NE(host.err().find("timing error against the recording x1.0"), std::string::npos)
+        << host.err();
 }
 
 TEST_F(ReplayTest, CutRecordingReplaysWhatIsIntactAndRecoverCompletesIt) {
@@ -135,10 +149,12 @@ TEST_F(ReplayTest, CutRecordingReplaysWhatIsIntactAndRecoverCompletesIt) {
     const std::string cfg = write("cut.yaml", dds(188) + R"(components:
   - name: replay
     type: replayer
-    params: {file: )" + (dir_ / "cut.mcap").string() + R"(, fast: true, topics: [/robot/points]}
+    params: {file: )" + (dir_ / "cut.mcap").string() +
+                                                  R"(, fast: true, topics: [/robot/points]}
   - name: writer
     type: cloud_writer
-    params: {dir: )" + (dir_ / "cut_out").string() + R"(}
+    params: {dir: )" + (dir_ / "cut_out").string() +
+                                                  R"(}
 )");
     Process host({kHost, cfg}, (dir_ / "cut").string());
     ASSERT_EQ(host.wait(120), 0) << host.err();
@@ -146,13 +162,16 @@ TEST_F(ReplayTest, CutRecordingReplaysWhatIsIntactAndRecoverCompletesIt) {
     EXPECT_NE(host.err().find("cut short"), std::string::npos) << host.err();
     EXPECT_NE(host.err().find("(replaying what is intact)"), std::string::npos) << host.err();
     std::size_t clouds = 0;
-    for (const auto& e : fs::directory_iterator(dir_ / "cut_out")) clouds += e.path().extension() == ".ply";
+    for (const auto& e : fs::directory_iterator(dir_ / "cut_out"))
+        clouds += e.path().extension() == ".ply";
     EXPECT_EQ(clouds, 3u);
     // recover completes the file: a reader then finds it whole and indexed.
-    Process rec({kMcap, "recover", (dir_ / "cut.mcap").string(), "-o", (dir_ / "recovered.mcap").string()},
-                (dir_ / "recover").string());
+    Process rec(
+        {kMcap, "recover", (dir_ / "cut.mcap").string(), "-o", (dir_ / "recovered.mcap").string()},
+        (dir_ / "recover").string());
     EXPECT_EQ(rec.wait(60), 0) << rec.err();
-    Process verify({kMcap, "verify", (dir_ / "recovered.mcap").string()}, (dir_ / "verify").string());
+    Process verify({kMcap, "verify", (dir_ / "recovered.mcap").string()},
+                   (dir_ / "verify").string());
     EXPECT_EQ(verify.wait(60), 0) << verify.err() << verify.out();
 }
 
@@ -161,7 +180,8 @@ TEST_F(ReplayTest, UnknownTopicListsTheTopicsThatExist) {
     const std::string cfg = write("bad.yaml", dds(190) + R"(components:
   - name: replay
     type: replayer
-    params: {file: )" + (dir_ / "run.mcap").string() + R"(, topics: [/robot/pointz]}
+    params: {file: )" + (dir_ / "run.mcap").string() +
+                                                  R"(, topics: [/robot/pointz]}
 )");
     Process host({kHost, cfg}, (dir_ / "bad").string());
     EXPECT_EQ(host.wait(60), 2);

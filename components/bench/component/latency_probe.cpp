@@ -26,14 +26,15 @@ double monotonic_s() {
 
 // Publishes `count` clouds of `points` points at `rate_hz`, header stamp = CLOCK_MONOTONIC.
 class LatencySource : public runtime::Component {
-public:
+  public:
     explicit LatencySource(runtime::ComponentContext& ctx) : ctx_(ctx) {
         auto& p = ctx.params();
         const int points = p.get<int>("points", 120000);
         count_ = p.get<int>("count", 200);
         const double rate = p.get<double>("rate_hz", 10.0);
         wait_for_readers_ = p.get<int>("wait_for_readers", 1);
-        if (points < 1 || count_ < 1 || rate <= 0) p.fail("points", "points, count and rate_hz must be positive");
+        if (points < 1 || count_ < 1 || rate <= 0)
+            p.fail("points", "points, count and rate_hz must be positive");
         std::mt19937 rng(7);
         std::uniform_real_distribution<float> u(-50.f, 50.f);
         for (int i = 0; i < points; ++i) {
@@ -45,7 +46,7 @@ public:
         ctx.add_timer(1.0 / rate, [this] { tick(); });
     }
 
-private:
+  private:
     void tick() {
         if (sent_ >= count_) return;
         if (static_cast<int>(out_.matched()) < wait_for_readers_) return;
@@ -63,17 +64,19 @@ private:
 
 // Measures now - header.stamp for every cloud; prints median/p99 and writes them to `report`.
 class LatencySink : public runtime::Component {
-public:
+  public:
     explicit LatencySink(runtime::ComponentContext& ctx) : ctx_(ctx) {
         report_ = ctx.params().get<std::string>("report", "");
         decode_ = ctx.params().get<bool>("decode", true);
-        ctx.subscribe<msg::PointCloud2>("points", TopicRole::kSensor, [this](const msg::PointCloud2& m) {
-            if (decode_) {
-                common::PointCloud c;
-                convert::from_pointcloud2(m, c);
-            }
-            latencies_ms_.push_back((monotonic_s() - convert::to_seconds(m.header.stamp)) * 1e3);
-        });
+        ctx.subscribe<msg::PointCloud2>(
+            "points", TopicRole::kSensor, [this](const msg::PointCloud2& m) {
+                if (decode_) {
+                    common::PointCloud c;
+                    convert::from_pointcloud2(m, c);
+                }
+                latencies_ms_.push_back((monotonic_s() - convert::to_seconds(m.header.stamp)) *
+                                        1e3);
+            });
     }
 
     void on_shutdown() override {
@@ -83,15 +86,17 @@ public:
         }
         std::vector<double> v = latencies_ms_;
         std::sort(v.begin(), v.end());
-        auto pct = [&](double q) { return v[std::min(v.size() - 1, static_cast<std::size_t>(q * (v.size() - 1) + 0.5))]; };
+        auto pct = [&](double q) {
+            return v[std::min(v.size() - 1, static_cast<std::size_t>(q * (v.size() - 1) + 0.5))];
+        };
         char line[200];
-        std::snprintf(line, sizeof line, "samples %zu median_ms %.3f p99_ms %.3f max_ms %.3f", v.size(), pct(0.5),
-                      pct(0.99), v.back());
+        std::snprintf(line, sizeof line, "samples %zu median_ms %.3f p99_ms %.3f max_ms %.3f",
+                      v.size(), pct(0.5), pct(0.99), v.back());
         ctx_.log().info(line);
         if (!report_.empty()) std::ofstream(report_) << line << "\n";
     }
 
-private:
+  private:
     runtime::ComponentContext& ctx_;
     std::string report_;
     bool decode_ = true;

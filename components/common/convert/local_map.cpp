@@ -54,7 +54,8 @@ common::KeyframeData from_msg(const msg::Keyframe& m) {
     return k;
 }
 
-const msg::LocalMap& LocalMapBuilder::build(const common::LocalMapData& d, double stamp, const std::string& frame_id) {
+const msg::LocalMap& LocalMapBuilder::build(const common::LocalMapData& d, double stamp,
+                                            const std::string& frame_id) {
     voxels_.resize(d.voxels.size());
     for (std::size_t i = 0; i < d.voxels.size(); ++i) {
         const common::VoxelData& v = d.voxels[i];
@@ -93,7 +94,8 @@ const msg::LocalMap& LocalMapBuilder::build(const common::LocalMapData& d, doubl
     return message_;
 }
 
-const msg::Keyframe& KeyframeBuilder::build(const common::KeyframeData& k, const std::string& frame_id,
+const msg::Keyframe& KeyframeBuilder::build(const common::KeyframeData& k,
+                                            const std::string& frame_id,
                                             const std::string& lidar_frame_id) {
     cloud_.clear();
     cloud_.points = k.points;

@@ -16,10 +16,11 @@ common::KeyframeData from_msg(const msg::Keyframe& m);
 // dds_string.hpp: never pass it to a free function); valid until the next build() and while `map`
 // lives unchanged.
 class LocalMapBuilder {
-public:
-    const msg::LocalMap& build(const common::LocalMapData& map, double stamp, const std::string& frame_id);
+  public:
+    const msg::LocalMap& build(const common::LocalMapData& map, double stamp,
+                               const std::string& frame_id);
 
-private:
+  private:
     std::vector<msg::Voxel> voxels_;
     std::string frame_id_;
     msg::LocalMap message_{};
@@ -27,11 +28,11 @@ private:
 
 // Builds a Keyframe message (points as PointCloud2, no descriptor unless given).
 class KeyframeBuilder {
-public:
+  public:
     const msg::Keyframe& build(const common::KeyframeData& keyframe, const std::string& frame_id,
                                const std::string& lidar_frame_id);
 
-private:
+  private:
     PointCloud2Builder points_;
     common::PointCloud cloud_;
     std::string frame_id_;

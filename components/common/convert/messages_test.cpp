@@ -160,7 +160,8 @@ TEST(OdometryMessage, ReparentMovesThePoseAndRotatesItsCovariance) {
     in.pose_covariance(5, 5) = 0.01;
     in.linear_velocity = {1, 0, 0};
     Eigen::Isometry3d T_map_odom = Eigen::Isometry3d::Identity();
-    T_map_odom.linear() = Eigen::AngleAxisd(EIGEN_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    T_map_odom.linear() =
+        Eigen::AngleAxisd(EIGEN_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
     T_map_odom.translation() = Eigen::Vector3d(10, 0, 0);
     const OdometryData out = reparent(in, T_map_odom, "map");
     EXPECT_EQ(out.frame_id, "map");
@@ -169,7 +170,7 @@ TEST(OdometryMessage, ReparentMovesThePoseAndRotatesItsCovariance) {
     EXPECT_NEAR(out.pose_covariance(1, 1), 4.0, 1e-12);  // odom's x is map's y
     EXPECT_NEAR(out.pose_covariance(0, 0), 0.0, 1e-12);
     EXPECT_NEAR(out.pose_covariance(5, 5), 0.01, 1e-12);  // yaw about the same axis
-    EXPECT_EQ(out.linear_velocity, in.linear_velocity);  // child frame: unchanged
+    EXPECT_EQ(out.linear_velocity, in.linear_velocity);   // child frame: unchanged
 }
 
 TEST(PoseGraphMessage, BuildAndBack) {

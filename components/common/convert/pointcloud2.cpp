@@ -21,7 +21,8 @@ std::string from_pointcloud2(const msg::PointCloud2& m, common::PointCloud& out)
                std::to_string(height * static_cast<std::size_t>(m.row_step));
     const double stamp = to_seconds(m.header.stamp);
     if (m.row_step == width * m.point_step || height <= 1) {
-        const std::string err = common::decode_points(layout, m.data._buffer, width * height, stamp, out);
+        const std::string err =
+            common::decode_points(layout, m.data._buffer, width * height, stamp, out);
         out.frame_id = m.header.frame_id ? m.header.frame_id : "";
         return err;
     }
@@ -29,7 +30,8 @@ std::string from_pointcloud2(const msg::PointCloud2& m, common::PointCloud& out)
     common::PointCloud row;
     out.clear();
     for (std::size_t r = 0; r < height; ++r) {
-        const std::string err = common::decode_points(layout, m.data._buffer + r * m.row_step, width, stamp, row);
+        const std::string err =
+            common::decode_points(layout, m.data._buffer + r * m.row_step, width, stamp, row);
         if (!err.empty()) return err;
         out.points.insert(out.points.end(), row.points.begin(), row.points.end());
         out.intensity.insert(out.intensity.end(), row.intensity.begin(), row.intensity.end());

@@ -16,10 +16,10 @@ std::string from_pointcloud2(const msg::PointCloud2& message, common::PointCloud
 // Builds PointCloud2 messages over buffers it owns (borrowed, see dds_string.hpp: never pass the
 // message to a free function); the message stays valid until the next build().
 class PointCloud2Builder {
-public:
+  public:
     const msg::PointCloud2& build(const common::PointCloud& cloud);
 
-private:
+  private:
     std::vector<std::uint8_t> data_;
     common::PointLayout layout_;
     std::vector<msg::PointField> fields_;

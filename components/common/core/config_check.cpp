@@ -22,7 +22,8 @@ ConfigError::ConfigError(const std::string& key, const std::string& problem)
 
 ConfigError::ConfigError(const std::string& file, int line, const std::string& key,
                          const std::string& problem)
-    : std::invalid_argument(one_line(file + ":" + std::to_string(line) + ": " + key + ": " + problem)),
+    : std::invalid_argument(
+          one_line(file + ":" + std::to_string(line) + ": " + key + ": " + problem)),
       file_(file),
       line_(line),
       key_(key),

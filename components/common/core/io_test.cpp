@@ -16,7 +16,8 @@ using namespace ltm::common;
 namespace {
 
 fs::path temp_dir(const std::string& name) {
-    fs::path d = fs::temp_directory_path() / ("ltm_io_test_" + name + "_" + std::to_string(::getpid()));
+    fs::path d =
+        fs::temp_directory_path() / ("ltm_io_test_" + name + "_" + std::to_string(::getpid()));
     fs::remove_all(d);
     fs::create_directories(d);
     return d;
@@ -99,7 +100,8 @@ TEST(TrajectoryIo, CameraToLidarMatchesDefinition) {
     P.translation() = Eigen::Vector3d(0, 0, 5);  // camera moves 5 m along its z
     const PoseList out = camera_to_lidar_poses({P}, Tr);
     EXPECT_TRUE(out[0].isApprox(Tr.inverse() * P * Tr));
-    // The camera's forward z axis is the LiDAR's -y here: the LiDAR moved 5 m along its y... sign check:
+    // The camera's forward z axis is the LiDAR's -y here: the LiDAR moved 5 m along its y... sign
+    // check:
     EXPECT_NEAR(out[0].translation().norm(), 5.0, 1e-12);
 }
 
@@ -134,8 +136,9 @@ TEST(PclIo, MalformedAndMissingFilesGiveOneLine) {
     std::ofstream(d / "junk.ply") << "ply\nformat ascii 1.0\nelement vertex 3\nend_header\n1 2\n";
     EXPECT_THROW(load_cloud_file((d / "junk.ply").string()), IoError);
     // A binary PCD whose data stops early.
-    std::ofstream(d / "short.pcd") << "VERSION .7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\n"
-                                      "WIDTH 10\nHEIGHT 1\nPOINTS 10\nDATA binary\n1234";
+    std::ofstream(d / "short.pcd")
+        << "VERSION .7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\n"
+           "WIDTH 10\nHEIGHT 1\nPOINTS 10\nDATA binary\n1234";
     try {
         load_cloud_file((d / "short.pcd").string());
         FAIL();

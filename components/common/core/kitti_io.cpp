@@ -48,7 +48,8 @@ void write_kitti_bin(const std::string& path, const PointCloud& cloud) {
     }
     std::FILE* f = std::fopen(path.c_str(), "wb");
     if (!f) throw IoError(path, "cannot open for writing");
-    const bool ok = raw.empty() || std::fwrite(raw.data(), sizeof(float), raw.size(), f) == raw.size();
+    const bool ok =
+        raw.empty() || std::fwrite(raw.data(), sizeof(float), raw.size(), f) == raw.size();
     if (std::fclose(f) != 0 || !ok) throw IoError(path, "write failed");
 }
 
@@ -58,7 +59,8 @@ std::vector<std::string> list_kitti_scans(const std::string& dir) {
     if (fs::is_directory(root / "velodyne")) root /= "velodyne";
     std::vector<std::string> files;
     for (const auto& e : fs::directory_iterator(root)) {
-        if (e.is_regular_file() && e.path().extension() == ".bin") files.push_back(e.path().string());
+        if (e.is_regular_file() && e.path().extension() == ".bin")
+            files.push_back(e.path().string());
     }
     std::sort(files.begin(), files.end());
     return files;
@@ -66,9 +68,9 @@ std::vector<std::string> list_kitti_scans(const std::string& dir) {
 
 std::string kitti_sequence_dir(const std::string& dir) {
     fs::path root(dir);
-    if (root.filename() == "velodyne" || (!fs::is_directory(root / "velodyne") &&
-                                          fs::exists(root.parent_path() / "times.txt") &&
-                                          !fs::exists(root / "times.txt"))) {
+    if (root.filename() == "velodyne" ||
+        (!fs::is_directory(root / "velodyne") && fs::exists(root.parent_path() / "times.txt") &&
+         !fs::exists(root / "times.txt"))) {
         return root.parent_path().string();
     }
     return root.string();

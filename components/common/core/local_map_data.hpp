@@ -9,11 +9,11 @@ namespace ltm::common {
 
 // Life record of a voxel (METHOD.md section 5).
 struct VoxelLife {
-    double created = 0.0;              // stamp of the first observation [s]
-    double last_seen = 0.0;            // stamp of the last observation [s]
-    std::uint32_t observations = 0;    // scans that hit the voxel
-    float health = 1.0f;               // 0..1
-    std::vector<std::uint16_t> seen;   // indices into LocalMapData::observation_times (may be empty)
+    double created = 0.0;             // stamp of the first observation [s]
+    double last_seen = 0.0;           // stamp of the last observation [s]
+    std::uint32_t observations = 0;   // scans that hit the voxel
+    float health = 1.0f;              // 0..1
+    std::vector<std::uint16_t> seen;  // indices into LocalMapData::observation_times (may be empty)
 };
 
 struct VoxelData {
@@ -21,8 +21,8 @@ struct VoxelData {
     Eigen::Vector3f centre = Eigen::Vector3f::Zero();  // mean of the points, grid frame [m]
     Eigen::Vector3f normal = Eigen::Vector3f::Zero();  // unit; zero when the voxel has none yet
     std::uint32_t point_count = 0;
-    float planarity = 0.0f;            // 0..1
-    float stability = 0.0f;            // |n_old . n_new| (Eq. 7)
+    float planarity = 0.0f;  // 0..1
+    float stability = 0.0f;  // |n_old . n_new| (Eq. 7)
     VoxelLife life;
 };
 
@@ -30,13 +30,13 @@ struct VoxelData {
 // p_odom = T_odom_anchor * T_anchor_grid * p_grid, so moving an anchor moves its voxels.
 struct LocalMapData {
     std::uint64_t id = 0;
-    std::uint32_t revision = 0;        // increases with every snapshot of the same map
-    bool finished = false;             // false: a snapshot of a map still being built
+    std::uint32_t revision = 0;  // increases with every snapshot of the same map
+    bool finished = false;       // false: a snapshot of a map still being built
     Eigen::Isometry3d T_odom_anchor = Eigen::Isometry3d::Identity();
     Eigen::Isometry3d T_anchor_grid = Eigen::Isometry3d::Identity();
     Eigen::Vector3d bbox_min = Eigen::Vector3d::Zero();  // grid frame [m]
     Eigen::Vector3d bbox_max = Eigen::Vector3d::Zero();
-    float voxel_size = 1.0f;           // [m]
+    float voxel_size = 1.0f;                // [m]
     std::vector<double> observation_times;  // stamps of the scans that updated it [s]
     std::vector<VoxelData> voxels;
     EIGEN_MAKE_ALIGNED_OPERATOR_NEW
@@ -45,9 +45,9 @@ struct LocalMapData {
 // A registered scan kept for loop closure and re-localisation.
 struct KeyframeData {
     std::uint64_t id = 0;
-    std::uint64_t scan_index = 0;      // index of the scan in its input stream
+    std::uint64_t scan_index = 0;  // index of the scan in its input stream
     std::uint64_t local_map_id = 0;
-    double stamp = 0.0;                // [s]
+    double stamp = 0.0;  // [s]
     Eigen::Isometry3d T_odom_lidar = Eigen::Isometry3d::Identity();
     Eigen::Isometry3d T_anchor_lidar = Eigen::Isometry3d::Identity();
     std::vector<Eigen::Vector3f> points;  // down-sampled, LiDAR frame

@@ -40,8 +40,8 @@ void check_pcd_header(const std::string& path) {
         // PCL splits header lines at spaces, tabs and carriage returns only.
         for (const char c : line)
             if ((static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\r') || c == 0x7f)
-                throw IoError(path, "PCD header line " + std::to_string(lineno) +
-                                        ": a control character");
+                throw IoError(
+                    path, "PCD header line " + std::to_string(lineno) + ": a control character");
         std::istringstream ss(line);
         std::string key, v;
         ss >> key;

@@ -10,7 +10,7 @@ namespace ltm::common {
 namespace {
 
 class AtomicFile {
-public:
+  public:
     explicit AtomicFile(const std::string& path) : path_(path), tmp_(path + ".tmp") {
         f_ = std::fopen(tmp_.c_str(), "wb");
         if (!f_) throw IoError(path, "cannot open for writing");
@@ -35,7 +35,7 @@ public:
         if (ec) throw IoError(path_, "rename failed: " + ec.message());
     }
 
-private:
+  private:
     std::string path_, tmp_;
     std::FILE* f_ = nullptr;
 };
@@ -47,8 +47,9 @@ void write_ply(const std::string& path, const PlyCloud& cloud) {
     const bool has_n = !cloud.normals.empty(), has_i = !cloud.intensity.empty();
     if ((has_n && cloud.normals.size() != n) || (has_i && cloud.intensity.size() != n))
         throw IoError(path, "point channels differ in size");
-    std::string header = "ply\nformat binary_little_endian 1.0\ncomment written by ltm\nelement vertex " +
-                         std::to_string(n) + "\nproperty float x\nproperty float y\nproperty float z\n";
+    std::string header =
+        "ply\nformat binary_little_endian 1.0\ncomment written by ltm\nelement vertex " +
+        std::to_string(n) + "\nproperty float x\nproperty float y\nproperty float z\n";
     if (has_n) header += "property float nx\nproperty float ny\nproperty float nz\n";
     if (has_i) header += "property float intensity\n";
     header += "end_header\n";
@@ -68,12 +69,14 @@ void write_ply(const std::string& path, const PlyCloud& cloud) {
 void write_ply(const std::string& path, const PlyMesh& mesh) {
     const std::size_t n = mesh.vertices.size();
     const bool has_n = !mesh.normals.empty();
-    if (has_n && mesh.normals.size() != n) throw IoError(path, "normals differ in size from vertices");
+    if (has_n && mesh.normals.size() != n)
+        throw IoError(path, "normals differ in size from vertices");
     for (const auto& t : mesh.triangles)
         if ((t.array() < 0).any() || (t.array() >= static_cast<int>(n)).any())
             throw IoError(path, "triangle index out of range");
-    std::string header = "ply\nformat binary_little_endian 1.0\ncomment written by ltm\nelement vertex " +
-                         std::to_string(n) + "\nproperty float x\nproperty float y\nproperty float z\n";
+    std::string header =
+        "ply\nformat binary_little_endian 1.0\ncomment written by ltm\nelement vertex " +
+        std::to_string(n) + "\nproperty float x\nproperty float y\nproperty float z\n";
     if (has_n) header += "property float nx\nproperty float ny\nproperty float nz\n";
     header += "element face " + std::to_string(mesh.triangles.size()) +
               "\nproperty list uchar int vertex_indices\nend_header\n";

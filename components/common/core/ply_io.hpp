@@ -15,8 +15,8 @@ struct PlyCloud {
 
 struct PlyMesh {
     std::vector<Eigen::Vector3f> vertices;
-    std::vector<Eigen::Vector3f> normals;        // empty, or one per vertex
-    std::vector<Eigen::Vector3i> triangles;      // vertex indices
+    std::vector<Eigen::Vector3f> normals;    // empty, or one per vertex
+    std::vector<Eigen::Vector3i> triangles;  // vertex indices
 };
 
 // Written to a temporary file and renamed, so a reader never sees half a file.

@@ -13,7 +13,14 @@ namespace ltm::common {
 
 // Data types, numbered as sensor_msgs/PointField.
 enum class FieldType : std::uint8_t {
-    kInt8 = 1, kUInt8 = 2, kInt16 = 3, kUInt16 = 4, kInt32 = 5, kUInt32 = 6, kFloat32 = 7, kFloat64 = 8
+    kInt8 = 1,
+    kUInt8 = 2,
+    kInt16 = 3,
+    kUInt16 = 4,
+    kInt32 = 5,
+    kUInt32 = 6,
+    kFloat32 = 7,
+    kFloat64 = 8
 };
 std::size_t field_type_size(std::uint8_t datatype);  // 0 for an unknown type
 
@@ -40,6 +47,7 @@ std::string decode_points(const PointLayout& layout, const std::uint8_t* data, s
 
 // The layout ltm publishes: x y z intensity float32, plus float32 `t` (s) when the cloud has times.
 PointLayout standard_layout(bool with_time);
-void encode_points(const PointCloud& cloud, const PointLayout& layout, std::vector<std::uint8_t>& data);
+void encode_points(const PointCloud& cloud, const PointLayout& layout,
+                   std::vector<std::uint8_t>& data);
 
 }  // namespace ltm::common

@@ -47,7 +47,8 @@ TEST(PointLayout, OusterStyleLayoutWithPaddingAndNanosecondTime) {
     // x y z at 0/4/8, 4 bytes padding, intensity float at 16, uint32 t (ns) at 20, step 48.
     PointLayout layout;
     layout.point_step = 48;
-    layout.fields = {{"x", 0, 7, 1}, {"y", 4, 7, 1}, {"z", 8, 7, 1}, {"intensity", 16, 7, 1}, {"t", 20, 6, 1}};
+    layout.fields = {
+        {"x", 0, 7, 1}, {"y", 4, 7, 1}, {"z", 8, 7, 1}, {"intensity", 16, 7, 1}, {"t", 20, 6, 1}};
     std::vector<std::uint8_t> data(2 * 48, 0xAB);
     const float p0[3] = {1, 2, 3}, p1[3] = {4, 5, 6};
     const float i0 = 7, i1 = 8;
@@ -83,7 +84,8 @@ TEST(PointLayout, RejectsUnsupportedLayoutsWithReason) {
     doubles.fields = {{"x", 0, 8, 1}, {"y", 8, 8, 1}, {"z", 16, 8, 1}};
     std::vector<std::uint8_t> data(24, 0);
     PointCloud out;
-    EXPECT_NE(decode_points(doubles, data.data(), 1, 0, out).find("need float32"), std::string::npos);
+    EXPECT_NE(decode_points(doubles, data.data(), 1, 0, out).find("need float32"),
+              std::string::npos);
 
     PointLayout no_z;
     no_z.point_step = 8;
@@ -93,7 +95,8 @@ TEST(PointLayout, RejectsUnsupportedLayoutsWithReason) {
     PointLayout overflow;
     overflow.point_step = 8;
     overflow.fields = {{"x", 0, 7, 1}, {"y", 4, 7, 1}, {"z", 8, 7, 1}};
-    EXPECT_NE(decode_points(overflow, data.data(), 1, 0, out).find("does not fit"), std::string::npos);
+    EXPECT_NE(decode_points(overflow, data.data(), 1, 0, out).find("does not fit"),
+              std::string::npos);
 
     PointLayout big = standard_layout(false);
     big.big_endian = true;

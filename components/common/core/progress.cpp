@@ -1,7 +1,8 @@
 #include "common/core/progress.hpp"
 
-#include <cstdio>
 #include <unistd.h>
+
+#include <cstdio>
 
 namespace ltm::common {
 
@@ -11,7 +12,8 @@ Progress::Progress(std::string label, std::size_t total, std::string unit)
 }
 
 double Progress::rate() const {
-    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    const double s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
     return s > 0 ? done_ / s : 0.0;
 }
 
@@ -33,11 +35,12 @@ void Progress::print(bool final_line) {
         std::snprintf(eta, sizeof eta, ", ETA %ldm%02lds", s / 60, s % 60);
     }
     char pct[32] = "";
-    if (total_ > 0) std::snprintf(pct, sizeof pct, "/%zu (%.1f %%)", total_, 100.0 * done_ / total_);
+    if (total_ > 0)
+        std::snprintf(pct, sizeof pct, "/%zu (%.1f %%)", total_, 100.0 * done_ / total_);
     // On a terminal, rewrite one line; in logs, one line per report.
     const bool tty = isatty(fileno(stderr));
-    std::fprintf(stderr, "%s%s: %zu%s %s, %.1f %s/s%s%s", tty ? "\r" : "", label_.c_str(), done_, pct,
-                 unit_.c_str(), r, unit_.c_str(), eta, (final_line || !tty) ? "\n" : "");
+    std::fprintf(stderr, "%s%s: %zu%s %s, %.1f %s/s%s%s", tty ? "\r" : "", label_.c_str(), done_,
+                 pct, unit_.c_str(), r, unit_.c_str(), eta, (final_line || !tty) ? "\n" : "");
     std::fflush(stderr);
 }
 

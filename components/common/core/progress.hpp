@@ -7,7 +7,7 @@
 namespace ltm::common {
 
 class Progress {
-public:
+  public:
     // total == 0: unknown length (no percentage, no ETA).
     Progress(std::string label, std::size_t total, std::string unit = "frames");
     // Reports `done` items finished; prints when a second has passed since the last line.
@@ -16,7 +16,7 @@ public:
     void finish();
     double rate() const;  // items per second so far
 
-private:
+  private:
     void print(bool final_line);
     std::string label_, unit_;
     std::size_t total_, done_ = 0;

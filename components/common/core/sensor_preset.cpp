@@ -11,10 +11,14 @@ constexpr SensorPreset kAll[] = {SensorPreset::kHdl64, SensorPreset::kVlp32, Sen
 
 const char* to_string(SensorPreset preset) {
     switch (preset) {
-        case SensorPreset::kHdl64: return "hdl64";
-        case SensorPreset::kVlp32: return "vlp32";
-        case SensorPreset::kVlp16: return "vlp16";
-        case SensorPreset::kNarrow: return "narrow";
+        case SensorPreset::kHdl64:
+            return "hdl64";
+        case SensorPreset::kVlp32:
+            return "vlp32";
+        case SensorPreset::kVlp16:
+            return "vlp16";
+        case SensorPreset::kNarrow:
+            return "narrow";
     }
     return "?";
 }

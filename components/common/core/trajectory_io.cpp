@@ -54,8 +54,8 @@ PoseList read_kitti_poses(const std::string& path) {
         for (int r = 0; r < 3; ++r)
             for (int c = 0; c < 4; ++c)
                 if (!(ss >> T.matrix()(r, c)))
-                    throw IoError(path, "line " + std::to_string(lineno) +
-                                            ": a KITTI pose needs 12 numbers");
+                    throw IoError(
+                        path, "line " + std::to_string(lineno) + ": a KITTI pose needs 12 numbers");
         poses.push_back(T);
     }
     return poses;
@@ -84,7 +84,8 @@ Trajectory read_tum_trajectory(const std::string& path) {
                                         ": a TUM pose needs 8 numbers (t x y z qx qy qz qw)");
         StampedPose sp;
         sp.stamp = v[0];
-        sp.pose.linear() = Eigen::Quaterniond(v[7], v[4], v[5], v[6]).normalized().toRotationMatrix();
+        sp.pose.linear() =
+            Eigen::Quaterniond(v[7], v[4], v[5], v[6]).normalized().toRotationMatrix();
         sp.pose.translation() = Eigen::Vector3d(v[1], v[2], v[3]);
         out.push_back(sp);
     }

@@ -17,7 +17,8 @@ bool append_labelled_scan(const common::PointCloud& cloud, const std::vector<std
         if (!p.allFinite()) continue;
         if (max_range > 0.0 && p.cast<double>().squaredNorm() > max_r2) continue;
         map.points.push_back(T * p);
-        map.dynamic.push_back(common::is_dynamic_label(labels[i], scheme, changed_is_dynamic) ? 1 : 0);
+        map.dynamic.push_back(common::is_dynamic_label(labels[i], scheme, changed_is_dynamic) ? 1
+                                                                                              : 0);
     }
     return true;
 }

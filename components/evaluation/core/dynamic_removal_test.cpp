@@ -52,12 +52,13 @@ TEST(DynamicRemoval, AppendLabelledScanTransformsFiltersAndLabels) {
     Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
     T.translation() = Eigen::Vector3d(0, 0, 10);
     LabelledMap map;
-    ASSERT_TRUE(
-        append_labelled_scan(cloud, labels, T, common::LabelScheme::kSemanticKitti, false, 50.0, map));
+    ASSERT_TRUE(append_labelled_scan(cloud, labels, T, common::LabelScheme::kSemanticKitti, false,
+                                     50.0, map));
     ASSERT_EQ(map.points.size(), 3u);  // the 60 m point is beyond max_range
     EXPECT_TRUE(map.points[0].isApprox(Eigen::Vector3f(1, 0, 10)));
     EXPECT_EQ(map.dynamic, (std::vector<std::uint8_t>{1, 0, 0}));
-    EXPECT_FALSE(append_labelled_scan(cloud, {1u}, T, common::LabelScheme::kSemanticKitti, false, 0, map));
+    EXPECT_FALSE(
+        append_labelled_scan(cloud, {1u}, T, common::LabelScheme::kSemanticKitti, false, 0, map));
 }
 
 TEST(DynamicRemoval, SimulatorLabelEncoding) {
@@ -68,7 +69,8 @@ TEST(DynamicRemoval, SimulatorLabelEncoding) {
     const std::uint32_t changed = common::make_label(common::kSimChangedObject, 3);
     EXPECT_FALSE(common::is_dynamic_label(changed, common::LabelScheme::kLtmSim));
     EXPECT_TRUE(common::is_dynamic_label(changed, common::LabelScheme::kLtmSim, true));
-    EXPECT_FALSE(common::is_dynamic_label(common::make_label(common::kSimStatic, 0), common::LabelScheme::kLtmSim, true));
+    EXPECT_FALSE(common::is_dynamic_label(common::make_label(common::kSimStatic, 0),
+                                          common::LabelScheme::kLtmSim, true));
     EXPECT_FALSE(common::is_dynamic_label(251, common::LabelScheme::kSemanticKitti));
     EXPECT_TRUE(common::is_dynamic_label(259, common::LabelScheme::kSemanticKitti));
     EXPECT_FALSE(common::is_dynamic_label(260, common::LabelScheme::kSemanticKitti));

@@ -19,7 +19,8 @@ std::string temp_file(const std::string& name, const std::string& text) {
 
 TEST(EvalIo, LabelsRoundTrip) {
     const std::string path = testing::TempDir() + "ltm_eval_io_labels.label";
-    const std::vector<std::uint32_t> labels = {common::make_label(common::kSimMovingActor, 4), 252u, 0u};
+    const std::vector<std::uint32_t> labels = {common::make_label(common::kSimMovingActor, 4), 252u,
+                                               0u};
     write_labels(path, labels);
     EXPECT_EQ(read_labels(path), labels);
     EXPECT_THROW(read_labels(temp_file("bad.label", "abc")), common::IoError);

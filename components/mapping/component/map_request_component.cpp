@@ -2,9 +2,10 @@
 // asks it to save the map and/or write the global map, waits for its answer on `status` and
 // finishes (the host then exits 0). No answer within `timeout_s`, or a refused request, fails the
 // component (the host exits 1) with one line saying why. `./ltm map` runs it.
+#include <unistd.h>
+
 #include <chrono>
 #include <stdexcept>
-#include <unistd.h>
 
 #include "common/convert/dds_string.hpp"
 #include "common/convert/owned_message.hpp"
@@ -18,7 +19,7 @@ using runtime::PathCheck;
 using runtime::TopicRole;
 
 class MapRequestComponent : public runtime::Component {
-public:
+  public:
     explicit MapRequestComponent(runtime::ComponentContext& ctx) : ctx_(ctx) {
         auto& p = ctx.params();
         const std::string what = p.get<std::string>("command", "all");
@@ -36,15 +37,17 @@ public:
         timeout_s_ = p.get<double>("timeout_s", 30.0);
         if (!(timeout_s_ > 0)) p.fail("timeout_s", "must be > 0");
         // Unique enough among requesters of one robot: the process id and the clock.
-        id_ = static_cast<std::uint32_t>(::getpid()) * 7919u +
-              static_cast<std::uint32_t>(std::chrono::steady_clock::now().time_since_epoch().count());
+        id_ =
+            static_cast<std::uint32_t>(::getpid()) * 7919u +
+            static_cast<std::uint32_t>(std::chrono::steady_clock::now().time_since_epoch().count());
         ctx.declare_source();
         request_out_ = ctx.advertise<msg::MapRequest>("map_request", TopicRole::kState);
-        ctx.subscribe<msg::Status>("status", TopicRole::kState, [this](const msg::Status& s) { on_status(s); });
+        ctx.subscribe<msg::Status>("status", TopicRole::kState,
+                                   [this](const msg::Status& s) { on_status(s); });
         ctx.add_timer(0.1, [this] { tick(); });
     }
 
-private:
+  private:
     void tick() {
         if (done_) return;
         const auto now = std::chrono::steady_clock::now();
@@ -64,9 +67,10 @@ private:
         }
         if (std::chrono::duration<double>(now - start_).count() > timeout_s_) {
             done_ = true;
-            throw std::runtime_error(sent_ ? "no answer from the mapping component within " + fmt(timeout_s_) + " s"
-                                           : "no mapping component listens on '" + request_out_.topic() +
-                                                 "' (is it running, on the same domain and namespace?)");
+            throw std::runtime_error(
+                sent_ ? "no answer from the mapping component within " + fmt(timeout_s_) + " s"
+                      : "no mapping component listens on '" + request_out_.topic() +
+                            "' (is it running, on the same domain and namespace?)");
         }
     }
 
@@ -76,7 +80,8 @@ private:
         const std::string& message = s.message;
         if (done_ || message.rfind(prefix, 0) != 0) return;
         done_ = true;
-        if (s.level == convert::StatusLevel::kError) throw std::runtime_error(message.substr(prefix.size()));
+        if (s.level == convert::StatusLevel::kError)
+            throw std::runtime_error(message.substr(prefix.size()));
         ctx_.log().info(message.substr(prefix.size()));
         ctx_.finished();
     }
@@ -101,5 +106,6 @@ private:
 }  // namespace
 }  // namespace ltm::mapping
 
-LTM_REGISTER_COMPONENT(ltm::mapping::MapRequestComponent, "map_request",
-                       "asks a running mapping component to save its map / global map, waits for the answer")
+LTM_REGISTER_COMPONENT(
+    ltm::mapping::MapRequestComponent, "map_request",
+    "asks a running mapping component to save its map / global map, waits for the answer")

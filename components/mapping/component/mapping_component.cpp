@@ -32,7 +32,7 @@ using runtime::PathCheck;
 using runtime::TopicRole;
 
 class MappingComponent : public runtime::Component {
-public:
+  public:
     explicit MappingComponent(runtime::ComponentContext& ctx) : ctx_(ctx) {
         auto& p = ctx.params();
         map_dir_ = p.path("map_dir", "", PathCheck::kParentExists);
@@ -41,7 +41,8 @@ public:
         const bool freeze_loaded = p.get<bool>("freeze_loaded", true);
         frame_id_ = p.get<std::string>("frame_id", "map");
         const double save_period = p.get<double>("save_period_s", 30.0);
-        if (save_period < 0) p.fail("save_period_s", "must be >= 0 (0: save only on request and at shutdown)");
+        if (save_period < 0)
+            p.fail("save_period_s", "must be >= 0 (0: save only on request and at shutdown)");
         const MapperConfig config = load_mapper_config(p, "", "hdl64");
         create_mapper(p, config, load_dir, freeze_loaded);
         if (!map_dir_.empty()) writer_ = std::make_unique<MapWriter>(map_dir_);
@@ -53,8 +54,10 @@ public:
             if (!r.added && !r.message.empty()) ctx_.log().debug(r.message);
             flush_waiting();
         });
-        ctx.subscribe<msg::Keyframe>("keyframe", TopicRole::kState, [this](const msg::Keyframe& m) { on_keyframe(m); });
-        ctx.subscribe<msg::Odometry>("odometry", TopicRole::kState, [this](const msg::Odometry& m) { on_odometry(m); });
+        ctx.subscribe<msg::Keyframe>("keyframe", TopicRole::kState,
+                                     [this](const msg::Keyframe& m) { on_keyframe(m); });
+        ctx.subscribe<msg::Odometry>("odometry", TopicRole::kState,
+                                     [this](const msg::Odometry& m) { on_odometry(m); });
         ctx.subscribe<msg::MapRequest>("map_request", TopicRole::kState,
                                        [this](const msg::MapRequest& m) { on_request(m); });
         graph_out_ = ctx.advertise<msg::PoseGraph>("pose_graph", TopicRole::kMap);
@@ -75,9 +78,9 @@ public:
         write_global_map(global_map_file_, nullptr);
     }
 
-private:
-    void create_mapper(runtime::Parameters& p, const MapperConfig& config, const std::string& load_dir,
-                       bool freeze_loaded) {
+  private:
+    void create_mapper(runtime::Parameters& p, const MapperConfig& config,
+                       const std::string& load_dir, bool freeze_loaded) {
         try {
             if (load_dir.empty()) {
                 mapper_ = std::make_unique<Mapper>(config);
@@ -86,14 +89,18 @@ private:
             LoadedMap loaded = load_map(load_dir);
             // A damaged file is left alone: saving into the same directory would replace it.
             std::error_code ec;
-            if (!loaded.refused.empty() && !map_dir_.empty() && std::filesystem::equivalent(load_dir, map_dir_, ec))
-                p.fail("load_map_dir", std::to_string(loaded.refused.size()) + " damaged file(s) in the map (" +
-                                           loaded.refused.front() +
-                                           "); set map_dir to another directory to continue without them");
-            for (const std::string& r : loaded.refused) ctx_.log().warn("loaded map: " + r + " (left out)");
+            if (!loaded.refused.empty() && !map_dir_.empty() &&
+                std::filesystem::equivalent(load_dir, map_dir_, ec))
+                p.fail("load_map_dir",
+                       std::to_string(loaded.refused.size()) + " damaged file(s) in the map (" +
+                           loaded.refused.front() +
+                           "); set map_dir to another directory to continue without them");
+            for (const std::string& r : loaded.refused)
+                ctx_.log().warn("loaded map: " + r + " (left out)");
             mapper_ = std::make_unique<Mapper>(config, loaded.map, freeze_loaded);
-            ctx_.log().info("continuing the map of " + load_dir + " (" + std::to_string(mapper_->local_map_count()) +
-                            " local maps, " + std::to_string(mapper_->keyframes().size()) +
+            ctx_.log().info("continuing the map of " + load_dir + " (" +
+                            std::to_string(mapper_->local_map_count()) + " local maps, " +
+                            std::to_string(mapper_->keyframes().size()) +
                             " keyframes) in session " + std::to_string(mapper_->session()));
         } catch (const MapFormatError& e) {
             p.fail("load_map_dir", e.what());
@@ -125,8 +132,10 @@ private:
             } else {
                 st = save_map(dir, mapper_->snapshot());
             }
-            return report(true, "map saved to " + dir + " (" + std::to_string(st.files_written) + " files written, " +
-                                    std::to_string(st.bytes_total >> 20) + " MiB in all)",
+            return report(true,
+                          "map saved to " + dir + " (" + std::to_string(st.files_written) +
+                              " files written, " + std::to_string(st.bytes_total >> 20) +
+                              " MiB in all)",
                           outcome);
         } catch (const common::IoError& e) {
             return report(false, std::string("map not saved: ") + e.what(), outcome);
@@ -167,7 +176,8 @@ private:
         if (!want_map && !want_ply) {
             outcome = "unknown command " + std::to_string(m.command);
         } else if ((want_map && dir.empty()) || (want_ply && file.empty())) {
-            outcome = std::string("nowhere to write: no ") + (want_map && dir.empty() ? "map_dir" : "global_map_file") +
+            outcome = std::string("nowhere to write: no ") +
+                      (want_map && dir.empty() ? "map_dir" : "global_map_file") +
                       " in the request or the component's parameters";
         } else {
             if (loops_since_optimise_ > 0) optimise();
@@ -176,7 +186,8 @@ private:
             ok = map_ok && ply_ok;
         }
         status(ok ? StatusLevel::kOk : StatusLevel::kError,
-               ok ? "map_request_done" : "map_request_failed", "request " + std::to_string(m.id) + ": " + outcome);
+               ok ? "map_request_done" : "map_request_failed",
+               "request " + std::to_string(m.id) + ": " + outcome);
     }
 
     void on_keyframe(const msg::Keyframe& m) {
@@ -207,7 +218,9 @@ private:
         if (waiting_.size() == kMaxWaiting) {
             waiting_.pop_front();
             if (!warned_waiting_)
-                ctx_.log().warn("no local map for the odometry's poses yet: the oldest waiting ones are dropped");
+                ctx_.log().warn(
+                    "no local map for the odometry's poses yet: the oldest waiting ones are "
+                    "dropped");
             warned_waiting_ = true;
         }
         waiting_.push_back(convert::from_msg(m));
@@ -233,7 +246,8 @@ private:
     void publish_correction(const msg::Time& stamp) {
         const std::optional<Eigen::Isometry3d> T = mapper_->T_world_odom(current_map_);
         if (!T) return;
-        correction_out_.publish(*convert::to_msg(convert::TransformData{stamp, frame_id_, "odom", *T}));
+        correction_out_.publish(
+            *convert::to_msg(convert::TransformData{stamp, frame_id_, "odom", *T}));
     }
 
     void optimise() {
@@ -249,8 +263,8 @@ private:
     }
 
     void status(StatusLevel level, const std::string& code, const std::string& message) {
-        status_out_.publish(
-            *convert::to_msg(convert::StatusData{{}, frame_id_, ctx_.name(), level, code, message}));
+        status_out_.publish(*convert::to_msg(
+            convert::StatusData{{}, frame_id_, ctx_.name(), level, code, message}));
     }
 
     void publish_loop(const LoopClosure& loop, const msg::Time& stamp) {
@@ -259,7 +273,8 @@ private:
                                       ? ""
                                       : " of session " + std::to_string(loop.match_session);
         ctx_.log().info("loop closed: scan " + std::to_string(loop.query_scan) + " with scan " +
-                        std::to_string(loop.match_scan) + other + " (" + std::to_string(loop.inliers) + " inliers)");
+                        std::to_string(loop.match_scan) + other + " (" +
+                        std::to_string(loop.inliers) + " inliers)");
     }
 
     void publish_graph() { graph_out_.publish(*convert::to_msg(graph_data(*mapper_, frame_id_))); }
@@ -289,5 +304,6 @@ private:
 }  // namespace
 }  // namespace ltm::mapping
 
-LTM_REGISTER_COMPONENT(ltm::mapping::MappingComponent, "mapping",
-                       "SLAM back end: Scan Context loops, pose graph, corrected path and odometry, map saved")
+LTM_REGISTER_COMPONENT(
+    ltm::mapping::MappingComponent, "mapping",
+    "SLAM back end: Scan Context loops, pose graph, corrected path and odometry, map saved")

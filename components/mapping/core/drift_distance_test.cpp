@@ -84,7 +84,8 @@ TEST(DriftDistance, MatchesABruteForceOracleOnRandomGraphs) {
                 for (int j = 0; j < n; ++j) d[i][j] = std::min(d[i][j], d[i][k] + d[k][j]);
         for (int k = 0; k < 20; ++k) {
             const int a = pick(rng), b = pick(rng);
-            EXPECT_DOUBLE_EQ(drift_distance(g, std::uint64_t(a), std::uint64_t(b), length), d[a][b]);
+            EXPECT_DOUBLE_EQ(drift_distance(g, std::uint64_t(a), std::uint64_t(b), length),
+                             d[a][b]);
         }
     }
 }

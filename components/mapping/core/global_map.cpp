@@ -52,7 +52,8 @@ common::PlyCloud build_global_map(const std::vector<PlacedLocalMap>& maps,
             const Eigen::Vector3d p = T * v.centre.cast<double>();
             const Eigen::Vector3d q = (p * inv).array().floor();
             if (!(q.cwiseAbs().maxCoeff() < double(registration::kVoxelKeyLimit))) continue;
-            const registration::VoxelKey key = registration::pack_key(int(q.x()), int(q.y()), int(q.z()));
+            const registration::VoxelKey key =
+                registration::pack_key(int(q.x()), int(q.y()), int(q.z()));
             const auto [it, inserted] = index.emplace(key, cells.size());
             if (inserted) cells.emplace_back();
             Cell& c = cells[it->second];

@@ -5,7 +5,8 @@
 namespace ltm::mapping {
 
 std::optional<common::ConfigProblem> validate(const LoopDetectorConfig& config) {
-    LoopDetectorConfig c = config;  // visit_fields takes a mutable config (loaders write through it)
+    LoopDetectorConfig c =
+        config;  // visit_fields takes a mutable config (loaders write through it)
     common::ConfigChecker k;
     visit_fields(c, "", k);
     return k.problem();

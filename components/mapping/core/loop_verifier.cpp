@@ -25,7 +25,8 @@ Eigen::Isometry3d yawed(const Eigen::Isometry3d& T, double yaw) {
 }  // namespace
 
 std::optional<common::ConfigProblem> validate(const LoopVerifierConfig& config) {
-    LoopVerifierConfig c = config;  // visit_fields takes a mutable config (loaders write through it)
+    LoopVerifierConfig c =
+        config;  // visit_fields takes a mutable config (loaders write through it)
     common::ConfigChecker k;
     visit_fields(c, "", k);
     return k.problem();

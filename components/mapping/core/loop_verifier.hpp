@@ -16,8 +16,8 @@
 #include "common/core/config_check.hpp"
 #include "common/core/local_map_data.hpp"
 #include "mapping/core/registration_target.hpp"
-#include "registration/core/registration_config.hpp"
 #include "registration/core/preprocess.hpp"
+#include "registration/core/registration_config.hpp"
 
 namespace ltm::mapping {
 

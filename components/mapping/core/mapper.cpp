@@ -1,11 +1,10 @@
 #include "mapping/core/mapper.hpp"
 
-#include "mapping/core/drift_distance.hpp"
-
 #include <cmath>
 #include <sstream>
 #include <tuple>
 
+#include "mapping/core/drift_distance.hpp"
 #include "mapping/core/global_map.hpp"
 
 namespace ltm::mapping {
@@ -296,9 +295,10 @@ void Mapper::verify(const common::KeyframeData& keyframe,
             const LoopConsistencyConfig& lc = config_.loop_consistency;
             // The odometry along which the graph's estimate can have drifted: from the nearest
             // places already joined by loops (a lap of a route is not 1 km of drift).
-            const double path = drift_distance(graph_, e.from, e.to, [this](const PoseGraphEdge& o) {
-                return std::abs(path_at_[o.to] - path_at_[o.from]);
-            });
+            const double path =
+                drift_distance(graph_, e.from, e.to, [this](const PoseGraphEdge& o) {
+                    return std::abs(path_at_[o.to] - path_at_[o.from]);
+                });
             const double max_t = lc.translation + lc.translation_per_m * path;
             const double max_r = lc.rotation + lc.rotation_per_m * path;
             if (disagreement > max_t || disagreement_deg > max_r) {

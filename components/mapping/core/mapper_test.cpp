@@ -2,10 +2,9 @@
 
 #include <gtest/gtest.h>
 
-#include <map>
-
 #include <cmath>
 #include <filesystem>
+#include <map>
 
 #include "mapping/core/map_store.hpp"
 #include "mapping/core/test_data.hpp"

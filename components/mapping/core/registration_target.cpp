@@ -2,8 +2,8 @@
 
 namespace ltm::mapping {
 
-RegistrationTarget make_registration_target(const common::LocalMapData& data,
-                                            double min_planarity, int coarse_factor) {
+RegistrationTarget make_registration_target(const common::LocalMapData& data, double min_planarity,
+                                            int coarse_factor) {
     const registration::VoxelConfig config;  // further integration: the odometry's defaults
     std::size_t skipped = 0;
     RegistrationTarget t{registration::VoxelGrid::from_data(data, config, min_planarity, &skipped),

@@ -22,7 +22,7 @@ struct RegistrationTarget {
 
 // A voxel of `data` is usable when its normal is a unit vector and its planarity is at least
 // `min_planarity`. coarse_factor: 0 (no coarse grid) or the coarse voxel size in voxels (>= 2).
-RegistrationTarget make_registration_target(const common::LocalMapData& data,
-                                            double min_planarity, int coarse_factor);
+RegistrationTarget make_registration_target(const common::LocalMapData& data, double min_planarity,
+                                            int coarse_factor);
 
 }  // namespace ltm::mapping

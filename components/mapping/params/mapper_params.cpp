@@ -5,12 +5,14 @@ namespace {
 
 constexpr const char* kKindKey = "scan_context.kind";
 
-ScanContextKind parse_kind(runtime::Parameters& params, const std::string& key, ScanContextKind fallback) {
-    const std::string name =
-        params.get<std::string>(key, fallback == ScanContextKind::kMeanVariance ? "mean_variance" : "max_height");
+ScanContextKind parse_kind(runtime::Parameters& params, const std::string& key,
+                           ScanContextKind fallback) {
+    const std::string name = params.get<std::string>(
+        key, fallback == ScanContextKind::kMeanVariance ? "mean_variance" : "max_height");
     if (name == "max_height") return ScanContextKind::kMaxHeight;
     if (name == "mean_variance") return ScanContextKind::kMeanVariance;
-    params.fail(key, "expected max_height (Scan Context) or mean_variance (ScanContext++), got '" + name + "'");
+    params.fail(key, "expected max_height (Scan Context) or mean_variance (ScanContext++), got '" +
+                         name + "'");
 }
 
 }  // namespace
@@ -37,7 +39,8 @@ MapperConfig load_mapper_config_file(const std::string& path, const std::string&
     runtime::Parameters params = runtime::Parameters::from_file(path, "mapping");
     const std::string prefix = params.has("mapping") ? "mapping" : "";
     const std::string preset_key = prefix.empty() ? "preset" : "mapping.preset";
-    if (!preset.empty() && params.has(preset_key)) params.fail(preset_key, "--preset and the config's preset both given");
+    if (!preset.empty() && params.has(preset_key))
+        params.fail(preset_key, "--preset and the config's preset both given");
     MapperConfig config = load_mapper_config(params, prefix, preset.empty() ? "hdl64" : preset);
     params.check_all_used();
     return config;

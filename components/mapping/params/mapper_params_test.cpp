@@ -47,7 +47,8 @@ TEST(MapperParams, PresetThenOverrides) {
     // Nothing given: the default preset.
     runtime::Parameters empty(YAML::Node(), "test.yaml", "mapping");
     const MapperConfig d = load_mapper_config(empty);
-    EXPECT_DOUBLE_EQ(d.scan_context.sensor_height, mapper_preset(common::SensorPreset::kHdl64).scan_context.sensor_height);
+    EXPECT_DOUBLE_EQ(d.scan_context.sensor_height,
+                     mapper_preset(common::SensorPreset::kHdl64).scan_context.sensor_height);
     EXPECT_EQ(d.scan_context.kind, ScanContextKind::kMaxHeight);
 }
 
@@ -84,7 +85,8 @@ TEST(MapperParams, EveryFieldIsReadByItsOwnKey) {
         }
         YAML::Node node;
         node = field;
-        for (std::size_t dot = key.rfind('.'), end = key.size(); end != 0; end = dot, dot = key.rfind('.', dot - 1)) {
+        for (std::size_t dot = key.rfind('.'), end = key.size(); end != 0;
+             end = dot, dot = key.rfind('.', dot - 1)) {
             const std::size_t start = dot == std::string::npos ? 0 : dot + 1;
             YAML::Node parent;
             parent[key.substr(start, end - start)] = node;
@@ -96,7 +98,8 @@ TEST(MapperParams, EveryFieldIsReadByItsOwnKey) {
     EXPECT_GT(counter, 60);
     runtime::Parameters p(root, "test.yaml", "mapping");
     MapperConfig read;
-    visit_fields(read, [&](const std::string& key, auto& field, const auto&) { field = p.get(key, field); });
+    visit_fields(
+        read, [&](const std::string& key, auto& field, const auto&) { field = p.get(key, field); });
     EXPECT_NO_THROW(p.check_all_used());
     std::map<std::string, std::string> want, got;
     auto text = [](const auto& v) {
@@ -108,30 +111,38 @@ TEST(MapperParams, EveryFieldIsReadByItsOwnKey) {
         }
         return s.str();
     };
-    visit_fields(expected, [&](const std::string& key, auto& field, const auto&) { want[key] = text(field); });
-    visit_fields(read, [&](const std::string& key, auto& field, const auto&) { got[key] = text(field); });
+    visit_fields(expected, [&](const std::string& key, auto& field, const auto&) {
+        want[key] = text(field);
+    });
+    visit_fields(read,
+                 [&](const std::string& key, auto& field, const auto&) { got[key] = text(field); });
     EXPECT_EQ(want, got);
 }
 
 TEST(MapperParams, RejectsWhatItDoesNotKnowNamingFileLineAndKey) {
-    EXPECT_EQ(error_of("preset: vlp32\nscan_context: {rigns: 30}").rfind(
-                  "test.yaml:2: mapping.scan_context.rigns: unknown parameter", 0),
+    EXPECT_EQ(error_of("preset: vlp32\nscan_context: {rigns: 30}")
+                  .rfind("test.yaml:2: mapping.scan_context.rigns: unknown parameter", 0),
               0u);
     EXPECT_EQ(error_of("loop_detection: {max_distance: far}"),
               "test.yaml:1: mapping.loop_detection.max_distance: expected a number, got 'far'");
-    EXPECT_NE(error_of("a: 1\nscan_context: {sectors: 0}").find("test.yaml:2: mapping.scan_context.sectors:"),
+    EXPECT_NE(error_of("a: 1\nscan_context: {sectors: 0}")
+                  .find("test.yaml:2: mapping.scan_context.sectors:"),
               std::string::npos)
         << error_of("a: 1\nscan_context: {sectors: 0}");
-    EXPECT_NE(error_of("pose_graph:\n  loop_loss: tukey").find("test.yaml:2: mapping.pose_graph.loop_loss:"),
+    EXPECT_NE(error_of("pose_graph:\n  loop_loss: tukey")
+                  .find("test.yaml:2: mapping.pose_graph.loop_loss:"),
               std::string::npos)
         << error_of("pose_graph:\n  loop_loss: tukey");
-    EXPECT_NE(error_of("preset: hdl32").find("test.yaml:1: mapping.preset: unknown sensor preset 'hdl32'"),
+    EXPECT_NE(error_of("preset: hdl32")
+                  .find("test.yaml:1: mapping.preset: unknown sensor preset 'hdl32'"),
               std::string::npos)
         << error_of("preset: hdl32");
     EXPECT_EQ(error_of("scan_context: {kind: fancy}"),
-              "test.yaml:1: mapping.scan_context.kind: expected max_height (Scan Context) or mean_variance "
+              "test.yaml:1: mapping.scan_context.kind: expected max_height (Scan Context) or "
+              "mean_variance "
               "(ScanContext++), got 'fancy'");
-    EXPECT_NE(error_of("max_loops_per_keyframe: 0").find("test.yaml:1: mapping.max_loops_per_keyframe: must be >= 1"),
+    EXPECT_NE(error_of("max_loops_per_keyframe: 0")
+                  .find("test.yaml:1: mapping.max_loops_per_keyframe: must be >= 1"),
               std::string::npos)
         << error_of("max_loops_per_keyframe: 0");
 }
@@ -143,12 +154,14 @@ TEST(MapperParams, EachKindOfRuleFromYamlNamesFileLineAndKey) {
               "test.yaml:3: mapping.scan_context.min_range: must be smaller than max_range");
     EXPECT_EQ(error_of("verification:\n  yaw_offsets: []"),
               "test.yaml:2: mapping.verification.yaw_offsets: must hold at least one value");
-    EXPECT_EQ(error_of("verification:\n  coarse:\n    min_normal_agreement: 2"),
-              "test.yaml:3: mapping.verification.coarse.min_normal_agreement: must be in [0, 1] (got 2)");
+    EXPECT_EQ(
+        error_of("verification:\n  coarse:\n    min_normal_agreement: 2"),
+        "test.yaml:3: mapping.verification.coarse.min_normal_agreement: must be in [0, 1] (got 2)");
     EXPECT_EQ(error_of("verification: {coarse_factor: 1}"),
               "test.yaml:1: mapping.verification.coarse_factor: must be 0 or in [2, 16] (got 1)");
-    EXPECT_EQ(error_of("pose_graph: {loop_loss: tukey}"),
-              "test.yaml:1: mapping.pose_graph.loop_loss: must be cauchy, huber or none (got 'tukey')");
+    EXPECT_EQ(
+        error_of("pose_graph: {loop_loss: tukey}"),
+        "test.yaml:1: mapping.pose_graph.loop_loss: must be cauchy, huber or none (got 'tukey')");
     EXPECT_EQ(error_of("odometry_edge: {sigma_rotation: .nan}"),
               "test.yaml:1: mapping.odometry_edge.sigma_rotation: must be > 0 (got nan)");
     EXPECT_EQ(error_of("loop_edge: {sigma_translation: .inf}"),
@@ -160,19 +173,20 @@ TEST(MapperParams, EachKindOfRuleFromYamlNamesFileLineAndKey) {
 }
 
 TEST(MapperParams, FileWithOrWithoutTheMappingSection) {
-    const std::string path = ::testing::TempDir() + "/mapper_params_" + std::to_string(::getpid()) + ".yaml";
-    {
-        std::ofstream(path) << "mapping:\n  loop_edge: {sigma_translation: 0.2}\n";
-    }
+    const std::string path =
+        ::testing::TempDir() + "/mapper_params_" + std::to_string(::getpid()) + ".yaml";
+    { std::ofstream(path) << "mapping:\n  loop_edge: {sigma_translation: 0.2}\n"; }
     EXPECT_DOUBLE_EQ(load_mapper_config_file(path, "vlp16").loop_edge.sigma_translation, 0.2);
     {
-        std::ofstream(path) << "preset: narrow\nloop_edge: {sigma_rotation: 1.0}\nodometry: {voxel_size: 1}\n";
+        std::ofstream(path)
+            << "preset: narrow\nloop_edge: {sigma_rotation: 1.0}\nodometry: {voxel_size: 1}\n";
     }
     try {
         load_mapper_config_file(path);
         ADD_FAILURE() << "an odometry key in a mapping file must be refused";
     } catch (const runtime::ConfigError& e) {
-        EXPECT_NE(std::string(e.what()).find(":3: mapping.odometry.voxel_size: unknown parameter"), std::string::npos)
+        EXPECT_NE(std::string(e.what()).find(":3: mapping.odometry.voxel_size: unknown parameter"),
+                  std::string::npos)
             << e.what();
     }
     EXPECT_THROW(load_mapper_config_file(path, "vlp32"), runtime::ConfigError);  // preset twice

@@ -22,7 +22,7 @@ using convert::StatusLevel;
 using runtime::TopicRole;
 
 class OdometryComponent : public runtime::Component {
-public:
+  public:
     explicit OdometryComponent(runtime::ComponentContext& ctx) : ctx_(ctx) {
         auto& p = ctx.params();
         odom_frame_ = p.get<std::string>("frame_id", "odom");
@@ -34,7 +34,8 @@ public:
             p.fail("snapshot_every_keyframes", "must be >= 0 (0: finished maps only)");
         handover_ = MapHandover(handover);
         odometry_ = std::make_unique<Odometry>(load_odometry_config(p));
-        ctx.subscribe<msg::PointCloud2>("points", TopicRole::kSensor, [this](const msg::PointCloud2& m) { on_points(m); });
+        ctx.subscribe<msg::PointCloud2>("points", TopicRole::kSensor,
+                                        [this](const msg::PointCloud2& m) { on_points(m); });
         odometry_out_ = ctx.advertise<msg::Odometry>("odometry", TopicRole::kState);
         keyframe_out_ = ctx.advertise<msg::Keyframe>("keyframe", TopicRole::kState);
         local_map_out_ = ctx.advertise<msg::LocalMap>("local_map", TopicRole::kMap);
@@ -44,17 +45,18 @@ public:
     void on_shutdown() override {
         // Hand every map on: the active ones are finished here, nothing built is lost.
         for (const common::LocalMapData& m : handover_.finish(*odometry_)) publish_local_map(m);
-        ctx_.log().info(std::to_string(frames_) + " scans, " + std::to_string(tracked_) + " tracked, " +
-                        std::to_string(frames_ - tracked_) + " not (see status), " +
+        ctx_.log().info(std::to_string(frames_) + " scans, " + std::to_string(tracked_) +
+                        " tracked, " + std::to_string(frames_ - tracked_) + " not (see status), " +
                         std::to_string(maps_published_) + " local maps published");
     }
 
-private:
+  private:
     void on_points(const msg::PointCloud2& m) {
         const std::uint64_t index = frames_++;
         const std::string err = convert::from_pointcloud2(m, cloud_);
         if (!err.empty()) {
-            status(StatusLevel::kError, "bad_cloud", "scan " + std::to_string(index) + ": " + err, cloud_.stamp);
+            status(StatusLevel::kError, "bad_cloud", "scan " + std::to_string(index) + ": " + err,
+                   cloud_.stamp);
             return;
         }
         const FrameResult r = odometry_->register_frame(cloud_);
@@ -67,10 +69,12 @@ private:
         }
         if (r.degenerate())
             status(StatusLevel::kWarn, "degenerate",
-                   "scan " + std::to_string(index) + ": " + std::to_string(r.degenerate_directions.size()) +
-                       " degenerate direction(s)", r.stamp);
+                   "scan " + std::to_string(index) + ": " +
+                       std::to_string(r.degenerate_directions.size()) + " degenerate direction(s)",
+                   r.stamp);
         const Handover h = handover_.after_frame(*odometry_, r, index);
-        if (h.keyframe) keyframe_out_.publish(keyframes_.build(*h.keyframe, odom_frame_, child_frame_));
+        if (h.keyframe)
+            keyframe_out_.publish(keyframes_.build(*h.keyframe, odom_frame_, child_frame_));
         for (const common::LocalMapData& m : h.local_maps) publish_local_map(m);
     }
 
@@ -103,8 +107,8 @@ private:
 
     void status(StatusLevel level, const std::string& code, const std::string& text, double stamp) {
         if (++warnings_ <= 10 || (warnings_ & (warnings_ - 1)) == 0) ctx_.log().warn(text);
-        status_out_.publish(
-            *convert::to_msg(convert::StatusData{convert::to_time(stamp), odom_frame_, ctx_.name(), level, code, text}));
+        status_out_.publish(*convert::to_msg(convert::StatusData{
+            convert::to_time(stamp), odom_frame_, ctx_.name(), level, code, text}));
     }
 
     runtime::ComponentContext& ctx_;
@@ -127,5 +131,6 @@ private:
 }  // namespace
 }  // namespace ltm::odometry
 
-LTM_REGISTER_COMPONENT(ltm::odometry::OdometryComponent, "odometry",
-                       "IMLS LiDAR odometry: PointCloud2 in; odometry, keyframes and local maps out")
+LTM_REGISTER_COMPONENT(
+    ltm::odometry::OdometryComponent, "odometry",
+    "IMLS LiDAR odometry: PointCloud2 in; odometry, keyframes and local maps out")

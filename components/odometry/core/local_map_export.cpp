@@ -5,8 +5,7 @@
 
 namespace ltm::odometry {
 
-common::LocalMapData to_local_map_data(const LocalMap& map, std::uint32_t revision,
-                                       bool finished,
+common::LocalMapData to_local_map_data(const LocalMap& map, std::uint32_t revision, bool finished,
                                        const std::vector<double>& observation_times) {
     common::LocalMapData d;
     const registration::VoxelGrid& grid = map.voxels();

@@ -16,7 +16,8 @@ namespace ltm::odometry {
 common::LocalMapData to_local_map_data(const LocalMap& map, std::uint32_t revision, bool finished,
                                        const std::vector<double>& observation_times = {});
 
-common::KeyframeData to_keyframe_data(const Keyframe& keyframe, const Eigen::Isometry3d& T_odom_anchor,
+common::KeyframeData to_keyframe_data(const Keyframe& keyframe,
+                                      const Eigen::Isometry3d& T_odom_anchor,
                                       std::uint64_t scan_index);
 
 }  // namespace ltm::odometry

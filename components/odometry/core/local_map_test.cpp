@@ -51,7 +51,8 @@ TEST(LocalMap, IntegratesOnlyInsideTheBoxIntoBothGrids) {
 TEST(LocalMap, SeedCopiesTheVoxelsInsideTheNewBox) {
     LocalMap a(0, Eigen::Isometry3d::Identity(), 1.0, 10.0, VoxelConfig{}, 0.0);
     a.integrate(random_points(4000, 9.0f, 4), Vector3f(0, 0, 5), 1.0);
-    LocalMap b(1, registration::test::make_pose(6.2, 0.0, 0.0, 0, 0, 0), 1.0, 5.0, VoxelConfig{}, 2.0);
+    LocalMap b(1, registration::test::make_pose(6.2, 0.0, 0.0, 0, 0, 0), 1.0, 5.0, VoxelConfig{},
+               2.0);
     b.seed_from(a);
     ASSERT_GT(b.voxels().size(), 0u);
     const Eigen::Vector3f shift = (b.origin() - a.origin()).cast<float>();

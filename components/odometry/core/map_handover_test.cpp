@@ -62,8 +62,8 @@ TEST(MapHandover, HandsOverKeyframesFinishedMapsAndSnapshotsWithObservationTimes
             bool anchored = false;
             for (const LocalMap& m : odo.active_local_maps()) {
                 if (m.id() != h.keyframe->local_map_id) continue;
-                anchored = (m.T_odom_anchor() * h.keyframe->T_anchor_lidar)
-                               .isApprox(r.T_odom_lidar, 1e-9);
+                anchored =
+                    (m.T_odom_anchor() * h.keyframe->T_anchor_lidar).isApprox(r.T_odom_lidar, 1e-9);
             }
             EXPECT_TRUE(anchored) << "keyframe " << i;
         }

@@ -132,7 +132,8 @@ FrameResult Odometry::register_frame(const common::PointCloud& cloud) {
         const Eigen::Isometry3d& last = motion_.last_pose();
         const Eigen::Isometry3d jump = last.inverse() * predicted;
         if ((!why.empty() || doubtful) && motion_.poses() == 2 &&
-            (jump.translation().norm() > 0.01 || registration::rotation_angle(jump) > 0.1 / kRadToDeg)) {
+            (jump.translation().norm() > 0.01 ||
+             registration::rotation_angle(jump) > 0.1 / kRadToDeg)) {
             FrameResult second = r;
             const std::string retry = try_register(last, &second);
             attempts = 2;
@@ -161,8 +162,9 @@ FrameResult Odometry::register_frame(const common::PointCloud& cloud) {
     // The map gets the scan de-skewed with the motion just estimated (better than the predicted
     // one, and available from the second scan on).
     if (motion_.poses() > 0 && cloud.stamp > motion_.last_stamp()) {
-        const registration::Vector6d estimated = registration::se3_log(motion_.last_pose().inverse() * r.T_odom_lidar) /
-                                   (cloud.stamp - motion_.last_stamp());
+        const registration::Vector6d estimated =
+            registration::se3_log(motion_.last_pose().inverse() * r.T_odom_lidar) /
+            (cloud.stamp - motion_.last_stamp());
         preprocessor_.redeskew_map_points(estimated, &scan_);
         r.deskewed = scan_.deskewed;
     }

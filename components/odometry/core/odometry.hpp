@@ -44,7 +44,8 @@ struct FrameResult {
     Eigen::Isometry3d T_odom_lidar = Eigen::Isometry3d::Identity();
     // Of [position (m); rotation vector (rad)], both in odometry axes: R_true = Exp(dr) R.
     registration::Matrix6d covariance = registration::Matrix6d::Identity();
-    std::vector<registration::Vector6d> degenerate_directions;  // unit, [dt; dr * degeneracy_length]
+    std::vector<registration::Vector6d>
+        degenerate_directions;     // unit, [dt; dr * degeneracy_length]
     double min_information = 0.0;  // of the weakest direction (see RegistrationResult)
     std::size_t input_points = 0;
     std::size_t dropped_non_finite = 0;
@@ -56,8 +57,8 @@ struct FrameResult {
     int coarse_iterations = 0;  // ... and on the coarse grid (0 without one)
     int attempts = 0;           // registrations run (2: retried from the last pose)
     bool converged = false;
-    bool deskewed = false;  // per-point times used to de-skew (at least for the map update)
-    double residual_rms = 0.0;         // [m]
+    bool deskewed = false;      // per-point times used to de-skew (at least for the map update)
+    double residual_rms = 0.0;  // [m]
     std::uint32_t local_map_id = 0;    // current local map after this frame
     bool new_local_map = false;        // this frame started a local map
     std::optional<Keyframe> keyframe;  // set when this frame is a keyframe

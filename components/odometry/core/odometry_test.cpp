@@ -21,7 +21,7 @@ constexpr double kRadToDeg = 180.0 / M_PI;
 // A drive along the synthetic street: 1 m a frame at 10 Hz, gentle weaving.
 Isometry3d street_pose(int i) {
     return registration::test::make_pose(1.0 * i, 0.4 * std::sin(i / 5.0), 1.8, 0.0, 0.0,
-                           3.0 * std::sin(i / 8.0));
+                                         3.0 * std::sin(i / 8.0));
 }
 
 common::PointCloud street_scan(const registration::test::Scene& scene, int i) {
@@ -41,7 +41,9 @@ void expect_near_pose(const Isometry3d& est, const Isometry3d& truth, double t_t
 
 class StreetOdometry : public testing::Test {
   protected:
-    static void SetUpTestSuite() { scene_ = new registration::test::Scene(registration::test::street_scene()); }
+    static void SetUpTestSuite() {
+        scene_ = new registration::test::Scene(registration::test::street_scene());
+    }
     static void TearDownTestSuite() { delete scene_; }
     static const registration::test::Scene& scene() { return *scene_; }
     static registration::test::Scene* scene_;

@@ -23,7 +23,8 @@ OdometryConfig load_odometry_config_file(const std::string& path, const std::str
     runtime::Parameters params = runtime::Parameters::from_file(path, "odometry");
     const std::string prefix = params.has("odometry") ? "odometry" : "";
     const std::string preset_key = prefix.empty() ? "preset" : "odometry.preset";
-    if (!preset.empty() && params.has(preset_key)) params.fail(preset_key, "--preset and the config's preset both given");
+    if (!preset.empty() && params.has(preset_key))
+        params.fail(preset_key, "--preset and the config's preset both given");
     OdometryConfig config = load_odometry_config(params, prefix, preset.empty() ? "hdl64" : preset);
     params.check_all_used();
     return config;

@@ -38,19 +38,25 @@ TEST(OdometryParams, PresetThenOverrides) {
     EXPECT_DOUBLE_EQ(c.preprocess.min_range, narrow.preprocess.min_range);
     // Nothing given: the default preset.
     runtime::Parameters empty(YAML::Node(), "test.yaml", "odometry");
-    EXPECT_DOUBLE_EQ(load_odometry_config(empty).voxel_size, preset_config(SensorPreset::kHdl64).voxel_size);
+    EXPECT_DOUBLE_EQ(load_odometry_config(empty).voxel_size,
+                     preset_config(SensorPreset::kHdl64).voxel_size);
 }
 
 TEST(OdometryParams, RejectsWhatItDoesNotKnowNamingFileLineAndKey) {
-    EXPECT_EQ(error_of("voxel_size: 1\npreprocess: {max_rnage: 30}").rfind(
-                  "test.yaml:2: odometry.preprocess.max_rnage: unknown parameter", 0),
+    EXPECT_EQ(error_of("voxel_size: 1\npreprocess: {max_rnage: 30}")
+                  .rfind("test.yaml:2: odometry.preprocess.max_rnage: unknown parameter", 0),
               0u);
-    EXPECT_EQ(error_of("voxel_size: big"), "test.yaml:1: odometry.voxel_size: expected a number, got 'big'");
-    EXPECT_NE(error_of("a: 1\nvoxel_size: -1").find("test.yaml:2: odometry.voxel_size: must be > 0"), std::string::npos)
+    EXPECT_EQ(error_of("voxel_size: big"),
+              "test.yaml:1: odometry.voxel_size: expected a number, got 'big'");
+    EXPECT_NE(
+        error_of("a: 1\nvoxel_size: -1").find("test.yaml:2: odometry.voxel_size: must be > 0"),
+        std::string::npos)
         << error_of("a: 1\nvoxel_size: -1");
-    EXPECT_NE(error_of("preset: hdl32").find("test.yaml:1: odometry.preset: unknown sensor preset 'hdl32'"),
+    EXPECT_NE(error_of("preset: hdl32")
+                  .find("test.yaml:1: odometry.preset: unknown sensor preset 'hdl32'"),
               std::string::npos);
-    EXPECT_NE(error_of("registration: {kernel_scale: [1]}").find("odometry.registration.kernel_scale: expected a number"),
+    EXPECT_NE(error_of("registration: {kernel_scale: [1]}")
+                  .find("odometry.registration.kernel_scale: expected a number"),
               std::string::npos);
 }
 
@@ -71,7 +77,8 @@ TEST(OdometryParams, RulesOfFieldsAndAcrossFieldsPointAtTheKeysLine) {
 }
 
 TEST(OdometryParams, UnderAPrefixAsInALaunchConfig) {
-    runtime::Parameters p = params_of("frame_id: odom\nodometry: {preset: vlp16, keyframe: {distance: 3.0}}\n");
+    runtime::Parameters p =
+        params_of("frame_id: odom\nodometry: {preset: vlp16, keyframe: {distance: 3.0}}\n");
     const OdometryConfig c = load_odometry_config(p, "odometry");
     p.get<std::string>("frame_id", "");
     EXPECT_NO_THROW(p.check_all_used());

@@ -29,7 +29,7 @@ std::uint64_t now_ns() {
 }
 
 class Recorder : public runtime::Component {
-public:
+  public:
     explicit Recorder(runtime::ComponentContext& ctx) : ctx_(ctx) {
         auto& p = ctx.params();
         const std::string file = p.path("file", "", PathCheck::kParentExists);
@@ -51,15 +51,19 @@ public:
         AsyncWriterConfig ac;
         ac.max_queue_bytes = static_cast<std::size_t>(p.get<double>("queue_mb", 512.0) * (1 << 20));
         try {
-            writer_ = std::make_unique<AsyncMcapWriter>(std::make_unique<McapWriter>(file, wc), ac,
-                                                        [this](const std::string& line) { ctx_.log().warn(line); });
+            writer_ = std::make_unique<AsyncMcapWriter>(
+                std::make_unique<McapWriter>(file, wc), ac,
+                [this](const std::string& line) { ctx_.log().warn(line); });
         } catch (const common::IoError& e) {
             p.fail("file", e.what());
         }
         file_ = file;
         // Every publication on the domain, past and future.
-        const dds_entity_t reader = dds_create_reader(ctx.participant(), DDS_BUILTIN_TOPIC_DCPSPUBLICATION, nullptr, nullptr);
-        if (reader < 0) throw std::runtime_error(std::string("cannot read DCPSPublication: ") + dds_strretcode(reader));
+        const dds_entity_t reader = dds_create_reader(
+            ctx.participant(), DDS_BUILTIN_TOPIC_DCPSPUBLICATION, nullptr, nullptr);
+        if (reader < 0)
+            throw std::runtime_error(std::string("cannot read DCPSPublication: ") +
+                                     dds_strretcode(reader));
         ctx.subscribe_reader(reader, [this](const void* s) {
             on_publication(*static_cast<const dds_builtintopic_endpoint_t*>(s));
         });
@@ -70,10 +74,11 @@ public:
         const AsyncWriterStats st = writer_->close();
         report(true, &st);
         for (const auto& t : wanted_)
-            if (!recording_.count(t)) ctx_.log().warn("topic " + t + " was never published; nothing recorded for it");
+            if (!recording_.count(t))
+                ctx_.log().warn("topic " + t + " was never published; nothing recorded for it");
     }
 
-private:
+  private:
     void on_publication(const dds_builtintopic_endpoint_t& pub) {
         const std::string topic = pub.topic_name ? pub.topic_name : "";
         const std::string type = pub.type_name ? pub.type_name : "";
@@ -83,8 +88,9 @@ private:
         const runtime::MessageTypeInfo* info = runtime::find_message_type_by_dds_name(type);
         if (!info) {
             refused_.insert(topic);
-            ctx_.log().warn("not recording " + topic + ": type " + type +
-                            " is unknown to ltm (Cyclone DDS 0.10 as packaged has no type discovery)");
+            ctx_.log().warn(
+                "not recording " + topic + ": type " + type +
+                " is unknown to ltm (Cyclone DDS 0.10 as packaged has no type discovery)");
             return;
         }
         QosProfile qos;
@@ -105,20 +111,22 @@ private:
             {{"reliability", qos.reliable ? "reliable" : "best_effort"},
              {"durability", qos.transient_local ? "transient_local" : "volatile"}});
         recording_[topic] = channel;
-        ctx_.subscribe_raw(topic.substr(2), info->descriptor, qos,
-                           [this, channel](const std::vector<std::uint8_t>& cdr, const dds_sample_info_t& si) {
-                               const std::uint64_t publish = si.source_timestamp > 0
-                                                                 ? static_cast<std::uint64_t>(si.source_timestamp)
-                                                                 : now_ns();
-                               writer_->push(channel, now_ns(), publish, cdr.data(), cdr.size());
-                           });
+        ctx_.subscribe_raw(
+            topic.substr(2), info->descriptor, qos,
+            [this, channel](const std::vector<std::uint8_t>& cdr, const dds_sample_info_t& si) {
+                const std::uint64_t publish = si.source_timestamp > 0
+                                                  ? static_cast<std::uint64_t>(si.source_timestamp)
+                                                  : now_ns();
+                writer_->push(channel, now_ns(), publish, cdr.data(), cdr.size());
+            });
         ctx_.log().info("recording " + topic + " (" + info->ros_name + ")");
     }
 
     std::uint16_t schema_for(const runtime::MessageTypeInfo& info) {
         auto it = schemas_.find(info.dds_name);
         if (it != schemas_.end()) return it->second;
-        const std::uint16_t id = writer_->add_schema(info.dds_name, "omgidl", runtime::idl_schema_text(info.ros_name));
+        const std::uint16_t id =
+            writer_->add_schema(info.dds_name, "omgidl", runtime::idl_schema_text(info.ros_name));
         schemas_[info.dds_name] = id;
         return id;
     }
@@ -127,12 +135,13 @@ private:
         const AsyncWriterStats st = final_stats ? *final_stats : writer_->stats();
         if (!final_report && st.accepted == last_accepted_) return;
         last_accepted_ = st.accepted;
-        std::string line = std::to_string(final_report ? st.writer.messages : st.accepted) + " messages on " +
-                           std::to_string(recording_.size()) + " topics, " +
+        std::string line = std::to_string(final_report ? st.writer.messages : st.accepted) +
+                           " messages on " + std::to_string(recording_.size()) + " topics, " +
                            std::to_string(st.writer.file_bytes / (1 << 20)) + " MiB in " + file_;
         if (st.dropped() > 0) {
             line += "; DROPPED " + std::to_string(st.dropped()) + " (";
-            for (const auto& [topic, n] : st.dropped_by_topic) line += topic + ": " + std::to_string(n) + " ";
+            for (const auto& [topic, n] : st.dropped_by_topic)
+                line += topic + ": " + std::to_string(n) + " ";
             line += ")";
         }
         if (st.failed) line += "; " + st.error;

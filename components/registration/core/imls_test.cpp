@@ -24,8 +24,7 @@ bool brute_force(const VoxelGrid& map, const Vector3f& x, const ImlsParams& p, d
     std::uint32_t nearest = 0;
     for (std::uint32_t i = 0; i < map.size(); ++i) {
         const Surfel& s = map.surfels()[i];
-        if (!s.usable || (unpack_key(map.keys()[i]) - vx).cwiseAbs().maxCoeff() > 1)
-            continue;
+        if (!s.usable || (unpack_key(map.keys()[i]) - vx).cwiseAbs().maxCoeff() > 1) continue;
         block.push_back(i);
         const double d = (xd - s.centre.cast<double>()).norm();
         if (d < best) {
@@ -59,7 +58,8 @@ VoxelGrid room_map(double voxel) {
     VoxelGrid map(voxel, VoxelConfig{});
     std::vector<Vector3f> world;
     for (const auto& p : cloud.points) world.push_back((pose * p.cast<double>()).cast<float>());
-    map.integrate(world, pose.translation().cast<float>(), 0.0, [](const Eigen::Vector3f&) { return true; });
+    map.integrate(world, pose.translation().cast<float>(), 0.0,
+                  [](const Eigen::Vector3f&) { return true; });
     return map;
 }
 
@@ -74,8 +74,7 @@ TEST(Imls, MatchesBruteForceNearSurfaces) {
     std::normal_distribution<float> off(0.0f, 0.3f);
     int compared = 0, agreed_missing = 0;
     for (int q = 0; q < 2000; ++q) {
-        const Vector3f x =
-            map.surfels()[pick(rng)].centre + Vector3f(off(rng), off(rng), off(rng));
+        const Vector3f x = map.surfels()[pick(rng)].centre + Vector3f(off(rng), off(rng), off(rng));
         ImlsResult r;
         double want = 0.0;
         Vector3d want_y = Vector3d::Zero();
@@ -108,8 +107,7 @@ TEST(Imls, FlatPlaneGivesTheSignedDistanceAndProjectsOntoIt) {
         EXPECT_GT(std::abs(r.normal.z()), 0.999f);
     }
     ImlsResult r;
-    EXPECT_FALSE(
-        imls_distance(map, Vector3f(0.0f, 0.0f, 4.0f), params, &r));  // in free space
+    EXPECT_FALSE(imls_distance(map, Vector3f(0.0f, 0.0f, 4.0f), params, &r));  // in free space
 }
 
 }  // namespace

@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "registration/core/imls.hpp"
-#include "registration/core/registration_config.hpp"
 #include "registration/core/parallel.hpp"
+#include "registration/core/registration_config.hpp"
 #include "registration/core/se3.hpp"
 #include "registration/core/voxel_grid.hpp"
 

@@ -33,9 +33,8 @@ bool VoxelGrid::insert_voxel(VoxelKey key, const Surfel& surfel, const VoxelReco
 
 VoxelGrid VoxelGrid::from_data(const common::LocalMapData& data, const VoxelConfig& config,
                                double min_planarity, std::size_t* skipped) {
-    const double g = data.voxel_size > 0.0f && std::isfinite(data.voxel_size)
-                         ? double(data.voxel_size)
-                         : 1.0;
+    const double g =
+        data.voxel_size > 0.0f && std::isfinite(data.voxel_size) ? double(data.voxel_size) : 1.0;
     VoxelGrid grid(g, config);
     std::size_t left_out = 0;
     // In-plane spread of the rebuilt covariance: points uniform over the cell (g^2 / 12).
@@ -95,7 +94,9 @@ std::vector<common::VoxelData> VoxelGrid::to_data() const {
 
 VoxelGrid VoxelGrid::coarsened(int factor, const VoxelConfig& config) const {
     VoxelGrid coarse(voxel_size_ * factor, config);
-    const auto floor_div = [factor](int a) { return a >= 0 ? a / factor : -((-a + factor - 1) / factor); };
+    const auto floor_div = [factor](int a) {
+        return a >= 0 ? a / factor : -((-a + factor - 1) / factor);
+    };
     std::unordered_map<VoxelKey, VoxelSums> merged;  // absolute moments, coarse cell frame
     std::unordered_map<VoxelKey, VoxelRecord> life;
     std::vector<VoxelKey> order;

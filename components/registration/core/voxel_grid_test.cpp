@@ -82,7 +82,6 @@ TEST(VoxelGrid, NeighboursAreTheOccupiedVoxelsOfThe3x3x3Block) {
     }
 }
 
-
 // Points on a tilted plane with noise across it, so that voxels are usable.
 std::vector<Vector3f> plane_points(int n, std::uint32_t seed) {
     std::mt19937 rng(seed);
@@ -105,8 +104,8 @@ TEST(VoxelGrid, FromDataReproducesEveryVoxelExactly) {
     data.voxel_size = 0.5f;
     data.voxels = grid.to_data();
     std::size_t skipped = 99;
-    const VoxelGrid loaded = VoxelGrid::from_data(data, VoxelConfig{}, VoxelConfig{}.min_planarity,
-                                                  &skipped);
+    const VoxelGrid loaded =
+        VoxelGrid::from_data(data, VoxelConfig{}, VoxelConfig{}.min_planarity, &skipped);
     EXPECT_EQ(skipped, 0u);
     ASSERT_EQ(loaded.size(), grid.size());
     EXPECT_EQ(loaded.usable_voxels(), grid.usable_voxels());
@@ -152,15 +151,15 @@ TEST(VoxelGrid, FromDataLeavesOutBadVoxels) {
     v.normal = {0, 0, 1};
     v.planarity = 0.9f;
     v.point_count = 10;
-    data.voxels = {v, v};                           // a repeated index
+    data.voxels = {v, v};  // a repeated index
     data.voxels.push_back(v);
     data.voxels.back().index = {0, 0, 0};
-    data.voxels.back().centre.x() = NAN;           // not finite
+    data.voxels.back().centre.x() = NAN;  // not finite
     data.voxels.push_back(v);
     data.voxels.back().index = {kVoxelKeyLimit + 5, 0, 0};  // out of the key range
     data.voxels.push_back(v);
     data.voxels.back().index = {-4, 0, 0};
-    data.voxels.back().normal = {0, 0, 0.5f};      // not a unit normal: present, not usable
+    data.voxels.back().normal = {0, 0, 0.5f};  // not a unit normal: present, not usable
     std::size_t skipped = 0;
     const VoxelGrid g = VoxelGrid::from_data(data, VoxelConfig{}, 0.4, &skipped);
     EXPECT_EQ(skipped, 3u);

@@ -20,7 +20,7 @@ using runtime::PathCheck;
 using runtime::TopicRole;
 
 class SimulatorComponent : public runtime::Component {
-public:
+  public:
     explicit SimulatorComponent(runtime::ComponentContext& ctx) : ctx_(ctx) {
         auto& p = ctx.params();
         const std::string path = p.path("scenario", "", PathCheck::kFileExists);
@@ -29,7 +29,8 @@ public:
         const long seed = p.get<long>("seed", -1);
         const std::string sensor = p.get<std::string>("sensor", "");
         const std::string mode = p.get<std::string>("mode", "realtime");
-        if (mode != "realtime" && mode != "fast") p.fail("mode", "expected 'realtime' or 'fast', got '" + mode + "'");
+        if (mode != "realtime" && mode != "fast")
+            p.fail("mode", "expected 'realtime' or 'fast', got '" + mode + "'");
         fast_ = mode == "fast";
         rate_ = p.get<double>("rate", 1.0);
         if (rate_ <= 0) p.fail("rate", "must be positive");
@@ -44,7 +45,8 @@ public:
             ScenarioConfig sc = load_scenario(path);
             if (seed >= 0) sc.seed = static_cast<std::uint64_t>(seed);
             if (!sensor.empty() && !replace_sensor(sensor, sc.sensor))
-                p.fail("sensor", "unknown sensor '" + sensor + "' (known: " + sensor_preset_names() + ")");
+                p.fail("sensor",
+                       "unknown sensor '" + sensor + "' (known: " + sensor_preset_names() + ")");
             sim_ = std::make_unique<Simulator>(sc, session);
         } catch (const ScenarioError& e) {
             p.fail("scenario", e.what());
@@ -54,13 +56,14 @@ public:
             p.fail("start", "past the last scan (" + std::to_string(sim_->num_scans()) + " scans)");
         last_ = count ? std::min(sim_->num_scans(), first_ + count) : sim_->num_scans();
         next_ = next_render_ = first_;
-        points_ = ctx.advertise<msg::PointCloud2>("points", fast_ ? TopicRole::kStream : TopicRole::kSensor);
+        points_ = ctx.advertise<msg::PointCloud2>("points",
+                                                  fast_ ? TopicRole::kStream : TopicRole::kSensor);
         ground_truth_ = ctx.advertise<msg::PoseStamped>("ground_truth", TopicRole::kState);
         ctx.declare_source();
         ctx.add_timer(0.0, [this] { step(); });
     }
 
-private:
+  private:
     void step() {
         using clock = std::chrono::steady_clock;
         if (!progress_) {
@@ -97,7 +100,8 @@ private:
         ahead_.pop_front();
         scan_.cloud.frame_id = frame_id_;
         points_.publish(builder_.build(scan_.cloud));
-        ground_truth_.publish(*convert::to_msg(common::StampedPose{scan_.cloud.stamp, scan_.T_world_lidar}, world_frame_id_));
+        ground_truth_.publish(*convert::to_msg(
+            common::StampedPose{scan_.cloud.stamp, scan_.T_world_lidar}, world_frame_id_));
         progress_->update(i + 1 - first_);
     }
 
@@ -121,4 +125,5 @@ private:
 }  // namespace ltm::sim
 
 LTM_REGISTER_COMPONENT(ltm::sim::SimulatorComponent, "simulator",
-                       "the simulated test world as a live LiDAR: PointCloud2 on 'points', true poses on 'ground_truth'")
+                       "the simulated test world as a live LiDAR: PointCloud2 on 'points', true "
+                       "poses on 'ground_truth'")

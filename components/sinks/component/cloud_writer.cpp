@@ -20,7 +20,7 @@ using runtime::PathCheck;
 using runtime::TopicRole;
 
 class CloudWriter : public runtime::Component {
-public:
+  public:
     explicit CloudWriter(runtime::ComponentContext& ctx) : ctx_(ctx) {
         auto& p = ctx.params();
         dir_ = p.get<std::string>("dir", "");
@@ -29,19 +29,23 @@ public:
         std::filesystem::create_directories(dir_, ec);
         if (ec) p.fail("dir", "cannot create " + dir_ + ": " + ec.message());
         format_ = p.get<std::string>("format", "ply");
-        if (format_ != "ply" && format_ != "bin") p.fail("format", "expected ply or bin, got '" + format_ + "'");
+        if (format_ != "ply" && format_ != "bin")
+            p.fail("format", "expected ply or bin, got '" + format_ + "'");
         every_ = p.get<int>("every", 1);
         if (every_ < 1) p.fail("every", "must be at least 1");
-        const auto inputs = p.get<std::vector<std::string>>("inputs", {"points", "local_map", "mesh"});
+        const auto inputs =
+            p.get<std::vector<std::string>>("inputs", {"points", "local_map", "mesh"});
         for (const auto& in : inputs) {
             if (in == "points") {
-                ctx.subscribe<msg::PointCloud2>("points", TopicRole::kSensor,
-                                                [this](const msg::PointCloud2& m) { on_points(m); });
+                ctx.subscribe<msg::PointCloud2>(
+                    "points", TopicRole::kSensor,
+                    [this](const msg::PointCloud2& m) { on_points(m); });
             } else if (in == "local_map") {
                 ctx.subscribe<msg::LocalMap>("local_map", TopicRole::kMap,
                                              [this](const msg::LocalMap& m) { on_local_map(m); });
             } else if (in == "mesh") {
-                ctx.subscribe<msg::Mesh>("mesh", TopicRole::kMap, [this](const msg::Mesh& m) { on_mesh(m); });
+                ctx.subscribe<msg::Mesh>("mesh", TopicRole::kMap,
+                                         [this](const msg::Mesh& m) { on_mesh(m); });
             } else {
                 p.fail("inputs", "unknown input '" + in + "' (known: points, local_map, mesh)");
             }
@@ -49,19 +53,20 @@ public:
     }
 
     void on_shutdown() override {
-        ctx_.log().info("wrote " + std::to_string(written_) + " clouds, " + std::to_string(maps_) + " local maps and " +
-                        std::to_string(meshes_) + " mesh chunks to " + dir_ +
+        ctx_.log().info("wrote " + std::to_string(written_) + " clouds, " + std::to_string(maps_) +
+                        " local maps and " + std::to_string(meshes_) + " mesh chunks to " + dir_ +
                         (rejected_ ? " (" + std::to_string(rejected_) + " rejected)" : ""));
     }
 
-private:
+  private:
     void on_points(const msg::PointCloud2& m) {
         const std::size_t index = received_++;
         if (index % every_ != 0) return;
         common::PointCloud cloud;
         const std::string err = convert::from_pointcloud2(m, cloud);
         if (!err.empty()) {
-            if (++rejected_ <= 5) ctx_.log().warn("rejected point cloud " + std::to_string(index) + ": " + err);
+            if (++rejected_ <= 5)
+                ctx_.log().warn("rejected point cloud " + std::to_string(index) + ": " + err);
             return;
         }
         char name[32];
@@ -103,17 +108,21 @@ private:
     void on_mesh(const msg::Mesh& m) {
         const auto vertices = convert::view(m.vertices), normals = convert::view(m.normals);
         const auto triangles = convert::view(m.triangles);
-        if (vertices.size() % 3 || triangles.size() % 3 || (!normals.empty() && normals.size() != vertices.size())) {
+        if (vertices.size() % 3 || triangles.size() % 3 ||
+            (!normals.empty() && normals.size() != vertices.size())) {
             ++rejected_;
-            ctx_.log().warn("rejected mesh chunk " + std::to_string(m.local_map_id) + ": sizes not multiples of 3");
+            ctx_.log().warn("rejected mesh chunk " + std::to_string(m.local_map_id) +
+                            ": sizes not multiples of 3");
             return;
         }
         common::PlyMesh mesh;
         const Eigen::Isometry3f T = convert::to_isometry(m.anchor).cast<float>();
         for (std::uint32_t i = 0; i < vertices.size(); i += 3)
-            mesh.vertices.push_back(T * Eigen::Vector3f(vertices[i], vertices[i + 1], vertices[i + 2]));
+            mesh.vertices.push_back(T *
+                                    Eigen::Vector3f(vertices[i], vertices[i + 1], vertices[i + 2]));
         for (std::uint32_t i = 0; i < normals.size(); i += 3)
-            mesh.normals.push_back(T.linear() * Eigen::Vector3f(normals[i], normals[i + 1], normals[i + 2]));
+            mesh.normals.push_back(T.linear() *
+                                   Eigen::Vector3f(normals[i], normals[i + 1], normals[i + 2]));
         for (std::uint32_t i = 0; i < triangles.size(); i += 3)
             mesh.triangles.emplace_back(triangles[i], triangles[i + 1], triangles[i + 2]);
         try {
@@ -134,5 +143,6 @@ private:
 }  // namespace
 }  // namespace ltm::sinks
 
-LTM_REGISTER_COMPONENT(ltm::sinks::CloudWriter, "cloud_writer",
-                       "writes received point clouds (PLY or KITTI .bin) and mesh chunks (PLY) to a folder")
+LTM_REGISTER_COMPONENT(
+    ltm::sinks::CloudWriter, "cloud_writer",
+    "writes received point clouds (PLY or KITTI .bin) and mesh chunks (PLY) to a folder")

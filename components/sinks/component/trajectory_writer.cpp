@@ -16,7 +16,7 @@ using runtime::PathCheck;
 using runtime::TopicRole;
 
 class TrajectoryWriter : public runtime::Component {
-public:
+  public:
     explicit TrajectoryWriter(runtime::ComponentContext& ctx) : ctx_(ctx) {
         auto& p = ctx.params();
         const std::string kitti = p.path("kitti_file", "", PathCheck::kParentExists);
@@ -24,20 +24,24 @@ public:
         if (kitti.empty() && tum.empty()) p.fail("kitti_file", "give kitti_file, tum_file or both");
         const std::string input = p.get<std::string>("input", "odometry");
         try {
-            if (!kitti.empty()) files_.push_back(std::make_unique<TrajectoryFile>(kitti, TrajectoryFormat::kKitti));
-            if (!tum.empty()) files_.push_back(std::make_unique<TrajectoryFile>(tum, TrajectoryFormat::kTum));
+            if (!kitti.empty())
+                files_.push_back(std::make_unique<TrajectoryFile>(kitti, TrajectoryFormat::kKitti));
+            if (!tum.empty())
+                files_.push_back(std::make_unique<TrajectoryFile>(tum, TrajectoryFormat::kTum));
         } catch (const common::IoError& e) {
             p.fail(kitti.empty() ? "tum_file" : "kitti_file", e.what());
         }
         if (input == "odometry") {
-            ctx.subscribe<msg::Odometry>("odometry", TopicRole::kState, [this](const msg::Odometry& m) {
-                append(convert::to_seconds(m.header.stamp), convert::to_isometry(m.pose.pose));
-            });
+            ctx.subscribe<msg::Odometry>(
+                "odometry", TopicRole::kState, [this](const msg::Odometry& m) {
+                    append(convert::to_seconds(m.header.stamp), convert::to_isometry(m.pose.pose));
+                });
         } else if (input == "pose") {
-            ctx.subscribe<msg::PoseStamped>("pose", TopicRole::kState, [this](const msg::PoseStamped& m) {
-                const common::StampedPose p = convert::from_msg(m);
-                append(p.stamp, p.pose);
-            });
+            ctx.subscribe<msg::PoseStamped>("pose", TopicRole::kState,
+                                            [this](const msg::PoseStamped& m) {
+                                                const common::StampedPose p = convert::from_msg(m);
+                                                append(p.stamp, p.pose);
+                                            });
         } else if (input == "path") {
             ctx.subscribe<msg::Path>("path", TopicRole::kMap, [this](const msg::Path& m) {
                 const common::Trajectory t = convert::from_msg(m);
@@ -55,7 +59,7 @@ public:
         }
     }
 
-private:
+  private:
     void append(double stamp, const Eigen::Isometry3d& pose) {
         for (auto& f : files_) f->append(stamp, pose);
     }

@@ -6,7 +6,8 @@
 
 namespace ltm::sinks {
 
-TrajectoryFile::TrajectoryFile(std::string path, TrajectoryFormat format) : path_(std::move(path)), format_(format) {
+TrajectoryFile::TrajectoryFile(std::string path, TrajectoryFormat format)
+    : path_(std::move(path)), format_(format) {
     file_ = std::fopen(path_.c_str(), "w");
     if (!file_) throw common::IoError(path_, "cannot open for writing");
 }
@@ -16,8 +17,9 @@ TrajectoryFile::~TrajectoryFile() {
 }
 
 void TrajectoryFile::append(double stamp, const Eigen::Isometry3d& pose) {
-    const std::string line = format_ == TrajectoryFormat::kKitti ? common::format_kitti_pose(pose)
-                                                                 : common::format_tum_pose(stamp, pose);
+    const std::string line = format_ == TrajectoryFormat::kKitti
+                                 ? common::format_kitti_pose(pose)
+                                 : common::format_tum_pose(stamp, pose);
     if (std::fputs(line.c_str(), file_) < 0) throw common::IoError(path_, "write failed");
     ++count_;
 }

@@ -11,7 +11,7 @@ namespace ltm::sinks {
 enum class TrajectoryFormat { kKitti, kTum };
 
 class TrajectoryFile {
-public:
+  public:
     // Creates (truncates) the file. Throws common::IoError.
     TrajectoryFile(std::string path, TrajectoryFormat format);
     ~TrajectoryFile();
@@ -25,7 +25,7 @@ public:
     std::size_t size() const { return count_; }
     const std::string& path() const { return path_; }
 
-private:
+  private:
     std::string path_;
     TrajectoryFormat format_;
     std::FILE* file_ = nullptr;

@@ -36,7 +36,8 @@ SlamFrame SlamPipeline::process(const common::PointCloud& cloud) {
     return f;
 }
 
-mapping::OptimisationSummary SlamPipeline::finish(std::vector<mapping::LocalMapResult>* local_maps) {
+mapping::OptimisationSummary SlamPipeline::finish(
+    std::vector<mapping::LocalMapResult>* local_maps) {
     std::vector<mapping::LocalMapResult> results;
     hand_over_maps(handover_.finish(odometry_), &results);
     if (local_maps) *local_maps = std::move(results);

@@ -27,8 +27,8 @@ TEST(SlamPipeline, HandsEveryMapAndKeyframeToTheMapperWithObservationTimes) {
     std::size_t keyframes = 0, maps = 0, tracked = 0;
     for (int i = 0; i < scans; ++i) {
         const Eigen::Isometry3d T = street_pose(i);
-        common::PointCloud c = registration::test::scan_scene(
-            scene, registration::test::ScanPattern(), T, T, 300 + i);
+        common::PointCloud c =
+            registration::test::scan_scene(scene, registration::test::ScanPattern(), T, T, 300 + i);
         c.stamp = 0.1 * i;
         const SlamFrame f = pipeline.process(c);
         EXPECT_EQ(f.scan_index, std::uint64_t(i));

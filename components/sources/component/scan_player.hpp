@@ -15,12 +15,12 @@
 namespace ltm::sources {
 
 class ScanPlayer : public runtime::Component {
-public:
+  public:
     ScanPlayer(runtime::ComponentContext& ctx, ScanFormat format);
     void on_activate() override;
     void on_shutdown() override;
 
-private:
+  private:
     void step();
 
     runtime::ComponentContext& ctx_;

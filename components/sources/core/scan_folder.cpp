@@ -16,17 +16,20 @@ ScanFolder::ScanFolder(const ScanFolderConfig& config) : config_(config) {
     std::vector<std::string> all;
     std::string seq_dir = config.path;
     if (config_.format == ScanFormat::kAuto)
-        config_.format = common::list_kitti_scans(config.path).empty() ? ScanFormat::kCloudFiles : ScanFormat::kKittiBin;
+        config_.format = common::list_kitti_scans(config.path).empty() ? ScanFormat::kCloudFiles
+                                                                       : ScanFormat::kKittiBin;
     if (config_.format == ScanFormat::kKittiBin) {
         all = common::list_kitti_scans(config.path);
         seq_dir = common::kitti_sequence_dir(config.path);
-        if (all.empty()) throw IoError(config.path, "no .bin scans (expected DIR/velodyne/*.bin or DIR/*.bin)");
+        if (all.empty())
+            throw IoError(config.path, "no .bin scans (expected DIR/velodyne/*.bin or DIR/*.bin)");
     } else {
         if (!fs::is_directory(config.path)) throw IoError(config.path, "not a folder");
         fs::path dir(config.path);
         if (fs::is_directory(dir / "Scans")) dir /= "Scans";  // FAST-LIO / SC-A-LOAM exports
         for (const auto& e : fs::directory_iterator(dir))
-            if (e.is_regular_file() && common::is_cloud_file(e.path().string())) all.push_back(e.path().string());
+            if (e.is_regular_file() && common::is_cloud_file(e.path().string()))
+                all.push_back(e.path().string());
         std::sort(all.begin(), all.end());
         if (all.empty()) throw IoError(config.path, "no .pcd or .ply files");
     }
@@ -39,7 +42,8 @@ ScanFolder::ScanFolder(const ScanFolderConfig& config) : config_(config) {
         times = common::read_times(times_file);
         has_times_ = true;
         if (times.size() < all.size())
-            throw IoError(times_file, std::to_string(times.size()) + " times for " + std::to_string(all.size()) + " scans");
+            throw IoError(times_file, std::to_string(times.size()) + " times for " +
+                                          std::to_string(all.size()) + " scans");
     } else {
         for (std::size_t i = 0; i < all.size(); ++i) times.push_back(i * config.default_period_s);
     }
@@ -47,12 +51,15 @@ ScanFolder::ScanFolder(const ScanFolderConfig& config) : config_(config) {
     if (!config.poses_file.empty()) {
         poses = common::read_kitti_poses(config.poses_file);
         if (poses.size() < all.size())
-            throw IoError(config.poses_file, std::to_string(poses.size()) + " poses for " + std::to_string(all.size()) + " scans");
+            throw IoError(config.poses_file, std::to_string(poses.size()) + " poses for " +
+                                                 std::to_string(all.size()) + " scans");
     }
     if (config.start >= all.size())
-        throw IoError(config.path, "start " + std::to_string(config.start) + " is past the last scan (" +
-                                       std::to_string(all.size()) + " scans)");
-    const std::size_t end = config.count ? std::min(all.size(), config.start + config.count) : all.size();
+        throw IoError(config.path, "start " + std::to_string(config.start) +
+                                       " is past the last scan (" + std::to_string(all.size()) +
+                                       " scans)");
+    const std::size_t end =
+        config.count ? std::min(all.size(), config.start + config.count) : all.size();
     for (std::size_t i = config.start; i < end; ++i) {
         files_.push_back(all[i]);
         times_.push_back(times[i]);
@@ -60,12 +67,14 @@ ScanFolder::ScanFolder(const ScanFolderConfig& config) : config_(config) {
     }
     for (std::size_t i = 1; i < times_.size(); ++i)
         if (times_[i] < times_[i - 1])
-            throw IoError(times_file, "time goes backwards at scan " + std::to_string(config.start + i));
+            throw IoError(times_file,
+                          "time goes backwards at scan " + std::to_string(config.start + i));
 }
 
 common::PointCloud ScanFolder::load(std::size_t i) const {
-    common::PointCloud cloud = config_.format == ScanFormat::kKittiBin ? common::read_kitti_bin(files_[i])
-                                                                       : common::load_cloud_file(files_[i]);
+    common::PointCloud cloud = config_.format == ScanFormat::kKittiBin
+                                   ? common::read_kitti_bin(files_[i])
+                                   : common::load_cloud_file(files_[i]);
     cloud.stamp = times_[i];
     return cloud;
 }

@@ -17,7 +17,7 @@ enum class ScanFormat {
 };
 
 struct ScanFolderConfig {
-    std::string path;               // the folder (KITTI: the sequence or its velodyne/)
+    std::string path;  // the folder (KITTI: the sequence or its velodyne/)
     ScanFormat format = ScanFormat::kKittiBin;
     std::string times_file;         // "" : <sequence>/times.txt when present
     std::string poses_file;         // "" : none (KITTI format, one line a scan)
@@ -27,7 +27,7 @@ struct ScanFolderConfig {
 };
 
 class ScanFolder {
-public:
+  public:
     // Throws common::IoError (one line) when the folder, times or poses are missing or malformed,
     // or when they disagree with the number of scans.
     explicit ScanFolder(const ScanFolderConfig& config);
@@ -42,7 +42,7 @@ public:
     // Loads scan i with its stamp. Throws common::IoError for a damaged file.
     common::PointCloud load(std::size_t i) const;
 
-private:
+  private:
     ScanFolderConfig config_;
     std::vector<std::string> files_;
     std::vector<double> times_;

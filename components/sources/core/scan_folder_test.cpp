@@ -16,7 +16,8 @@ namespace {
 const std::string kFixture = std::string(LTM_SOURCE_DIR) + "/tests/fixtures/kitti00_mini";
 
 fs::path temp_dir(const std::string& name) {
-    fs::path d = fs::temp_directory_path() / ("ltm_scan_folder_" + name + "_" + std::to_string(::getpid()));
+    fs::path d =
+        fs::temp_directory_path() / ("ltm_scan_folder_" + name + "_" + std::to_string(::getpid()));
     fs::remove_all(d);
     fs::create_directories(d);
     return d;
@@ -101,7 +102,9 @@ TEST(ScanFolder, TimesGoingBackwardsAreRefused) {
     fs::create_directories(d / "velodyne");
     common::PointCloud c;
     c.points = {{1, 2, 3}};
-    for (int i = 0; i < 3; ++i) common::write_kitti_bin((d / "velodyne" / ("00000" + std::to_string(i) + ".bin")).string(), c);
+    for (int i = 0; i < 3; ++i)
+        common::write_kitti_bin((d / "velodyne" / ("00000" + std::to_string(i) + ".bin")).string(),
+                                c);
     std::ofstream(d / "times.txt") << "0.0\n0.2\n0.1\n";
     sources::ScanFolderConfig cfg;
     cfg.path = d.string();
