@@ -98,9 +98,10 @@ void apply_override(YAML::Node root, const std::string& arg) {
     check_plain_keys(value, "<command line>");
     const std::size_t dot = key.find('.');
     const YAML::Node& croot = root;
-    if (dot != std::string::npos && croot["components"].IsSequence()) {
+    const YAML::Node comps = croot["components"];  // invalid (not just undefined) when missing
+    if (dot != std::string::npos && comps.IsDefined() && comps.IsSequence()) {
         const std::string comp = key.substr(0, dot);
-        for (auto entry : croot["components"]) {
+        for (auto entry : comps) {
             // A component's name defaults to its type.
             std::string name = map_scalar(entry, "name");
             if (name.empty()) name = map_scalar(entry, "type");

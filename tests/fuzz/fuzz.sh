@@ -88,7 +88,7 @@ main() {
     LOG="$BUILD/fuzz-$TARGET.log"
     say "fuzzing $TARGET for ${SECONDS_TO_RUN}s on $CORPUS ($(ls "$CORPUS" | wc -l) inputs); log $LOG"
 
-    export ASAN_OPTIONS="${ASAN_OPTIONS:-abort_on_error=1:detect_leaks=1}"
+    export ASAN_OPTIONS="${ASAN_OPTIONS:-abort_on_error=1:detect_leaks=1:quarantine_size_mb=64}"
     export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
     before="$(ls "$CRASHES" | wc -l)"
     set +e

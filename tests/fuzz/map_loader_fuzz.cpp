@@ -2,20 +2,21 @@
 // kind of file the rest is:
 //   0 a local map, 1 the pose graph, 2 a keyframe file (each decoded from memory), 3 manifest.txt
 //   of a map folder that otherwise holds the files of mapping/core/testdata/map_v1 (load_map).
-// Promise: the decoded content or a one-line MapFormatError (a refused local-map or keyframe file
-// of a folder is a one-line entry of LoadedMap::refused). What decodes re-encodes to bytes that
+// Promise: the decoded content, or a one-line MapFormatError (or IoError, when a file the manifest
+// names cannot be read); a refused local-map or keyframe file of a folder is a one-line entry of
+// LoadedMap::refused. What decodes re-encodes to bytes that
 // decode and encode to the same bytes again (one description for both directions).
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <string>
 
+#include "common/core/io_error.hpp"
 #include "fuzz_util.hpp"
 #include "mapping/core/map_codec.hpp"
 #include "mapping/core/map_store.hpp"
 
 namespace fs = std::filesystem;
-using ltm::mapping::MapFormatError;
 
 namespace {
 
@@ -101,7 +102,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                 folder(data + 1, size - 1);
                 break;
         }
-    } catch (const MapFormatError& e) {
+    } catch (const ltm::common::IoError& e) {  // MapFormatError is one
         ltm::fuzz::expect_one_line(e);
     }
     return 0;

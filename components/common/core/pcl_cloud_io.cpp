@@ -59,9 +59,14 @@ void check_pcd_header(const std::string& path) {
                                            "TYPE",      "COUNT",  "WIDTH",   "HEIGHT",
                                            "VIEWPOINT", "POINTS", "DATA"};
     for (int more = 0; more < 64 && std::getline(in, line); ++more) {
-        if (line.empty() || line[0] == '#') continue;
+        if (line.empty()) continue;
+        std::istringstream ss(line);  // PCL's first word: leading whitespace skipped
+        std::string first;
+        ss >> first;
+        if (first.empty()) break;
+        if (first[0] == '#') continue;
         for (const char* k : kPclKeys)
-            if (line.rfind(k, 0) == 0)
+            if (first.rfind(k, 0) == 0)
                 throw IoError(path, std::string("PCD header: a ") + k + " line after DATA");
         break;
     }
@@ -83,6 +88,10 @@ void check_pcd_header(const std::string& path) {
     std::uint64_t step = 0;
     for (std::size_t i = 0; i < nf; ++i) {
         const std::uint64_t size = count(keys["SIZE"][i], 8, "SIZE");
+        const std::string& type = keys["TYPE"][i];
+        if (!(type == "F" && (size == 4 || size == 8)) && type != "I" && type != "U")
+            throw IoError(path, "PCD header: bad TYPE '" + type.substr(0, 32) + "' of size " +
+                                    std::to_string(size));
         const std::uint64_t n = keys["COUNT"].empty() ? 1 : count(keys["COUNT"][i], 65535, "COUNT");
         if (size != 1 && size != 2 && size != 4 && size != 8)
             throw IoError(path, "PCD header: bad SIZE");

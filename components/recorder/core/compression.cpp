@@ -141,6 +141,12 @@ void decompress(const std::string& compression, const std::uint8_t* in, std::siz
     const char* name = compression.empty() ? "uncompressed records" : compression.c_str();
     if (size > kMaxChunkBytes)
         damaged(name, "implausible uncompressed size " + std::to_string(size));
+    // Neither format expands further than this (lz4: a match byte per 255 output bytes; zstd: a
+    // 4-byte RLE block per 128 KiB): a larger claim would only allocate memory for nothing.
+    const std::uint64_t max_ratio = compression == "lz4" ? 256 : 32768;
+    if (!compression.empty() && size > max_ratio * in_size + (std::uint64_t{128} << 10))
+        damaged(name, "uncompressed size " + std::to_string(size) + " is implausible for " +
+                          std::to_string(in_size) + " compressed bytes");
     if (compression.empty()) {
         if (in_size != size) {
             damaged(name, "the chunk holds " + std::to_string(in_size) +
