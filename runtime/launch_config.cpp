@@ -105,7 +105,7 @@ void apply_override(YAML::Node root, const std::string& arg) {
             // A component's name defaults to its type.
             std::string name = map_scalar(entry, "name");
             if (name.empty()) name = map_scalar(entry, "type");
-            if (name == comp) {
+            if (!name.empty() && name == comp) {  // ("" is an entry that is not a map)
                 // NAME.remap.FROM=TO: a topic remap of the component, not a parameter.
                 const std::string rest = key.substr(dot + 1);
                 if (rest.rfind("remap.", 0) == 0 && rest.size() > 6) {

@@ -24,15 +24,16 @@ main() {
         for f in "$FUZZ_DIR"/*_fuzz.cpp; do f="${f##*/}"; echo "${f%_fuzz.cpp}"; done
     }
 
-    usage() { die "usage: ./ltm fuzz list | ./ltm fuzz TARGET [--seconds N] [-- LIBFUZZER_ARGS...]"; }
+    local usage="usage: ./ltm fuzz list | ./ltm fuzz TARGET [--seconds N] [-- LIBFUZZER_ARGS...]"
 
-    [ $# -ge 1 ] || usage
+    [ $# -ge 1 ] || die "$usage"
     case "$1" in
         list) targets; exit 0 ;;
-        -h|--help|help) usage ;;
+        -h|--help|help) echo "$usage"; exit 0 ;;
     esac
     TARGET="$1"; shift
-    targets | grep -qx -- "$TARGET" || die "unknown target '$TARGET' (known: $(targets | tr '\n' ' '))"
+    targets | grep -qx -- "$TARGET" ||
+        die "unknown target '$TARGET' (known: $(targets | tr '\n' ' ' | sed 's/ $//'))"
     SECONDS_TO_RUN=60
     EXTRA=()
     while [ $# -gt 0 ]; do
@@ -113,4 +114,4 @@ main() {
     echo "no crash"
 }
 
-main "$@"
+main "$@"; exit $?  # on one line: nothing after it is read, even if the file changed
