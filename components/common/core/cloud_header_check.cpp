@@ -160,13 +160,20 @@ void check_ply_header(const std::string& path) {
         ++lineno;
         header_bytes += line.size() + 1;
         if (!line.empty() && line.back() == '\r') line.pop_back();
+        if (lineno == 1) {
+            if (line != "ply") throw IoError(path, "not a PLY file: no 'ply' on the first line");
+            continue;
+        }
+        // PCL splits its header lines at spaces and tabs only (and asserted on an obj_info line
+        // it had found by another split): a line must start with its keyword.
+        if (line.empty() || line[0] == ' ' || line[0] == '\t')
+            fail(lineno, "empty or indented header line");
+        for (const char c : line)
+            if ((static_cast<unsigned char>(c) < 0x20 && c != '\t') || c == 0x7f)
+                fail(lineno, "a control character");
         std::istringstream ss(line);
         std::string key;
         ss >> key;
-        if (lineno == 1) {
-            if (key != "ply") throw IoError(path, "not a PLY file: no 'ply' on the first line");
-            continue;
-        }
         if (key == "comment" || key == "obj_info") continue;
         if (key == "format") {
             std::string version;
@@ -207,6 +214,8 @@ void check_ply_header(const std::string& path) {
         } else {
             fail(lineno, "unknown keyword '" + key.substr(0, 32) + "'");
         }
+        std::string extra;
+        if (ss >> extra) fail(lineno, "unexpected '" + extra.substr(0, 32) + "' at the end");
     }
     if (!end) throw IoError(path, "PLY header has no end_header line");
     if (format.empty()) throw IoError(path, "PLY header has no format line");
