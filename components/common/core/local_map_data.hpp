@@ -32,6 +32,10 @@ struct LocalMapData {
     std::uint64_t id = 0;
     std::uint32_t revision = 0;  // increases with every snapshot of the same map
     bool finished = false;       // false: a snapshot of a map still being built
+    // Odometry segment: increases each time the odometry lost track and restarted at its best
+    // estimate. Maps of one segment are joined by odometry; the first map of a new segment has
+    // no reliable odometry relation to the maps before it (a loop or localisation joins them).
+    std::uint32_t segment = 0;
     Eigen::Isometry3d T_odom_anchor = Eigen::Isometry3d::Identity();
     Eigen::Isometry3d T_anchor_grid = Eigen::Isometry3d::Identity();
     Eigen::Vector3d bbox_min = Eigen::Vector3d::Zero();  // grid frame [m]
