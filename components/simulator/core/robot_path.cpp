@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "common/core/io_error.hpp"
 #include "common/core/kitti_io.hpp"
@@ -83,10 +84,23 @@ void RobotPath::init_waypoints(const RouteConfig& config) {
         throw ScenarioError("route: needs at least two waypoints or a poses_file");
     if (config.speed <= 0) throw ScenarioError("route.speed: must be > 0");
     const std::vector<Waypoint> waypoints = route_laps(config);
+    // Corners are rounded between turns on the spot; where the robot turns on the spot the
+    // corner stays sharp. Each piece starts where the previous one ended.
     Points2 pts;
-    for (const auto& w : waypoints) pts.emplace_back(w.x, w.y);
-    std::vector<std::size_t> index;
-    line_ = Polyline(round_corners(pts, config.corner_radius, 0.5, &index));
+    std::vector<std::size_t> index(waypoints.size(), 0);
+    for (std::size_t begin = 0, end = 1; end < waypoints.size(); ++end) {
+        if (end + 1 < waypoints.size() && !(waypoints[end].spin_time > 0)) continue;
+        Points2 piece;
+        for (std::size_t k = begin; k <= end; ++k)
+            piece.emplace_back(waypoints[k].x, waypoints[k].y);
+        std::vector<std::size_t> piece_index;
+        const Points2 rounded = round_corners(piece, config.corner_radius, 0.5, &piece_index);
+        const std::size_t base = pts.empty() ? 0 : pts.size() - 1;
+        pts.insert(pts.end(), rounded.begin() + (pts.empty() ? 0 : 1), rounded.end());
+        for (std::size_t k = begin; k <= end; ++k) index[k] = base + piece_index[k - begin];
+        begin = end;
+    }
+    line_ = Polyline(pts);
     if (line_.length() <= 0) throw ScenarioError("route: the waypoints do not move the robot");
     waypoint_vertex_ = index;
     // The speed of waypoint i holds until waypoint i + 1.
@@ -97,6 +111,53 @@ void RobotPath::init_waypoints(const RouteConfig& config) {
         const double v = waypoints[leg].speed > 0 ? waypoints[leg].speed : config.speed;
         vertex_time_[j] = vertex_time_[j - 1] + (line_.vertex_s(j) - line_.vertex_s(j - 1)) / v;
     }
+    // Turns on the spot: from the heading driving in to the heading driving out, the way and
+    // the number of whole turns the waypoint asks for.
+    const double inf = std::numeric_limits<double>::infinity();
+    double spun = 0.0;
+    for (std::size_t i = 0; i < waypoints.size(); ++i) {
+        if (!(waypoints[i].spin_time > 0)) continue;
+        Spin sp;
+        sp.vertex = index[i];
+        sp.s = line_.vertex_s(sp.vertex);
+        sp.t0 = vertex_time_[sp.vertex] + spun;
+        sp.duration = waypoints[i].spin_time;
+        sp.angle = waypoints[i].spin_deg * M_PI / 180.0;  // as asked; made exact below
+        spins_.push_back(sp);
+        spun += sp.duration;
+    }
+    for (std::size_t k = 0; k < spins_.size(); ++k) {
+        Spin& sp = spins_[k];
+        const double lo = k > 0 ? spins_[k - 1].s : -inf;
+        const double hi = k + 1 < spins_.size() ? spins_[k + 1].s : inf;
+        sp.yaw0 = heading_at(sp.s, lo, sp.s);
+        const double turn = std::remainder(heading_at(sp.s, sp.s, hi) - sp.yaw0, 2 * M_PI);
+        sp.angle = turn + 2 * M_PI * std::round((sp.angle - turn) / (2 * M_PI));  // as asked
+    }
+}
+
+RobotPath::Phase RobotPath::phase(double t) const {
+    Phase ph;
+    double spun = 0.0;
+    for (const Spin& sp : spins_) {
+        if (t <= sp.t0) break;
+        if (t < sp.t0 + sp.duration) {
+            ph.spinning = static_cast<int>(ph.done);
+            ph.drive_time = sp.t0 - spun;
+            return ph;
+        }
+        spun += sp.duration;
+        ++ph.done;
+    }
+    ph.drive_time = t - spun;
+    return ph;
+}
+
+double RobotPath::heading_at(double s, double lo, double hi) const {
+    Eigen::Vector2d dir =
+        line_.point_at(std::min(s + 0.6, hi)) - line_.point_at(std::max(s - 0.6, lo));
+    if (dir.norm() < 1e-6) dir = line_.tangent_at(s);
+    return std::atan2(dir.y(), dir.x());
 }
 
 void RobotPath::init_file(const RouteConfig& config, const std::string& base_dir) {
@@ -142,11 +203,17 @@ void RobotPath::init_file(const RouteConfig& config, const std::string& base_dir
 
 double RobotPath::duration() const {
     if (from_file()) return times_.back() - times_.front();
-    return vertex_time_.back();
+    double spun = 0.0;
+    for (const Spin& sp : spins_) spun += sp.duration;
+    return vertex_time_.back() + spun;
 }
 
 double RobotPath::arc_at(double t) const {
     if (from_file()) return line_.project(pose_at(t, Terrain(), 0).translation().head<2>());
+    return arc_at_drive_time(phase(t).drive_time);
+}
+
+double RobotPath::arc_at_drive_time(double t) const {
     const auto it = std::upper_bound(vertex_time_.begin(), vertex_time_.end(), t);
     if (it == vertex_time_.begin()) return 0.0;
     if (it == vertex_time_.end()) return line_.length();
@@ -168,7 +235,11 @@ Eigen::Vector2d RobotPath::plan_position(double t) const {
 
 double RobotPath::waypoint_time(int i) const {
     if (from_file() || i < 0 || i >= num_waypoints()) return -1.0;
-    return vertex_time_[waypoint_vertex_[static_cast<std::size_t>(i)]];
+    const std::size_t v = waypoint_vertex_[static_cast<std::size_t>(i)];
+    double spun = 0.0;
+    for (const Spin& sp : spins_)
+        if (sp.vertex < v) spun += sp.duration;
+    return vertex_time_[v] + spun;
 }
 
 std::vector<double> RobotPath::scan_times(double t0, double t1, double rate) const {
@@ -218,11 +289,18 @@ Eigen::Isometry3d RobotPath::pose_at(double t, const Terrain& terrain, double he
         T.translation() = (1 - f) * poses_[j - 1].translation() + f * poses_[j].translation();
         return T;
     }
-    const double s = arc_at(t);
+    const Phase ph = phase(t);
+    const double s = arc_at_drive_time(ph.drive_time);
     const Eigen::Vector2d p = line_.point_at(s);
-    Eigen::Vector2d dir = line_.point_at(s + 0.6) - line_.point_at(s - 0.6);
-    if (dir.norm() < 1e-6) dir = line_.tangent_at(s);
-    const double yaw = std::atan2(dir.y(), dir.x());
+    double yaw = 0.0;
+    if (ph.spinning >= 0) {
+        const Spin& sp = spins_[static_cast<std::size_t>(ph.spinning)];
+        yaw = sp.yaw0 + sp.angle * (t - sp.t0) / sp.duration;
+    } else {
+        const double inf = std::numeric_limits<double>::infinity();
+        yaw = heading_at(s, ph.done > 0 ? spins_[ph.done - 1].s : -inf,
+                         ph.done < spins_.size() ? spins_[ph.done].s : inf);
+    }
     const Eigen::Vector3d n = terrain.normal(p.x(), p.y());
     Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
     T.linear() = (Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), n) *

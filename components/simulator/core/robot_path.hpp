@@ -1,6 +1,6 @@
 #pragma once
-// The robot's route in one session: driven waypoints (rounded corners, speed per leg, standing
-// on the terrain) or a recorded trajectory file (KITTI poses and times).
+// The robot's route in one session: driven waypoints (rounded corners, speed per leg, turns on
+// the spot, standing on the terrain) or a recorded trajectory file (KITTI poses and times).
 #include <Eigen/Geometry>
 #include <string>
 #include <vector>
@@ -27,7 +27,8 @@ class RobotPath {
     // Arc length along centerline() at route time t (clamped).
     double arc_at(double t) const;
     // Route time at which the robot passes waypoint i of route_laps() (the first lap's are the
-    // configured ones, 0..n-1; waypoint routes; file routes: -1).
+    // configured ones, 0..n-1; waypoint routes; file routes: -1). A turn on the spot there
+    // starts at that time.
     double waypoint_time(int i) const;
     int num_waypoints() const { return static_cast<int>(waypoint_vertex_.size()); }
     // Route times of scans in [t0, t1]: every 1/rate s (waypoints) or the file's times.
@@ -43,11 +44,31 @@ class RobotPath {
     Eigen::Isometry3d pose_at(double t, const Terrain& terrain, double height) const;
 
   private:
+    // A turn on the spot at arc length s, from route time t0 for `duration` s.
+    struct Spin {
+        double s = 0.0;
+        std::size_t vertex = 0;  // line_ vertex
+        double t0 = 0.0, duration = 0.0;
+        double yaw0 = 0.0, angle = 0.0;  // [rad] heading at the start, turn (left positive)
+    };
+    // Where route time t is among the spins: drive time (spinning taken out), the spin under way
+    // (-1: none) and how many spins are over.
+    struct Phase {
+        double drive_time = 0.0;
+        int spinning = -1;
+        std::size_t done = 0;
+    };
     void init_waypoints(const RouteConfig& config);
     void init_file(const RouteConfig& config, const std::string& base_dir);
+    Phase phase(double t) const;
+    double arc_at_drive_time(double drive_time) const;
+    // Heading of the line at s [rad], from the line between lo and hi (turns on the spot are not
+    // smoothed over).
+    double heading_at(double s, double lo, double hi) const;
 
     Polyline line_;
-    std::vector<double> vertex_time_;           // waypoint routes: time at each line_ vertex
+    std::vector<double> vertex_time_;           // waypoint routes: drive time at each line_ vertex
+    std::vector<Spin> spins_;                   // waypoint routes: turns on the spot, in time order
     std::vector<std::size_t> waypoint_vertex_;  // waypoint i -> line_ vertex
     common::PoseList poses_;                    // file routes: T_world_lidar
     std::vector<double> times_;                 // file routes: time of each pose [s]

@@ -1,5 +1,8 @@
 #include "simulator/core/scenario.hpp"
 
+#include <cmath>
+#include <cstdio>
+
 namespace ltm::sim {
 namespace {
 
@@ -40,6 +43,45 @@ void check_world(const WorldConfig& w, ConfigChecker& k) {
     k("world.town.pole_spacing", w.town.pole_spacing, above(1));
 }
 
+// Unit direction of the route's leg into waypoint i (backwards: false) or out of it, skipping
+// repeated points; zero where there is none.
+Eigen::Vector2d leg_direction(const std::vector<Waypoint>& w, std::size_t i, bool forwards) {
+    const Eigen::Vector2d p(w[i].x, w[i].y);
+    if (forwards) {
+        for (std::size_t j = i + 1; j < w.size(); ++j)
+            if (const Eigen::Vector2d d(w[j].x - p.x(), w[j].y - p.y()); d.norm() > 1e-9)
+                return d.normalized();
+    } else {
+        for (std::size_t j = i; j-- > 0;)
+            if (const Eigen::Vector2d d(p.x() - w[j].x, p.y() - w[j].y); d.norm() > 1e-9)
+                return d.normalized();
+    }
+    return Eigen::Vector2d::Zero();
+}
+
+// A turn on the spot at waypoint i ends on the heading of the leg out of it.
+void check_spin(const RouteConfig& r, std::size_t i, const std::string& wk, ConfigChecker& k) {
+    const Waypoint& w = r.waypoints[i];
+    k(wk + ".spin_time", w.spin_time, non_negative);
+    k.require(w.spin_deg == 0 || w.spin_time > 0, wk + ".spin", "needs a spin_time > 0");
+    if (!(w.spin_time > 0)) return;
+    const bool end = i == 0 || i + 1 == r.waypoints.size();
+    k.require(!end || r.laps == 1, wk + ".spin",
+              "a turn on the spot at the first or last waypoint needs laps: 1");
+    Eigen::Vector2d in = leg_direction(r.waypoints, i, false);
+    Eigen::Vector2d out = leg_direction(r.waypoints, i, true);
+    if (in.isZero()) in = out;
+    if (out.isZero()) out = in;
+    const double turn = std::atan2(in.x() * out.y() - in.y() * out.x(), in.dot(out)) * 180.0 / M_PI;
+    const double off = std::remainder(w.spin_deg - turn, 360.0);
+    char buf[160];
+    std::snprintf(buf, sizeof buf,
+                  "must end on the next leg's heading: the route turns %.1f deg here (give that "
+                  "plus whole turns, e.g. %.1f or %.1f)",
+                  turn, turn - 360.0, turn + 360.0);
+    k.require(std::abs(off) <= 1.0, wk + ".spin", buf);
+}
+
 void check_session(const SessionConfig& s, const std::string& key, ConfigChecker& k) {
     const RouteConfig& r = s.route;
     k.require(!r.poses_file.empty() || r.waypoints.size() >= 2, key + ".route",
@@ -52,8 +94,9 @@ void check_session(const SessionConfig& s, const std::string& key, ConfigChecker
     k.require(r.laps == 1 || r.poses_file.empty(), key + ".route.laps",
               "only waypoint routes can be repeated");
     for (std::size_t i = 0; i < r.waypoints.size(); ++i) {
-        k.require(r.waypoints[i].speed >= 0, key + ".route.waypoints[" + std::to_string(i) + "]",
-                  "speed must be >= 0");
+        const std::string wk = key + ".route.waypoints[" + std::to_string(i) + "]";
+        k.require(r.waypoints[i].speed >= 0, wk, "speed must be >= 0");
+        check_spin(r, i, wk, k);
     }
     for (std::size_t i = 0; i < s.kidnaps.size(); ++i) {
         const KidnapConfig& c = s.kidnaps[i];

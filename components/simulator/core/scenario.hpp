@@ -66,6 +66,13 @@ struct WorldConfig {
 struct Waypoint {
     double x = 0.0, y = 0.0;  // [m]
     double speed = 0.0;       // [m/s] on the leg that starts here; 0: the route's speed
+    // Turning on the spot (when spin_time > 0): the robot stops here and turns by spin_deg
+    // (positive: left, counter-clockwise) at a constant rate for spin_time seconds, then drives
+    // on. The corner here is not rounded. spin_deg must end on the next leg's heading: the
+    // route's turn here plus whole turns, within 1 deg (the nearest such angle is turned).
+    // spin_deg 0 with a spin_time: the robot stands still that long.
+    double spin_deg = 0.0;   // [deg]
+    double spin_time = 0.0;  // [s]
 };
 
 struct RouteConfig {

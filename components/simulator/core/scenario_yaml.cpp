@@ -151,7 +151,19 @@ void read_route(const YamlReader& r, const Y& n, const std::string& k, RouteConf
     if (const Y w = n["waypoints"]) {
         r.expect_sequence(w, k + ".waypoints");
         for (std::size_t i = 0; i < w.size(); ++i) {
-            const auto v = r.numbers(w[i], YamlReader::index(k + ".waypoints", i), 2, 3);
+            const std::string ki = YamlReader::index(k + ".waypoints", i);
+            if (w[i].IsMap()) {  // {x, y, speed, spin, spin_time}
+                r.expect_map(w[i], ki, {"x", "y", "speed", "spin", "spin_time"});
+                Waypoint p;
+                if (!r.get(w[i], "x", ki, p.x) || !r.get(w[i], "y", ki, p.y))
+                    r.fail(w[i], ki, "needs x and y");
+                r.get(w[i], "speed", ki, p.speed);
+                r.get(w[i], "spin", ki, p.spin_deg);
+                r.get(w[i], "spin_time", ki, p.spin_time);
+                route.waypoints.push_back(p);
+                continue;
+            }
+            const auto v = r.numbers(w[i], ki, 2, 3);
             route.waypoints.push_back({v[0], v[1], v.size() > 2 ? v[2] : 0.0});
         }
     }

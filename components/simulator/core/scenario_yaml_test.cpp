@@ -27,7 +27,8 @@ std::string error_of(const std::string& text) {
 }
 
 TEST(ScenarioYaml, ShippedScenariosLoad) {
-    for (const char* name : {"tiny_loop", "site_loop", "site_sessions", "kitti00_path"}) {
+    for (const char* name : {"tiny_loop", "site_loop", "site_sessions", "kitti00_path",
+                             "fast_turns", "turn_on_spot"}) {
         const ScenarioConfig sc = load_scenario(kScenarios + name + ".yaml");
         EXPECT_EQ(sc.name, name);
         EXPECT_FALSE(sc.sessions.empty());
@@ -107,6 +108,42 @@ TEST(ScenarioYaml, RouteLaps) {
     const std::string file =
         "sessions: [ {route: {laps: 2, poses_file: p.txt, times_file: t.txt}} ]\n";
     EXPECT_NE(error_of(file).find("route.laps: only waypoint routes"), std::string::npos);
+}
+
+TEST(ScenarioYaml, TurnsOnTheSpot) {
+    const std::string head =
+        "sensor: {model: vlp16}\nsessions:\n  - route:\n      waypoints:\n"
+        "        - [0, 0]\n";
+    const ScenarioConfig sc = parse_scenario(head +
+                                                 "        - {x: 10, y: 0, spin: -270, "
+                                                 "spin_time: 3, speed: 1.2}\n"
+                                                 "        - [10, 10]\n",
+                                             "test.yaml", ".");
+    const Waypoint& w = sc.sessions[0].route.waypoints[1];
+    EXPECT_DOUBLE_EQ(w.x, 10.0);
+    EXPECT_DOUBLE_EQ(w.spin_deg, -270.0);
+    EXPECT_DOUBLE_EQ(w.spin_time, 3.0);
+    EXPECT_DOUBLE_EQ(w.speed, 1.2);
+    // The turn must end on the next leg's heading (here +90 deg plus whole turns).
+    EXPECT_EQ(error_of(head + "        - {x: 10, y: 0, spin: 180, spin_time: 2}\n"
+                              "        - [10, 10]\n"),
+              "test.yaml:6: sessions[0].route.waypoints[1].spin: must end on the next leg's "
+              "heading: the route turns 90.0 deg here (give that plus whole turns, e.g. -270.0 "
+              "or 450.0)");
+    EXPECT_NE(error_of(head + "        - {x: 10, y: 0, spin: 90}\n        - [10, 10]\n")
+                  .find("waypoints[1].spin: needs a spin_time > 0"),
+              std::string::npos);
+    EXPECT_NE(error_of(head + "        - {x: 10, y: 0, spin_time: -1}\n        - [10, 10]\n")
+                  .find("waypoints[1].spin_time: must be >= 0"),
+              std::string::npos);
+    EXPECT_NE(error_of(head + "        - {x: 10, spin: 90}\n").find("needs x and y"),
+              std::string::npos);
+    EXPECT_NE(error_of(head + "        - {x: 10, y: 0, turn: 90}\n").find("unknown key"),
+              std::string::npos);
+    // Whole turns at the ends are fine once; with laps the ends are joined by a leg.
+    const std::string end_spin = head + "        - {x: 10, y: 0, spin: 360, spin_time: 4}\n";
+    EXPECT_EQ(error_of(end_spin), "");
+    EXPECT_NE(error_of(end_spin + "      laps: 2\n").find("needs laps: 1"), std::string::npos);
 }
 
 TEST(ScenarioYaml, RulesBrokenNameTheLineOfTheKey) {

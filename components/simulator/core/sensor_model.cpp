@@ -53,6 +53,20 @@ bool make_sensor_preset(const std::string& name, SensorConfig& c) {
         c.range_at_10pct = 50.0;
         return true;
     }
+    if (name == "os1_64") {
+        // Ouster OS1-64 (Rev 6/7): 64 beams spread evenly over +22.5 to -22.5 deg (0.714 deg),
+        // in its default mode 1024x10 (1024 columns a turn at 10 Hz, 0.35 deg; 2048x10 is
+        // `columns: 2048`); 0.3 m minimum range, 120 m maximum, a 10 % target detected half the
+        // time at 60 m (the data sheet's order for Rev 6).
+        // Like the Velodynes it turns clockwise and starts its frame at the rear (the connector
+        // side, encoder angle 0), so per-point time follows the same rule.
+        for (int i = 0; i < 64; ++i) c.elevations_deg.push_back(22.5 - 45.0 * i / 63.0);
+        c.columns = 1024;
+        c.min_range = 0.3;
+        c.max_range = 120.0;
+        c.range_at_10pct = 60.0;
+        return true;
+    }
     if (name == "livox_avia" || name == "solid_state") {
         // Livox Avia-like: 70.4 deg circular field, six tracks of a non-repetitive rosette,
         // 20k pulses a 0.1 s frame, 190 m for a 10 % target.
@@ -68,7 +82,9 @@ bool make_sensor_preset(const std::string& name, SensorConfig& c) {
     return false;
 }
 
-std::string sensor_preset_names() { return "hdl64e, vlp32c, vlp16, livox_avia (solid_state)"; }
+std::string sensor_preset_names() {
+    return "hdl64e, vlp32c, vlp16, os1_64, livox_avia (solid_state)";
+}
 
 SensorModel::SensorModel(const SensorConfig& config) : config_(config) {
     if (config_.pattern != ScanPattern::kSpinning) return;

@@ -33,7 +33,7 @@ struct SensorConfig {
     Eigen::AlignedBox3d ego_box;
 };
 
-// Fills `config` with a preset: hdl64e, vlp32c, vlp16, livox_avia (alias solid_state).
+// Fills `config` with a preset: hdl64e, vlp32c, vlp16, os1_64, livox_avia (alias solid_state).
 // False when the name is unknown.
 bool make_sensor_preset(const std::string& name, SensorConfig& config);
 std::string sensor_preset_names();  // "hdl64e, vlp32c, ..." for messages

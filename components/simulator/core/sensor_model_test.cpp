@@ -57,6 +57,44 @@ TEST(SensorModel, VelodynePuckLayouts) {
     EXPECT_FALSE(make_sensor_preset("hdl32", c));
 }
 
+TEST(SensorModel, Os164UniformBeamsAndColumns) {
+    SensorConfig c;
+    ASSERT_TRUE(make_sensor_preset("os1_64", c));
+    EXPECT_EQ(c.model, "os1_64");
+    EXPECT_DOUBLE_EQ(c.min_range, 0.3);
+    EXPECT_DOUBLE_EQ(c.max_range, 120.0);
+    const SensorModel m(c);
+    ASSERT_EQ(m.rings(), 64);
+    std::vector<Pulse> scratch;
+    const auto& pulses = m.pulses(0, scratch);
+    ASSERT_EQ(pulses.size(), 64u * 1024u);
+    std::map<int, int> per_ring;
+    std::map<int, double> ring_elevation;
+    for (const auto& p : pulses) {
+        ++per_ring[p.ring];
+        ring_elevation[p.ring] = elevation_deg(p.dir);
+        EXPECT_GE(p.time, 0.0f);
+        EXPECT_LT(p.time, 0.1f);
+    }
+    ASSERT_EQ(per_ring.size(), 64u);
+    for (const auto& [ring, n] : per_ring) EXPECT_EQ(n, 1024) << "ring " << ring;
+    EXPECT_NEAR(ring_elevation[0], 22.5, 1e-4);
+    EXPECT_NEAR(ring_elevation[63], -22.5, 1e-4);
+    for (int r = 1; r < 64; ++r)  // uniform spacing, top first
+        EXPECT_NEAR(ring_elevation[r] - ring_elevation[r - 1], -45.0 / 63.0, 1e-4) << r;
+    // Swapping it in keeps the mount and timing of the scenario's sensor.
+    SensorConfig mounted;
+    ASSERT_TRUE(make_sensor_preset("livox_avia", mounted));
+    mounted.height = 0.7;
+    mounted.motion_distortion = true;
+    ASSERT_TRUE(replace_sensor("os1_64", mounted));
+    EXPECT_EQ(mounted.elevations_deg.size(), 64u);
+    EXPECT_EQ(mounted.pattern, ScanPattern::kSpinning);
+    EXPECT_DOUBLE_EQ(mounted.height, 0.7);
+    EXPECT_TRUE(mounted.motion_distortion);
+    EXPECT_NE(sensor_preset_names().find("os1_64"), std::string::npos);
+}
+
 TEST(SensorModel, RosetteStaysInItsFieldAndNeverRepeats) {
     SensorConfig c;
     ASSERT_TRUE(make_sensor_preset("solid_state", c));

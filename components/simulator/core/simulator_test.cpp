@@ -244,6 +244,67 @@ TEST(Simulator, LapsRepeatTheRouteThroughDrivableTurns) {
     EXPECT_EQ(starts, 3u);
 }
 
+// Turns on the spot: a full turn left in 4 s on the way east, then a quarter turn left in 1 s
+// at a corner, which stays sharp (corner_radius would otherwise round it).
+TEST(Simulator, TurnsOnTheSpotKeepTheRobotInPlace) {
+    RouteConfig route;
+    route.speed = 2.0;
+    route.corner_radius = 3.0;
+    route.waypoints = {{0, 0}, {10, 0}, {20, 0}, {20, 10}};
+    route.waypoints[1].spin_deg = 360;
+    route.waypoints[1].spin_time = 4;
+    route.waypoints[2].spin_deg = 90;
+    route.waypoints[2].spin_time = 1;
+    const RobotPath path(route, ".");
+    TerrainConfig level;
+    level.amplitude = 0.0;
+    const Terrain flat(level, Eigen::AlignedBox2d(Eigen::Vector2d(-5, -5), Eigen::Vector2d(25, 15)),
+                       1);
+    const auto yaw_deg = [&](double t) {
+        const Eigen::Matrix3d R = path.pose_at(t, flat, 1.0).linear();
+        return std::atan2(R(1, 0), R(0, 0)) * 180.0 / M_PI;
+    };
+    const auto at = [&](double t) -> Eigen::Vector3d {
+        return path.pose_at(t, flat, 1.0).translation();
+    };
+    EXPECT_DOUBLE_EQ(path.duration(), 15.0 + 5.0);
+    EXPECT_DOUBLE_EQ(path.waypoint_time(1), 5.0);
+    EXPECT_DOUBLE_EQ(path.waypoint_time(2), 14.0);
+    EXPECT_DOUBLE_EQ(path.waypoint_time(3), 20.0);
+    for (const double t : {5.0, 6.0, 7.5, 9.0}) {
+        EXPECT_NEAR((at(t) - Eigen::Vector3d(10, 0, 1)).norm(), 0.0, 1e-9) << t;
+    }
+    EXPECT_NEAR(yaw_deg(4.9), 0.0, 1e-9);
+    EXPECT_NEAR(yaw_deg(6.0), 90.0, 1e-9);
+    EXPECT_NEAR(std::abs(yaw_deg(7.0)), 180.0, 1e-9);
+    EXPECT_NEAR(yaw_deg(8.0), -90.0, 1e-9);
+    EXPECT_NEAR(yaw_deg(9.5), 0.0, 1e-9);
+    EXPECT_NEAR(at(9.5).x(), 11.0, 1e-9);
+    // The corner at (20, 0) is driven sharp, then turned on the spot.
+    EXPECT_NEAR(at(13.9).y(), 0.0, 1e-9);
+    EXPECT_NEAR(at(13.9).x(), 19.8, 1e-9);
+    EXPECT_NEAR(yaw_deg(13.9), 0.0, 1e-9);
+    EXPECT_NEAR(yaw_deg(14.5), 45.0, 1e-9);
+    EXPECT_NEAR((at(14.5) - Eigen::Vector3d(20, 0, 1)).norm(), 0.0, 1e-9);
+    EXPECT_NEAR(yaw_deg(15.5), 90.0, 1e-9);
+    EXPECT_NEAR((at(15.5) - Eigen::Vector3d(20, 1, 1)).norm(), 0.0, 1e-9);
+    // Continuous: never faster than the speed or the rate of the quicker turn (90 deg/s).
+    const double dt = 0.01;
+    for (double t = dt; t <= path.duration(); t += dt) {
+        const Eigen::Isometry3d a = path.pose_at(t - dt, flat, 1.0), b = path.pose_at(t, flat, 1.0);
+        ASSERT_LE((b.translation() - a.translation()).norm(), 2.0 * dt + 1e-9) << t;
+        ASSERT_LE(Eigen::AngleAxisd(a.linear().transpose() * b.linear()).angle(),
+                  M_PI / 2 * dt + 1e-9)
+            << t;
+    }
+    // Turned the other way round: three quarters to the right.
+    route.waypoints[2].spin_deg = -270;
+    route.waypoints[2].spin_time = 3;
+    const RobotPath right(route, ".");
+    const Eigen::Matrix3d R = right.pose_at(15.0, flat, 1.0).linear();
+    EXPECT_NEAR(std::atan2(R(1, 0), R(0, 0)) * 180.0 / M_PI, -90.0, 1e-9);
+}
+
 TEST(Simulator, MissingTrajectoryFileIsOneLine) {
     ScenarioConfig sc = small_world(1);
     sc.sessions[0].route.waypoints.clear();
