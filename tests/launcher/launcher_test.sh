@@ -120,13 +120,27 @@ readonly_never_sets_up() {
 bench_list_names_every_benchmark() {
     local list name
     list="$("$LTM" bench list)" || return 1
-    for name in dds odometry slam mcap sim sim_compare; do
+    for name in dds odometry slam mcap sim sim_compare hard_cases; do
         echo "$list" | grep -q "^  $name " || { echo "  '$name' missing from: $list"; return 1; }
     done
     local err rc
     err="$("$LTM" bench nosuch 2>&1)"
     rc=$?
     [ "$rc" = 1 ] && [[ "$err" == *"no benchmark 'nosuch'"* ]] || { echo "  rc=$rc: $err"; return 1; }
+}
+
+# The KISS-ICP comparison (a script) without the shared data: skips, builds nothing, exits 0.
+bench_hard_cases_skips_without_data() {
+    local out rc
+    out="$(LTM_SHARED_DATA="$TMP/no_data" KISS_ICP_BUILD="$TMP/kiss_build" "$LTM" bench hard_cases 2>&1)"
+    rc=$?
+    [ "$rc" = 0 ] && [[ "$out" == *"no shared data at $TMP/no_data"*"no cases to run"* ]] ||
+        { echo "  rc=$rc: $out"; return 1; }
+    [ ! -e "$TMP/kiss_build" ] || { echo "  built KISS-ICP with nothing to run"; return 1; }
+    out="$("$LTM" bench hard_cases --bogus 2>&1)"
+    rc=$?
+    [ "$rc" = 1 ] && [ "$(echo "$out" | wc -l)" = 1 ] && [[ "$out" == *"unknown option '--bogus'"* ]] ||
+        { echo "  rc=$rc: $out"; return 1; }
 }
 
 tool_launch_configs_are_valid() {
@@ -149,6 +163,7 @@ check "SIGINT to the launcher's pid (a background job) stops the host, file comp
 check "an option without its value is refused with one line, exit 2" option_without_value
 check "read-only commands never set up or install" readonly_never_sets_up
 check "bench list names every benchmark" bench_list_names_every_benchmark
+check "bench hard_cases skips without the shared data" bench_hard_cases_skips_without_data
 check "the launch configs of record, replay and map are valid" tool_launch_configs_are_valid
 echo "$passed passed, $failed failed"
 [ "$failed" = 0 ]

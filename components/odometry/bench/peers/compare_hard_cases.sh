@@ -1,0 +1,200 @@
+#!/usr/bin/env bash
+# ltm's odometry beside KISS-ICP (default settings, one thread) on the hard cases of issue 11:
+# the same scans, both scored by ltm_eval traj against the same reference lines.
+#
+#   compare_hard_cases.sh [--out-dir DIR] [--max-frames N] [--kiss-kitti-correction]
+#                         [--only REGEX] [DIR:PRESET[:N[,N...]] ...]
+#   ./ltm bench hard_cases [the same arguments]
+#
+# Cases: hku-avia session 1 and 2 (preset narrow) keeping every 2nd, 3rd and 5th scan; KITTI
+# snippets 00, 04, 05, 07 (preset hdl64) keeping every scan, every 2nd and every 3rd; and every
+# DIR:PRESET given (e.g. a folder written by `./ltm sim`, KITTI layout with poses.txt in the LiDAR
+# frame), all scans or every Nth for each N listed. The reference is DIR/poses.txt or
+# DIR/odom_poses.txt (LiDAR frame) or DIR/poses_semantickitti.txt with DIR/calib.txt (camera
+# frame), its lines 1, 1+N, 1+2N, ... as many as scans were kept.
+#   --out-dir DIR      poses, logs and table.txt (default: a new folder under /tmp)
+#   --max-frames N     only the first N kept scans of each case
+#   --only REGEX       only the cases whose name matches
+#   --kiss-kitti-correction  give KISS-ICP's runner the KITTI vertical-angle correction its KITTI
+#                      loader applies (off: both systems read exactly the same points)
+# Environment: LTM_BUILD_DIR (ltm's build, default ./build), LTM_SHARED_DATA (default
+# /work/shared/data; the shared cases are skipped when it is absent), and KISS_ICP_SOURCE,
+# SOPHUS_SOURCE, KISS_ICP_BUILD for kiss_icp.sh (which builds KISS-ICP outside the repository).
+# Columns: ATE = RMSE of the SE(3)-aligned absolute trajectory error [m]; tracked/lost = ltm's
+# frame states (initialised + tracked + recovered / lost, "+K" other states); fps = frames a second
+# by CPU time of the odometry thread, one thread each (file reading excluded).
+set -euo pipefail
+
+HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+ROOT="$(cd "$HERE/../../../.." && pwd)"
+BUILD_DIR="${LTM_BUILD_DIR:-$ROOT/build}"
+DATA="${LTM_SHARED_DATA:-/work/shared/data}"
+OUT=""
+MAX_FRAMES=0
+ONLY=""
+KISS_EXTRA=()
+EXTRA=()
+
+die() { printf 'compare_hard_cases: error: %s\n' "$*" >&2; exit 1; }
+say() { printf 'compare_hard_cases: %s\n' "$*" >&2; }
+
+while [ $# -gt 0 ]; do
+    case "$1" in
+        --out-dir) [ $# -ge 2 ] || die "--out-dir needs a folder"; OUT="$2"; shift 2 ;;
+        --max-frames)
+            [ $# -ge 2 ] && [[ "$2" =~ ^[0-9]+$ ]] || die "--max-frames needs a number"
+            MAX_FRAMES="$2"; shift 2 ;;
+        --only) [ $# -ge 2 ] || die "--only needs a regular expression"; ONLY="$2"; shift 2 ;;
+        --kiss-kitti-correction) KISS_EXTRA+=(--kitti-correction); shift ;;
+        -h|--help) sed -n '2,/^set -euo/p' "${BASH_SOURCE[0]}" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
+        -*) die "unknown option '$1' (--help)" ;;
+        *:*) EXTRA+=("$1"); shift ;;
+        *) die "'$1': extra cases are DIR:PRESET or DIR:PRESET:N[,N...]" ;;
+    esac
+done
+
+BENCH="$BUILD_DIR/bin/ltm_bench_odometry"
+EVAL="$BUILD_DIR/bin/ltm_eval"
+[ -x "$BENCH" ] && [ -x "$EVAL" ] || die "ltm_bench_odometry and ltm_eval are not built in $BUILD_DIR (./ltm setup)"
+
+# Cases: name|dir|preset|every|reference|reference frame|calib
+CASES=()
+if [ -d "$DATA" ]; then
+    for s in 1 2; do
+        d="$DATA/hku-avia-2session/session$s"
+        [ -d "$d" ] || { say "no $d: skipped"; continue; }
+        for n in 2 3 5; do CASES+=("hku-s$s/$n|$d|narrow|$n|$d/odom_poses.txt|lidar|"); done
+    done
+    for q in 00 04 05 07; do
+        d="$DATA/kitti/sequences/$q"
+        [ -d "$d" ] || { say "no $d: skipped"; continue; }
+        for n in 1 2 3; do
+            CASES+=("kitti-$q/$n|$d|hdl64|$n|$d/poses_semantickitti.txt|camera|$d/calib.txt")
+        done
+    done
+else
+    say "no shared data at $DATA: the hku-avia and KITTI cases are skipped"
+fi
+for e in "${EXTRA[@]+"${EXTRA[@]}"}"; do
+    IFS=: read -r d preset everys <<< "$e"
+    [ -d "$d" ] || die "extra case '$e': $d is not a folder"
+    [ -n "$preset" ] || die "extra case '$e': no preset"
+    ref="" frame=lidar calib=""
+    if [ -f "$d/poses.txt" ]; then ref="$d/poses.txt"
+    elif [ -f "$d/odom_poses.txt" ]; then ref="$d/odom_poses.txt"
+    elif [ -f "$d/poses_semantickitti.txt" ] && [ -f "$d/calib.txt" ]; then
+        ref="$d/poses_semantickitti.txt" frame=camera calib="$d/calib.txt"
+    fi
+    IFS=, read -r -a ns <<< "${everys:-1}"
+    for n in "${ns[@]}"; do
+        [[ "$n" =~ ^[1-9][0-9]*$ ]] || die "extra case '$e': '$n' is not a positive number"
+        CASES+=("$(basename "$d")/$n|$d|$preset|$n|$ref|$frame|$calib")
+    done
+done
+[ ${#CASES[@]} -gt 0 ] || { say "no cases to run"; exit 0; }
+RUNNER="$("$HERE/kiss_icp.sh" path)" || die "the KISS-ICP peer could not be built (kiss_icp.sh above)"
+[ -n "$OUT" ] || OUT="$(mktemp -d /tmp/ltm-hard-cases.XXXXXX)"
+mkdir -p "$OUT"
+BENCH_HAS_EVERY=0
+"$BENCH" --help 2>&1 | grep -q -- "--every" && BENCH_HAS_EVERY=1
+
+# A folder of symbolic links to every Nth scan (with times.txt and calib.txt), for an
+# ltm_bench_odometry without --every.
+subsample_dir() {
+    local src="$1" n="$2" dst="$3" sub="" f i=0 k=0
+    rm -rf "$dst"
+    if [ -d "$src/velodyne" ]; then sub=velodyne; elif [ -d "$src/Scans" ]; then sub=Scans; fi
+    mkdir -p "$dst/$sub"
+    for f in "$src/$sub"/*; do  # globs expand sorted
+        case "$f" in *.bin|*.pcd|*.ply) ;; *) continue ;; esac
+        if [ $((i % n)) -eq 0 ]; then
+            ln -s "$f" "$dst/$sub/$(printf '%06d' $k).${f##*.}"
+            k=$((k + 1))
+        fi
+        i=$((i + 1))
+    done
+    [ -f "$src/times.txt" ] && awk -v n="$n" '(NR - 1) % n == 0' "$src/times.txt" > "$dst/times.txt"
+    [ -f "$src/calib.txt" ] && ln -s "$src/calib.txt" "$dst/calib.txt"
+    return 0
+}
+
+# ate ESTIMATE FRAME CALIB REFERENCE_LINES: the aligned ATE RMSE, "-" without a reference.
+ate() {
+    local est="$1" frame="$2" calib="$3" sub="$4" args=()
+    [ -s "$sub" ] && [ -s "$est" ] || { echo "-"; return; }
+    [ -n "$calib" ] && args+=(--reference-frame "$frame" --calib "$calib")
+    "$EVAL" traj --estimate "$est" --reference "$sub" "${args[@]}" > "$est.eval" 2>&1 ||
+        { echo "fail"; return; }
+    awk '/^\[ate_se3_aligned\]/ {s = 1} s && /rmse/ {printf "%.3f", $NF; exit}' "$est.eval"
+}
+
+ROWS=()
+for c in "${CASES[@]}"; do
+    IFS='|' read -r name dir preset every ref frame calib <<< "$c"
+    [ -z "$ONLY" ] || [[ "$name" =~ $ONLY ]] || continue
+    tag="${name//\//_every}"
+    say "$name: $dir, preset $preset, every $every"
+    lim=()
+    [ "$MAX_FRAMES" -gt 0 ] && lim=(--max-frames "$MAX_FRAMES")
+
+    # KISS-ICP first: it reports how many scans were kept.
+    kiss_fps="fail" kiss_ate="fail" kept=0
+    if "$RUNNER" "$dir" --every "$every" "${lim[@]+"${lim[@]}"}" --out "$OUT/$tag.kiss.txt" \
+        "${KISS_EXTRA[@]+"${KISS_EXTRA[@]}"}" > "$OUT/$tag.kiss.log" 2>&1; then
+        kept="$(awk '/^frames:/ {gsub(";", "", $2); print $2; exit}' "$OUT/$tag.kiss.log")"
+        kiss_fps="$(awk '/^speed by CPU time/ {print $(NF-5); exit}' "$OUT/$tag.kiss.log")"
+    else
+        say "$name: KISS-ICP failed: $(tail -1 "$OUT/$tag.kiss.log")"
+    fi
+    kept="${kept:-0}"
+    sub="$OUT/$tag.reference.txt"
+    rm -f "$sub"
+    if [ -n "$ref" ]; then
+        # Lines 1, 1+N, ...: as many as scans were kept (all of them if that is unknown).
+        awk -v n="$every" -v k="$kept" '(NR - 1) % n == 0 { print; if (++c == k) exit }' \
+            "$ref" > "$sub"
+    fi
+    [ "$kiss_fps" = fail ] || kiss_ate="$(ate "$OUT/$tag.kiss.txt" "$frame" "$calib" "$sub")"
+
+    ltm_fps="fail" ltm_ate="fail" ltm_track="fail"
+    ltm_dir="$dir" ltm_every=()
+    if [ "$every" -gt 1 ]; then
+        if [ "$BENCH_HAS_EVERY" = 1 ]; then
+            ltm_every=(--every "$every")
+        else
+            ltm_dir="$OUT/$tag.scans"
+            subsample_dir "$dir" "$every" "$ltm_dir"
+        fi
+    fi
+    if "$BENCH" "$ltm_dir" --preset "$preset" --threads 1 "${ltm_every[@]+"${ltm_every[@]}"}" \
+        "${lim[@]+"${lim[@]}"}" --out "$OUT/$tag.ltm.txt" > "$OUT/$tag.ltm.log" 2>&1; then
+        ltm_fps="$(awk '/^speed by CPU time/ {print $(NF-5); exit}' "$OUT/$tag.ltm.log")"
+        ltm_track="$(awk '/^frames:/ {
+            line = $0; sub(/^frames: [0-9]+;/, "", line); sub(/ keyframes.*/, "", line)
+            n = split(line, parts, ";"); ok = 0; lost = 0; other = 0
+            for (i = 1; i <= n; ++i) {
+                if (parts[i] !~ /[0-9]/) continue
+                m = split(parts[i], w, " "); v = w[m]; st = parts[i]; sub(/ [0-9]+$/, "", st)
+                gsub(/^ +/, "", st)
+                if (st == "initialised" || st == "tracked" || st == "recovered") ok += v
+                else if (st == "lost") lost += v
+                else other += v
+            }
+            printf "%d/%d", ok, lost; if (other) printf "+%d", other; exit }' "$OUT/$tag.ltm.log")"
+        ltm_ate="$(ate "$OUT/$tag.ltm.txt" "$frame" "$calib" "$sub")"
+        [ -d "$OUT/$tag.scans" ] && rm -rf "$OUT/$tag.scans"
+    else
+        say "$name: ltm failed: $(tail -1 "$OUT/$tag.ltm.log")"
+    fi
+    ROWS+=("$name|$kept|$ltm_ate|$kiss_ate|$ltm_track|$ltm_fps|$kiss_fps")
+done
+
+{
+    printf '%-16s %6s %10s %10s %14s %8s %8s\n' case scans "ltm ATE" "KISS ATE" "ltm trk/lost" \
+        "ltm fps" "KISS fps"
+    for r in "${ROWS[@]+"${ROWS[@]}"}"; do
+        IFS='|' read -r a b c d e f g <<< "$r"
+        printf '%-16s %6s %10s %10s %14s %8s %8s\n' "$a" "$b" "$c" "$d" "$e" "$f" "$g"
+    done
+} | tee "$OUT/table.txt"
+printf '(ATE: aligned RMSE [m] by ltm_eval traj; fps: CPU time, one thread; logs and poses: %s)\n' "$OUT"
