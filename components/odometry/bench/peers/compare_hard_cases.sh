@@ -20,9 +20,11 @@
 # Environment: LTM_BUILD_DIR (ltm's build, default ./build), LTM_SHARED_DATA (default
 # /work/shared/data; the shared cases are skipped when it is absent), and KISS_ICP_SOURCE,
 # SOPHUS_SOURCE, KISS_ICP_BUILD for kiss_icp.sh (which builds KISS-ICP outside the repository).
-# Columns: ATE = RMSE of the SE(3)-aligned absolute trajectory error [m]; tracked/lost = ltm's
-# frame states (initialised + tracked + recovered / lost, "+K" other states); fps = frames a second
-# by CPU time of the odometry thread, one thread each (file reading excluded).
+# Columns: ATE = RMSE of the SE(3)-aligned absolute trajectory error [m]; ltm trk/lost = scans
+# ltm registered / not (its "tracking:" line; from its frame states when it has none:
+# initialised + tracked + recovered / lost, "+K" other states); ltm lost = its longest lost
+# stretch [s of sensor time]; fps = frames a second by CPU time of the odometry thread, one
+# thread each (file reading excluded).
 set -euo pipefail
 
 HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
@@ -156,7 +158,7 @@ for c in "${CASES[@]}"; do
     fi
     [ "$kiss_fps" = fail ] || kiss_ate="$(ate "$OUT/$tag.kiss.txt" "$frame" "$calib" "$sub")"
 
-    ltm_fps="fail" ltm_ate="fail" ltm_track="fail"
+    ltm_fps="fail" ltm_ate="fail" ltm_track="fail" ltm_longest="-"
     ltm_dir="$dir" ltm_every=()
     if [ "$every" -gt 1 ]; then
         if [ "$BENCH_HAS_EVERY" = 1 ]; then
@@ -181,20 +183,25 @@ for c in "${CASES[@]}"; do
                 else other += v
             }
             printf "%d/%d", ok, lost; if (other) printf "+%d", other; exit }' "$OUT/$tag.ltm.log")"
+        # ltm's own tracking summary, when its benchmark prints one: registered/not, longest lost.
+        if grep -q '^tracking: ' "$OUT/$tag.ltm.log"; then
+            ltm_track="$(awk '/^tracking: / {printf "%d/%d", $2, $4 - $2; exit}' "$OUT/$tag.ltm.log")"
+            ltm_longest="$(sed -n 's/^tracking: .* the longest \([0-9.]*\) s .*/\1/p' "$OUT/$tag.ltm.log" | head -1)"
+        fi
         ltm_ate="$(ate "$OUT/$tag.ltm.txt" "$frame" "$calib" "$sub")"
         [ -d "$OUT/$tag.scans" ] && rm -rf "$OUT/$tag.scans"
     else
         say "$name: ltm failed: $(tail -1 "$OUT/$tag.ltm.log")"
     fi
-    ROWS+=("$name|$kept|$ltm_ate|$kiss_ate|$ltm_track|$ltm_fps|$kiss_fps")
+    ROWS+=("$name|$kept|$ltm_ate|$kiss_ate|$ltm_track|${ltm_longest:--}|$ltm_fps|$kiss_fps")
 done
 
 {
-    printf '%-16s %6s %10s %10s %14s %8s %8s\n' case scans "ltm ATE" "KISS ATE" "ltm trk/lost" \
-        "ltm fps" "KISS fps"
+    printf '%-16s %6s %9s %9s %13s %9s %8s %8s\n' case scans "ltm ATE" "KISS ATE" \
+        "ltm trk/lost" "ltm lost" "ltm fps" "KISS fps"
     for r in "${ROWS[@]+"${ROWS[@]}"}"; do
-        IFS='|' read -r a b c d e f g <<< "$r"
-        printf '%-16s %6s %10s %10s %14s %8s %8s\n' "$a" "$b" "$c" "$d" "$e" "$f" "$g"
+        IFS='|' read -r a b c d e f g h <<< "$r"
+        printf '%-16s %6s %9s %9s %13s %9s %8s %8s\n' "$a" "$b" "$c" "$d" "$e" "$f" "$g" "$h"
     done
 } | tee "$OUT/table.txt"
 printf '(ATE: aligned RMSE [m] by ltm_eval traj; fps: CPU time, one thread; logs and poses: %s)\n' "$OUT"
