@@ -31,7 +31,7 @@ bool is_cloud_file(const std::string& path) {
     return ext == ".pcd" || ext == ".ply";
 }
 
-PointCloud load_cloud_file(const std::string& path) {
+PointCloud load_cloud_file(const std::string& path, double stamp) {
     if (!std::filesystem::is_regular_file(path)) throw IoError(path, "no such file");
     const std::string ext = lower_extension(path);
     // Our own one-line IoError replaces PCL's console chatter.
@@ -102,12 +102,12 @@ PointCloud load_cloud_file(const std::string& path) {
                 }
                 std::memcpy(packed.data() + i * l2.point_step + 4 * k, &v, 4);
             }
-        const std::string err = decode_points(l2, packed.data(), n, 0.0, cloud);
+        const std::string err = decode_points(l2, packed.data(), n, stamp, cloud);
         if (!err.empty()) throw IoError(path, err);
         cloud.intensity.clear();
         return cloud;
     }
-    const std::string err = decode_points(layout, blob.data.data(), n, 0.0, cloud);
+    const std::string err = decode_points(layout, blob.data.data(), n, stamp, cloud);
     if (!err.empty()) throw IoError(path, err);
     return cloud;
 }

@@ -10,6 +10,7 @@
 #include "common/core/ply_io.hpp"
 #include "common/core/progress.hpp"
 #include "common/core/trajectory_io.hpp"
+#include "simulator/cli/pcd_scan.hpp"
 #include "simulator/cli/truth_files.hpp"
 #include "simulator/core/scenario_yaml.hpp"
 #include "simulator/core/simulator.hpp"
@@ -64,9 +65,10 @@ void add_frames_option(CLI::App& app, SimRunOptions& o, const std::string& help)
 void add_sim_options(CLI::App& app, SimRunOptions& o) {
     common::cli::configure(app);
     app.footer(
-        "Writes DIR/velodyne/NNNNNN.bin, labels/, times.txt, poses.txt (KITTI, LiDAR frame),\n"
-        "poses_tum.txt, calib.txt (identity), truth_mesh.ply, scenario.yaml, objects.txt,\n"
-        "changes.txt, actors.txt, kidnaps.txt.");
+        "Writes DIR/velodyne/NNNNNN.bin (--format pcd: DIR/Scans/NNNNNN.pcd with per-point time\n"
+        "t [s after the stamp] for raw sweeps), labels/, times.txt, poses.txt (KITTI, LiDAR\n"
+        "frame), poses_tum.txt, calib.txt (identity), truth_mesh.ply, scenario.yaml,\n"
+        "objects.txt, changes.txt, actors.txt, kidnaps.txt.");
     app.add_option("SCENARIO", o.scenario, "the scenario (YAML)")->required();
     add_seed_option(app, o);
     app.add_option("--session", o.session, "session of the scenario")
@@ -74,6 +76,11 @@ void add_sim_options(CLI::App& app, SimRunOptions& o) {
     add_frames_option(app, o, "scans A..B-1 (A: or :B allowed), written numbered from 0");
     app.add_option("--sensor", o.sensor,
                    "sensor preset replacing the scenario's: " + sensor_preset_names());
+    app.add_option("--format", o.format,
+                   "scan files: kitti (velodyne/*.bin: x y z intensity) or pcd (Scans/*.pcd: x y "
+                   "z intensity t, t = per-point time of raw sweeps)")
+        ->check(common::cli::one_of({"kitti", "pcd"}))
+        ->default_str("kitti");
     app.add_flag("--quiet", o.quiet, "no summary and no progress");
     app.add_option("--out", o.out, "the output folder")->required();
 }
@@ -111,10 +118,12 @@ int run_sim(const SimRunOptions& o) {
         }
         namespace fs = std::filesystem;
         const fs::path out(o.out);
+        const bool pcd = o.format == "pcd";
+        const fs::path scans = out / (pcd ? "Scans" : "velodyne");
         std::error_code ec;
-        fs::create_directories(out / "velodyne", ec);
+        fs::create_directories(scans, ec);
         fs::create_directories(out / "labels", ec);
-        if (ec || !fs::is_directory(out / "velodyne"))
+        if (ec || !fs::is_directory(scans))
             throw common::IoError(o.out, "cannot create the output folder");
 
         common::Progress progress("ltm_sim", last - first, "scans");
@@ -127,8 +136,11 @@ int run_sim(const SimRunOptions& o) {
         for (std::size_t i = first; i < last; ++i) {
             sim.scan(i, scan);
             const std::size_t k = i - first;
-            common::write_kitti_bin((out / "velodyne" / frame_name(k, ".bin")).string(),
-                                    scan.cloud);
+            if (pcd) {
+                write_scan_pcd((scans / frame_name(k, ".pcd")).string(), scan.cloud);
+            } else {
+                common::write_kitti_bin((scans / frame_name(k, ".bin")).string(), scan.cloud);
+            }
             write_labels((out / "labels" / frame_name(k, ".label")).string(), scan.labels);
             times.push_back(scan.cloud.stamp);
             poses.push_back(scan.T_world_lidar);
@@ -155,7 +167,7 @@ int run_sim(const SimRunOptions& o) {
         copy_scenario(o.scenario, (out / "scenario.yaml").string(),
                       "seed " + std::to_string(sc.seed) + ", session " + std::to_string(o.session) +
                           ", frames " + std::to_string(first) + ":" + std::to_string(last) +
-                          ", sensor " + sc.sensor.model);
+                          ", sensor " + sc.sensor.model + ", format " + o.format);
         return 0;
     } catch (const ScenarioError& e) {
         std::cerr << "ltm_sim: " << e.what() << "\n";

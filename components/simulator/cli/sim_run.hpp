@@ -1,6 +1,7 @@
 #pragma once
-// `ltm_sim SCENARIO.yaml [--seed N] [--session K] [--frames A:B] [--sensor NAME] [--quiet]
-// --out DIR`: one session of a scenario written as a KITTI-layout folder with its ground truth.
+// `ltm_sim SCENARIO.yaml [--seed N] [--session K] [--frames A:B] [--sensor NAME]
+// [--format kitti|pcd] [--quiet] --out DIR`: one session of a scenario written as a KITTI-layout
+// folder (or PCD scans with per-point time) with its ground truth.
 #include <cstdint>
 #include <limits>
 #include <string>
@@ -21,12 +22,15 @@ struct SimRunOptions {
     std::size_t first = 0;  // --frames A:B (B exclusive)
     std::size_t last = std::numeric_limits<std::size_t>::max();
     std::string sensor;  // preset replacing the scenario's sensor (mount height and ego box kept)
+    // Scan files: "kitti" (velodyne/NNNNNN.bin, x y z intensity) or "pcd" (Scans/NNNNNN.pcd,
+    // x y z intensity and, for raw sweeps, per-point time t).
+    std::string format = "kitti";
     std::string out;
     bool quiet = false;  // no summary and no progress
 };
 
 // Declares ltm_sim's command line on `app`: the scenario, --seed, --session, --frames, --sensor,
-// --quiet and --out, filling `options` when the app parses.
+// --format, --quiet and --out, filling `options` when the app parses.
 void add_sim_options(CLI::App& app, SimRunOptions& options);
 // The --seed N and --frames A:B options alone (other tools that run a scenario use them).
 void add_seed_option(CLI::App& app, SimRunOptions& options);

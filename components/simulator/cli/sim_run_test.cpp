@@ -2,19 +2,25 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
 #include "common/cli/cli.hpp"
 #include "common/core/kitti_io.hpp"
+#include "common/core/pcl_cloud_io.hpp"
 #include "common/core/point_labels.hpp"
 #include "common/core/trajectory_io.hpp"
+#include "simulator/core/scenario_yaml.hpp"
+#include "simulator/core/simulator.hpp"
+#include "sources/core/scan_folder.hpp"
 
 namespace ltm::sim::cli {
 namespace {
 
 const std::string kTiny = LTM_SOURCE_DIR "/components/simulator/scenarios/tiny_loop.yaml";
+const std::string kFastTurns = LTM_SOURCE_DIR "/components/simulator/scenarios/fast_turns.yaml";
 
 // Parses a command line as ltm_sim does: the exit code (-1: go on) and what went to stderr.
 int parse_sim_args(const std::vector<std::string>& args, SimRunOptions& o, std::string& error) {
@@ -44,6 +50,10 @@ TEST(SimRun, ParsesOptions) {
     EXPECT_EQ(o.last, std::numeric_limits<std::size_t>::max());
     EXPECT_EQ(o.sensor, "vlp16");
     EXPECT_EQ(o.out, "d");
+    EXPECT_EQ(o.format, "kitti");
+    SimRunOptions p;
+    ASSERT_EQ(parse_sim_args({"s.yaml", "--format", "pcd", "--out", "d"}, p, error), -1) << error;
+    EXPECT_EQ(p.format, "pcd");
     const std::vector<std::pair<std::vector<std::string>, std::string>> bad = {
         {{"s.yaml"}, "--out: is required"},
         {{"--out", "d"}, "SCENARIO: is required"},
@@ -54,7 +64,8 @@ TEST(SimRun, ParsesOptions) {
         {{"s.yaml", "--out", "d", "--session", "-1"}, "--session: must be at least 0, not -1"},
         {{"s.yaml", "--out", "d", "--fast"}, "--fast: unknown option"},
         {{"s.yaml", "t.yaml", "--out", "d"}, "t.yaml: unexpected argument"},
-        {{"s.yaml", "--out"}, "--out: needs a value"}};
+        {{"s.yaml", "--out"}, "--out: needs a value"},
+        {{"s.yaml", "--out", "d", "--format", "las"}, "--format: must be kitti|pcd, not 'las'"}};
     for (const auto& [args, message] : bad) {
         SimRunOptions b;
         EXPECT_EQ(parse_sim_args(args, b, error), 2);
@@ -101,6 +112,57 @@ TEST(SimRun, WritesAKittiFolderThatReadsBack) {
     std::getline(kid, header);
     std::getline(kid, first);
     EXPECT_EQ(first.rfind("0 ", 0), 0u);  // session 1 starts kidnapped
+}
+
+// Raw sweeps as PCD keep their per-point time through the scan folder reader.
+TEST(SimRun, WritesPcdScansWithPerPointTime) {
+    const std::string out = LTM_BINARY_DIR "/tests/sim_run_test_pcd";
+    std::filesystem::remove_all(out);
+    SimRunOptions o;
+    std::string error;
+    ASSERT_EQ(
+        parse_sim_args({kFastTurns, "--frames", "0:3", "--format", "pcd", "--quiet", "--out", out},
+                       o, error),
+        -1);
+    ASSERT_EQ(run_sim(o), 0);
+    EXPECT_FALSE(std::filesystem::exists(out + "/velodyne"));
+    sources::ScanFolderConfig cfg;
+    cfg.path = out;
+    cfg.format = sources::ScanFormat::kAuto;
+    cfg.poses_file = out + "/poses.txt";
+    const sources::ScanFolder folder(cfg);
+    ASSERT_EQ(folder.format(), sources::ScanFormat::kCloudFiles);
+    ASSERT_EQ(folder.size(), 3u);
+    ASSERT_TRUE(folder.has_times());
+    ASSERT_TRUE(folder.has_poses());
+    const Simulator sim(load_scenario(kFastTurns));
+    SimScan scan;
+    for (std::size_t i = 0; i < folder.size(); ++i) {
+        ASSERT_TRUE(sim.scan(i, scan));
+        const common::PointCloud cloud = folder.load(i);
+        EXPECT_DOUBLE_EQ(cloud.stamp, scan.cloud.stamp);
+        ASSERT_EQ(cloud.size(), scan.cloud.size());
+        ASSERT_TRUE(cloud.has_time());
+        ASSERT_EQ(cloud.time, scan.cloud.time);
+        EXPECT_EQ(cloud.intensity, scan.cloud.intensity);
+        EXPECT_EQ(cloud.points[7], scan.cloud.points[7]);
+        EXPECT_TRUE(folder.pose(i).isApprox(sim.pose(i), 1e-6));
+        const auto [lo, hi] = std::minmax_element(cloud.time.begin(), cloud.time.end());
+        EXPECT_GE(*lo, 0.0f);
+        EXPECT_LT(*hi, 0.1f);
+        EXPECT_GT(*hi - *lo, 0.09f);  // a whole sweep
+    }
+    // A snapshot scan (no motion distortion) has no times to write.
+    SimRunOptions still = o;
+    still.scenario = kTiny;
+    still.out = out + "_still";
+    ASSERT_EQ(run_sim(still), 0);
+    const common::PointCloud cloud = common::load_cloud_file(still.out + "/Scans/000000.pcd");
+    EXPECT_GT(cloud.size(), 3000u);
+    EXPECT_FALSE(cloud.has_time());
+    EXPECT_TRUE(cloud.has_intensity());
+    std::filesystem::remove_all(out);
+    std::filesystem::remove_all(still.out);
 }
 
 TEST(SimRun, BadInputIsAnErrorNotACrash) {

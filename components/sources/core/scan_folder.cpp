@@ -1,6 +1,8 @@
 #include "sources/core/scan_folder.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 
 #include "common/core/io_error.hpp"
@@ -74,9 +76,26 @@ ScanFolder::ScanFolder(const ScanFolderConfig& config) : config_(config) {
 common::PointCloud ScanFolder::load(std::size_t i) const {
     common::PointCloud cloud = config_.format == ScanFormat::kKittiBin
                                    ? common::read_kitti_bin(files_[i])
-                                   : common::load_cloud_file(files_[i]);
+                                   : common::load_cloud_file(files_[i], times_[i]);
     cloud.stamp = times_[i];
+    check_point_times(cloud, files_[i]);
     return cloud;
+}
+
+void check_point_times(const common::PointCloud& cloud, const std::string& file) {
+    float worst = 0.0f;
+    for (const float t : cloud.time) {
+        if (!std::isfinite(t)) throw common::IoError(file, "a per-point time is not finite");
+        worst = std::max(worst, std::abs(t));
+    }
+    if (worst <= kMaxPointTime) return;
+    char what[200];
+    std::snprintf(what, sizeof what,
+                  "per-point times reach %.6g s from the scan stamp (at most %g s expected: "
+                  "seconds after it, nanoseconds in integer fields, or absolute times that "
+                  "match times.txt)",
+                  static_cast<double>(worst), static_cast<double>(kMaxPointTime));
+    throw common::IoError(file, what);
 }
 
 }  // namespace ltm::sources

@@ -1,6 +1,10 @@
 #pragma once
 // A folder of recorded scans: KITTI layout (velodyne/*.bin, times.txt, optional poses) or PCD/PLY
 // files (optional times.txt and KITTI-format poses file). Scans load one at a time.
+// PCD/PLY scans keep their per-point time (PointCloud::time, seconds after the scan stamp) when
+// they have a field t, time, timestamp or offset_time: floating fields are seconds, integer ones
+// nanoseconds (Ouster `t`, Livox `offset_time`); absolute times (over 1e6 s) are made relative
+// to the scan's stamp from times.txt.
 #include <Eigen/Geometry>
 #include <string>
 #include <vector>
@@ -26,6 +30,13 @@ struct ScanFolderConfig {
     std::size_t count = 0;          // 0: all from start
 };
 
+// Per-point times further than this from their scan's stamp are not relative seconds [s].
+constexpr float kMaxPointTime = 10.0f;
+
+// Throws common::IoError naming `file` when a per-point time is not finite or further than
+// kMaxPointTime from the stamp (wrong units, or absolute times that do not match times.txt).
+void check_point_times(const common::PointCloud& cloud, const std::string& file);
+
 class ScanFolder {
   public:
     // Throws common::IoError (one line) when the folder, times or poses are missing or malformed,
@@ -39,7 +50,8 @@ class ScanFolder {
     bool has_poses() const { return !poses_.empty(); }
     const Eigen::Isometry3d& pose(std::size_t i) const { return poses_[i]; }
     const std::string& file(std::size_t i) const { return files_[i]; }
-    // Loads scan i with its stamp. Throws common::IoError for a damaged file.
+    // Loads scan i with its stamp (and per-point times when the file has them). Throws
+    // common::IoError for a damaged file or implausible per-point times.
     common::PointCloud load(std::size_t i) const;
 
   private:
