@@ -34,6 +34,7 @@ struct Args {
     std::string dir, out, reference, calib, preset, config, frame_log;
     int threads = 1;
     std::size_t max_frames = 0;
+    std::size_t every = 1;
 };
 
 // Declares the command line on `app`, filling `a`.
@@ -54,8 +55,49 @@ void add_options(CLI::App& app, Args& a) {
         ->default_str("hdl64");
     app.add_option("--config", a.config, "odometry keys overriding the preset (YAML)");
     app.add_option("--max-frames", a.max_frames, "only the first N scans (0: all)");
+    app.add_option("--every", a.every,
+                   "keep every Nth scan (a hard case: larger motion between scans); the "
+                   "reference lines of the kept scans are used")
+        ->check(common::cli::at_least(1));
     app.add_option("--frame-log", a.frame_log, "per-frame times and sizes (CSV)");
 }
+
+// Stretches of scans without a registered pose: each lasts from its first scan to the next
+// registered one (or the last scan), in sensor time.
+struct LostStretches {
+    std::size_t lost_scans = 0, count = 0, longest_from = 0;
+    double longest = 0.0;
+    void add(double stamp, bool registered) {
+        if (!registered) {
+            ++lost_scans;
+            if (!open_) {
+                open_ = true;
+                from_ = stamp;
+                from_index_ = index_;
+                ++count;
+            }
+        } else if (open_) {
+            close(stamp);
+        }
+        last_ = stamp;
+        ++index_;
+    }
+    void finish() {
+        if (open_) close(last_);
+    }
+
+  private:
+    void close(double stamp) {
+        open_ = false;
+        if (stamp - from_ >= longest) {
+            longest = stamp - from_;
+            longest_from = from_index_;
+        }
+    }
+    bool open_ = false;
+    double from_ = 0.0, last_ = 0.0;
+    std::size_t index_ = 0, from_index_ = 0;
+};
 
 // CPU time of the calling thread [s] (unlike wall time, not inflated by other processes).
 double thread_cpu_seconds() {
@@ -80,6 +122,11 @@ void report_accuracy(const common::PoseList& est, const Args& a) {
     if (ref.size() < est.size()) {
         std::printf("warning: reference has %zu poses for %zu frames; comparing the first %zu\n",
                     ref.size(), est.size(), ref.size());
+    }
+    if (a.every > 1) {
+        common::PoseList kept;
+        for (std::size_t i = 0; i < ref.size(); i += a.every) kept.push_back(ref[i]);
+        ref.swap(kept);
     }
     ref.resize(std::min(ref.size(), est.size()));
     const eval::AteResult ate = eval::compute_ate(est, ref);
@@ -108,8 +155,10 @@ int run(const Args& a) {
     folder.format = sources::ScanFormat::kAuto;
     const sources::ScanFolder data(folder);
     const char* kind = data.format() == sources::ScanFormat::kKittiBin ? "kitti" : "pcd";
-    const std::size_t frames = a.max_frames ? std::min(a.max_frames, data.size()) : data.size();
-    std::printf("%s: %zu %s scans%s, %d thread(s), voxel %.2f m\n", a.dir.c_str(), frames, kind,
+    const std::size_t available = (data.size() + a.every - 1) / a.every;
+    const std::size_t frames = a.max_frames ? std::min(a.max_frames, available) : available;
+    std::printf("%s: %zu %s scans%s%s, %d thread(s), voxel %.2f m\n", a.dir.c_str(), frames, kind,
+                a.every > 1 ? (" (every " + std::to_string(a.every) + ")").c_str() : "",
                 data.has_times() ? "" : " (no times.txt: 10 Hz assumed)", config.threads,
                 config.voxel_size);
     std::ofstream log;
@@ -119,7 +168,7 @@ int run(const Args& a) {
         log << "frame,status,ms,preprocess_ms,registration_ms,update_ms,input,"
                "registration_points,correspondences,attempts,iterations,coarse_iterations,residual_"
                "rms,"
-               "degenerate,min_information,local_map\n";
+               "degenerate,min_information,local_map,inlier_fraction,searched,segment,lost_for\n";
     }
 
     odometry::Odometry odo(config);
@@ -130,11 +179,12 @@ int run(const Args& a) {
     std::size_t coarse_its = 0, retries = 0;
     std::size_t keyframes = 0, maps_finished = 0, dropped_non_finite = 0, reg_points = 0, its = 0;
     double io_seconds = 0.0, cpu_seconds = 0.0;
+    LostStretches stretches;
     common::Progress progress("odometry", frames);
     const auto start = Clock::now();
     for (std::size_t i = 0; i < frames; ++i) {
         const auto t0 = Clock::now();
-        const common::PointCloud cloud = data.load(i);
+        const common::PointCloud cloud = data.load(i * a.every);
         const auto t1 = Clock::now();
         const double c1 = thread_cpu_seconds();
         const odometry::FrameResult r = odo.register_frame(cloud);
@@ -145,6 +195,7 @@ int run(const Args& a) {
         ms.push_back(std::chrono::duration<double, std::milli>(t2 - t1).count());
         poses.push_back(r.T_odom_lidar);
         ++statuses[odometry::to_string(r.status)];
+        stretches.add(r.stamp, r.registered() || r.status == odometry::FrameStatus::kInitialised);
         keyframes += r.keyframe.has_value();
         dropped_non_finite += r.dropped_non_finite;
         reg_points += r.registration_points;
@@ -161,7 +212,8 @@ int run(const Args& a) {
                 << r.input_points << ',' << r.registration_points << ',' << r.correspondences << ','
                 << r.attempts << ',' << r.iterations << ',' << r.coarse_iterations << ','
                 << r.residual_rms << ',' << r.degenerate_directions.size() << ','
-                << r.min_information << ',' << r.local_map_id << '\n';
+                << r.min_information << ',' << r.local_map_id << ',' << r.inlier_fraction << ','
+                << r.searched << ',' << r.segment << ',' << r.lost_for << '\n';
         }
         progress.update(i + 1);
     }
@@ -178,6 +230,13 @@ int run(const Args& a) {
     for (const auto& [name, n] : statuses) std::printf(" %s %zu;", name.c_str(), n);
     std::printf(" keyframes %zu; local maps finished %zu, active %zu\n", keyframes, maps_finished,
                 odo.active_local_maps().size());
+    stretches.finish();
+    std::printf(
+        "tracking: %zu of %zu scans registered (%.2f %%), %zu not (lost, skipped or restarted); "
+        "%zu lost stretches, the longest %.2f s of sensor time (from scan %zu)\n",
+        frames - stretches.lost_scans, frames,
+        100.0 * double(frames - stretches.lost_scans) / frames, stretches.lost_scans,
+        stretches.count, stretches.longest, stretches.longest_from);
     std::printf(
         "speed: %.1f frames/s odometry (pre-processing included, file reading excluded), "
         "%.1f frames/s with reading\n",
@@ -194,7 +253,7 @@ int run(const Args& a) {
         pre_ms / frames, reg_ms / frames, upd_ms / frames);
     std::printf(
         "registration: %.0f points a frame, %.2f iterations a frame (+%.2f coarse), %zu frames "
-        "retried from the last pose; non-finite points dropped %zu\n",
+        "searched beyond the prediction; non-finite points dropped %zu\n",
         double(reg_points) / frames, double(its) / frames, double(coarse_its) / frames, retries,
         dropped_non_finite);
     std::printf("memory: peak resident %.1f MiB (VmHWM); local maps now %.1f MiB\n",

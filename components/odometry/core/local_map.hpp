@@ -24,6 +24,9 @@ class LocalMap {
              int coarse_factor = 0);
 
     std::uint32_t id() const { return id_; }
+    // Odometry segment (common::LocalMapData::segment): set by LocalMapSet after a restart.
+    std::uint32_t segment() const { return segment_; }
+    void set_segment(std::uint32_t segment) { segment_ = segment; }
     // Sensor pose when the map was created.
     const Eigen::Isometry3d& T_odom_anchor() const { return T_odom_anchor_; }
     // Map frame origin in the odometry frame; the map frame has the odometry frame's axes.
@@ -56,6 +59,7 @@ class LocalMap {
 
   private:
     std::uint32_t id_;
+    std::uint32_t segment_ = 0;
     Eigen::Isometry3d T_odom_anchor_;
     Eigen::Vector3d origin_;
     Eigen::Vector3f box_centre_;  // the anchor position, map frame

@@ -12,6 +12,7 @@ common::LocalMapData to_local_map_data(const LocalMap& map, std::uint32_t revisi
     d.id = map.id();
     d.revision = revision;
     d.finished = finished;
+    d.segment = map.segment();
     d.T_odom_anchor = map.T_odom_anchor();
     d.T_anchor_grid = map.T_odom_anchor().inverse() * map.T_odom_map();
     const Eigen::Vector3d centre = map.T_odom_anchor().translation() - map.origin();

@@ -15,6 +15,7 @@ bool LocalMapSet::integrate(const std::vector<Eigen::Vector3f>& points,
     if (active_.empty() || left_switch_box(T_odom_lidar)) {
         LocalMap map(next_id_++, T_odom_lidar, config_.voxel_size, config_.local_map.half_extent,
                      config_.voxel, stamp, config_.coarse_voxel_factor);
+        map.set_segment(segment_);
         if (!active_.empty()) map.seed_from(active_.back());
         active_.push_back(std::move(map));
         started = true;
@@ -36,6 +37,11 @@ bool LocalMapSet::integrate(const std::vector<Eigen::Vector3f>& points,
 void LocalMapSet::finish_all() {
     for (LocalMap& map : active_) finished_.push_back(std::move(map));
     active_.clear();
+}
+
+void LocalMapSet::start_new_segment() {
+    finish_all();
+    ++segment_;
 }
 
 std::vector<LocalMap> LocalMapSet::take_finished() {

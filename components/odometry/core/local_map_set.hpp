@@ -31,6 +31,10 @@ class LocalMapSet {
 
     // Ends every active map (end of a run); they join the finished ones.
     void finish_all();
+    // The odometry lost track: ends every active map and starts a new segment; the next
+    // integrate() starts its first map, unseeded (nothing of the old maps is trusted in it).
+    void start_new_segment();
+    std::uint32_t segment() const { return segment_; }
     std::vector<LocalMap> take_finished();
     std::size_t finished_pending() const { return finished_.size(); }
     std::size_t memory_bytes() const;
@@ -40,6 +44,7 @@ class LocalMapSet {
 
     OdometryConfig config_;
     std::uint32_t next_id_ = 0;
+    std::uint32_t segment_ = 0;
     std::deque<LocalMap> active_;
     std::vector<LocalMap> finished_;
     std::vector<Eigen::Vector3f> scratch_;  // the scan in a map's frame

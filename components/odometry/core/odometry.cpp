@@ -35,12 +35,16 @@ const char* to_string(FrameStatus status) {
             return "initialised";
         case FrameStatus::kTracked:
             return "tracked";
+        case FrameStatus::kRecovered:
+            return "recovered";
+        case FrameStatus::kRestarted:
+            return "restarted";
+        case FrameStatus::kLost:
+            return "lost";
         case FrameStatus::kSkippedTooFewPoints:
             return "skipped (too few points)";
         case FrameStatus::kRejectedStamp:
             return "rejected (bad stamp)";
-        case FrameStatus::kDiverged:
-            return "diverged";
     }
     return "unknown";
 }
@@ -102,6 +106,8 @@ FrameResult Odometry::register_frame(const common::PointCloud& cloud) {
         motion_.poses() ? motion_.predict(cloud.stamp) : initial_pose_;
     r.T_odom_lidar = predicted;
 
+    r.segment = maps_.segment();
+    const double since_tracked = cloud.stamp - last_tracked_stamp_;
     if (scan_.registration_points.size() < std::size_t(config_.min_scan_points)) {
         std::ostringstream s;
         s << "scan skipped: " << scan_.registration_points.size() << " usable points of "
@@ -111,6 +117,10 @@ FrameResult Odometry::register_frame(const common::PointCloud& cloud) {
         has_stamp_ = true;
         last_stamp_ = cloud.stamp;
         if (motion_.poses()) motion_.push(cloud.stamp, predicted);
+        if (!maps_.empty()) {
+            lost_ = true;
+            r.lost_for = since_tracked;
+        }
         return r;
     }
 
@@ -118,46 +128,62 @@ FrameResult Odometry::register_frame(const common::PointCloud& cloud) {
         r.status = FrameStatus::kInitialised;
         r.covariance.setZero();  // the first pose defines the odometry frame
     } else {
-        // First from the prediction. When that fails, or looks doubtful (not converged, or a
-        // residual well above the recent ones), once more from the last pose, keeping the better
-        // result: a wrong velocity must not pull the odometry away from the map.
+        // From the prediction first. When that is refused or doubtful, a search from other
+        // guesses (the last pose, the prediction turned about its z axis); the better fit wins.
         FrameResult attempt = r;
-        std::string why = try_register(predicted, &attempt);
+        std::string why = try_register(predicted, since_tracked, false, &attempt);
         int attempts = 1;
-        const bool doubtful =
-            why.empty() &&
-            (!attempt.converged ||
-             (typical_rms_ > 0.0 &&
-              attempt.residual_rms > config_.divergence.retry_residual_ratio * typical_rms_));
-        const Eigen::Isometry3d& last = motion_.last_pose();
-        const Eigen::Isometry3d jump = last.inverse() * predicted;
-        if ((!why.empty() || doubtful) && motion_.poses() == 2 &&
-            (jump.translation().norm() > 0.01 ||
-             registration::rotation_angle(jump) > 0.1 / kRadToDeg)) {
-            FrameResult second = r;
-            const std::string retry = try_register(last, &second);
-            attempts = 2;
-            if (retry.empty() && (!why.empty() || second.residual_rms < attempt.residual_rms)) {
-                attempt = second;
+        if (!why.empty() || doubtful(attempt)) {
+            FrameResult found = r;
+            const std::string not_found = search(predicted, since_tracked, &found);
+            attempts += found.attempts;
+            if (not_found.empty() &&
+                (!why.empty() || found.inlier_fraction > attempt.inlier_fraction)) {
+                attempt = found;
                 why.clear();
             } else if (!why.empty()) {
-                why += "; from the last pose: " + retry;
+                why += "; search: " + not_found;
             }
+            attempt.searched = true;
         }
         r = attempt;
         r.attempts = attempts;
         r.registration_ms = lap();
-        if (!why.empty()) {
+        if (!why.empty() && since_tracked < config_.tracking.restart_after) {
+            std::ostringstream s;
+            s << why << "; lost for " << since_tracked << " s, prediction carried forward";
             r.T_odom_lidar = predicted;
-            r = reject(r, FrameStatus::kDiverged, why + "; prediction carried forward");
+            r = reject(r, FrameStatus::kLost, s.str());
+            r.lost_for = since_tracked;
+            lost_ = true;
             has_stamp_ = true;
             last_stamp_ = cloud.stamp;
             motion_.push(cloud.stamp, predicted);
             return r;
         }
-        r.status = FrameStatus::kTracked;
-        typical_rms_ =
-            typical_rms_ > 0.0 ? 0.9 * typical_rms_ + 0.1 * r.residual_rms : r.residual_rms;
+        if (!why.empty()) {
+            // Lost too long: nothing of the old maps is trusted any more. They are ended (handed
+            // over intact), and this scan starts a new segment at the best estimate.
+            maps_.start_new_segment();
+            keyframes_.reset();
+            std::ostringstream s;
+            s << "lost for " << since_tracked << " s (" << why << "): new local map in segment "
+              << maps_.segment() << " at the predicted pose";
+            r.T_odom_lidar = predicted;
+            r = reject(r, FrameStatus::kRestarted, s.str());
+            r.lost_for = since_tracked;
+            r.segment = maps_.segment();
+        } else {
+            r.status = lost_ ? FrameStatus::kRecovered : FrameStatus::kTracked;
+            if (lost_) {
+                std::ostringstream s;
+                s << "recovered after " << since_tracked << " s lost";
+                r.message = s.str();
+                r.lost_for = since_tracked;
+            }
+            learn(r);
+        }
+        lost_ = false;
     }
     // The map gets the scan de-skewed with the motion just estimated (better than the predicted
     // one, and available from the second scan on).
@@ -185,45 +211,58 @@ FrameResult Odometry::register_frame(const common::PointCloud& cloud) {
     return r;
 }
 
-std::string Odometry::try_register(const Eigen::Isometry3d& guess_odom, FrameResult* r) {
+registration::RegistrationResult Odometry::coarse_align(const Eigen::Isometry3d& guess_map) {
+    // Every other point is plenty for the coarse stage (it only has to reach the basin).
+    coarse_points_.clear();
+    for (std::size_t i = 0; i < scan_.registration_points.size(); i += 2) {
+        coarse_points_.push_back(scan_.registration_points[i]);
+    }
+    return coarse_registration_.align(coarse_points_, *maps_.current().coarse(), guess_map);
+}
+
+std::string Odometry::try_register(const Eigen::Isometry3d& guess_odom, double dt, bool coarse_done,
+                                   FrameResult* r) {
     const LocalMap& map = maps_.current();
     const Eigen::Isometry3d T_odom_map = map.T_odom_map();
     Eigen::Isometry3d guess = T_odom_map.inverse() * guess_odom;
-    r->coarse_iterations = 0;
-    if (map.coarse() != nullptr) {
-        // Every other point is plenty for the coarse stage (it only has to reach the basin).
-        coarse_points_.clear();
-        for (std::size_t i = 0; i < scan_.registration_points.size(); i += 2) {
-            coarse_points_.push_back(scan_.registration_points[i]);
-        }
-        const registration::RegistrationResult coarse =
-            coarse_registration_.align(coarse_points_, *map.coarse(), guess);
-        r->coarse_iterations = coarse.iterations;
+    if (!coarse_done && map.coarse() != nullptr) {
+        const registration::RegistrationResult coarse = coarse_align(guess);
+        r->coarse_iterations += coarse.iterations;
         if (coarse.ok()) guess = coarse.T_map_lidar;
     }
     const registration::RegistrationResult reg =
         registration_.align(scan_.registration_points, map.voxels(), guess);
     r->iterations = reg.iterations;
     r->correspondences = reg.correspondences;
+    r->inlier_fraction = reg.inlier_fraction();
     r->residual_rms = reg.residual_rms;
     r->converged = reg.status == registration::RegistrationResult::Status::kConverged;
     const Eigen::Isometry3d estimate = T_odom_map * reg.T_map_lidar;
-    const Eigen::Isometry3d correction = guess_odom.inverse() * estimate;
-    const double dt = correction.translation().norm();
-    const double dr = registration::rotation_angle(correction) * kRadToDeg;
-    const DivergenceConfig& d = config_.divergence;
+    const TrackingConfig& c = config_.tracking;
+    // The motion since the last tracked scan, against what the platform can do.
+    const Eigen::Isometry3d motion = last_tracked_pose_.inverse() * estimate;
+    const double moved = motion.translation().norm();
+    const double turned = registration::rotation_angle(motion) * kRadToDeg;
     std::ostringstream why;
+    why.precision(3);
     if (!reg.ok()) {
         why << "registration failed: " << to_string(reg.status) << " (" << reg.correspondences
             << " correspondences)";
     } else if (!estimate.matrix().allFinite()) {
         why << "registration produced a non-finite pose";
-    } else if (dt > d.max_translation_correction || dr > d.max_rotation_correction) {
-        why << "registration moved " << dt << " m / " << dr
-            << " deg from its initial guess (limits " << d.max_translation_correction << " m / "
-            << d.max_rotation_correction << " deg)";
-    } else if (!r->converged && (reg.last_step_translation > d.max_final_step_translation ||
-                                 reg.last_step_rotation * kRadToDeg > d.max_final_step_rotation)) {
+    } else if (reg.inlier_fraction() < c.min_inlier_fraction) {
+        why << "only " << 100.0 * reg.inlier_fraction() << " % of " << reg.correspondences
+            << " correspondences fit (at least " << 100.0 * c.min_inlier_fraction << " % within "
+            << config_.registration.inlier_distance << " m)";
+    } else if (typical_rms_ > 0.0 && reg.residual_rms > c.max_residual_ratio * typical_rms_) {
+        why << "residual " << reg.residual_rms << " m RMS, over " << c.max_residual_ratio
+            << " x the recent " << typical_rms_ << " m";
+    } else if (moved > c.max_speed * dt + config_.voxel_size ||
+               turned > c.max_angular_speed * dt + 5.0) {
+        why << "implausible motion: " << moved << " m / " << turned << " deg in " << dt
+            << " s (limits " << c.max_speed << " m/s, " << c.max_angular_speed << " deg/s)";
+    } else if (!r->converged && (reg.last_step_translation > c.max_final_step_translation ||
+                                 reg.last_step_rotation * kRadToDeg > c.max_final_step_rotation)) {
         why << "registration did not converge in " << reg.iterations << " iterations (last step "
             << reg.last_step_translation << " m / " << reg.last_step_rotation * kRadToDeg
             << " deg)";
@@ -237,9 +276,90 @@ std::string Odometry::try_register(const Eigen::Isometry3d& guess_odom, FrameRes
     return why.str();
 }
 
+bool Odometry::doubtful(const FrameResult& r) const {
+    const TrackingConfig& c = config_.tracking;
+    return !r.converged ||
+           (typical_rms_ > 0.0 && r.residual_rms > c.retry_residual_ratio * typical_rms_) ||
+           (typical_inliers_ > 0.0 && r.inlier_fraction < c.retry_inlier_ratio * typical_inliers_);
+}
+
+std::string Odometry::search(const Eigen::Isometry3d& predicted, double dt, FrameResult* best) {
+    const TrackingConfig& c = config_.tracking;
+    // The guesses: the last pose (a wrong velocity), then the prediction turned about the
+    // sensor's z axis, nearest turns first.
+    std::vector<Eigen::Isometry3d> guesses;
+    const Eigen::Isometry3d& last = motion_.last_pose();
+    const Eigen::Isometry3d jump = last.inverse() * predicted;
+    if (jump.translation().norm() > 0.01 || registration::rotation_angle(jump) > 0.1 / kRadToDeg) {
+        guesses.push_back(last);
+    }
+    const int steps = c.yaw_search > 0.0 ? int(std::floor(c.yaw_search / c.yaw_step + 1e-9)) : 0;
+    for (int k = 1; k <= steps; ++k) {
+        for (const int sign : {1, -1}) {
+            const double yaw = sign * k * c.yaw_step / kRadToDeg;
+            guesses.push_back(predicted * Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()));
+        }
+    }
+    if (guesses.empty()) return "nothing to search (tracking.yaw_search is 0)";
+    const LocalMap& map = maps_.current();
+    const Eigen::Isometry3d T_map_odom = map.T_odom_map().inverse();
+    // With a coarse grid, every guess is aligned on it and only the two that fit best go on to
+    // the fine grid; without one, every guess is registered in full.
+    struct Start {
+        Eigen::Isometry3d guess_odom;
+        std::size_t score;
+        bool coarse_done;
+    };
+    std::vector<Start> starts;
+    int coarse_iterations = 0;
+    for (const Eigen::Isometry3d& g : guesses) {
+        if (map.coarse() == nullptr) {
+            starts.push_back({g, 0, false});
+            continue;
+        }
+        const registration::RegistrationResult coarse = coarse_align(T_map_odom * g);
+        coarse_iterations += coarse.iterations;
+        if (!coarse.ok()) continue;
+        starts.push_back({map.T_odom_map() * coarse.T_map_lidar, coarse.inliers, true});
+    }
+    std::stable_sort(starts.begin(), starts.end(),
+                     [](const Start& a, const Start& b) { return a.score > b.score; });
+    if (map.coarse() != nullptr && starts.size() > 2) starts.resize(2);
+    std::string first_why = "no guess reached the map's coarse grid";
+    bool found = false;
+    const FrameResult blank = *best;
+    for (const Start& s : starts) {
+        FrameResult attempt = blank;
+        const std::string why = try_register(s.guess_odom, dt, s.coarse_done, &attempt);
+        ++best->attempts;
+        if (!why.empty()) {
+            if (!found && &s == &starts.front()) first_why = why;
+            continue;
+        }
+        if (!found || attempt.inlier_fraction > best->inlier_fraction) {
+            const int tries = best->attempts;
+            *best = attempt;
+            best->attempts = tries;
+            found = true;
+        }
+    }
+    best->coarse_iterations = coarse_iterations;
+    std::ostringstream s;
+    s << guesses.size() << " guesses, the best: " << first_why;
+    return found ? std::string() : s.str();
+}
+
+void Odometry::learn(const FrameResult& r) {
+    typical_rms_ = typical_rms_ > 0.0 ? 0.9 * typical_rms_ + 0.1 * r.residual_rms : r.residual_rms;
+    typical_inliers_ = typical_inliers_ > 0.0 ? 0.9 * typical_inliers_ + 0.1 * r.inlier_fraction
+                                              : r.inlier_fraction;
+}
+
 void Odometry::accept(const FrameResult& result) {
     has_stamp_ = true;
     last_stamp_ = result.stamp;
+    last_tracked_stamp_ = result.stamp;
+    last_tracked_pose_ = result.T_odom_lidar;
     motion_.push(result.stamp, result.T_odom_lidar);
 }
 

@@ -20,11 +20,16 @@
 namespace ltm::odometry {
 
 enum class FrameStatus {
-    kInitialised,          // first usable scan: the first local map starts at the initial pose
-    kTracked,              // registered against the local map
+    kInitialised,  // first usable scan: the first local map starts at the initial pose
+    kTracked,      // registered against the local map
+    kRecovered,    // registered again after lost or skipped scans (same segment, consistent)
+    // Lost for tracking.restart_after: the local maps are ended and a new one (a new segment)
+    // starts with this scan at the best estimate (the prediction). The pose continues the
+    // odometry but is a guess relative to the maps before it (large covariance).
+    kRestarted,
+    kLost,                 // no acceptable registration: prediction carried forward, map unchanged
     kSkippedTooFewPoints,  // empty or tiny scan: prediction carried forward, map unchanged
     kRejectedStamp,        // stamp not finite or not after the previous one: ignored entirely
-    kDiverged,             // registration failed or implausible: prediction carried forward
 };
 const char* to_string(FrameStatus status);
 
@@ -53,20 +58,29 @@ struct FrameResult {
     std::size_t map_points = 0;           // after down-sampling (map grid)
     std::size_t registration_points = 0;  // after down-sampling (registration grid)
     std::size_t correspondences = 0;
-    int iterations = 0;         // Gauss-Newton iterations on the fine grid
-    int coarse_iterations = 0;  // ... and on the coarse grid (0 without one)
-    int attempts = 0;           // registrations run (2: retried from the last pose)
+    double inlier_fraction = 0.0;  // of the correspondences (registration.inlier_distance)
+    int iterations = 0;            // Gauss-Newton iterations on the fine grid
+    int coarse_iterations = 0;     // ... and on the coarse grid (0 without one)
+    int attempts = 0;              // registrations run (more than 1: retried, see search)
+    bool searched = false;  // the prediction failed or was doubtful: search from other guesses
     bool converged = false;
     bool deskewed = false;      // per-point times used to de-skew (at least for the map update)
     double residual_rms = 0.0;  // [m]
-    std::uint32_t local_map_id = 0;    // current local map after this frame
+    std::uint32_t local_map_id = 0;  // current local map after this frame
+    std::uint32_t segment = 0;       // odometry segment (increases at every restart)
+    double lost_for = 0.0;  // sensor time since the last tracked scan, when lost or restarted [s]
     bool new_local_map = false;        // this frame started a local map
     std::optional<Keyframe> keyframe;  // set when this frame is a keyframe
     // Wall time of the stages [ms] (measured, for benchmarks and diagnostics).
     double preprocess_ms = 0.0, registration_ms = 0.0, update_ms = 0.0;
 
     bool pose_valid() const {
-        return status == FrameStatus::kInitialised || status == FrameStatus::kTracked;
+        return status == FrameStatus::kInitialised || status == FrameStatus::kTracked ||
+               status == FrameStatus::kRecovered || status == FrameStatus::kRestarted;
+    }
+    // Registered against the map (a measured pose, not a guess).
+    bool registered() const {
+        return status == FrameStatus::kTracked || status == FrameStatus::kRecovered;
     }
     bool degenerate() const { return !degenerate_directions.empty(); }
 };
@@ -87,6 +101,8 @@ class Odometry {
         return motion_.poses() ? motion_.last_pose() : initial_pose_;
     }
     bool initialised() const { return !maps_.empty(); }
+    bool lost() const { return lost_; }
+    std::uint32_t segment() const { return maps_.segment(); }
 
     // Active local maps, oldest first; the last is the registration target. Empty before the
     // first usable scan.
@@ -101,9 +117,16 @@ class Odometry {
   private:
     FrameResult reject(FrameResult result, FrameStatus status, std::string message);
     // Registers the current scan from an initial guess (odometry frame) against the current
-    // local map; on success fills the pose, covariance and degeneracy of `r` and returns "",
-    // otherwise returns why it failed.
-    std::string try_register(const Eigen::Isometry3d& guess, FrameResult* r);
+    // local map (coarse stage first unless `coarse_done`); fills `r` with the fit and, when it is
+    // acceptable, the pose, covariance and degeneracy; returns "" or why it was refused.
+    std::string try_register(const Eigen::Isometry3d& guess, double dt, bool coarse_done,
+                             FrameResult* r);
+    // The prediction failed or was doubtful: registrations from the last pose and from yaw
+    // offsets around the prediction; the best acceptable fit, or why none was.
+    std::string search(const Eigen::Isometry3d& predicted, double dt, FrameResult* best);
+    registration::RegistrationResult coarse_align(const Eigen::Isometry3d& guess_map);
+    bool doubtful(const FrameResult& r) const;
+    void learn(const FrameResult& r);
     void accept(const FrameResult& result);
 
     OdometryConfig config_;
@@ -116,7 +139,11 @@ class Odometry {
     LocalMapSet maps_;
     KeyframeSelector keyframes_;
     std::uint64_t next_keyframe_id_ = 0;
-    double typical_rms_ = 0.0;  // running mean of the tracked frames' residual RMS [m]
+    double typical_rms_ = 0.0;      // running mean of the tracked frames' residual RMS [m]
+    double typical_inliers_ = 0.0;  // ... and of their inlier fraction
+    bool lost_ = false;
+    double last_tracked_stamp_ = 0.0;  // of the last scan with a valid pose
+    Eigen::Isometry3d last_tracked_pose_ = Eigen::Isometry3d::Identity();
     bool has_stamp_ = false;
     double last_stamp_ = 0.0;
     registration::PreprocessedScan scan_;  // reused buffers

@@ -33,7 +33,6 @@ OdometryConfig preset_config(SensorPreset preset) {
             c.preprocess.max_range = 50.0;
             c.preprocess.map_sample_fraction = 0.2;
             c.preprocess.registration_sample_fraction = 0.2;
-            c.divergence.max_rotation_correction = 30.0;
             c.local_map.half_extent = 40.0;
             c.local_map.switch_distance = 15.0;
             c.keyframe.distance = 0.5;

@@ -15,15 +15,34 @@ using registration::PreprocessConfig;
 using registration::RegistrationConfig;
 using registration::VoxelConfig;
 
-// Plausibility of a registration result against the prediction: beyond it, divergence.
-struct DivergenceConfig {
-    double max_translation_correction = 2.0;   // [m] away from the constant-velocity prediction
-    double max_rotation_correction = 15.0;     // [deg]
-    double max_final_step_translation = 0.05;  // unconverged and last step larger: diverged [m]
+// Tracking: when a registration is accepted (the quality of its fit, not the size of the
+// correction), how the odometry searches when the prediction fails (fast turns, irregular scan
+// spacing), and how it recovers when nothing fits.
+struct TrackingConfig {
+    // A result is accepted when at least min_inlier_fraction of its correspondences are inliers
+    // (residual under registration.inlier_distance), its residual RMS is at most
+    // max_residual_ratio times the recent frames', and the motion since the last tracked scan is
+    // physically possible. (How much of the scan has a correspondence is not a criterion: a
+    // narrow view turning into unmapped space, or a young sparse map, explains little of a scan
+    // and still fixes the pose.)
+    double min_inlier_fraction = 0.5;
+    double max_residual_ratio = 3.0;
+    double max_speed = 40.0;                   // [m/s]
+    double max_angular_speed = 360.0;          // [deg/s]
+    double max_final_step_translation = 0.05;  // unconverged and last step larger: refused [m]
     double max_final_step_rotation = 0.5;      // [deg]
-    // A result not converged, or with a residual RMS above this times the recent frames', is
-    // retried from the last pose and the better of the two kept.
+    // A result that is refused, not converged, has a residual RMS above retry_residual_ratio
+    // times the recent frames' or an inlier fraction below retry_inlier_ratio times theirs, is
+    // retried from the last pose and from the prediction turned by multiples of yaw_step up to
+    // +-yaw_search (about the sensor's z axis); the best fit is kept.
     double retry_residual_ratio = 1.5;
+    double retry_inlier_ratio = 0.7;
+    double yaw_search = 90.0;  // [deg] 0: no yaw search
+    double yaw_step = 15.0;    // [deg]
+    // Lost (no acceptable registration) for this long since the last tracked scan, sensor time:
+    // the odometry ends its local maps and starts a new one at its best estimate (a new segment,
+    // joined to the map later by a loop or by localisation).
+    double restart_after = 0.5;  // [s]
 };
 
 // Local maps (Eq. 9): a box around an anchor; a new map starts when the sensor leaves the
@@ -50,7 +69,7 @@ struct OdometryConfig {
     PreprocessConfig preprocess;
     VoxelConfig voxel;
     RegistrationConfig registration;
-    DivergenceConfig divergence;
+    TrackingConfig tracking;
     LocalMapConfig local_map;
     KeyframeConfig keyframe;
     int min_scan_points = 100;  // fewer registration points: frame skipped
@@ -74,12 +93,18 @@ void visit_fields(OdometryConfig& c, Visitor&& v) {
     registration::visit_fields(c.preprocess, "preprocess.", v);
     registration::visit_fields(c.voxel, "voxel.", v);
     registration::visit_fields(c.registration, "registration.", v);
-    auto& d = c.divergence;
-    v("divergence.max_translation_correction", d.max_translation_correction, positive);
-    v("divergence.max_rotation_correction", d.max_rotation_correction, positive);
-    v("divergence.max_final_step_translation", d.max_final_step_translation, positive);
-    v("divergence.max_final_step_rotation", d.max_final_step_rotation, positive);
-    v("divergence.retry_residual_ratio", d.retry_residual_ratio, at_least(1));
+    auto& t = c.tracking;
+    v("tracking.min_inlier_fraction", t.min_inlier_fraction, unit);
+    v("tracking.max_residual_ratio", t.max_residual_ratio, at_least(1));
+    v("tracking.max_speed", t.max_speed, positive);
+    v("tracking.max_angular_speed", t.max_angular_speed, positive);
+    v("tracking.max_final_step_translation", t.max_final_step_translation, positive);
+    v("tracking.max_final_step_rotation", t.max_final_step_rotation, positive);
+    v("tracking.retry_residual_ratio", t.retry_residual_ratio, at_least(1));
+    v("tracking.retry_inlier_ratio", t.retry_inlier_ratio, unit);
+    v("tracking.yaw_search", t.yaw_search, in_range(0, 180));
+    v("tracking.yaw_step", t.yaw_step, in_range(1, 90));
+    v("tracking.restart_after", t.restart_after, non_negative);
     auto& m = c.local_map;
     v("local_map.half_extent", m.half_extent, positive);
     v("local_map.switch_distance", m.switch_distance, positive);

@@ -50,8 +50,8 @@ TEST(OdometryConfig, EachFieldRuleNamesTheKey) {
               "registration.min_correspondences: must be >= 6 (got 5)");
     EXPECT_EQ(with([](OdometryConfig& c) { c.registration.kernel_scale = INFINITY; }),
               "registration.kernel_scale: must be > 0 (got inf)");
-    EXPECT_EQ(with([](OdometryConfig& c) { c.divergence.retry_residual_ratio = 0.5; }),
-              "divergence.retry_residual_ratio: must be >= 1 (got 0.5)");
+    EXPECT_EQ(with([](OdometryConfig& c) { c.tracking.retry_residual_ratio = 0.5; }),
+              "tracking.retry_residual_ratio: must be >= 1 (got 0.5)");
     EXPECT_EQ(with([](OdometryConfig& c) { c.keyframe.angle = -1; }),
               "keyframe.angle: must be >= 0 (got -1)");
 }
@@ -83,7 +83,7 @@ TEST(OdometryConfig, EveryFieldHasOneKeyAndARule) {
         EXPECT_TRUE(keys.insert(key).second) << "key visited twice: " << key;
         ++fields;
     });
-    EXPECT_EQ(fields, 39);
+    EXPECT_EQ(fields, 46);
 }
 
 }  // namespace

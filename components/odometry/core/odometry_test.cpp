@@ -124,9 +124,11 @@ TEST_F(StreetOdometry, EmptyAndTinyScansAreSkippedWithThePredictionCarriedForwar
     tiny.points.resize(20);
     const FrameResult skipped2 = odo.register_frame(tiny);
     EXPECT_EQ(skipped2.status, FrameStatus::kSkippedTooFewPoints);
-    // The next real scan is tracked again.
+    // The next real scan is tracked again, in the same segment.
     const FrameResult r = odo.register_frame(street_scan(scene(), 5));
-    ASSERT_EQ(r.status, FrameStatus::kTracked) << r.message;
+    ASSERT_EQ(r.status, FrameStatus::kRecovered) << r.message;
+    EXPECT_EQ(r.segment, 0u);
+    EXPECT_NEAR(r.lost_for, 0.3, 1e-9);
     expect_near_pose(r.T_odom_lidar, street_pose(5), 0.05, 0.2, "after the skipped scans");
 }
 
@@ -178,12 +180,14 @@ TEST_F(StreetOdometry, DivergenceIsReportedAndNotReturnedAsAPose) {
         clutter.points.emplace_back(u(rng), u(rng), 0.1f * u(rng) + 2.0f);
     clutter.stamp = 0.3;
     const FrameResult bad = odo.register_frame(clutter);
-    EXPECT_EQ(bad.status, FrameStatus::kDiverged) << bad.message;
+    EXPECT_EQ(bad.status, FrameStatus::kLost) << bad.message;
     EXPECT_FALSE(bad.pose_valid());
     EXPECT_FALSE(bad.keyframe.has_value());
     EXPECT_EQ(odo.active_local_maps().back().voxels().size(), voxels);  // the map is untouched
+    EXPECT_TRUE(odo.lost());
     const FrameResult r = odo.register_frame(street_scan(scene(), 4));
-    ASSERT_EQ(r.status, FrameStatus::kTracked) << r.message;
+    ASSERT_EQ(r.status, FrameStatus::kRecovered) << r.message;
+    EXPECT_FALSE(odo.lost());
     expect_near_pose(r.T_odom_lidar, street_pose(4), 0.05, 0.2, "after the divergence");
 }
 

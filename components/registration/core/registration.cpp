@@ -171,7 +171,12 @@ RegistrationResult Registration::align(const std::vector<Eigen::Vector3f>& point
     // Keep the rotation orthonormal after many small updates.
     T.linear() = Eigen::Quaterniond(T.linear()).normalized().toRotationMatrix();
     result.T_map_lidar = T;
+    result.points = points.size();
     result.correspondences = acc.count;
+    const float inlier = float(config_.inlier_distance);
+    for (const Residual& r : residuals_) {
+        result.inliers += (r.weight > 0.0f && std::abs(r.error) < inlier);
+    }
     result.kernel_scale = kernel_used_;
     result.residual_rms = acc.count ? std::sqrt(acc.plain_sq / double(acc.count)) : 0.0;
     if (acc.count < std::size_t(config_.min_correspondences)) {

@@ -24,7 +24,9 @@ struct RegistrationResult {
     Status status = Status::kTooFewCorrespondences;
     Eigen::Isometry3d T_map_lidar = Eigen::Isometry3d::Identity();
     int iterations = 0;
+    std::size_t points = 0;                  // registration points given
     std::size_t correspondences = 0;         // points with an IMLS residual at the last iteration
+    std::size_t inliers = 0;                 // ... with |residual| under config inlier_distance
     double residual_rms = 0.0;               // of the residuals of those points [m]
     double kernel_scale = 0.0;               // Geman-McClure scale at the last iteration [m]
     double last_step_translation = 0.0;      // [m]
@@ -39,6 +41,12 @@ struct RegistrationResult {
     std::vector<Vector6d> degenerate_directions;
 
     bool ok() const { return status == Status::kConverged || status == Status::kNotConverged; }
+    // Inliers over the correspondences: how well the matched part of the scan fits (0..1).
+    double inlier_fraction() const {
+        return correspondences ? double(inliers) / double(correspondences) : 0.0;
+    }
+    // Correspondences over the points given: how much of the scan the map explains (0..1).
+    double overlap() const { return points ? double(correspondences) / double(points) : 0.0; }
 };
 
 const char* to_string(RegistrationResult::Status status);

@@ -44,6 +44,8 @@ struct RegistrationConfig {
     double convergence_translation = 5e-4;  // step below this (and rotation below): converged [m]
     double convergence_rotation = 5e-3;     // [deg]
     int min_correspondences = 50;           // fewer: the registration fails
+    double inlier_distance =
+        0.2;  // |residual| under this: an inlier (fit quality, not weights) [m]
     // A direction whose normalised information (weighted mean of (J.v)^2, rotation measured as
     // displacement at degeneracy_length) is below degeneracy_ratio is degenerate: reported, and
     // not updated (it stays at the prediction).
@@ -89,6 +91,7 @@ void visit_fields(RegistrationConfig& r, const std::string& prefix, Visitor&& v)
     v(prefix + "convergence_rotation", r.convergence_rotation, positive);
     v(prefix + "min_correspondences", r.min_correspondences, at_least(6));
     v(prefix + "kernel_adaptive_factor", r.kernel_adaptive_factor, non_negative);
+    v(prefix + "inlier_distance", r.inlier_distance, positive);
     v(prefix + "degeneracy_ratio", r.degeneracy_ratio, unit);
     v(prefix + "degeneracy_length", r.degeneracy_length, positive);
 }
