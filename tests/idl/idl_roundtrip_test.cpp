@@ -185,6 +185,7 @@ TEST_F(Dds, LocalMapDataAndKeyframeDataThroughTheConverters) {
     d.id = 5;
     d.revision = 2;
     d.finished = true;
+    d.segment = 2;
     d.T_odom_anchor = some_pose(1.5);
     d.T_anchor_grid = some_pose(-0.5);
     d.bbox_min = {-50, -50, -10};
@@ -211,6 +212,7 @@ TEST_F(Dds, LocalMapDataAndKeyframeDataThroughTheConverters) {
         const common::LocalMapData r = convert::from_msg(m);
         EXPECT_EQ(r.id, 5u);
         EXPECT_TRUE(r.finished);
+        EXPECT_EQ(r.segment, 2u);
         EXPECT_TRUE(r.T_odom_anchor.isApprox(d.T_odom_anchor, 1e-12));
         EXPECT_TRUE(r.T_anchor_grid.isApprox(d.T_anchor_grid, 1e-12));
         EXPECT_EQ(r.bbox_max, d.bbox_max);

@@ -40,6 +40,7 @@ bool same_stamps(const std::vector<double>& a, const std::vector<double>& b) {
 void expect_same_map(const common::LocalMapData& live, const common::LocalMapData& offline) {
     const std::string id = "local map " + std::to_string(live.id);
     EXPECT_EQ(live.finished, offline.finished) << id;
+    EXPECT_EQ(live.segment, offline.segment) << id;
     EXPECT_TRUE(same_stamps(live.observation_times, offline.observation_times)) << id;
     EXPECT_TRUE(live.T_odom_anchor.isApprox(offline.T_odom_anchor, 1e-12)) << id;
     EXPECT_TRUE(live.T_anchor_grid.isApprox(offline.T_anchor_grid, 1e-12)) << id;

@@ -16,6 +16,7 @@ common::LocalMapData from_msg(const msg::LocalMap& m) {
     d.id = m.id;
     d.revision = m.revision;
     d.finished = m.finished;
+    d.segment = m.segment;
     d.T_odom_anchor = to_isometry(m.anchor);
     d.T_anchor_grid = to_isometry(m.grid_in_anchor);
     d.bbox_min = to_vec(m.bbox_min);
@@ -84,6 +85,7 @@ const msg::LocalMap& LocalMapBuilder::build(const common::LocalMapData& d, doubl
     message_.id = d.id;
     message_.revision = d.revision;
     message_.finished = d.finished;
+    message_.segment = d.segment;
     message_.anchor = to_pose(d.T_odom_anchor);
     message_.grid_in_anchor = to_pose(d.T_anchor_grid);
     message_.bbox_min = to_point(d.bbox_min);

@@ -4,9 +4,12 @@
 // correction out. The optimisation runs on this component's own thread, off the odometry's.
 // The map is saved (`map_dir`) as it goes, on request (`map_request`) and at shutdown; the global
 // voxel map is written as PLY (`global_map_file`) on request and at shutdown. With `load_map_dir`
-// a saved map is continued in a new session.
+// a saved map is continued in a new session. `status` says when the odometry restarted in a new
+// segment (until a loop joins it, its corrected poses are the odometry's best estimate across the
+// break) and when a loop joins that segment to the map.
 #include <deque>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <optional>
 
@@ -52,6 +55,7 @@ class MappingComponent : public runtime::Component {
         ctx.subscribe<msg::LocalMap>("local_map", TopicRole::kMap, [this](const msg::LocalMap& m) {
             const LocalMapResult r = mapper_->add_local_map(convert::from_msg(m));
             if (!r.added && !r.message.empty()) ctx_.log().debug(r.message);
+            report_segments();
             flush_waiting();
         });
         ctx.subscribe<msg::Keyframe>("keyframe", TopicRole::kState,
@@ -260,6 +264,25 @@ class MappingComponent : public runtime::Component {
         }
         publish_graph();
         publish_path();
+        report_segments();
+    }
+
+    // A new odometry segment (the odometry lost track and restarted), and its joining by a loop:
+    // one status each time a segment's state changes.
+    void report_segments() {
+        for (const SegmentStatus& s : mapper_->segments()) {
+            if (s.segment == 0) continue;
+            const auto it = segment_joined_.find(s.segment);
+            if (it != segment_joined_.end() && it->second == s.joined) continue;
+            segment_joined_[s.segment] = s.joined;
+            if (s.joined) {
+                ctx_.log().info(s.message);
+                status(StatusLevel::kOk, "segment_joined", s.message);
+            } else {
+                ctx_.log().warn(s.message);
+                status(StatusLevel::kWarn, "segment_not_joined", s.message);
+            }
+        }
     }
 
     void status(StatusLevel level, const std::string& code, const std::string& message) {
@@ -286,6 +309,7 @@ class MappingComponent : public runtime::Component {
     std::unique_ptr<Mapper> mapper_;
     std::string map_dir_, global_map_file_, frame_id_;
     std::size_t loops_since_optimise_ = 0;
+    std::map<std::uint32_t, bool> segment_joined_;  // as last reported
     std::unique_ptr<MapWriter> writer_;
     std::uint64_t saved_state_ = 0;
     static constexpr std::size_t kMaxWaiting = 1000;  // 100 s at 10 Hz

@@ -15,6 +15,7 @@ double drift_distance(const PoseGraph& graph, std::uint64_t from, std::uint64_t 
     for (const PoseGraphEdge& e : graph.edges()) {
         if (!e.active) continue;
         const double w = e.kind == EdgeKind::kLoop ? 0.0 : std::max(0.0, odometry_length(e));
+        if (!(w < std::numeric_limits<double>::infinity())) continue;  // bounds nothing
         adjacent[e.from].push_back({e.to, w});
         adjacent[e.to].push_back({e.from, w});
     }

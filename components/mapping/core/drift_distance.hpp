@@ -10,8 +10,10 @@
 
 namespace ltm::mapping {
 
-// odometry_length(edge) is an odometry edge's length [m] (>= 0). Loop edges that the last
-// optimisation disabled are not used. +infinity when the nodes are not connected.
+// odometry_length(edge) is an odometry edge's length [m] (>= 0), or +infinity for an edge that
+// bounds nothing (the edge into a new odometry segment: the odometry lost track there). Loop
+// edges that the last optimisation disabled are not used. +infinity when the nodes are not
+// connected but through such edges.
 double drift_distance(const PoseGraph& graph, std::uint64_t from, std::uint64_t to,
                       const std::function<double(const PoseGraphEdge&)>& odometry_length);
 

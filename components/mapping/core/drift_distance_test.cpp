@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 
 namespace ltm::mapping {
@@ -59,6 +60,18 @@ TEST(DriftDistance, DisabledLoopsAreNotUsedAndDisconnectedIsInfinite) {
     lonely.id = 100;
     ASSERT_TRUE(g.add_node(lonely));
     EXPECT_TRUE(std::isinf(drift_distance(g, 0, 100, length)));
+}
+
+TEST(DriftDistance, AnEdgeOfInfiniteLengthIsNoPathButALoopAroundItIs) {
+    PoseGraph g = chain(10);
+    // The odometry lost track between 4 and 5: that edge bounds nothing.
+    auto broken = [](const PoseGraphEdge& e) {
+        return e.from == 4 ? std::numeric_limits<double>::infinity() : length(e);
+    };
+    EXPECT_TRUE(std::isinf(drift_distance(g, 2, 7, broken)));
+    EXPECT_DOUBLE_EQ(drift_distance(g, 5, 9, broken), 40.0);
+    ASSERT_TRUE(g.add_edge(loop(3, 6)));  // a loop joins the two sides
+    EXPECT_DOUBLE_EQ(drift_distance(g, 2, 7, broken), 20.0);
 }
 
 TEST(DriftDistance, MatchesABruteForceOracleOnRandomGraphs) {

@@ -1,6 +1,7 @@
 #include "mapping/core/mapper.hpp"
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <tuple>
 
@@ -66,8 +67,23 @@ Mapper::Mapper(const MapperConfig& config, const MapData& loaded, bool freeze_lo
         last_session = std::max(last_session, n.session);
     }
     for (const PoseGraphEdge& e : loaded.edges) graph_.add_edge(e);
+    std::map<std::pair<std::uint64_t, std::uint64_t>, bool> breaks;  // odometry edges (from, to)
+    for (const PoseGraphEdge& e : graph_.edges()) {
+        if (e.kind == EdgeKind::kOdometry) breaks[{e.from, e.to}] = is_segment_break(e);
+    }
     for (const auto& [session, chain] : chains_) {
-        for (const auto& [local_map_id, id] : chain) set_path(session, local_map_id);
+        // The file keeps no segment numbers: the breaks in the odometry chain give them back.
+        std::uint32_t segment = 0;
+        std::uint64_t prev = 0;
+        for (const auto& [local_map_id, id] : chain) {
+            if (local_map_id != chain.begin()->first) {
+                const auto b = breaks.find({prev, id});
+                if (b != breaks.end() && b->second) ++segment;
+            }
+            segment_of_[id] = NodeSegment{segment, true};
+            prev = id;
+            set_path(session, local_map_id);
+        }
     }
     for (const std::shared_ptr<const StoredKeyframe>& k : loaded.keyframes) {
         if (!k || !detector_.add_searchable(k->descriptor)) continue;
@@ -78,6 +94,7 @@ Mapper::Mapper(const MapperConfig& config, const MapData& loaded, bool freeze_lo
     }
     session_ = loaded.nodes.empty() ? 0 : last_session + 1;
     revision_ = loaded.revision;
+    update_placement();
 }
 
 std::optional<std::uint64_t> Mapper::node_of(std::uint64_t local_map_id) const {
@@ -100,19 +117,60 @@ Eigen::Isometry3d Mapper::predicted_world(std::uint32_t session, std::uint64_t l
 }
 
 std::uint64_t Mapper::ensure_node(std::uint64_t local_map_id,
-                                  const Eigen::Isometry3d& T_odom_anchor) {
-    if (const std::optional<std::uint64_t> existing = node_of(local_map_id)) return *existing;
+                                  const Eigen::Isometry3d& T_odom_anchor,
+                                  std::optional<std::uint32_t> segment) {
+    if (const std::optional<std::uint64_t> existing = node_of(local_map_id)) {
+        if (segment) set_segment(local_map_id, *segment);
+        return *existing;
+    }
     PoseGraphNode n;
     n.id = next_node_++;
     n.session = session_;
     n.local_map_id = local_map_id;
     n.T_odom_anchor = T_odom_anchor;
+    // Across a break too: the odometry restarted at its best estimate, in the same odometry frame.
     n.T_world_anchor = predicted_world(session_, local_map_id, T_odom_anchor);
     graph_.add_node(n);
-    chains_[session_][local_map_id] = n.id;
+    std::map<std::uint64_t, std::uint64_t>& chain = chains_[session_];
+    const auto it = chain.emplace(local_map_id, n.id).first;
+    if (segment) {
+        segment_of_[n.id] = NodeSegment{*segment, true};
+    } else {
+        // Until its local map says: the segment of the map before it (the odometry hands a
+        // keyframe over before the first snapshot of its local map).
+        const auto prev = it == chain.begin() ? std::next(it) : std::prev(it);
+        const std::uint32_t s = prev == chain.end() ? 0 : segment_of(prev->second);
+        segment_of_[n.id] = NodeSegment{s, false};
+    }
     link_odometry(local_map_id);
     set_path(session_, local_map_id);
     return n.id;
+}
+
+std::uint32_t Mapper::segment_of(std::uint64_t node) const {
+    const auto it = segment_of_.find(node);
+    return it == segment_of_.end() ? 0 : it->second.segment;
+}
+
+void Mapper::set_segment(std::uint64_t local_map_id, std::uint32_t segment) {
+    const std::map<std::uint64_t, std::uint64_t>& chain = chains_[session_];
+    auto it = chain.find(local_map_id);
+    NodeSegment& own = segment_of_[it->second];
+    const bool changed = own.segment != segment;
+    own = NodeSegment{segment, true};
+    if (!changed) return;
+    // The maps after it that only took their segment from it take the new one too.
+    std::vector<std::uint64_t> relink = {local_map_id};
+    for (auto next = std::next(it); next != chain.end(); ++next) {
+        NodeSegment& n = segment_of_[next->second];
+        if (n.told) break;
+        n.segment = segment;
+        relink.push_back(next->first);
+    }
+    for (const std::uint64_t id : relink) {
+        unlink_odometry(id);
+        link_odometry(id);
+    }
 }
 
 void Mapper::set_path(std::uint32_t session, std::uint64_t local_map_id) {
@@ -142,13 +200,25 @@ void Mapper::link_odometry(std::uint64_t local_map_id) {
         e.to = b->id;
         e.kind = EdgeKind::kOdometry;
         e.T_from_to = a->T_odom_anchor.inverse() * b->T_odom_anchor;
+        // Into the first map of a new segment: the odometry's best estimate, not a measurement.
         e.information =
-            odometry_information(config_.odometry_edge, e.T_from_to.translation().norm());
+            segment_of(a->id) == segment_of(b->id)
+                ? odometry_information(config_.odometry_edge, e.T_from_to.translation().norm())
+                : segment_break_information();
         graph_.add_edge(e);
     };
     // Pointers into the graph stay valid: add_edge does not touch the nodes.
     if (prev) link(prev, node);
     if (next) link(node, next);
+}
+
+void Mapper::unlink_odometry(std::uint64_t local_map_id) {
+    const std::map<std::uint64_t, std::uint64_t>& chain = chains_[session_];
+    const auto it = chain.find(local_map_id);
+    if (it != chain.begin())
+        graph_.remove_edges(std::prev(it)->second, it->second, EdgeKind::kOdometry);
+    if (std::next(it) != chain.end())
+        graph_.remove_edges(it->second, std::next(it)->second, EdgeKind::kOdometry);
 }
 
 LocalMapResult Mapper::add_local_map(const common::LocalMapData& map) {
@@ -178,7 +248,7 @@ LocalMapResult Mapper::add_local_map(std::shared_ptr<const common::LocalMapData>
         r.message = "local map " + std::to_string(map->id) + ": voxel size must be > 0";
         return r;
     }
-    r.node = ensure_node(map->id, map->T_odom_anchor);
+    r.node = ensure_node(map->id, map->T_odom_anchor, map->segment);
     const auto it = maps_.find(r.node);
     if (it != maps_.end() && it->second.stored.data->revision > map->revision) {
         r.message = "local map " + std::to_string(map->id) + ": revision " +
@@ -214,7 +284,7 @@ KeyframeResult Mapper::add_keyframe(const common::KeyframeData& input) {
     }
     const Eigen::Isometry3d T_odom_anchor =
         keyframe.T_odom_lidar * keyframe.T_anchor_lidar.inverse();
-    const std::uint64_t node = ensure_node(keyframe.local_map_id, T_odom_anchor);
+    const std::uint64_t node = ensure_node(keyframe.local_map_id, T_odom_anchor, std::nullopt);
     auto stored = std::make_shared<StoredKeyframe>();
     stored->session = session_;
     stored->node = node;
@@ -268,12 +338,17 @@ void Mapper::verify(const common::KeyframeData& keyframe,
             continue;
         }
         // The graph's estimate of the query anchor in the match anchor: within one session, the
-        // odometry bounds its error; it is a first guess and the consistency check below.
+        // odometry bounds its error; it is a first guess and the consistency check below. Not
+        // across a segment break that no optimised loop joins yet: there it is only the
+        // odometry's guess across the break (metres and tens of degrees off), so the descriptor's
+        // guess is the one that counts and the verification's quality alone decides.
         const Eigen::Isometry3d predicted =
             graph_.find(match.node)->T_world_anchor.inverse() * graph_.find(node)->T_world_anchor;
         const bool same_session = match.session == session_;
+        const SegmentKey match_key = segment_key(match.node), query_key = segment_key(node);
+        const bool placed = same_session && placed_root(match_key) == placed_root(query_key);
         GuessList guesses;
-        const bool graph_guess = same_session && config_.verify_from_graph;
+        const bool graph_guess = placed && config_.verify_from_graph;
         if (graph_guess) guesses.push_back(predicted * keyframe.T_anchor_lidar);
         guesses.push_back(yawed(match.data.T_anchor_lidar, c.yaw));
         const LoopVerification v =
@@ -291,14 +366,19 @@ void Mapper::verify(const common::KeyframeData& keyframe,
         const Eigen::Isometry3d D = predicted.inverse() * e.T_from_to;
         const double disagreement = D.translation().norm();
         const double disagreement_deg = Eigen::AngleAxisd(D.linear()).angle() * 180.0 / M_PI;
-        if (same_session) {
+        // The odometry along which the graph's estimate can have drifted: from the nearest
+        // places already joined by loops (a lap of a route is not 1 km of drift); a segment
+        // break is unbounded drift.
+        const double path =
+            placed ? drift_distance(graph_, e.from, e.to,
+                                    [this](const PoseGraphEdge& o) {
+                                        if (segment_of(o.from) != segment_of(o.to))
+                                            return std::numeric_limits<double>::infinity();
+                                        return std::abs(path_at_[o.to] - path_at_[o.from]);
+                                    })
+                   : std::numeric_limits<double>::infinity();
+        if (std::isfinite(path)) {
             const LoopConsistencyConfig& lc = config_.loop_consistency;
-            // The odometry along which the graph's estimate can have drifted: from the nearest
-            // places already joined by loops (a lap of a route is not 1 km of drift).
-            const double path =
-                drift_distance(graph_, e.from, e.to, [this](const PoseGraphEdge& o) {
-                    return std::abs(path_at_[o.to] - path_at_[o.from]);
-                });
             const double max_t = lc.translation + lc.translation_per_m * path;
             const double max_r = lc.rotation + lc.rotation_per_m * path;
             if (disagreement > max_t || disagreement_deg > max_r) {
@@ -322,6 +402,9 @@ void Mapper::verify(const common::KeyframeData& keyframe,
         l.match_scan = match.data.scan_index;
         l.query_session = session_;
         l.match_session = match.session;
+        l.query_segment = query_key.second;
+        l.match_segment = match_key.second;
+        l.across_break = same_session && !placed;
         l.from_node = e.from;
         l.to_node = e.to;
         l.T_from_to = e.T_from_to;
@@ -353,8 +436,120 @@ int Mapper::loops_between(std::uint64_t a, std::uint64_t b) const {
 
 OptimisationSummary Mapper::optimise() {
     const OptimisationSummary s = graph_.optimise();
-    if (s.solved) ++revision_;
+    if (s.solved) {
+        ++revision_;
+        update_placement();
+        place_unjoined_segments();
+    }
     return s;
+}
+
+Mapper::SegmentKey Mapper::segment_key(std::uint64_t node) const {
+    const PoseGraphNode* n = graph_.find(node);
+    return {n ? n->session : 0, segment_of(node)};
+}
+
+Mapper::SegmentKey Mapper::placed_root(const SegmentKey& key) const {
+    const auto it = placed_.find(key);
+    return it == placed_.end() ? key : it->second;
+}
+
+void Mapper::update_placement() {
+    // Union-find over (session, segment) by the active loop edges: the graph's estimate of the
+    // relative pose of two segments means something once an optimisation has placed them by loops.
+    std::map<SegmentKey, SegmentKey> parent;
+    auto root = [&](SegmentKey k) {
+        for (auto it = parent.find(k); it != parent.end() && it->second != k; it = parent.find(k))
+            k = it->second;
+        return k;
+    };
+    for (const PoseGraphEdge& e : graph_.edges()) {
+        if (e.kind != EdgeKind::kLoop || !e.active) continue;
+        const SegmentKey a = root(segment_key(e.from)), b = root(segment_key(e.to));
+        parent.emplace(a, a);
+        parent.emplace(b, b);
+        if (a != b) parent[std::max(a, b)] = std::min(a, b);
+    }
+    placed_.clear();
+    for (const auto& [key, up] : parent) placed_[key] = root(key);
+}
+
+void Mapper::place_unjoined_segments() {
+    for (const auto& [session, chain] : chains_) {
+        const PoseGraphNode* prev = nullptr;
+        for (const auto& [local_map_id, id] : chain) {
+            const PoseGraphNode* node = graph_.find(id);
+            const SegmentKey key = segment_key(id);
+            const bool starts_part = prev && segment_of(prev->id) != key.second &&
+                                     placed_root(key) == key &&
+                                     placed_root(segment_key(prev->id)) != key;
+            if (starts_part) {
+                // The first map of a segment that no loop joins to anything before it: its part
+                // is placed by the edge across the break alone, at the odometry's best estimate
+                // relative to the map before it. That is the optimum, which the solver approaches
+                // only slowly (the edge weighs next to nothing): set it here exactly.
+                const Eigen::Isometry3d C = prev->T_world_anchor * prev->T_odom_anchor.inverse() *
+                                            node->T_odom_anchor * node->T_world_anchor.inverse();
+                std::vector<std::uint64_t> part;
+                bool fixed = false;
+                for (const PoseGraphNode& n : graph_.nodes()) {
+                    if (placed_root(segment_key(n.id)) != key) continue;
+                    part.push_back(n.id);
+                    fixed = fixed || n.fixed;
+                }
+                // set_pose changes the nodes in place: `prev` and `node` stay valid.
+                if (!fixed) {
+                    for (const std::uint64_t p : part)
+                        graph_.set_pose(p, C * graph_.find(p)->T_world_anchor);
+                }
+            }
+            prev = node;
+        }
+    }
+}
+
+std::vector<SegmentStatus> Mapper::segments() const {
+    std::vector<SegmentStatus> out;
+    const auto chain = chains_.find(session_);
+    if (chain == chains_.end()) return out;
+    // What counts as the map: this session's segment 0 and every earlier session.
+    auto on_map = [&](const SegmentKey& k) {
+        const SegmentKey r = placed_root(k);
+        return r.first < session_ || r == SegmentKey(session_, 0);
+    };
+    for (const auto& [local_map_id, node] : chain->second) {
+        const std::uint32_t s = segment_of(node);
+        if (!out.empty() && out.back().segment == s) continue;
+        SegmentStatus st;
+        st.segment = s;
+        st.first_local_map = local_map_id;
+        st.joined = s == 0 || on_map(SegmentKey(session_, s));
+        std::ostringstream m;
+        if (s == 0) {
+            m << "segment 0: the session's first";
+        } else if (st.joined) {
+            // The earliest active loop between this segment and another one.
+            bool found = false;
+            for (const PoseGraphEdge& e : graph_.edges()) {
+                if (e.kind != EdgeKind::kLoop || !e.active) continue;
+                const SegmentKey a = segment_key(e.from), b = segment_key(e.to);
+                if (a == b || (a != SegmentKey(session_, s) && b != SegmentKey(session_, s)))
+                    continue;
+                const std::uint32_t k = std::uint32_t(e.query_keyframe);
+                if (!found || k < st.joined_at_keyframe) st.joined_at_keyframe = k;
+                found = true;
+            }
+            m << "segment " << s << " joined to the map by a loop at keyframe "
+              << st.joined_at_keyframe;
+        } else {
+            m << "segment " << s << " (from local map " << local_map_id
+              << ") not joined to the map yet: its poses, corrected_odometry and map_to_odom are "
+                 "the odometry's best estimate across the break";
+        }
+        st.message = m.str();
+        out.push_back(st);
+    }
+    return out;
 }
 
 bool Mapper::apply(const PoseGraph& optimised, const OptimisationSummary& summary) {
@@ -379,6 +574,7 @@ bool Mapper::apply(const PoseGraph& optimised, const OptimisationSummary& summar
         updated.add_edge(e);
     }
     graph_ = std::move(updated);
+    update_placement();
     // Nodes added since the snapshot follow their predecessor's correction.
     for (const auto& [session, chain] : chains_) {
         for (const auto& [local_map_id, id] : chain) {
@@ -387,6 +583,7 @@ bool Mapper::apply(const PoseGraph& optimised, const OptimisationSummary& summar
             graph_.set_pose(id, predicted_world(session, local_map_id, n->T_odom_anchor));
         }
     }
+    place_unjoined_segments();
     ++revision_;
     return true;
 }

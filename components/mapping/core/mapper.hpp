@@ -5,6 +5,13 @@
 //   from the descriptor's guess) -> loop edge in the PoseGraph;
 //   local map -> graph node (its anchor) with an odometry edge to the previous one;
 //   optimise() on demand -> corrected anchors, hence corrected poses and the global map.
+// Odometry segments (common::LocalMapData::segment): when the odometry lost track and restarted,
+// the first map of the new segment is joined to the one before by a very weak edge
+// (segment_break_information()), not by odometry. Until an optimised loop joins the segment to the
+// map, its poses are the odometry's best estimate across the break, a loop candidate between it
+// and the rest of the session is verified from the descriptor's guess only and judged by the
+// verification alone (no odometry bound across a break); once joined, the optimisation has put
+// the segment, and every map after it, in place.
 // Synchronous, no threads, no I/O. An adapter may run the optimisation elsewhere: take
 // graph_snapshot(), call PoseGraph::optimise() on it on any thread, then apply() the result.
 //
@@ -17,6 +24,7 @@
 #include <optional>
 #include <string>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "common/core/io_error.hpp"
@@ -34,6 +42,10 @@ struct LoopClosure {
     std::uint32_t query_keyframe = 0, match_keyframe = 0;  // keyframe indices (order of arrival)
     std::uint64_t query_scan = 0, match_scan = 0;          // KeyframeData::scan_index
     std::uint32_t query_session = 0, match_session = 0;
+    std::uint32_t query_segment = 0, match_segment = 0;  // odometry segments of the two anchors
+    // Same session, across a segment break that no optimised loop had joined yet: verified from
+    // the descriptor's guess and accepted on the verification's quality alone.
+    bool across_break = false;
     std::uint64_t from_node = 0, to_node = 0;  // the loop edge: match anchor -> query anchor
     Eigen::Isometry3d T_from_to = Eigen::Isometry3d::Identity();
     Eigen::Isometry3d T_match_query = Eigen::Isometry3d::Identity();  // LiDAR to LiDAR
@@ -69,6 +81,18 @@ struct LocalMapResult {
     bool added = false;   // stored (new, or a newer snapshot of a known map)
     std::string message;  // why not (one line)
     std::uint64_t node = 0;
+};
+
+// An odometry segment of the current session.
+struct SegmentStatus {
+    std::uint32_t segment = 0;
+    std::uint64_t first_local_map = 0;  // the odometry's id of its first local map known here
+    // Placed by loops as of the last optimisation (segment 0 always): by a chain of active loop
+    // edges to segment 0 or to an earlier session's map.
+    bool joined = false;
+    std::uint32_t joined_at_keyframe = 0;  // query keyframe of the earliest loop joining it
+    // "segment 1 joined to the map by a loop at keyframe 40", or what its poses are until then.
+    std::string message;
 };
 
 class Mapper {
@@ -113,6 +137,11 @@ class Mapper {
     std::optional<Eigen::Isometry3d> T_world_odom(std::uint64_t local_map_id) const;
     // World pose of keyframe i.
     Eigen::Isometry3d keyframe_pose(std::uint32_t index) const;
+    // The odometry segment of a graph node (0 for an unknown node). A node made by a keyframe
+    // before its local map arrived takes the segment of the map before it until then.
+    std::uint32_t segment_of(std::uint64_t node) const;
+    // The current session's segments, in order.
+    std::vector<SegmentStatus> segments() const;
 
     common::PlyCloud global_map(GlobalMapStats* stats = nullptr) const;
     // Everything a saved map holds (local maps and keyframes shared, not copied).
@@ -125,9 +154,24 @@ class Mapper {
         StoredLocalMap stored;
         std::uint64_t serial = 0;  // changes with every stored snapshot (verification cache key)
     };
-    int loops_between(std::uint64_t a, std::uint64_t b) const;  // active loop edges, either way
-    std::uint64_t ensure_node(std::uint64_t local_map_id, const Eigen::Isometry3d& T_odom_anchor);
+    struct NodeSegment {
+        std::uint32_t segment = 0;
+        bool told = false;  // by the node's local map (else taken from the map before it)
+    };
+    using SegmentKey = std::pair<std::uint32_t, std::uint32_t>;  // session, segment
+    int loops_between(std::uint64_t a, std::uint64_t b) const;   // active loop edges, either way
+    std::uint64_t ensure_node(std::uint64_t local_map_id, const Eigen::Isometry3d& T_odom_anchor,
+                              std::optional<std::uint32_t> segment);
     void link_odometry(std::uint64_t local_map_id);
+    void unlink_odometry(std::uint64_t local_map_id);
+    void set_segment(std::uint64_t local_map_id, std::uint32_t segment);
+    SegmentKey segment_key(std::uint64_t node) const;
+    SegmentKey placed_root(const SegmentKey& key) const;
+    // Joined segments from the active loop edges, after an optimisation.
+    void update_placement();
+    // After an optimisation: segments that no loop joins to anything before them follow the map
+    // before them.
+    void place_unjoined_segments();
     void set_path(std::uint32_t session, std::uint64_t local_map_id);
     Eigen::Isometry3d predicted_world(std::uint32_t session, std::uint64_t local_map_id,
                                       const Eigen::Isometry3d& T_odom_anchor) const;
@@ -145,8 +189,11 @@ class Mapper {
     LoopVerifier verifier_;
     // Per session: local map id -> node, in id order (the odometry chain).
     std::map<std::uint32_t, std::map<std::uint64_t, std::uint64_t>> chains_;
-    std::unordered_map<std::uint64_t, MapEntry> maps_;   // by node
-    std::unordered_map<std::uint64_t, double> path_at_;  // odometry path to each node [m]
+    std::unordered_map<std::uint64_t, MapEntry> maps_;           // by node
+    std::unordered_map<std::uint64_t, double> path_at_;          // odometry path to each node [m]
+    std::unordered_map<std::uint64_t, NodeSegment> segment_of_;  // by node
+    // Segments placed together by active loops, as of the last optimisation: key -> its root.
+    std::map<SegmentKey, SegmentKey> placed_;
     std::vector<std::shared_ptr<const StoredKeyframe>> keyframes_;
     std::vector<LoopClosure> loops_;
     int cooldown_ = 0;

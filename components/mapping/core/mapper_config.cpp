@@ -57,4 +57,10 @@ Matrix6d loop_information(const LoopEdgeConfig& c) {
     return diagonal_information(c.sigma_translation, c.sigma_rotation * kDegToRad);
 }
 
+Matrix6d segment_break_information() { return diagonal_information(100.0, M_PI); }
+
+bool is_segment_break(const PoseGraphEdge& edge) {
+    return edge.kind == EdgeKind::kOdometry && edge.information == segment_break_information();
+}
+
 }  // namespace ltm::mapping

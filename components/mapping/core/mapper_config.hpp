@@ -115,4 +115,20 @@ std::optional<common::ConfigProblem> validate(const MapperConfig& config);
 Matrix6d odometry_information(const OdometryEdgeConfig& config, double distance);
 Matrix6d loop_information(const LoopEdgeConfig& config);
 
+// The edge into the first local map of a new odometry segment (common::LocalMapData::segment: the
+// odometry lost track and restarted at its best estimate, the prediction). Its measurement is
+// that estimate, which is not an odometry measurement: sigma 100 m per axis and 180 deg per axis,
+// about 1e6 times less information than a loop edge (0.1 m / 0.3 deg) in translation and 4e5 in
+// rotation. Why an edge at all: the graph stays one connected part, the gauge stays the session's
+// first anchor, and the segment keeps its place relative to the map before it until a loop joins
+// it (the Mapper sets that place exactly after each optimisation: the solver barely moves along
+// so weak an edge). Why this weak: a loop that joins the segment must place it on its own; against
+// a 5 m / 40 deg break the edge pulls the loop edge and the odometry chains by well under a
+// millimetre (mapper_segment_test: the joined anchors end within 3 mm of the truth). Fixed, not
+// configurable, so that a saved graph shows its breaks (is_segment_break) without a change of the
+// map format.
+Matrix6d segment_break_information();
+// An odometry edge with exactly segment_break_information().
+bool is_segment_break(const PoseGraphEdge& edge);
+
 }  // namespace ltm::mapping
