@@ -6,7 +6,7 @@ namespace ltm::common {
 
 namespace {
 constexpr SensorPreset kAll[] = {SensorPreset::kHdl64, SensorPreset::kVlp32, SensorPreset::kVlp16,
-                                 SensorPreset::kNarrow};
+                                 SensorPreset::kNarrow, SensorPreset::kOs1_64};
 }  // namespace
 
 const char* to_string(SensorPreset preset) {
@@ -19,6 +19,8 @@ const char* to_string(SensorPreset preset) {
             return "vlp16";
         case SensorPreset::kNarrow:
             return "narrow";
+        case SensorPreset::kOs1_64:
+            return "os1-64";
     }
     return "?";
 }

@@ -63,9 +63,13 @@ class OdometryComponent : public runtime::Component {
         if (r.pose_valid()) {
             ++tracked_;
             publish_odometry(r);
-        } else {
-            status(StatusLevel::kWarn, to_string(r.status),
-                   "scan " + std::to_string(index) + ": " + r.message, r.stamp);
+        }
+        // lost, skipped, rejected: a warning each scan; restarted (a new segment at a guessed
+        // pose): a warning; recovered: back on track, said once.
+        if (!r.message.empty()) {
+            status(r.status == FrameStatus::kRecovered ? StatusLevel::kOk : StatusLevel::kWarn,
+                   to_string(r.status), "scan " + std::to_string(index) + ": " + r.message,
+                   r.stamp);
         }
         if (r.degenerate())
             status(StatusLevel::kWarn, "degenerate",
@@ -106,7 +110,11 @@ class OdometryComponent : public runtime::Component {
     }
 
     void status(StatusLevel level, const std::string& code, const std::string& text, double stamp) {
-        if (++warnings_ <= 10 || (warnings_ & (warnings_ - 1)) == 0) ctx_.log().warn(text);
+        if (level == StatusLevel::kOk) {
+            ctx_.log().info(text);
+        } else if (++warnings_ <= 10 || (warnings_ & (warnings_ - 1)) == 0) {
+            ctx_.log().warn(text);
+        }
         status_out_.publish(*convert::to_msg(convert::StatusData{
             convert::to_time(stamp), odom_frame_, ctx_.name(), level, code, text}));
     }

@@ -133,12 +133,11 @@ FrameResult Odometry::register_frame(const common::PointCloud& cloud) {
         FrameResult attempt = r;
         std::string why = try_register(predicted, since_tracked, false, &attempt);
         int attempts = 1;
-        if (!why.empty() || doubtful(attempt)) {
+        if (!why.empty() || doubtful(attempt) || since_tracked > config_.tracking.search_after) {
             FrameResult found = r;
             const std::string not_found = search(predicted, since_tracked, &found);
             attempts += found.attempts;
-            if (not_found.empty() &&
-                (!why.empty() || found.inlier_fraction > attempt.inlier_fraction)) {
+            if (not_found.empty() && (!why.empty() || found.inliers > attempt.inliers)) {
                 attempt = found;
                 why.clear();
             } else if (!why.empty()) {
@@ -235,6 +234,8 @@ std::string Odometry::try_register(const Eigen::Isometry3d& guess_odom, double d
     r->iterations = reg.iterations;
     r->correspondences = reg.correspondences;
     r->inlier_fraction = reg.inlier_fraction();
+    r->overlap = reg.overlap();
+    r->inliers = reg.inliers;
     r->residual_rms = reg.residual_rms;
     r->converged = reg.status == registration::RegistrationResult::Status::kConverged;
     const Eigen::Isometry3d estimate = T_odom_map * reg.T_map_lidar;
@@ -280,7 +281,9 @@ bool Odometry::doubtful(const FrameResult& r) const {
     const TrackingConfig& c = config_.tracking;
     return !r.converged ||
            (typical_rms_ > 0.0 && r.residual_rms > c.retry_residual_ratio * typical_rms_) ||
-           (typical_inliers_ > 0.0 && r.inlier_fraction < c.retry_inlier_ratio * typical_inliers_);
+           (typical_inliers_ > 0.0 &&
+            r.inlier_fraction < c.retry_inlier_ratio * typical_inliers_) ||
+           (typical_overlap_ > 0.0 && r.overlap < c.retry_overlap_ratio * typical_overlap_);
 }
 
 std::string Odometry::search(const Eigen::Isometry3d& predicted, double dt, FrameResult* best) {
@@ -336,7 +339,7 @@ std::string Odometry::search(const Eigen::Isometry3d& predicted, double dt, Fram
             if (!found && &s == &starts.front()) first_why = why;
             continue;
         }
-        if (!found || attempt.inlier_fraction > best->inlier_fraction) {
+        if (!found || attempt.inliers > best->inliers) {
             const int tries = best->attempts;
             *best = attempt;
             best->attempts = tries;
@@ -353,6 +356,8 @@ void Odometry::learn(const FrameResult& r) {
     typical_rms_ = typical_rms_ > 0.0 ? 0.9 * typical_rms_ + 0.1 * r.residual_rms : r.residual_rms;
     typical_inliers_ = typical_inliers_ > 0.0 ? 0.9 * typical_inliers_ + 0.1 * r.inlier_fraction
                                               : r.inlier_fraction;
+    typical_overlap_ =
+        typical_overlap_ > 0.0 ? 0.9 * typical_overlap_ + 0.1 * r.overlap : r.overlap;
 }
 
 void Odometry::accept(const FrameResult& result) {

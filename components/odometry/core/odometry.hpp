@@ -59,6 +59,8 @@ struct FrameResult {
     std::size_t registration_points = 0;  // after down-sampling (registration grid)
     std::size_t correspondences = 0;
     double inlier_fraction = 0.0;  // of the correspondences (registration.inlier_distance)
+    double overlap = 0.0;          // correspondences over registration points
+    std::size_t inliers = 0;       // correspondences within registration.inlier_distance
     int iterations = 0;            // Gauss-Newton iterations on the fine grid
     int coarse_iterations = 0;     // ... and on the coarse grid (0 without one)
     int attempts = 0;              // registrations run (more than 1: retried, see search)
@@ -141,6 +143,7 @@ class Odometry {
     std::uint64_t next_keyframe_id_ = 0;
     double typical_rms_ = 0.0;      // running mean of the tracked frames' residual RMS [m]
     double typical_inliers_ = 0.0;  // ... and of their inlier fraction
+    double typical_overlap_ = 0.0;  // ... and of their overlap
     bool lost_ = false;
     double last_tracked_stamp_ = 0.0;  // of the last scan with a valid pose
     Eigen::Isometry3d last_tracked_pose_ = Eigen::Isometry3d::Identity();

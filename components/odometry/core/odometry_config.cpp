@@ -38,6 +38,15 @@ OdometryConfig preset_config(SensorPreset preset) {
             c.keyframe.distance = 0.5;
             c.min_scan_points = 50;
             break;
+        case SensorPreset::kOs1_64:
+            // Ouster OS1-64: 64 beams evenly over 45 deg (denser near the ground than an HDL-64E
+            // is far out), 0.3-120 m; mostly used on slower platforms and closer to structure.
+            c.voxel_size = 0.5;
+            c.preprocess.min_range = 1.0;
+            c.preprocess.max_range = 80.0;
+            c.local_map.half_extent = 45.0;
+            c.local_map.switch_distance = 18.0;
+            break;
     }
     return c;
 }

@@ -32,13 +32,18 @@ struct TrackingConfig {
     double max_final_step_translation = 0.05;  // unconverged and last step larger: refused [m]
     double max_final_step_rotation = 0.5;      // [deg]
     // A result that is refused, not converged, has a residual RMS above retry_residual_ratio
-    // times the recent frames' or an inlier fraction below retry_inlier_ratio times theirs, is
-    // retried from the last pose and from the prediction turned by multiples of yaw_step up to
-    // +-yaw_search (about the sensor's z axis); the best fit is kept.
+    // times the recent frames', an inlier fraction below retry_inlier_ratio times theirs or an
+    // overlap (correspondences over points) below retry_overlap_ratio times theirs, is retried
+    // from the last pose and from the prediction turned by multiples of yaw_step up to
+    // +-yaw_search (about the sensor's z axis); the result with the most inliers is kept.
     double retry_residual_ratio = 1.5;
     double retry_inlier_ratio = 0.7;
-    double yaw_search = 90.0;  // [deg] 0: no yaw search
-    double yaw_step = 15.0;    // [deg]
+    double retry_overlap_ratio = 0.7;
+    // Scans further apart than this (sensor time since the last tracked one) are always searched:
+    // a constant-velocity prediction over a long gap is a guess (keyframe streams, dropouts).
+    double search_after = 0.3;  // [s]
+    double yaw_search = 90.0;   // [deg] 0: no yaw search
+    double yaw_step = 15.0;     // [deg]
     // Lost (no acceptable registration) for this long since the last tracked scan, sensor time:
     // the odometry ends its local maps and starts a new one at its best estimate (a new segment,
     // joined to the map later by a loop or by localisation).
@@ -102,6 +107,8 @@ void visit_fields(OdometryConfig& c, Visitor&& v) {
     v("tracking.max_final_step_rotation", t.max_final_step_rotation, positive);
     v("tracking.retry_residual_ratio", t.retry_residual_ratio, at_least(1));
     v("tracking.retry_inlier_ratio", t.retry_inlier_ratio, unit);
+    v("tracking.retry_overlap_ratio", t.retry_overlap_ratio, unit);
+    v("tracking.search_after", t.search_after, non_negative);
     v("tracking.yaw_search", t.yaw_search, in_range(0, 180));
     v("tracking.yaw_step", t.yaw_step, in_range(1, 90));
     v("tracking.restart_after", t.restart_after, non_negative);
