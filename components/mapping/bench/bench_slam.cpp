@@ -313,6 +313,15 @@ int run(const Args& a) {
                       [](const mapping::LoopClosure& l) { return l.from_graph_guess; });
     std::printf("  verified from the graph's estimate %zu, from the descriptor's guess %zu\n",
                 from_graph, mapper.loops().size() - from_graph);
+    // Odometry segments (the odometry lost track and restarted): joined by a loop or not.
+    const std::vector<mapping::SegmentStatus> segments = mapper.segments();
+    const std::size_t across =
+        std::count_if(mapper.loops().begin(), mapper.loops().end(),
+                      [](const mapping::LoopClosure& l) { return l.across_break; });
+    std::printf("odometry segments %zu, loops across a break %zu\n", segments.size(), across);
+    for (const mapping::SegmentStatus& s : segments) {
+        if (s.segment > 0) std::printf("  %s\n", s.message.c_str());
+    }
     std::printf("odometry a frame: %s\n", odometry_ms.str().c_str());
     std::printf("loop detection a keyframe (descriptor + retrieval): %s\n", detect.str().c_str());
     std::printf("mapping a keyframe (detection + verification): %s\n", add.str().c_str());
