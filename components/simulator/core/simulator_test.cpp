@@ -138,6 +138,38 @@ TEST(Simulator, MotionDistortionFollowsThePulseTime) {
     EXPECT_FALSE(still.cloud.has_time());
 }
 
+// A sweep taken while turning on the spot at 180 deg/s: each point put at the pose of its own
+// time lies on the true surface (18 deg of turn within the sweep).
+TEST(Simulator, MotionDistortionThroughATurnOnTheSpot) {
+    ScenarioConfig sc = small_world(5);
+    sc.sensor.range_noise = 0.0;
+    sc.sensor.motion_distortion = true;
+    sc.sessions[0].route.waypoints = {{2, 10}, {15, 10}, {28, 10}};
+    sc.sessions[0].route.waypoints[1].spin_deg = -360;
+    sc.sessions[0].route.waypoints[1].spin_time = 2;
+    const Simulator sim(sc);
+    const common::PlyMesh truth = sim.truth_mesh();
+    const std::size_t i = 40;  // 4.0 s: 0.75 s into the turn, which starts at 13 m / 4 m/s
+    const double turn =
+        Eigen::AngleAxisd(sim.pose(i).linear().transpose() * sim.pose_at(i, 0.099).linear())
+            .angle();
+    EXPECT_NEAR(turn * 180.0 / M_PI, 17.8, 0.1);
+    SimScan scan;
+    ASSERT_TRUE(sim.scan(i, scan));
+    ASSERT_TRUE(scan.cloud.has_time());
+    int checked = 0;
+    for (std::size_t k = 0; k < scan.cloud.size(); k += 97) {
+        if (common::label_class(scan.labels[k]) == common::kSimMovingActor) continue;
+        const Eigen::Vector3d p =
+            sim.pose_at(i, scan.cloud.time[k]) * scan.cloud.points[k].cast<double>();
+        // pose steps of period / 128: 0.07 deg of turn at most
+        const double range = scan.cloud.points[k].norm();
+        EXPECT_LT(distance_to_mesh(truth, p), 0.0013 * range + 0.03) << "point " << k;
+        ++checked;
+    }
+    EXPECT_GT(checked, 30);
+}
+
 TEST(Simulator, MovingActorPointsAreLabelledAndOnTheActor) {
     ScenarioConfig sc = small_world(9);
     sc.sensor.range_noise = 0.0;
