@@ -169,6 +169,39 @@ TEST(MapperSegments, WithoutTheBreakTheConsistencyBoundStillRefusesThatLoop) {
     ASSERT_EQ(mapper.segments().size(), 1u);
 }
 
+// The optimisation run elsewhere (graph_snapshot, PoseGraph::optimise, apply) joins the segment
+// alike.
+TEST(MapperSegments, AnOptimisationAppliedFromElsewhereJoinsTheSegmentAlike) {
+    const LostAndBack s(1);
+    Mapper here(segment_config()), elsewhere(segment_config());
+    for (Mapper* m : {&here, &elsewhere}) {
+        for (std::size_t i = 0; i < 16; ++i) {
+            if (i % 4 == 0) {
+                ASSERT_TRUE(m->add_local_map(s.maps[s.map_of[i]]).added);
+            }
+            const KeyframeResult r = m->add_keyframe(s.keyframe(i));
+            ASSERT_TRUE(r.added) << r.message;
+            if (!r.optimisation_due()) continue;
+            if (m == &here) {
+                ASSERT_TRUE(m->optimise().solved);
+            } else {
+                PoseGraph g = m->graph_snapshot();
+                const OptimisationSummary summary = g.optimise();
+                ASSERT_TRUE(m->apply(g, summary));
+            }
+        }
+    }
+    ASSERT_EQ(here.segments().size(), 2u);
+    ASSERT_EQ(elsewhere.segments().size(), 2u);
+    EXPECT_TRUE(here.segments()[1].joined);
+    EXPECT_EQ(elsewhere.segments()[1].message, here.segments()[1].message);
+    for (std::uint64_t m = 0; m < 4; ++m) {
+        const Eigen::Isometry3d d = here.graph().find(*here.node_of(m))->T_world_anchor.inverse() *
+                                    elsewhere.graph().find(*elsewhere.node_of(m))->T_world_anchor;
+        EXPECT_LT(d.translation().norm(), 1e-6) << "local map " << m;
+    }
+}
+
 // The odometry hands a keyframe over before its local map: the node takes the segment of the map
 // before it, and the edge becomes the weak one when the map says it starts a segment.
 TEST(MapperSegments, ASegmentLearntFromALateLocalMapRelinksTheEdges) {
