@@ -22,6 +22,14 @@ RegistrationConfig coarse_config(const OdometryConfig& config) {
     return c;
 }
 
+// A search guess is only probed: a few coarse iterations on a quarter of the points, enough to
+// rank the guesses; the best go on to the full coarse and fine stages.
+RegistrationConfig probe_config(const OdometryConfig& config) {
+    RegistrationConfig c = coarse_config(config);
+    c.max_iterations = std::min(c.max_iterations, 8);
+    return c;
+}
+
 const OdometryConfig& checked(const OdometryConfig& config) {
     common::throw_if(validate(config), "odometry");
     return config;
@@ -57,6 +65,8 @@ Odometry::Odometry(const OdometryConfig& config, const Eigen::Isometry3d& T_odom
       registration_(config.registration, config.voxel_size, &parallel_),
       coarse_registration_(coarse_config(config),
                            config.voxel_size * std::max(1, config.coarse_voxel_factor), &parallel_),
+      probe_registration_(probe_config(config),
+                          config.voxel_size * std::max(1, config.coarse_voxel_factor), &parallel_),
       motion_(config.prediction == "frame"  ? PredictionMode::kFrame
               : config.prediction == "none" ? PredictionMode::kNone
                                             : PredictionMode::kTime),
@@ -96,6 +106,7 @@ FrameResult Odometry::register_frame(const common::PointCloud& cloud) {
         return ms;
     };
     preprocessor_.run(cloud, motion_.poses() == 2 ? &velocity : nullptr, &scan_);
+    coarse_stride_ = 0;  // coarse_points_ are of the previous scan
     r.preprocess_ms = lap();
     r.dropped_non_finite = scan_.dropped_non_finite;
     r.dropped_range = scan_.dropped_range;
@@ -210,13 +221,23 @@ FrameResult Odometry::register_frame(const common::PointCloud& cloud) {
     return r;
 }
 
-registration::RegistrationResult Odometry::coarse_align(const Eigen::Isometry3d& guess_map) {
+registration::RegistrationResult Odometry::coarse_align(const Eigen::Isometry3d& guess_map,
+                                                        registration::Registration& registration,
+                                                        std::size_t stride) {
     // Every other point is plenty for the coarse stage (it only has to reach the basin).
-    coarse_points_.clear();
-    for (std::size_t i = 0; i < scan_.registration_points.size(); i += 2) {
-        coarse_points_.push_back(scan_.registration_points[i]);
+    if (coarse_stride_ != stride) {
+        coarse_points_.clear();
+        for (std::size_t i = 0; i < scan_.registration_points.size(); i += stride) {
+            coarse_points_.push_back(scan_.registration_points[i]);
+        }
+        coarse_stride_ = stride;
     }
-    return coarse_registration_.align(coarse_points_, *maps_.current().coarse(), guess_map);
+    return registration.align(coarse_points_, *maps_.current().coarse(), guess_map);
+}
+
+bool Odometry::excellent(const FrameResult& r) const {
+    return r.converged && typical_overlap_ > 0.0 && r.overlap >= typical_overlap_ &&
+           r.inlier_fraction >= typical_inliers_ && r.residual_rms <= typical_rms_;
 }
 
 std::string Odometry::try_register(const Eigen::Isometry3d& guess_odom, double dt, bool coarse_done,
@@ -225,7 +246,8 @@ std::string Odometry::try_register(const Eigen::Isometry3d& guess_odom, double d
     const Eigen::Isometry3d T_odom_map = map.T_odom_map();
     Eigen::Isometry3d guess = T_odom_map.inverse() * guess_odom;
     if (!coarse_done && map.coarse() != nullptr) {
-        const registration::RegistrationResult coarse = coarse_align(guess);
+        const registration::RegistrationResult coarse =
+            coarse_align(guess, coarse_registration_, 2);
         r->coarse_iterations += coarse.iterations;
         if (coarse.ok()) guess = coarse.T_map_lidar;
     }
@@ -320,10 +342,11 @@ std::string Odometry::search(const Eigen::Isometry3d& predicted, double dt, Fram
             starts.push_back({g, 0, false});
             continue;
         }
-        const registration::RegistrationResult coarse = coarse_align(T_map_odom * g);
+        const registration::RegistrationResult coarse =
+            coarse_align(T_map_odom * g, probe_registration_, 2);
         coarse_iterations += coarse.iterations;
         if (!coarse.ok()) continue;
-        starts.push_back({map.T_odom_map() * coarse.T_map_lidar, coarse.inliers, true});
+        starts.push_back({map.T_odom_map() * coarse.T_map_lidar, coarse.inliers, false});
     }
     std::stable_sort(starts.begin(), starts.end(),
                      [](const Start& a, const Start& b) { return a.score > b.score; });

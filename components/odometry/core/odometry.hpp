@@ -126,7 +126,12 @@ class Odometry {
     // The prediction failed or was doubtful: registrations from the last pose and from yaw
     // offsets around the prediction; the best acceptable fit, or why none was.
     std::string search(const Eigen::Isometry3d& predicted, double dt, FrameResult* best);
-    registration::RegistrationResult coarse_align(const Eigen::Isometry3d& guess_map);
+    // On the coarse grid, every `stride`-th registration point, with `registration` (the coarse
+    // one, or the quick probe of a search guess).
+    registration::RegistrationResult coarse_align(const Eigen::Isometry3d& guess_map,
+                                                  registration::Registration& registration,
+                                                  std::size_t stride);
+    bool excellent(const FrameResult& r) const;
     bool doubtful(const FrameResult& r) const;
     void learn(const FrameResult& r);
     void accept(const FrameResult& result);
@@ -137,6 +142,7 @@ class Odometry {
     registration::Preprocessor preprocessor_;
     registration::Registration registration_;
     registration::Registration coarse_registration_;  // used when the maps have a coarse grid
+    registration::Registration probe_registration_;   // a search guess's quick coarse alignment
     MotionModel motion_;
     LocalMapSet maps_;
     KeyframeSelector keyframes_;
@@ -151,6 +157,7 @@ class Odometry {
     double last_stamp_ = 0.0;
     registration::PreprocessedScan scan_;  // reused buffers
     std::vector<Eigen::Vector3f> coarse_points_;
+    std::size_t coarse_stride_ = 0;  // coarse_points_ holds every stride-th point of scan_
 };
 
 }  // namespace ltm::odometry
