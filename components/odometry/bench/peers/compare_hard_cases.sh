@@ -197,11 +197,11 @@ for c in "${CASES[@]}"; do
 done
 
 {
-    printf '%-16s %6s %9s %9s %13s %9s %8s %8s\n' case scans "ltm ATE" "KISS ATE" \
+    printf '%-20s %6s %9s %9s %13s %9s %8s %8s\n' case scans "ltm ATE" "KISS ATE" \
         "ltm trk/lost" "ltm lost" "ltm fps" "KISS fps"
     for r in "${ROWS[@]+"${ROWS[@]}"}"; do
         IFS='|' read -r a b c d e f g h <<< "$r"
-        printf '%-16s %6s %9s %9s %13s %9s %8s %8s\n' "$a" "$b" "$c" "$d" "$e" "$f" "$g" "$h"
+        printf '%-20s %6s %9s %9s %13s %9s %8s %8s\n' "$a" "$b" "$c" "$d" "$e" "$f" "$g" "$h"
     done
 } | tee "$OUT/table.txt"
 printf '(ATE: aligned RMSE [m] by ltm_eval traj; fps: CPU time, one thread; logs and poses: %s)\n' "$OUT"

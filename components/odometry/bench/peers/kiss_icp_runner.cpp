@@ -17,7 +17,18 @@
 // passes a PCD's per-point time field (t, timestamp, timestamps, time or stamps, the names its
 // generic data loader looks for) when there is one, and nothing otherwise: KITTI .bin scans and
 // the shared Livox PCDs (x y z intensity) are registered without de-skewing, as KISS-ICP's own
-// loaders would. times.txt is read only to check it covers the scans and to report the span.
+// loaders would. times.txt is read only to check it covers the scans, to report the span and to
+// place absolute per-point times (see below).
+//
+// Pose time: when KISS-ICP de-skews, it moves every point to the time of the LAST point of the
+// sweep (Preprocessor: pose exp((s - 1) omega) for the normalised time s), so its pose is the
+// sensor's at the end of the sweep, while the scan stamp of times.txt and the references (ltm's
+// poses, the simulator's poses.txt) are at per-point time 0 (the stamp). With --pose-at stamp
+// (the default) the runner reports the pose at the stamp by KISS-ICP's own in-sweep motion model:
+// T_world_end * exp((s0 - 1) omega), s0 the stamp's normalised time, omega the log of the motion
+// KISS-ICP de-skewed that scan with (its last frame-to-frame delta). Per-point times more than
+// 1e4 s from 0 are taken as absolute and the stamp is the scan's line of times.txt. --pose-at end
+// writes KISS-ICP's pose as it is. Without per-point times both are the same.
 //
 // --kitti-correction applies the 0.205 deg vertical-angle correction of the HDL-64E scans that
 // KISS-ICP's KITTI data loader applies (from IMLS-SLAM; written here from its description, a
@@ -41,6 +52,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <sophus/se3.hpp>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -58,6 +70,7 @@ struct Args {
     std::size_t every = 1;
     std::size_t max_frames = 0;  // 0: all kept scans
     bool kitti_correction = false;
+    bool pose_at_stamp = true;  // false: at the end of the sweep, as KISS-ICP reports it
 };
 
 // One line for the user; main prints it and exits 1.
@@ -67,13 +80,15 @@ struct UserError : std::runtime_error {
 
 const char* const kUsage =
     "usage: kiss_icp_runner DIR [--every N] [--max-frames N] [--out POSES.txt] "
-    "[--kitti-correction]\n"
+    "[--kitti-correction] [--pose-at stamp|end]\n"
     "  DIR: KITTI layout (DIR/velodyne/*.bin or DIR/*.bin, times.txt beside velodyne/) or a PCD\n"
     "       folder (DIR/Scans/*.pcd or DIR/*.pcd, binary or ascii, times.txt in DIR)\n"
     "  --every N        keep every Nth scan (0, N, 2N, ...)\n"
     "  --max-frames N   stop after N kept scans (0: all)\n"
     "  --out FILE       write T_world_lidar of each kept scan (KITTI format, first identity)\n"
     "  --kitti-correction  KISS-ICP's KITTI loader's 0.205 deg vertical-angle correction\n"
+    "  --pose-at stamp|end  de-skewed scans: the pose at the scan stamp (default) or at the end\n"
+    "                   of the sweep, where KISS-ICP puts it\n"
     "Runs KISS-ICP's pipeline with its default KISSConfig on one TBB thread.\n";
 
 std::size_t parse_count(const std::string& option, const char* text, bool allow_zero) {
@@ -105,6 +120,11 @@ bool parse_args(int argc, char** argv, Args& a) {
             a.out = value();
         } else if (s == "--kitti-correction") {
             a.kitti_correction = true;
+        } else if (s == "--pose-at") {
+            const std::string v = value();
+            if (v != "stamp" && v != "end")
+                throw UserError("--pose-at: stamp or end, got '" + v + "'");
+            a.pose_at_stamp = v == "stamp";
         } else if (!s.empty() && s[0] == '-') {
             throw UserError("unknown option '" + s + "' (--help)");
         } else if (a.dir.empty()) {
@@ -374,10 +394,11 @@ int run(const Args& a) {
     kiss_icp::pipeline::KissICP kiss(config);
     std::printf(
         "%s: %zu of %zu %s scans (every %zu)%s; KISS-ICP defaults: voxel %.2f m, "
-        "max range %.0f m, deskew %s, 1 TBB thread\n",
+        "max range %.0f m, deskew %s, 1 TBB thread; poses at the %s\n",
         a.dir.c_str(), kept.size(), folder.scans.size(), folder.kitti ? "kitti" : "pcd", a.every,
         folder.times_file.empty() ? " (no times.txt)" : "", config.voxel_size, config.max_range,
-        config.deskew ? "on (per-point times only)" : "off");
+        config.deskew ? "on (per-point times only)" : "off",
+        a.pose_at_stamp ? "scan stamp" : "end of the sweep");
 
     double cpu = 0.0, io = 0.0;
     std::size_t deskewed = 0, points = 0;
@@ -388,6 +409,7 @@ int run(const Args& a) {
         const double c1 = thread_cpu_seconds();
         if (scan.points.empty()) std::fprintf(stderr, "scan %zu: no points\n", i);
         if (a.kitti_correction) correct_kitti_scan(scan.points);
+        const Sophus::SE3d deskew_motion = kiss.delta();  // what this scan is de-skewed with
         kiss.RegisterFrame(scan.points, scan.timestamps);
         const double c2 = thread_cpu_seconds();
         io += c1 - c0;
@@ -395,7 +417,18 @@ int run(const Args& a) {
         ms.push_back(1000.0 * (c2 - c1));
         deskewed += !scan.timestamps.empty();
         points += scan.points.size();
-        if (out) write_pose(out, kiss.pose().matrix());  // T_world_lidar; the first is identity
+        Sophus::SE3d pose = kiss.pose();  // T_world_lidar; the first is identity
+        if (a.pose_at_stamp && config.deskew && !scan.timestamps.empty()) {
+            const auto [lo, hi] =
+                std::minmax_element(scan.timestamps.begin(), scan.timestamps.end());
+            const bool absolute = std::abs(*lo) > 1e4 && !times.empty();
+            const double stamp = absolute ? times[i] : 0.0;
+            if (*hi > *lo) {
+                const double s0 = (stamp - *lo) / (*hi - *lo);
+                pose = pose * Sophus::SE3d::exp((s0 - 1.0) * deskew_motion.log());
+            }
+        }
+        if (out) write_pose(out, pose.matrix());
     }
     const std::size_t n = kept.size();
     std::sort(ms.begin(), ms.end());
