@@ -2,7 +2,7 @@
 # ltm's odometry beside KISS-ICP (default settings, one thread) on the hard cases of issue 11:
 # the same scans, both scored by ltm_eval traj against the same reference lines.
 #
-#   compare_hard_cases.sh [--out-dir DIR] [--max-frames N] [--kiss-kitti-correction]
+#   compare_hard_cases.sh [--out-dir DIR] [--max-frames N] [--kiss-kitti-correction] [--sim]
 #                         [--only REGEX] [DIR:PRESET[:N[,N...]] ...]
 #   ./ltm bench hard_cases [the same arguments]
 #
@@ -12,6 +12,10 @@
 # frame), all scans or every Nth for each N listed. The reference is DIR/poses.txt or
 # DIR/odom_poses.txt (LiDAR frame) or DIR/poses_semantickitti.txt with DIR/calib.txt (camera
 # frame), its lines 1, 1+N, 1+2N, ... as many as scans were kept.
+#   --sim              also the simulated hard cases, written first by ltm_sim --format pcd (raw
+#                      sweeps with per-point time) under the output folder: fast_turns with
+#                      livox_avia (preset narrow) and vlp16, turn_on_spot with vlp16 and
+#                      livox_avia (narrow); all scans and every 2nd
 #   --out-dir DIR      poses, logs and table.txt (default: a new folder under /tmp)
 #   --max-frames N     only the first N kept scans of each case
 #   --only REGEX       only the cases whose name matches
@@ -36,6 +40,7 @@ MAX_FRAMES=0
 ONLY=""
 KISS_EXTRA=()
 EXTRA=()
+SIM=0
 
 die() { printf 'compare_hard_cases: error: %s\n' "$*" >&2; exit 1; }
 say() { printf 'compare_hard_cases: %s\n' "$*" >&2; }
@@ -48,6 +53,7 @@ while [ $# -gt 0 ]; do
             MAX_FRAMES="$2"; shift 2 ;;
         --only) [ $# -ge 2 ] || die "--only needs a regular expression"; ONLY="$2"; shift 2 ;;
         --kiss-kitti-correction) KISS_EXTRA+=(--kitti-correction); shift ;;
+        --sim) SIM=1; shift ;;
         -h|--help) sed -n '2,/^set -euo/p' "${BASH_SOURCE[0]}" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
         -*) die "unknown option '$1' (--help)" ;;
         *:*) EXTRA+=("$1"); shift ;;
@@ -76,6 +82,24 @@ if [ -d "$DATA" ]; then
     done
 else
     say "no shared data at $DATA: the hku-avia and KITTI cases are skipped"
+fi
+if [ "$SIM" = 1 ]; then
+    [ -n "$OUT" ] || OUT="$(mktemp -d /tmp/ltm-hard-cases.XXXXXX)"
+    mkdir -p "$OUT/sim"
+    SIMULATOR="$BUILD_DIR/bin/ltm_sim"
+    [ -x "$SIMULATOR" ] || die "ltm_sim is not built in $BUILD_DIR (./ltm setup)"
+    for s in fast_turns:livox_avia:narrow fast_turns:vlp16:vlp16 turn_on_spot:vlp16:vlp16 \
+        turn_on_spot:livox_avia:narrow; do
+        IFS=: read -r scenario sensor preset <<< "$s"
+        d="$OUT/sim/${scenario}_$sensor"
+        if [ ! -f "$d/poses.txt" ]; then
+            say "simulating $scenario with $sensor into $d"
+            "$SIMULATOR" "$ROOT/components/simulator/scenarios/$scenario.yaml" --sensor "$sensor" \
+                --format pcd --quiet --out "$d" > "$OUT/sim_${scenario}_$sensor.log" 2>&1 ||
+                die "ltm_sim failed: $(tail -1 "$OUT/sim_${scenario}_$sensor.log")"
+        fi
+        EXTRA+=("$d:$preset:1,2")
+    done
 fi
 for e in "${EXTRA[@]+"${EXTRA[@]}"}"; do
     IFS=: read -r d preset everys <<< "$e"
@@ -197,11 +221,11 @@ for c in "${CASES[@]}"; do
 done
 
 {
-    printf '%-20s %6s %9s %9s %13s %9s %8s %8s\n' case scans "ltm ATE" "KISS ATE" \
+    printf '%-25s %6s %9s %9s %13s %9s %8s %8s\n' case scans "ltm ATE" "KISS ATE" \
         "ltm trk/lost" "ltm lost" "ltm fps" "KISS fps"
     for r in "${ROWS[@]+"${ROWS[@]}"}"; do
         IFS='|' read -r a b c d e f g h <<< "$r"
-        printf '%-20s %6s %9s %9s %13s %9s %8s %8s\n' "$a" "$b" "$c" "$d" "$e" "$f" "$g" "$h"
+        printf '%-25s %6s %9s %9s %13s %9s %8s %8s\n' "$a" "$b" "$c" "$d" "$e" "$f" "$g" "$h"
     done
 } | tee "$OUT/table.txt"
 printf '(ATE: aligned RMSE [m] by ltm_eval traj; fps: CPU time, one thread; logs and poses: %s)\n' "$OUT"
