@@ -22,7 +22,10 @@ Handover MapHandover::after_frame(Odometry& odometry, const FrameResult& frame,
     }
     take_finished(odometry, &h.local_maps);
     const int every = config_.snapshot_every_keyframes;
-    if (h.keyframe && every > 0 && keyframes_ % std::uint64_t(every) == 0) {
+    // A restart: the new map goes over at once, so that the back end knows its segment (no
+    // odometry relation to the maps before) before it judges loops from its keyframes.
+    const bool restarted = frame.status == FrameStatus::kRestarted;
+    if (restarted || (h.keyframe && every > 0 && keyframes_ % std::uint64_t(every) == 0)) {
         for (const LocalMap& m : odometry.active_local_maps()) {
             h.local_maps.push_back(to_local_map_data(m, ++revision_, false, seen_[m.id()]));
         }

@@ -4,8 +4,9 @@
 //   - the keyframe, with its local map's anchor and the scan's index in the stream;
 //   - every local map the odometry finished, with the stamps of the scans that updated it
 //     (observation times: map maintenance compares them with its voxels' life);
-//   - every `snapshot_every_keyframes` keyframes, a snapshot of each active local map (finished =
-//     false), so that loops can close against the map being built.
+//   - every `snapshot_every_keyframes` keyframes, and after a restart (a new segment), a snapshot
+//     of each active local map (finished = false), so that loops can close against the map being
+//     built and the back end learns a new segment before its keyframes' loops are judged.
 // Revisions count every handed-over map, so a later snapshot or the finished map supersedes an
 // earlier one. Call after every Odometry::register_frame(), and finish() at the end of a stream.
 #include <cstdint>

@@ -266,6 +266,11 @@ std::string Odometry::try_register(const Eigen::Isometry3d& guess_odom, double d
     const Eigen::Isometry3d motion = last_tracked_pose_.inverse() * estimate;
     const double moved = motion.translation().norm();
     const double turned = registration::rotation_angle(motion) * kRadToDeg;
+    // Back from lost, a fit must be as good as the tracked scans' usually are: a recovery at a
+    // wrong place is worse than a restart (which the back end knows to join by a loop).
+    const double min_fraction =
+        lost_ ? std::max(c.min_inlier_fraction, c.recover_inlier_ratio * typical_inliers_)
+              : c.min_inlier_fraction;
     std::ostringstream why;
     why.precision(3);
     if (!reg.ok()) {
@@ -273,10 +278,10 @@ std::string Odometry::try_register(const Eigen::Isometry3d& guess_odom, double d
             << " correspondences)";
     } else if (!estimate.matrix().allFinite()) {
         why << "registration produced a non-finite pose";
-    } else if (reg.inlier_fraction() < c.min_inlier_fraction) {
+    } else if (reg.inlier_fraction() < min_fraction) {
         why << "only " << 100.0 * reg.inlier_fraction() << " % of " << reg.correspondences
-            << " correspondences fit (at least " << 100.0 * c.min_inlier_fraction << " % within "
-            << config_.registration.inlier_distance << " m)";
+            << " correspondences fit (at least " << 100.0 * min_fraction << " % within "
+            << config_.registration.inlier_distance << " m" << (lost_ ? ", when lost" : "") << ")";
     } else if (typical_rms_ > 0.0 && reg.residual_rms > c.max_residual_ratio * typical_rms_) {
         why << "residual " << reg.residual_rms << " m RMS, over " << c.max_residual_ratio
             << " x the recent " << typical_rms_ << " m";

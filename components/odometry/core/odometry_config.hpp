@@ -42,8 +42,11 @@ struct TrackingConfig {
     // Scans further apart than this (sensor time since the last tracked one) are always searched:
     // a constant-velocity prediction over a long gap is a guess (keyframe streams, dropouts).
     double search_after = 0.3;  // [s]
-    double yaw_search = 90.0;   // [deg] 0: no yaw search
-    double yaw_step = 15.0;     // [deg]
+    // Back from lost (after refused or skipped scans), a fit needs at least this times the
+    // recent inlier fraction: recovering at a wrong place is worse than restarting.
+    double recover_inlier_ratio = 0.9;
+    double yaw_search = 90.0;  // [deg] 0: no yaw search
+    double yaw_step = 15.0;    // [deg]
     // Lost (no acceptable registration) for this long since the last tracked scan, sensor time:
     // the odometry ends its local maps and starts a new one at its best estimate (a new segment,
     // joined to the map later by a loop or by localisation).
@@ -109,6 +112,7 @@ void visit_fields(OdometryConfig& c, Visitor&& v) {
     v("tracking.retry_inlier_ratio", t.retry_inlier_ratio, unit);
     v("tracking.retry_overlap_ratio", t.retry_overlap_ratio, unit);
     v("tracking.search_after", t.search_after, non_negative);
+    v("tracking.recover_inlier_ratio", t.recover_inlier_ratio, unit);
     v("tracking.yaw_search", t.yaw_search, in_range(0, 180));
     v("tracking.yaw_step", t.yaw_step, in_range(1, 90));
     v("tracking.restart_after", t.restart_after, non_negative);

@@ -1,8 +1,8 @@
 #pragma once
 // OdometryConfig from parameters (a launch config's `params:`, or a YAML file given to the
-// benchmark): an optional `preset` (hdl64, vlp32, vlp16, narrow, os1-64) picks the base, every other key
-// mirrors the struct (`voxel_size`, `preprocess.max_range`, ...). Unknown keys, wrong types and
-// invalid values fail with file, line and key (the keys and rules: visit_fields in
+// benchmark): an optional `preset` (hdl64, vlp32, vlp16, narrow, os1-64) picks the base, every
+// other key mirrors the struct (`voxel_size`, `preprocess.max_range`, ...). Unknown keys, wrong
+// types and invalid values fail with file, line and key (the keys and rules: visit_fields in
 // odometry_config.hpp).
 #include <string>
 
