@@ -13,11 +13,14 @@ Eigen::Isometry3d normalised(const Eigen::Isometry3d& T) {
 
 }  // namespace
 
-void MotionModel::push(double stamp, const Eigen::Isometry3d& T_odom_lidar) {
+void MotionModel::push(double stamp, const Eigen::Isometry3d& T_odom_lidar,
+                       const Eigen::Isometry3d& T_stamp_mid) {
     stamp_[0] = stamp_[1];
     pose_[0] = pose_[1];
+    stamp_mid_[0] = stamp_mid_[1];
     stamp_[1] = stamp;
     pose_[1] = normalised(T_odom_lidar);
+    stamp_mid_[1] = normalised(T_stamp_mid);
     if (count_ < 2) ++count_;
 }
 
@@ -32,10 +35,33 @@ Eigen::Isometry3d MotionModel::predict(double stamp) const {
     return normalised(pose_[1] * registration::scale_motion(delta, dt / dt_prev));
 }
 
+void MotionModel::damp(const std::vector<registration::Vector6d>& directions, double lever,
+                       double keep) {
+    if (count_ < 2 || directions.empty()) return;
+    // The last motion in odometry axes, rotation as displacement at the lever arm.
+    registration::Vector6d m;
+    m.head<3>() = pose_[1].translation() - pose_[0].translation();
+    m.tail<3>() = lever * registration::so3_log(pose_[1].linear() * pose_[0].linear().transpose());
+    for (const registration::Vector6d& v : directions) m -= (1.0 - keep) * v.dot(m) * v;
+    // The previous pose is rewritten so that the last motion is the damped one.
+    pose_[0].linear() = registration::so3_exp(-m.tail<3>() / lever) * pose_[1].linear();
+    pose_[0].translation() = pose_[1].translation() - m.head<3>();
+    pose_[0] = normalised(pose_[0]);
+}
+
 registration::Vector6d MotionModel::velocity() const {
     const double dt_prev = stamp_[1] - stamp_[0];
     if (count_ < 2 || !(dt_prev > 0.0)) return registration::Vector6d::Zero();
-    return registration::se3_log(pose_[0].inverse() * pose_[1]) / dt_prev;
+    return registration::se3_log((pose_[0] * stamp_mid_[0]).inverse() * pose_[1] * stamp_mid_[1]) /
+           dt_prev;
+}
+
+registration::Vector6d MotionModel::velocity_to(double stamp,
+                                                const Eigen::Isometry3d& T_odom_mid) const {
+    const double dt = stamp - stamp_[1];
+    if (count_ < 1 || !(dt > 0.0)) return registration::Vector6d::Zero();
+    return registration::se3_log((pose_[1] * stamp_mid_[1]).inverse() * normalised(T_odom_mid)) /
+           dt;
 }
 
 }  // namespace ltm::odometry

@@ -3,6 +3,7 @@
 // T_{i-1})^(dt/dt'), the last relative motion scaled to the time since the last frame (or once per
 // frame).
 #include <Eigen/Geometry>
+#include <vector>
 
 #include "registration/core/se3.hpp"
 
@@ -22,17 +23,33 @@ class MotionModel {
     double last_stamp() const { return stamp_[1]; }
     const Eigen::Isometry3d& last_pose() const { return pose_[1]; }
 
-    void push(double stamp, const Eigen::Isometry3d& T_odom_lidar);
+    // T_stamp_mid: the LiDAR at the middle of the sweep in the frame at the stamp, as the scan
+    // was de-skewed (registration::PreprocessedScan; identity for scans taken at their stamp).
+    void push(double stamp, const Eigen::Isometry3d& T_odom_lidar,
+              const Eigen::Isometry3d& T_stamp_mid = Eigen::Isometry3d::Identity());
     // The pose at `stamp` (identity before the first pose, the last pose with only one).
     Eigen::Isometry3d predict(double stamp) const;
-    // Body-frame twist per second [v; w] between the last two poses (zero with fewer).
+    // Body-frame twist per second [v; w] between the last two poses (zero with fewer), taken at
+    // the middle of their sweeps: that is where registration fixes a de-skewed scan, whatever the
+    // velocity it was de-skewed with. Between the poses at the stamps, which move with that
+    // velocity's error, each error would come back into the next velocity with the opposite sign.
     registration::Vector6d velocity() const;
+    // The same from the last pose to the mid-sweep pose of a scan at `stamp` (zero without a last
+    // pose or a later stamp).
+    registration::Vector6d velocity_to(double stamp, const Eigen::Isometry3d& T_odom_mid) const;
+    // The last registration could not observe `directions` (unit, [dt; dr * lever] in odometry
+    // axes, as RegistrationResult::degenerate_directions): the last motion along them is not a
+    // measurement but the prediction carried on. Keep only `keep` of it, so that a wrong velocity
+    // along an unobservable direction dies out instead of being extrapolated for ever.
+    void damp(const std::vector<registration::Vector6d>& directions, double lever, double keep);
 
   private:
     PredictionMode mode_;
     int count_ = 0;
     double stamp_[2] = {0.0, 0.0};
     Eigen::Isometry3d pose_[2] = {Eigen::Isometry3d::Identity(), Eigen::Isometry3d::Identity()};
+    Eigen::Isometry3d stamp_mid_[2] = {Eigen::Isometry3d::Identity(),
+                                       Eigen::Isometry3d::Identity()};
 };
 
 }  // namespace ltm::odometry

@@ -32,6 +32,24 @@ TEST(MotionModel, ConstantVelocityScaledByTime) {
     EXPECT_TRUE(m.velocity().isApprox(registration::se3_log(delta) / 0.1, 1e-12));
 }
 
+TEST(MotionModel, VelocityIsTakenBetweenTheMidSweepPoses) {
+    // Scans de-skewed with different velocities: their poses at the stamps differ by what each
+    // de-skew assumed; the poses at the middle of the sweeps (where registration fixes a de-skewed
+    // scan) give the velocity.
+    const Eigen::Isometry3d mid_a = pose(0, 0), mid_b = pose(1, 0.1), mid_c = pose(2.5, 0.3);
+    const Eigen::Isometry3d stamp_mid_a = pose(0.2, 0.05), stamp_mid_b = pose(0.7, -0.02);
+    MotionModel m;
+    m.push(0.0, mid_a * stamp_mid_a.inverse(), stamp_mid_a);
+    EXPECT_TRUE(m.velocity_to(0.1, mid_b)
+                    .isApprox(registration::se3_log(mid_a.inverse() * mid_b) / 0.1, 1e-12));
+    m.push(0.1, mid_b * stamp_mid_b.inverse(), stamp_mid_b);
+    EXPECT_TRUE(m.last_pose().isApprox(mid_b * stamp_mid_b.inverse(), 1e-12));
+    EXPECT_TRUE(m.velocity().isApprox(registration::se3_log(mid_a.inverse() * mid_b) / 0.1, 1e-12));
+    EXPECT_TRUE(m.velocity_to(0.3, mid_c)
+                    .isApprox(registration::se3_log(mid_b.inverse() * mid_c) / 0.2, 1e-12));
+    EXPECT_TRUE(m.velocity_to(0.1, mid_c).isZero());  // no time has passed
+}
+
 TEST(MotionModel, FrameAndNoneModesIgnoreTheStamps) {
     const Eigen::Isometry3d a = pose(0, 0), b = pose(1, 0.1);
     MotionModel frame(PredictionMode::kFrame), none(PredictionMode::kNone);

@@ -127,7 +127,7 @@ FrameResult Odometry::register_frame(const common::PointCloud& cloud) {
         r = reject(r, FrameStatus::kSkippedTooFewPoints, s.str());
         has_stamp_ = true;
         last_stamp_ = cloud.stamp;
-        if (motion_.poses()) motion_.push(cloud.stamp, predicted);
+        if (motion_.poses()) motion_.push(cloud.stamp, predicted, scan_.T_stamp_mid);
         if (!maps_.empty()) {
             lost_ = true;
             r.lost_for = since_tracked;
@@ -168,7 +168,7 @@ FrameResult Odometry::register_frame(const common::PointCloud& cloud) {
             lost_ = true;
             has_stamp_ = true;
             last_stamp_ = cloud.stamp;
-            motion_.push(cloud.stamp, predicted);
+            motion_.push(cloud.stamp, predicted, scan_.T_stamp_mid);
             return r;
         }
         if (!why.empty()) {
@@ -196,12 +196,12 @@ FrameResult Odometry::register_frame(const common::PointCloud& cloud) {
         lost_ = false;
     }
     // The map gets the scan de-skewed with the motion just estimated (better than the predicted
-    // one, and available from the second scan on).
+    // one, and available from the second scan on). Registration fixed the pose at the middle of
+    // the sweep; the pose at the stamp follows with that motion.
     if (motion_.poses() > 0 && cloud.stamp > motion_.last_stamp()) {
-        const registration::Vector6d estimated =
-            registration::se3_log(motion_.last_pose().inverse() * r.T_odom_lidar) /
-            (cloud.stamp - motion_.last_stamp());
-        preprocessor_.redeskew_map_points(estimated, &scan_);
+        const Eigen::Isometry3d T_odom_mid = r.T_odom_lidar * scan_.T_stamp_mid;
+        preprocessor_.redeskew_map_points(motion_.velocity_to(cloud.stamp, T_odom_mid), &scan_);
+        r.T_odom_lidar = T_odom_mid * scan_.T_stamp_mid.inverse();
         r.deskewed = scan_.deskewed;
     }
     accept(r);
@@ -393,7 +393,11 @@ void Odometry::accept(const FrameResult& result) {
     last_stamp_ = result.stamp;
     last_tracked_stamp_ = result.stamp;
     last_tracked_pose_ = result.T_odom_lidar;
-    motion_.push(result.stamp, result.T_odom_lidar);
+    motion_.push(result.stamp, result.T_odom_lidar, scan_.T_stamp_mid);
+    if (result.degenerate()) {
+        motion_.damp(result.degenerate_directions, config_.registration.degeneracy_length,
+                     config_.tracking.degenerate_velocity_keep);
+    }
 }
 
 void Odometry::finish_local_maps() { maps_.finish_all(); }

@@ -45,6 +45,11 @@ struct TrackingConfig {
     // Back from lost (after refused or skipped scans), a fit needs at least this times the
     // recent inlier fraction: recovering at a wrong place is worse than restarting.
     double recover_inlier_ratio = 0.9;
+    // Of the last motion along a direction the registration could not observe (degenerate), the
+    // fraction the constant-velocity prediction keeps [0..1]: 1 extrapolates it unchanged (a
+    // tunnel), lower values let a wrong velocity there die out (an open field seen by a narrow
+    // view, where the prediction alone would carry a sideways drift for ever).
+    double degenerate_velocity_keep = 0.5;
     double yaw_search = 90.0;  // [deg] 0: no yaw search
     double yaw_step = 15.0;    // [deg]
     // Lost (no acceptable registration) for this long since the last tracked scan, sensor time:
@@ -113,6 +118,7 @@ void visit_fields(OdometryConfig& c, Visitor&& v) {
     v("tracking.retry_overlap_ratio", t.retry_overlap_ratio, unit);
     v("tracking.search_after", t.search_after, non_negative);
     v("tracking.recover_inlier_ratio", t.recover_inlier_ratio, unit);
+    v("tracking.degenerate_velocity_keep", t.degenerate_velocity_keep, unit);
     v("tracking.yaw_search", t.yaw_search, in_range(0, 180));
     v("tracking.yaw_step", t.yaw_step, in_range(1, 90));
     v("tracking.restart_after", t.restart_after, non_negative);
