@@ -41,6 +41,7 @@ void Preprocessor::run(const common::PointCloud& cloud, const Vector6d* velocity
     out->dropped_non_finite = 0;
     out->dropped_range = 0;
     out->deskewed = false;
+    out->T_stamp_mid.setIdentity();
     cropped_.clear();
     cropped_times_.clear();
     const float min2 = float(config_.min_range * config_.min_range);
@@ -78,9 +79,15 @@ void Preprocessor::run(const common::PointCloud& cloud, const Vector6d* velocity
         if (with_time) map_times_.push_back(cropped_times_[i]);
     }
     raw_map_points_.clear();
-    if (with_time && config_.deskew) raw_map_points_ = out->map_points;
+    mid_time_ = 0.0;
+    if (with_time && config_.deskew && !map_times_.empty()) {
+        raw_map_points_ = out->map_points;
+        const auto [lo, hi] = std::minmax_element(map_times_.begin(), map_times_.end());
+        mid_time_ = 0.5 * (double(*lo) + double(*hi));
+    }
     if (with_time && config_.deskew && velocity != nullptr && velocity->allFinite()) {
         deskew(map_times_, *velocity, &out->map_points);
+        out->T_stamp_mid = se3_exp(mid_time_ * *velocity);
         out->deskewed = true;
     }
 
@@ -102,6 +109,7 @@ void Preprocessor::redeskew_map_points(const Vector6d& velocity, PreprocessedSca
     }
     out->map_points = raw_map_points_;
     deskew(map_times_, velocity, &out->map_points);
+    out->T_stamp_mid = se3_exp(mid_time_ * velocity);
     out->deskewed = true;
 }
 

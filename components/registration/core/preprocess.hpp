@@ -2,7 +2,7 @@
 // Scan pre-processing (Algorithm 1, before registration): drop non-finite points, range crop,
 // voxel down-sampling (a fine grid for the map update, a coarser one for registration), and
 // de-skew when the scan has per-point times. Buffers are reused: no allocation once warm.
-#include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <vector>
 
 #include "common/core/point_cloud.hpp"
@@ -19,6 +19,12 @@ struct PreprocessedScan {
     std::size_t dropped_non_finite = 0;
     std::size_t dropped_range = 0;
     bool deskewed = false;
+    // The LiDAR at the middle of the sweep in the frame at the stamp, as de-skewing assumed it:
+    // Exp(t_mid * velocity) (identity when not de-skewed). Points de-skewed with a wrong velocity
+    // are off by (t - t_stamp) * error, on average half a sweep's worth: a registration of them
+    // fixes the pose at the middle of the sweep, where that error averages out, and the pose at
+    // the stamp follows only through this transform.
+    Eigen::Isometry3d T_stamp_mid = Eigen::Isometry3d::Identity();
 };
 
 // Keeps the first point of each occupied cell of a grid of edge `cell` [m].
@@ -39,7 +45,8 @@ class Preprocessor {
     // De-skew happens only when the cloud has per-point times and the config asks for it.
     void run(const common::PointCloud& cloud, const Vector6d* velocity, PreprocessedScan* out);
     // De-skews the map points of the last run() again, from the raw points, with another velocity
-    // (the motion estimated by registration, better than the prediction). No-op without times.
+    // (the motion estimated by registration, better than the prediction), and sets T_stamp_mid
+    // for it. No-op without times.
     void redeskew_map_points(const Vector6d& velocity, PreprocessedScan* out);
 
   private:
@@ -51,6 +58,7 @@ class Preprocessor {
     std::vector<Eigen::Vector3f> cropped_;
     std::vector<float> cropped_times_, map_times_;
     std::vector<Eigen::Vector3f> raw_map_points_;  // map points before de-skewing
+    double mid_time_ = 0.0;                        // middle of the map points' times [s]
     std::vector<VoxelKey> keys_;                   // map-grid key of each cropped point
     VoxelHash cells_;
     VoxelDownsampler registration_sampler_;

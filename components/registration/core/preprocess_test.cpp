@@ -145,5 +145,56 @@ TEST(Preprocess, DeskewMovesPointsToTheScanStampFrame) {
     EXPECT_FALSE(out.deskewed);
 }
 
+TEST(Preprocess, DeskewReportsTheMidSweepPoseItAssumed) {
+    // Points of a sweep over 0.1 s, each in the sensor frame of its own time, taken while moving
+    // at `truth`; de-skewed with a velocity 0.5 m/s and 3 deg/s off. In the frame at the stamp the
+    // error grows with the time, half a sweep's worth on average: a registration of these points
+    // moves the stamp pose by that. In the frame in the middle of the sweep it averages out.
+    Vector6d truth, wrong;
+    truth << 3.0, 0.2, 0.0, 0.0, 0.0, 0.5;
+    wrong = truth;
+    wrong(0) += 0.5;
+    wrong(5) += 3.0 * M_PI / 180.0;
+    common::PointCloud raw = random_cloud(3000, 5);
+    std::vector<Vector3f> at_stamp;
+    for (std::size_t i = 0; i < raw.points.size(); ++i) {
+        raw.time.push_back(float(0.1 * double(i) / double(raw.points.size() - 1)));
+        at_stamp.push_back(
+            (se3_exp(raw.time[i] * truth) * raw.points[i].cast<double>()).cast<float>());
+    }
+    PreprocessConfig config;
+    config.min_range = 0.0;
+    config.max_range = 1000.0;
+    config.map_sample_fraction = 0.001;  // keeps every point, in order
+    Preprocessor pre(config, 1.0);
+    PreprocessedScan out;
+    pre.run(raw, &wrong, &out);
+    ASSERT_TRUE(out.deskewed);
+    ASSERT_EQ(out.map_points.size(), raw.points.size());
+    EXPECT_TRUE(out.T_stamp_mid.isApprox(se3_exp(0.05 * wrong), 1e-6));
+    const Eigen::Isometry3f stamp_to_mid = out.T_stamp_mid.inverse().cast<float>();
+    const Eigen::Isometry3f truth_to_mid = se3_exp(0.05 * truth).inverse().cast<float>();
+    Eigen::Vector3d off_stamp = Eigen::Vector3d::Zero(), off_mid = Eigen::Vector3d::Zero();
+    for (std::size_t i = 0; i < at_stamp.size(); ++i) {
+        off_stamp += (out.map_points[i] - at_stamp[i]).cast<double>();
+        off_mid += (stamp_to_mid * out.map_points[i] - truth_to_mid * at_stamp[i]).cast<double>();
+    }
+    off_stamp /= double(at_stamp.size());
+    off_mid /= double(at_stamp.size());
+    EXPECT_NEAR(off_stamp.x(), 0.05 * 0.5, 0.005);  // half a sweep of the velocity error
+    EXPECT_LT(off_mid.norm(), 0.1 * off_stamp.norm());
+    // De-skewed again with the true velocity: the true points and mid-sweep pose.
+    pre.redeskew_map_points(truth, &out);
+    EXPECT_TRUE(out.T_stamp_mid.isApprox(se3_exp(0.05 * truth), 1e-6));
+    for (std::size_t i = 0; i < at_stamp.size(); i += 100)
+        EXPECT_LT((out.map_points[i] - at_stamp[i]).norm(), 1e-3) << i;
+    // Not de-skewed (no velocity, or no times): the scan is taken at its stamp.
+    pre.run(raw, nullptr, &out);
+    EXPECT_TRUE(out.T_stamp_mid.isApprox(Eigen::Isometry3d::Identity()));
+    raw.time.clear();
+    pre.run(raw, &wrong, &out);
+    EXPECT_TRUE(out.T_stamp_mid.isApprox(Eigen::Isometry3d::Identity()));
+}
+
 }  // namespace
 }  // namespace ltm::registration
