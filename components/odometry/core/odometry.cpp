@@ -236,8 +236,8 @@ registration::RegistrationResult Odometry::coarse_align(const Eigen::Isometry3d&
 }
 
 bool Odometry::excellent(const FrameResult& r) const {
-    return r.converged && typical_overlap_ > 0.0 && r.overlap >= typical_overlap_ &&
-           r.inlier_fraction >= typical_inliers_ && r.residual_rms <= typical_rms_;
+    return r.converged && typical_overlap_ > 0.0 && r.overlap >= 0.9 * typical_overlap_ &&
+           r.inlier_fraction >= 0.95 * typical_inliers_ && r.residual_rms <= 1.1 * typical_rms_;
 }
 
 std::string Odometry::try_register(const Eigen::Isometry3d& guess_odom, double dt, bool coarse_done,
