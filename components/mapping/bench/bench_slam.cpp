@@ -65,7 +65,7 @@ void add_options(CLI::App& app, Args& a) {
     app.add_option("--calib", a.calib, "the reference is in the camera frame of this calib.txt")
         ->needs(reference);
     app.add_option("--out", a.out, "write poses, loops, the map and its PLY here");
-    app.add_option("--preset", a.preset, "sensor preset: hdl64, vlp32, vlp16 or narrow")
+    app.add_option("--preset", a.preset, "sensor preset: hdl64, vlp32, vlp16, narrow or os1-64")
         ->default_str("hdl64");
     app.add_option("--config", a.config, "odometry keys overriding the preset (YAML)");
     app.add_option("--mapping-config", a.mapping_config, "the mapping component's keys (YAML)");

@@ -52,7 +52,8 @@ void add_options(CLI::App& app, Args& a) {
     app.add_option("--calib", a.calib, "the reference is in the camera frame of this calib.txt")
         ->needs(reference);
     app.add_option("--preset", a.preset, "sensor preset: hdl64, vlp32, vlp16, narrow or os1-64")
-        ->default_str("hdl64");
+        ->default_str("hdl64")
+        ->check(CLI::IsMember(common::sensor_preset_names()));
     app.add_option("--config", a.config, "odometry keys overriding the preset (YAML)");
     app.add_option("--max-frames", a.max_frames, "only the first N scans (0: all)");
     app.add_option("--every", a.every,
