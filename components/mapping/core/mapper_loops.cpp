@@ -1,0 +1,145 @@
+// The Mapper's loop verification (see mapper.hpp): a keyframe's descriptor candidates checked
+// against their local maps (from the graph's estimate within a joined segment, then from the
+// descriptor's guess), the drift bound, and the accepted loops as graph edges. Split from
+// mapper.cpp: one concept a file.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <tuple>
+
+#include "mapping/core/drift_distance.hpp"
+#include "mapping/core/mapper.hpp"
+
+namespace ltm::mapping {
+namespace {
+
+// T turned by `yaw` about its own z axis (the descriptor's yaw guess).
+Eigen::Isometry3d yawed(const Eigen::Isometry3d& T, double yaw) {
+    Eigen::Isometry3d out = T;
+    out.linear() = T.linear() * Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    return out;
+}
+
+}  // namespace
+
+void Mapper::verify(const common::KeyframeData& keyframe,
+                    const std::vector<Eigen::Vector3f>& points, std::uint64_t node,
+                    const std::vector<LoopCandidate>& candidates, KeyframeResult* r) {
+    for (const LoopCandidate& c : candidates) {
+        if (r->loops.size() >= std::size_t(config_.max_loops_per_keyframe)) break;
+        const StoredKeyframe& match = *keyframes_[c.match];
+        LoopRejection rejection{c.match, c.distance, ""};
+        const auto entry = maps_.find(match.node);
+        if (match.node == node) {
+            rejection.reason = "candidate is in the same local map";
+        } else if (entry == maps_.end()) {
+            rejection.reason = "the candidate's local map was not received";
+        } else if (config_.max_loops_per_anchor_pair > 0 &&
+                   loops_between(match.node, node) >= config_.max_loops_per_anchor_pair) {
+            // Local maps are rigid: another loop between the same two anchors measures the same
+            // relative pose again (and costs a verification and an edge to optimise).
+            rejection.reason = "the two local maps are already joined by a loop";
+        }
+        if (!rejection.reason.empty()) {
+            r->rejected.push_back(rejection);
+            continue;
+        }
+        // The graph's estimate of the query anchor in the match anchor: within one session, the
+        // odometry bounds its error; it is a first guess and the consistency check below. Not
+        // across a segment break that no optimised loop joins yet: there it is only the
+        // odometry's guess across the break (metres and tens of degrees off), so the descriptor's
+        // guess is the one that counts and the verification's quality alone decides.
+        const Eigen::Isometry3d predicted =
+            graph_.find(match.node)->T_world_anchor.inverse() * graph_.find(node)->T_world_anchor;
+        const bool same_session = match.session == session_;
+        const SegmentKey match_key = segment_key(match.node), query_key = segment_key(node);
+        const bool placed = same_session && placed_root(match_key) == placed_root(query_key);
+        GuessList guesses;
+        const bool graph_guess = placed && config_.verify_from_graph;
+        if (graph_guess) guesses.push_back(predicted * keyframe.T_anchor_lidar);
+        guesses.push_back(yawed(match.data.T_anchor_lidar, c.yaw));
+        const LoopVerification v =
+            verifier_.verify(points, entry->second.serial, *entry->second.stored.data, guesses);
+        if (!v.accepted) {
+            rejection.reason = v.reason;
+            r->rejected.push_back(rejection);
+            continue;
+        }
+        PoseGraphEdge e;
+        e.from = match.node;
+        e.to = node;
+        e.kind = EdgeKind::kLoop;
+        e.T_from_to = v.T_anchor_lidar * keyframe.T_anchor_lidar.inverse();
+        const Eigen::Isometry3d D = predicted.inverse() * e.T_from_to;
+        const double disagreement = D.translation().norm();
+        const double disagreement_deg = Eigen::AngleAxisd(D.linear()).angle() * 180.0 / M_PI;
+        // The odometry along which the graph's estimate can have drifted: from the nearest
+        // places already joined by loops (a lap of a route is not 1 km of drift); a segment
+        // break is unbounded drift.
+        const double path =
+            placed ? drift_distance(graph_, e.from, e.to,
+                                    [this](const PoseGraphEdge& o) {
+                                        if (segment_of(o.from) != segment_of(o.to))
+                                            return std::numeric_limits<double>::infinity();
+                                        return std::abs(path_at_[o.to] - path_at_[o.from]);
+                                    })
+                   : std::numeric_limits<double>::infinity();
+        if (std::isfinite(path)) {
+            const LoopConsistencyConfig& lc = config_.loop_consistency;
+            const double max_t = lc.translation + lc.translation_per_m * path;
+            const double max_r = lc.rotation + lc.rotation_per_m * path;
+            if (disagreement > max_t || disagreement_deg > max_r) {
+                std::ostringstream why;
+                why << "disagrees with the graph by " << disagreement << " m / " << disagreement_deg
+                    << " deg (limits " << max_t << " m / " << max_r << " deg after " << path
+                    << " m of odometry from places already joined)";
+                rejection.reason = why.str();
+                r->rejected.push_back(rejection);
+                continue;
+            }
+        }
+        e.information = loop_information(config_.loop_edge);
+        e.query_keyframe = r->index;
+        e.match_keyframe = c.match;
+        if (!graph_.add_edge(e)) continue;
+        LoopClosure l;
+        l.query_keyframe = r->index;
+        l.match_keyframe = c.match;
+        l.query_scan = keyframe.scan_index;
+        l.match_scan = match.data.scan_index;
+        l.query_session = session_;
+        l.match_session = match.session;
+        l.query_segment = query_key.second;
+        l.match_segment = match_key.second;
+        l.across_break = same_session && !placed;
+        l.from_node = e.from;
+        l.to_node = e.to;
+        l.T_from_to = e.T_from_to;
+        l.T_match_query = match.data.T_anchor_lidar.inverse() * v.T_anchor_lidar;
+        l.descriptor_distance = c.distance;
+        l.descriptor_yaw = c.yaw;
+        l.inliers = v.inliers;
+        l.inlier_fraction = v.inlier_fraction;
+        l.inlier_rms = v.inlier_rms;
+        l.correction_translation = v.correction_translation;
+        l.disagreement = disagreement;
+        l.structure_points = v.structure_points;
+        l.structure_inliers = v.structure_inliers;
+        l.from_graph_guess = graph_guess && v.guess == 0;
+        r->loops.push_back(l);
+        loops_.push_back(l);
+    }
+}
+
+int Mapper::loops_between(std::uint64_t a, std::uint64_t b) const {
+    int n = 0;
+    for (const PoseGraphEdge& e : graph_.edges()) {
+        if (e.kind == EdgeKind::kLoop && e.active &&
+            ((e.from == a && e.to == b) || (e.from == b && e.to == a)))
+            ++n;
+    }
+    return n;
+}
+
+}  // namespace ltm::mapping

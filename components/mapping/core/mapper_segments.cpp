@@ -1,0 +1,147 @@
+// The Mapper's odometry segments (see mapper.hpp): which segment each graph node belongs to,
+// where a segment not yet joined by a loop is placed (at the odometry's estimate across its
+// break), and the status of every segment. Split from mapper.cpp: one concept a file.
+#include <algorithm>
+#include <map>
+#include <sstream>
+#include <vector>
+
+#include "mapping/core/mapper.hpp"
+
+namespace ltm::mapping {
+
+std::uint32_t Mapper::segment_of(std::uint64_t node) const {
+    const auto it = segment_of_.find(node);
+    return it == segment_of_.end() ? 0 : it->second.segment;
+}
+
+void Mapper::set_segment(std::uint64_t local_map_id, std::uint32_t segment) {
+    const std::map<std::uint64_t, std::uint64_t>& chain = chains_[session_];
+    auto it = chain.find(local_map_id);
+    NodeSegment& own = segment_of_[it->second];
+    const bool changed = own.segment != segment;
+    own = NodeSegment{segment, true};
+    if (!changed) return;
+    // The maps after it that only took their segment from it take the new one too.
+    std::vector<std::uint64_t> relink = {local_map_id};
+    for (auto next = std::next(it); next != chain.end(); ++next) {
+        NodeSegment& n = segment_of_[next->second];
+        if (n.told) break;
+        n.segment = segment;
+        relink.push_back(next->first);
+    }
+    for (const std::uint64_t id : relink) {
+        unlink_odometry(id);
+        link_odometry(id);
+    }
+}
+
+Mapper::SegmentKey Mapper::segment_key(std::uint64_t node) const {
+    const PoseGraphNode* n = graph_.find(node);
+    return {n ? n->session : 0, segment_of(node)};
+}
+
+Mapper::SegmentKey Mapper::placed_root(const SegmentKey& key) const {
+    const auto it = placed_.find(key);
+    return it == placed_.end() ? key : it->second;
+}
+
+void Mapper::update_placement() {
+    // Union-find over (session, segment) by the active loop edges: the graph's estimate of the
+    // relative pose of two segments means something once an optimisation has placed them by loops.
+    std::map<SegmentKey, SegmentKey> parent;
+    auto root = [&](SegmentKey k) {
+        for (auto it = parent.find(k); it != parent.end() && it->second != k; it = parent.find(k))
+            k = it->second;
+        return k;
+    };
+    for (const PoseGraphEdge& e : graph_.edges()) {
+        if (e.kind != EdgeKind::kLoop || !e.active) continue;
+        const SegmentKey a = root(segment_key(e.from)), b = root(segment_key(e.to));
+        parent.emplace(a, a);
+        parent.emplace(b, b);
+        if (a != b) parent[std::max(a, b)] = std::min(a, b);
+    }
+    placed_.clear();
+    for (const auto& [key, up] : parent) placed_[key] = root(key);
+}
+
+void Mapper::place_unjoined_segments() {
+    for (const auto& [session, chain] : chains_) {
+        const PoseGraphNode* prev = nullptr;
+        for (const auto& [local_map_id, id] : chain) {
+            const PoseGraphNode* node = graph_.find(id);
+            const SegmentKey key = segment_key(id);
+            const bool starts_part = prev && segment_of(prev->id) != key.second &&
+                                     placed_root(key) == key &&
+                                     placed_root(segment_key(prev->id)) != key;
+            if (starts_part) {
+                // The first map of a segment that no loop joins to anything before it: its part
+                // is placed by the edge across the break alone, at the odometry's best estimate
+                // relative to the map before it. That is the optimum, which the solver approaches
+                // only slowly (the edge weighs next to nothing): set it here exactly.
+                const Eigen::Isometry3d C = prev->T_world_anchor * prev->T_odom_anchor.inverse() *
+                                            node->T_odom_anchor * node->T_world_anchor.inverse();
+                std::vector<std::uint64_t> part;
+                bool fixed = false;
+                for (const PoseGraphNode& n : graph_.nodes()) {
+                    if (placed_root(segment_key(n.id)) != key) continue;
+                    part.push_back(n.id);
+                    fixed = fixed || n.fixed;
+                }
+                // set_pose changes the nodes in place: `prev` and `node` stay valid.
+                if (!fixed) {
+                    for (const std::uint64_t p : part)
+                        graph_.set_pose(p, C * graph_.find(p)->T_world_anchor);
+                }
+            }
+            prev = node;
+        }
+    }
+}
+
+std::vector<SegmentStatus> Mapper::segments() const {
+    std::vector<SegmentStatus> out;
+    const auto chain = chains_.find(session_);
+    if (chain == chains_.end()) return out;
+    // What counts as the map: this session's segment 0 and every earlier session.
+    auto on_map = [&](const SegmentKey& k) {
+        const SegmentKey r = placed_root(k);
+        return r.first < session_ || r == SegmentKey(session_, 0);
+    };
+    for (const auto& [local_map_id, node] : chain->second) {
+        const std::uint32_t s = segment_of(node);
+        if (!out.empty() && out.back().segment == s) continue;
+        SegmentStatus st;
+        st.segment = s;
+        st.first_local_map = local_map_id;
+        st.joined = s == 0 || on_map(SegmentKey(session_, s));
+        std::ostringstream m;
+        if (s == 0) {
+            m << "segment 0: the session's first";
+        } else if (st.joined) {
+            // The earliest active loop between this segment and another one.
+            bool found = false;
+            for (const PoseGraphEdge& e : graph_.edges()) {
+                if (e.kind != EdgeKind::kLoop || !e.active) continue;
+                const SegmentKey a = segment_key(e.from), b = segment_key(e.to);
+                if (a == b || (a != SegmentKey(session_, s) && b != SegmentKey(session_, s)))
+                    continue;
+                const std::uint32_t k = std::uint32_t(e.query_keyframe);
+                if (!found || k < st.joined_at_keyframe) st.joined_at_keyframe = k;
+                found = true;
+            }
+            m << "segment " << s << " joined to the map by a loop at keyframe "
+              << st.joined_at_keyframe;
+        } else {
+            m << "segment " << s << " (from local map " << local_map_id
+              << ") not joined to the map yet: its poses, corrected_odometry and map_to_odom are "
+                 "the odometry's best estimate across the break";
+        }
+        st.message = m.str();
+        out.push_back(st);
+    }
+    return out;
+}
+
+}  // namespace ltm::mapping
