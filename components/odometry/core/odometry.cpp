@@ -142,7 +142,7 @@ FrameResult Odometry::register_frame(const common::PointCloud& cloud) {
         // From the prediction first. When that is refused or doubtful, a search from other
         // guesses (the last pose, the prediction turned about its z axis); the better fit wins.
         FrameResult attempt = r;
-        std::string why = try_register(predicted, since_tracked, false, &attempt);
+        std::string why = try_register(predicted, since_tracked, &attempt);
         int attempts = 1;
         if (!why.empty() || doubtful(attempt) || since_tracked > config_.tracking.search_after) {
             FrameResult found = r;
@@ -240,12 +240,11 @@ bool Odometry::excellent(const FrameResult& r) const {
            r.inlier_fraction >= 0.95 * typical_inliers_ && r.residual_rms <= 1.1 * typical_rms_;
 }
 
-std::string Odometry::try_register(const Eigen::Isometry3d& guess_odom, double dt, bool coarse_done,
-                                   FrameResult* r) {
+std::string Odometry::try_register(const Eigen::Isometry3d& guess_odom, double dt, FrameResult* r) {
     const LocalMap& map = maps_.current();
     const Eigen::Isometry3d T_odom_map = map.T_odom_map();
     Eigen::Isometry3d guess = T_odom_map.inverse() * guess_odom;
-    if (!coarse_done && map.coarse() != nullptr) {
+    if (map.coarse() != nullptr) {
         const registration::RegistrationResult coarse =
             coarse_align(guess, coarse_registration_, 2);
         r->coarse_iterations += coarse.iterations;
@@ -333,25 +332,24 @@ std::string Odometry::search(const Eigen::Isometry3d& predicted, double dt, Fram
     if (guesses.empty()) return "nothing to search (tracking.yaw_search is 0)";
     const LocalMap& map = maps_.current();
     const Eigen::Isometry3d T_map_odom = map.T_odom_map().inverse();
-    // With a coarse grid, every guess is aligned on it and only the two that fit best go on to
-    // the fine grid; without one, every guess is registered in full.
+    // With a coarse grid, every guess is probed on it (a few iterations) and only the two that
+    // fit best are registered (coarse, then fine); without one, every guess is registered.
     struct Start {
         Eigen::Isometry3d guess_odom;
         std::size_t score;
-        bool coarse_done;
     };
     std::vector<Start> starts;
     int coarse_iterations = 0;
     for (const Eigen::Isometry3d& g : guesses) {
         if (map.coarse() == nullptr) {
-            starts.push_back({g, 0, false});
+            starts.push_back({g, 0});
             continue;
         }
         const registration::RegistrationResult coarse =
             coarse_align(T_map_odom * g, probe_registration_, 2);
         coarse_iterations += coarse.iterations;
         if (!coarse.ok()) continue;
-        starts.push_back({map.T_odom_map() * coarse.T_map_lidar, coarse.inliers, false});
+        starts.push_back({map.T_odom_map() * coarse.T_map_lidar, coarse.inliers});
     }
     std::stable_sort(starts.begin(), starts.end(),
                      [](const Start& a, const Start& b) { return a.score > b.score; });
@@ -361,7 +359,7 @@ std::string Odometry::search(const Eigen::Isometry3d& predicted, double dt, Fram
     const FrameResult blank = *best;
     for (const Start& s : starts) {
         FrameResult attempt = blank;
-        const std::string why = try_register(s.guess_odom, dt, s.coarse_done, &attempt);
+        const std::string why = try_register(s.guess_odom, dt, &attempt);
         ++best->attempts;
         if (!why.empty()) {
             if (!found && &s == &starts.front()) first_why = why;

@@ -119,10 +119,9 @@ class Odometry {
   private:
     FrameResult reject(FrameResult result, FrameStatus status, std::string message);
     // Registers the current scan from an initial guess (odometry frame) against the current
-    // local map (coarse stage first unless `coarse_done`); fills `r` with the fit and, when it is
-    // acceptable, the pose, covariance and degeneracy; returns "" or why it was refused.
-    std::string try_register(const Eigen::Isometry3d& guess, double dt, bool coarse_done,
-                             FrameResult* r);
+    // local map (coarse stage first); fills `r` with the fit and, when it is acceptable, the pose,
+    // covariance and degeneracy; returns "" or why it was refused.
+    std::string try_register(const Eigen::Isometry3d& guess, double dt, FrameResult* r);
     // The prediction failed or was doubtful: registrations from the last pose and from yaw
     // offsets around the prediction; the best acceptable fit, or why none was.
     std::string search(const Eigen::Isometry3d& predicted, double dt, FrameResult* best);
