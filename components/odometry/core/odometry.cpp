@@ -144,7 +144,8 @@ FrameResult Odometry::register_frame(const common::PointCloud& cloud) {
         FrameResult attempt = r;
         std::string why = try_register(predicted, since_tracked, &attempt);
         int attempts = 1;
-        if (!why.empty() || doubtful(attempt) || since_tracked > config_.tracking.search_after) {
+        if (!why.empty() || doubtful(attempt) ||
+            (since_tracked > config_.tracking.search_after && !excellent(attempt))) {
             FrameResult found = r;
             const std::string not_found = search(predicted, since_tracked, &found);
             attempts += found.attempts;
