@@ -106,7 +106,11 @@ FrameResult Odometry::register_frame(const common::PointCloud& cloud) {
         return ms;
     };
     preprocessor_.run(cloud, motion_.poses() == 2 ? &velocity : nullptr, &scan_);
-    coarse_stride_ = 0;  // coarse_points_ are of the previous scan
+    // Every other point is plenty for the coarse stage (it only has to reach the basin).
+    coarse_points_.clear();
+    for (std::size_t i = 0; i < scan_.registration_points.size(); i += 2) {
+        coarse_points_.push_back(scan_.registration_points[i]);
+    }
     r.preprocess_ms = lap();
     r.dropped_non_finite = scan_.dropped_non_finite;
     r.dropped_range = scan_.dropped_range;
@@ -223,16 +227,7 @@ FrameResult Odometry::register_frame(const common::PointCloud& cloud) {
 }
 
 registration::RegistrationResult Odometry::coarse_align(const Eigen::Isometry3d& guess_map,
-                                                        registration::Registration& registration,
-                                                        std::size_t stride) {
-    // Every other point is plenty for the coarse stage (it only has to reach the basin).
-    if (coarse_stride_ != stride) {
-        coarse_points_.clear();
-        for (std::size_t i = 0; i < scan_.registration_points.size(); i += stride) {
-            coarse_points_.push_back(scan_.registration_points[i]);
-        }
-        coarse_stride_ = stride;
-    }
+                                                        registration::Registration& registration) {
     return registration.align(coarse_points_, *maps_.current().coarse(), guess_map);
 }
 
@@ -246,8 +241,7 @@ std::string Odometry::try_register(const Eigen::Isometry3d& guess_odom, double d
     const Eigen::Isometry3d T_odom_map = map.T_odom_map();
     Eigen::Isometry3d guess = T_odom_map.inverse() * guess_odom;
     if (map.coarse() != nullptr) {
-        const registration::RegistrationResult coarse =
-            coarse_align(guess, coarse_registration_, 2);
+        const registration::RegistrationResult coarse = coarse_align(guess, coarse_registration_);
         r->coarse_iterations += coarse.iterations;
         if (coarse.ok()) guess = coarse.T_map_lidar;
     }
@@ -347,7 +341,7 @@ std::string Odometry::search(const Eigen::Isometry3d& predicted, double dt, Fram
             continue;
         }
         const registration::RegistrationResult coarse =
-            coarse_align(T_map_odom * g, probe_registration_, 2);
+            coarse_align(T_map_odom * g, probe_registration_);
         coarse_iterations += coarse.iterations;
         if (!coarse.ok()) continue;
         starts.push_back({map.T_odom_map() * coarse.T_map_lidar, coarse.inliers});

@@ -125,11 +125,10 @@ class Odometry {
     // The prediction failed or was doubtful: registrations from the last pose and from yaw
     // offsets around the prediction; the best acceptable fit, or why none was.
     std::string search(const Eigen::Isometry3d& predicted, double dt, FrameResult* best);
-    // On the coarse grid, every `stride`-th registration point, with `registration` (the coarse
+    // On the coarse grid, every other registration point, with `registration` (the coarse
     // one, or the quick probe of a search guess).
     registration::RegistrationResult coarse_align(const Eigen::Isometry3d& guess_map,
-                                                  registration::Registration& registration,
-                                                  std::size_t stride);
+                                                  registration::Registration& registration);
     bool excellent(const FrameResult& r) const;
     bool doubtful(const FrameResult& r) const;
     void learn(const FrameResult& r);
@@ -154,9 +153,8 @@ class Odometry {
     Eigen::Isometry3d last_tracked_pose_ = Eigen::Isometry3d::Identity();
     bool has_stamp_ = false;
     double last_stamp_ = 0.0;
-    registration::PreprocessedScan scan_;  // reused buffers
-    std::vector<Eigen::Vector3f> coarse_points_;
-    std::size_t coarse_stride_ = 0;  // coarse_points_ holds every stride-th point of scan_
+    registration::PreprocessedScan scan_;         // reused buffers
+    std::vector<Eigen::Vector3f> coarse_points_;  // every other registration point of scan_
 };
 
 }  // namespace ltm::odometry
