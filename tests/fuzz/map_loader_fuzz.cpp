@@ -58,19 +58,26 @@ void graph(const std::string& bytes) {
 
 void keyframes(const std::string& bytes) {
     std::uint64_t first = 0;
-    ltm::mapping::decode_keyframes(bytes, "keyframes.bin", nullptr, &first);
-    // Again with the fixture's descriptor settings (manifest.txt of map_v1), then the round trip.
-    ltm::mapping::ScanContextConfig config;
-    config.kind = ltm::mapping::ScanContextKind::kMeanVariance;
-    config.rings = 6;
-    config.sectors = 12;
-    config.max_range = 60;
-    config.min_range = 0;
-    config.sensor_height = 1.73;
-    const auto kfs = ltm::mapping::decode_keyframes(bytes, "keyframes.bin", &config, &first);
-    const std::string once = ltm::mapping::encode_keyframes(config, kfs, 0, kfs.size());
-    const auto again = ltm::mapping::decode_keyframes(once, "again.bin", &config, &first);
-    same_again(once, ltm::mapping::encode_keyframes(config, again, 0, again.size()), "keyframes");
+    // With the file's own descriptor settings (format 1 or 2), then the round trip.
+    ltm::mapping::DescriptorSettings settings;
+    const auto kfs =
+        ltm::mapping::decode_keyframes(bytes, "keyframes.bin", nullptr, &first, nullptr, &settings);
+    // Again checked against the fixture's descriptor settings (manifest.txt of map_v1).
+    ltm::mapping::DescriptorSettings fixture;
+    fixture.loop.kind = ltm::mapping::ScanContextKind::kMeanVariance;
+    fixture.loop.rings = 6;
+    fixture.loop.sectors = 12;
+    fixture.loop.max_range = 60;
+    fixture.loop.min_range = 0;
+    fixture.loop.sensor_height = 1.73;
+    try {
+        ltm::mapping::decode_keyframes(bytes, "keyframes.bin", &fixture, &first);
+    } catch (const ltm::common::IoError& e) {
+        ltm::fuzz::expect_one_line(e);
+    }
+    const std::string once = ltm::mapping::encode_keyframes(settings, kfs, 0, kfs.size());
+    const auto again = ltm::mapping::decode_keyframes(once, "again.bin", &settings, &first);
+    same_again(once, ltm::mapping::encode_keyframes(settings, again, 0, again.size()), "keyframes");
 }
 
 void folder(const std::uint8_t* data, std::size_t size) {

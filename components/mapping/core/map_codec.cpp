@@ -88,21 +88,20 @@ void unit_interval(IO& io, F& v, const char* field) {
              [&] { return "must be in [0, 1] (got " + std::to_string(v) + ")"; });
 }
 
-// The magic of the file's kind and the format version.
-template <class IO>
-void file_start(IO& io, const char (&magic)[8], const char* what) {
+// The magic of the file's kind and the format version (1 or 2: reading, *version receives it).
+template <class IO, class V>
+void file_start(IO& io, const char (&magic)[8], const char* what, V& version) {
     char m[8];
     std::memcpy(m, magic, 8);
     io.raw(m, 8, "magic");
     io.check(std::memcmp(m, magic, 8) == 0, "magic", 0,
              [&] { return std::string("not an ltm ") + what + " file"; });
     const std::uint64_t at = io.offset();
-    std::uint32_t version = kMapFormatVersion;
-    io.value(version, "format version");
-    io.check(version == kMapFormatVersion, "format version", at, [&] {
-        return "version " + std::to_string(version) + " is not supported (this build reads " +
-               std::to_string(kMapFormatVersion) + ")";
-    });
+    std::uint32_t v = version;
+    io.value(v, "format version");
+    io.check(supported_map_format(v), "format version", at,
+             [&] { return unsupported_map_format(v); });
+    if constexpr (IO::kReading) version = v;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -153,9 +152,9 @@ void voxel(IO& io, V& v, float voxel_size, std::uint32_t n_times) {
 }
 
 // m: StoredLocalMap (node, session), d: its LocalMapData.
-template <class IO, class M, class D>
-void local_map_file(IO& io, M& m, D& d) {
-    file_start(io, kLocalMapMagic, "local map");
+template <class IO, class M, class D, class V>
+void local_map_file(IO& io, M& m, D& d, V& version) {
+    file_start(io, kLocalMapMagic, "local map", version);
     std::uint32_t n_times = static_cast<std::uint32_t>(d.observation_times.size());
     std::uint64_t n_voxels = d.voxels.size();
     io.section("header", [&](auto& h) {
@@ -262,9 +261,9 @@ void edge(IO& io, E& e, const std::unordered_set<std::uint64_t>& ids) {
     io.value(e.error_rotation, "error_rotation");
 }
 
-template <class IO, class R, class Nodes, class Edges>
-void graph_file(IO& io, R& revision, Nodes& nodes, Edges& edges) {
-    file_start(io, kGraphMagic, "graph");
+template <class IO, class R, class Nodes, class Edges, class V>
+void graph_file(IO& io, R& revision, Nodes& nodes, Edges& edges, V& version) {
+    file_start(io, kGraphMagic, "graph", version);
     std::uint64_t n_nodes = nodes.size(), n_edges = edges.size();
     io.section("header", [&](auto& h) {
         h.item("header");
@@ -322,9 +321,61 @@ void descriptor_config(IO& io, C& c) {
     }
 }
 
-// cfg: the file header's descriptor settings.
+// The names of a descriptor's fields in errors.
+struct DescriptorFields {
+    const char *whole, *kind, *rings, *sectors, *value, *spread, *occupied;
+};
+constexpr DescriptorFields kLoopFields = {
+    "descriptor",       "descriptor.kind",   "descriptor.rings",   "descriptor.sectors",
+    "descriptor.value", "descriptor.spread", "descriptor.occupied"};
+constexpr DescriptorFields kLocalisationFields = {
+    "localisation_descriptor",         "localisation_descriptor.kind",
+    "localisation_descriptor.rings",   "localisation_descriptor.sectors",
+    "localisation_descriptor.value",   "localisation_descriptor.spread",
+    "localisation_descriptor.occupied"};
+
+// A keyframe's descriptor of the shape `cfg` (the file header's settings) or, when may_be_empty,
+// an empty one (0 rings, 0 sectors, no bins).
+template <class IO, class S>
+void descriptor(IO& io, S& sc, const ScanContextConfig& cfg, const DescriptorFields& f,
+                bool may_be_empty) {
+    const std::uint64_t at_d = io.offset();
+    kind(io, sc.kind, 1, f.kind);
+    value_as<std::uint32_t>(io, sc.rings, f.rings);
+    value_as<std::uint32_t>(io, sc.sectors, f.sectors);
+    const bool mean_variance = sc.kind == ScanContextKind::kMeanVariance;
+    if constexpr (IO::kReading) {
+        const bool empty = may_be_empty && sc.rings == 0 && sc.sectors == 0;
+        io.check(
+            empty || (sc.kind == cfg.kind && sc.rings == cfg.rings && sc.sectors == cfg.sectors),
+            f.whole, at_d, "shape differs from the file header's");
+        const std::size_t bins = empty ? 0 : std::size_t(cfg.rings) * std::size_t(cfg.sectors);
+        sc.value.resize(bins);
+        if (mean_variance) sc.spread.resize(bins);
+        sc.occupied.resize(bins);
+    }
+    for (std::size_t b = 0; b < sc.value.size(); ++b) {
+        const std::uint64_t at = io.offset();
+        io.value(sc.value[b], f.value);
+        io.check(mean_variance || sc.value[b] >= 0.0f, f.value, at, "negative height");
+    }
+    if (mean_variance) {
+        for (std::size_t b = 0; b < sc.spread.size(); ++b) {
+            const std::uint64_t at = io.offset();
+            io.value(sc.spread[b], f.spread);
+            io.check(sc.spread[b] >= 0.0f, f.spread, at, "negative");
+        }
+    }
+    for (std::size_t b = 0; b < sc.occupied.size(); ++b) {
+        const std::uint64_t at = io.offset();
+        io.value(sc.occupied[b], f.occupied);
+        io.check(sc.occupied[b] <= 1, f.occupied, at, "must be 0 or 1");
+    }
+}
+
+// settings: the file header's; version: the file's.
 template <class IO, class K>
-void keyframe(IO& io, K& k, const ScanContextConfig& cfg) {
+void keyframe(IO& io, K& k, const DescriptorSettings& settings, std::uint32_t version) {
     io.value(k.session, "session");
     io.value(k.node, "node");
     io.value(k.data.id, "id");
@@ -333,36 +384,10 @@ void keyframe(IO& io, K& k, const ScanContextConfig& cfg) {
     io.value(k.data.stamp, "stamp");
     pose(io, k.data.T_odom_lidar, "T_odom_lidar");
     pose(io, k.data.T_anchor_lidar, "T_anchor_lidar");
-    auto& sc = k.descriptor;
-    const std::uint64_t at_d = io.offset();
-    kind(io, sc.kind, 1, "descriptor.kind");
-    value_as<std::uint32_t>(io, sc.rings, "descriptor.rings");
-    value_as<std::uint32_t>(io, sc.sectors, "descriptor.sectors");
-    const bool mean_variance = sc.kind == ScanContextKind::kMeanVariance;
-    if constexpr (IO::kReading) {
-        io.check(sc.kind == cfg.kind && sc.rings == cfg.rings && sc.sectors == cfg.sectors,
-                 "descriptor", at_d, "shape differs from the file header's");
-        const std::size_t bins = std::size_t(cfg.rings) * std::size_t(cfg.sectors);
-        sc.value.resize(bins);
-        if (mean_variance) sc.spread.resize(bins);
-        sc.occupied.resize(bins);
-    }
-    for (std::size_t b = 0; b < sc.value.size(); ++b) {
-        const std::uint64_t at = io.offset();
-        io.value(sc.value[b], "descriptor.value");
-        io.check(mean_variance || sc.value[b] >= 0.0f, "descriptor.value", at, "negative height");
-    }
-    if (mean_variance) {
-        for (std::size_t b = 0; b < sc.spread.size(); ++b) {
-            const std::uint64_t at = io.offset();
-            io.value(sc.spread[b], "descriptor.spread");
-            io.check(sc.spread[b] >= 0.0f, "descriptor.spread", at, "negative");
-        }
-    }
-    for (std::size_t b = 0; b < sc.occupied.size(); ++b) {
-        const std::uint64_t at = io.offset();
-        io.value(sc.occupied[b], "descriptor.occupied");
-        io.check(sc.occupied[b] <= 1, "descriptor.occupied", at, "must be 0 or 1");
+    descriptor(io, k.descriptor, settings.loop, kLoopFields, false);
+    // Format 2: the localisation descriptor (empty in keyframes of a continued format-1 map).
+    if (version >= 2) {
+        descriptor(io, k.localisation_descriptor, settings.localisation, kLocalisationFields, true);
     }
     const std::uint64_t at_p = io.offset();
     std::uint32_t n_points = static_cast<std::uint32_t>(k.data.points.size());
@@ -377,12 +402,16 @@ void keyframe(IO& io, K& k, const ScanContextConfig& cfg) {
     for (std::uint32_t p = 0; p < n_points; ++p) vec3(io, k.data.points[p], "points");
 }
 
+bool same_shape(const ScanContextConfig& a, const ScanContextConfig& b) {
+    return a.kind == b.kind && a.rings == b.rings && a.sectors == b.sectors;
+}
+
 // Writing: keyframes[first, first + count) of `list`; reading: appends them to `list`.
 // expected: reading, the manifest's descriptor settings (checked when not null).
-template <class IO, class C, class List>
-void keyframes_file(IO& io, C& config, List& list, std::uint64_t& first, std::uint64_t& count,
-                    const ScanContextConfig* expected) {
-    file_start(io, kKeyframesMagic, "keyframes");
+template <class IO, class S, class List, class V>
+void keyframes_file(IO& io, S& settings, List& list, std::uint64_t& first, std::uint64_t& count,
+                    const DescriptorSettings* expected, V& version) {
+    file_start(io, kKeyframesMagic, "keyframes", version);
     io.section("header", [&](auto& h) {
         h.item("header");
         h.value(first, "first");
@@ -390,14 +419,23 @@ void keyframes_file(IO& io, C& config, List& list, std::uint64_t& first, std::ui
         h.value(count, "count");
         const std::uint64_t at_cfg = h.offset();
         h.item("descriptor");
-        descriptor_config(h, config);
+        descriptor_config(h, settings.loop);
+        std::uint64_t at_local = at_cfg;
+        if (version >= 2) {
+            at_local = h.offset();
+            h.item("localisation_descriptor");
+            descriptor_config(h, settings.localisation);
+        }
         if constexpr (IO::kReading) {
+            if (version < 2) settings.localisation = no_localisation_descriptors();
             h.item("header");
-            h.check(
-                !expected || (config.kind == expected->kind && config.rings == expected->rings &&
-                              config.sectors == expected->sectors),
-                "descriptor", at_cfg, "descriptor settings differ from the manifest's");
-            const std::size_t bins = std::size_t(config.rings) * std::size_t(config.sectors);
+            h.check(!expected || same_shape(settings.loop, expected->loop), "descriptor", at_cfg,
+                    "descriptor settings differ from the manifest's");
+            h.check(!expected || same_shape(settings.localisation, expected->localisation),
+                    "localisation_descriptor", at_local,
+                    "localisation descriptor settings differ from the manifest's");
+            const std::size_t bins =
+                std::size_t(settings.loop.rings) * std::size_t(settings.loop.sectors);
             h.check(count <= h.source_size() / (100 + bins), "count", at_count,
                     "more keyframes than the file can hold");
             list.reserve(static_cast<std::size_t>(count));
@@ -410,11 +448,11 @@ void keyframes_file(IO& io, C& config, List& list, std::uint64_t& first, std::ui
             auto k = std::make_shared<StoredKeyframe>();
             io.section(name, [&](auto& s) {
                 s.item("keyframes", i);
-                keyframe(s, *k, config);
+                keyframe(s, *k, settings, version);
             });
             list.push_back(std::move(k));
         } else {
-            io.section(name, [&](auto& s) { keyframe(s, *list[i], config); });
+            io.section(name, [&](auto& s) { keyframe(s, *list[i], settings, version); });
         }
     }
     io.expect_end("end of file");
@@ -422,51 +460,65 @@ void keyframes_file(IO& io, C& config, List& list, std::uint64_t& first, std::ui
 
 }  // namespace
 
-std::string encode_local_map(const StoredLocalMap& map) {
+std::uint32_t map_format_for(const ScanContextConfig& localisation_descriptor_config) {
+    return has_localisation_descriptors(localisation_descriptor_config) ? 2u : 1u;
+}
+
+std::string encode_local_map(const StoredLocalMap& map, std::uint32_t version) {
     ByteWriter w;
-    local_map_file(w, map, *map.data);
+    local_map_file(w, map, *map.data, version);
     return as_string(w);
 }
 
-StoredLocalMap decode_local_map(const std::string& bytes, const std::string& file) {
+StoredLocalMap decode_local_map(const std::string& bytes, const std::string& file,
+                                std::uint32_t* version) {
     ByteReader r(file, bytes.data(), bytes.size());
     StoredLocalMap m;
     auto d = std::make_shared<common::LocalMapData>();
-    local_map_file(r, m, *d);
+    std::uint32_t v = 0;
+    local_map_file(r, m, *d, v);
     m.data = std::move(d);
+    if (version) *version = v;
     return m;
 }
 
 std::string encode_graph(std::uint64_t revision, const std::vector<PoseGraphNode>& nodes,
-                         const std::vector<PoseGraphEdge>& edges) {
+                         const std::vector<PoseGraphEdge>& edges, std::uint32_t version) {
     ByteWriter w;
-    graph_file(w, revision, nodes, edges);
+    graph_file(w, revision, nodes, edges, version);
     return as_string(w);
 }
 
 void decode_graph(const std::string& bytes, const std::string& file, std::uint64_t* revision,
-                  std::vector<PoseGraphNode>* nodes, std::vector<PoseGraphEdge>* edges) {
+                  std::vector<PoseGraphNode>* nodes, std::vector<PoseGraphEdge>* edges,
+                  std::uint32_t* version) {
     ByteReader r(file, bytes.data(), bytes.size());
-    graph_file(r, *revision, *nodes, *edges);
+    std::uint32_t v = 0;
+    graph_file(r, *revision, *nodes, *edges, v);
+    if (version) *version = v;
 }
 
-std::string encode_keyframes(const ScanContextConfig& config,
+std::string encode_keyframes(const DescriptorSettings& settings,
                              const std::vector<std::shared_ptr<const StoredKeyframe>>& keyframes,
                              std::size_t first, std::size_t count) {
     ByteWriter w;
     std::uint64_t first64 = first, count64 = count;
-    keyframes_file(w, config, keyframes, first64, count64, nullptr);
+    const std::uint32_t version = map_format_for(settings.localisation);
+    keyframes_file(w, settings, keyframes, first64, count64, nullptr, version);
     return as_string(w);
 }
 
 std::vector<std::shared_ptr<const StoredKeyframe>> decode_keyframes(
-    const std::string& bytes, const std::string& file, const ScanContextConfig* expected,
-    std::uint64_t* first) {
+    const std::string& bytes, const std::string& file, const DescriptorSettings* expected,
+    std::uint64_t* first, std::uint32_t* version, DescriptorSettings* settings) {
     ByteReader r(file, bytes.data(), bytes.size());
-    ScanContextConfig config;
+    DescriptorSettings s;
     std::vector<std::shared_ptr<const StoredKeyframe>> out;
     std::uint64_t count = 0;
-    keyframes_file(r, config, out, *first, count, expected);
+    std::uint32_t v = 0;
+    keyframes_file(r, s, out, *first, count, expected, v);
+    if (version) *version = v;
+    if (settings) *settings = s;
     return out;
 }
 

@@ -1,13 +1,17 @@
 #pragma once
-// The binary files of a saved map (format kMapFormatVersion, little-endian), each a magic, a
+// The binary files of a saved map (format 1 or 2, map_data.hpp; little-endian), each a magic, a
 // version and checksummed sections (common/core/byte_io.hpp). Each record is described once, in
 // map_codec.cpp, and that description both writes and reads it:
 //   local map: header (node, session, id, revision, anchor, grid, box, voxel size, counts),
 //              observation times, voxels in sections of up to 4096 (index, centre, normal, point
 //              count, planarity, stability, life record);
 //   graph:     header (revision, counts), nodes and edges in sections of up to 4096;
-//   keyframes: header (first index, count, descriptor settings), one section a keyframe (ids,
-//              stamp, poses, Scan Context descriptor, optional points).
+//   keyframes: header (first index, count, descriptor settings; format 2: then the localisation
+//              descriptor settings), one section a keyframe (ids, stamp, poses, Scan Context
+//              descriptor; format 2: then the ScanContext++ localisation descriptor, which may be
+//              empty (0 rings, 0 sectors); optional points).
+// Local map and graph files are the same in both formats but for the version field. Every decode
+// accepts formats 1 and 2 (and returns the file's), and refuses any other version.
 // Decoding validates every field and throws MapFormatError naming the file, field and offset
 // ("local_maps/lm_3.bin: voxels[17].normal at byte 1290: neither zero nor a unit vector").
 #include <string>
@@ -17,22 +21,35 @@
 
 namespace ltm::mapping {
 
-std::string encode_local_map(const StoredLocalMap& map);
-StoredLocalMap decode_local_map(const std::string& bytes, const std::string& file);
+// The format a map is saved in: 2, or 1 when it has no localisation descriptors (map_data.hpp).
+std::uint32_t map_format_for(const ScanContextConfig& localisation_descriptor_config);
+
+std::string encode_local_map(const StoredLocalMap& map, std::uint32_t version = kMapFormatVersion);
+StoredLocalMap decode_local_map(const std::string& bytes, const std::string& file,
+                                std::uint32_t* version = nullptr);
 
 std::string encode_graph(std::uint64_t revision, const std::vector<PoseGraphNode>& nodes,
-                         const std::vector<PoseGraphEdge>& edges);
+                         const std::vector<PoseGraphEdge>& edges,
+                         std::uint32_t version = kMapFormatVersion);
 void decode_graph(const std::string& bytes, const std::string& file, std::uint64_t* revision,
-                  std::vector<PoseGraphNode>* nodes, std::vector<PoseGraphEdge>* edges);
+                  std::vector<PoseGraphNode>* nodes, std::vector<PoseGraphEdge>* edges,
+                  std::uint32_t* version = nullptr);
 
-// keyframes[first, first + count) of the list.
-std::string encode_keyframes(const ScanContextConfig& descriptor_config,
+// The descriptor settings of a keyframe file's header.
+struct DescriptorSettings {
+    ScanContextConfig loop;                                          // MapData::descriptor_config
+    ScanContextConfig localisation = no_localisation_descriptors();  // none: a format-1 file
+};
+
+// keyframes[first, first + count) of the list, in format map_format_for(settings.localisation).
+std::string encode_keyframes(const DescriptorSettings& settings,
                              const std::vector<std::shared_ptr<const StoredKeyframe>>& keyframes,
                              std::size_t first, std::size_t count);
-// Returns the keyframes; *first receives the index of the first one; the descriptor settings
-// must equal `descriptor_config` (when not null, they are checked).
+// Returns the keyframes; *first receives the index of the first one. The descriptor shapes (kind,
+// rings, sectors) must equal `expected`'s (when not null, they are checked; a format-1 file has
+// no localisation descriptors). *version and *settings, when not null, receive the file's.
 std::vector<std::shared_ptr<const StoredKeyframe>> decode_keyframes(
-    const std::string& bytes, const std::string& file, const ScanContextConfig* descriptor_config,
-    std::uint64_t* first);
+    const std::string& bytes, const std::string& file, const DescriptorSettings* expected,
+    std::uint64_t* first, std::uint32_t* version = nullptr, DescriptorSettings* settings = nullptr);
 
 }  // namespace ltm::mapping

@@ -231,6 +231,19 @@ TEST(MapFilesV1, LoadAsTheMapTheyWereWrittenFrom) {
     }
 }
 
+// Format 1 holds no localisation descriptors: they load empty, and the map says it has none.
+TEST(MapFilesV1, LoadWithoutLocalisationDescriptors) {
+    const LoadedMap loaded = load_map(kFixture.string());
+    ASSERT_TRUE(loaded.refused.empty()) << loaded.refused.front();
+    EXPECT_FALSE(has_localisation_descriptors(loaded.map.localisation_descriptor_config));
+    EXPECT_EQ(loaded.map.localisation_descriptor_config.rings, 0);
+    ASSERT_EQ(loaded.map.keyframes.size(), 3u);
+    for (const auto& k : loaded.map.keyframes) {
+        EXPECT_TRUE(k->localisation_descriptor.empty());
+        EXPECT_FALSE(k->descriptor.empty());
+    }
+}
+
 TEST(MapFilesV1, SavedAgainGiveTheSameBytes) {
     const LoadedMap loaded = load_map(kFixture.string());
     const fs::path again = fs::path(LTM_BINARY_DIR) / "mapping_test_maps" / "map_v1_again";

@@ -72,15 +72,7 @@ class LineReader {
                                      ? "empty: not an ltm map manifest"
                                      : "truncated: no '" + key + "' line (an interrupted write?)");
         }
-        if (tokens_[0] != key) {
-            const bool known = tokens_[0] == "ltm_map" || tokens_[0] == "revision" ||
-                               tokens_[0] == "descriptor" || tokens_[0] == "graph" ||
-                               tokens_[0] == "keyframes" || tokens_[0] == "local_map" ||
-                               tokens_[0] == "end";
-            fail((known ? "'" + tokens_[0] + "' out of place"
-                        : "unknown entry '" + tokens_[0] + "'") +
-                 " (expected '" + pattern + "')");
-        }
+        if (tokens_[0] != key) fail(unexpected(tokens_[0]) + " (expected '" + pattern + "')");
         constexpr std::size_t n = sizeof...(T);
         if (tokens_.size() > n + 1)
             fail("unexpected '" + tokens_[n + 1] + "' at the end of the line");
@@ -101,6 +93,13 @@ class LineReader {
         } else {
             fail_at(last_number_, last_offset_, problem);
         }
+    }
+    // "'graph' out of place" for a key the manifest knows, else "unknown entry 'x'".
+    static std::string unexpected(const std::string& key) {
+        const bool known = key == "ltm_map" || key == "revision" || key == "descriptor" ||
+                           key == "localisation_descriptor" || key == "graph" ||
+                           key == "keyframes" || key == "local_map" || key == "end";
+        return known ? "'" + key + "' out of place" : "unknown entry '" + key + "'";
     }
     // Fails for the next line.
     [[noreturn]] void fail(const std::string& problem) const { fail_at(number_, offset_, problem); }
@@ -169,31 +168,45 @@ void entry(IO& io, E& e, int& graphs) {
     } else if (e.kind == "local_map") {
         io.line("local_map <node> <file> <size> <hash>", e.node, e.file, e.size, hex(e.hash));
     } else if constexpr (IO::kReading) {
-        io.fail("unknown entry '" + e.kind + "'");
+        io.fail(IO::unexpected(e.kind));
     }
     io.check(safe_relative(e.file),
              [&] { return "file name '" + e.file + "' is not a plain relative path"; });
 }
 
-template <class IO, class M>
-void manifest(IO& io, M& m) {
-    std::uint32_t version = kMapFormatVersion;
-    io.line("ltm_map <version>", version);
-    io.check(version == kMapFormatVersion, [&] {
-        return "format version " + std::to_string(version) +
-               " is not supported (this build reads " + std::to_string(kMapFormatVersion) + ")";
-    });
-    io.line("revision <n>", m.revision);
-    auto& d = m.descriptor;
+// One "<key> <kind 0|1> <rings> <sectors> <max_range> <min_range> <sensor_height>" line.
+template <class IO, class C>
+void descriptor_line(IO& io, const char* pattern, const std::string& key, C& d) {
     int kind = static_cast<int>(d.kind);
-    io.line("descriptor <kind 0|1> <rings> <sectors> <max_range> <min_range> <sensor_height>", kind,
-            d.rings, d.sectors, d.max_range, d.min_range, d.sensor_height);
+    io.line(pattern, kind, d.rings, d.sectors, d.max_range, d.min_range, d.sensor_height);
     if constexpr (IO::kReading) {
-        io.check(kind == 0 || kind == 1, "descriptor kind must be 0 or 1");
+        io.check(kind == 0 || kind == 1, key + " kind must be 0 or 1");
         d.kind = static_cast<ScanContextKind>(kind);
         if (const auto problem = validate(d)) {
-            io.check(false, "descriptor." + problem->key + ": " + problem->problem);
+            io.check(false, key + "." + problem->key + ": " + problem->problem);
         }
+    }
+}
+
+template <class IO, class M>
+void manifest(IO& io, M& m) {
+    // Written: the format the localisation descriptors call for (map_data.hpp).
+    std::uint32_t version = has_localisation_descriptors(m.localisation_descriptor) ? 2 : 1;
+    io.line("ltm_map <version>", version);
+    io.check(supported_map_format(version), [&] { return unsupported_map_format(version); });
+    io.line("revision <n>", m.revision);
+    descriptor_line(
+        io, "descriptor <kind 0|1> <rings> <sectors> <max_range> <min_range> <sensor_height>",
+        "descriptor", m.descriptor);
+    if (version >= 2) {
+        descriptor_line(io,
+                        "localisation_descriptor <kind 0|1> <rings> <sectors> <max_range> "
+                        "<min_range> <sensor_height>",
+                        "localisation_descriptor", m.localisation_descriptor);
+    }
+    if constexpr (IO::kReading) {
+        m.version = version;
+        if (version < 2) m.localisation_descriptor = no_localisation_descriptors();
     }
     int graphs = 0;
     if constexpr (IO::kReading) {

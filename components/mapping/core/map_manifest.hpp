@@ -3,6 +3,8 @@
 //   ltm_map <format version>
 //   revision <n>
 //   descriptor <kind 0|1> <rings> <sectors> <max_range> <min_range> <sensor_height>
+//   localisation_descriptor <kind 0|1> <rings> <sectors> <max_range> <min_range> <sensor_height>
+//                                                      (format 2 only)
 //   graph <file> <size> <hash>
 //   keyframes <file> <size> <hash> <first> <count>     (any number of these two)
 //   local_map <node> <file> <size> <hash>
@@ -29,14 +31,18 @@ struct ManifestEntry {
 };
 
 struct Manifest {
+    // Parsed: 1 or 2. Written: 2 with localisation descriptors, else 1 (map_data.hpp).
+    std::uint32_t version = kMapFormatVersion;
     std::uint64_t revision = 0;
     ScanContextConfig descriptor;
+    // Written in format 2 only; a format-1 manifest parses as no_localisation_descriptors().
+    ScanContextConfig localisation_descriptor = no_localisation_descriptors();
     std::vector<ManifestEntry> files;  // exactly one graph
 };
 
 std::string write_manifest(const Manifest& manifest);
 // Throws MapFormatError naming the line and its byte offset ("manifest.txt: line 2 at byte 10:
-// ...") when the text is not a whole, valid manifest.
+// ...") when the text is not a whole, valid manifest (of format 1 or 2).
 Manifest parse_manifest(const std::string& text);
 
 }  // namespace ltm::mapping

@@ -59,11 +59,58 @@ TEST(MapManifest, WrittenAndParsedByOneDescription) {
     EXPECT_EQ(back.files[2].node, 20u);
     EXPECT_EQ(back.files[1].hash, 0x0123456789abcdefull);
     EXPECT_EQ(back.descriptor.kind, ScanContextKind::kMeanVariance);
+    // Format 1: no localisation descriptors.
+    EXPECT_EQ(back.version, 1u);
+    EXPECT_FALSE(has_localisation_descriptors(back.localisation_descriptor));
+    EXPECT_EQ(back.localisation_descriptor.rings, 0);
     // Blank lines and extra spaces are allowed.
     std::string spaced = text;
     spaced.insert(spaced.find("revision"), "\n  \n");
     spaced.insert(spaced.find("12"), "   ");
     EXPECT_EQ(write_manifest(parse_manifest(spaced)), text);
+}
+
+TEST(MapManifest, Format2AddsTheLocalisationDescriptorLine) {
+    Manifest m = sample();
+    m.localisation_descriptor.kind = ScanContextKind::kMeanVariance;
+    m.localisation_descriptor.rings = 20;
+    m.localisation_descriptor.sectors = 60;
+    m.localisation_descriptor.max_range = 40;
+    m.localisation_descriptor.min_range = 0.5;
+    m.localisation_descriptor.sensor_height = 1;
+    const std::string text = write_manifest(m);
+    EXPECT_EQ(text.substr(0, text.find("graph")),
+              "ltm_map 2\n"
+              "revision 12\n"
+              "descriptor 1 10 24 80 0 1.73\n"
+              "localisation_descriptor 1 20 60 40 0.5 1\n");
+    const Manifest back = parse_manifest(text);
+    EXPECT_EQ(back.version, 2u);
+    const ScanContextConfig& l = back.localisation_descriptor;
+    EXPECT_EQ(l.kind, ScanContextKind::kMeanVariance);
+    EXPECT_EQ(l.rings, 20);
+    EXPECT_EQ(l.sectors, 60);
+    EXPECT_EQ(l.max_range, 40.0);
+    EXPECT_EQ(l.min_range, 0.5);
+    EXPECT_EQ(l.sensor_height, 1.0);
+    EXPECT_EQ(write_manifest(back), text);
+    auto replaced = [&](const std::string& from, const std::string& to) {
+        std::string t = text;
+        t.replace(t.find(from), from.size(), to);
+        return t;
+    };
+    // Format 2 without the line, with a broken one, or format 1 with it.
+    EXPECT_EQ(error_of(replaced("localisation_descriptor 1 20 60 40 0.5 1\n", "")),
+              "manifest.txt: line 4 at byte 51: 'graph' out of place (expected "
+              "'localisation_descriptor <kind 0|1> <rings> <sectors> <max_range> <min_range> "
+              "<sensor_height>')");
+    EXPECT_EQ(error_of(replaced("localisation_descriptor 1 20", "localisation_descriptor 1 0")),
+              "manifest.txt: line 4 at byte 51: localisation_descriptor.rings: must be in [1, "
+              "1000] (got 0)");
+    EXPECT_EQ(error_of(replaced("localisation_descriptor 1", "localisation_descriptor 2")),
+              "manifest.txt: line 4 at byte 51: localisation_descriptor kind must be 0 or 1");
+    EXPECT_EQ(error_of(replaced("ltm_map 2", "ltm_map 1")),
+              "manifest.txt: line 4 at byte 51: 'localisation_descriptor' out of place");
 }
 
 TEST(MapManifest, DamageIsNamedByLineAndOffset) {
@@ -78,9 +125,12 @@ TEST(MapManifest, DamageIsNamedByLineAndOffset) {
         "manifest.txt: line 2 at byte 10: unknown entry 'revisoin' (expected 'revision <n>')");
     EXPECT_EQ(error_of(replaced("revision 12", "end 3")),
               "manifest.txt: line 2 at byte 10: 'end' out of place (expected 'revision <n>')");
-    EXPECT_EQ(error_of(replaced("ltm_map 1", "ltm_map 2")),
-              "manifest.txt: line 1 at byte 0: format version 2 is not supported (this build "
-              "reads 1)");
+    EXPECT_EQ(error_of(replaced("ltm_map 1", "ltm_map 3")),
+              "manifest.txt: line 1 at byte 0: format version 3 is not supported (this build "
+              "reads versions 1 and 2)");
+    EXPECT_EQ(error_of(replaced("ltm_map 1", "ltm_map 0")),
+              "manifest.txt: line 1 at byte 0: format version 0 is not supported (this build "
+              "reads versions 1 and 2)");
     EXPECT_EQ(error_of(replaced(" 1567 ", " 15x7 ")),
               "manifest.txt: line 4 at byte 51: expected 'graph <file> <size> <hash>'");
     EXPECT_EQ(error_of(replaced("00000000000000ff\n", "00000000000000FF\n")),

@@ -58,6 +58,15 @@ void check_entry(const ManifestEntry& e, const std::string& bytes) {
     }
 }
 
+// A file of another format than the manifest's (a file copied from another map).
+void check_version(const ManifestEntry& e, std::uint32_t version, std::uint32_t manifest) {
+    if (version != manifest) {
+        throw MapFormatError(e.file, "format version", 8,
+                             "version " + std::to_string(version) + ", the manifest says " +
+                                 std::to_string(manifest));
+    }
+}
+
 }  // namespace
 
 MapWriter::MapWriter(std::string dir, SaveOptions options)
@@ -71,9 +80,14 @@ SaveStats MapWriter::save(const MapData& map) {
     fs::create_directories(fs::path(dir_) / "local_maps", ec);
     if (ec) throw common::IoError(dir_, "cannot create the map directory: " + ec.message());
 
+    const std::uint32_t version = map_format_for(map.localisation_descriptor_config);
+    const DescriptorSettings settings{map.descriptor_config, map.localisation_descriptor_config};
     Manifest manifest;
     manifest.revision = map.revision;
     manifest.descriptor = map.descriptor_config;
+    manifest.localisation_descriptor = map.localisation_descriptor_config;
+    // Cache keys name the format too: a file of another format is not kept.
+    const std::string v = "v" + std::to_string(version) + ":";
     std::unordered_map<std::string, Written> cache;
     // Writes (or keeps) one file; `key` names it in the cache.
     auto emit = [&](const std::string& key, const std::string& kind, const std::string& prefix,
@@ -109,24 +123,24 @@ SaveStats MapWriter::save(const MapData& map) {
     };
 
     manifest.files.push_back(emit("graph", "graph", "graph_", nullptr, nullptr, [&] {
-        return encode_graph(map.revision, map.nodes, map.edges);
+        return encode_graph(map.revision, map.nodes, map.edges, version);
     }));
     const std::size_t per = options_.keyframes_per_file;
     for (std::size_t a = 0; a < map.keyframes.size(); a += per) {
         const std::size_t n = std::min(per, map.keyframes.size() - a);
         ManifestEntry e =
-            emit("kf:" + std::to_string(a) + ":" + std::to_string(n), "keyframes",
+            emit(v + "kf:" + std::to_string(a) + ":" + std::to_string(n), "keyframes",
                  "keyframes_" + padded(a, 8) + "_", map.keyframes[a], map.keyframes[a + n - 1],
-                 [&] { return encode_keyframes(map.descriptor_config, map.keyframes, a, n); });
+                 [&] { return encode_keyframes(settings, map.keyframes, a, n); });
         e.first = a;
         e.count = n;
         manifest.files.push_back(e);
     }
     for (const StoredLocalMap& m : map.local_maps) {
         if (!m.data) continue;
-        ManifestEntry e = emit("lm:" + std::to_string(m.node), "local_map",
+        ManifestEntry e = emit(v + "lm:" + std::to_string(m.node), "local_map",
                                "local_maps/lm_" + padded(m.node, 8) + "_", m.data, m.data,
-                               [&] { return encode_local_map(m); });
+                               [&] { return encode_local_map(m, version); });
         e.node = m.node;
         manifest.files.push_back(e);
     }
@@ -170,14 +184,18 @@ LoadedMap load_map(const std::string& dir) {
         parse_manifest(common::read_file((root / kManifestFile).string(), kManifestFile));
     MapData& map = out.map;
     map.descriptor_config = manifest.descriptor;
+    map.localisation_descriptor_config = manifest.localisation_descriptor;
+    const DescriptorSettings expected{manifest.descriptor, manifest.localisation_descriptor};
 
     // The graph first: without it nothing can be placed.
     for (const ManifestEntry& e : manifest.files) {
         if (e.kind != "graph") continue;
         const std::string bytes = common::read_file((root / e.file).string(), e.file);
         std::uint64_t revision = 0;
-        decode_graph(bytes, e.file, &revision, &map.nodes, &map.edges);
+        std::uint32_t version = 0;
+        decode_graph(bytes, e.file, &revision, &map.nodes, &map.edges, &version);
         check_entry(e, bytes);
+        check_version(e, version, manifest.version);
         if (revision != manifest.revision) {
             throw MapFormatError(e.file, "header.revision", kFirstHeaderField,
                                  "revision " + std::to_string(revision) + ", the manifest says " +
@@ -194,8 +212,10 @@ LoadedMap load_map(const std::string& dir) {
             const std::string bytes = common::read_file((root / e.file).string(), e.file);
             if (e.kind == "keyframes") {
                 std::uint64_t first = 0;
-                auto keyframes = decode_keyframes(bytes, e.file, &manifest.descriptor, &first);
+                std::uint32_t version = 0;
+                auto keyframes = decode_keyframes(bytes, e.file, &expected, &first, &version);
                 check_entry(e, bytes);
+                check_version(e, version, manifest.version);
                 if (first != e.first || keyframes.size() != e.count) {
                     throw MapFormatError(e.file, "header.first", kFirstHeaderField,
                                          "holds keyframes " + std::to_string(first) + "+" +
@@ -213,8 +233,10 @@ LoadedMap load_map(const std::string& dir) {
                 }
                 map.keyframes.insert(map.keyframes.end(), keyframes.begin(), keyframes.end());
             } else {
-                StoredLocalMap m = decode_local_map(bytes, e.file);
+                std::uint32_t version = 0;
+                StoredLocalMap m = decode_local_map(bytes, e.file, &version);
                 check_entry(e, bytes);
+                check_version(e, version, manifest.version);
                 if (m.node != e.node) {
                     throw MapFormatError(e.file, "header.node", kFirstHeaderField,
                                          "node " + std::to_string(m.node) + ", the manifest says " +

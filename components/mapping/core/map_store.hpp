@@ -1,5 +1,5 @@
 #pragma once
-// A map directory (format kMapFormatVersion):
+// A map directory (format 2, or 1: map_data.hpp):
 //   manifest.txt                       what the map is made of: every file with its size and
 //                                      FNV-1a 64 hash, the revision and the descriptor settings
 //                                      (map_manifest.hpp)
@@ -11,9 +11,11 @@
 // manifest goes last: a crash during a save leaves the previous map intact. Files the new
 // manifest does not name are removed afterwards. Unchanged local maps are not written again.
 //
-// Loading validates everything. A damaged manifest or graph fails the load (nothing could be
-// placed); a damaged local-map or keyframe file is refused, named with the field and the byte
-// offset of the damage, and the rest of the map loads.
+// Loading validates everything; formats 1 and 2 load (every file of the format the manifest
+// names), any other version fails with one line naming the file, the version and the supported
+// ones. A damaged manifest or graph fails the load (nothing could be placed); a damaged local-map
+// or keyframe file is refused, named with the field and the byte offset of the damage, and the
+// rest of the map loads.
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -64,8 +66,9 @@ struct LoadedMap {
     std::vector<std::string> refused;
 };
 
-// Throws MapFormatError when the manifest or the graph is damaged, common::IoError when one of
-// them cannot be read.
+// Throws MapFormatError when the manifest or the graph is damaged or of an unknown format version,
+// common::IoError when one of them cannot be read. A format-1 map loads with empty localisation
+// descriptors and localisation_descriptor_config == no_localisation_descriptors().
 LoadedMap load_map(const std::string& dir);
 
 }  // namespace ltm::mapping

@@ -10,6 +10,8 @@
 #include "common/core/crc32.hpp"
 #include "common/core/file_io.hpp"
 #include "mapping/core/map_codec.hpp"
+#include "mapping/core/map_manifest.hpp"
+#include "mapping/core/mapper_config.hpp"
 #include "mapping/core/test_data.hpp"
 
 namespace ltm::mapping {
@@ -63,6 +65,9 @@ MapData sample_map() {
     map.descriptor_config.kind = ScanContextKind::kMeanVariance;  // both descriptor kinds load
     map.descriptor_config.rings = 10;
     map.descriptor_config.sectors = 24;
+    map.localisation_descriptor_config = MapperConfig().localisation_descriptor;
+    map.localisation_descriptor_config.rings = 8;
+    map.localisation_descriptor_config.sectors = 30;
     for (std::uint64_t n = 0; n < 3; ++n) {
         PoseGraphNode node;
         node.id = 10 + n;
@@ -104,6 +109,9 @@ MapData sample_map() {
         k->data.T_anchor_lidar = test::xy_yaw(0.1 * i, 0, 1.0 * i);
         const std::vector<Eigen::Vector3f> pts = test::view(scene, k->data.T_odom_lidar, 30.0);
         k->descriptor = make_scan_context(pts, map.descriptor_config);
+        // Keyframe 1 has none (as a keyframe of a continued format-1 map).
+        if (i != 1)
+            k->localisation_descriptor = make_scan_context(pts, map.localisation_descriptor_config);
         if (i % 2 == 0) k->data.points = test::every_nth(pts, 50, i);
         map.keyframes.push_back(k);
     }
@@ -133,11 +141,20 @@ void expect_same_local_map(const common::LocalMapData& a, const common::LocalMap
     }
 }
 
+bool same_bits(const std::vector<float>& a, const std::vector<float>& b) {
+    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
+}
+
 void expect_same(const MapData& a, const MapData& b) {
     EXPECT_EQ(a.revision, b.revision);
     EXPECT_EQ(a.descriptor_config.kind, b.descriptor_config.kind);
     EXPECT_EQ(a.descriptor_config.rings, b.descriptor_config.rings);
     EXPECT_EQ(a.descriptor_config.sectors, b.descriptor_config.sectors);
+    const ScanContextConfig &la = a.localisation_descriptor_config,
+                            &lb = b.localisation_descriptor_config;
+    EXPECT_TRUE(la.kind == lb.kind && la.rings == lb.rings && la.sectors == lb.sectors &&
+                la.max_range == lb.max_range && la.min_range == lb.min_range &&
+                la.sensor_height == lb.sensor_height);
     ASSERT_EQ(a.nodes.size(), b.nodes.size());
     for (std::size_t i = 0; i < a.nodes.size(); ++i) {
         EXPECT_EQ(a.nodes[i].id, b.nodes[i].id);
@@ -170,6 +187,11 @@ void expect_same(const MapData& a, const MapData& b) {
                     x.descriptor.spread == y.descriptor.spread &&
                     x.descriptor.occupied == y.descriptor.occupied)
             << "keyframe " << i;
+        const ScanContext &u = x.localisation_descriptor, &v = y.localisation_descriptor;
+        EXPECT_TRUE(u.kind == v.kind && u.rings == v.rings && u.sectors == v.sectors &&
+                    same_bits(u.value, v.value) && same_bits(u.spread, v.spread) &&
+                    u.occupied == v.occupied)
+            << "keyframe " << i << ": localisation descriptor";
     }
     ASSERT_EQ(a.local_maps.size(), b.local_maps.size());
     for (std::size_t i = 0; i < a.local_maps.size(); ++i) {
@@ -374,6 +396,153 @@ TEST(MapStore, DamagedManifestOrGraphFailsTheLoadWithAPreciseMessage) {
         EXPECT_NE(std::string(e.what()).find("nodes[0..2]"), std::string::npos) << e.what();
     }
     EXPECT_THROW(load_map((dir / "nowhere").string()), MapFormatError);
+}
+
+TEST(MapStore, Format2KeepsTheLocalisationDescriptorsBitForBit) {
+    const fs::path dir = fresh_dir("format2");
+    const MapData map = sample_map();
+    ASSERT_FALSE(map.keyframes[0]->localisation_descriptor.empty());
+    ASSERT_FALSE(map.keyframes[0]->localisation_descriptor.spread.empty());
+    save_map(dir.string(), map);
+    const std::string manifest = common::read_file((dir / "manifest.txt").string(), "m");
+    EXPECT_EQ(manifest.rfind("ltm_map 2\n", 0), 0u) << manifest;
+    EXPECT_NE(manifest.find("\nlocalisation_descriptor 1 8 30 80 0 2\n"), std::string::npos)
+        << manifest;
+    const LoadedMap loaded = load_map(dir.string());
+    ASSERT_TRUE(loaded.refused.empty()) << loaded.refused.front();
+    expect_same(map, loaded.map);  // bit for bit, keyframe 1's empty descriptor included
+    EXPECT_TRUE(loaded.map.keyframes[1]->localisation_descriptor.empty());
+    // Every float as it was, NaN-free values compared by their bits.
+    for (std::size_t i = 0; i < map.keyframes.size(); ++i) {
+        EXPECT_TRUE(same_bits(map.keyframes[i]->localisation_descriptor.value,
+                              loaded.map.keyframes[i]->localisation_descriptor.value));
+    }
+}
+
+TEST(MapStore, WithoutLocalisationDescriptorsAMapIsSavedInFormat1) {
+    const fs::path dir = fresh_dir("format1");
+    MapData map = sample_map();
+    map.localisation_descriptor_config = no_localisation_descriptors();
+    for (auto& k : map.keyframes) {
+        auto copy = std::make_shared<StoredKeyframe>(*k);
+        copy->localisation_descriptor = ScanContext();
+        k = copy;
+    }
+    save_map(dir.string(), map);
+    const std::string manifest = common::read_file((dir / "manifest.txt").string(), "m");
+    EXPECT_EQ(manifest.rfind("ltm_map 1\nrevision 5\ndescriptor 1 10 24 80 0 2\ngraph ", 0), 0u)
+        << manifest;
+    const LoadedMap loaded = load_map(dir.string());
+    ASSERT_TRUE(loaded.refused.empty()) << loaded.refused.front();
+    expect_same(map, loaded.map);
+    EXPECT_FALSE(has_localisation_descriptors(loaded.map.localisation_descriptor_config));
+}
+
+TEST(MapStore, UnknownFormatVersionIsRefusedInOneLine) {
+    const fs::path dir = fresh_dir("version");
+    save_map(dir.string(), sample_map());
+    const std::string manifest = common::read_file((dir / "manifest.txt").string(), "m");
+    for (const char* version : {"0", "3"}) {
+        std::string text = manifest;
+        text.replace(0, 9, std::string("ltm_map ") + version);
+        std::ofstream(dir / "manifest.txt", std::ios::trunc) << text;
+        try {
+            load_map(dir.string());
+            ADD_FAILURE() << "format version " << version << " accepted";
+        } catch (const MapFormatError& e) {
+            EXPECT_EQ(std::string(e.what()),
+                      std::string("manifest.txt: line 1 at byte 0: format version ") + version +
+                          " is not supported (this build reads versions 1 and 2)");
+        }
+    }
+    std::ofstream(dir / "manifest.txt", std::ios::trunc) << manifest;
+    // A binary file of another version (the version field is outside the checksummed sections).
+    const std::string victim = local_map_file(dir, 11);
+    {
+        std::fstream f(dir / victim, std::ios::in | std::ios::out | std::ios::binary);
+        f.seekp(8);
+        const std::uint32_t three = 3;
+        f.write(reinterpret_cast<const char*>(&three), 4);
+    }
+    const LoadedMap loaded = load_map(dir.string());
+    ASSERT_EQ(loaded.refused.size(), 1u);
+    EXPECT_EQ(loaded.refused[0], victim +
+                                     ": format version at byte 8: format version 3 is not "
+                                     "supported (this build reads versions 1 and 2)");
+}
+
+TEST(MapStore, DamagedLocalisationDescriptorIsRefusedNamingTheField) {
+    const MapData map = sample_map();
+    const DescriptorSettings settings{map.descriptor_config, map.localisation_descriptor_config};
+    auto decode_error = [&](const StoredKeyframe& k) -> std::string {
+        std::vector<std::shared_ptr<const StoredKeyframe>> list{
+            std::make_shared<StoredKeyframe>(k)};
+        const std::string bytes = encode_keyframes(settings, list, 0, 1);
+        std::uint64_t first = 0;
+        try {
+            decode_keyframes(bytes, "kf.bin", &settings, &first);
+        } catch (const MapFormatError& e) {
+            return e.field() + ": " + e.problem();
+        }
+        return "";
+    };
+    StoredKeyframe k = *map.keyframes[0];
+    EXPECT_EQ(decode_error(k), "");
+    k.localisation_descriptor.spread[17] = -0.5f;
+    EXPECT_EQ(decode_error(k), "keyframes[0].localisation_descriptor.spread: negative");
+    k = *map.keyframes[0];
+    k.localisation_descriptor.occupied[3] = 2;
+    EXPECT_EQ(decode_error(k), "keyframes[0].localisation_descriptor.occupied: must be 0 or 1");
+    k = *map.keyframes[0];
+    k.localisation_descriptor.value[5] = std::numeric_limits<float>::quiet_NaN();
+    EXPECT_EQ(decode_error(k), "keyframes[0].localisation_descriptor.value: not a finite number");
+    k = *map.keyframes[0];
+    k.localisation_descriptor.rings = 7;  // the header says 8
+    EXPECT_EQ(decode_error(k),
+              "keyframes[0].localisation_descriptor: shape differs from the file header's");
+    // The header's settings against the manifest's.
+    DescriptorSettings other = settings;
+    other.localisation.sectors = 60;
+    std::vector<std::shared_ptr<const StoredKeyframe>> list{map.keyframes[0]};
+    std::uint64_t first = 0;
+    try {
+        decode_keyframes(encode_keyframes(settings, list, 0, 1), "kf.bin", &other, &first);
+        ADD_FAILURE() << "settings differing from the manifest's accepted";
+    } catch (const MapFormatError& e) {
+        EXPECT_EQ(e.field(), "header.localisation_descriptor");
+    }
+    // In a map folder: damage under a valid checksum is refused naming the field; the rest loads.
+    const fs::path dir = fresh_dir("damaged_localisation");
+    save_map(dir.string(), map);
+    std::string file;
+    for (const auto& e : fs::directory_iterator(dir)) {
+        if (e.path().filename().string().rfind("keyframes_", 0) == 0)
+            file = e.path().filename().string();
+    }
+    std::string bytes = common::read_file((dir / file).string(), "kf");
+    // keyframes[0]'s section: after the header section (16 + length + 4), its length, then ids
+    // (4 + 8 + 8 + 8 + 8 + 8), two poses (192), the loop descriptor (9 + 240 * 9) and the
+    // localisation descriptor's kind, rings, sectors (9): its first value.
+    std::uint32_t header_length = 0;
+    std::memcpy(&header_length, &bytes[12], 4);
+    const std::size_t section = 16 + header_length + 4;
+    const std::size_t value0 = section + 4 + 44 + 192 + 9 + 240 * 9 + 9;
+    std::uint8_t rings = 0;
+    std::memcpy(&rings, &bytes[value0 - 8], 1);
+    ASSERT_EQ(rings, 8u);  // the layout above holds
+    const std::size_t spread0 = value0 + 240 * 4;
+    const float negative = -1.0f;
+    std::memcpy(&bytes[spread0], &negative, 4);
+    std::uint32_t length = 0;
+    std::memcpy(&length, &bytes[section], 4);
+    const std::uint32_t crc = common::crc32(bytes.data() + section + 4, length);
+    std::memcpy(&bytes[section + 4 + length], &crc, 4);
+    std::ofstream(dir / file, std::ios::binary | std::ios::trunc) << bytes;
+    const LoadedMap loaded = load_map(dir.string());
+    ASSERT_EQ(loaded.refused.size(), 1u);
+    EXPECT_EQ(loaded.refused[0], file + ": keyframes[0].localisation_descriptor.spread at byte " +
+                                     std::to_string(spread0) + ": negative");
+    EXPECT_EQ(loaded.map.local_maps.size(), 3u);
 }
 
 }  // namespace

@@ -29,6 +29,20 @@ bool rigid(const Eigen::Isometry3d& T, Eigen::Isometry3d* out) {
     return true;
 }
 
+// The loaded map's descriptors (a) must be made as the config's (b) are.
+void require_same_descriptors(const ScanContextConfig& a, const ScanContextConfig& b,
+                              const std::string& key) {
+    if (a.kind != b.kind || a.rings != b.rings || a.sectors != b.sectors ||
+        std::abs(a.max_range - b.max_range) > 1e-9 || std::abs(a.min_range - b.min_range) > 1e-9 ||
+        std::abs(a.sensor_height - b.sensor_height) > 1e-9) {
+        std::ostringstream e;
+        e << "differs from the loaded map's descriptors (" << a.rings << " x " << a.sectors
+          << ", kind " << int(a.kind) << ", max_range " << a.max_range << ", min_range "
+          << a.min_range << ", sensor_height " << a.sensor_height << ")";
+        throw common::ConfigError(key, e.str());
+    }
+}
+
 }  // namespace
 
 Mapper::Mapper(const MapperConfig& config)
@@ -39,16 +53,13 @@ Mapper::Mapper(const MapperConfig& config)
 
 Mapper::Mapper(const MapperConfig& config, const MapData& loaded, bool freeze_loaded)
     : Mapper(config) {
-    const ScanContextConfig& a = loaded.descriptor_config;
-    const ScanContextConfig& b = config_.scan_context;
-    if (a.kind != b.kind || a.rings != b.rings || a.sectors != b.sectors ||
-        std::abs(a.max_range - b.max_range) > 1e-9 || std::abs(a.min_range - b.min_range) > 1e-9 ||
-        std::abs(a.sensor_height - b.sensor_height) > 1e-9) {
-        std::ostringstream e;
-        e << "differs from the loaded map's descriptors (" << a.rings << " x " << a.sectors
-          << ", kind " << int(a.kind) << ", max_range " << a.max_range << ", sensor_height "
-          << a.sensor_height << ")";
-        throw common::ConfigError("mapping.scan_context", e.str());
+    require_same_descriptors(loaded.descriptor_config, config_.scan_context,
+                             "mapping.scan_context");
+    // A format-1 map has no localisation descriptors: its keyframes keep none, new ones get them.
+    if (has_localisation_descriptors(loaded.localisation_descriptor_config)) {
+        require_same_descriptors(loaded.localisation_descriptor_config,
+                                 config_.localisation_descriptor,
+                                 "mapping.localisation_descriptor");
     }
     std::uint32_t last_session = 0;
     for (PoseGraphNode n : loaded.nodes) {
@@ -257,6 +268,8 @@ KeyframeResult Mapper::add_keyframe(const common::KeyframeData& input) {
     stored->session = session_;
     stored->node = node;
     stored->descriptor = make_scan_context(input.points, config_.scan_context);
+    stored->localisation_descriptor =
+        make_scan_context(input.points, config_.localisation_descriptor);
     std::vector<LoopCandidate> candidates;
     if (!detector_.add(stored->descriptor, session_, keyframe.stamp, &candidates)) {
         r.message = "keyframe " + std::to_string(keyframe.id) + ": descriptor has the wrong shape";
@@ -366,6 +379,7 @@ MapData Mapper::snapshot() const {
     MapData m;
     m.revision = revision_;
     m.descriptor_config = config_.scan_context;
+    m.localisation_descriptor_config = config_.localisation_descriptor;
     m.nodes = graph_.nodes();
     m.edges = graph_.edges();
     m.keyframes = keyframes_;
@@ -385,9 +399,12 @@ std::size_t Mapper::memory_bytes() const {
         for (const common::VoxelData& v : d.voxels)
             n += v.life.seen.capacity() * sizeof(std::uint16_t);
     }
+    auto descriptor_bytes = [](const ScanContext& d) {
+        return (d.value.capacity() + d.spread.capacity()) * sizeof(float) + d.occupied.capacity();
+    };
     for (const auto& k : keyframes_) {
-        n += sizeof(StoredKeyframe) + k->descriptor.value.capacity() * sizeof(float) +
-             k->descriptor.spread.capacity() * sizeof(float) + k->descriptor.occupied.capacity() +
+        n += sizeof(StoredKeyframe) + descriptor_bytes(k->descriptor) +
+             descriptor_bytes(k->localisation_descriptor) +
              k->data.points.capacity() * sizeof(Eigen::Vector3f);
     }
     return n;

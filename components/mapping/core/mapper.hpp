@@ -101,8 +101,10 @@ class Mapper {
     explicit Mapper(const MapperConfig& config);
     // Continues a loaded map in a new session: its keyframes are searchable at once and, with
     // `freeze_loaded`, its anchors are held fixed. Throws common::ConfigError (key
-    // mapping.scan_context) when the map's descriptors do not match config.scan_context, and
-    // common::IoError when its graph holds an invalid or repeated node.
+    // mapping.scan_context, mapping.localisation_descriptor) when the map's descriptors are not
+    // made as config.scan_context's, config.localisation_descriptor's are (a map without
+    // localisation descriptors, format 1, is accepted: its keyframes keep none, the new ones get
+    // them), and common::IoError when its graph holds an invalid or repeated node.
     Mapper(const MapperConfig& config, const MapData& loaded, bool freeze_loaded = true);
 
     const MapperConfig& config() const { return config_; }

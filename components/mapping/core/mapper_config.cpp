@@ -32,12 +32,21 @@ MapperConfig mapper_preset(common::SensorPreset preset) {
     } else {
         c.scan_context.sensor_height = 1.73;  // KITTI's HDL-64E
     }
+    // Both descriptors see the same part of the scan.
+    c.localisation_descriptor.max_range = c.scan_context.max_range;
+    c.localisation_descriptor.min_range = c.scan_context.min_range;
+    c.localisation_descriptor.sensor_height = c.scan_context.sensor_height;
     return c;
 }
 
 std::optional<common::ConfigProblem> validate(const MapperConfig& config) {
     common::ConfigChecker k;
     k.include(validate(config.scan_context), "scan_context.");
+    k.include(validate(config.localisation_descriptor), "localisation_descriptor.");
+    if (config.localisation_descriptor.kind != ScanContextKind::kMeanVariance) {
+        k.include(common::ConfigProblem{"kind", "must be mean_variance (ScanContext++)"},
+                  "localisation_descriptor.");
+    }
     k.include(validate(config.loop_detection), "loop_detection.");
     k.include(validate(config.verification), "verification.");
     k.include(validate(config.pose_graph), "pose_graph.");

@@ -40,8 +40,19 @@ struct LoopConsistencyConfig {
     double rotation_per_m = 0.05;     // [deg/m]
 };
 
+// The keyframes' localisation descriptor (ScanContext++, kind kMeanVariance), saved in the map
+// for global localisation; its range and sensor height follow scan_context's in mapper_preset().
+inline ScanContextConfig default_localisation_descriptor() {
+    ScanContextConfig c;
+    c.kind = ScanContextKind::kMeanVariance;
+    c.rings = 20;
+    c.sectors = 60;
+    return c;
+}
+
 struct MapperConfig {
-    ScanContextConfig scan_context;
+    ScanContextConfig scan_context;  // loop closure
+    ScanContextConfig localisation_descriptor = default_localisation_descriptor();
     LoopDetectorConfig loop_detection;
     LoopVerifierConfig verification;
     PoseGraphConfig pose_graph;
@@ -95,11 +106,12 @@ void visit_own_fields(MapperConfig& c, Visitor&& v) {
     v("keep_keyframe_points", c.keep_keyframe_points, unchecked);
 }
 
-// Every field but the Scan Context kind (an enum: loaders read it as a name): the parts', then the
-// mapper's own.
+// Every field but the Scan Context kinds (enums: loaders read scan_context.kind as a name; the
+// localisation descriptor is always ScanContext++): the parts', then the mapper's own.
 template <class Visitor>
 void visit_fields(MapperConfig& c, Visitor&& v) {
     visit_fields(c.scan_context, "scan_context.", v);
+    visit_fields(c.localisation_descriptor, "localisation_descriptor.", v);
     visit_fields(c.loop_detection, "loop_detection.", v);
     visit_fields(c.verification, "verification.", v);
     visit_fields(c.pose_graph, "pose_graph.", v);

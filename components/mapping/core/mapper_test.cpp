@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -299,6 +300,100 @@ TEST(Mapper, BadInputIsRefusedWithAReason) {
         FAIL();
     } catch (const common::ConfigError& e) {
         EXPECT_STREQ(e.what(), "mapping.odometry_edge.sigma_rotation: must be > 0 (got 0)");
+    }
+}
+
+common::KeyframeData scene_keyframe(std::uint64_t id, const Eigen::Isometry3d& T) {
+    static const std::vector<Eigen::Vector3f> scene = test::synthetic_scene(4, 30.0);
+    common::KeyframeData k;
+    k.id = id;
+    k.scan_index = id;
+    k.local_map_id = id;
+    k.stamp = double(id);
+    k.T_odom_lidar = T;
+    k.T_anchor_lidar = Eigen::Isometry3d::Identity();
+    k.points = test::view(scene, T, 30.0);
+    return k;
+}
+
+TEST(Mapper, KeyframesCarryALocalisationDescriptorIntoTheSnapshot) {
+    MapperConfig config = mapper_preset(common::SensorPreset::kNarrow);
+    EXPECT_EQ(config.localisation_descriptor.kind, ScanContextKind::kMeanVariance);
+    EXPECT_EQ(config.localisation_descriptor.rings, 20);
+    EXPECT_EQ(config.localisation_descriptor.sectors, 60);
+    EXPECT_EQ(config.localisation_descriptor.max_range, 40.0);  // the preset's scan_context's
+    EXPECT_EQ(config.localisation_descriptor.sensor_height, 1.0);
+    Mapper mapper(config);
+    const std::size_t before = mapper.memory_bytes();
+    const common::KeyframeData k = scene_keyframe(0, test::xy_yaw(1, 2, 30));
+    ASSERT_TRUE(mapper.add_keyframe(k).added);
+    const MapData m = mapper.snapshot();
+    EXPECT_EQ(m.localisation_descriptor_config.rings, 20);
+    EXPECT_EQ(m.localisation_descriptor_config.max_range, 40.0);
+    const ScanContext expected = make_scan_context(k.points, config.localisation_descriptor);
+    const ScanContext& got = m.keyframes[0]->localisation_descriptor;
+    EXPECT_EQ(got.kind, ScanContextKind::kMeanVariance);
+    EXPECT_EQ(got.value, expected.value);
+    EXPECT_EQ(got.spread, expected.spread);
+    EXPECT_EQ(got.occupied, expected.occupied);
+    EXPECT_GT(std::count(got.occupied.begin(), got.occupied.end(), 1), 50);
+    // The loop descriptor is unchanged.
+    EXPECT_EQ(m.keyframes[0]->descriptor.value,
+              make_scan_context(k.points, config.scan_context).value);
+    // Both descriptors are counted: 1200 bins of mean, spread and occupancy (9 bytes), 1200 of
+    // max height and occupancy (5 bytes).
+    EXPECT_GE(mapper.memory_bytes() - before, 1200u * 9 + 1200u * 5);
+}
+
+TEST(Mapper, AFormat1MapIsContinuedWithLocalisationDescriptorsOnTheNewKeyframes) {
+    const MapperConfig config;
+    Mapper first(config);
+    ASSERT_TRUE(first.add_keyframe(scene_keyframe(0, test::xy_yaw(0, 0, 0))).added);
+    MapData v1 = first.snapshot();  // as a format-1 map loads: no localisation descriptors
+    v1.localisation_descriptor_config = no_localisation_descriptors();
+    auto old = std::make_shared<StoredKeyframe>(*v1.keyframes[0]);
+    old->localisation_descriptor = ScanContext();
+    v1.keyframes[0] = old;
+    Mapper next(config, v1);
+    ASSERT_TRUE(next.add_keyframe(scene_keyframe(0, test::xy_yaw(5, 0, 10))).added);
+    const MapData m = next.snapshot();
+    ASSERT_EQ(m.keyframes.size(), 2u);
+    EXPECT_TRUE(m.keyframes[0]->localisation_descriptor.empty());
+    EXPECT_FALSE(m.keyframes[1]->localisation_descriptor.empty());
+    EXPECT_TRUE(has_localisation_descriptors(m.localisation_descriptor_config));
+    // Saved in format 2 (the old keyframe's descriptor empty) and loaded again.
+    const std::string path = std::string(LTM_BINARY_DIR) + "/mapping_test_maps/continued_v1";
+    std::filesystem::remove_all(path);
+    save_map(path, m);
+    const LoadedMap loaded = load_map(path);
+    ASSERT_TRUE(loaded.refused.empty()) << loaded.refused[0];
+    ASSERT_EQ(loaded.map.keyframes.size(), 2u);
+    EXPECT_TRUE(loaded.map.keyframes[0]->localisation_descriptor.empty());
+    EXPECT_EQ(loaded.map.keyframes[1]->localisation_descriptor.value,
+              m.keyframes[1]->localisation_descriptor.value);
+    // A format-2 map continues only with the same localisation descriptor settings.
+    EXPECT_NO_THROW(Mapper(config, loaded.map));
+    MapperConfig other = config;
+    other.localisation_descriptor.sectors = 72;
+    try {
+        Mapper m2(other, loaded.map);
+        ADD_FAILURE() << "localisation descriptors of another shape accepted";
+    } catch (const common::ConfigError& e) {
+        EXPECT_EQ(e.key(), "mapping.localisation_descriptor");
+        EXPECT_EQ(e.problem().rfind("differs from the loaded map's descriptors (20 x 60", 0), 0u)
+            << e.problem();
+    }
+    other = config;
+    other.localisation_descriptor.max_range = 50.0;
+    EXPECT_THROW(Mapper(other, loaded.map), common::ConfigError);
+    other = config;
+    other.localisation_descriptor.kind = ScanContextKind::kMaxHeight;
+    try {
+        Mapper m3(other);
+        ADD_FAILURE() << "a Scan Context localisation descriptor accepted";
+    } catch (const common::ConfigError& e) {
+        EXPECT_STREQ(e.what(),
+                     "mapping.localisation_descriptor.kind: must be mean_variance (ScanContext++)");
     }
 }
 

@@ -30,7 +30,8 @@ TEST(MapperParams, PresetThenOverrides) {
     runtime::Parameters p = params_of(
         "preset: narrow\nscan_context: {kind: mean_variance, rings: 24}\n"
         "verification: {fine: {max_iterations: 70}, yaw_offsets: [-10, 0, 10]}\n"
-        "pose_graph: {loop_loss: huber}\nloop_cooldown_keyframes: 0\n");
+        "pose_graph: {loop_loss: huber}\nloop_cooldown_keyframes: 0\n"
+        "localisation_descriptor: {sectors: 90, min_range: 1.5}\n");
     const MapperConfig c = load_mapper_config(p);
     EXPECT_NO_THROW(p.check_all_used());
     const MapperConfig narrow = mapper_preset(common::SensorPreset::kNarrow);
@@ -40,6 +41,13 @@ TEST(MapperParams, PresetThenOverrides) {
     EXPECT_EQ(c.verification.yaw_offsets, (std::vector<double>{-10, 0, 10}));
     EXPECT_EQ(c.pose_graph.loop_loss, "huber");
     EXPECT_EQ(c.loop_cooldown_keyframes, 0);
+    EXPECT_EQ(c.localisation_descriptor.sectors, 90);
+    EXPECT_EQ(c.localisation_descriptor.min_range, 1.5);
+    // The localisation descriptor: ScanContext++ over the preset's descriptor range.
+    EXPECT_EQ(c.localisation_descriptor.kind, ScanContextKind::kMeanVariance);
+    EXPECT_EQ(c.localisation_descriptor.rings, 20);
+    EXPECT_DOUBLE_EQ(c.localisation_descriptor.max_range, narrow.scan_context.max_range);
+    EXPECT_DOUBLE_EQ(c.localisation_descriptor.sensor_height, narrow.scan_context.sensor_height);
     // Untouched keys: the preset's.
     EXPECT_DOUBLE_EQ(c.scan_context.max_range, narrow.scan_context.max_range);
     EXPECT_EQ(c.verification.min_inliers, narrow.verification.min_inliers);
@@ -123,6 +131,18 @@ TEST(MapperParams, RejectsWhatItDoesNotKnowNamingFileLineAndKey) {
     EXPECT_EQ(error_of("preset: vlp32\nscan_context: {rigns: 30}")
                   .rfind("test.yaml:2: mapping.scan_context.rigns: unknown parameter", 0),
               0u);
+    EXPECT_EQ(
+        error_of("localisation_descriptor: {rigns: 30}")
+            .rfind("test.yaml:1: mapping.localisation_descriptor.rigns: unknown parameter", 0),
+        0u)
+        << error_of("localisation_descriptor: {rigns: 30}");
+    // Always ScanContext++: the kind is not a parameter.
+    EXPECT_EQ(error_of("localisation_descriptor: {kind: max_height}")
+                  .rfind("test.yaml:1: mapping.localisation_descriptor.kind: unknown parameter", 0),
+              0u);
+    EXPECT_EQ(error_of("localisation_descriptor: {max_range: 30, min_range: 40}"),
+              "test.yaml:1: mapping.localisation_descriptor.min_range: must be smaller than "
+              "max_range");
     EXPECT_EQ(error_of("loop_detection: {max_distance: far}"),
               "test.yaml:1: mapping.loop_detection.max_distance: expected a number, got 'far'");
     EXPECT_NE(error_of("a: 1\nscan_context: {sectors: 0}")
