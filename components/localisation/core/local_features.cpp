@@ -1,0 +1,508 @@
+#include "localisation/core/local_features.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <unordered_map>
+
+namespace ltm::localisation {
+namespace {
+
+constexpr double kTwoPi = 2.0 * M_PI;
+
+// Voxel centroids of the finite points within `reach` (horizontally) of `centre`.
+std::vector<Eigen::Vector3d> voxel_centroids(const std::vector<Eigen::Vector3f>& points,
+                                             const Eigen::Vector3d& centre, double reach,
+                                             double voxel) {
+    struct Acc {
+        Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+        int count = 0;
+    };
+    std::unordered_map<std::uint64_t, std::uint32_t> index;
+    index.reserve(points.size() / 4 + 16);
+    std::vector<Acc> acc;
+    const double reach2 = reach * reach, inv = 1.0 / voxel;
+    constexpr std::int64_t kBias = 1 << 20;  // keys: 21 bits an axis
+    for (const Eigen::Vector3f& pf : points) {
+        if (!pf.allFinite()) continue;
+        const Eigen::Vector3d p = pf.cast<double>();
+        const double dx = p.x() - centre.x(), dy = p.y() - centre.y();
+        if (dx * dx + dy * dy > reach2) continue;
+        const std::int64_t ix = std::int64_t(std::floor(dx * inv)) + kBias;
+        const std::int64_t iy = std::int64_t(std::floor(dy * inv)) + kBias;
+        const std::int64_t iz = std::int64_t(std::floor((p.z() - centre.z()) * inv)) + kBias;
+        if (iz < 0 || iz >= 2 * kBias) continue;  // absurd heights
+        const std::uint64_t key =
+            (std::uint64_t(ix) << 42) | (std::uint64_t(iy) << 21) | std::uint64_t(iz);
+        const auto [it, fresh] = index.emplace(key, std::uint32_t(acc.size()));
+        if (fresh) acc.emplace_back();
+        Acc& a = acc[it->second];
+        a.sum += p;
+        ++a.count;
+    }
+    std::vector<Eigen::Vector3d> out;
+    out.reserve(acc.size());
+    for (const Acc& a : acc) out.push_back(a.sum / a.count);
+    return out;
+}
+
+// A square 2-D grid of cells around a centre, each listing the voxels whose x, y fall in it.
+struct CellGrid {
+    double x0 = 0.0, y0 = 0.0, cell = 1.0;
+    int n = 0;                         // n x n cells
+    std::vector<std::uint32_t> start;  // n * n + 1 offsets into `items`
+    std::vector<std::uint32_t> items;  // voxel indices, grouped by cell
+    std::vector<float> lowest;         // per cell: the lowest voxel's z (+inf when empty)
+
+    int cx(double x) const { return int(std::floor((x - x0) / cell)); }
+    int cy(double y) const { return int(std::floor((y - y0) / cell)); }
+    bool inside(int i, int j) const { return i >= 0 && j >= 0 && i < n && j < n; }
+    std::size_t at(int i, int j) const { return std::size_t(j) * n + i; }
+};
+
+CellGrid make_grid(const std::vector<Eigen::Vector3d>& voxels, const Eigen::Vector3d& centre,
+                   double half_extent, double cell) {
+    CellGrid g;
+    g.cell = cell;
+    g.n = std::max(1, int(std::ceil(2.0 * half_extent / cell)));
+    g.x0 = centre.x() - 0.5 * g.n * cell;
+    g.y0 = centre.y() - 0.5 * g.n * cell;
+    const std::size_t cells = std::size_t(g.n) * g.n;
+    std::vector<std::uint32_t> which(voxels.size(), std::uint32_t(cells));
+    g.start.assign(cells + 1, 0);
+    g.lowest.assign(cells, std::numeric_limits<float>::infinity());
+    for (std::size_t k = 0; k < voxels.size(); ++k) {
+        const int i = g.cx(voxels[k].x()), j = g.cy(voxels[k].y());
+        if (!g.inside(i, j)) continue;
+        const std::size_t c = g.at(i, j);
+        which[k] = std::uint32_t(c);
+        ++g.start[c + 1];
+        g.lowest[c] = std::min(g.lowest[c], float(voxels[k].z()));
+    }
+    for (std::size_t c = 0; c < cells; ++c) g.start[c + 1] += g.start[c];
+    g.items.resize(g.start[cells]);
+    std::vector<std::uint32_t> fill(g.start.begin(), g.start.end() - 1);
+    for (std::size_t k = 0; k < voxels.size(); ++k) {
+        if (which[k] < cells) g.items[fill[which[k]]++] = std::uint32_t(k);
+    }
+    return g;
+}
+
+// Per cell: 1 where the lowest voxel is ground (no cell within the window lies lower than the
+// slope allows).
+std::vector<std::uint8_t> ground_cells(const CellGrid& g, const LocalFeatureConfig& config) {
+    const int w = int(std::ceil(config.ground_window / g.cell));
+    const double slope = std::tan(config.ground_max_slope_deg * M_PI / 180.0);
+    std::vector<std::uint8_t> ground(g.lowest.size(), 0);
+    for (int j = 0; j < g.n; ++j) {
+        for (int i = 0; i < g.n; ++i) {
+            const float z = g.lowest[g.at(i, j)];
+            if (!std::isfinite(z)) continue;
+            bool ok = true;
+            for (int dj = -w; dj <= w && ok; ++dj) {
+                for (int di = -w; di <= w; ++di) {
+                    if (!g.inside(i + di, j + dj)) continue;
+                    const float zn = g.lowest[g.at(i + di, j + dj)];
+                    if (!std::isfinite(zn)) continue;
+                    const double d = g.cell * std::max(0.0, std::hypot(di, dj) - 1.0);
+                    if (z - zn > slope * d + config.ground_tolerance) {
+                        ok = false;
+                        break;
+                    }
+                }
+            }
+            ground[g.at(i, j)] = ok;
+        }
+    }
+    return ground;
+}
+
+// The descriptor of the voxels around `sample` (z relative to sample.z()); `count` gets the
+// voxels used.
+mapping::ScanContext describe(const std::vector<Eigen::Vector3d>& voxels, const CellGrid& g,
+                              const Eigen::Vector3d& sample, const LocalFeatureConfig& config,
+                              int* count) {
+    const int rings = config.rings, sectors = config.sectors;
+    const std::size_t bins = std::size_t(rings) * sectors;
+    mapping::ScanContext sc;
+    sc.kind = mapping::ScanContextKind::kMeanVariance;
+    sc.rings = rings;
+    sc.sectors = sectors;
+    sc.value.assign(bins, 0.0f);
+    sc.spread.assign(bins, 0.0f);
+    sc.occupied.assign(bins, 0);
+    std::vector<double> sum(bins, 0.0), sum_sq(bins, 0.0);
+    std::vector<int> n(bins, 0);
+    const double r = config.radius, r2 = r * r;
+    const double sector_scale = sectors / kTwoPi;
+    const int i0 = g.cx(sample.x() - r), i1 = g.cx(sample.x() + r);
+    const int j0 = g.cy(sample.y() - r), j1 = g.cy(sample.y() + r);
+    *count = 0;
+    for (int j = std::max(0, j0); j <= std::min(g.n - 1, j1); ++j) {
+        for (int i = std::max(0, i0); i <= std::min(g.n - 1, i1); ++i) {
+            const std::size_t c = g.at(i, j);
+            for (std::uint32_t k = g.start[c]; k < g.start[c + 1]; ++k) {
+                const Eigen::Vector3d& p = voxels[g.items[k]];
+                const double dx = p.x() - sample.x(), dy = p.y() - sample.y();
+                const double d2 = dx * dx + dy * dy;
+                if (d2 >= r2) continue;
+                const double z = p.z() - sample.z();
+                if (z > config.max_height) continue;
+                const int ring =
+                    config.equal_area_rings ? int(rings * d2 / r2) : int(rings * std::sqrt(d2) / r);
+                double azimuth = std::atan2(dy, dx);
+                if (azimuth < 0.0) azimuth += kTwoPi;
+                const int sector = std::min(sectors - 1, int(azimuth * sector_scale));
+                const std::size_t b = std::size_t(std::min(rings - 1, ring)) * sectors + sector;
+                sum[b] += z;
+                sum_sq[b] += z * z;
+                ++n[b];
+                ++*count;
+            }
+        }
+    }
+    for (std::size_t b = 0; b < bins; ++b) {
+        if (n[b] == 0) continue;
+        const double mean = sum[b] / n[b];
+        sc.occupied[b] = 1;
+        sc.value[b] = float(mean);
+        sc.spread[b] = float(std::sqrt(std::max(0.0, sum_sq[b] / n[b] - mean * mean)));
+    }
+    return sc;
+}
+
+LocalFeatures features(const std::vector<Eigen::Vector3f>& points, const LocalFeatureConfig& config,
+                       const Eigen::Vector3d& centre, double sample_radius) {
+    common::throw_if(validate(config), "local_features");
+    LocalFeatures out;
+    out.sample_spacing = config.sample_spacing;
+    const double reach = sample_radius + config.radius + config.ground_window + config.ground_cell;
+    const std::vector<Eigen::Vector3d> voxels =
+        voxel_centroids(points, centre, reach, config.voxel_size);
+    if (voxels.empty()) return out;
+    const CellGrid g = make_grid(voxels, centre, reach, config.ground_cell);
+    const std::vector<std::uint8_t> ground = ground_cells(g, config);
+
+    // Lattice points within the sample radius whose cell is ground, nearest to the centre first.
+    struct Candidate {
+        double d2;
+        Eigen::Vector3d p;
+    };
+    std::vector<Candidate> candidates;
+    const double s = config.sample_spacing, sr2 = sample_radius * sample_radius;
+    const int a0 = int(std::ceil((centre.x() - sample_radius) / s));
+    const int a1 = int(std::floor((centre.x() + sample_radius) / s));
+    const int b0 = int(std::ceil((centre.y() - sample_radius) / s));
+    const int b1 = int(std::floor((centre.y() + sample_radius) / s));
+    for (int b = b0; b <= b1; ++b) {
+        for (int a = a0; a <= a1; ++a) {
+            const double x = a * s, y = b * s;
+            const double d2 =
+                (x - centre.x()) * (x - centre.x()) + (y - centre.y()) * (y - centre.y());
+            if (d2 > sr2) continue;
+            const int i = g.cx(x), j = g.cy(y);
+            if (!g.inside(i, j) || !ground[g.at(i, j)]) continue;
+            // Ground height: the mean lowest voxel of the ground cells of the 3 x 3 block.
+            double z = 0.0;
+            int used = 0;
+            for (int dj = -1; dj <= 1; ++dj) {
+                for (int di = -1; di <= 1; ++di) {
+                    if (!g.inside(i + di, j + dj) || !ground[g.at(i + di, j + dj)]) continue;
+                    z += g.lowest[g.at(i + di, j + dj)];
+                    ++used;
+                }
+            }
+            candidates.push_back({d2, Eigen::Vector3d(x, y, z / used)});
+        }
+    }
+    std::stable_sort(candidates.begin(), candidates.end(),
+                     [](const Candidate& l, const Candidate& r) { return l.d2 < r.d2; });
+    for (const Candidate& c : candidates) {
+        if (int(out.size()) >= config.max_samples) break;
+        int count = 0;
+        mapping::ScanContext sc = describe(voxels, g, c.p, config, &count);
+        if (count < config.min_points_per_descriptor) continue;
+        int occupied = 0;
+        for (const std::uint8_t o : sc.occupied) occupied += o;
+        if (occupied < config.min_occupied_bins) continue;
+        out.positions.push_back(c.p);
+        out.descriptors.push_back(std::move(sc));
+    }
+    return out;
+}
+
+// Descriptors packed sector-major (index sector * rings + ring) for the shift loop; targets hold
+// their sectors twice so that every shift reads one contiguous run.
+struct Packed {
+    int rings = 0, sectors = 0, copies = 1;
+    std::vector<float> mean, spread, occupied;  // per descriptor: copies * sectors * rings
+    std::vector<std::uint8_t> usable;
+    std::vector<float> keys;  // per descriptor: 2 * rings
+
+    std::size_t stride() const { return std::size_t(copies) * sectors * rings; }
+};
+
+Packed pack(const LocalFeatures& f, int rings, int sectors, int copies) {
+    Packed p;
+    p.rings = rings;
+    p.sectors = sectors;
+    p.copies = copies;
+    const std::size_t n = f.descriptors.size(), stride = p.stride();
+    p.mean.assign(n * stride, 0.0f);
+    p.spread.assign(n * stride, 0.0f);
+    p.occupied.assign(n * stride, 0.0f);
+    p.usable.assign(n, 0);
+    p.keys.assign(n * 2 * rings, 0.0f);
+    for (std::size_t k = 0; k < n; ++k) {
+        const mapping::ScanContext& sc = f.descriptors[k];
+        const std::size_t bins = std::size_t(rings) * sectors;
+        if (sc.kind != mapping::ScanContextKind::kMeanVariance || sc.rings != rings ||
+            sc.sectors != sectors || sc.value.size() != bins || sc.spread.size() != bins ||
+            sc.occupied.size() != bins) {
+            continue;
+        }
+        p.usable[k] = 1;
+        for (int c = 0; c < copies; ++c) {
+            for (int s = 0; s < sectors; ++s) {
+                for (int r = 0; r < rings; ++r) {
+                    const std::size_t from = std::size_t(r) * sectors + s;
+                    const std::size_t to = k * stride + (std::size_t(c) * sectors + s) * rings + r;
+                    p.mean[to] = sc.value[from];
+                    p.spread[to] = sc.spread[from];
+                    p.occupied[to] = sc.occupied[from] ? 1.0f : 0.0f;
+                }
+            }
+        }
+        const Eigen::VectorXf key = local_ring_key(sc);
+        std::copy(key.data(), key.data() + key.size(), p.keys.begin() + k * 2 * rings);
+    }
+    return p;
+}
+
+// Distance of query q to target t at a shift (query sector j against target sector j + shift).
+inline float distance_at(const Packed& q, std::size_t qi, const Packed& t, std::size_t ti,
+                         int shift, float empty_cost, float unseen_cost) {
+    const std::size_t n = std::size_t(q.sectors) * q.rings;
+    const float* qm = q.mean.data() + qi * q.stride();
+    const float* qs = q.spread.data() + qi * q.stride();
+    const float* qo = q.occupied.data() + qi * q.stride();
+    const std::size_t off = ti * t.stride() + std::size_t(shift) * t.rings;
+    const float* tm = t.mean.data() + off;
+    const float* ts = t.spread.data() + off;
+    const float* to = t.occupied.data() + off;
+    float sum = 0.0f, used = 0.0f;
+    for (std::size_t i = 0; i < n; ++i) {
+        const float dm = qm[i] - tm[i], ds = qs[i] - ts[i];
+        const float both = qo[i] * to[i];
+        const float d = std::min(dm * dm + ds * ds, empty_cost);
+        sum += both * d + (qo[i] - both) * empty_cost + (to[i] - both) * unseen_cost;
+        used += qo[i] + to[i] - both;
+    }
+    return used > 0.0f ? sum / used : empty_cost;
+}
+
+}  // namespace
+
+std::optional<common::ConfigProblem> validate(const LocalFeatureConfig& config) {
+    LocalFeatureConfig c = config;
+    common::ConfigChecker k;
+    visit_fields(c, "", k);
+    return k.problem();
+}
+
+std::optional<common::ConfigProblem> validate(const LocalFeatureMatchConfig& config) {
+    LocalFeatureMatchConfig c = config;
+    common::ConfigChecker k;
+    visit_fields(c, "", k);
+    return k.problem();
+}
+
+LocalFeatures make_local_features(const std::vector<Eigen::Vector3f>& points,
+                                  const LocalFeatureConfig& config) {
+    return features(points, config, Eigen::Vector3d::Zero(), config.max_range);
+}
+
+LocalFeatures make_local_features(const std::vector<Eigen::Vector3f>& points,
+                                  const LocalFeatureConfig& config, const Eigen::Vector3d& centre,
+                                  double sample_radius) {
+    if (!centre.allFinite() || !(sample_radius > 0.0) || !std::isfinite(sample_radius)) {
+        throw common::ConfigError("sample_radius", "must be > 0 around a finite centre");
+    }
+    return features(points, config, centre, sample_radius);
+}
+
+Eigen::VectorXf local_ring_key(const mapping::ScanContext& sc) {
+    Eigen::VectorXf key = Eigen::VectorXf::Zero(2 * sc.rings);
+    if (sc.empty() || sc.spread.size() != sc.value.size()) return key;
+    for (int r = 0; r < sc.rings; ++r) {
+        double m = 0.0, s = 0.0;
+        int n = 0;
+        for (int j = 0; j < sc.sectors; ++j) {
+            const std::size_t b = std::size_t(r) * sc.sectors + j;
+            if (!sc.occupied[b]) continue;
+            m += sc.value[b];
+            s += sc.spread[b];
+            ++n;
+        }
+        if (n == 0) continue;
+        key[2 * r] = float(m / n);
+        key[2 * r + 1] = float(s / n);
+    }
+    return key;
+}
+
+std::vector<FeatureMatch> match_local_features(const LocalFeatures& query,
+                                               const LocalFeatures& target,
+                                               const LocalFeatureMatchConfig& config) {
+    common::throw_if(validate(config), "local_feature_match");
+    std::vector<FeatureMatch> out;
+    if (query.descriptors.empty() || target.descriptors.empty()) return out;
+    const int rings = query.descriptors.front().rings, sectors = query.descriptors.front().sectors;
+    if (rings <= 0 || sectors <= 0) return out;
+    const Packed q = pack(query, rings, sectors, 1);
+    const Packed t = pack(target, rings, sectors, 2);
+    const std::size_t nq = query.descriptors.size(), nt = target.descriptors.size();
+    const std::size_t key_dim = std::size_t(2 * rings);
+    const float empty_cost = float(config.empty_bin_cost);
+    const float unseen_cost = float(config.unseen_bin_cost);
+    std::vector<std::uint32_t> usable_targets;
+    for (std::size_t k = 0; k < nt; ++k) {
+        if (t.usable[k]) usable_targets.push_back(std::uint32_t(k));
+    }
+    const std::size_t candidates =
+        std::min(usable_targets.size(), std::size_t(config.key_candidates));
+    std::vector<std::pair<float, std::uint32_t>> by_key(usable_targets.size());
+    std::vector<float> per_shift(static_cast<std::size_t>(sectors));
+
+    // The target samples by lattice cell, for the sub-lattice refinement.
+    const double spacing = target.sample_spacing;
+    std::unordered_map<std::uint64_t, std::uint32_t> lattice;
+    const auto cell_key = [](long long i, long long j) {
+        return (std::uint64_t(std::uint32_t(i)) << 32) | std::uint32_t(j);
+    };
+    if (spacing > 0.0) {
+        for (const std::uint32_t k : usable_targets) {
+            const Eigen::Vector3d& p = target.positions[k];
+            lattice.emplace(cell_key(std::llround(p.x() / spacing), std::llround(p.y() / spacing)),
+                            k);
+        }
+    }
+    const auto refine = [&](std::size_t a, std::size_t b, int shift, double d0) {
+        Eigen::Vector3d p = target.positions[b];
+        if (lattice.empty()) return p;
+        const long long i = std::llround(p.x() / spacing), j = std::llround(p.y() / spacing);
+        // A quadratic surface through the 3 x 3 lattice block when all of it is there.
+        Eigen::Matrix<double, 9, 6> A;
+        Eigen::Matrix<double, 9, 1> y;
+        int filled = 0;
+        double zs[3][3] = {};
+        for (int dj = -1; dj <= 1; ++dj) {
+            for (int di = -1; di <= 1; ++di) {
+                const auto it = lattice.find(cell_key(i + di, j + dj));
+                if (it == lattice.end()) continue;
+                const double d = (di == 0 && dj == 0) ? d0
+                                                      : distance_at(q, a, t, it->second, shift,
+                                                                    empty_cost, unseen_cost);
+                A.row(filled) << 1.0, di, dj, di * di, di * dj, dj * dj;
+                y[filled] = d;
+                zs[dj + 1][di + 1] = target.positions[it->second].z();
+                ++filled;
+            }
+        }
+        Eigen::Vector3d moved = p;
+        if (filled == 9) {
+            const Eigen::Matrix<double, 6, 1> c = A.colPivHouseholderQr().solve(y);
+            Eigen::Matrix2d H;
+            H << 2.0 * c[3], c[4], c[4], 2.0 * c[5];
+            const Eigen::Vector2d g(c[1], c[2]);
+            if (H.determinant() > 0.0 && H(0, 0) > 0.0) {
+                Eigen::Vector2d off = -H.inverse() * g;
+                off = off.cwiseMax(-0.5).cwiseMin(0.5);
+                moved.x() += off.x() * spacing;
+                moved.y() += off.y() * spacing;
+                moved.z() +=
+                    0.5 * off.x() * (zs[1][2] - zs[1][0]) + 0.5 * off.y() * (zs[2][1] - zs[0][1]);
+                return moved;
+            }
+        }
+        for (int axis = 0; axis < 2; ++axis) {
+            const auto lo = lattice.find(axis == 0 ? cell_key(i - 1, j) : cell_key(i, j - 1));
+            const auto hi = lattice.find(axis == 0 ? cell_key(i + 1, j) : cell_key(i, j + 1));
+            if (lo == lattice.end() || hi == lattice.end()) continue;
+            const double dm = distance_at(q, a, t, lo->second, shift, empty_cost, unseen_cost);
+            const double dp = distance_at(q, a, t, hi->second, shift, empty_cost, unseen_cost);
+            const double curvature = dm - 2.0 * d0 + dp;
+            if (!(curvature > 0.0)) continue;
+            const double offset = std::clamp(0.5 * (dm - dp) / curvature, -0.5, 0.5);
+            moved[axis] += offset * spacing;
+            const double dz = target.positions[hi->second].z() - target.positions[lo->second].z();
+            moved.z() += 0.5 * offset * dz;
+        }
+        return moved;
+    };
+    std::vector<FeatureMatch> mine;
+    for (std::size_t a = 0; a < nq; ++a) {
+        if (!q.usable[a] || candidates == 0) continue;
+        const float* qk = q.keys.data() + a * key_dim;
+        for (std::size_t k = 0; k < usable_targets.size(); ++k) {
+            const float* tk = t.keys.data() + std::size_t(usable_targets[k]) * key_dim;
+            float d = 0.0f;
+            for (std::size_t i = 0; i < key_dim; ++i) d += (qk[i] - tk[i]) * (qk[i] - tk[i]);
+            by_key[k] = {d, usable_targets[k]};
+        }
+        std::partial_sort(by_key.begin(), by_key.begin() + std::ptrdiff_t(candidates),
+                          by_key.end());
+        mine.clear();
+        for (std::size_t c = 0; c < candidates; ++c) {
+            const std::size_t b = by_key[c].second;
+            int best = 0;
+            for (int s = 0; s < sectors; ++s) {
+                per_shift[std::size_t(s)] = distance_at(q, a, t, b, s, empty_cost, unseen_cost);
+                if (per_shift[std::size_t(s)] < per_shift[std::size_t(best)]) best = s;
+            }
+            const double d0 = per_shift[std::size_t(best)];
+            if (d0 > config.max_distance) continue;
+            const double dm = per_shift[std::size_t((best + sectors - 1) % sectors)];
+            const double dp = per_shift[std::size_t((best + 1) % sectors)];
+            const double curvature = dm - 2.0 * d0 + dp;
+            const double offset =
+                curvature > 0.0 ? std::clamp(0.5 * (dm - dp) / curvature, -0.5, 0.5) : 0.0;
+            double yaw = (best + offset) * kTwoPi / sectors;
+            while (yaw > M_PI) yaw -= kTwoPi;
+            while (yaw <= -M_PI) yaw += kTwoPi;
+            mine.push_back({a, b, d0, yaw, Eigen::Vector3d::Constant(double(best))});
+        }
+        const std::size_t keep = std::min(mine.size(), std::size_t(config.per_query));
+        std::partial_sort(
+            mine.begin(), mine.begin() + std::ptrdiff_t(keep), mine.end(),
+            [](const FeatureMatch& l, const FeatureMatch& r) { return l.distance < r.distance; });
+        for (std::size_t k = 0; k < keep; ++k) {
+            if (mine[k].distance > config.ratio * mine[0].distance) break;
+            FeatureMatch m = mine[k];
+            m.target_position = refine(m.query, m.target, int(m.target_position.x()), m.distance);
+            out.push_back(m);
+        }
+    }
+    if (config.mutual) {
+        // A target's best query among the pairs kept.
+        std::vector<double> best(nt, std::numeric_limits<double>::infinity());
+        std::vector<std::size_t> who(nt, nq);
+        for (const FeatureMatch& m : out) {
+            if (m.distance < best[m.target]) {
+                best[m.target] = m.distance;
+                who[m.target] = m.query;
+            }
+        }
+        out.erase(std::remove_if(out.begin(), out.end(),
+                                 [&](const FeatureMatch& m) { return who[m.target] != m.query; }),
+                  out.end());
+    }
+    std::stable_sort(out.begin(), out.end(), [](const FeatureMatch& l, const FeatureMatch& r) {
+        return l.distance < r.distance;
+    });
+    return out;
+}
+
+}  // namespace ltm::localisation

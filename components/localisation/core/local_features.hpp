@@ -1,0 +1,155 @@
+#pragma once
+// Local ScanContext++ features for global localisation (METHOD.md section 6): ground points are
+// sampled evenly in a cloud, a small ScanContext++ (mean and standard deviation of the heights
+// above the sample's ground, per polar bin) is built around each sample, and two clouds' samples
+// are matched by descriptor distance (2-Wasserstein of two 1-D Gaussians a bin, minimised over
+// sector shifts: the shift is the yaw between the clouds). The matched positions feed RANSAC over
+// Umeyama (registration/core/ransac_alignment.hpp) for the pose.
+//
+// Both sides are first voxel-down-sampled to the same grid (centroids), so that a dense scan, a
+// sparse one and map voxel centres give comparable heights. Ground: the lowest voxel of each cell
+// of a 2-D grid, kept where it is not higher than the lowest voxels around it allow for the
+// largest ground slope (a car roof, a table top or a wall top is not ground); the samples are the
+// points of a lattice of `sample_spacing` (anchored at the frame's origin) whose cell is ground.
+// The input frame's z must be up (gravity); the yaw between the two inputs is free.
+#include <Eigen/Core>
+#include <cstddef>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/core/config_check.hpp"
+#include "mapping/core/scan_context.hpp"
+
+namespace ltm::localisation {
+
+struct LocalFeatureConfig {
+    double voxel_size = 0.6;  // both sides are down-sampled to this grid (centroids) first [m]
+    // Ground: a cell of this size is ground when its lowest voxel is at most
+    // tan(ground_max_slope_deg) * distance + ground_tolerance above the lowest voxel of every
+    // cell within ground_window (that is: no lower ground beside it) [m, deg, m, m].
+    double ground_cell = 1.0;
+    double ground_max_slope_deg = 15.0;
+    double ground_window = 3.0;
+    double ground_tolerance = 0.25;
+    double sample_spacing = 3.0;  // samples on a lattice of this spacing [m]
+    double max_range = 40.0;  // samples farther (horizontally) from the origin are not taken [m]
+    int max_samples = 200;    // the nearest ones to the origin (or centre) are kept
+    // The local descriptor around a sample: points within `radius` (horizontally), at most
+    // `max_height` above the sample's ground (higher parts are seen from some places only).
+    double radius = 10.0;
+    double max_height = 4.0;
+    int rings = 8;
+    int sectors = 24;
+    // Rings of equal area (ring i spans radius * sqrt(i / rings) .. sqrt((i + 1) / rings)) rather
+    // than of equal width: the inner bins are not left nearly empty.
+    bool equal_area_rings = true;
+    int min_points_per_descriptor = 30;  // voxels within the descriptor; fewer: no sample
+    int min_occupied_bins = 24;          // occupied bins; fewer: no sample
+};
+
+template <class Visitor>
+void visit_fields(LocalFeatureConfig& c, const std::string& prefix, Visitor&& v) {
+    using namespace common::rules;
+    v(prefix + "voxel_size", c.voxel_size, positive);
+    v(prefix + "ground_cell", c.ground_cell, positive);
+    v(prefix + "ground_max_slope_deg", c.ground_max_slope_deg, in_range(0, 89));
+    v(prefix + "ground_window", c.ground_window, non_negative);
+    v(prefix + "ground_tolerance", c.ground_tolerance, non_negative);
+    v(prefix + "sample_spacing", c.sample_spacing, positive);
+    v(prefix + "max_range", c.max_range, positive);
+    v(prefix + "max_samples", c.max_samples, at_least(1));
+    v(prefix + "radius", c.radius, positive);
+    v(prefix + "max_height", c.max_height, positive);
+    v(prefix + "rings", c.rings, in_range(1, 64));
+    v(prefix + "sectors", c.sectors, in_range(4, 360));
+    v(prefix + "equal_area_rings", c.equal_area_rings, unchecked);
+    v(prefix + "min_points_per_descriptor", c.min_points_per_descriptor, at_least(1));
+    v(prefix + "min_occupied_bins", c.min_occupied_bins, at_least(1));
+}
+
+// The first field that breaks its rule, then the rules across fields; keys relative. nullopt
+// when valid.
+std::optional<common::ConfigProblem> validate(const LocalFeatureConfig& config);
+
+struct LocalFeatures {
+    // Sample points on the ground, in the input frame.
+    std::vector<Eigen::Vector3d> positions;
+    // One a sample (kind kMeanVariance), centred at the sample, z relative to its ground height.
+    std::vector<mapping::ScanContext> descriptors;
+    // The lattice spacing of the samples (positions are multiples of it in x and y) [m].
+    double sample_spacing = 0.0;
+
+    std::size_t size() const { return positions.size(); }
+    bool empty() const { return positions.empty(); }
+};
+
+// The features of a cloud (a scan, or map voxel centres) in a frame whose z is up; samples
+// within config.max_range of the origin. Non-finite points are skipped. Throws
+// common::ConfigError on an invalid config.
+LocalFeatures make_local_features(const std::vector<Eigen::Vector3f>& points,
+                                  const LocalFeatureConfig& config);
+
+// The same, but the samples are those within `sample_radius` (horizontally) of `centre` (the
+// map side: a region around a keyframe); `points` may extend much farther (only those within
+// sample_radius + radius of the centre are used). config.max_range is not used.
+LocalFeatures make_local_features(const std::vector<Eigen::Vector3f>& points,
+                                  const LocalFeatureConfig& config, const Eigen::Vector3d& centre,
+                                  double sample_radius);
+
+struct LocalFeatureMatchConfig {
+    // Distance of two descriptors at a shift: the mean over the bins occupied in either of
+    //   both occupied:        min((mean_q - mean_t)^2 + (std_q - std_t)^2, empty_bin_cost),
+    //   query only occupied:  empty_bin_cost (the query sees something the target does not),
+    //   target only occupied: unseen_bin_cost (the query may not have seen it: a partial view).
+    double empty_bin_cost = 1.0;   // [m^2]
+    double unseen_bin_cost = 0.5;  // [m^2]
+    // Pre-filter: per query, only the targets with the nearest ring keys (yaw-invariant: per
+    // ring, the mean height and the mean spread of its occupied bins) are compared in full.
+    int key_candidates = 40;
+    int per_query = 3;                                              // best targets kept a query
+    double max_distance = std::numeric_limits<double>::infinity();  // farther: dropped [m^2]
+    // The 2nd..per_query-th best of a query are kept only within ratio * the best's distance.
+    double ratio = std::numeric_limits<double>::infinity();
+    bool mutual = false;  // keep only matches whose target's best query is this query
+};
+
+template <class Visitor>
+void visit_fields(LocalFeatureMatchConfig& c, const std::string& prefix, Visitor&& v) {
+    using namespace common::rules;
+    v(prefix + "empty_bin_cost", c.empty_bin_cost, positive);
+    v(prefix + "unseen_bin_cost", c.unseen_bin_cost, non_negative);
+    v(prefix + "key_candidates", c.key_candidates, at_least(1));
+    v(prefix + "per_query", c.per_query, at_least(1));
+    v(prefix + "max_distance", c.max_distance, positive.or_infinite());
+    v(prefix + "ratio", c.ratio, at_least(1).or_infinite());
+    v(prefix + "mutual", c.mutual, unchecked);
+}
+
+std::optional<common::ConfigProblem> validate(const LocalFeatureMatchConfig& config);
+
+struct FeatureMatch {
+    std::size_t query = 0, target = 0;  // sample indices
+    double distance = 0.0;              // descriptor distance at the best shift [m^2]
+    // Rotation of the query frame relative to the target's about z (R_target_query = Rz(yaw)),
+    // from the best sector shift refined by a parabola through its neighbours [rad], (-pi, pi].
+    double yaw = 0.0;
+    // The target sample's position moved toward the query sample's true place: per lattice axis,
+    // a parabola through the distances of the query to the target sample and to its two lattice
+    // neighbours (at the best shift), when both neighbours are samples too (else unmoved); at
+    // most half a spacing an axis. This undoes most of the lattice quantisation.
+    Eigen::Vector3d target_position = Eigen::Vector3d::Zero();
+};
+
+// For every query sample its best `per_query` target samples (min over sector shifts), filtered
+// as the config says, all sorted by distance. Descriptors of another shape than the first
+// query's are not matched. Throws common::ConfigError on an invalid config.
+std::vector<FeatureMatch> match_local_features(const LocalFeatures& query,
+                                               const LocalFeatures& target,
+                                               const LocalFeatureMatchConfig& config);
+
+// The 2 * rings ring key used by the pre-filter (zeros for an empty descriptor).
+Eigen::VectorXf local_ring_key(const mapping::ScanContext& descriptor);
+
+}  // namespace ltm::localisation
