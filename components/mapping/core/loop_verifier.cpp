@@ -139,6 +139,16 @@ LoopVerification LoopVerifier::verify(const std::vector<Eigen::Vector3f>& points
                                       std::uint64_t map_key, const common::LocalMapData& map,
                                       const GuessList& guesses) {
     LoopVerification best;
+    if (map.voxels.empty() || !(map.voxel_size > 0.0f)) {
+        best.reason = "candidate local map has no voxels";
+        return best;
+    }
+    return verify(points, *target(map_key, map), guesses);
+}
+
+LoopVerification LoopVerifier::verify(const std::vector<Eigen::Vector3f>& points,
+                                      const RegistrationTarget& target, const GuessList& guesses) {
+    LoopVerification best;
     if (guesses.empty()) {
         best.reason = "no initial guess";
         return best;
@@ -148,10 +158,6 @@ LoopVerification LoopVerifier::verify(const std::vector<Eigen::Vector3f>& points
             best.reason = "initial guess is not finite";
             return best;
         }
-    }
-    if (map.voxels.empty() || !(map.voxel_size > 0.0f)) {
-        best.reason = "candidate local map has no voxels";
-        return best;
     }
     if (config_.downsample > 0.0) {
         sampler_.run(points, config_.downsample, &sampled_);
@@ -175,7 +181,7 @@ LoopVerification LoopVerifier::verify(const std::vector<Eigen::Vector3f>& points
         best.points = sampled_.size();
         return best;
     }
-    const std::shared_ptr<RegistrationTarget> t = target(map_key, map);
+    const RegistrationTarget* t = &target;
     if (t->fine.usable_voxels() == 0) {
         best.reason = "candidate local map has no usable voxel";
         return best;

@@ -134,6 +134,10 @@ class LoopVerifier {
     // minimum.
     LoopVerification verify(const std::vector<Eigen::Vector3f>& points, std::uint64_t map_key,
                             const common::LocalMapData& map, const GuessList& guesses);
+    // The same against a target the caller prepared and keeps (global localisation registers
+    // against one merged map).
+    LoopVerification verify(const std::vector<Eigen::Vector3f>& points,
+                            const RegistrationTarget& target, const GuessList& guesses);
 
   private:
     struct Cached {

@@ -1,0 +1,321 @@
+// ltm_bench_localise: localisation of a scan folder on a saved map.
+//   --mode global: every scan on its own against the whole map (no prior, no odometry); one line
+//                  a scan, `frame time_s ok [12 pose numbers]` (what `ltm_eval reloc` reads).
+//   --mode track:  the scans in sequence through odometry, tracking and automatic
+//                  re-localisation; the same line a scan (ok: a valid pose in the map).
+// With --reference (KITTI poses of the scans; --reference-transform maps them into the map's
+// frame) it prints the success rate, confident wrong answers and time, and in track mode the
+// tracking ATE and how long each start and jump (kidnap) took to be re-localised.
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "common/cli/cli.hpp"
+#include "common/core/config_check.hpp"
+#include "common/core/io_error.hpp"
+#include "common/core/progress.hpp"
+#include "common/core/sensor_preset.hpp"
+#include "common/core/trajectory_io.hpp"
+#include "localisation/core/localiser.hpp"
+#include "odometry/core/odometry.hpp"
+#include "odometry/params/odometry_params.hpp"
+#include "registration/core/preprocess.hpp"
+#include "sources/core/scan_folder.hpp"
+
+namespace {
+
+using namespace ltm;
+using Clock = std::chrono::steady_clock;
+constexpr double kDegToRad = M_PI / 180.0;
+
+struct Args {
+    std::string map, dir, reference, reference_transform, preset = "hdl64", mode = "global", out;
+    std::size_t every = 1, max_frames = 0, first = 0;
+    double perturb_yaw = 0.0, perturb_shift = 0.0;
+    unsigned seed = 1;
+    double max_translation = 0.5, max_rotation = 2.0;
+    double near = 10.0;
+    bool no_features = false;
+};
+
+double percentile(std::vector<double> v, double q) {
+    if (v.empty()) return 0.0;
+    std::sort(v.begin(), v.end());
+    return v[std::min(v.size() - 1, std::size_t(q * double(v.size() - 1) + 0.5))];
+}
+
+std::pair<double, double> error_of(const Eigen::Isometry3d& est, const Eigen::Isometry3d& ref) {
+    const Eigen::Isometry3d d = ref.inverse() * est;
+    return {d.translation().norm(), Eigen::AngleAxisd(d.linear()).angle() / kDegToRad};
+}
+
+Eigen::Isometry3d read_transform(const std::string& path) {
+    const common::PoseList p = common::read_kitti_poses(path);
+    if (p.size() != 1) throw common::IoError(path, "expected one KITTI 3x4 line (T_map_reference)");
+    return p[0];
+}
+
+void write_line(std::ostream& os, std::size_t frame, double time_s, bool ok,
+                const Eigen::Isometry3d& T) {
+    os << frame << ' ' << time_s << ' ' << (ok ? 1 : 0);
+    if (ok) {
+        const Eigen::Matrix<double, 3, 4> m = T.matrix().topRows<3>();
+        for (int r = 0; r < 3; ++r)
+            for (int c = 0; c < 4; ++c) os << ' ' << m(r, c);
+    }
+    os << '\n';
+}
+
+int run(const Args& a) {
+    const common::SensorPreset preset = common::parse_sensor_preset(a.preset);
+    localisation::LocaliserConfig lc = localisation::localiser_preset(preset);
+    if (a.no_features) lc.global.local_features = false;
+    localisation::LocalisationMapConfig mc = localisation::localisation_map_preset(preset);
+    mc.local_features = !a.no_features;
+    const auto t_load = Clock::now();
+    std::vector<std::string> refused;
+    const auto map = localisation::load_localisation_map(a.map, mc, &refused);
+    for (const std::string& r : refused) std::fprintf(stderr, "map: refused %s\n", r.c_str());
+    std::printf(
+        "map %s: %zu keyframes, %zu local maps, %zu voxels,  %zu session(s), path %.0f m, %zu "
+        "local features%s, "
+        "loaded in %.2f s\n",
+        a.map.c_str(), map->keyframes().size(), map->local_maps(), map->voxels().voxels.size(),
+        map->sessions(), map->path_length(), map->feature_count(),
+        map->descriptors_computed() ? " (format 1: descriptors computed from the voxels)" : "",
+        std::chrono::duration<double>(Clock::now() - t_load).count());
+
+    sources::ScanFolderConfig fc;
+    fc.path = a.dir;
+    fc.format = sources::ScanFormat::kAuto;
+    sources::ScanFolder folder(fc);
+    const odometry::OdometryConfig oc = odometry::preset_config(preset);
+    common::PoseList reference;
+    if (!a.reference.empty()) {
+        reference = common::read_kitti_poses(a.reference);
+        if (!a.reference_transform.empty()) {
+            const Eigen::Isometry3d T = read_transform(a.reference_transform);
+            for (Eigen::Isometry3d& p : reference) p = T * p;
+        }
+    }
+    std::size_t last = folder.size();
+    if (a.max_frames) last = std::min(last, a.first + a.max_frames * a.every);
+    std::vector<std::size_t> frames;
+    for (std::size_t i = a.first; i < last; i += (a.mode == "track" ? 1 : a.every))
+        frames.push_back(i);
+    std::printf("%s: %zu scans, mode %s, preset %s%s\n", a.dir.c_str(), frames.size(),
+                a.mode.c_str(), a.preset.c_str(),
+                a.perturb_yaw > 0 || a.perturb_shift > 0 ? " (scans perturbed)" : "");
+
+    std::ofstream out;
+    if (!a.out.empty()) {
+        out.open(a.out);
+        if (!out) throw common::IoError(a.out, "cannot be written");
+        out.precision(9);
+    }
+    std::mt19937 rng(a.seed);
+    std::uniform_real_distribution<double> uni(-1.0, 1.0);
+    registration::Preprocessor pre(oc.preprocess, oc.voxel_size);
+    registration::PreprocessedScan scan;
+    odometry::Odometry odom(oc);
+    localisation::Localiser localiser(map, lc);
+    localisation::GlobalLocaliser global(map, lc.global);
+
+    std::size_t ok = 0, right = 0, wrong = 0, none = 0, scored = 0;
+    std::size_t near = 0, near_right = 0;  // scans within --near of a map keyframe
+    std::vector<double> times, t_err, r_err;
+    std::vector<double> track_err;
+    // Track mode: events (start, jumps of the reference) and when they were settled.
+    struct Event {
+        double at;
+        double settled = -1.0;
+        std::string what;
+    };
+    std::vector<Event> events;
+    std::size_t relocalisations = 0, lost_scans = 0, off_map = 0;
+    double process_s = 0.0;
+    common::Progress progress(a.mode, frames.size(), "scans");
+    for (std::size_t n = 0; n < frames.size(); ++n) {
+        const std::size_t i = frames[n];
+        common::PointCloud cloud = folder.load(i);
+        Eigen::Isometry3d T_pert = Eigen::Isometry3d::Identity();
+        if (a.perturb_yaw > 0 || a.perturb_shift > 0) {
+            T_pert.linear() =
+                Eigen::AngleAxisd(uni(rng) * a.perturb_yaw * kDegToRad, Eigen::Vector3d::UnitZ())
+                    .toRotationMatrix();
+            const double r = a.perturb_shift * std::sqrt(0.5 * (uni(rng) + 1.0));
+            const double th = uni(rng) * M_PI;
+            T_pert.translation() = Eigen::Vector3d(r * std::cos(th), r * std::sin(th), 0.0);
+            const Eigen::Matrix3f R = T_pert.linear().cast<float>();
+            const Eigen::Vector3f t = T_pert.translation().cast<float>();
+            for (Eigen::Vector3f& p : cloud.points) p = R * p + t;
+        }
+        const bool have_ref = i < reference.size();
+        const Eigen::Isometry3d truth = have_ref
+                                            ? Eigen::Isometry3d(reference[i] * T_pert.inverse())
+                                            : Eigen::Isometry3d::Identity();
+        bool has_pose = false;
+        Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+        double time_s = 0.0;
+        if (a.mode == "global") {
+            const auto t0 = Clock::now();
+            pre.run(cloud, nullptr, &scan);
+            const localisation::GlobalLocalisation g = global.localise(scan.map_points);
+            time_s = std::chrono::duration<double>(Clock::now() - t0).count();
+            has_pose = g.localised;
+            pose = g.T_map_lidar;
+            if (std::getenv("LTM_BENCH_VERBOSE")) std::printf("  %zu: %s\n", i, g.reason.c_str());
+        } else {
+            const auto t0 = Clock::now();
+            const odometry::FrameResult r = odom.register_frame(cloud);
+            pre.run(cloud, nullptr, &scan);
+            std::optional<localisation::OdometryInput> oi;
+            if (r.pose_valid()) oi = localisation::OdometryInput{r.T_odom_lidar, r.segment};
+            const localisation::LocalisationUpdate u =
+                localiser.process(cloud.stamp, scan.map_points, oi);
+            time_s = std::chrono::duration<double>(Clock::now() - t0).count();
+            process_s += time_s;
+            has_pose = u.pose_valid;
+            pose = u.T_map_lidar;
+            relocalisations += u.state == localisation::LocalisationState::kRelocalised;
+            lost_scans += u.state == localisation::LocalisationState::kLost;
+            off_map += u.state == localisation::LocalisationState::kOffMap;
+            if (std::getenv("LTM_BENCH_VERBOSE") || u.global_ran ||
+                u.state == localisation::LocalisationState::kLost) {
+                if (!u.message.empty())
+                    std::printf("  %zu (%.1f s) %s: %s\n", i, cloud.stamp,
+                                localisation::to_string(u.state), u.message.c_str());
+            }
+            if (have_ref) {
+                const bool jump =
+                    n == 0 ||
+                    (i > 0 && i - 1 < reference.size() &&
+                     (reference[i].translation() - reference[i - 1].translation()).norm() > 5.0);
+                if (jump) events.push_back({cloud.stamp, -1.0, n == 0 ? "start" : "jump"});
+                if (has_pose && u.state != localisation::LocalisationState::kOffMap) {
+                    const auto [et, er] = error_of(pose, truth);
+                    if (et <= 0.1 && er <= 0.5 && !events.empty() && events.back().settled < 0)
+                        events.back().settled = cloud.stamp;
+                    if (u.state == localisation::LocalisationState::kTracking)
+                        track_err.push_back(et);
+                }
+            }
+        }
+        times.push_back(time_s);
+        if (out) write_line(out, i, time_s, has_pose, pose);
+        ok += has_pose;
+        if (have_ref) {
+            ++scored;
+            const bool in_map = !map->keyframes_near(truth.translation(), a.near).empty();
+            near += in_map;
+            if (in_map && has_pose) {
+                const auto [et, er] = error_of(pose, truth);
+                near_right += et <= a.max_translation && er <= a.max_rotation;
+            }
+            if (!has_pose) {
+                ++none;
+            } else {
+                const auto [et, er] = error_of(pose, truth);
+                if (et <= a.max_translation && er <= a.max_rotation) {
+                    ++right;
+                    t_err.push_back(et);
+                    r_err.push_back(er);
+                } else {
+                    ++wrong;
+                    if (a.mode == "global")
+                        std::printf("  wrong: scan %zu off by %.2f m / %.2f deg\n", i, et, er);
+                }
+            }
+        }
+        progress.update(n + 1);
+    }
+    progress.finish();
+    std::printf("scans %zu, with a pose %zu (%.1f %%)\n", frames.size(), ok,
+                frames.empty() ? 0.0 : 100.0 * double(ok) / double(frames.size()));
+    if (scored) {
+        std::printf(
+            "against the reference (%.2f m / %.1f deg): right %zu (%.1f %%), wrong %zu, "
+            "no pose %zu\n",
+            a.max_translation, a.max_rotation, right, 100.0 * double(right) / double(scored), wrong,
+            none);
+        std::printf("scans within %.1f m of a map keyframe: %zu, right %zu (%.1f %%)\n", a.near,
+                    near, near_right, near ? 100.0 * double(near_right) / double(near) : 0.0);
+        std::printf(
+            "error of the right ones: translation median %.3f m, 90 %% %.3f m; rotation "
+            "median %.3f deg\n",
+            percentile(t_err, 0.5), percentile(t_err, 0.9), percentile(r_err, 0.5));
+    }
+    std::printf("time a scan: median %.3f s, 90 %% %.3f s, max %.3f s\n", percentile(times, 0.5),
+                percentile(times, 0.9), percentile(times, 1.0));
+    if (a.mode == "track") {
+        std::printf(
+            "track: %.1f scans/s (odometry + localisation, one thread), relocalisations "
+            "%zu, lost scans %zu, off-map scans %zu\n",
+            process_s > 0 ? double(frames.size()) / process_s : 0.0, relocalisations, lost_scans,
+            off_map);
+        if (!track_err.empty()) {
+            double sq = 0.0;
+            for (double e : track_err) sq += e * e;
+            std::printf(
+                "tracking ATE (tracked scans, no alignment): rmse %.4f m over %zu scans, "
+                "max %.3f m\n",
+                std::sqrt(sq / double(track_err.size())), track_err.size(),
+                percentile(track_err, 1.0));
+        }
+        for (const Event& e : events) {
+            if (e.settled >= 0)
+                std::printf("%s at %.1f s: localised within 0.1 m / 0.5 deg after %.2f s\n",
+                            e.what.c_str(), e.at, e.settled - e.at);
+            else
+                std::printf("%s at %.1f s: NOT localised within 0.1 m / 0.5 deg\n", e.what.c_str(),
+                            e.at);
+        }
+    }
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    Args a;
+    CLI::App app{"Localisation of a scan folder on a saved ltm map (global or track mode)",
+                 "ltm_bench_localise"};
+    app.add_option("DIR", a.dir, "the scans (KITTI layout or Scans/*.pcd)")->required();
+    app.add_option("--map", a.map, "the saved map directory")->required();
+    app.add_option("--reference", a.reference, "KITTI poses of the scans (LiDAR frame)");
+    app.add_option("--reference-transform", a.reference_transform,
+                   "one KITTI 3x4 line T_map_reference: maps the reference into the map's frame");
+    app.add_option("--preset", a.preset, "sensor preset: hdl64, vlp32, vlp16, narrow or os1-64");
+    app.add_option("--mode", a.mode, "global: each scan alone; track: a sequence")
+        ->check(common::cli::one_of({"global", "track"}));
+    app.add_option("--out", a.out, "one line a scan: frame time_s ok [12 pose numbers]");
+    app.add_option("--every", a.every, "global mode: every Nth scan")
+        ->check(common::cli::at_least(1));
+    app.add_option("--first", a.first, "first scan");
+    app.add_option("--max-frames", a.max_frames, "at most N scans (0: all)");
+    app.add_option("--perturb-yaw", a.perturb_yaw,
+                   "turn each scan by a random yaw within +-this [deg] (its truth moves with it)");
+    app.add_option("--perturb-shift", a.perturb_shift,
+                   "shift each scan by a random horizontal offset up to this [m]");
+    app.add_option("--seed", a.seed, "random seed of the perturbations");
+    app.add_option("--max-translation", a.max_translation, "a right answer: within [m]");
+    app.add_option("--max-rotation", a.max_rotation, "a right answer: within [deg]");
+    app.add_option("--near", a.near,
+                   "also score the scans whose reference is within this of a map keyframe [m]");
+    app.add_flag("--no-features", a.no_features, "initial poses from the descriptors only");
+    if (const int code = common::cli::parse(app, argc, argv); code >= 0) return code;
+    try {
+        return run(a);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "ltm_bench_localise: %s\n", e.what());
+        return 1;
+    }
+}

@@ -1,0 +1,275 @@
+#include "localisation/core/global_localiser.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+namespace ltm::localisation {
+
+namespace {
+
+constexpr double kDegToRad = M_PI / 180.0;
+
+Eigen::Isometry3d yawed(const Eigen::Isometry3d& T, double yaw) {
+    Eigen::Isometry3d out = T;
+    out.linear() = T.linear() * Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    return out;
+}
+
+// Translation [m] and rotation [deg] between two poses.
+std::pair<double, double> pose_distance(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
+    const Eigen::Isometry3d d = a.inverse() * b;
+    return {d.translation().norm(), Eigen::AngleAxisd(d.linear()).angle() / kDegToRad};
+}
+
+registration::RegistrationConfig probe_config(registration::RegistrationConfig c, int iterations) {
+    c.max_iterations = iterations;
+    return c;
+}
+
+}  // namespace
+
+std::optional<common::ConfigProblem> validate(const GlobalLocaliserConfig& config) {
+    GlobalLocaliserConfig c = config;
+    common::ConfigChecker k;
+    visit_fields(c, "", k);
+    k.include(validate(config.matching), "matching.");
+    k.include(validate(config.ransac), "ransac.");
+    k.include(mapping::validate(config.verification), "verification.");
+    return k.problem();
+}
+
+GlobalLocaliser::GlobalLocaliser(std::shared_ptr<const LocalisationMap> map,
+                                 const GlobalLocaliserConfig& config)
+    : map_(std::move(map)),
+      config_(config),
+      verifier_(config.verification),
+      fine_(config.verification.fine, map_->voxel_size()),
+      probe_(probe_config(config.verification.coarse, config.probe_iterations),
+             map_->target().coarse ? map_->target().coarse->voxel_size() : map_->voxel_size()) {
+    if (auto problem = validate(config)) throw common::ConfigError("localisation.global", *problem);
+}
+
+std::vector<GlobalLocaliser::Place> GlobalLocaliser::rank_places(
+    const mapping::ScanContext& query, const std::optional<PoseHint>& hint) const {
+    const LocalisationMap& map = *map_;
+    std::vector<std::uint32_t> candidates;
+    if (hint) {
+        const double r = hint->radius > 0.0 ? hint->radius : config_.hint_radius;
+        candidates = map.keyframes_near(hint->T_map_lidar.translation(), r);
+    } else {
+        for (const mapping::RingKeyNeighbour& n :
+             map.nearest_keyframes(query, std::size_t(config_.candidates))) {
+            candidates.push_back(n.item);
+        }
+    }
+    std::vector<Place> scored;
+    for (std::uint32_t k : candidates) {
+        const mapping::ScanContextMatch m =
+            mapping::compare(query, map.keyframes()[k].descriptor, map.descriptor_config());
+        if (m.valid) scored.push_back({k, m.distance, m.yaw});
+    }
+    std::sort(scored.begin(), scored.end(),
+              [](const Place& a, const Place& b) { return a.distance < b.distance; });
+    // Distinct places: a candidate near a better one (same place, similar heading) is skipped.
+    std::vector<Place> places;
+    for (const Place& p : scored) {
+        const Eigen::Isometry3d Tp = yawed(map.keyframes()[p.keyframe].T_map_lidar, p.yaw);
+        bool same = false;
+        for (const Place& q : places) {
+            const Eigen::Isometry3d Tq = yawed(map.keyframes()[q.keyframe].T_map_lidar, q.yaw);
+            const auto [dt, dr] = pose_distance(Tp, Tq);
+            if (dt < config_.place_separation && dr < 30.0) same = true;
+        }
+        if (same) continue;
+        places.push_back(p);
+        if (int(places.size()) >= config_.places) break;
+    }
+    return places;
+}
+
+void GlobalLocaliser::feature_guesses(
+    const std::vector<Eigen::Vector3f>& points, const Place& place, int index,
+    std::vector<Guess, Eigen::aligned_allocator<Guess>>* guesses) {
+    if (!query_features_) {
+        query_features_ = std::make_shared<const LocalFeatures>(
+            make_local_features(points, map_->feature_config()));
+    }
+    if (query_features_->size() < 3) return;
+    const Eigen::Vector3d centre = map_->keyframes()[place.keyframe].T_map_lidar.translation();
+    const LocalFeatures target = map_->features_near(centre, config_.feature_region);
+    if (target.size() < 3) return;
+    const std::vector<FeatureMatch> matches =
+        match_local_features(*query_features_, target, config_.matching);
+    std::vector<Eigen::Vector3d> source, dest;
+    source.reserve(matches.size());
+    dest.reserve(matches.size());
+    for (const FeatureMatch& m : matches) {
+        source.push_back(query_features_->positions[m.query]);
+        dest.push_back(target.positions[m.target]);
+    }
+    const std::optional<registration::RansacAlignment> r =
+        registration::ransac_align(source, dest, config_.ransac);
+    if (!r) return;
+    guesses->push_back({r->T_target_source, index, true});
+}
+
+GlobalLocalisation GlobalLocaliser::localise(const std::vector<Eigen::Vector3f>& points,
+                                             const std::optional<PoseHint>& hint) {
+    const auto start = std::chrono::steady_clock::now();
+    GlobalLocalisation out;
+    query_features_.reset();
+    auto finish = [&](GlobalLocalisation& o) -> GlobalLocalisation& {
+        o.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        return o;
+    };
+    std::vector<Eigen::Vector3f> finite;
+    finite.reserve(points.size());
+    for (const Eigen::Vector3f& p : points) {
+        if (p.allFinite()) finite.push_back(p);
+    }
+    out.points = finite.size();
+    if (finite.size() < std::size_t(config_.verification.min_inliers)) {
+        out.reason = "the scan has " + std::to_string(finite.size()) +
+                     " usable points, fewer than verification.min_inliers (" +
+                     std::to_string(config_.verification.min_inliers) + ")";
+        return finish(out);
+    }
+    const mapping::ScanContext query =
+        mapping::make_scan_context(finite, map_->descriptor_config());
+    const std::vector<Place> places = rank_places(query, hint);
+    out.places = int(places.size());
+
+    std::vector<Guess, Eigen::aligned_allocator<Guess>> guesses;
+    if (hint) {
+        for (double off : config_.hint_yaw_offsets) {
+            guesses.push_back({yawed(hint->T_map_lidar, off * kDegToRad), -1, false});
+        }
+    }
+    for (std::size_t i = 0; i < places.size(); ++i) {
+        const Eigen::Isometry3d& T_kf = map_->keyframes()[places[i].keyframe].T_map_lidar;
+        for (double off : config_.yaw_offsets) {
+            guesses.push_back({yawed(T_kf, places[i].yaw + off * kDegToRad), int(i), false});
+        }
+        if (config_.local_features) feature_guesses(finite, places[i], int(i), &guesses);
+    }
+    out.guesses = int(guesses.size());
+    if (guesses.empty()) {
+        out.reason = "no place of the map resembles the scan";
+        return finish(out);
+    }
+
+    struct Verified {
+        mapping::LoopVerification v;
+        int guess;
+    };
+    std::vector<Verified> accepted;
+    std::string best_refusal;
+    std::size_t best_refused_inliers = 0;
+    const mapping::RegistrationTarget& target = map_->target();
+    // Probes: a short coarse registration of a few points from each initial pose, scored by the
+    // share of those points on a map surface at its end.
+    probe_points_.clear();
+    const double step = std::max(1.0, double(finite.size()) / double(config_.probe_points));
+    for (double i = 0.0; i < double(finite.size()); i += step) {
+        probe_points_.push_back(finite[std::size_t(i)]);
+    }
+    const registration::VoxelGrid& coarse = target.coarse ? *target.coarse : target.fine;
+    const registration::ImlsParams imls = fine_.imls_params();
+    std::vector<std::pair<double, std::size_t>> order;
+    for (std::size_t g = 0; g < guesses.size(); ++g) {
+        const registration::RegistrationResult r =
+            probe_.align(probe_points_, coarse, guesses[g].T_map_lidar);
+        if (!r.ok() || !r.T_map_lidar.matrix().allFinite()) continue;
+        const Eigen::Matrix3f R = r.T_map_lidar.linear().cast<float>();
+        const Eigen::Vector3f t = r.T_map_lidar.translation().cast<float>();
+        std::size_t on = 0;
+        registration::ImlsResult res;
+        for (const Eigen::Vector3f& p : probe_points_) {
+            if (registration::imls_distance(target.fine, R * p + t, imls, &res) &&
+                std::abs(res.distance) <= config_.verification.inlier_distance)
+                ++on;
+        }
+        guesses[g].T_map_lidar = r.T_map_lidar;
+        order.push_back({double(on) / double(probe_points_.size()), g});
+    }
+    std::sort(order.begin(), order.end(), std::greater<>());
+    if (order.size() > std::size_t(config_.verify_best))
+        order.resize(std::size_t(config_.verify_best));
+    for (const auto& [score, g] : order) {
+        // A guess that lands where an accepted answer already is adds nothing.
+        bool known = false;
+        for (const Verified& a : accepted) {
+            const auto [dt, dr] = pose_distance(a.v.T_anchor_lidar, guesses[g].T_map_lidar);
+            if (dt < 0.5 * config_.distinct_translation && dr < config_.distinct_rotation)
+                known = true;
+        }
+        if (known) continue;
+        mapping::LoopVerification v =
+            verifier_.verify(finite, target, mapping::GuessList{guesses[g].T_map_lidar});
+        ++out.verified;
+        if (v.accepted) {
+            accepted.push_back({std::move(v), int(g)});
+        } else if (best_refusal.empty() || v.inliers > best_refused_inliers) {
+            best_refusal = v.reason;
+            best_refused_inliers = v.inliers;
+        }
+    }
+    if (accepted.empty()) {
+        out.reason = "not localised: no initial pose verified (" + std::to_string(out.verified) +
+                     " tried; best: " + best_refusal + ")";
+        return finish(out);
+    }
+    std::sort(accepted.begin(), accepted.end(),
+              [](const Verified& a, const Verified& b) { return a.v.inliers > b.v.inliers; });
+    const mapping::LoopVerification& best = accepted.front().v;
+    for (std::size_t i = 1; i < accepted.size(); ++i) {
+        const auto [dt, dr] = pose_distance(best.T_anchor_lidar, accepted[i].v.T_anchor_lidar);
+        if (dt < config_.distinct_translation && dr < config_.distinct_rotation) continue;
+        out.second_inliers_ratio = std::max(out.second_inliers_ratio,
+                                            double(accepted[i].v.inliers) / double(best.inliers));
+    }
+    const Guess& from = guesses[std::size_t(accepted.front().guess)];
+    out.T_map_lidar = best.T_anchor_lidar;
+    out.inliers = best.inliers;
+    out.points = best.points;
+    out.inlier_fraction = best.inlier_fraction;
+    out.inlier_rms = best.inlier_rms;
+    out.degenerate_directions = best.degenerate_directions;
+    out.from_features = from.from_features;
+    if (from.place >= 0) {
+        out.keyframe = places[std::size_t(from.place)].keyframe;
+        out.descriptor_distance = places[std::size_t(from.place)].distance;
+    }
+    if (out.second_inliers_ratio >= config_.ambiguity_ratio) {
+        std::ostringstream why;
+        why.precision(2);
+        why << "not localised: ambiguous, two places fit (the second with "
+            << out.second_inliers_ratio * 100.0 << " % of the best's inliers)";
+        out.reason = why.str();
+        return finish(out);
+    }
+    const registration::RegistrationResult r = fine_.align(finite, target.fine, out.T_map_lidar);
+    if (r.ok() && r.T_map_lidar.matrix().allFinite()) out.covariance = r.covariance;
+    const double structure =
+        best.structure_points ? double(best.structure_inliers) / double(best.structure_points) : 0;
+    out.confidence = std::clamp(best.inlier_fraction, 0.0, 1.0) * std::clamp(structure, 0.0, 1.0) *
+                     (1.0 - out.second_inliers_ratio);
+    std::ostringstream how;
+    if (from.place >= 0) {
+        how << "place " << from.place + 1 << " of " << places.size() << " (keyframe "
+            << out.keyframe << "), from "
+            << (from.from_features ? "local features" : "its descriptor");
+    } else {
+        how << "from the initial-pose hint";
+    }
+    how.precision(3);
+    how << "; inliers " << best.inliers << " of " << best.points << ", structure " << structure
+        << ", rival " << out.second_inliers_ratio << ", verified " << out.verified;
+    out.reason = how.str();
+    out.localised = true;
+    return finish(out);
+}
+
+}  // namespace ltm::localisation

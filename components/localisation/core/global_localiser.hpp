@@ -1,0 +1,166 @@
+#pragma once
+// Global localisation of one scan on a saved map, with no prior (METHOD.md section 6, the paper's
+// ScanContext-ICP): the scan's ScanContext++ descriptor retrieves the nearest keyframes by ring
+// key; the full descriptor distance (2-Wasserstein per bin, minimised over sector shifts) ranks
+// them and gives each a yaw; the best places each give initial poses, from the descriptor (the
+// keyframe's place turned by its yaw) and from local features (ground samples with a local
+// ScanContext++ each, matched to the map's around the place, RANSAC over Umeyama); every initial
+// pose is verified by registration against the map's voxels (coarse, then fine IMLS point to
+// surface) with the loop verifier's acceptance (inliers, inlier fraction and RMS, structure,
+// degeneracy).
+//
+// The answer is a pose with a confidence, or "not localised": when no initial pose verifies, or
+// when two verified poses at different places fit about as well (a repetitive site), nothing is
+// claimed. A confident wrong pose is the failure this must not make.
+#include <Eigen/Geometry>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/core/config_check.hpp"
+#include "localisation/core/local_features.hpp"
+#include "localisation/core/localisation_map.hpp"
+#include "mapping/core/loop_verifier.hpp"
+#include "registration/core/ransac_alignment.hpp"
+#include "registration/core/registration.hpp"
+
+namespace ltm::localisation {
+
+struct GlobalLocaliserConfig {
+    int candidates = 25;            // ring-key neighbours compared with the full descriptor
+    int places = 4;                 // best distinct places verified
+    double place_separation = 4.0;  // a candidate this close to a better one is the same place [m]
+    // Initial yaws tried about each place's descriptor yaw [deg].
+    std::vector<double> yaw_offsets = {0.0};
+    bool local_features = true;    // also initial poses from local features + RANSAC
+    double feature_region = 40.0;  // map samples within this of a place's keyframe [m]
+    // (the features' own settings are the map's: LocalisationMapConfig::features)
+    LocalFeatureMatchConfig matching;
+    registration::RansacAlignmentConfig ransac = ransac_defaults();
+    // Every initial pose is first probed: a short coarse registration of a few points, scored by
+    // the share of them on a map surface; only the best `verify_best` are verified in full.
+    int probe_points = 800;
+    int probe_iterations = 10;
+    int verify_best = 3;
+    mapping::LoopVerifierConfig verification = verification_defaults();
+    // A second verified pose more than this far from the best, with at least ambiguity_ratio of
+    // its inliers: the site repeats itself, no answer [m], [deg].
+    double distinct_translation = 1.0;
+    double distinct_rotation = 5.0;
+    double ambiguity_ratio = 0.85;
+    // With an initial-pose hint: places within this of the hint only, and the hint itself
+    // (with hint_yaw_offsets) among the initial poses [m].
+    double hint_radius = 10.0;
+    std::vector<double> hint_yaw_offsets = {0.0, -30.0, 30.0};
+
+    static registration::RansacAlignmentConfig ransac_defaults() {
+        registration::RansacAlignmentConfig c;
+        c.inlier_distance = 1.0;
+        c.min_inliers = 6;
+        c.min_sample_spread = 2.0;
+        return c;
+    }
+    static mapping::LoopVerifierConfig verification_defaults() {
+        mapping::LoopVerifierConfig c;
+        c.max_points = 4000;
+        // Stricter than a loop (whose place the odometry already suggests): a repetitive site
+        // (a substation's bays) fits a wrong place to 60 % inliers and 75 % on structure.
+        c.min_structure_inlier_ratio = 0.85;
+        c.cache_size = 1;
+        c.max_correction_translation = 10.0;
+        c.max_correction_rotation = 45.0;
+        return c;
+    }
+};
+
+template <class Visitor>
+void visit_fields(GlobalLocaliserConfig& c, const std::string& prefix, Visitor&& v) {
+    using namespace common::rules;
+    v(prefix + "candidates", c.candidates, at_least(1));
+    v(prefix + "places", c.places, at_least(1));
+    v(prefix + "place_separation", c.place_separation, non_negative);
+    v(prefix + "yaw_offsets", c.yaw_offsets, not_empty);
+    v(prefix + "local_features", c.local_features, unchecked);
+    v(prefix + "feature_region", c.feature_region, positive);
+    visit_fields(c.matching, prefix + "matching.", v);
+    registration::visit_fields(c.ransac, prefix + "ransac.", v);
+    mapping::visit_fields(c.verification, prefix + "verification.", v);
+    v(prefix + "probe_points", c.probe_points, at_least(50));
+    v(prefix + "probe_iterations", c.probe_iterations, at_least(1));
+    v(prefix + "verify_best", c.verify_best, at_least(1));
+    v(prefix + "distinct_translation", c.distinct_translation, positive);
+    v(prefix + "distinct_rotation", c.distinct_rotation, positive);
+    v(prefix + "ambiguity_ratio", c.ambiguity_ratio, unit);
+    v(prefix + "hint_radius", c.hint_radius, positive);
+    v(prefix + "hint_yaw_offsets", c.hint_yaw_offsets, not_empty);
+}
+
+std::optional<common::ConfigProblem> validate(const GlobalLocaliserConfig& config);
+
+// Where the robot may be (RViz's "2D Pose Estimate"): the search is narrowed to it.
+struct PoseHint {
+    Eigen::Isometry3d T_map_lidar = Eigen::Isometry3d::Identity();
+    double radius = 0.0;  // [m]; 0: the config's hint_radius
+    EIGEN_MAKE_ALIGNED_OPERATOR_NEW
+};
+
+struct GlobalLocalisation {
+    bool localised = false;
+    std::string reason;  // why not (one line), or how ("place 2 of 4, from local features")
+    Eigen::Isometry3d T_map_lidar = Eigen::Isometry3d::Identity();
+    registration::Matrix6d covariance = registration::Matrix6d::Identity();  // [dt; dr]
+    double confidence = 0.0;  // 0..1: inlier fraction x structure ratio x margin over the 2nd
+    std::size_t points = 0, inliers = 0;
+    double inlier_fraction = 0.0, inlier_rms = 0.0;
+    std::size_t degenerate_directions = 0;
+    int places = 0, guesses = 0, verified = 0;  // tried (verified: in full, after the probes)
+    std::uint32_t keyframe = 0;                 // of the place that gave the answer
+    double descriptor_distance = 0.0;           // of that place
+    bool from_features = false;                 // the initial pose came from local features
+    double second_inliers_ratio = 0.0;          // the best distinct rival's inliers / the answer's
+    double time_s = 0.0;                        // wall time of the query
+    EIGEN_MAKE_ALIGNED_OPERATOR_NEW
+};
+
+class GlobalLocaliser {
+  public:
+    // Throws common::ConfigError (naming the key) on an invalid configuration.
+    GlobalLocaliser(std::shared_ptr<const LocalisationMap> map,
+                    const GlobalLocaliserConfig& config = {});
+
+    // points: the scan in its LiDAR frame, pre-processed as the map's keyframes were (finite,
+    // range-cropped, down-sampled on the map grid). Never throws on bad data.
+    GlobalLocalisation localise(const std::vector<Eigen::Vector3f>& points,
+                                const std::optional<PoseHint>& hint = std::nullopt);
+
+    const GlobalLocaliserConfig& config() const { return config_; }
+    const LocalisationMap& map() const { return *map_; }
+
+  private:
+    struct Guess {
+        Eigen::Isometry3d T_map_lidar;
+        int place;
+        bool from_features;
+        EIGEN_MAKE_ALIGNED_OPERATOR_NEW
+    };
+    struct Place {
+        std::uint32_t keyframe;
+        double distance;
+        double yaw;
+    };
+    std::vector<Place> rank_places(const mapping::ScanContext& query,
+                                   const std::optional<PoseHint>& hint) const;
+    void feature_guesses(const std::vector<Eigen::Vector3f>& points, const Place& place, int index,
+                         std::vector<Guess, Eigen::aligned_allocator<Guess>>* guesses);
+
+    std::shared_ptr<const LocalisationMap> map_;
+    GlobalLocaliserConfig config_;
+    mapping::LoopVerifier verifier_;
+    registration::Registration fine_;
+    std::shared_ptr<const LocalFeatures> query_features_;
+    registration::Registration probe_;
+    std::vector<Eigen::Vector3f> probe_points_;
+};
+
+}  // namespace ltm::localisation

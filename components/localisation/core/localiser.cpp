@@ -1,0 +1,256 @@
+#include "localisation/core/localiser.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "mapping/core/mapper_config.hpp"
+#include "registration/core/imls.hpp"
+
+namespace ltm::localisation {
+
+namespace {
+
+constexpr double kDegToRad = M_PI / 180.0;
+
+}  // namespace
+
+const char* to_string(LocalisationState state) {
+    switch (state) {
+        case LocalisationState::kInitialising:
+            return "initialising";
+        case LocalisationState::kTracking:
+            return "tracking";
+        case LocalisationState::kLost:
+            return "lost";
+        case LocalisationState::kRelocalised:
+            return "relocalised";
+        case LocalisationState::kOffMap:
+            return "off_map";
+    }
+    return "unknown";
+}
+
+std::optional<common::ConfigProblem> validate(const LocaliserConfig& config) {
+    LocaliserConfig c = config;
+    common::ConfigChecker k;
+    visit_fields(c, k);
+    k.include(validate(config.global), "global.");
+    k.include(registration::validate(config.tracking), "tracking.");
+    return k.problem();
+}
+
+LocaliserConfig localiser_preset(common::SensorPreset preset) {
+    LocaliserConfig c;
+    if (preset == common::SensorPreset::kNarrow) {
+        // As the mapper's loop verification for this sensor (mapping::mapper_preset).
+        const mapping::LoopVerifierConfig m = mapping::mapper_preset(preset).verification;
+        c.global.verification.downsample = m.downsample;
+        c.global.verification.min_inliers = m.min_inliers;
+        c.global.verification.coarse_factor = m.coarse_factor;
+        c.off_map_margin = 5.0;
+    }
+    return c;
+}
+
+LocalisationMapConfig localisation_map_preset(common::SensorPreset preset) {
+    LocalisationMapConfig c;
+    const LocaliserConfig l = localiser_preset(preset);
+    c.coarse_factor = l.global.verification.coarse_factor;
+    if (preset == common::SensorPreset::kNarrow) c.features.max_range = 30.0;
+    return c;
+}
+
+namespace {
+
+const LocaliserConfig& checked(const LocaliserConfig& config) {
+    if (auto problem = validate(config)) throw common::ConfigError("localisation", *problem);
+    return config;
+}
+
+}  // namespace
+
+Localiser::Localiser(std::shared_ptr<const LocalisationMap> map, const LocaliserConfig& config)
+    : map_(std::move(map)),
+      config_(checked(config)),
+      global_(map_, config.global),
+      tracker_(config.tracking, map_->voxel_size()) {}
+
+void Localiser::set_initial_pose(const PoseHint& hint) {
+    hint_ = hint;
+    last_global_ = -1e300;
+}
+
+void Localiser::thin(const std::vector<Eigen::Vector3f>& points) {
+    if (config_.downsample > 0.0) {
+        sampler_.run(points, config_.downsample, &sampled_);
+    } else {
+        sampled_.clear();
+        for (const Eigen::Vector3f& p : points) {
+            if (p.allFinite()) sampled_.push_back(p);
+        }
+    }
+    if (sampled_.size() > std::size_t(config_.max_points)) {
+        const double step = double(sampled_.size()) / config_.max_points;
+        std::vector<Eigen::Vector3f> thinned;
+        thinned.reserve(std::size_t(config_.max_points));
+        for (int i = 0; i < config_.max_points; ++i)
+            thinned.push_back(sampled_[std::size_t(i * step)]);
+        sampled_.swap(thinned);
+    }
+}
+
+bool Localiser::run_global(double stamp, const std::vector<Eigen::Vector3f>& points,
+                           const Eigen::Isometry3d& T_odom_lidar, LocalisationUpdate* u) {
+    last_global_ = stamp;
+    const GlobalLocalisation g = global_.localise(points, hint_);
+    u->global_ran = true;
+    u->global_time_s = g.time_s;
+    if (!g.localised) {
+        u->message = g.reason;
+        return false;
+    }
+    hint_.reset();
+    T_map_odom_ = g.T_map_lidar * T_odom_lidar.inverse();
+    T_map_lidar_ = g.T_map_lidar;
+    u->T_map_lidar = g.T_map_lidar;
+    u->covariance = g.covariance;
+    u->confidence = g.confidence;
+    u->inlier_fraction = g.inlier_fraction;
+    u->message = "relocalised: " + g.reason;
+    have_fix_ = true;
+    last_fix_ = last_good_ = stamp;
+    return true;
+}
+
+bool Localiser::track(const Eigen::Isometry3d& predicted, LocalisationUpdate* u) {
+    const registration::RegistrationResult r =
+        tracker_.align(sampled_, map_->target().fine, predicted);
+    std::ostringstream why;
+    why.precision(3);
+    if (!r.ok() || !r.T_map_lidar.matrix().allFinite()) {
+        why << "registration " << registration::to_string(r.status);
+    } else {
+        const Eigen::Isometry3d d = predicted.inverse() * r.T_map_lidar;
+        const double dt = d.translation().norm();
+        const double dr = Eigen::AngleAxisd(d.linear()).angle() / kDegToRad;
+        u->inlier_fraction = r.inlier_fraction();
+        if (r.inlier_fraction() < config_.min_inlier_fraction) {
+            why << "inlier fraction " << r.inlier_fraction() << " below "
+                << config_.min_inlier_fraction;
+        } else if (r.overlap() < config_.min_overlap) {
+            why << "overlap with the map " << r.overlap() << " below " << config_.min_overlap;
+        } else if (dt > config_.max_correction_translation ||
+                   dr > config_.max_correction_rotation) {
+            why << "the map fits " << dt << " m / " << dr << " deg away from the odometry's pose";
+        } else {
+            const Eigen::Matrix3f R = r.T_map_lidar.linear().cast<float>();
+            const Eigen::Vector3f t = r.T_map_lidar.translation().cast<float>();
+            const registration::ImlsParams imls = tracker_.imls_params();
+            registration::ImlsResult res;
+            std::size_t structure = 0, on = 0;
+            for (const Eigen::Vector3f& p : sampled_) {
+                if (!registration::imls_distance(map_->target().fine, R * p + t, imls, &res) ||
+                    std::abs(res.normal.z()) >= 0.8f)
+                    continue;
+                ++structure;
+                on += std::abs(res.distance) <= config_.inlier_distance;
+            }
+            const double ratio = structure ? double(on) / double(structure) : 1.0;
+            if (structure >= std::size_t(config_.min_structure_points) &&
+                ratio < config_.min_structure_inlier_ratio) {
+                why << "structure inlier ratio " << ratio << " below "
+                    << config_.min_structure_inlier_ratio;
+            }
+        }
+    }
+    if (!why.str().empty()) {
+        u->message = "tracking failed: " + why.str();
+        return false;
+    }
+    T_map_lidar_ = r.T_map_lidar;
+    u->T_map_lidar = r.T_map_lidar;
+    u->covariance = r.covariance;
+    u->confidence = std::clamp(r.inlier_fraction(), 0.0, 1.0) *
+                    std::clamp(r.overlap() / std::max(config_.min_overlap, 1e-6), 0.0, 1.0);
+    return true;
+}
+
+LocalisationUpdate Localiser::process(double stamp, const std::vector<Eigen::Vector3f>& points,
+                                      const std::optional<OdometryInput>& odometry) {
+    LocalisationUpdate u;
+    u.stamp = stamp;
+    // The odometry's pose of this scan; without odometry, the last estimate (a static robot).
+    const Eigen::Isometry3d T_odom_lidar =
+        odometry ? odometry->T_odom_lidar : T_map_odom_.inverse() * T_map_lidar_;
+    std::string suspicion;
+    if (odometry && have_odometry_ && odometry->segment != segment_) {
+        suspicion = "the odometry restarted (segment " + std::to_string(odometry->segment) + ")";
+    } else if (!first_ && stamp - last_stamp_ > config_.max_gap) {
+        std::ostringstream s;
+        s << "a gap of " << stamp - last_stamp_ << " s between scans";
+        suspicion = s.str();
+    }
+    if (odometry) {
+        have_odometry_ = true;
+        segment_ = odometry->segment;
+    }
+    first_ = false;
+    last_stamp_ = stamp;
+    thin(points);
+
+    const bool searching = state_ == LocalisationState::kInitialising ||
+                           state_ == LocalisationState::kLost || !have_fix_;
+    if (searching || !suspicion.empty() || hint_) {
+        const bool due = !searching || hint_ || stamp - last_global_ >= config_.global_every;
+        if (due && run_global(stamp, points, T_odom_lidar, &u)) {
+            state_ = LocalisationState::kRelocalised;
+            if (!suspicion.empty()) u.message += " (after " + suspicion + ")";
+        } else if (searching) {
+            if (!due) u.message = "waiting to retry global localisation";
+        } else {
+            // A suspected kidnap the global query could not settle: keep tracking if the map
+            // still agrees with the odometry, else lost.
+            const std::string global_reason = u.message;
+            if (track(T_map_odom_ * T_odom_lidar, &u)) {
+                state_ = LocalisationState::kTracking;
+                last_good_ = stamp;
+                u.message = suspicion + "; the map still agrees with the odometry";
+            } else {
+                state_ = LocalisationState::kLost;
+                u.message = suspicion + "; " + global_reason;
+            }
+        }
+    } else {
+        const Eigen::Isometry3d predicted = T_map_odom_ * T_odom_lidar;
+        if (!map_->covers(predicted.translation(), config_.off_map_margin)) {
+            state_ = LocalisationState::kOffMap;
+            T_map_lidar_ = predicted;
+            u.T_map_lidar = predicted;
+            u.message = "beyond the map: following the odometry";
+            last_good_ = stamp;
+        } else if (track(predicted, &u)) {
+            T_map_odom_ = u.T_map_lidar * T_odom_lidar.inverse();
+            state_ = LocalisationState::kTracking;
+            last_good_ = stamp;
+        } else {
+            T_map_lidar_ = predicted;
+            u.T_map_lidar = predicted;
+            if (stamp - last_good_ >= config_.lost_after) {
+                state_ = LocalisationState::kLost;
+                u.message += " (for " + std::to_string(stamp - last_good_) + " s: lost)";
+            }
+        }
+    }
+    u.state = state_;
+    u.pose_valid = have_fix_ && state_ != LocalisationState::kLost &&
+                   state_ != LocalisationState::kInitialising;
+    if (!u.pose_valid) u.T_map_lidar = T_map_lidar_;
+    u.T_map_odom = T_map_odom_;
+    u.lost_for = stamp - last_good_;
+    u.since_fix = have_fix_ ? stamp - last_fix_ : 0.0;
+    if (u.state == LocalisationState::kOffMap) u.confidence = 0.0;
+    return u;
+}
+
+}  // namespace ltm::localisation

@@ -1,0 +1,298 @@
+// Global localisation and tracking on maps built in the test: a synthetic scene (exact truth) and
+// the repository's real KITTI fixture (3 frames of sequence 00 with SemanticKITTI poses).
+#include "localisation/core/localiser.hpp"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <random>
+
+#include "common/core/config_check.hpp"
+#include "common/core/io_error.hpp"
+#include "localisation/core/global_localiser.hpp"
+#include "localisation/core/localisation_map.hpp"
+#include "mapping/core/map_store.hpp"
+#include "mapping/core/test_data.hpp"
+
+namespace ltm::localisation {
+namespace {
+
+namespace mt = mapping::test;
+constexpr double kDeg = M_PI / 180.0;
+
+struct Errors {
+    double translation, rotation_deg;
+};
+Errors error_of(const Eigen::Isometry3d& est, const Eigen::Isometry3d& truth) {
+    const Eigen::Isometry3d d = truth.inverse() * est;
+    return {d.translation().norm(), Eigen::AngleAxisd(d.linear()).angle() / kDeg};
+}
+
+mapping::ScanContextConfig descriptor_config(double sensor_height) {
+    mapping::ScanContextConfig c;
+    c.kind = mapping::ScanContextKind::kMeanVariance;
+    c.max_range = 60.0;
+    c.sensor_height = sensor_height;
+    return c;
+}
+
+// A map of one local map built from `scans` at `poses` (world = map frame), a keyframe a scan.
+mapping::MapData make_map(const std::vector<std::vector<Eigen::Vector3f>>& scans,
+                          const common::PoseList& poses, double voxel, double sensor_height) {
+    mapping::MapData m;
+    m.localisation_descriptor_config = descriptor_config(sensor_height);
+    mapping::PoseGraphNode node;
+    node.id = 0;
+    node.T_world_anchor = poses.front();
+    node.T_odom_anchor = poses.front();
+    m.nodes.push_back(node);
+    auto data = std::make_shared<common::LocalMapData>(
+        mt::build_local_map(0, poses.front(), scans, poses, voxel, 80.0));
+    m.local_maps.push_back({0, 0, data});
+    for (std::size_t i = 0; i < scans.size(); ++i) {
+        auto k = std::make_shared<mapping::StoredKeyframe>();
+        k->node = 0;
+        k->data.id = i;
+        k->data.stamp = 0.1 * double(i);
+        k->data.T_odom_lidar = poses[i];
+        k->data.T_anchor_lidar = poses.front().inverse() * poses[i];
+        k->localisation_descriptor =
+            mapping::make_scan_context(scans[i], m.localisation_descriptor_config);
+        m.keyframes.push_back(k);
+    }
+    return m;
+}
+
+// The synthetic scene seen along a path (every 2 m, heading along x, then turning).
+struct SceneMap {
+    std::vector<Eigen::Vector3f> scene;
+    common::PoseList path;
+    std::shared_ptr<const LocalisationMap> map;
+};
+
+const SceneMap& scene_map() {
+    static const SceneMap s = [] {
+        SceneMap r;
+        r.scene = mt::with_dense_ground(mt::synthetic_scene(11, 70.0));
+        std::vector<std::vector<Eigen::Vector3f>> scans;
+        for (int i = 0; i < 16; ++i) {
+            const double x = -15.0 + 2.0 * i;
+            r.path.push_back(mt::xy_yaw(x, 0.2 * x, 5.0 * i));
+            scans.push_back(mt::view(r.scene, r.path.back(), 60.0));
+        }
+        r.map = std::make_shared<const LocalisationMap>(make_map(scans, r.path, 0.6, 0.0));
+        return r;
+    }();
+    return s;
+}
+
+TEST(LocalisationMap, MergesTheVoxelsAndPlacesEveryKeyframe) {
+    const SceneMap& s = scene_map();
+    EXPECT_EQ(s.map->keyframes().size(), s.path.size());
+    EXPECT_GT(s.map->voxels().voxels.size(), 1000u);
+    EXPECT_FALSE(s.map->descriptors_computed());
+    for (std::size_t i = 0; i < s.path.size(); ++i) {
+        EXPECT_LT(error_of(s.map->keyframes()[i].T_map_lidar, s.path[i]).translation, 1e-9);
+    }
+    EXPECT_GT(s.map->feature_count(), 20u);
+}
+
+TEST(LocalisationMap, RefusesAMapWithNothingToLocaliseAgainst) {
+    mapping::MapData empty;
+    try {
+        LocalisationMap m(empty);
+        FAIL() << "an empty map was accepted";
+    } catch (const common::ConfigError& e) {
+        EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos);
+        EXPECT_NE(std::string(e.what()).find("no keyframes"), std::string::npos) << e.what();
+    }
+}
+
+TEST(LocalisationMap, FormatOneMapsGetTheirDescriptorsFromTheVoxels) {
+    const SceneMap& s = scene_map();
+    std::vector<std::vector<Eigen::Vector3f>> scans;
+    for (const Eigen::Isometry3d& T : s.path) scans.push_back(mt::view(s.scene, T, 60.0));
+    mapping::MapData m = make_map(scans, s.path, 0.6, 0.0);
+    m.localisation_descriptor_config = mapping::no_localisation_descriptors();
+    std::vector<std::shared_ptr<const mapping::StoredKeyframe>> stripped;
+    for (const auto& k : m.keyframes) {
+        auto c = std::make_shared<mapping::StoredKeyframe>(*k);
+        c->localisation_descriptor = mapping::ScanContext();
+        stripped.push_back(c);
+    }
+    m.keyframes = stripped;
+    LocalisationMapConfig config;
+    config.descriptor = descriptor_config(0.0);
+    const LocalisationMap map(m, config);
+    EXPECT_TRUE(map.descriptors_computed());
+    for (const MapKeyframe& k : map.keyframes()) EXPECT_FALSE(k.descriptor.empty());
+}
+
+TEST(GlobalLocaliser, FindsATurnedAndShiftedScanOfTheSceneWithNoPrior) {
+    const SceneMap& s = scene_map();
+    GlobalLocaliser g(s.map);
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    int found = 0;
+    for (int trial = 0; trial < 6; ++trial) {
+        // Somewhere along the mapped path, a random heading, up to 3 m off the path.
+        const Eigen::Isometry3d& base = s.path[std::size_t(2 + 2 * trial)];
+        const Eigen::Isometry3d truth =
+            base * mt::xy_yaw(3.0 * u(rng), 3.0 * u(rng), 180.0 * u(rng));
+        const GlobalLocalisation r = g.localise(mt::view(s.scene, truth, 60.0));
+        if (!r.localised) continue;  // allowed, but a pose must be right
+        const Errors e = error_of(r.T_map_lidar, truth);
+        EXPECT_LT(e.translation, 0.1) << trial << ": " << r.reason;
+        EXPECT_LT(e.rotation_deg, 0.5) << trial << ": " << r.reason;
+        EXPECT_GT(r.confidence, 0.0);
+        ++found;
+    }
+    EXPECT_GE(found, 5);
+}
+
+TEST(GlobalLocaliser, AnswersNotLocalisedForAPlaceThatIsNotInTheMap) {
+    const SceneMap& s = scene_map();
+    GlobalLocaliser g(s.map);
+    const std::vector<Eigen::Vector3f> elsewhere =
+        mt::with_dense_ground(mt::synthetic_scene(97, 70.0));
+    for (const double yaw : {0.0, 120.0}) {
+        const GlobalLocalisation r = g.localise(mt::view(elsewhere, mt::xy_yaw(0, 0, yaw), 60.0));
+        EXPECT_FALSE(r.localised) << "claimed " << r.T_map_lidar.translation().transpose() << ": "
+                                  << r.reason;
+        EXPECT_FALSE(r.reason.empty());
+    }
+    // Nothing at all, and garbage: an answer, not a crash.
+    EXPECT_FALSE(g.localise({}).localised);
+    EXPECT_FALSE(
+        g.localise(std::vector<Eigen::Vector3f>(500, Eigen::Vector3f::Constant(NAN))).localised);
+}
+
+TEST(GlobalLocaliser, AHintNarrowsTheSearchToItsPlace) {
+    const SceneMap& s = scene_map();
+    GlobalLocaliser g(s.map);
+    const Eigen::Isometry3d truth = s.path[9] * mt::xy_yaw(1.0, -1.0, 20.0);
+    PoseHint hint;
+    hint.T_map_lidar = truth * mt::xy_yaw(0.8, 0.5, 10.0);
+    hint.radius = 5.0;
+    const GlobalLocalisation r = g.localise(mt::view(s.scene, truth, 60.0), hint);
+    ASSERT_TRUE(r.localised) << r.reason;
+    EXPECT_LT(error_of(r.T_map_lidar, truth).translation, 0.1);
+}
+
+TEST(Localiser, TracksAndRelocalisesAfterAKidnap) {
+    const SceneMap& s = scene_map();
+    Localiser loc(s.map);
+    // The odometry frame differs from the map's by an unknown transform.
+    const Eigen::Isometry3d T_odom_map = mt::xy_yaw(40.0, -7.0, 73.0);
+    double stamp = 100.0;
+    int tracked = 0, relocalised = 0;
+    auto step = [&](const Eigen::Isometry3d& truth, std::uint32_t segment,
+                    const Eigen::Isometry3d& odom_error) {
+        OdometryInput o;
+        o.T_odom_lidar = odom_error * T_odom_map * truth;
+        o.segment = segment;
+        const LocalisationUpdate u = loc.process(stamp, mt::view(s.scene, truth, 60.0), o);
+        stamp += 0.1;
+        tracked += u.state == LocalisationState::kTracking;
+        relocalised += u.state == LocalisationState::kRelocalised;
+        return u;
+    };
+    // Unknown start, then tracking along the path.
+    LocalisationUpdate u;
+    for (int i = 2; i <= 6; ++i) {
+        const Eigen::Isometry3d truth = s.path[std::size_t(i)] * mt::xy_yaw(0.3, 0.4, 0.0);
+        u = step(truth, 0, Eigen::Isometry3d::Identity());
+        ASSERT_TRUE(u.pose_valid) << i << ": " << u.message;
+        EXPECT_LT(error_of(u.T_map_lidar, truth).translation, 0.1) << i;
+        EXPECT_LT(error_of(u.T_map_odom, T_odom_map.inverse()).translation, 0.1) << i;
+    }
+    EXPECT_EQ(relocalised, 1);
+    EXPECT_EQ(tracked, 4);
+    // Kidnap: carried to another part of the map, the odometry goes on as if nothing happened
+    // (its frame no longer agrees with the map there).
+    bool back = false;
+    int scans_to_relocalise = 0;
+    for (int i = 0; i < 12 && !back; ++i) {
+        ++scans_to_relocalise;
+        const Eigen::Isometry3d truth = s.path[std::size_t(12 + i % 3)] * mt::xy_yaw(0.2, 0.0, 0.0);
+        // The odometry believes it is still near path[6].
+        const Eigen::Isometry3d believed = T_odom_map * s.path[6];
+        OdometryInput o;
+        o.T_odom_lidar = believed;
+        o.segment = 0;
+        u = loc.process(stamp, mt::view(s.scene, truth, 60.0), o);
+        stamp += 0.1;
+        if (u.state == LocalisationState::kRelocalised) {
+            EXPECT_LT(error_of(u.T_map_lidar, truth).translation, 0.1) << u.message;
+            back = true;
+        } else {
+            EXPECT_TRUE(u.state == LocalisationState::kTracking ||
+                        u.state == LocalisationState::kLost)
+                << to_string(u.state);
+            if (u.pose_valid) {
+                EXPECT_NE(u.message.find("tracking failed"), std::string::npos) << u.message;
+            }
+        }
+    }
+    EXPECT_TRUE(back) << "not relocalised after the kidnap: " << u.message;
+    // Lost after lost_after (0.5 s = 5 scans at 10 Hz), relocalised by the next global query.
+    EXPECT_LE(scans_to_relocalise, 8);
+    // An odometry restart (new segment) is a kidnap announced: relocalised on that scan.
+    const Eigen::Isometry3d truth = s.path[4];
+    u = step(truth, 1, mt::xy_yaw(-3.0, 5.0, 40.0));
+    EXPECT_EQ(u.state, LocalisationState::kRelocalised) << u.message;
+    EXPECT_LT(error_of(u.T_map_lidar, truth).translation, 0.1);
+}
+
+TEST(Localiser, RefusesAnInvalidConfigurationWithOneLine) {
+    LocaliserConfig c;
+    c.min_overlap = 2.0;
+    try {
+        Localiser l(scene_map().map, c);
+        FAIL();
+    } catch (const common::ConfigError& e) {
+        EXPECT_NE(std::string(e.what()).find("min_overlap"), std::string::npos) << e.what();
+    }
+}
+
+TEST(Localisation, LoadingADamagedMapIsOneLine) {
+    const std::string dir =
+        (std::filesystem::temp_directory_path() / ("ltm_loc_damaged_" + std::to_string(::getpid())))
+            .string();
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir + "/manifest.txt") << "ltm_map 99\nrevision 0\n";
+    try {
+        load_localisation_map(dir);
+        FAIL() << "a damaged map loaded";
+    } catch (const common::IoError& e) {
+        EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos);
+        EXPECT_NE(std::string(e.what()).find("manifest"), std::string::npos) << e.what();
+    }
+    std::filesystem::remove_all(dir);
+}
+
+TEST(Localisation, ARealKittiFrameIsRelocalisedFromARandomPose) {
+    const mt::KittiSnippet k = mt::load_kitti(mt::fixture_kitti00(), 3);
+    ASSERT_EQ(k.scans.size(), 3u);
+    std::vector<std::vector<Eigen::Vector3f>> scans;
+    for (const common::PointCloud& c : k.scans) scans.push_back(c.points);
+    const auto map = std::make_shared<const LocalisationMap>(make_map(scans, k.poses, 0.6, 1.73));
+    GlobalLocaliser g(map);
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    for (int trial = 0; trial < 3; ++trial) {
+        // Frame 1 turned by a random yaw and shifted up to 5 m: its truth moves with it.
+        const Eigen::Isometry3d T_pert = mt::xy_yaw(3.5 * u(rng), 3.5 * u(rng), 180.0 * u(rng));
+        const GlobalLocalisation r = g.localise(mt::transformed(scans[1], T_pert));
+        ASSERT_TRUE(r.localised) << trial << ": " << r.reason;
+        const Errors e = error_of(r.T_map_lidar, k.poses[1] * T_pert.inverse());
+        EXPECT_LT(e.translation, 0.2) << trial << ": " << r.reason;
+        EXPECT_LT(e.rotation_deg, 1.0) << trial << ": " << r.reason;
+    }
+}
+
+}  // namespace
+}  // namespace ltm::localisation
