@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -63,6 +65,12 @@ const std::vector<BadLine> kBadLines = {
     {"ltm_bench_slam",
      {"--graph-bench", "x"},
      "ltm_bench_slam: --graph-bench: expected a non-negative integer, got 'x'"},
+    {"ltm_bench_slam",
+     {"--scenario", "s.yaml", "--poses", "p.txt"},
+     "ltm_bench_slam: --poses: needs a scan folder DIR (not --scenario or --graph-bench)"},
+    {"ltm_bench_slam",
+     {"dir", "--calib", "c.txt"},
+     "ltm_bench_slam: --calib: needs --reference or --poses"},
     {"ltm_mcap", {"info", "f.mcap", "--bogus"}, "ltm_mcap info: --bogus: unknown option"},
     {"ltm_mcap", {"recover", "f.mcap", "-o"}, "ltm_mcap recover: --output: needs a value"},
     {"ltm_mcap",
@@ -128,7 +136,7 @@ TEST(ToolsCli, HelpListsEveryOption) {
          {{"--help"},
           {"DIR", "--reference", "--calib", "--out", "--preset", "--config", "--mapping-config",
            "--max-frames", "--snapshot-every", "--pairs", "--session", "--scenario", "--laps",
-           "--graph-bench"}}},
+           "--graph-bench", "--poses"}}},
         {"ltm_mcap", {{"--help"}, {"info", "verify", "recover", "manifest", "write-test-file"}}},
         {"ltm_mcap",
          {{"write-test-file", "--help"},
@@ -148,6 +156,36 @@ TEST(ToolsCli, HelpListsEveryOption) {
             EXPECT_NE(o.out.find(option), std::string::npos) << tool << " " << option << "\n"
                                                              << o.out;
     }
+}
+
+// A map from given poses (ltm_bench_slam DIR --poses P): poses that do not fit the scans are one
+// line on stderr and exit code 1, before anything is built.
+TEST(ToolsCli, BenchSlamRefusesGivenPosesThatDoNotFit) {
+    const std::string dir = testing::TempDir() + "ltm_given_poses_" + std::to_string(::getpid());
+    std::filesystem::create_directories(dir + "/velodyne");
+    for (const char* scan : {"000000.bin", "000001.bin", "000002.bin"}) {
+        std::ofstream f(dir + "/velodyne/" + scan, std::ios::binary);
+        const float point[4] = {10.0f, 2.0f, 0.5f, 1.0f};
+        for (int i = 0; i < 100; ++i) f.write(reinterpret_cast<const char*>(point), sizeof(point));
+    }
+    const std::string pose = "1 0 0 0 0 1 0 0 0 0 1 0\n";
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {pose + pose, "2 poses for 3 scans: one pose a scan is needed"},
+        {pose + "1 0 0 0 0 1 0 0 0 0 1\n" + pose, "line 2: a KITTI pose needs 12 numbers"},
+        {pose + "1 0 0 nan 0 1 0 0 0 0 1 0\n" + pose, "line 2: a KITTI pose needs 12 numbers"},
+        {pose + "2 0 0 0 0 1 0 0 0 0 1 0\n" + pose,
+         "pose 1 (the pose of scan 1) is not a finite rigid transform"},
+    };
+    const std::string poses = dir + "/poses.txt";
+    for (const auto& [text, problem] : cases) {
+        std::ofstream(poses, std::ios::trunc) << text;
+        const Outcome o =
+            run_tool("ltm_bench_slam", {dir, "--poses", poses, "--out", dir + "/out"});
+        EXPECT_EQ(o.code, 1) << problem;
+        EXPECT_EQ(o.err, "ltm_bench_slam: " + poses + ": " + problem + "\n");
+        EXPECT_FALSE(std::filesystem::exists(dir + "/out")) << problem;
+    }
+    std::filesystem::remove_all(dir);
 }
 
 }  // namespace

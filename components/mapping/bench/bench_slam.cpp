@@ -3,6 +3,8 @@
 // or missed and the false loops), loop detection, verification and optimisation times, memory;
 // writes odometry.txt, slam.txt (LiDAR poses, KITTI format), loops.txt, the map and its PLY.
 // Also over scans a scenario renders in-process (--scenario, --laps), and --graph-bench N.
+// With --poses (a trajectory from elsewhere: survey, GNSS-INS, another SLAM), the map is built at
+// the given poses: no registration, no loop closure.
 // Options: `ltm_bench_slam --help`.
 #include <algorithm>
 #include <chrono>
@@ -43,7 +45,7 @@ using namespace ltm;
 using Clock = std::chrono::steady_clock;
 
 struct Args {
-    std::string dir, out, reference, calib, preset, config, mapping_config;
+    std::string dir, out, reference, calib, preset, config, mapping_config, poses;
     std::string pairs, session;
     std::string scenario;  // --scenario: render the scans in-process
     std::size_t laps = 0;
@@ -58,12 +60,17 @@ void add_options(CLI::App& app, Args& a) {
         "DIR: KITTI layout (velodyne/*.bin) or a PCD/PLY folder (Scans/*.pcd); or --scenario:\n"
         "scans rendered by the simulator (session 0), its true poses as the reference, memory\n"
         "every km; or --graph-bench N: the optimisation of a synthetic graph of N anchors.\n"
+        "--poses P: a map from a known trajectory (P: KITTI 3x4 T_world_lidar a scan, camera\n"
+        "poses with --calib): the scans placed at those poses, no registration, no loop closure.\n"
         "LTM_BENCH_LOOPS=1 prints every loop and refusal.");
     CLI::Option* dir = app.add_option("DIR", a.dir, "the scans");
-    CLI::Option* reference = app.add_option(
-        "--reference", a.reference, "KITTI-format poses, one a frame (camera poses with --calib)");
-    app.add_option("--calib", a.calib, "the reference is in the camera frame of this calib.txt")
-        ->needs(reference);
+    app.add_option("--reference", a.reference,
+                   "KITTI-format poses, one a frame (camera poses with --calib)");
+    app.add_option("--calib", a.calib,
+                   "the reference (and --poses) are in the camera frame of this calib.txt");
+    app.add_option("--poses", a.poses,
+                   "build the map at these poses (KITTI format, one a scan): no registration, no "
+                   "loop closure");
     app.add_option("--out", a.out, "write poses, loops, the map and its PLY here");
     app.add_option("--preset", a.preset, "sensor preset: hdl64, vlp32, vlp16, narrow or os1-64")
         ->default_str("hdl64");
@@ -95,6 +102,12 @@ void check_options(const Args& a) {
     if (!a.scenario.empty() && !a.reference.empty())
         throw common::cli::UsageError("--reference",
                                       "--scenario brings its own reference (the true poses)");
+    if (!a.calib.empty() && a.reference.empty() && a.poses.empty())
+        throw common::cli::UsageError("--calib", "needs --reference or --poses");
+    if (!a.poses.empty() && (a.dir.empty() || a.graph_bench != 0))
+        throw common::cli::UsageError("--poses",
+                                      "needs a scan folder DIR (not --scenario or "
+                                      "--graph-bench)");
 }
 
 struct Stats {
@@ -156,6 +169,33 @@ void report_pairs(const Args& a, const common::PoseList& odom, const common::Pos
         a.session.c_str(), err_odom.str().c_str(), err_slam.str().c_str(), over);
 }
 
+// The given trajectory (--poses): one finite rigid pose a scan, for the first `frames` scans;
+// camera-frame poses converted with --calib. Throws IoError (one line) otherwise.
+common::PoseList read_given_poses(const Args& a, std::size_t frames) {
+    common::PoseList poses = common::read_kitti_poses(a.poses);
+    if (poses.size() < frames) {
+        throw common::IoError(a.poses, std::to_string(poses.size()) + " poses for " +
+                                           std::to_string(frames) +
+                                           " scans: one pose a scan is needed");
+    }
+    poses.resize(frames);
+    for (std::size_t i = 0; i < frames; ++i) {
+        Eigen::Isometry3d& T = poses[i];
+        const Eigen::Matrix3d R = T.linear();
+        if (!T.matrix().allFinite() ||
+            (R.transpose() * R - Eigen::Matrix3d::Identity()).norm() > 1e-3 ||
+            R.determinant() <= 0.0) {
+            throw common::IoError(a.poses, "pose " + std::to_string(i) + " (the pose of scan " +
+                                               std::to_string(i) +
+                                               ") is not a finite rigid transform");
+        }
+        T.linear() = Eigen::Quaterniond(R).normalized().toRotationMatrix();  // printed digits
+    }
+    if (!a.calib.empty())
+        poses = common::camera_to_lidar_poses(poses, common::read_kitti_calib_tr(a.calib));
+    return poses;
+}
+
 int graph_bench(std::size_t anchors) {
     const mapping::MapperConfig config;
     mapping::bench::run_graph_bench(std::min<std::size_t>(anchors, 100), config, 7);  // warm up
@@ -177,10 +217,10 @@ int run(const Args& a) {
                                common::parse_sensor_preset(a.preset.empty() ? "hdl64" : a.preset))
                          : odometry::load_odometry_config_file(a.config);
     // The mapping component's keys and presets (a file's `mapping:` section or top level).
-    const mapping::MapperConfig mc =
-        a.mapping_config.empty() ? mapping::mapper_preset(common::parse_sensor_preset(
-                                       a.preset.empty() ? "hdl64" : a.preset))
-                                 : mapping::load_mapper_config_file(a.mapping_config, a.preset);
+    mapping::MapperConfig mc = a.mapping_config.empty()
+                                   ? mapping::mapper_preset(common::parse_sensor_preset(
+                                         a.preset.empty() ? "hdl64" : a.preset))
+                                   : mapping::load_mapper_config_file(a.mapping_config, a.preset);
     std::unique_ptr<sources::ScanFolder> folder_data;
     std::unique_ptr<mapping::bench::SimSource> sim_data;
     std::size_t available = 0;
@@ -204,6 +244,15 @@ int run(const Args& a) {
     const std::size_t frames = a.max_frames ? std::min(a.max_frames, available) : available;
     std::printf("%s: %zu %s scans, odometry voxel %.2f m\n",
                 (a.scenario.empty() ? a.dir : a.scenario).c_str(), frames, kind, oc.voxel_size);
+    const bool given = !a.poses.empty();
+    const common::PoseList given_poses = given ? read_given_poses(a, frames) : common::PoseList();
+    if (given) {
+        mc.loop_closure = false;  // the poses are final
+        std::printf(
+            "map built from given poses (%s): scans placed at them, no registration, no loop "
+            "closure\n",
+            a.poses.c_str());
+    }
     mapping::bench::KmMemoryLog km_log;
     double path_so_far = 0.0;  // [m] odometry path
 
@@ -214,6 +263,7 @@ int run(const Args& a) {
     slam::SlamPipeline pipeline(pc);
     const mapping::Mapper& mapper = pipeline.mapper();
     mapping::LoopDetector shadow(mc.scan_context, mc.loop_detection);  // detection timing alone
+    const auto t_start = Clock::now();
     common::PoseList odom(frames);
     std::vector<std::uint64_t> frame_map(frames, 0);
     Stats detect, add, verify, optimise, odometry_ms;
@@ -230,14 +280,18 @@ int run(const Args& a) {
     common::Progress progress("slam", frames);
     for (std::size_t i = 0; i < frames; ++i) {
         const common::PointCloud cloud = load(i);
-        const slam::SlamFrame f = pipeline.process(cloud);
+        const slam::SlamFrame f =
+            given ? pipeline.process(cloud, given_poses[i]) : pipeline.process(cloud);
         const odometry::FrameResult& r = f.odometry;
         odometry_ms.add(f.odometry_ms);
         odom[i] = r.T_odom_lidar;
         frame_map[i] = r.local_map_id;
         if (i) path_so_far += (odom[i].translation() - odom[i - 1].translation()).norm();
         if (!r.message.empty()) std::fprintf(stderr, "frame %zu: %s\n", i, r.message.c_str());
-        if (f.keyframe) {
+        if (f.keyframe && given) {
+            add.add(f.keyframe_ms);
+            ++keyframes;
+        } else if (f.keyframe) {
             const common::KeyframeData& k = *f.handover.keyframe;
             const mapping::KeyframeResult& kr = *f.keyframe;
             auto t0 = Clock::now();
@@ -303,6 +357,8 @@ int run(const Args& a) {
     std::printf("keyframes %zu, local maps %zu, graph %zu nodes %zu edges; path %.1f m\n",
                 keyframes, mapper.local_map_count(), mapper.graph().nodes().size(),
                 mapper.graph().edges().size(), path);
+    std::printf("%zu scans in %.1f s (%s)\n", frames, ms_since(t_start) / 1000.0,
+                given ? "placed at the given poses" : "odometry and mapping");
     std::printf(
         "loops: %zu closed (%zu kept by the last optimisation), %zu candidates, %zu verifications, "
         "%zu refused\n",

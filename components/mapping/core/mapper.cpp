@@ -271,7 +271,10 @@ KeyframeResult Mapper::add_keyframe(const common::KeyframeData& input) {
     stored->localisation_descriptor =
         make_scan_context(input.points, config_.localisation_descriptor);
     std::vector<LoopCandidate> candidates;
-    if (!detector_.add(stored->descriptor, session_, keyframe.stamp, &candidates)) {
+    const bool added = config_.loop_closure ? detector_.add(stored->descriptor, session_,
+                                                            keyframe.stamp, &candidates)
+                                            : detector_.add_searchable(stored->descriptor);
+    if (!added) {
         r.message = "keyframe " + std::to_string(keyframe.id) + ": descriptor has the wrong shape";
         return r;
     }

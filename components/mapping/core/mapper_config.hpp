@@ -75,6 +75,9 @@ struct MapperConfig {
     // edge pulls too weakly (KITTI forward/reverse test: 0.14 m with one, 0.06 m with two or more).
     int max_loops_per_anchor_pair = 2;
     bool keep_keyframe_points = false;  // keep each keyframe's scan in the map (memory, files)
+    // Detect and verify loops. Off (a map from a known trajectory: the poses are final), keyframes
+    // only get their descriptors and are kept (searchable by a later session's loop closure).
+    bool loop_closure = true;
 };
 
 // The defaults for one of the odometry's sensor presets: `narrow` (Livox-like, ~70 deg field of
@@ -104,6 +107,7 @@ void visit_own_fields(MapperConfig& c, Visitor&& v) {
     v("verify_from_graph", c.verify_from_graph, unchecked);
     v("max_loops_per_anchor_pair", c.max_loops_per_anchor_pair, non_negative);
     v("keep_keyframe_points", c.keep_keyframe_points, unchecked);
+    v("loop_closure", c.loop_closure, unchecked);
 }
 
 // Every field but the Scan Context kinds (enums: loaders read scan_context.kind as a name; the

@@ -345,6 +345,29 @@ TEST(Mapper, KeyframesCarryALocalisationDescriptorIntoTheSnapshot) {
     EXPECT_GE(mapper.memory_bytes() - before, 1200u * 9 + 1200u * 5);
 }
 
+TEST(Mapper, WithoutLoopClosureAKeyframeIsOnlyStored) {
+    for (const bool loop_closure : {true, false}) {
+        MapperConfig config;
+        config.loop_detection.exclude_recent_keyframes = 0;
+        config.loop_detection.exclude_recent_seconds = 0.0;
+        config.loop_closure = loop_closure;
+        Mapper mapper(config);
+        ASSERT_TRUE(mapper.add_keyframe(scene_keyframe(0, test::xy_yaw(0, 0, 0))).added);
+        // The same place again, in another local map: a loop candidate when loops are closed.
+        const KeyframeResult r = mapper.add_keyframe(scene_keyframe(1, test::xy_yaw(0.2, 0, 5)));
+        ASSERT_TRUE(r.added) << r.message;
+        if (loop_closure) {
+            EXPECT_GE(r.candidates, 1u);
+        } else {
+            EXPECT_EQ(r.candidates, 0u);
+            EXPECT_FALSE(r.verified);
+        }
+        ASSERT_EQ(mapper.keyframes().size(), 2u);
+        EXPECT_FALSE(mapper.keyframes()[1]->descriptor.empty());
+        EXPECT_FALSE(mapper.keyframes()[1]->localisation_descriptor.empty());
+    }
+}
+
 TEST(Mapper, AFormat1MapIsContinuedWithLocalisationDescriptorsOnTheNewKeyframes) {
     const MapperConfig config;
     Mapper first(config);

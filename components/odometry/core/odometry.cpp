@@ -86,16 +86,7 @@ FrameResult Odometry::register_frame(const common::PointCloud& cloud) {
     r.input_points = cloud.size();
     r.T_odom_lidar = motion_.poses() ? motion_.last_pose() : initial_pose_;
     if (!maps_.empty()) r.local_map_id = maps_.current().id();
-    if (!std::isfinite(cloud.stamp)) {
-        return reject(r, FrameStatus::kRejectedStamp, "scan stamp is not finite");
-    }
-    if (has_stamp_ && !(cloud.stamp > last_stamp_)) {
-        std::ostringstream s;
-        s.precision(17);
-        s << "time went backwards: scan stamp " << cloud.stamp << " is not after the previous "
-          << last_stamp_;
-        return reject(r, FrameStatus::kRejectedStamp, s.str());
-    }
+    if (stamp_refused(cloud, &r)) return r;
 
     const registration::Vector6d velocity = motion_.velocity();
     auto tick = std::chrono::steady_clock::now();
@@ -211,18 +202,88 @@ FrameResult Odometry::register_frame(const common::PointCloud& cloud) {
     }
     accept(r);
     lap();
-    r.new_local_map = maps_.integrate(scan_.map_points, r.T_odom_lidar, cloud.stamp);
-    r.local_map_id = maps_.current().id();
-    if (keyframes_.check(r.T_odom_lidar)) {
+    integrate(cloud.stamp, &r);
+    r.update_ms = lap();
+    return r;
+}
+
+bool Odometry::stamp_refused(const common::PointCloud& cloud, FrameResult* r) {
+    if (!std::isfinite(cloud.stamp)) {
+        *r = reject(*r, FrameStatus::kRejectedStamp, "scan stamp is not finite");
+        return true;
+    }
+    if (has_stamp_ && !(cloud.stamp > last_stamp_)) {
+        std::ostringstream s;
+        s.precision(17);
+        s << "time went backwards: scan stamp " << cloud.stamp << " is not after the previous "
+          << last_stamp_;
+        *r = reject(*r, FrameStatus::kRejectedStamp, s.str());
+        return true;
+    }
+    return false;
+}
+
+void Odometry::integrate(double stamp, FrameResult* r) {
+    r->new_local_map = maps_.integrate(scan_.map_points, r->T_odom_lidar, stamp);
+    r->local_map_id = maps_.current().id();
+    if (keyframes_.check(r->T_odom_lidar)) {
         Keyframe k;
         k.id = next_keyframe_id_++;
-        k.stamp = cloud.stamp;
-        k.T_odom_lidar = r.T_odom_lidar;
-        k.local_map_id = r.local_map_id;
+        k.stamp = stamp;
+        k.T_odom_lidar = r->T_odom_lidar;
+        k.local_map_id = r->local_map_id;
         k.points = scan_.map_points;
-        r.keyframe = std::move(k);
+        r->keyframe = std::move(k);
     }
-    r.update_ms = lap();
+}
+
+FrameResult Odometry::place_frame(const common::PointCloud& cloud,
+                                  const Eigen::Isometry3d& T_odom_lidar) {
+    const auto t0 = std::chrono::steady_clock::now();
+    FrameResult r;
+    r.stamp = cloud.stamp;
+    r.input_points = cloud.size();
+    r.T_odom_lidar = motion_.poses() ? motion_.last_pose() : initial_pose_;
+    if (!maps_.empty()) r.local_map_id = maps_.current().id();
+    r.segment = maps_.segment();
+    if (stamp_refused(cloud, &r)) return r;
+    if (!T_odom_lidar.matrix().allFinite()) {
+        return reject(r, FrameStatus::kLost, "given pose is not finite; scan left out");
+    }
+    // De-skewed by the motion from the last given pose (none for the first scan).
+    registration::Vector6d velocity = registration::Vector6d::Zero();
+    const bool moving = motion_.poses() > 0 && cloud.stamp > motion_.last_stamp();
+    if (moving) {
+        velocity = registration::se3_log(motion_.last_pose().inverse() * T_odom_lidar) /
+                   (cloud.stamp - motion_.last_stamp());
+    }
+    preprocessor_.run(cloud, moving ? &velocity : nullptr, &scan_);
+    r.dropped_non_finite = scan_.dropped_non_finite;
+    r.dropped_range = scan_.dropped_range;
+    r.map_points = scan_.map_points.size();
+    r.registration_points = scan_.registration_points.size();
+    r.deskewed = scan_.deskewed;
+    r.T_odom_lidar = T_odom_lidar;
+    const auto t1 = std::chrono::steady_clock::now();
+    r.preprocess_ms = std::chrono::duration<double, std::milli>(t1 - t0).count();
+    if (scan_.registration_points.size() < std::size_t(config_.min_scan_points)) {
+        std::ostringstream s;
+        s << "scan skipped: " << scan_.registration_points.size() << " usable points of "
+          << cloud.size() << " (" << scan_.dropped_non_finite << " non-finite), fewer than "
+          << config_.min_scan_points;
+        r = reject(r, FrameStatus::kSkippedTooFewPoints, s.str());
+        has_stamp_ = true;
+        last_stamp_ = cloud.stamp;
+        motion_.push(cloud.stamp, T_odom_lidar);
+        return r;
+    }
+    r.status = maps_.empty() ? FrameStatus::kInitialised : FrameStatus::kTracked;
+    r.covariance.setZero();  // given, not estimated
+    lost_ = false;
+    accept(r);
+    integrate(cloud.stamp, &r);
+    r.update_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t1).count();
     return r;
 }
 

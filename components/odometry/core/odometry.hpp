@@ -96,6 +96,14 @@ class Odometry {
     // One scan (LiDAR frame; per-point times, if any, in seconds after cloud.stamp). Never throws
     // on bad data: the status says what happened.
     FrameResult register_frame(const common::PointCloud& cloud);
+    // One scan at a known pose (a trajectory from elsewhere: survey, GNSS-INS, another SLAM):
+    // everything register_frame does but the registration. The scan is pre-processed, de-skewed
+    // (with per-point times) by the motion from the last given pose to this one, added to the
+    // local maps at `T_odom_lidar`, and may become a keyframe; local maps start, finish and are
+    // handed over as usual. Status kInitialised (first usable scan) or kTracked, pose as given,
+    // covariance zero; a non-finite pose is refused (kLost, nothing changes), a bad stamp or a
+    // tiny scan as in register_frame. Do not mix with register_frame in one run.
+    FrameResult place_frame(const common::PointCloud& cloud, const Eigen::Isometry3d& T_odom_lidar);
 
     const OdometryConfig& config() const { return config_; }
     // The last pose (estimated or carried forward) and whether any frame was accepted yet.
@@ -118,6 +126,10 @@ class Odometry {
 
   private:
     FrameResult reject(FrameResult result, FrameStatus status, std::string message);
+    // Refuses a stamp that is not finite or not after the previous one (filling `r`).
+    bool stamp_refused(const common::PointCloud& cloud, FrameResult* r);
+    // The accepted pose r->T_odom_lidar: the scan into the local maps, keyframe selection.
+    void integrate(double stamp, FrameResult* r);
     // Registers the current scan from an initial guess (odometry frame) against the current
     // local map (coarse stage first); fills `r` with the fit and, when it is acceptable, the pose,
     // covariance and degeneracy; returns "" or why it was refused.

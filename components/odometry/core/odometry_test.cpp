@@ -223,6 +223,105 @@ TEST(Odometry, DeskewsScansWithPerPointTimes) {
     EXPECT_GT(rot_off, 2.5 * rot_on);
 }
 
+TEST_F(StreetOdometry, PlacesScansAtGivenPosesWithoutRegistration) {
+    OdometryConfig config;
+    config.local_map.half_extent = 40.0;
+    config.local_map.switch_distance = 12.0;
+    config.keyframe.distance = 2.0;
+    Odometry odo(config);
+    // Poses 0.3 m and 1 deg off the ones the scans were taken at: registration would move them,
+    // placing keeps them.
+    const Isometry3d offset = registration::test::make_pose(0.3, -0.2, 0.0, 0.0, 0.0, 1.0);
+    std::size_t keyframes = 0, new_maps = 0, finished = 0;
+    for (int i = 0; i < 30; ++i) {
+        const Isometry3d given = street_pose(i) * offset;
+        const FrameResult r = odo.place_frame(street_scan(scene(), i), given);
+        ASSERT_TRUE(r.pose_valid()) << "frame " << i << ": " << r.message;
+        EXPECT_EQ(r.status, i == 0 ? FrameStatus::kInitialised : FrameStatus::kTracked);
+        EXPECT_TRUE(r.T_odom_lidar.isApprox(given, 0.0)) << "frame " << i;
+        EXPECT_EQ(r.attempts, 0);  // no registration
+        EXPECT_EQ(r.iterations, 0);
+        EXPECT_EQ(r.covariance, registration::Matrix6d::Zero());
+        if (r.keyframe) {
+            ++keyframes;
+            EXPECT_TRUE(r.keyframe->T_odom_lidar.isApprox(given, 0.0));
+            EXPECT_EQ(r.keyframe->local_map_id, r.local_map_id);
+            EXPECT_EQ(r.keyframe->points.size(), r.map_points);
+        }
+        new_maps += r.new_local_map;
+        for (const LocalMap& m : odo.take_finished_local_maps()) {
+            EXPECT_GT(m.voxels().usable_voxels(), 100u);
+            ++finished;
+        }
+    }
+    EXPECT_EQ(new_maps, 3u);  // as when registered: maps start at 0, 13 and 26 m
+    EXPECT_EQ(finished, 1u);
+    EXPECT_NEAR(double(keyframes), 15.0, 2.0);
+    // A stamp that does not advance and a pose that is not finite leave everything as it was.
+    const Isometry3d last = odo.pose();
+    common::PointCloud again = street_scan(scene(), 29);
+    EXPECT_EQ(odo.place_frame(again, street_pose(30)).status, FrameStatus::kRejectedStamp);
+    Isometry3d bad = street_pose(30);
+    bad.translation().x() = std::numeric_limits<double>::quiet_NaN();
+    const FrameResult r = odo.place_frame(street_scan(scene(), 30), bad);
+    EXPECT_EQ(r.status, FrameStatus::kLost);
+    EXPECT_FALSE(r.pose_valid());
+    EXPECT_NE(r.message.find("not finite"), std::string::npos) << r.message;
+    EXPECT_TRUE(odo.pose().isApprox(last, 0.0));
+}
+
+// The median distance from each point of `a` (every 10th) to its nearest in `b` [m].
+double median_nearest(const std::vector<Eigen::Vector3f>& a,
+                      const std::vector<Eigen::Vector3f>& b) {
+    std::vector<float> d;
+    for (std::size_t i = 0; i < a.size(); i += 10) {
+        float best = std::numeric_limits<float>::max();
+        for (const Eigen::Vector3f& q : b) best = std::min(best, (a[i] - q).squaredNorm());
+        d.push_back(std::sqrt(best));
+    }
+    std::nth_element(d.begin(), d.begin() + d.size() / 2, d.end());
+    return d[d.size() / 2];
+}
+
+TEST(Odometry, PlacedScansAreDeskewedByTheMotionBetweenTheGivenPoses) {
+    // A steady 90 deg/s turn while driving at 5 m/s in the room (a constant twist in the sensor
+    // frame): each sweep smears by 9 deg. The motion between the given poses is the true one, so
+    // de-skewing is exact.
+    const registration::test::Scene scene = registration::test::room_scene();
+    registration::test::ScanPattern pattern;
+    pattern.noise = 0.0;
+    registration::Vector6d twist;
+    twist << 5.0, 0.0, 0.0, 0.0, 0.0, M_PI / 2;
+    auto pose = [&](double t) {
+        return registration::test::make_pose(-6.0, 1.0, 1.5, 0, 0, 0) *
+               registration::se3_exp(t * twist);
+    };
+    double error[2] = {0.0, 0.0};
+    for (const bool deskew : {true, false}) {
+        OdometryConfig config;
+        config.preprocess.deskew = deskew;
+        config.keyframe.distance = 0.1;  // every scan a keyframe
+        Odometry odo(config);
+        FrameResult r;
+        for (int i = 0; i < 3; ++i) {
+            const double t = 0.1 * i;
+            common::PointCloud c =
+                registration::test::scan_scene(scene, pattern, pose(t), pose(t + 0.1), 7 + i, true);
+            c.stamp = t;
+            r = odo.place_frame(c, pose(t));
+            ASSERT_TRUE(r.pose_valid()) << r.message;
+            EXPECT_EQ(r.deskewed, deskew && i >= 1) << i;  // needs the motion from a given pose
+        }
+        ASSERT_TRUE(r.keyframe.has_value());
+        // What ideal de-skewing yields: the same scan in the sensor frame at its start.
+        const common::PointCloud truth =
+            registration::test::scan_scene(scene, pattern, pose(0.2), pose(0.3), 9, true, true);
+        error[deskew ? 0 : 1] = median_nearest(r.keyframe->points, truth.points);
+    }
+    EXPECT_LT(error[0], 0.005);
+    EXPECT_GT(error[1], 0.05);
+}
+
 TEST(Odometry, InvalidConfigurationThrowsNamingTheKey) {
     OdometryConfig config;
     config.voxel_size = -1.0;

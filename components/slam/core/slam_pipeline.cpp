@@ -21,6 +21,24 @@ SlamFrame SlamPipeline::process(const common::PointCloud& cloud) {
     auto t0 = Clock::now();
     f.odometry = odometry_.register_frame(cloud);
     f.odometry_ms = ms_since(t0);
+    map_frame(&f);
+    return f;
+}
+
+SlamFrame SlamPipeline::process(const common::PointCloud& cloud,
+                                const Eigen::Isometry3d& T_odom_lidar) {
+    SlamFrame f;
+    f.scan_index = scans_++;
+    auto t0 = Clock::now();
+    f.odometry = odometry_.place_frame(cloud, T_odom_lidar);
+    f.odometry_ms = ms_since(t0);
+    map_frame(&f);
+    return f;
+}
+
+void SlamPipeline::map_frame(SlamFrame* frame) {
+    SlamFrame& f = *frame;
+    auto t0 = Clock::now();
     f.handover = handover_.after_frame(odometry_, f.odometry, f.scan_index);
     if (f.handover.keyframe) {
         t0 = Clock::now();
@@ -33,7 +51,6 @@ SlamFrame SlamPipeline::process(const common::PointCloud& cloud) {
         f.optimisation = mapper_.optimise();
         f.optimise_ms = ms_since(t0);
     }
-    return f;
 }
 
 mapping::OptimisationSummary SlamPipeline::finish(

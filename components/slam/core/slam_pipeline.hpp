@@ -39,6 +39,9 @@ class SlamPipeline {
     explicit SlamPipeline(const SlamPipelineConfig& config);
 
     SlamFrame process(const common::PointCloud& cloud);
+    // A scan at a known pose (odometry::Odometry::place_frame: no registration), handed over and
+    // mapped the same way. For a map from a given trajectory; do not mix with process(cloud).
+    SlamFrame process(const common::PointCloud& cloud, const Eigen::Isometry3d& T_odom_lidar);
     // End of the stream: the active local maps are finished and handed over, the graph optimised.
     mapping::OptimisationSummary finish(std::vector<mapping::LocalMapResult>* local_maps = nullptr);
 
@@ -48,6 +51,8 @@ class SlamPipeline {
     std::uint64_t scans() const { return scans_; }
 
   private:
+    // The odometry's result of f->odometry handed over to the mapper.
+    void map_frame(SlamFrame* f);
     void hand_over_maps(const std::vector<common::LocalMapData>& maps,
                         std::vector<mapping::LocalMapResult>* results);
 

@@ -3,7 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <map>
 
+#include "mapping/core/map_store.hpp"
 #include "registration/core/test_scenes.hpp"
 
 namespace ltm::slam {
@@ -63,6 +66,65 @@ TEST(SlamPipeline, HandsEveryMapAndKeyframeToTheMapperWithObservationTimes) {
         for (std::size_t k = 1; k < m.data->observation_times.size(); ++k)
             EXPECT_LT(m.data->observation_times[k - 1], m.data->observation_times[k]);
     }
+}
+
+// A map from a known trajectory (survey, GNSS-INS, another SLAM): every scan placed at its given
+// pose, no registration, no loop closure. The map's keyframes sit exactly at the given poses.
+TEST(SlamPipeline, AMapFromGivenPosesKeepsThem) {
+    const registration::test::Scene scene = registration::test::street_scene();
+    SlamPipelineConfig config;
+    config.odometry.local_map.half_extent = 40.0;
+    config.odometry.local_map.switch_distance = 12.0;
+    config.odometry.keyframe.distance = 2.0;
+    config.mapping.loop_closure = false;
+    SlamPipeline pipeline(config);
+    // Given poses a little off the ones the scans were taken at (as another system's would be).
+    auto given = [](int i) {
+        return street_pose(i) *
+               registration::test::make_pose(0.05 * std::sin(i), 0.1, 0.02, 0.3, -0.2, 0.5 * i);
+    };
+    const int scans = 30;
+    for (int i = 0; i < scans; ++i) {
+        common::PointCloud c = registration::test::scan_scene(
+            scene, registration::test::ScanPattern(), street_pose(i), street_pose(i), 300 + i);
+        c.stamp = 0.1 * i;
+        const SlamFrame f = pipeline.process(c, given(i));
+        ASSERT_TRUE(f.odometry.pose_valid()) << f.odometry.message;
+        if (f.keyframe) {
+            EXPECT_TRUE(f.keyframe->added) << f.keyframe->message;
+            EXPECT_FALSE(f.keyframe->verified);
+            EXPECT_EQ(f.keyframe->candidates, 0u);
+        }
+    }
+    EXPECT_TRUE(pipeline.finish().solved);
+    const mapping::Mapper& mapper = pipeline.mapper();
+    EXPECT_TRUE(mapper.loops().empty());
+    ASSERT_GE(mapper.keyframes().size(), 12u);
+    auto expect_at_given_poses = [&](const mapping::MapData& map, const char* what) {
+        std::map<std::uint64_t, const mapping::PoseGraphNode*> nodes;
+        for (const mapping::PoseGraphNode& n : map.nodes) nodes[n.id] = &n;
+        for (const auto& k : map.keyframes) {
+            const Eigen::Isometry3d T = nodes.at(k->node)->T_world_anchor * k->data.T_anchor_lidar;
+            const Eigen::Isometry3d G = given(int(k->data.scan_index));
+            EXPECT_LT((T.matrix() - G.matrix()).cwiseAbs().maxCoeff(), 1e-9)
+                << what << ": keyframe of scan " << k->data.scan_index;
+            EXPECT_FALSE(k->localisation_descriptor.empty());
+        }
+    };
+    const mapping::MapData snapshot = mapper.snapshot();
+    expect_at_given_poses(snapshot, "in the mapper");
+    EXPECT_GE(snapshot.local_maps.size(), 3u);
+    for (const auto& m : snapshot.local_maps) EXPECT_GT(m.data->voxels.size(), 100u);
+    // Saved (format 2) and loaded again.
+    const std::string dir = std::string(LTM_BINARY_DIR) + "/slam_test_maps/given_poses";
+    std::filesystem::remove_all(dir);
+    mapping::save_map(dir, snapshot);
+    const mapping::LoadedMap loaded = mapping::load_map(dir);
+    ASSERT_TRUE(loaded.refused.empty()) << loaded.refused.front();
+    EXPECT_EQ(loaded.map.keyframes.size(), snapshot.keyframes.size());
+    EXPECT_EQ(loaded.map.local_maps.size(), snapshot.local_maps.size());
+    EXPECT_TRUE(mapping::has_localisation_descriptors(loaded.map.localisation_descriptor_config));
+    expect_at_given_poses(loaded.map, "loaded");
 }
 
 }  // namespace
