@@ -7,7 +7,8 @@
 //   local_features_bench speed [options]  matching time of 200 x 1000 synthetic-scene samples
 // Options: --spacing M --query-spacing M --radius M --rings N --sectors N --max-height M
 //   --empty-cost C --unseen-cost C --candidates N --per-query N --inlier M --max-samples N
-//   --min-points N --min-bins N --max-range M --target-radius M -v
+//   --min-points N --min-bins N --max-range M --target-radius M --target-max-samples N
+//   --voxel M -v
 #include <Eigen/Dense>
 #include <algorithm>
 #include <chrono>
@@ -85,7 +86,7 @@ std::vector<Vector3f> voxelised(const std::vector<Vector3f>& points, double voxe
 }
 
 struct Trial {
-    bool found = false, right = false;
+    bool found = false, right = false, near = false;  // near: within 2 m / 5 deg (ICP's reach)
     std::size_t inliers = 0, matches = 0, query_samples = 0, target_samples = 0;
     double t_err = 0.0, r_err = 0.0, extract_ms = 0.0, match_ms = 0.0;
 };
@@ -118,19 +119,21 @@ Trial run_trial(const std::vector<Vector3f>& query_points,
     t.t_err = e.translation().norm();
     t.r_err = registration::rotation_angle(e) / kDeg;
     t.right = t.t_err < 0.5 && t.r_err < 2.0;
+    t.near = t.t_err < 2.0 && t.r_err < 5.0;
     return t;
 }
 
 struct Tally {
-    int trials = 0, right = 0, found_wrong = 0;
+    int trials = 0, right = 0, near = 0, found_wrong = 0;
     std::vector<double> extract_ms, match_ms, right_inliers, wrong_inliers;
     void add(const Trial& t) {
         ++trials;
         right += t.right;
-        found_wrong += t.found && !t.right;
+        near += t.near;
+        found_wrong += t.found && !t.near;
         extract_ms.push_back(t.extract_ms);
         match_ms.push_back(t.match_ms);
-        (t.right ? right_inliers : wrong_inliers).push_back(double(t.inliers));
+        if (t.found) (t.near ? right_inliers : wrong_inliers).push_back(double(t.inliers));
     }
     static double median(std::vector<double> v) {
         if (v.empty()) return 0.0;
@@ -142,9 +145,10 @@ struct Tally {
     }
     void print(const char* name) const {
         std::printf(
-            "%s: %d/%d right (0.5 m / 2 deg), %d answered wrong; inliers median right %.0f, "
-            "wrong %.0f (max %.0f); extract %.1f ms median, match %.1f ms median (max %.1f)\n",
-            name, right, trials, found_wrong, median(right_inliers), median(wrong_inliers),
+            "%s: %d/%d right (0.5 m / 2 deg), %d near (2 m / 5 deg), %d answered wrong (not "
+            "near); inliers median right %.0f, wrong %.0f (max %.0f); extract %.1f ms median, "
+            "match %.1f ms median (max %.1f)\n",
+            name, right, trials, near, found_wrong, median(right_inliers), median(wrong_inliers),
             max(wrong_inliers), median(extract_ms), median(match_ms), max(match_ms));
     }
 };
@@ -152,8 +156,8 @@ struct Tally {
 void print_trial(const char* what, const Trial& t) {
     std::printf("%s q %zu t %zu m %zu %s inl %zu err %.2f m %.2f deg  (%.1f + %.1f ms)\n", what,
                 t.query_samples, t.target_samples, t.matches,
-                t.right ? "RIGHT" : (t.found ? "wrong" : "none"), t.inliers, t.t_err, t.r_err,
-                t.extract_ms, t.match_ms);
+                t.right ? "RIGHT" : (t.near ? "near" : (t.found ? "wrong" : "none")), t.inliers,
+                t.t_err, t.r_err, t.extract_ms, t.match_ms);
 }
 
 int run_kitti(const std::string& dir, const Options& o) {
@@ -281,43 +285,56 @@ int run_hku(const std::string& dir, const Options& o) {
 }
 
 int run_speed(const Options& o) {
-    // Query: one simulated street scan; target: 1000 samples of a long street map.
+    // Extraction: a full KITTI scan (the shared data when present, else the repository's
+    // quarter-density fixture). Matching: up to 200 query samples of one simulated street scan
+    // against up to 1000 samples of a map of the street (1.5 m lattices to get that many).
+    std::string scan_file = "/work/shared/data/kitti/sequences/00/velodyne/000000.bin";
+    if (!std::filesystem::exists(scan_file)) {
+        scan_file =
+            std::string(LTM_SOURCE_DIR) + "/tests/fixtures/kitti00_mini/velodyne/000000.bin";
+    }
+    const std::vector<Vector3f> kitti = common::read_kitti_bin(scan_file).points;
+    double extract = 1e9;
+    std::size_t kitti_samples = 0;
+    for (int rep = 0; rep < 5; ++rep) {
+        const auto t0 = Clock::now();
+        kitti_samples = localisation::make_local_features(kitti, o.query).size();
+        extract = std::min(extract, ms_since(t0));
+    }
+    std::printf("extract: %s, %zu points -> %zu samples in %.1f ms (best of 5)\n",
+                scan_file.c_str(), kitti.size(), kitti_samples, extract);
+
     const registration::test::Scene scene = registration::test::street_scene();
     registration::test::ScanPattern pattern;
     pattern.rings = 64;
     pattern.azimuths = 1800;
     pattern.max_range = 80.0;
     std::vector<Vector3f> map;
-    for (double x = 20.0; x <= 200.0; x += 10.0) {
+    for (double x = 20.0; x <= 280.0; x += 10.0) {
         const Isometry3d T = registration::test::make_pose(x, 0.0, 1.8, 0, 0, 0);
         const auto s =
             transformed(registration::test::scan_scene(scene, pattern, T, T, 1).points, T);
         map.insert(map.end(), s.begin(), s.end());
     }
     map = voxelised(map, 0.6);
-    const Isometry3d T = registration::test::make_pose(100.0, 0.5, 1.8, 0, 0, 40.0);
-    const auto scan = registration::test::scan_scene(scene, pattern, T, T, 2).points;
-    localisation::LocalFeatureConfig tc = o.target;
+    localisation::LocalFeatureConfig tc = o.target, qc = o.query;
+    tc.sample_spacing = qc.sample_spacing = 1.5;
     tc.max_samples = 1000;
-    auto t0 = Clock::now();
-    const auto target = localisation::make_local_features(map, tc, Vector3d(110, 0, 0), 120.0);
-    const double target_ms = ms_since(t0);
-    double extract = 1e9, match = 1e9;
-    localisation::LocalFeatures q;
+    const auto target = localisation::make_local_features(map, tc, Vector3d(150, 0, 0), 140.0);
+    const Isometry3d T = registration::test::make_pose(100.0, 0.5, 1.8, 0, 0, 40.0);
+    const auto q = localisation::make_local_features(
+        registration::test::scan_scene(scene, pattern, T, T, 2).points, qc);
+    double match = 1e9;
     std::size_t n = 0;
     for (int rep = 0; rep < 5; ++rep) {
-        t0 = Clock::now();
-        q = localisation::make_local_features(scan, o.query);
-        extract = std::min(extract, ms_since(t0));
-        t0 = Clock::now();
+        const auto t0 = Clock::now();
         n = localisation::match_local_features(q, target, o.match).size();
         match = std::min(match, ms_since(t0));
     }
     std::printf(
-        "speed: scan of %zu points -> %zu samples in %.1f ms; %zu x %zu samples matched "
-        "in %.1f ms (%zu matches); map region of %zu voxels -> %zu samples in %.1f ms\n",
-        scan.size(), q.size(), extract, q.size(), target.size(), match, n, map.size(),
-        target.size(), target_ms);
+        "match: %zu x %zu samples, %d key candidates a query, in %.1f ms (best of 5; %zu "
+        "matches)\n",
+        q.size(), target.size(), o.match.key_candidates, match, n);
     return 0;
 }
 
@@ -341,7 +358,7 @@ int main(int argc, char** argv) {
         a = 3;
     }
     Options o;
-    o.target.max_samples = 1000;
+    o.target.max_samples = 4000;
     o.ransac.inlier_distance = 0.5 * o.target.sample_spacing;
     double query_spacing = -1.0;
     for (; a < argc; ++a) {
@@ -386,6 +403,10 @@ int main(int argc, char** argv) {
             o.query.min_occupied_bins = o.target.min_occupied_bins = int(v);
         } else if (k == "--max-range") {
             o.query.max_range = v;
+        } else if (k == "--target-max-samples") {
+            o.target.max_samples = int(v);
+        } else if (k == "--voxel") {
+            o.query.voxel_size = o.target.voxel_size = v;
         } else if (k == "--target-radius") {
             o.target_radius = v;
         } else {

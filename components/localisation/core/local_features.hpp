@@ -33,7 +33,10 @@ struct LocalFeatureConfig {
     double ground_max_slope_deg = 15.0;
     double ground_window = 3.0;
     double ground_tolerance = 0.25;
-    double sample_spacing = 3.0;  // samples on a lattice of this spacing [m]
+    // Samples on a lattice of this spacing [m]. Denser is better on both sides (more samples in a
+    // narrow view; the target lattice quantises the match positions): 1.5 m found 46/46 turned
+    // KITTI frames and 66/86 Livox pairs within 2 m / 5 deg where 3 m found 41/46 and ~10/86.
+    double sample_spacing = 1.5;
     double max_range = 40.0;  // samples farther (horizontally) from the origin are not taken [m]
     int max_samples = 200;    // the nearest ones to the origin (or centre) are kept
     // The local descriptor around a sample: points within `radius` (horizontally), at most

@@ -142,10 +142,11 @@ TEST(LocalFeatures, SamplesLieOnTheGroundLattice) {
     }
     c.max_samples = 7;
     const LocalFeatures few = make_local_features(points, c);
-    ASSERT_EQ(few.size(), 7u);  // the nearest ones
+    ASSERT_EQ(few.size(), 7u);  // spread out: on the 8- and 4-spacing sub-lattices
     for (std::size_t i = 0; i < few.size(); ++i) {
         EXPECT_EQ(few.positions[i], f.positions[i]);
-        EXPECT_LE(f.positions[i].head<2>().norm(), f.positions[7].head<2>().norm());
+        EXPECT_NEAR(std::remainder(few.positions[i].x(), 4.0 * c.sample_spacing), 0.0, 1e-9);
+        EXPECT_NEAR(std::remainder(few.positions[i].y(), 4.0 * c.sample_spacing), 0.0, 1e-9);
     }
     EXPECT_TRUE(make_local_features({}, c).empty());
 }
@@ -189,8 +190,7 @@ TEST(LocalFeatures, NarrowScanAgainstAMapRegion) {
         const auto scan = transformed(street_scan(T, std::uint32_t(x)), T);
         map.insert(map.end(), scan.begin(), scan.end());
     }
-    LocalFeatureConfig c;
-    c.sample_spacing = 1.5;  // a narrow view holds few samples: a finer lattice
+    const LocalFeatureConfig c;
     const Vector3d centre(60.0, 0.0, 0.0);
     LocalFeatureConfig map_config = c;
     map_config.max_samples = 1000;
@@ -236,7 +236,7 @@ TEST(LocalFeatures, RealKittiScanTurnedAndShifted) {
             make_local_features(transformed(scan, T_target_query.inverse()), LocalFeatureConfig{});
         SCOPED_TRACE(trial);
         ASSERT_GT(query.size(), 50u);
-        const Outcome o = evaluate(query, target, T_target_query, 3.0);
+        const Outcome o = evaluate(query, target, T_target_query, map_config.sample_spacing);
         EXPECT_GT(double(o.right), 0.5 * double(query.size()));
         EXPECT_LT(o.median_yaw_error, 5.0 * kDeg);
         expect_pose(o, T_target_query, 0.5, 1.0);
