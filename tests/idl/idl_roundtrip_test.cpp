@@ -299,13 +299,19 @@ TEST_F(Dds, KeyframeGraphLoopStatusChangesMesh) {
 
     msg::LocalisationStatus s{};
     s.header.frame_id = c(frame);
-    s.state = ltm_msgs_msg_LocalisationStatus_Constants_RELOCALISING;
+    s.state = ltm_msgs_msg_LocalisationStatus_Constants_RELOCALISED;
     s.message = c(text);
-    s.inlier_ratio = 0.75f;
+    s.inlier_fraction = 0.75f;
+    s.pose_valid = true;
+    s.since_fix = 12.5;
+    s.skipped_scans = 4;
     roundtrip<msg::LocalisationStatus>(s, [&](const msg::LocalisationStatus& r) {
         EXPECT_EQ(r.state, 3);
         EXPECT_EQ(std::string(r.message), "empty scan");
-        EXPECT_FLOAT_EQ(r.inlier_ratio, 0.75f);
+        EXPECT_FLOAT_EQ(r.inlier_fraction, 0.75f);
+        EXPECT_TRUE(r.pose_valid);
+        EXPECT_DOUBLE_EQ(r.since_fix, 12.5);
+        EXPECT_EQ(r.skipped_scans, 4u);
     });
 
     std::vector<msg::VoxelKey> keys = {{1, 2, 3}, {4, 5, 6}};

@@ -1,0 +1,480 @@
+// Localisation on a saved map as a component: `points` (PointCloud2) and `odometry` (the odometry
+// component's nav_msgs/Odometry) in, the map directory a parameter; out `localisation_status`
+// (ltm_msgs/LocalisationStatus, every processed scan), `pose` (PoseWithCovarianceStamped in frame
+// `map`, while the pose is valid), `map_to_odom` (TransformStamped map -> the odometry's frame) and
+// the state changes (lost, relocalised, off the map) on the shared `status`. An initial pose on
+// `initialpose` (RViz's "2D Pose Estimate") narrows the next global localisation.
+//
+// Threads: the component's thread takes every input as it comes and pairs each scan with the
+// odometry pose of the same stamp: a scan waits until that pose comes, or the odometry says it has
+// none for it (a newer pose, or a status line of that scan saying lost or skipped), or at most
+// odometry_wait_s of wall time (no odometry running). The localiser runs on a worker thread of its
+// own, one scan at a time, because a global localisation takes a while (~0.5 s) and the inputs must
+// not pile up behind it meanwhile. With skip_while_busy (default: a live sensor) a scan that
+// arrives while the worker is busy replaces the one waiting for it (the newest scan is processed
+// next, the skipped ones are counted); without it (offline runs) the component's thread waits
+// until each scan is done: back-pressure on the sensor, nothing skipped, and the host sees the
+// component busy until its last scan is localised.
+//
+// The map is loaded on the worker thread when the component starts (a large map takes seconds:
+// the host and the other components do not wait for it; scans meanwhile queue as above). A
+// missing or damaged map does not stop the host: the component stays up, says why in one line
+// (log, `status`, and every scan's `localisation_status`) and localises nothing.
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <condition_variable>
+#include <cstdio>
+#include <deque>
+#include <mutex>
+#include <optional>
+#include <thread>
+
+#include "common/convert/dds_string.hpp"
+#include "common/convert/geometry.hpp"
+#include "common/convert/odometry.hpp"
+#include "common/convert/pointcloud2.hpp"
+#include "common/convert/status.hpp"
+#include "common/convert/transform.hpp"
+#include "common/core/one_line.hpp"
+#include "localisation/component/localisation_messages.hpp"
+#include "localisation/component/localiser_params.hpp"
+#include "odometry/core/odometry_config.hpp"
+#include "registration/core/preprocess.hpp"
+#include "runtime/component.hpp"
+
+namespace ltm::localisation {
+namespace {
+
+using convert::StatusLevel;
+using runtime::PathCheck;
+using runtime::TopicRole;
+
+constexpr double kSameStamp = 1e-4;          // a scan and its odometry pose [s]
+constexpr std::size_t kMaxOdometry = 200;    // odometry poses kept for pairing
+constexpr std::uint64_t kNoMapRepeat = 100;  // the no-map line again on `status` every N scans
+
+// A scan on its way to the worker, with the odometry's pose and twist when they came in time.
+using Clock = std::chrono::steady_clock;
+
+struct Scan {
+    std::uint64_t index = 0;
+    Clock::time_point arrived;
+    common::PointCloud cloud;
+    std::optional<OdometryInput> odometry;
+    registration::Vector6d velocity = registration::Vector6d::Zero();  // [v; w], LiDAR frame
+};
+
+class LocalisationComponent : public runtime::Component {
+  public:
+    explicit LocalisationComponent(runtime::ComponentContext& ctx) : ctx_(ctx) {
+        auto& p = ctx.params();
+        frame_id_ = p.get<std::string>("frame_id", "map");
+        skip_while_busy_ = p.get<bool>("skip_while_busy", true);
+        odometry_wait_s_ = p.get<double>("odometry_wait_s", 1.0);
+        if (!(odometry_wait_s_ >= 0)) p.fail("odometry_wait_s", "must be >= 0 (0: do not wait)");
+        hint_radius_.sigmas = p.get<double>("initial_pose.sigmas", hint_radius_.sigmas);
+        hint_radius_.min_radius = p.get<double>("initial_pose.min_radius", hint_radius_.min_radius);
+        if (!(hint_radius_.sigmas > 0)) p.fail("initial_pose.sigmas", "must be > 0");
+        if (!(hint_radius_.min_radius > 0)) p.fail("initial_pose.min_radius", "must be > 0");
+        preset_ = load_sensor_preset(p);
+        config_ = load_localiser_config(p, preset_);
+        const odometry::OdometryConfig oc = odometry::preset_config(preset_);
+        preprocessor_.emplace(oc.preprocess, oc.voxel_size);
+        map_dir_ = p.path("map", "", PathCheck::kNone);
+        if (map_dir_.empty())
+            p.fail("map", "required: the saved map directory to localise on (map_dir of mapping)");
+
+        ctx.subscribe<msg::PointCloud2>("points", TopicRole::kSensor,
+                                        [this](const msg::PointCloud2& m) { on_points(m); });
+        ctx.subscribe<msg::Odometry>("odometry", TopicRole::kState,
+                                     [this](const msg::Odometry& m) { on_odometry(m); });
+        ctx.subscribe<msg::PoseWithCovarianceStamped>(
+            "initialpose", TopicRole::kState,
+            [this](const msg::PoseWithCovarianceStamped& m) { on_initial_pose(m); });
+        // The odometry's restarts (a new segment: its frame is no longer the same).
+        ctx.subscribe<msg::Status>("status", TopicRole::kState,
+                                   [this](const msg::Status& m) { on_status(m); });
+        status_out_ =
+            ctx.advertise<msg::LocalisationStatus>("localisation_status", TopicRole::kState);
+        pose_out_ = ctx.advertise<msg::PoseWithCovarianceStamped>("pose", TopicRole::kState);
+        correction_out_ = ctx.advertise<msg::TransformStamped>("map_to_odom", TopicRole::kState);
+        events_out_ = ctx.advertise<msg::Status>("status", TopicRole::kState);
+        // Scans whose odometry is late: looked at a few times within odometry_wait_s.
+        if (odometry_wait_s_ > 0)
+            ctx.add_timer(std::max(0.02, odometry_wait_s_ / 4), [this] { pair(); });
+    }
+
+    ~LocalisationComponent() override { stop_worker(); }
+
+    void on_activate() override {
+        worker_ = std::thread([this] { run_worker(); });
+    }
+
+    void on_shutdown() override {
+        // Scans still waiting for their odometry go without it.
+        while (!waiting_.empty()) submit(pop_waiting());
+        stop_worker();
+        ctx_.log().info(std::to_string(scans_) + " scans, " + std::to_string(processed_) +
+                        " localised with a valid pose " + std::to_string(valid_) + " times, " +
+                        std::to_string(counters_.relocalisations) + " relocalisations, " +
+                        std::to_string(counters_.skipped_scans) + " scans skipped while busy");
+    }
+
+  private:
+    // The worker's first job: the map, or why there is none (no_map_): the component then runs
+    // and localises nothing.
+    void load_map() {
+        const auto t0 = std::chrono::steady_clock::now();
+        const std::string& dir = map_dir_;
+        ctx_.log().info("loading the map " + dir);
+        std::shared_ptr<const LocalisationMap> map;
+        try {
+            std::vector<std::string> refused;
+            map = load_localisation_map(dir, localisation_map_preset(preset_), &refused);
+            for (const std::string& r : refused) ctx_.log().warn("map: " + r + " (left out)");
+            localiser_ = std::make_unique<Localiser>(map, config_);
+        } catch (const std::exception& e) {
+            no_map_ = "no map to localise on: " + common::one_line(e.what());
+            ctx_.log().error(no_map_ + " (the component runs and localises nothing)");
+            map_state_ = kFailed;
+            return;
+        }
+        map_state_ = kReady;
+        const double s =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        char text[300];
+        std::snprintf(text, sizeof text,
+                      "map %s: %zu keyframes, %zu local maps, %zu voxels, loaded in %.2f s",
+                      dir.c_str(), map->keyframes().size(), map->local_maps(),
+                      map->voxels().voxels.size(), s);
+        ctx_.log().info(text);
+    }
+
+    // --- the component's thread: inputs, pairing ---
+
+    void on_points(const msg::PointCloud2& m) {
+        const std::uint64_t index = scans_++;
+        if (map_state_ == kFailed) {
+            publish_no_map(convert::to_seconds(m.header.stamp));
+            return;
+        }
+        Scan scan;
+        scan.index = index;
+        const std::string err = convert::from_pointcloud2(m, scan.cloud);
+        if (!err.empty()) {
+            event(StatusLevel::kError, "bad_cloud", "scan " + std::to_string(index) + ": " + err,
+                  scan.cloud.stamp);
+            return;
+        }
+        if (!(scan.cloud.stamp > newest_scan_)) {  // a repeated or reordered scan
+            event(StatusLevel::kWarn, "rejected_stamp",
+                  "scan " + std::to_string(index) + ": its stamp is not after the previous scan's",
+                  scan.cloud.stamp);
+            return;
+        }
+        newest_scan_ = scan.cloud.stamp;
+        scan.arrived = Clock::now();
+        waiting_.push_back(std::move(scan));
+        pair();
+    }
+
+    void on_odometry(const msg::Odometry& m) {
+        convert::OdometryData o = convert::from_msg(m);
+        if (!o.frame_id.empty() && o.frame_id != odom_frame_seen_) {
+            odom_frame_seen_ = o.frame_id;
+            std::lock_guard<std::mutex> lock(mutex_);
+            odom_frame_ = o.frame_id;
+        }
+        const double stamp = convert::to_seconds(o.stamp);
+        newest_odometry_ = std::max(newest_odometry_, stamp);
+        if (odometry_.size() == kMaxOdometry) odometry_.pop_front();
+        odometry_.push_back({stamp, std::move(o)});
+        pair();
+    }
+
+    // Hands on every waiting scan whose odometry came, or will not come (see the file comment).
+    void pair() {
+        const auto now = Clock::now();
+        while (!waiting_.empty()) {
+            Scan& s = waiting_.front();
+            const double stamp = s.cloud.stamp;
+            if (attach_odometry(s) || newest_odometry_ > stamp + kSameStamp || no_pose_for(stamp) ||
+                now - s.arrived >= std::chrono::duration<double>(odometry_wait_s_)) {
+                submit(pop_waiting());
+                continue;
+            }
+            break;
+        }
+    }
+
+    Scan pop_waiting() {
+        Scan s = std::move(waiting_.front());
+        waiting_.pop_front();
+        return s;
+    }
+
+    bool attach_odometry(Scan& s) {
+        for (auto it = odometry_.begin(); it != odometry_.end(); ++it) {
+            if (std::abs(it->first - s.cloud.stamp) >= kSameStamp) continue;
+            const convert::OdometryData& o = it->second;
+            s.odometry = OdometryInput{o.T_parent_child, segment_at(s.cloud.stamp)};
+            s.velocity << o.linear_velocity, o.angular_velocity;
+            odometry_.erase(odometry_.begin(), it + 1);  // older poses are of no use any more
+            return true;
+        }
+        return false;
+    }
+
+    std::uint32_t segment_at(double stamp) const {
+        std::uint32_t segment = 0;
+        for (double r : restarts_) segment += r <= stamp + kSameStamp;
+        return segment;
+    }
+
+    // The odometry's status lines: restarts (a new segment), and scans it has no pose for.
+    void on_status(const msg::Status& m) {
+        const convert::StatusData s = convert::from_msg(m);
+        if (s.component == ctx_.name()) return;
+        const double stamp = convert::to_seconds(s.stamp);
+        if (s.code == "restarted") {
+            restarts_.push_back(stamp);
+        } else if (s.code == "lost" || s.code == "bad_cloud" || s.code.rfind("skipped", 0) == 0 ||
+                   s.code.rfind("rejected", 0) == 0) {
+            if (no_pose_.size() == kMaxOdometry) no_pose_.pop_front();
+            no_pose_.push_back(stamp);
+            pair();
+        }
+    }
+
+    bool no_pose_for(double stamp) const {
+        for (double t : no_pose_)
+            if (std::abs(t - stamp) < kSameStamp) return true;
+        return false;
+    }
+
+    void on_initial_pose(const msg::PoseWithCovarianceStamped& m) {
+        const double stamp = convert::to_seconds(m.header.stamp);
+        const std::string frame = convert::to_string(m.header.frame_id);
+        if (map_state_ == kFailed) {
+            event(StatusLevel::kError, "initialpose_refused", "initial pose ignored: " + no_map_,
+                  stamp);
+            return;
+        }
+        if (!frame.empty() && frame != frame_id_) {
+            event(
+                StatusLevel::kWarn, "initialpose_refused",
+                "initial pose in frame '" + frame + "' ignored: it must be in '" + frame_id_ + "'",
+                stamp);
+            return;
+        }
+        const PoseHint hint = hint_from_msg(m, hint_radius_);
+        if (!hint.T_map_lidar.matrix().allFinite()) {
+            event(StatusLevel::kWarn, "initialpose_refused", "initial pose ignored: not finite",
+                  stamp);
+            return;
+        }
+        {
+            std::lock_guard<std::mutex> lock(mutex_);
+            hint_ = hint;
+        }
+        cv_.notify_all();
+        const Eigen::Vector3d t = hint.T_map_lidar.translation();
+        const Eigen::Vector3d x = hint.T_map_lidar.linear().col(0);
+        char text[200];
+        std::snprintf(text, sizeof text,
+                      "initial pose accepted: (%.2f, %.2f) m, yaw %.1f deg; global localisation "
+                      "searches within %.1f m of it",
+                      t.x(), t.y(), std::atan2(x.y(), x.x()) * 180.0 / M_PI, hint.radius);
+        event(StatusLevel::kOk, "initialpose", text, stamp);
+    }
+
+    // Hands a scan to the worker (see the file comment for the policy).
+    void submit(Scan&& scan) {
+        std::unique_lock<std::mutex> lock(mutex_);
+        if (skip_while_busy_) {
+            counters_.skipped_scans += queue_.size();
+            queue_.clear();
+        }
+        queue_.push_back(std::move(scan));
+        cv_.notify_all();
+        if (!skip_while_busy_) cv_.wait(lock, [&] { return (queue_.empty() && !busy_) || stop_; });
+    }
+
+    StatusCounters counters() {
+        std::lock_guard<std::mutex> lock(mutex_);
+        return counters_;
+    }
+
+    // --- the worker thread: the localiser and the outputs ---
+
+    void run_worker() {
+        load_map();
+        for (;;) {
+            std::optional<Scan> scan;
+            std::optional<PoseHint> hint;
+            {
+                std::unique_lock<std::mutex> lock(mutex_);
+                cv_.wait(lock, [&] { return !queue_.empty() || hint_ || stop_; });
+                if (queue_.empty() && !hint_ && stop_) return;
+                if (!queue_.empty()) {
+                    scan = std::move(queue_.front());
+                    queue_.pop_front();
+                }
+                std::swap(hint, hint_);
+                busy_ = true;
+            }
+            try {
+                if (hint && localiser_) localiser_->set_initial_pose(*hint);
+                if (scan) process(*scan);
+            } catch (const std::exception& e) {
+                // The localiser does not throw on data; whatever did is said, not fatal.
+                event(StatusLevel::kError, "localisation_failed", common::one_line(e.what()),
+                      scan ? scan->cloud.stamp : 0.0);
+            }
+            {
+                std::lock_guard<std::mutex> lock(mutex_);
+                busy_ = false;
+            }
+            cv_.notify_all();  // done: an offline submit() waits for this
+        }
+    }
+
+    // Said once in the log (when loading failed), and on `status` every kNoMapRepeat scans for
+    // whoever listens now.
+    void publish_no_map(double stamp) {
+        if (no_map_scans_++ % kNoMapRepeat == 0)
+            publish_event(StatusLevel::kError, "no_map", no_map_, stamp);
+        status_out_.publish(*status_msg(stamp, no_map_, counters(), frame_id_));
+    }
+
+    void process(const Scan& scan) {
+        if (!localiser_) {
+            publish_no_map(scan.cloud.stamp);
+            return;
+        }
+        preprocessor_->run(scan.cloud, scan.odometry ? &scan.velocity : nullptr, &preprocessed_);
+        const LocalisationUpdate u =
+            localiser_->process(scan.cloud.stamp, preprocessed_.map_points, scan.odometry);
+        ++processed_;
+        StatusCounters c;
+        {
+            std::lock_guard<std::mutex> lock(mutex_);
+            counters_.relocalisations += u.state == LocalisationState::kRelocalised && u.global_ran;
+            c = counters_;
+        }
+        status_out_.publish(*status_msg(u, c, frame_id_));
+        if (u.pose_valid) {
+            ++valid_;
+            pose_out_.publish(*pose_msg(u, frame_id_));
+            if (scan.odometry)
+                correction_out_.publish(*convert::to_msg(convert::TransformData{
+                    convert::to_time(u.stamp), frame_id_, odom_frame(), u.T_map_odom}));
+        }
+        report_change(scan.index, u);
+        last_state_ = u.state;
+    }
+
+    // The state changes an operator wants to hear about, on `status` and in the log.
+    void report_change(std::uint64_t index, const LocalisationUpdate& u) {
+        const std::string what = "scan " + std::to_string(index) + ": " + u.message;
+        const bool changed = u.state != last_state_;
+        if (u.state == LocalisationState::kRelocalised && u.global_ran) {
+            const Eigen::Vector3d t = u.T_map_lidar.translation();
+            char where[120];
+            std::snprintf(where, sizeof where, " (at %.2f %.2f %.2f, confidence %.2f)", t.x(),
+                          t.y(), t.z(), u.confidence);
+            event(StatusLevel::kOk, "relocalised", what + where, u.stamp);
+        } else if (changed && u.state == LocalisationState::kLost) {
+            event(StatusLevel::kWarn, "lost", what, u.stamp);
+        } else if (changed && u.state == LocalisationState::kOffMap) {
+            event(StatusLevel::kWarn, "off_map", what, u.stamp);
+        } else if (changed && u.state == LocalisationState::kTracking &&
+                   last_state_ == LocalisationState::kOffMap) {
+            event(StatusLevel::kOk, "on_map", what, u.stamp);
+        }
+    }
+
+    std::string odom_frame() {
+        std::lock_guard<std::mutex> lock(mutex_);
+        return odom_frame_;
+    }
+
+    // Thread-safe: the publisher and the logger are.
+    void event(StatusLevel level, const std::string& code, const std::string& text, double stamp) {
+        if (level == StatusLevel::kOk) {
+            ctx_.log().info(text);
+        } else if (level == StatusLevel::kError) {
+            ctx_.log().error(text);
+        } else {
+            ctx_.log().warn(text);
+        }
+        publish_event(level, code, text, stamp);
+    }
+
+    void publish_event(StatusLevel level, const std::string& code, const std::string& text,
+                       double stamp) {
+        events_out_.publish(*convert::to_msg(convert::StatusData{convert::to_time(stamp), frame_id_,
+                                                                 ctx_.name(), level, code, text}));
+    }
+
+    void stop_worker() {
+        {
+            std::lock_guard<std::mutex> lock(mutex_);
+            stop_ = true;
+        }
+        cv_.notify_all();
+        if (worker_.joinable()) worker_.join();
+    }
+
+    runtime::ComponentContext& ctx_;
+    std::string frame_id_;
+    bool skip_while_busy_ = true;
+    double odometry_wait_s_ = 1.0;
+    HintRadius hint_radius_;
+    common::SensorPreset preset_ = common::SensorPreset::kHdl64;
+    LocaliserConfig config_;
+    std::string map_dir_;
+    enum MapState : int { kLoading, kReady, kFailed };
+    std::atomic<int> map_state_{kLoading};
+    std::string no_map_;  // why there is no map (set before map_state_ turns kFailed)
+    std::atomic<std::uint64_t> no_map_scans_{0};
+
+    // The component's thread.
+    std::deque<Scan> waiting_;
+    std::deque<std::pair<double, convert::OdometryData>> odometry_;
+    std::vector<double> restarts_;  // stamps of the odometry's restarts
+    std::deque<double> no_pose_;    // stamps of scans the odometry has no pose for
+    double newest_scan_ = -1e300, newest_odometry_ = -1e300;
+    std::string odom_frame_seen_;
+    std::uint64_t scans_ = 0;
+
+    // Shared with the worker (under mutex_).
+    std::mutex mutex_;
+    std::condition_variable cv_;
+    std::deque<Scan> queue_;
+    std::optional<PoseHint> hint_;
+    bool stop_ = false, busy_ = false;
+    StatusCounters counters_;
+    std::string odom_frame_ = "odom";
+
+    // The worker's.
+    std::thread worker_;
+    std::unique_ptr<Localiser> localiser_;
+    std::optional<registration::Preprocessor> preprocessor_;
+    registration::PreprocessedScan preprocessed_;
+    LocalisationState last_state_ = LocalisationState::kInitialising;
+    std::uint64_t processed_ = 0, valid_ = 0;
+
+    runtime::Publisher<msg::LocalisationStatus> status_out_;
+    runtime::Publisher<msg::PoseWithCovarianceStamped> pose_out_;
+    runtime::Publisher<msg::TransformStamped> correction_out_;
+    runtime::Publisher<msg::Status> events_out_;
+};
+
+}  // namespace
+}  // namespace ltm::localisation
+
+LTM_REGISTER_COMPONENT(
+    ltm::localisation::LocalisationComponent, "localisation",
+    "localisation on a saved map: PointCloud2 and odometry in; pose, map_to_odom and state out")
