@@ -28,7 +28,9 @@ const std::string kScenario =
 std::string header(int domain) {
     return "domain_id: " + std::to_string(domain) +
            "\ndds: {interfaces: [lo], multicast: false, peers: [127.0.0.1]}\nnamespace: /robot\n"
-           "topics: {points: stream, ground_truth: stream}\ncomponents:\n";
+           "topics: {points: stream, ground_truth: stream}\n"
+           // A global localisation holds the scans back: the sensor's write waits in one piece.
+           "qos: {stream: {max_blocking_s: 2.0}}\ncomponents:\n";
 }
 
 // What the probe wrote.
@@ -174,8 +176,8 @@ std::string LocalisationPipeline::map_log_;
 }  // namespace
 
 // The start is not told, the robot is lifted and set down elsewhere on the way: every scan gets a
-// status, the pose is found at the start and again after the kidnap, and every pose that global
-// localisation gave is where the simulator's truth says.
+// status, the pose is found at the start and again after the kidnap, every pose that global
+// localisation gave is where the simulator's truth says, and so are nearly all the others.
 TEST_F(LocalisationPipeline, SecondSessionIsLocalisedOnTheSavedMap) {
     const std::string map = map_dir();
     ASSERT_FALSE(HasFailure());
@@ -214,7 +216,7 @@ TEST_F(LocalisationPipeline, SecondSessionIsLocalisedOnTheSavedMap) {
         near += dt < 0.3 && dr < 2.0;
     }
     EXPECT_GE(fixes, 2u) << "the unknown start and the kidnap";
-    EXPECT_GE(near, probe.status.size() / 2) << host.err();
+    EXPECT_GE(10 * near, 9 * probe.status.size()) << host.err();  // ~5 cm and 0.1 deg here
     EXPECT_EQ(probe.status.back().relocalisations, fixes);
     EXPECT_EQ(probe.status.back().skipped, 0u);  // skip_while_busy: false
     // Relocalisations were said on `status` and in the log.
