@@ -88,7 +88,7 @@ std::vector<Vector3f> voxelised(const std::vector<Vector3f>& points, double voxe
 struct Trial {
     bool found = false, right = false, near = false;  // near: within 2 m / 5 deg (ICP's reach)
     std::size_t inliers = 0, matches = 0, query_samples = 0, target_samples = 0;
-    double t_err = 0.0, r_err = 0.0, extract_ms = 0.0, match_ms = 0.0;
+    double t_err = 0.0, r_err = 0.0, yaw_err = 0.0, extract_ms = 0.0, match_ms = 0.0;
 };
 
 Trial run_trial(const std::vector<Vector3f>& query_points,
@@ -118,6 +118,7 @@ Trial run_trial(const std::vector<Vector3f>& query_points,
     const Isometry3d e = T_target_query.inverse() * r->T_target_source;
     t.t_err = e.translation().norm();
     t.r_err = registration::rotation_angle(e) / kDeg;
+    t.yaw_err = std::atan2(e.linear()(1, 0), e.linear()(0, 0)) / kDeg;
     t.right = t.t_err < 0.5 && t.r_err < 2.0;
     t.near = t.t_err < 2.0 && t.r_err < 5.0;
     return t;
@@ -154,10 +155,10 @@ struct Tally {
 };
 
 void print_trial(const char* what, const Trial& t) {
-    std::printf("%s q %zu t %zu m %zu %s inl %zu err %.2f m %.2f deg  (%.1f + %.1f ms)\n", what,
-                t.query_samples, t.target_samples, t.matches,
+    std::printf("%s q %zu t %zu m %zu %s inl %zu err %.2f m %.2f deg (yaw %.2f) (%.1f + %.1f ms)\n",
+                what, t.query_samples, t.target_samples, t.matches,
                 t.right ? "RIGHT" : (t.near ? "near" : (t.found ? "wrong" : "none")), t.inliers,
-                t.t_err, t.r_err, t.extract_ms, t.match_ms);
+                t.t_err, t.r_err, t.yaw_err, t.extract_ms, t.match_ms);
 }
 
 int run_kitti(const std::string& dir, const Options& o) {

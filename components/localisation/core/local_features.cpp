@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <unordered_map>
 
@@ -245,25 +246,31 @@ LocalFeatures features(const std::vector<Eigen::Vector3f>& points, const LocalFe
 }
 
 // Descriptors packed sector-major (index sector * rings + ring) for the shift loop; targets hold
-// their sectors twice so that every shift reads one contiguous run.
+// their sectors twice so that every shift reads one contiguous run. An empty bin holds a far
+// sentinel mean (+kFar in queries, -kFar in targets) so that any pair with an empty side costs
+// exactly the cap in the unmasked sum (see distance_at).
+constexpr float kFar = 1.0e3f;
+
 struct Packed {
     int rings = 0, sectors = 0, copies = 1;
     std::vector<float> mean, spread, occupied;  // per descriptor: copies * sectors * rings
+    std::vector<float> count;                   // per descriptor: occupied bins
     std::vector<std::uint8_t> usable;
     std::vector<float> keys;  // per descriptor: 2 * rings
 
     std::size_t stride() const { return std::size_t(copies) * sectors * rings; }
 };
 
-Packed pack(const LocalFeatures& f, int rings, int sectors, int copies) {
+Packed pack(const LocalFeatures& f, int rings, int sectors, int copies, float sentinel) {
     Packed p;
     p.rings = rings;
     p.sectors = sectors;
     p.copies = copies;
     const std::size_t n = f.descriptors.size(), stride = p.stride();
-    p.mean.assign(n * stride, 0.0f);
+    p.mean.assign(n * stride, sentinel);
     p.spread.assign(n * stride, 0.0f);
     p.occupied.assign(n * stride, 0.0f);
+    p.count.assign(n, 0.0f);
     p.usable.assign(n, 0);
     p.keys.assign(n * 2 * rings, 0.0f);
     for (std::size_t k = 0; k < n; ++k) {
@@ -275,14 +282,16 @@ Packed pack(const LocalFeatures& f, int rings, int sectors, int copies) {
             continue;
         }
         p.usable[k] = 1;
+        for (const std::uint8_t o : sc.occupied) p.count[k] += o ? 1.0f : 0.0f;
         for (int c = 0; c < copies; ++c) {
             for (int s = 0; s < sectors; ++s) {
                 for (int r = 0; r < rings; ++r) {
                     const std::size_t from = std::size_t(r) * sectors + s;
+                    if (!sc.occupied[from]) continue;
                     const std::size_t to = k * stride + (std::size_t(c) * sectors + s) * rings + r;
                     p.mean[to] = sc.value[from];
                     p.spread[to] = sc.spread[from];
-                    p.occupied[to] = sc.occupied[from] ? 1.0f : 0.0f;
+                    p.occupied[to] = 1.0f;
                 }
             }
         }
@@ -293,6 +302,11 @@ Packed pack(const LocalFeatures& f, int rings, int sectors, int copies) {
 }
 
 // Distance of query q to target t at a shift (query sector j against target sector j + shift).
+// With B the bins occupied in both, Nq and Nt those occupied in the query and in the target
+// (shift-invariant), and the sentinels making min(d, cap) = cap wherever a side is empty:
+//   sum = sum_all (min(d, cap) - cap) + Nq * cap + Nt * unseen - |B| * unseen,
+//   used = Nq + Nt - |B|;
+// the loop needs only sum_all min(d, cap) and |B|.
 inline float distance_at(const Packed& q, std::size_t qi, const Packed& t, std::size_t ti,
                          int shift, float empty_cost, float unseen_cost) {
     const std::size_t n = std::size_t(q.sectors) * q.rings;
@@ -303,33 +317,39 @@ inline float distance_at(const Packed& q, std::size_t qi, const Packed& t, std::
     const float* tm = t.mean.data() + off;
     const float* ts = t.spread.data() + off;
     const float* to = t.occupied.data() + off;
-    // Eight lanes, summed at the end: the compiler vectorises the lanes (no reordering of one sum).
-    constexpr std::size_t kLanes = 8;
-    float sum[kLanes] = {}, count[kLanes] = {};
+    // Four-float vectors (GCC/Clang vector extensions: SSE, NEON or plain code alike).
+    typedef float V4 __attribute__((vector_size(16)));
+    const auto load = [](const float* p) {
+        V4 v;
+        std::memcpy(&v, p, sizeof v);
+        return v;
+    };
+    const V4 cap = {empty_cost, empty_cost, empty_cost, empty_cost};
+    V4 capped[2] = {{0, 0, 0, 0}, {0, 0, 0, 0}}, both[2] = {{0, 0, 0, 0}, {0, 0, 0, 0}};
     std::size_t i = 0;
-    for (; i + kLanes <= n; i += kLanes) {
-        for (std::size_t l = 0; l < kLanes; ++l) {
-            const std::size_t k = i + l;
-            const float dm = qm[k] - tm[k], ds = qs[k] - ts[k];
-            const float both = qo[k] * to[k];
-            const float d = std::min(dm * dm + ds * ds, empty_cost);
-            sum[l] += both * d + (qo[k] - both) * empty_cost + (to[k] - both) * unseen_cost;
-            count[l] += qo[k] + to[k] - both;
+    for (; i + 8 <= n; i += 8) {  // two chains of sums: the additions overlap
+        for (std::size_t h = 0; h < 2; ++h) {
+            const std::size_t k = i + 4 * h;
+            const V4 dm = load(qm + k) - load(tm + k), ds = load(qs + k) - load(ts + k);
+            const V4 d = dm * dm + ds * ds;
+            capped[h] += d < cap ? d : cap;
+            both[h] += load(qo + k) * load(to + k);
         }
     }
+    const V4 c = capped[0] + capped[1], b = both[0] + both[1];
+    float sum_capped = c[0] + c[1] + c[2] + c[3];
+    float shared = b[0] + b[1] + b[2] + b[3];
     for (; i < n; ++i) {
         const float dm = qm[i] - tm[i], ds = qs[i] - ts[i];
-        const float both = qo[i] * to[i];
-        const float d = std::min(dm * dm + ds * ds, empty_cost);
-        sum[0] += both * d + (qo[i] - both) * empty_cost + (to[i] - both) * unseen_cost;
-        count[0] += qo[i] + to[i] - both;
+        sum_capped += std::min(dm * dm + ds * ds, empty_cost);
+        shared += qo[i] * to[i];
     }
-    float total = 0.0f, used = 0.0f;
-    for (std::size_t l = 0; l < kLanes; ++l) {
-        total += sum[l];
-        used += count[l];
-    }
-    return used > 0.0f ? total / used : empty_cost;
+    const float nq = q.count[qi], nt = t.count[ti];
+    const float used = nq + nt - shared;
+    if (used <= 0.0f) return empty_cost;
+    const float sum = sum_capped - float(n) * empty_cost + nq * empty_cost + nt * unseen_cost -
+                      shared * unseen_cost;
+    return std::max(0.0f, sum) / used;
 }
 
 }  // namespace
@@ -390,8 +410,8 @@ std::vector<FeatureMatch> match_local_features(const LocalFeatures& query,
     if (query.descriptors.empty() || target.descriptors.empty()) return out;
     const int rings = query.descriptors.front().rings, sectors = query.descriptors.front().sectors;
     if (rings <= 0 || sectors <= 0) return out;
-    const Packed q = pack(query, rings, sectors, 1);
-    const Packed t = pack(target, rings, sectors, 2);
+    const Packed q = pack(query, rings, sectors, 1, kFar);
+    const Packed t = pack(target, rings, sectors, 2, -kFar);
     const std::size_t nq = query.descriptors.size(), nt = target.descriptors.size();
     const std::size_t key_dim = std::size_t(2 * rings);
     const float empty_cost = float(config.empty_bin_cost);
