@@ -136,9 +136,9 @@ class LocalisationPipeline : public ltm::tests::TempDirTest {
     }
 
     // Session 1 of the site (its first `count` scans, 0: all) localised on `map` through the test
-    // host; `probe` adds probe parameters.
+    // host; `probe` adds probe parameters. Offline (skip_while_busy: false) unless `live`.
     std::string localise(int domain, const std::string& map, const std::string& probe = "",
-                         int count = 0) {
+                         int count = 0, bool live = false) {
         return write(
             "localise.yaml", header(domain) + R"(  - name: sensor
     type: simulator
@@ -150,7 +150,8 @@ class LocalisationPipeline : public ltm::tests::TempDirTest {
     params: {preset: vlp16}
   - name: localisation
     type: localisation
-    params: {map: )" + map + R"(, preset: vlp16, skip_while_busy: false}
+    params: {map: )" + map + R"(, preset: vlp16, skip_while_busy: )" +
+                                 (live ? "true" : "false") + R"(}
   - name: probe
     type: test_localisation_probe
     params: {file: )" + path("probe.txt") +
@@ -227,10 +228,11 @@ TEST_F(LocalisationPipeline, SecondSessionIsLocalisedOnTheSavedMap) {
 }
 
 // A map that is not there does not stop the robot: one line in the log, the reason on `status`
-// and in every scan's status, no pose, and the host runs to the end.
+// and in every scan's status, no pose, and the host runs to the end. Live: the map is loaded on
+// the component's worker once it runs.
 TEST_F(LocalisationPipeline, MissingMapIsOneLineAndTheHostRunsOn) {
     const std::string missing = path("no_such_map");
-    Process host({kTestHost, localise(203, missing, "", 5)}, path("host"));
+    Process host({kTestHost, localise(203, missing, "", 5, true)}, path("host"));
     ASSERT_EQ(host.wait(300), 0) << host.err();
     EXPECT_EQ(count(host.err(), "no map to localise on: "), 1u) << host.err();
     EXPECT_NE(host.err().find(missing), std::string::npos) << host.err();
@@ -247,7 +249,8 @@ TEST_F(LocalisationPipeline, MissingMapIsOneLineAndTheHostRunsOn) {
         << probe.events.front();
 }
 
-// A damaged map: the same, with the loader's reason.
+// A damaged map: the same, with the loader's reason. Offline: the map is loaded before the host
+// runs.
 TEST_F(LocalisationPipeline, DamagedMapIsOneLineAndTheHostRunsOn) {
     fs::create_directories(dir_ / "broken");
     std::ofstream((dir_ / "broken" / "manifest.txt").string()) << "not a manifest\n";

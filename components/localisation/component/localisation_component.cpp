@@ -16,10 +16,11 @@
 // until each scan is done: back-pressure on the sensor, nothing skipped, and the host sees the
 // component busy until its last scan is localised.
 //
-// The map is loaded on the worker thread when the component starts (a large map takes seconds:
-// the host and the other components do not wait for it; scans meanwhile queue as above). A
-// missing or damaged map does not stop the host: the component stays up, says why in one line
-// (log, `status`, and every scan's `localisation_status`) and localises nothing.
+// A large map takes seconds to load. Offline (skip_while_busy false) it is loaded when the
+// component is configured: the host starts nothing before it is ready. Live, the worker loads it
+// when the component starts: the other components do not wait for it, and the newest scan waits
+// for it. A missing or damaged map does not stop the host: the component stays up, says why in one
+// line (log, `status`, and every scan's `localisation_status`) and localises nothing.
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -84,6 +85,7 @@ class LocalisationComponent : public runtime::Component {
         map_dir_ = p.path("map", "", PathCheck::kNone);
         if (map_dir_.empty())
             p.fail("map", "required: the saved map directory to localise on (map_dir of mapping)");
+        if (!skip_while_busy_) load_map();
 
         ctx.subscribe<msg::PointCloud2>("points", TopicRole::kSensor,
                                         [this](const msg::PointCloud2& m) { on_points(m); });
@@ -309,7 +311,7 @@ class LocalisationComponent : public runtime::Component {
     // --- the worker thread: the localiser and the outputs ---
 
     void run_worker() {
-        load_map();
+        if (map_state_ == kLoading) load_map();
         for (;;) {
             std::optional<Scan> scan;
             std::optional<PoseHint> hint;
