@@ -115,12 +115,12 @@ class LocalisationComponent : public runtime::Component {
 
     void on_shutdown() override {
         // Scans still waiting for their odometry go without it.
-        while (!waiting_.empty()) submit(pop_waiting());
+        while (worker_.joinable() && !waiting_.empty()) submit(pop_waiting());
         stop_worker();
-        ctx_.log().info(std::to_string(scans_) + " scans, " + std::to_string(processed_) +
-                        " localised with a valid pose " + std::to_string(valid_) + " times, " +
+        ctx_.log().info(std::to_string(scans_) + " scans: " + std::to_string(processed_) +
+                        " localised (" + std::to_string(valid_) + " with a valid pose), " +
                         std::to_string(counters_.relocalisations) + " relocalisations, " +
-                        std::to_string(counters_.skipped_scans) + " scans skipped while busy");
+                        std::to_string(counters_.skipped_scans) + " skipped while busy");
     }
 
   private:
