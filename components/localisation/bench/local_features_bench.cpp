@@ -8,7 +8,7 @@
 // Options: --spacing M --query-spacing M --radius M --rings N --sectors N --max-height M
 //   --empty-cost C --unseen-cost C --candidates N --per-query N --inlier M --max-samples N
 //   --min-points N --min-bins N --max-range M --target-radius M --target-max-samples N
-//   --voxel M -v
+//   --voxel M --ground-cell M --ground-window M --no-level --ground-level -v
 #include <Eigen/Dense>
 #include <algorithm>
 #include <chrono>
@@ -47,6 +47,8 @@ struct Options {
     registration::RansacAlignmentConfig ransac;
     double target_radius = 40.0;
     bool verbose = false;
+    bool level = true;          // hku: level each session's world by its trajectory plane
+    bool ground_level = false;  // level each side by its ground samples before matching
 };
 
 double ms_since(Clock::time_point t0) {
@@ -91,10 +93,49 @@ struct Trial {
     double t_err = 0.0, r_err = 0.0, yaw_err = 0.0, extract_ms = 0.0, match_ms = 0.0;
 };
 
-Trial run_trial(const std::vector<Vector3f>& query_points,
-                const std::vector<Vector3f>& target_points, const Isometry3d& T_target_query,
-                const Options& o) {
+// The rotation that makes the plane through the ground samples level (identity when fewer than
+// six samples); two rounds drop samples more than 0.3 m off the plane.
+Matrix3d ground_levelling(const std::vector<Vector3d>& samples) {
+    std::vector<Vector3d> used = samples;
+    Vector3d n = Vector3d::UnitZ();
+    for (int round = 0; round < 3 && used.size() >= 6; ++round) {
+        Eigen::MatrixXd A(used.size(), 3);
+        Eigen::VectorXd z(used.size());
+        for (std::size_t k = 0; k < used.size(); ++k) {
+            A.row(Eigen::Index(k)) << used[k].x(), used[k].y(), 1.0;
+            z[Eigen::Index(k)] = used[k].z();
+        }
+        const Eigen::Vector3d abd = A.colPivHouseholderQr().solve(z);
+        n = Vector3d(-abd[0], -abd[1], 1.0).normalized();
+        std::vector<Vector3d> kept;
+        for (const Vector3d& p : used) {
+            if (std::abs(p.z() - (abd[0] * p.x() + abd[1] * p.y() + abd[2])) < 0.3) {
+                kept.push_back(p);
+            }
+        }
+        used = kept;
+    }
+    return Eigen::Quaterniond::FromTwoVectors(n, Vector3d::UnitZ()).toRotationMatrix();
+}
+
+Trial run_trial(const std::vector<Vector3f>& query_input, const std::vector<Vector3f>& target_input,
+                const Isometry3d& T_input, const Options& o) {
     Trial t;
+    std::vector<Vector3f> query_points = query_input, target_points = target_input;
+    Isometry3d T_target_query = T_input;
+    if (o.ground_level) {
+        // Each side levelled by its own ground samples (a stand-in for a poor gravity estimate).
+        Isometry3d Lq = Isometry3d::Identity(), Lt = Isometry3d::Identity();
+        Lq.linear() =
+            ground_levelling(localisation::make_local_features(query_input, o.query).positions);
+        Lt.linear() =
+            ground_levelling(localisation::make_local_features(target_input, o.target,
+                                                               Vector3d::Zero(), o.target_radius)
+                                 .positions);
+        query_points = transformed(query_input, Lq);
+        target_points = transformed(target_input, Lt);
+        T_target_query = Lt * T_input * Lq.inverse();
+    }
     auto t0 = Clock::now();
     const localisation::LocalFeatures q = localisation::make_local_features(query_points, o.query);
     t.extract_ms = ms_since(t0);
@@ -220,7 +261,7 @@ struct Session {
     Matrix3d level = Matrix3d::Identity();
 };
 
-Session load_session(const std::string& dir) {
+Session load_session(const std::string& dir, bool level) {
     Session s;
     s.poses = common::read_kitti_poses(dir + "/odom_poses.txt");
     std::vector<Vector3f> world;
@@ -232,14 +273,15 @@ Session load_session(const std::string& dir) {
         world.insert(world.end(), w.begin(), w.end());
     }
     double rms = 0.0;
-    s.level = levelling(s.poses, &rms);
+    s.level = level ? levelling(s.poses, &rms) : Matrix3d::Identity();
     std::printf("%s: levelled by %.2f deg (trajectory plane, rms %.2f m)\n", dir.c_str(),
                 Eigen::AngleAxisd(s.level).angle() / kDeg, rms);
     return s;
 }
 
 int run_hku(const std::string& dir, const Options& o) {
-    const Session s1 = load_session(dir + "/session1"), s2 = load_session(dir + "/session2");
+    const Session s1 = load_session(dir + "/session1", o.level),
+                  s2 = load_session(dir + "/session2", o.level);
     std::ifstream in(dir + "/verified_pairs.txt");
     std::string line;
     Tally verified, others;
@@ -368,6 +410,14 @@ int main(int argc, char** argv) {
             o.verbose = true;
             continue;
         }
+        if (k == "--no-level") {
+            o.level = false;
+            continue;
+        }
+        if (k == "--ground-level") {
+            o.ground_level = true;
+            continue;
+        }
         if (a + 1 >= argc) {
             std::fprintf(stderr, "local_features_bench: %s needs a value\n", k.c_str());
             return 2;
@@ -406,6 +456,10 @@ int main(int argc, char** argv) {
             o.query.max_range = v;
         } else if (k == "--target-max-samples") {
             o.target.max_samples = int(v);
+        } else if (k == "--ground-cell") {
+            o.query.ground_cell = o.target.ground_cell = v;
+        } else if (k == "--ground-window") {
+            o.query.ground_window = o.target.ground_window = v;
         } else if (k == "--voxel") {
             o.query.voxel_size = o.target.voxel_size = v;
         } else if (k == "--target-radius") {

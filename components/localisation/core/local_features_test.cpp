@@ -209,6 +209,50 @@ TEST(LocalFeatures, NarrowScanAgainstAMapRegion) {
     }
 }
 
+TEST(LocalFeatures, MatchFiltersAndRefinement) {
+    const std::vector<Vector3f> points = street_scan(make_pose(60, 0, 1.8, 0, 0, 0), 4);
+    const LocalFeatureConfig c;
+    const LocalFeatures target = make_local_features(points, c);
+    const LocalFeatures query =
+        make_local_features(transformed(points, make_pose(1, 2, 0, 0, 0, 30).inverse()), c);
+    ASSERT_GT(query.size(), 20u);
+    LocalFeatureMatchConfig m;
+    const auto all = match_local_features(query, target, m);
+    std::vector<int> per_query(query.size(), 0), per_target(target.size(), 0);
+    for (std::size_t k = 0; k < all.size(); ++k) {
+        ++per_query[all[k].query];
+        if (k > 0) {
+            EXPECT_LE(all[k - 1].distance, all[k].distance);  // sorted
+        }
+        // The refined position stays within half a spacing (an axis) of the target sample.
+        const Vector3d d = all[k].target_position - target.positions[all[k].target];
+        EXPECT_LE(d.head<2>().cwiseAbs().maxCoeff(), 0.5 * c.sample_spacing + 1e-9);
+        EXPECT_LE(std::abs(all[k].yaw), M_PI);
+    }
+    for (const int n : per_query) EXPECT_LE(n, m.per_query);
+    m.per_query = 1;
+    const auto best = match_local_features(query, target, m);
+    EXPECT_LE(best.size(), query.size());
+    m.per_query = 3;
+    m.mutual = true;
+    for (const FeatureMatch& f : match_local_features(query, target, m)) {
+        EXPECT_EQ(++per_target[f.target], 1);  // each target kept for its best query only
+    }
+    m.mutual = false;
+    m.max_distance = 1e-6;
+    EXPECT_TRUE(match_local_features(query, target, m).empty());
+    // Descriptors of another shape are not matched; without a spacing nothing is refined.
+    LocalFeatureConfig other = c;
+    other.rings = 6;
+    const LocalFeatures odd = make_local_features(points, other);
+    EXPECT_TRUE(match_local_features(query, odd, LocalFeatureMatchConfig{}).empty());
+    LocalFeatures plain = target;
+    plain.sample_spacing = 0.0;
+    for (const FeatureMatch& f : match_local_features(query, plain, LocalFeatureMatchConfig{})) {
+        EXPECT_EQ(f.target_position, plain.positions[f.target]);
+    }
+}
+
 TEST(LocalFeatures, RealKittiScanTurnedAndShifted) {
     // Frame 0 of the kitti00_mini fixture, turned and shifted, against frames 1 and 2 merged into
     // frame 0's place (SemanticKITTI poses) and voxelised like a map.
