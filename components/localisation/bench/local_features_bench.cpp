@@ -8,7 +8,7 @@
 // Options: --spacing M --query-spacing M --radius M --rings N --sectors N --max-height M
 //   --empty-cost C --unseen-cost C --candidates N --per-query N --inlier M --max-samples N
 //   --min-points N --min-bins N --max-range M --target-radius M --target-max-samples N
-//   --voxel M --ground-cell M --ground-window M --no-level --ground-level -v
+//   --voxel M --ground-cell M --ground-window M --no-level --ground-level --no-refine -v
 #include <Eigen/Dense>
 #include <algorithm>
 #include <chrono>
@@ -49,6 +49,7 @@ struct Options {
     bool verbose = false;
     bool level = true;          // hku: level each session's world by its trajectory plane
     bool ground_level = false;  // level each side by its ground samples before matching
+    bool refine = true;         // the matches' refined target positions (else the samples')
 };
 
 double ms_since(Clock::time_point t0) {
@@ -150,7 +151,7 @@ Trial run_trial(const std::vector<Vector3f>& query_input, const std::vector<Vect
     std::vector<Vector3d> src, dst;
     for (const auto& m : matches) {
         src.push_back(q.positions[m.query]);
-        dst.push_back(m.target_position);
+        dst.push_back(o.refine ? m.target_position : g.positions[m.target]);
     }
     const auto r = registration::ransac_align(src, dst, o.ransac);
     if (!r) return t;
@@ -412,6 +413,10 @@ int main(int argc, char** argv) {
         }
         if (k == "--no-level") {
             o.level = false;
+            continue;
+        }
+        if (k == "--no-refine") {
+            o.refine = false;
             continue;
         }
         if (k == "--ground-level") {
