@@ -38,7 +38,9 @@ struct LocalFeatureConfig {
     // KITTI frames and 66/86 Livox pairs within 2 m / 5 deg where 3 m found 41/46 and ~10/86.
     double sample_spacing = 1.5;
     double max_range = 40.0;  // samples farther (horizontally) from the origin are not taken [m]
-    int max_samples = 200;    // the nearest ones to the origin (or centre) are kept
+    // At most this many samples, spread evenly when there are more: the points of the 8-spacing
+    // sub-lattice first, then of the 4-, the 2-spacing one, the rest (nearest first within each).
+    int max_samples = 200;
     // The local descriptor around a sample: points within `radius` (horizontally), at most
     // `max_height` above the sample's ground (higher parts are seen from some places only).
     double radius = 10.0;
