@@ -160,6 +160,10 @@ class Odometry {
     double typical_rms_ = 0.0;      // running mean of the tracked frames' residual RMS [m]
     double typical_inliers_ = 0.0;  // ... and of their inlier fraction
     double typical_overlap_ = 0.0;  // ... and of their overlap
+    // The same over the first tracked frames of the run (against a young map), the yardstick
+    // after a restart: the new map is as young.
+    double early_rms_ = 0.0, early_inliers_ = 0.0, early_overlap_ = 0.0;
+    int early_frames_ = 0;
     bool lost_ = false;
     double last_tracked_stamp_ = 0.0;  // of the last scan with a valid pose
     Eigen::Isometry3d last_tracked_pose_ = Eigen::Isometry3d::Identity();
