@@ -24,10 +24,12 @@
 #include "common/core/progress.hpp"
 #include "common/core/sensor_preset.hpp"
 #include "common/core/trajectory_io.hpp"
+#include "localisation/component/localiser_params.hpp"
 #include "localisation/core/localiser.hpp"
 #include "odometry/core/odometry.hpp"
 #include "odometry/params/odometry_params.hpp"
 #include "registration/core/preprocess.hpp"
+#include "runtime/parameters.hpp"
 #include "sources/core/scan_folder.hpp"
 
 namespace {
@@ -38,6 +40,7 @@ constexpr double kDegToRad = M_PI / 180.0;
 
 struct Args {
     std::string map, dir, reference, reference_transform, preset = "hdl64", mode = "global", out;
+    std::string config;
     std::size_t every = 1, max_frames = 0, first = 0;
     double perturb_yaw = 0.0, perturb_shift = 0.0;
     unsigned seed = 1;
@@ -77,6 +80,11 @@ void write_line(std::ostream& os, std::size_t frame, double time_s, bool ok,
 int run(const Args& a) {
     const common::SensorPreset preset = common::parse_sensor_preset(a.preset);
     localisation::LocaliserConfig lc = localisation::localiser_preset(preset);
+    if (!a.config.empty()) {
+        runtime::Parameters params = runtime::Parameters::from_file(a.config, "localisation");
+        lc = localisation::load_localiser_config(params, preset);
+        params.check_all_used();
+    }
     if (a.no_features) lc.global.local_features = false;
     localisation::LocalisationMapConfig mc = localisation::localisation_map_preset(preset);
     mc.local_features = !a.no_features;
@@ -294,6 +302,8 @@ int main(int argc, char** argv) {
     app.add_option("--reference-transform", a.reference_transform,
                    "one KITTI 3x4 line T_map_reference: maps the reference into the map's frame");
     app.add_option("--preset", a.preset, "sensor preset: hdl64, vlp32, vlp16, narrow or os1-64");
+    app.add_option("--config", a.config,
+                   "localisation keys overriding the preset (YAML, as the component's params)");
     app.add_option("--mode", a.mode, "global: each scan alone; track: a sequence")
         ->check(common::cli::one_of({"global", "track"}));
     app.add_option("--out", a.out, "one line a scan: frame time_s ok [12 pose numbers]");

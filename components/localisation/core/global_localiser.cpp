@@ -90,36 +90,57 @@ std::vector<GlobalLocaliser::Place> GlobalLocaliser::rank_places(
 }
 
 void GlobalLocaliser::feature_guesses(
-    const std::vector<Eigen::Vector3f>& points, const Place& place, int index,
+    const std::vector<Eigen::Vector3f>& points, const std::vector<Place>& places,
     std::vector<Guess, Eigen::aligned_allocator<Guess>>* guesses) {
-    if (!query_features_) {
-        query_features_ = std::make_shared<const LocalFeatures>(
-            make_local_features(points, map_->feature_config()));
+    const LocalFeatures query = make_local_features(points, map_->feature_config());
+    if (query.size() < 3 || places.empty()) return;
+    // The map's samples around every place, once (places overlap), matched in one pass.
+    std::vector<std::uint32_t> indices;
+    for (const Place& place : places) {
+        const Eigen::Vector3d c = map_->keyframes()[place.keyframe].T_map_lidar.translation();
+        for (std::uint32_t k : map_->feature_indices_near(c, config_.feature_region))
+            indices.push_back(k);
     }
-    if (query_features_->size() < 3) return;
-    const Eigen::Vector3d centre = map_->keyframes()[place.keyframe].T_map_lidar.translation();
-    const LocalFeatures target = map_->features_near(centre, config_.feature_region);
-    if (target.size() < 3) return;
-    const std::vector<FeatureMatch> matches =
-        match_local_features(*query_features_, target, config_.matching);
-    std::vector<Eigen::Vector3d> source, dest;
-    source.reserve(matches.size());
-    dest.reserve(matches.size());
-    for (const FeatureMatch& m : matches) {
-        source.push_back(query_features_->positions[m.query]);
-        dest.push_back(target.positions[m.target]);
+    std::sort(indices.begin(), indices.end());
+    indices.erase(std::unique(indices.begin(), indices.end()), indices.end());
+    if (indices.size() < 3) return;
+    LocalFeatures target;
+    target.sample_spacing = map_->features().sample_spacing;
+    target.positions.reserve(indices.size());
+    target.descriptors.reserve(indices.size());
+    for (std::uint32_t k : indices) {
+        target.positions.push_back(map_->features().positions[k]);
+        target.descriptors.push_back(map_->features().descriptors[k]);
     }
-    const std::optional<registration::RansacAlignment> r =
-        registration::ransac_align(source, dest, config_.ransac);
-    if (!r) return;
-    guesses->push_back({r->T_target_source, index, true});
+    const std::vector<FeatureMatch> matches = match_local_features(query, target, config_.matching);
+    // RANSAC on the matches around each place (a wrong place's matches do not outvote it).
+    const double r2 = config_.feature_region * config_.feature_region;
+    for (std::size_t i = 0; i < places.size(); ++i) {
+        const Eigen::Vector3d c = map_->keyframes()[places[i].keyframe].T_map_lidar.translation();
+        std::vector<Eigen::Vector3d> source, dest;
+        for (const FeatureMatch& m : matches) {
+            if ((target.positions[m.target] - c).head<2>().squaredNorm() > r2) continue;
+            source.push_back(query.positions[m.query]);
+            dest.push_back(m.target_position);  // refined off the lattice
+        }
+        const std::optional<registration::RansacAlignment> r =
+            registration::ransac_align(source, dest, config_.ransac);
+        if (!r) continue;
+        // The same answer from an overlapping place adds nothing.
+        bool known = false;
+        for (const Guess& g : *guesses) {
+            if (!g.from_features) continue;
+            const auto [dt, dr] = pose_distance(g.T_map_lidar, r->T_target_source);
+            if (dt < 0.5 && dr < 2.0) known = true;
+        }
+        if (!known) guesses->push_back({r->T_target_source, int(i), true});
+    }
 }
 
 GlobalLocalisation GlobalLocaliser::localise(const std::vector<Eigen::Vector3f>& points,
                                              const std::optional<PoseHint>& hint) {
     const auto start = std::chrono::steady_clock::now();
     GlobalLocalisation out;
-    query_features_.reset();
     auto finish = [&](GlobalLocalisation& o) -> GlobalLocalisation& {
         o.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         return o;
@@ -152,8 +173,8 @@ GlobalLocalisation GlobalLocaliser::localise(const std::vector<Eigen::Vector3f>&
         for (double off : config_.yaw_offsets) {
             guesses.push_back({yawed(T_kf, places[i].yaw + off * kDegToRad), int(i), false});
         }
-        if (config_.local_features) feature_guesses(finite, places[i], int(i), &guesses);
     }
+    if (config_.local_features) feature_guesses(finite, places, &guesses);
     out.guesses = int(guesses.size());
     if (guesses.empty()) {
         out.reason = "no place of the map resembles the scan";
@@ -197,6 +218,10 @@ GlobalLocalisation GlobalLocaliser::localise(const std::vector<Eigen::Vector3f>&
     std::sort(order.begin(), order.end(), std::greater<>());
     if (order.size() > std::size_t(config_.verify_best))
         order.resize(std::size_t(config_.verify_best));
+    // A guess whose probe fits far worse than the best one's is neither the answer nor a rival
+    // (a rival fits about as well): not verified.
+    while (order.size() > 1 && order.back().first < config_.rival_probe_ratio * order.front().first)
+        order.pop_back();
     for (const auto& [score, g] : order) {
         // A guess that lands where an accepted answer already is adds nothing.
         bool known = false;

@@ -43,6 +43,7 @@ struct GlobalLocaliserConfig {
     int probe_points = 800;
     int probe_iterations = 10;
     int verify_best = 3;
+    double rival_probe_ratio = 0.7;  // ... and only those whose probe fits this well of the best
     mapping::LoopVerifierConfig verification = verification_defaults();
     // A second verified pose more than this far from the best, with at least ambiguity_ratio of
     // its inliers: the site repeats itself, no answer [m], [deg].
@@ -56,7 +57,7 @@ struct GlobalLocaliserConfig {
 
     static registration::RansacAlignmentConfig ransac_defaults() {
         registration::RansacAlignmentConfig c;
-        c.inlier_distance = 1.0;
+        c.inlier_distance = 0.75;  // half the local features' lattice spacing
         c.min_inliers = 6;
         c.min_sample_spread = 2.0;
         return c;
@@ -89,6 +90,7 @@ void visit_fields(GlobalLocaliserConfig& c, const std::string& prefix, Visitor&&
     v(prefix + "probe_points", c.probe_points, at_least(50));
     v(prefix + "probe_iterations", c.probe_iterations, at_least(1));
     v(prefix + "verify_best", c.verify_best, at_least(1));
+    v(prefix + "rival_probe_ratio", c.rival_probe_ratio, unit);
     v(prefix + "distinct_translation", c.distinct_translation, positive);
     v(prefix + "distinct_rotation", c.distinct_rotation, positive);
     v(prefix + "ambiguity_ratio", c.ambiguity_ratio, unit);
@@ -151,14 +153,14 @@ class GlobalLocaliser {
     };
     std::vector<Place> rank_places(const mapping::ScanContext& query,
                                    const std::optional<PoseHint>& hint) const;
-    void feature_guesses(const std::vector<Eigen::Vector3f>& points, const Place& place, int index,
+    void feature_guesses(const std::vector<Eigen::Vector3f>& points,
+                         const std::vector<Place>& places,
                          std::vector<Guess, Eigen::aligned_allocator<Guess>>* guesses);
 
     std::shared_ptr<const LocalisationMap> map_;
     GlobalLocaliserConfig config_;
     mapping::LoopVerifier verifier_;
     registration::Registration fine_;
-    std::shared_ptr<const LocalFeatures> query_features_;
     registration::Registration probe_;
     std::vector<Eigen::Vector3f> probe_points_;
 };

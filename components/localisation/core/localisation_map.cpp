@@ -90,11 +90,15 @@ void LocalisationMap::make_features(const LocalisationMapConfig& config) {
         cells.emplace(lattice_key(cx, cy, cell), Eigen::Vector2d(cx, cy));
     }
     const double spacing = config.features.sample_spacing;
+    features_.sample_spacing = spacing;
+    // Every lattice point of a tile (a thinned lattice would break the matches' refinement).
+    LocalFeatureConfig tile = config.features;
+    tile.max_samples = std::max(tile.max_samples, int(std::pow(cell / spacing + 2.0, 2.0)) * 2);
     for (const auto& [key, c] : cells) {
         const Eigen::Vector3d centre(c.x(), c.y(), 0.0);
         const LocalFeatures f =
-            make_local_features(centres_near(centre, half_diagonal + config.features.radius),
-                                config.features, centre, half_diagonal);
+            make_local_features(centres_near(centre, half_diagonal + config.features.radius), tile,
+                                centre, half_diagonal);
         for (std::size_t i = 0; i < f.size(); ++i) {
             const Eigen::Vector3d& p = f.positions[i];
             if (std::abs(p.x() - c.x()) > 0.5 * cell || std::abs(p.y() - c.y()) > 0.5 * cell)
@@ -107,8 +111,20 @@ void LocalisationMap::make_features(const LocalisationMapConfig& config) {
     }
 }
 
+std::vector<std::uint32_t> LocalisationMap::feature_indices_near(const Eigen::Vector3d& p,
+                                                                 double radius) const {
+    std::vector<std::uint32_t> out;
+    const double r2 = radius * radius;
+    for (std::size_t i = 0; i < features_.size(); ++i) {
+        if ((features_.positions[i] - p).head<2>().squaredNorm() <= r2)
+            out.push_back(std::uint32_t(i));
+    }
+    return out;
+}
+
 LocalFeatures LocalisationMap::features_near(const Eigen::Vector3d& p, double radius) const {
     LocalFeatures out;
+    out.sample_spacing = features_.sample_spacing;
     const double r2 = radius * radius;
     for (std::size_t i = 0; i < features_.size(); ++i) {
         if ((features_.positions[i] - p).head<2>().squaredNorm() > r2) continue;

@@ -80,6 +80,8 @@ class LocalisationMap {
     std::vector<Eigen::Vector3f> centres_near(const Eigen::Vector3d& p, double radius) const;
     // The map's local features within `radius` (horizontal) of p (empty without local features).
     LocalFeatures features_near(const Eigen::Vector3d& p, double radius) const;
+    std::vector<std::uint32_t> feature_indices_near(const Eigen::Vector3d& p, double radius) const;
+    const LocalFeatures& features() const { return features_; }
     const LocalFeatureConfig& feature_config() const { return feature_config_; }
     std::size_t feature_count() const { return features_.size(); }
 
