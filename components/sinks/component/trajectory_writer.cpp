@@ -1,5 +1,6 @@
 // Writes the poses it receives as trajectory files: `kitti_file` and/or `tum_file`.
 //   input: odometry (nav_msgs/Odometry, default) | pose (geometry_msgs/PoseStamped)
+//          | pose_with_covariance (geometry_msgs/PoseWithCovarianceStamped on `pose`: localisation)
 //          | path (nav_msgs/Path: the whole file is rewritten with every message)
 #include <memory>
 
@@ -42,13 +43,19 @@ class TrajectoryWriter : public runtime::Component {
                                                 const common::StampedPose p = convert::from_msg(m);
                                                 append(p.stamp, p.pose);
                                             });
+        } else if (input == "pose_with_covariance") {
+            ctx.subscribe<msg::PoseWithCovarianceStamped>(
+                "pose", TopicRole::kState, [this](const msg::PoseWithCovarianceStamped& m) {
+                    append(convert::to_seconds(m.header.stamp), convert::to_isometry(m.pose.pose));
+                });
         } else if (input == "path") {
             ctx.subscribe<msg::Path>("path", TopicRole::kMap, [this](const msg::Path& m) {
                 const common::Trajectory t = convert::from_msg(m);
                 for (auto& f : files_) f->rewrite(t);
             });
         } else {
-            p.fail("input", "expected odometry, pose or path, got '" + input + "'");
+            p.fail("input",
+                   "expected odometry, pose, pose_with_covariance or path, got '" + input + "'");
         }
     }
 
@@ -72,4 +79,5 @@ class TrajectoryWriter : public runtime::Component {
 }  // namespace ltm::sinks
 
 LTM_REGISTER_COMPONENT(ltm::sinks::TrajectoryWriter, "trajectory_writer",
-                       "writes received poses (odometry, pose or path) as KITTI and/or TUM files")
+                       "writes received poses (odometry, pose, pose with covariance or path) as "
+                       "KITTI and/or TUM files")
