@@ -137,6 +137,30 @@ void GlobalLocaliser::feature_guesses(
     }
 }
 
+GlobalLocalisation GlobalLocaliser::verify(const std::vector<Eigen::Vector3f>& points,
+                                           const Eigen::Isometry3d& guess) {
+    const auto start = std::chrono::steady_clock::now();
+    GlobalLocalisation out;
+    const mapping::LoopVerification v =
+        verifier_.verify(points, map_->target(), mapping::GuessList{guess});
+    out.verified = 1;
+    out.points = v.points;
+    out.inliers = v.inliers;
+    out.inlier_fraction = v.inlier_fraction;
+    out.inlier_rms = v.inlier_rms;
+    out.degenerate_directions = v.degenerate_directions;
+    out.localised = v.accepted;
+    out.reason = v.accepted ? "verified" : "not verified: " + v.reason;
+    if (v.accepted) {
+        out.T_map_lidar = v.T_anchor_lidar;
+        const double structure =
+            v.structure_points ? double(v.structure_inliers) / double(v.structure_points) : 0.0;
+        out.confidence = std::clamp(v.inlier_fraction, 0.0, 1.0) * std::clamp(structure, 0.0, 1.0);
+    }
+    out.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return out;
+}
+
 GlobalLocalisation GlobalLocaliser::localise(const std::vector<Eigen::Vector3f>& points,
                                              const std::optional<PoseHint>& hint) {
     const auto start = std::chrono::steady_clock::now();

@@ -136,6 +136,11 @@ class GlobalLocaliser {
     GlobalLocalisation localise(const std::vector<Eigen::Vector3f>& points,
                                 const std::optional<PoseHint>& hint = std::nullopt);
 
+    // The verification alone, from one pose (tracking's check of a fit far from the odometry's
+    // pose): localised when it verifies there.
+    GlobalLocalisation verify(const std::vector<Eigen::Vector3f>& points,
+                              const Eigen::Isometry3d& guess);
+
     const GlobalLocaliserConfig& config() const { return config_; }
     const LocalisationMap& map() const { return *map_; }
 

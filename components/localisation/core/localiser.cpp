@@ -142,7 +142,25 @@ bool Localiser::track(const Eigen::Isometry3d& predicted, LocalisationUpdate* u)
             why << "overlap with the map " << r.overlap() << " below " << config_.min_overlap;
         } else if (dt > config_.max_correction_translation ||
                    dr > config_.max_correction_rotation) {
-            why << "the map fits " << dt << " m / " << dr << " deg away from the odometry's pose";
+            // The map fits far from where the odometry says: the odometry jumped (a young map
+            // after a restart, a bad registration) or the robot was moved. A fit that passes
+            // global localisation's verification there is kept; otherwise it is not tracking.
+            const GlobalLocalisation v = global_.verify(sampled_, r.T_map_lidar);
+            if (v.localised) {
+                T_map_lidar_ = v.T_map_lidar;
+                u->T_map_lidar = v.T_map_lidar;
+                u->covariance = v.covariance;
+                u->confidence = v.confidence;
+                u->inlier_fraction = v.inlier_fraction;
+                std::ostringstream s;
+                s.precision(3);
+                s << "the odometry is " << dt << " m / " << dr
+                  << " deg off the map here; the map's fit (verified) is kept";
+                u->message = s.str();
+                return true;
+            }
+            why << "the map fits " << dt << " m / " << dr << " deg away from the odometry's pose ("
+                << v.reason << ")";
         } else {
             const Eigen::Matrix3f R = r.T_map_lidar.linear().cast<float>();
             const Eigen::Vector3f t = r.T_map_lidar.translation().cast<float>();
