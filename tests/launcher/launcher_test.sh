@@ -120,7 +120,7 @@ readonly_never_sets_up() {
 bench_list_names_every_benchmark() {
     local list name
     list="$("$LTM" bench list)" || return 1
-    for name in dds odometry slam localise mcap sim sim_compare hard_cases; do
+    for name in dds odometry slam localise localise_real mcap sim sim_compare hard_cases; do
         echo "$list" | grep -q "^  $name " || { echo "  '$name' missing from: $list"; return 1; }
     done
     local err rc
@@ -140,6 +140,15 @@ bench_hard_cases_skips_without_data() {
     out="$("$LTM" bench hard_cases --bogus 2>&1)"
     rc=$?
     [ "$rc" = 1 ] && [ "$(echo "$out" | wc -l)" = 1 ] && [[ "$out" == *"unknown option '--bogus'"* ]] ||
+        { echo "  rc=$rc: $out"; return 1; }
+}
+
+# The localisation real-data script without the shared data: skips and exits 0.
+bench_localise_real_skips_without_data() {
+    local out rc
+    out="$(LTM_SHARED_DATA="$TMP/no_data" "$LTM" bench localise_real 2>&1)"
+    rc=$?
+    [ "$rc" = 0 ] && [[ "$out" == *"no shared data under $TMP/no_data"*"skipped"* ]] ||
         { echo "  rc=$rc: $out"; return 1; }
 }
 
@@ -164,6 +173,7 @@ check "an option without its value is refused with one line, exit 2" option_with
 check "read-only commands never set up or install" readonly_never_sets_up
 check "bench list names every benchmark" bench_list_names_every_benchmark
 check "bench hard_cases skips without the shared data" bench_hard_cases_skips_without_data
+check "bench localise_real skips without the shared data" bench_localise_real_skips_without_data
 check "the launch configs of record, replay and map are valid" tool_launch_configs_are_valid
 echo "$passed passed, $failed failed"
 [ "$failed" = 0 ]

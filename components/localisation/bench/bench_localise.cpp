@@ -16,6 +16,7 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "common/cli/cli.hpp"
@@ -26,6 +27,7 @@
 #include "common/core/trajectory_io.hpp"
 #include "localisation/component/localiser_params.hpp"
 #include "localisation/core/localiser.hpp"
+#include "mapping/core/map_store.hpp"
 #include "odometry/core/odometry.hpp"
 #include "odometry/params/odometry_params.hpp"
 #include "registration/core/preprocess.hpp"
@@ -40,12 +42,13 @@ constexpr double kDegToRad = M_PI / 180.0;
 
 struct Args {
     std::string map, dir, reference, reference_transform, preset = "hdl64", mode = "global", out;
-    std::string config;
+    std::string config, trajectory;
     std::size_t every = 1, max_frames = 0, first = 0;
     double perturb_yaw = 0.0, perturb_shift = 0.0;
     unsigned seed = 1;
     double max_translation = 0.5, max_rotation = 2.0;
     double near = 10.0;
+    double revisit = 5.0, exclude_seconds = 60.0;
     bool no_features = false;
 };
 
@@ -77,7 +80,100 @@ void write_line(std::ostream& os, std::size_t frame, double time_s, bool ok,
     os << '\n';
 }
 
+// --mode recall: place recognition on the map's own keyframes, ScanContext++ (the localisation
+// descriptor) beside plain Scan Context (the loop descriptor). Every keyframe with a keyframe of
+// another time (more than --exclude-seconds apart) within --revisit metres is a revisit query;
+// recall@1: the best candidate of the ring-key top-25 (full descriptor distance) is within
+// --revisit metres of it. Opposite-direction revisits count like the others.
+int run_recall(const Args& a) {
+    const mapping::LoadedMap loaded = mapping::load_map(a.map);
+    const mapping::MapData& m = loaded.map;
+    if (!mapping::has_localisation_descriptors(m.localisation_descriptor_config))
+        throw common::IoError(a.map, "has no ScanContext++ descriptors (format 1)");
+    std::unordered_map<std::uint64_t, Eigen::Isometry3d> anchors;
+    for (const mapping::PoseGraphNode& n : m.nodes) anchors[n.id] = n.T_world_anchor;
+    struct Kf {
+        Eigen::Vector3d p;
+        Eigen::Vector3d heading;
+        double stamp;
+        const mapping::StoredKeyframe* k;
+    };
+    std::vector<Kf> kfs;
+    for (const auto& k : m.keyframes) {
+        const auto it = anchors.find(k->node);
+        if (it == anchors.end() || k->localisation_descriptor.empty()) continue;
+        const Eigen::Isometry3d T = it->second * k->data.T_anchor_lidar;
+        kfs.push_back({T.translation(), T.linear().col(0), k->data.stamp, k.get()});
+    }
+    struct Kind {
+        const char* name;
+        bool plus;
+        mapping::ScanContextConfig config;
+        mapping::RingKeyIndex index;
+        std::size_t queries = 0, hits = 0, opposite = 0, opposite_hits = 0;
+    };
+    Kind kinds[2] = {
+        {"Scan Context (max height, cosine)", false, m.descriptor_config,
+         mapping::RingKeyIndex(m.descriptor_config.rings)},
+        {"ScanContext++ (mean/std, 2-Wasserstein)", true, m.localisation_descriptor_config,
+         mapping::RingKeyIndex(m.localisation_descriptor_config.rings)}};
+    for (Kind& kind : kinds) {
+        for (std::size_t j = 0; j < kfs.size(); ++j) {
+            const mapping::ScanContext& d =
+                kind.plus ? kfs[j].k->localisation_descriptor : kfs[j].k->descriptor;
+            kind.index.add(mapping::ring_key(d), std::uint32_t(j));
+        }
+    }
+    for (std::size_t i = 0; i < kfs.size(); ++i) {
+        bool revisit = false, opposite = false;
+        for (const Kf& o : kfs) {
+            if (std::abs(o.stamp - kfs[i].stamp) <= a.exclude_seconds) continue;
+            if ((o.p - kfs[i].p).head<2>().norm() > a.revisit) continue;
+            revisit = true;
+            opposite = opposite || o.heading.dot(kfs[i].heading) < -0.5;
+        }
+        if (!revisit) continue;
+        for (Kind& kind : kinds) {
+            const mapping::ScanContext& q =
+                kind.plus ? kfs[i].k->localisation_descriptor : kfs[i].k->descriptor;
+            double best = 1e300;
+            std::size_t best_j = kfs.size();
+            for (const mapping::RingKeyNeighbour& n :
+                 kind.index.nearest(mapping::ring_key(q), 60)) {
+                if (std::abs(kfs[n.item].stamp - kfs[i].stamp) <= a.exclude_seconds) continue;
+                const mapping::ScanContext& c =
+                    kind.plus ? kfs[n.item].k->localisation_descriptor : kfs[n.item].k->descriptor;
+                const mapping::ScanContextMatch match = mapping::compare(q, c, kind.config);
+                if (match.valid && match.distance < best) {
+                    best = match.distance;
+                    best_j = n.item;
+                }
+            }
+            const bool hit =
+                best_j < kfs.size() && (kfs[best_j].p - kfs[i].p).head<2>().norm() <= a.revisit;
+            ++kind.queries;
+            kind.hits += hit;
+            kind.opposite += opposite;
+            kind.opposite_hits += opposite && hit;
+        }
+    }
+    std::printf(
+        "%s: %zu keyframes; revisit queries: a keyframe of another time (> %.0f s apart) "
+        "within %.1f m\n",
+        a.map.c_str(), kfs.size(), a.exclude_seconds, a.revisit);
+    for (const Kind& kind : kinds) {
+        std::printf(
+            "%-40s recall@1 %zu/%zu (%.1f %%); with an opposite-direction revisit "
+            "%zu/%zu\n",
+            kind.name, kind.hits, kind.queries,
+            kind.queries ? 100.0 * double(kind.hits) / double(kind.queries) : 0.0,
+            kind.opposite_hits, kind.opposite);
+    }
+    return 0;
+}
+
 int run(const Args& a) {
+    if (a.mode == "recall") return run_recall(a);
     const common::SensorPreset preset = common::parse_sensor_preset(a.preset);
     localisation::LocaliserConfig lc = localisation::localiser_preset(preset);
     if (!a.config.empty()) {
@@ -128,6 +224,12 @@ int run(const Args& a) {
         out.open(a.out);
         if (!out) throw common::IoError(a.out, "cannot be written");
         out.precision(9);
+    }
+    std::ofstream traj;
+    if (!a.trajectory.empty()) {
+        traj.open(a.trajectory);
+        if (!traj) throw common::IoError(a.trajectory, "cannot be written");
+        traj.precision(9);
     }
     std::mt19937 rng(a.seed);
     std::uniform_real_distribution<double> uni(-1.0, 1.0);
@@ -219,6 +321,12 @@ int run(const Args& a) {
         }
         times.push_back(time_s);
         if (out) write_line(out, i, time_s, has_pose, pose);
+        if (traj && has_pose) {
+            const Eigen::Quaterniond q(pose.linear());
+            traj << cloud.stamp << ' ' << pose.translation().x() << ' ' << pose.translation().y()
+                 << ' ' << pose.translation().z() << ' ' << q.x() << ' ' << q.y() << ' ' << q.z()
+                 << ' ' << q.w() << '\n';
+        }
         ok += has_pose;
         if (have_ref) {
             ++scored;
@@ -296,7 +404,7 @@ int main(int argc, char** argv) {
     Args a;
     CLI::App app{"Localisation of a scan folder on a saved ltm map (global or track mode)",
                  "ltm_bench_localise"};
-    app.add_option("DIR", a.dir, "the scans (KITTI layout or Scans/*.pcd)")->required();
+    app.add_option("DIR", a.dir, "the scans (KITTI layout or Scans/*.pcd; not in recall mode)");
     app.add_option("--map", a.map, "the saved map directory")->required();
     app.add_option("--reference", a.reference, "KITTI poses of the scans (LiDAR frame)");
     app.add_option("--reference-transform", a.reference_transform,
@@ -304,9 +412,16 @@ int main(int argc, char** argv) {
     app.add_option("--preset", a.preset, "sensor preset: hdl64, vlp32, vlp16, narrow or os1-64");
     app.add_option("--config", a.config,
                    "localisation keys overriding the preset (YAML, as the component's params)");
-    app.add_option("--mode", a.mode, "global: each scan alone; track: a sequence")
-        ->check(common::cli::one_of({"global", "track"}));
+    app.add_option("--mode", a.mode,
+                   "global: each scan alone; track: a sequence; recall: place recognition on the "
+                   "map's keyframes (DIR unused)")
+        ->check(common::cli::one_of({"global", "track", "recall"}));
+    app.add_option("--revisit", a.revisit, "recall mode: a revisit is within this [m]");
+    app.add_option("--exclude-seconds", a.exclude_seconds,
+                   "recall mode: keyframes closer in time are not candidates [s]");
     app.add_option("--out", a.out, "one line a scan: frame time_s ok [12 pose numbers]");
+    app.add_option("--trajectory", a.trajectory,
+                   "the scans' poses in the map as TUM lines (those with a pose): ltm_eval traj");
     app.add_option("--every", a.every, "global mode: every Nth scan")
         ->check(common::cli::at_least(1));
     app.add_option("--first", a.first, "first scan");
@@ -322,6 +437,10 @@ int main(int argc, char** argv) {
                    "also score the scans whose reference is within this of a map keyframe [m]");
     app.add_flag("--no-features", a.no_features, "initial poses from the descriptors only");
     if (const int code = common::cli::parse(app, argc, argv); code >= 0) return code;
+    if (a.dir.empty() && a.mode != "recall") {
+        return common::cli::usage_error(
+            app, common::cli::UsageError("DIR is required (the scans to localise)"));
+    }
     try {
         return run(a);
     } catch (const std::exception& e) {
