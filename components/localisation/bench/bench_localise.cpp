@@ -49,7 +49,7 @@ struct Args {
     double max_translation = 0.5, max_rotation = 2.0;
     double near = 10.0;
     double revisit = 5.0, exclude_seconds = 60.0;
-    bool no_features = false;
+    bool no_features = false, verify_reference = false;
 };
 
 double percentile(std::vector<double> v, double q) {
@@ -283,6 +283,11 @@ int run(const Args& a) {
             has_pose = g.localised;
             pose = g.T_map_lidar;
             if (std::getenv("LTM_BENCH_VERBOSE")) std::printf("  %zu: %s\n", i, g.reason.c_str());
+            if (a.verify_reference && have_ref) {
+                const localisation::GlobalLocalisation v = global.verify(scan.map_points, truth);
+                std::printf("  %zu at the reference: %s (inliers %zu of %zu)\n", i,
+                            v.reason.c_str(), v.inliers, v.points);
+            }
         } else {
             const auto t0 = Clock::now();
             const odometry::FrameResult r = odom.register_frame(cloud);
@@ -435,6 +440,9 @@ int main(int argc, char** argv) {
     app.add_option("--max-rotation", a.max_rotation, "a right answer: within [deg]");
     app.add_option("--near", a.near,
                    "also score the scans whose reference is within this of a map keyframe [m]");
+    app.add_flag("--verify-reference", a.verify_reference,
+                 "global mode: also verify each scan at its reference pose (is the map consistent "
+                 "with the reference there?)");
     app.add_flag("--no-features", a.no_features, "initial poses from the descriptors only");
     if (const int code = common::cli::parse(app, argc, argv); code >= 0) return code;
     if (a.dir.empty() && a.mode != "recall") {

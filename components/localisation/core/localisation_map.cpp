@@ -150,6 +150,12 @@ void LocalisationMap::merge_voxels(const mapping::MapData& map,
     voxels_->finished = true;
     const float inv = 1.0f / voxel_size;
     std::unordered_map<std::uint64_t, std::uint32_t> slot;  // packed cell -> voxel index
+    // Where local maps overlap, a cell takes the voxel of the local map anchored nearest to it
+    // (built while the sensor was closest): neighbouring cells then come from the same local map,
+    // whose surfaces agree with each other. Taking the voxel with the most points instead made a
+    // patchwork of local maps a few centimetres apart (a loop-closed map fitted its own scans
+    // with 85 % of the structure within 0.3 m, against 99 % for a map from the true poses).
+    std::vector<float> anchor_distance;  // per merged voxel
     std::vector<std::uint32_t> sessions;
     Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = -lo;
     for (const mapping::StoredLocalMap& lm : map.local_maps) {
@@ -162,6 +168,7 @@ void LocalisationMap::merge_voxels(const mapping::MapData& map,
         const Eigen::Isometry3d T = a->second * lm.data->T_anchor_grid;
         const Eigen::Matrix3f R = T.linear().cast<float>();
         const Eigen::Vector3f t = T.translation().cast<float>();
+        const Eigen::Vector3f anchor = a->second.translation().cast<float>();
         for (const common::VoxelData& v : lm.data->voxels) {
             if (!usable(v, config)) continue;
             common::VoxelData w = v;
@@ -174,13 +181,16 @@ void LocalisationMap::merge_voxels(const mapping::MapData& map,
             const std::uint64_t key = (std::uint64_t(w.index.x() + (1 << 20)) << 42) |
                                       (std::uint64_t(w.index.y() + (1 << 20)) << 21) |
                                       std::uint64_t(w.index.z() + (1 << 20));
+            const float d = (w.centre - anchor).head<2>().norm();
             const auto [it, fresh] = slot.emplace(key, std::uint32_t(voxels_->voxels.size()));
             if (fresh) {
                 voxels_->voxels.push_back(std::move(w));
+                anchor_distance.push_back(d);
                 lo = lo.cwiseMin(voxels_->voxels.back().centre.cast<double>());
                 hi = hi.cwiseMax(voxels_->voxels.back().centre.cast<double>());
-            } else if (w.point_count > voxels_->voxels[it->second].point_count) {
+            } else if (d < anchor_distance[it->second]) {
                 voxels_->voxels[it->second] = std::move(w);
+                anchor_distance[it->second] = d;
             }
         }
     }
