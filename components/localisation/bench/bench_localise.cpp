@@ -251,7 +251,7 @@ int run(const Args& a) {
     };
     std::vector<Event> events;
     std::size_t relocalisations = 0, lost_scans = 0, off_map = 0;
-    double process_s = 0.0;
+    double process_s = 0.0, localise_s = 0.0;  // track mode: all, and the localiser alone
     common::Progress progress(a.mode, frames.size(), "scans");
     for (std::size_t n = 0; n < frames.size(); ++n) {
         const std::size_t i = frames[n];
@@ -294,10 +294,12 @@ int run(const Args& a) {
             pre.run(cloud, nullptr, &scan);
             std::optional<localisation::OdometryInput> oi;
             if (r.pose_valid()) oi = localisation::OdometryInput{r.T_odom_lidar, r.segment};
+            const auto t1 = Clock::now();
             const localisation::LocalisationUpdate u =
                 localiser.process(cloud.stamp, scan.map_points, oi);
             time_s = std::chrono::duration<double>(Clock::now() - t0).count();
             process_s += time_s;
+            localise_s += std::chrono::duration<double>(Clock::now() - t1).count();
             has_pose = u.pose_valid;
             pose = u.T_map_lidar;
             relocalisations += u.state == localisation::LocalisationState::kRelocalised;
@@ -382,6 +384,8 @@ int run(const Args& a) {
             "%zu, lost scans %zu, off-map scans %zu\n",
             process_s > 0 ? double(frames.size()) / process_s : 0.0, relocalisations, lost_scans,
             off_map);
+        std::printf("track: the localiser alone (tracking and its global queries) %.1f scans/s\n",
+                    localise_s > 0 ? double(frames.size()) / localise_s : 0.0);
         if (!track_err.empty()) {
             double sq = 0.0;
             for (double e : track_err) sq += e * e;

@@ -301,6 +301,36 @@ GlobalLocalisation GlobalLocaliser::localise(const std::vector<Eigen::Vector3f>&
     }
     const registration::RegistrationResult r = fine_.align(finite, target.fine, out.T_map_lidar);
     if (r.ok() && r.T_map_lidar.matrix().allFinite()) out.covariance = r.covariance;
+    // Slide test: along the direction the scan pins down worst (a corridor, a narrow view along a
+    // row of similar things), the answer is moved by slide_distance either way and verified
+    // again; another verified pose there that fits about as well is a rival the places did not
+    // offer (hku-avia: three answers 1.5-3 m along the path passed every other check).
+    if (config_.slide_distance > 0.0 && r.ok()) {
+        const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(
+            r.hessian.topLeftCorner<3, 3>().cast<double>());
+        const Eigen::Vector3d weakest = eig.eigenvectors().col(0);
+        for (const double sign : {1.0, -1.0}) {
+            Eigen::Isometry3d moved = best.T_anchor_lidar;
+            moved.translation() += sign * config_.slide_distance * weakest;
+            const mapping::LoopVerification v =
+                verifier_.verify(finite, target, mapping::GuessList{moved});
+            ++out.verified;
+            if (!v.accepted) continue;
+            const auto [dt, dr] = pose_distance(best.T_anchor_lidar, v.T_anchor_lidar);
+            if (dt < config_.distinct_translation && dr < config_.distinct_rotation) continue;
+            out.second_inliers_ratio =
+                std::max(out.second_inliers_ratio, double(v.inliers) / double(best.inliers));
+        }
+        if (out.second_inliers_ratio >= config_.ambiguity_ratio) {
+            std::ostringstream why;
+            why.precision(3);
+            why << "not localised: ambiguous along the scan's weakest direction (a pose "
+                << config_.slide_distance << " m away fits with "
+                << out.second_inliers_ratio * 100.0 << " % of the answer's inliers)";
+            out.reason = why.str();
+            return finish(out);
+        }
+    }
     const double structure =
         best.structure_points ? double(best.structure_inliers) / double(best.structure_points) : 0;
     out.confidence = std::clamp(best.inlier_fraction, 0.0, 1.0) * std::clamp(structure, 0.0, 1.0) *

@@ -49,7 +49,10 @@ struct GlobalLocaliserConfig {
     // its inliers: the site repeats itself, no answer [m], [deg].
     double distinct_translation = 1.0;
     double distinct_rotation = 5.0;
-    double ambiguity_ratio = 0.85;
+    double ambiguity_ratio = 0.95;
+    // The answer moved this far along its weakest direction either way and verified again: a
+    // distinct pose there with ambiguity_ratio of its inliers makes it ambiguous (0: no test) [m].
+    double slide_distance = 2.0;
     // With an initial-pose hint: places within this of the hint only, and the hint itself
     // (with hint_yaw_offsets) among the initial poses [m].
     double hint_radius = 10.0;
@@ -94,6 +97,7 @@ void visit_fields(GlobalLocaliserConfig& c, const std::string& prefix, Visitor&&
     v(prefix + "distinct_translation", c.distinct_translation, positive);
     v(prefix + "distinct_rotation", c.distinct_rotation, positive);
     v(prefix + "ambiguity_ratio", c.ambiguity_ratio, unit);
+    v(prefix + "slide_distance", c.slide_distance, non_negative);
     v(prefix + "hint_radius", c.hint_radius, positive);
     v(prefix + "hint_yaw_offsets", c.hint_yaw_offsets, not_empty);
 }
