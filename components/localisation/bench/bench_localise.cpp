@@ -209,6 +209,10 @@ int run(const Args& a) {
             const Eigen::Isometry3d T = read_transform(a.reference_transform);
             for (Eigen::Isometry3d& p : reference) p = T * p;
         }
+        // The reference in the map's frame beside the attempts: ltm_eval reloc --attempts OUT
+        // --reference OUT.reference.txt scores them (perturbed scans: their moved truth).
+        if (!a.out.empty() && a.perturb_yaw <= 0.0 && a.perturb_shift <= 0.0)
+            common::write_kitti_poses(a.out + ".reference.txt", reference);
     }
     std::size_t last = folder.size();
     if (a.max_frames) last = std::min(last, a.first + a.max_frames * a.every);
@@ -428,7 +432,9 @@ int main(int argc, char** argv) {
     app.add_option("--revisit", a.revisit, "recall mode: a revisit is within this [m]");
     app.add_option("--exclude-seconds", a.exclude_seconds,
                    "recall mode: keyframes closer in time are not candidates [s]");
-    app.add_option("--out", a.out, "one line a scan: frame time_s ok [12 pose numbers]");
+    app.add_option("--out", a.out,
+                   "one line a scan: frame time_s ok [12 pose numbers] (ltm_eval reloc reads it; "
+                   "with --reference, OUT.reference.txt holds the reference in the map's frame)");
     app.add_option("--trajectory", a.trajectory,
                    "the scans' poses in the map as TUM lines (those with a pose): ltm_eval traj");
     app.add_option("--every", a.every, "global mode: every Nth scan")
