@@ -82,22 +82,7 @@ void Localiser::set_initial_pose(const PoseHint& hint) {
 }
 
 void Localiser::thin(const std::vector<Eigen::Vector3f>& points) {
-    if (config_.downsample > 0.0) {
-        sampler_.run(points, config_.downsample, &sampled_);
-    } else {
-        sampled_.clear();
-        for (const Eigen::Vector3f& p : points) {
-            if (p.allFinite()) sampled_.push_back(p);
-        }
-    }
-    if (sampled_.size() > std::size_t(config_.max_points)) {
-        const double step = double(sampled_.size()) / config_.max_points;
-        std::vector<Eigen::Vector3f> thinned;
-        thinned.reserve(std::size_t(config_.max_points));
-        for (int i = 0; i < config_.max_points; ++i)
-            thinned.push_back(sampled_[std::size_t(i * step)]);
-        sampled_.swap(thinned);
-    }
+    sampler_.sample(points, config_.downsample, std::size_t(config_.max_points), &sampled_);
 }
 
 bool Localiser::run_global(double stamp, const std::vector<Eigen::Vector3f>& points,

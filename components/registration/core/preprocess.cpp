@@ -17,6 +17,22 @@ bool cell_key(const Eigen::Vector3f& p, float inv_cell, VoxelKey* key) {
 
 }  // namespace
 
+void VoxelDownsampler::sample(const std::vector<Eigen::Vector3f>& in, double cell,
+                              std::size_t max_points, std::vector<Eigen::Vector3f>* out) {
+    if (cell > 0.0) {
+        run(in, cell, out);
+    } else {
+        out->clear();
+        for (const Eigen::Vector3f& p : in) {
+            if (p.allFinite()) out->push_back(p);
+        }
+    }
+    if (out->size() <= max_points) return;
+    const double step = double(out->size()) / double(max_points);
+    for (std::size_t i = 0; i < max_points; ++i) (*out)[i] = (*out)[std::size_t(double(i) * step)];
+    out->resize(max_points);
+}
+
 void VoxelDownsampler::run(const std::vector<Eigen::Vector3f>& in, double cell,
                            std::vector<Eigen::Vector3f>* out) {
     out->clear();

@@ -32,6 +32,10 @@ class VoxelDownsampler {
   public:
     void run(const std::vector<Eigen::Vector3f>& in, double cell,
              std::vector<Eigen::Vector3f>* out);
+    // run() (cell > 0) or only the finite points (cell 0), then at most max_points of them taken
+    // evenly through the result (the points a verification or a tracking step registers).
+    void sample(const std::vector<Eigen::Vector3f>& in, double cell, std::size_t max_points,
+                std::vector<Eigen::Vector3f>* out);
 
   private:
     VoxelHash cells_;
