@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "common/core/config_check.hpp"
+#include "localisation/core/local_feature_matching.hpp"
 #include "localisation/core/local_features.hpp"
 #include "localisation/core/localisation_map.hpp"
 #include "mapping/core/loop_verifier.hpp"

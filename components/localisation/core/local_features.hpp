@@ -1,10 +1,9 @@
 #pragma once
 // Local ScanContext++ features for global localisation (METHOD.md section 6): ground points are
 // sampled evenly in a cloud, a small ScanContext++ (mean and standard deviation of the heights
-// above the sample's ground, per polar bin) is built around each sample, and two clouds' samples
-// are matched by descriptor distance (2-Wasserstein of two 1-D Gaussians a bin, minimised over
-// sector shifts: the shift is the yaw between the clouds). The matched positions feed RANSAC over
-// Umeyama (registration/core/ransac_alignment.hpp) for the pose.
+// above the sample's ground, per polar bin) is built around each sample. Two clouds' samples are
+// matched by local_feature_matching.hpp; the matched positions feed RANSAC over Umeyama
+// (registration/core/ransac_alignment.hpp) for the pose.
 //
 // Both sides are first voxel-down-sampled to the same grid (centroids), so that a dense scan, a
 // sparse one and map voxel centres give comparable heights. Ground: the lowest voxel of each cell
@@ -103,59 +102,5 @@ LocalFeatures make_local_features(const std::vector<Eigen::Vector3f>& points,
 LocalFeatures make_local_features(const std::vector<Eigen::Vector3f>& points,
                                   const LocalFeatureConfig& config, const Eigen::Vector3d& centre,
                                   double sample_radius);
-
-struct LocalFeatureMatchConfig {
-    // Distance of two descriptors at a shift: the mean over the bins occupied in either of
-    //   both occupied:        min((mean_q - mean_t)^2 + (std_q - std_t)^2, empty_bin_cost),
-    //   query only occupied:  empty_bin_cost (the query sees something the target does not),
-    //   target only occupied: unseen_bin_cost (the query may not have seen it: a partial view).
-    double empty_bin_cost = 1.0;   // [m^2]
-    double unseen_bin_cost = 0.5;  // [m^2]
-    // Pre-filter: per query, only the targets with the nearest ring keys (yaw-invariant: per
-    // ring, the mean height and the mean spread of its occupied bins) are compared in full.
-    int key_candidates = 40;
-    int per_query = 3;                                              // best targets kept a query
-    double max_distance = std::numeric_limits<double>::infinity();  // farther: dropped [m^2]
-    // The 2nd..per_query-th best of a query are kept only within ratio * the best's distance.
-    double ratio = std::numeric_limits<double>::infinity();
-    bool mutual = false;  // keep only matches whose target's best query is this query
-};
-
-template <class Visitor>
-void visit_fields(LocalFeatureMatchConfig& c, const std::string& prefix, Visitor&& v) {
-    using namespace common::rules;
-    v(prefix + "empty_bin_cost", c.empty_bin_cost, positive);
-    v(prefix + "unseen_bin_cost", c.unseen_bin_cost, non_negative);
-    v(prefix + "key_candidates", c.key_candidates, at_least(1));
-    v(prefix + "per_query", c.per_query, at_least(1));
-    v(prefix + "max_distance", c.max_distance, positive.or_infinite());
-    v(prefix + "ratio", c.ratio, at_least(1).or_infinite());
-    v(prefix + "mutual", c.mutual, unchecked);
-}
-
-std::optional<common::ConfigProblem> validate(const LocalFeatureMatchConfig& config);
-
-struct FeatureMatch {
-    std::size_t query = 0, target = 0;  // sample indices
-    double distance = 0.0;              // descriptor distance at the best shift [m^2]
-    // Rotation of the query frame relative to the target's about z (R_target_query = Rz(yaw)),
-    // from the best sector shift refined by a parabola through its neighbours [rad], (-pi, pi].
-    double yaw = 0.0;
-    // The target sample's position moved toward the query sample's true place: per lattice axis,
-    // a parabola through the distances of the query to the target sample and to its two lattice
-    // neighbours (at the best shift), when both neighbours are samples too (else unmoved); at
-    // most half a spacing an axis. This undoes most of the lattice quantisation.
-    Eigen::Vector3d target_position = Eigen::Vector3d::Zero();
-};
-
-// For every query sample its best `per_query` target samples (min over sector shifts), filtered
-// as the config says, all sorted by distance. Descriptors of another shape than the first
-// query's are not matched. Throws common::ConfigError on an invalid config.
-std::vector<FeatureMatch> match_local_features(const LocalFeatures& query,
-                                               const LocalFeatures& target,
-                                               const LocalFeatureMatchConfig& config);
-
-// The 2 * rings ring key used by the pre-filter (zeros for an empty descriptor).
-Eigen::VectorXf local_ring_key(const mapping::ScanContext& descriptor);
 
 }  // namespace ltm::localisation

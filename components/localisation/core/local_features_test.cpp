@@ -8,6 +8,7 @@
 
 #include "common/core/kitti_io.hpp"
 #include "common/core/trajectory_io.hpp"
+#include "localisation/core/local_feature_matching.hpp"
 #include "registration/core/ransac_alignment.hpp"
 #include "registration/core/se3.hpp"
 #include "registration/core/test_scenes.hpp"
