@@ -1,5 +1,9 @@
 #include "mapping/core/map_codec.hpp"
 
+// One file on purpose (525 lines): every section of every map file is described once by a
+// template that both encodes and decodes it, and the sections share those field helpers; split
+// apart, a layout change would have to be made in two places.
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>

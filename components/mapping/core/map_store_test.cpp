@@ -1,3 +1,5 @@
+// The map directory round trip, incremental saves, damage and versions (549 lines: one fixture
+// map shared by every case; the format-1 and format-2 fixture files have their own tests).
 #include "mapping/core/map_store.hpp"
 
 #include <gtest/gtest.h>
