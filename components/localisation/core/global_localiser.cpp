@@ -5,6 +5,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "registration/core/se3.hpp"
+
 namespace ltm::localisation {
 
 namespace {
@@ -20,7 +22,31 @@ Eigen::Isometry3d yawed(const Eigen::Isometry3d& T, double yaw) {
 // Translation [m] and rotation [deg] between two poses.
 std::pair<double, double> pose_distance(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
     const Eigen::Isometry3d d = a.inverse() * b;
-    return {d.translation().norm(), Eigen::AngleAxisd(d.linear()).angle() / kDegToRad};
+    return {d.translation().norm(), registration::rotation_angle(d) / kDegToRad};
+}
+
+// Of the points on structure within reach of a surface, the share that are inliers.
+double structure_ratio(const mapping::LoopVerification& v) {
+    return v.structure_points ? double(v.structure_inliers) / double(v.structure_points) : 0.0;
+}
+
+// The answer a verification gives: its pose (grid frame = map frame), figures and confidence
+// (inlier fraction x structure inlier ratio; a rival lowers it further). A refused one claims
+// no pose and no confidence.
+GlobalLocalisation from_verification(const mapping::LoopVerification& v) {
+    GlobalLocalisation out;
+    out.localised = v.accepted;
+    out.points = v.points;
+    out.inliers = v.inliers;
+    out.inlier_fraction = v.inlier_fraction;
+    out.inlier_rms = v.inlier_rms;
+    out.degenerate_directions = v.degenerate_directions;
+    const double structure = structure_ratio(v);
+    if (v.accepted) {
+        out.T_map_lidar = v.T_anchor_lidar;
+        out.confidence = std::clamp(v.inlier_fraction, 0.0, 1.0) * std::clamp(structure, 0.0, 1.0);
+    }
+    return out;
 }
 
 registration::RegistrationConfig probe_config(registration::RegistrationConfig c, int iterations) {
@@ -140,23 +166,11 @@ void GlobalLocaliser::feature_guesses(
 GlobalLocalisation GlobalLocaliser::verify(const std::vector<Eigen::Vector3f>& points,
                                            const Eigen::Isometry3d& guess) {
     const auto start = std::chrono::steady_clock::now();
-    GlobalLocalisation out;
     const mapping::LoopVerification v =
         verifier_.verify(points, map_->target(), mapping::GuessList{guess});
+    GlobalLocalisation out = from_verification(v);
     out.verified = 1;
-    out.points = v.points;
-    out.inliers = v.inliers;
-    out.inlier_fraction = v.inlier_fraction;
-    out.inlier_rms = v.inlier_rms;
-    out.degenerate_directions = v.degenerate_directions;
-    out.localised = v.accepted;
     out.reason = v.accepted ? "verified" : "not verified: " + v.reason;
-    if (v.accepted) {
-        out.T_map_lidar = v.T_anchor_lidar;
-        const double structure =
-            v.structure_points ? double(v.structure_inliers) / double(v.structure_points) : 0.0;
-        out.confidence = std::clamp(v.inlier_fraction, 0.0, 1.0) * std::clamp(structure, 0.0, 1.0);
-    }
     out.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return out;
 }
@@ -280,12 +294,16 @@ GlobalLocalisation GlobalLocaliser::localise(const std::vector<Eigen::Vector3f>&
                                             double(accepted[i].v.inliers) / double(best.inliers));
     }
     const Guess& from = guesses[std::size_t(accepted.front().guess)];
-    out.T_map_lidar = best.T_anchor_lidar;
-    out.inliers = best.inliers;
-    out.points = best.points;
-    out.inlier_fraction = best.inlier_fraction;
-    out.inlier_rms = best.inlier_rms;
-    out.degenerate_directions = best.degenerate_directions;
+    {
+        const GlobalLocalisation verified = from_verification(best);
+        out.T_map_lidar = verified.T_map_lidar;
+        out.points = verified.points;
+        out.inliers = verified.inliers;
+        out.inlier_fraction = verified.inlier_fraction;
+        out.inlier_rms = verified.inlier_rms;
+        out.degenerate_directions = verified.degenerate_directions;
+        out.confidence = verified.confidence;
+    }
     out.from_features = from.from_features;
     if (from.place >= 0) {
         out.keyframe = places[std::size_t(from.place)].keyframe;
@@ -331,10 +349,7 @@ GlobalLocalisation GlobalLocaliser::localise(const std::vector<Eigen::Vector3f>&
             return finish(out);
         }
     }
-    const double structure =
-        best.structure_points ? double(best.structure_inliers) / double(best.structure_points) : 0;
-    out.confidence = std::clamp(best.inlier_fraction, 0.0, 1.0) * std::clamp(structure, 0.0, 1.0) *
-                     (1.0 - out.second_inliers_ratio);
+    out.confidence *= 1.0 - out.second_inliers_ratio;
     std::ostringstream how;
     if (from.place >= 0) {
         how << "place " << from.place + 1 << " of " << places.size() << " (keyframe "
@@ -344,8 +359,9 @@ GlobalLocalisation GlobalLocaliser::localise(const std::vector<Eigen::Vector3f>&
         how << "from the initial-pose hint";
     }
     how.precision(3);
-    how << "; inliers " << best.inliers << " of " << best.points << ", structure " << structure
-        << ", rival " << out.second_inliers_ratio << ", verified " << out.verified;
+    how << "; inliers " << best.inliers << " of " << best.points << ", structure "
+        << structure_ratio(best) << ", rival " << out.second_inliers_ratio << ", verified "
+        << out.verified;
     out.reason = how.str();
     out.localised = true;
     return finish(out);

@@ -6,6 +6,7 @@
 
 #include "mapping/core/mapper_config.hpp"
 #include "registration/core/imls.hpp"
+#include "registration/core/se3.hpp"
 
 namespace ltm::localisation {
 
@@ -118,7 +119,7 @@ bool Localiser::track(const Eigen::Isometry3d& predicted, LocalisationUpdate* u)
     } else {
         const Eigen::Isometry3d d = predicted.inverse() * r.T_map_lidar;
         const double dt = d.translation().norm();
-        const double dr = Eigen::AngleAxisd(d.linear()).angle() / kDegToRad;
+        const double dr = registration::rotation_angle(d) / kDegToRad;
         u->inlier_fraction = r.inlier_fraction();
         if (r.inlier_fraction() < config_.min_inlier_fraction) {
             why << "inlier fraction " << r.inlier_fraction() << " below "
