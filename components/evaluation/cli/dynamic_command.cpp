@@ -1,5 +1,6 @@
-// ltm_eval dynamic: SA / DA / AA of a cleaned map against per-point labels.
+// ltm_eval dynamic: SA / DA / AA of a cleaned map against per-point labels, and DA per object.
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -74,7 +75,8 @@ LabelledMap truth_from_scans(const DynamicOptions& o, Report& report) {
         if (frame >= poses.size()) throw common::IoError(scans[i], "no pose for this scan");
         const common::PointCloud cloud = common::read_kitti_bin(scans[i]);
         const std::vector<std::uint32_t> labels = read_labels(label_path);
-        if (!append_labelled_scan(cloud, labels, poses[frame], scheme, changed, max_range, map))
+        if (!append_labelled_scan(cloud, labels, poses[frame], scheme, changed, max_range,
+                                  static_cast<std::uint32_t>(frame), map))
             throw common::IoError(label_path, std::to_string(labels.size()) + " labels for " +
                                                   std::to_string(cloud.size()) + " points");
         ++used;
@@ -107,6 +109,76 @@ void write_cloud(const std::string& path, const LabelledMap& map, bool static_on
     common::write_ply(path, ply);
 }
 
+std::string format(const char* fmt, double v) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, fmt, v);
+    return buf;
+}
+
+std::string pad_left(std::string s, std::size_t width) {
+    return s.size() < width ? std::string(width - s.size(), ' ') + s : s;
+}
+
+// The per-object view: totals over the objects that travel at least min_travel, then a table.
+void report_objects(const DynamicRemovalResult& r, double min_travel, Report& report) {
+    report.section("moving_objects");
+    report.add("min_travel", min_travel, "m");
+    report.add_count("all_objects", r.objects.size());
+    report.add_count("objects", r.moving_objects);
+    report.add_count("points", r.moving_points);
+    report.add_count("removed", r.moving_removed);
+    report.add("DA", r.moving_da_pct, "%");
+    report.note("DA of moving objects >= " + format("%g", min_travel) + " m: " +
+                format("%.2f", r.moving_da_pct) + " % over " + std::to_string(r.moving_objects) +
+                " objects, " + std::to_string(r.moving_points) + " points");
+    if (r.objects.empty()) return;
+    report.note("    id  class      frames  travel [m]    points  removed [%]");
+    bool unnamed = false;
+    for (const DynamicObject& d : r.objects) {
+        unnamed = unnamed || d.instance == 0;
+        const std::string frames = std::to_string(d.first_frame) + "-" +
+                                   std::to_string(d.last_frame) + " (" + std::to_string(d.frames) +
+                                   ")";
+        report.note(
+            pad_left(std::to_string(d.instance), 6) + pad_left(std::to_string(d.label_class), 7) +
+            pad_left(frames, 12) + pad_left(format("%.2f", d.travel), 12) +
+            pad_left(std::to_string(d.points), 10) + pad_left(format("%.1f", d.removed_pct), 13));
+    }
+    if (unnamed) report.note("id 0: the points of that class that have no instance id");
+}
+
+// The per-object table as a JSON array.
+std::string objects_json(const std::vector<DynamicObject>& objects) {
+    std::string out = "[";
+    for (std::size_t i = 0; i < objects.size(); ++i) {
+        const DynamicObject& d = objects[i];
+        out += std::string(i > 0 ? "," : "") + "\n    {\"id\": " + std::to_string(d.instance) +
+               ", \"class\": " + std::to_string(d.label_class) +
+               ", \"first_frame\": " + std::to_string(d.first_frame) +
+               ", \"last_frame\": " + std::to_string(d.last_frame) +
+               ", \"frames\": " + std::to_string(d.frames) +
+               ", \"travel_m\": " + format("%.6g", d.travel) +
+               ", \"points\": " + std::to_string(d.points) +
+               ", \"removed\": " + std::to_string(d.removed) +
+               ", \"removed_pct\": " + format("%.6g", d.removed_pct) + "}";
+    }
+    return out + (objects.empty() ? "]" : "\n  ]");
+}
+
+// metrics.txt as the report prints it; metrics.json with the per-object array added last.
+void write_report(const std::string& dir, const Report& report,
+                  const std::vector<DynamicObject>& objects, bool with_objects) {
+    std::string json = report.json();
+    if (with_objects) {
+        // Report::json() ends with "}\n": the array goes before that closing brace.
+        const std::size_t close = json.rfind('}');
+        const std::size_t last = json.find_last_not_of(" \n", close - 1);
+        json.insert(last + 1, ",\n  \"dynamic_objects\": " + objects_json(objects));
+    }
+    write_text_file((std::filesystem::path(dir) / "metrics.txt").string(), report.text());
+    write_text_file((std::filesystem::path(dir) / "metrics.json").string(), json);
+}
+
 int run_dynamic(const DynamicOptions& o) {
     if (o.scans.empty() == o.truth.empty())
         throw UsageError("give either --scans DIR or --truth FILE");
@@ -137,8 +209,13 @@ int run_dynamic(const DynamicOptions& o) {
     report.add("AA", r.aa_pct, "%");
     report.add("HA", r.ha_pct, "%");
     if (r.dynamic_points == 0) report.note("no dynamic point in the truth: DA, AA, HA are 0");
+    const bool per_object = !truth.labels.empty();
+    if (per_object)
+        report_objects(r, config.min_travel, report);
+    else
+        report.note("no per-object view: it needs --scans (per-point labels)");
     std::cout << report.text();
-    if (!o.out.empty()) report.write(o.out);
+    if (!o.out.empty()) write_report(o.out, report, r.objects, per_object);
     return 0;
 }
 
@@ -173,6 +250,10 @@ Run add_dynamic(CLI::App& parent) {
     app->add_option("--match-distance", o->config.match_distance,
                     "kept if an output point is this near [m]")
         ->check(common::cli::positive());
+    app->add_option("--min-travel", o->config.min_travel,
+                    "DA is also reported over the objects (label instance ids) whose centroid "
+                    "travels at least this far between their first and last scan [m]")
+        ->check(common::cli::at_least(0.0));
     app->add_option("--write-truth", o->write_truth,
                     "write the labelled truth map (.ply, intensity 1 = dynamic)");
     app->add_option("--write-static", o->write_static,

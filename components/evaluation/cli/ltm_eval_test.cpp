@@ -102,6 +102,9 @@ TEST(LtmEvalCli, BadInputGivesOneLineAndAnExitCode) {
     const CliRun neither = run("dynamic --map m.ply");
     EXPECT_EQ(neither.code, 2);
     EXPECT_EQ(neither.output, "ltm_eval dynamic: give either --scans DIR or --truth FILE\n");
+    const CliRun travel = run("dynamic --scans d --min-travel -1");
+    EXPECT_EQ(travel.code, 2);
+    EXPECT_EQ(travel.output, "ltm_eval dynamic: --min-travel: must be at least 0, not -1\n");
     const CliRun missing = run("traj --estimate /nonexistent/a.txt --reference /nonexistent/b.txt");
     EXPECT_EQ(missing.code, 1);
     EXPECT_NE(missing.output.find("/nonexistent/a.txt: cannot open"), std::string::npos);
@@ -124,7 +127,9 @@ TEST(LtmEvalCli, HelpListsTheCommandsAndTheirOptions) {
                           "--calib", "--frames", "--delta", "--no-align", "--loops",
                           "--revisit-radius", "--min-gap", "--plane", "--title", "--out"})
         EXPECT_NE(traj.output.find(o), std::string::npos) << o;
-    EXPECT_NE(run("dynamic --help").output.find("--changed-is-dynamic"), std::string::npos);
+    const CliRun dynamic = run("dynamic --help");
+    for (const char* o : {"--changed-is-dynamic", "--min-travel", "--write-static"})
+        EXPECT_NE(dynamic.output.find(o), std::string::npos) << o;
     EXPECT_NE(run("reloc -h").output.find("--max-rotation"), std::string::npos);
 }
 
@@ -166,6 +171,66 @@ TEST(LtmEvalCli, DynamicOnATinyLabelledRun) {
     const std::string json = read(d / "out" / "metrics.json");
     EXPECT_NE(json.find("\"SA_pct\": 66.6667"), std::string::npos) << json;
     EXPECT_NE(json.find("\"DA_pct\": 0"), std::string::npos) << json;
+}
+
+TEST(LtmEvalCli, DynamicPerObject) {
+    // Two scans 4 m apart along y. Actor 3 (two points) moves 2 m along x, actor 4 (one point)
+    // 0.1 m; the map keeps the static points and actor 4 and none of actor 3.
+    const fs::path d = fresh_dir("dynamic_objects");
+    fs::create_directories(d / "velodyne");
+    fs::create_directories(d / "labels");
+    const std::uint32_t ground = common::make_label(common::kSimStatic, 0);
+    const std::uint32_t actor3 = common::make_label(common::kSimMovingActor, 3);
+    const std::uint32_t actor4 = common::make_label(common::kSimMovingActor, 4);
+    common::PoseList poses;
+    common::PlyCloud map;
+    for (int k = 0; k < 2; ++k) {
+        Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+        T.translation().y() = 4.0 * k;
+        poses.push_back(T);
+        const float x3 = 10.0f + 2.0f * static_cast<float>(k);
+        const std::vector<Eigen::Vector3f> world = {
+            {0, 0, -2}, {x3, 1, 0}, {x3, -1, 0}, {20.0f + 0.1f * static_cast<float>(k), 0, 0}};
+        common::PointCloud scan;
+        for (const Eigen::Vector3f& p : world) scan.points.push_back(T.inverse().cast<float>() * p);
+        const std::string stem = "00000" + std::to_string(k);
+        common::write_kitti_bin((d / "velodyne" / (stem + ".bin")).string(), scan);
+        write_labels((d / "labels" / (stem + ".label")).string(), {ground, actor3, actor3, actor4});
+        map.points.push_back(world[0]);
+        map.points.push_back(world[3]);
+    }
+    common::write_kitti_poses((d / "poses.txt").string(), poses);
+    common::write_ply((d / "map.ply").string(), map);
+    const CliRun r = run("dynamic --scans " + d.string() + " --map " + (d / "map.ply").string() +
+                         " --out " + (d / "out").string());
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("DA of moving objects >= 1 m: 100.00 % over 1 objects, 4 points"),
+              std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("\n       3      2     0-1 (2)        2.00         4        100.0\n"),
+              std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("\n       4      2     0-1 (2)        0.10         2          0.0\n"),
+              std::string::npos)
+        << r.output;
+    const std::string json = read(d / "out" / "metrics.json");
+    EXPECT_NE(json.find("\"DA_pct\": 66.6667"), std::string::npos) << json;  // 4 of 6 points
+    EXPECT_NE(
+        json.find("\"moving_objects\": {\n    \"min_travel_m\": 1,\n    \"all_objects\": 2,"
+                  "\n    \"objects\": 1,\n    \"points\": 4,\n    \"removed\": 4,\n    "
+                  "\"DA_pct\": 100\n  },\n  \"dynamic_objects\": [\n    {\"id\": 3, \"class\": 2, "
+                  "\"first_frame\": 0, \"last_frame\": 1, \"frames\": 2, \"travel_m\": 2, "
+                  "\"points\": 4, \"removed\": 4, \"removed_pct\": 100},\n    {\"id\": 4,"),
+        std::string::npos)
+        << json;
+    EXPECT_EQ(json.substr(json.size() - 8), "}\n  ]\n}\n");
+
+    // With --min-travel 0 both actors count: 4 of 6 points.
+    const CliRun all = run("dynamic --scans " + d.string() + " --map " + (d / "map.ply").string() +
+                           " --min-travel 0");
+    EXPECT_NE(all.output.find("DA of moving objects >= 0 m: 66.67 % over 2 objects, 6 points"),
+              std::string::npos)
+        << all.output;
 }
 
 TEST(LtmEvalCli, LoopsAndReloc) {
