@@ -251,7 +251,7 @@ Run add_dynamic(CLI::App& parent) {
                     "kept if an output point is this near [m]")
         ->check(common::cli::positive());
     app->add_option("--min-travel", o->config.min_travel,
-                    "DA is also reported over the objects (label instance ids) whose centroid "
+                    "DA is also reported over the objects (class and instance id) whose centroid "
                     "travels at least this far between their first and last scan [m]")
         ->check(common::cli::at_least(0.0));
     app->add_option("--write-truth", o->write_truth,
