@@ -1,0 +1,280 @@
+#include "maintenance/core/change_detector.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <unordered_set>
+
+#include "maintenance/core/ground.hpp"
+#include "maintenance/core/segmentation.hpp"
+
+namespace ltm::maintenance {
+
+namespace {
+
+SlotHistogram merged(const SlotHistogram& a, const SlotHistogram& b) {
+    SlotHistogram out;
+    out.reserve(a.size() + b.size());
+    std::size_t i = 0, j = 0;
+    while (i < a.size() || j < b.size()) {
+        if (j == b.size() || (i < a.size() && a[i].slot < b[j].slot)) {
+            out.push_back(a[i++]);
+        } else if (i == a.size() || b[j].slot < a[i].slot) {
+            out.push_back(b[j++]);
+        } else {
+            out.push_back({a[i].slot, std::uint16_t(std::min<std::uint32_t>(
+                                          65535u, std::uint32_t(a[i].count) + b[j].count))});
+            ++i;
+            ++j;
+        }
+    }
+    return out;
+}
+
+// The first (from_start) or last `n` observations of `views`.
+SlotHistogram one_sided(const SlotHistogram& views, std::uint32_t n, bool from_start) {
+    SlotHistogram out;
+    std::uint32_t left = n;
+    if (from_start) {
+        for (std::size_t k = 0; k < views.size() && left > 0; ++k) {
+            const std::uint32_t take = std::min<std::uint32_t>(left, views[k].count);
+            out.push_back({views[k].slot, std::uint16_t(take)});
+            left -= take;
+        }
+    } else {
+        for (std::size_t k = views.size(); k-- > 0 && left > 0;) {
+            const std::uint32_t take = std::min<std::uint32_t>(left, views[k].count);
+            out.insert(out.begin(), SlotCount{views[k].slot, std::uint16_t(take)});
+            left -= take;
+        }
+    }
+    return out;
+}
+
+}  // namespace
+
+VoxelJudgement judge_voxel(const ChangeConfig& config, double slot, const ObservedVoxel& voxel) {
+    VoxelJudgement j;
+    const SlotHistogram views = merged(voxel.hits, voxel.free);
+    j.views = histogram_total(views);
+    j.hits = histogram_total(voxel.hits);
+    if (j.views < std::uint32_t(config.min_views) || views.empty()) return j;
+    j.last_view_slot = views.back().slot;
+    const std::int32_t recent_from =
+        views.back().slot - std::int32_t(std::ceil(config.recent_window / slot));
+    for (const SlotCount& e : views)
+        if (e.slot >= recent_from) j.recent_views += e.count;
+    for (const SlotCount& e : voxel.hits)
+        if (e.slot >= recent_from) j.recent_hits += e.count;
+    const double free_fraction = 1.0 - double(j.hits) / double(j.views);
+    if (j.hits > 0 && free_fraction >= config.min_free_fraction) {
+        const double sigma = config.sigma / slot;
+        const double w = histogram_wasserstein1(voxel.hits, views, sigma);
+        const double w_max =
+            std::max(histogram_wasserstein1(one_sided(views, j.hits, true), views, sigma),
+                     histogram_wasserstein1(one_sided(views, j.hits, false), views, sigma));
+        j.score = w_max > 1e-9 ? std::clamp(w / w_max, 0.0, 1.0) : 0.0;
+    }
+    const bool recent_known = j.recent_views >= std::uint32_t(config.min_recent_views);
+    const double recent_hit_fraction =
+        j.recent_views > 0 ? double(j.recent_hits) / double(j.recent_views) : 0.0;
+    const bool changed = j.score >= config.changed_score;
+    const bool gone_now = recent_known && recent_hit_fraction <= config.gone_hit_fraction;
+    if (changed && recent_known && recent_hit_fraction >= config.new_hit_fraction) {
+        j.verdict = Verdict::kNew;
+    } else if ((changed && !(recent_known && recent_hit_fraction >= config.new_hit_fraction)) ||
+               (gone_now && j.hits > 0)) {
+        const double span =
+            voxel.hits.empty() ? 0.0 : (voxel.hits.back().slot - voxel.hits.front().slot) * slot;
+        j.verdict = span <= config.moving_span ? Verdict::kMoving : Verdict::kVanished;
+    } else if (!voxel.hits.empty() &&
+               (voxel.hits.back().slot - voxel.hits.front().slot) * slot >= config.static_span) {
+        j.verdict = Verdict::kStatic;
+    }
+    return j;
+}
+
+ChangeSet maintain_region(const MaintenanceConfig& config, ObservationMap& map,
+                          std::uint32_t session, double map_time, double session_start,
+                          std::uint64_t* next_id) {
+    const auto t0 = std::chrono::steady_clock::now();
+    ChangeSet out;
+    out.session = session;
+    out.map_time = map_time;
+    out.voxel_size = map.voxel_size();
+    out.voxels_before = map.size();
+    if (map.empty()) return out;
+    out.ground_voxels = mark_ground(config.ground, map);
+
+    // Segments of the voxels that are not ground.
+    std::vector<std::uint32_t> members;
+    std::vector<Eigen::Vector3f> centres;
+    for (std::uint32_t i = 0; i < map.size(); ++i) {
+        map.voxel(i).segment = 0;
+        if (map.voxel(i).flags & kGround) continue;
+        members.push_back(i);
+        centres.push_back(map.centre(i));
+    }
+    const Segmentation seg = euclidean_segments(config.segmentation, centres);
+    out.segments = seg.segments;
+    for (std::size_t k = 0; k < members.size(); ++k) map.voxel(members[k]).segment = seg.label[k];
+
+    // Verdicts of the voxels, tallied per segment.
+    std::vector<VoxelJudgement> judged(map.size());
+    struct Tally {
+        std::uint32_t judged = 0, moving = 0, vanished = 0, fresh = 0;
+        double score = 0.0;
+    };
+    std::vector<Tally> tally(seg.segments + 1);
+    std::vector<std::int32_t> latest(seg.segments + 1, std::numeric_limits<std::int32_t>::min());
+    for (std::uint32_t i = 0; i < map.size(); ++i) {
+        judged[i] = judge_voxel(config.change, config.slot, map.voxel(i));
+        if (judged[i].views > 0) {
+            std::int32_t& l = latest[map.voxel(i).segment];
+            l = std::max(l, judged[i].last_view_slot);
+        }
+    }
+    const auto recent_slots = std::int32_t(std::ceil(config.change.recent_window / config.slot));
+    std::int32_t region_latest = std::numeric_limits<std::int32_t>::min();
+    for (std::int32_t l : latest) region_latest = std::max(region_latest, l);
+    std::vector<bool> stale(map.size(), false);
+    for (std::uint32_t i = 0; i < map.size(); ++i) {
+        VoxelJudgement& j = judged[i];
+        const std::uint32_t s = map.voxel(i).segment;
+        if (s != 0 && (j.views == 0 || j.last_view_slot < region_latest - recent_slots)) {
+            j.verdict = Verdict::kUnjudged;  // stale: follows its segment
+            stale[i] = true;
+        }
+        if (j.verdict == Verdict::kUnjudged) continue;
+        ++out.voxels_judged;
+        Tally& t = tally[map.voxel(i).segment];
+        ++t.judged;
+        t.score += j.score;
+        t.moving += j.verdict == Verdict::kMoving ? 1 : 0;
+        t.vanished += j.verdict == Verdict::kVanished ? 1 : 0;
+        t.fresh += j.verdict == Verdict::kNew ? 1 : 0;
+    }
+
+    // Segments that appeared in this session on a place an earlier session mapped (its ground
+    // columns hold older voxels): new objects, even though no view saw through them before they
+    // came (their voxels did not exist then).
+    std::vector<bool> appeared(seg.segments + 1, false);
+    {
+        const float inv = 1.0f / float(config.ground.column_size);
+        const auto column = [&](const Eigen::Vector3f& p) {
+            return (std::uint64_t(std::uint32_t(int(std::floor(p.x() * inv)))) << 32) |
+                   std::uint64_t(std::uint32_t(int(std::floor(p.y() * inv))));
+        };
+        std::unordered_set<std::uint64_t> mapped_before;
+        std::vector<std::uint32_t> made_now(seg.segments + 1, 0), made(seg.segments + 1, 0),
+            on_mapped(seg.segments + 1, 0);
+        for (std::uint32_t i = 0; i < map.size(); ++i) {
+            const ObservedVoxel& v = map.voxel(i);
+            if (v.created < session_start) mapped_before.insert(column(map.centre(i)));
+        }
+        for (std::uint32_t i = 0; i < map.size(); ++i) {
+            const ObservedVoxel& v = map.voxel(i);
+            if (v.segment == 0) continue;
+            ++made[v.segment];
+            if (v.created >= session_start) ++made_now[v.segment];
+            if (mapped_before.count(column(map.centre(i)))) ++on_mapped[v.segment];
+        }
+        for (std::uint32_t s = 1; s <= seg.segments; ++s)
+            appeared[s] = !mapped_before.empty() && made_now[s] * 10 >= made[s] * 9 &&
+                          on_mapped[s] * 2 >= made[s] && tally[s].judged > 0;
+    }
+
+    // Per segment (segment 0: ground and unclustered voxels, judged voxel by voxel only).
+    std::vector<bool> remove(map.size(), false);
+    std::vector<SegmentChange> gone(seg.segments + 1), added(seg.segments + 1);
+    const auto note = [&](SegmentChange& c, std::uint32_t i) {
+        const Eigen::Vector3f p = map.centre(i);
+        if (c.voxels.empty()) {
+            c.bbox_min = c.bbox_max = p;
+            c.first_seen = map.voxel(i).created;
+            c.last_seen = map.voxel(i).last_point;
+        }
+        c.bbox_min = c.bbox_min.cwiseMin(p);
+        c.bbox_max = c.bbox_max.cwiseMax(p);
+        c.first_seen = std::min(c.first_seen, map.voxel(i).created);
+        c.last_seen = std::max(c.last_seen, map.voxel(i).last_point);
+        c.voxels.push_back(p);
+    };
+    for (std::uint32_t i = 0; i < map.size(); ++i) {
+        ObservedVoxel& v = map.voxel(i);
+        const std::uint32_t s = v.segment;
+        const Tally& t = tally[s];
+        const Verdict verdict = judged[i].verdict;
+        const bool voxel_gone = verdict == Verdict::kMoving || verdict == Verdict::kVanished;
+        const bool segment_gone =
+            s != 0 && t.judged > 0 &&
+            double(t.moving + t.vanished) >= config.change.segment_fraction * double(t.judged);
+        const bool segment_new =
+            s != 0 && t.judged > 0 && !segment_gone &&
+            (double(t.fresh) >= config.change.segment_fraction * double(t.judged) || appeared[s]);
+        const bool is_ground = (v.flags & kGround) != 0;
+        if (!is_ground && ((segment_gone && (voxel_gone || verdict == Verdict::kUnjudged)) ||
+                           (voxel_gone && (config.change.voxel_level || s == 0)))) {
+            remove[i] = true;
+            note(gone[s], i);
+        } else if (segment_new && !voxel_gone) {
+            if (!(v.flags & kNew)) note(added[s], i);
+            v.flags = std::uint8_t(v.flags | kNew);
+        }
+    }
+    // Stale voxels touching what is gone go with it (the roof of a car that left, cut off from
+    // its sides by the segmentation of what remains): a flood through the 26-neighbourhood.
+    std::vector<std::uint32_t> queue;
+    for (std::uint32_t i = 0; i < map.size(); ++i)
+        if (remove[i]) queue.push_back(i);
+    const float g = map.voxel_size();
+    while (!queue.empty()) {
+        const std::uint32_t i = queue.back();
+        queue.pop_back();
+        const Eigen::Vector3f c = map.cell_centre(i);
+        for (int dz = -1; dz <= 1; ++dz)
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx) {
+                    const std::uint32_t n = map.find(c + Eigen::Vector3f(dx, dy, dz) * g);
+                    if (n == ObservationMap::kNone || remove[n] || !stale[n]) continue;
+                    remove[n] = true;
+                    note(gone[map.voxel(n).segment], n);
+                    queue.push_back(n);
+                }
+    }
+    for (std::uint32_t s = 0; s <= seg.segments; ++s) {
+        const Tally& t = tally[s];
+        const double score = t.judged > 0 ? t.score / double(t.judged) : 0.0;
+        if (!gone[s].voxels.empty()) {
+            SegmentChange& c = gone[s];
+            c.reason = t.vanished > t.moving || c.first_seen < session_start
+                           ? ChangeReason::kVanished
+                           : ChangeReason::kMoving;
+            c.score = score;
+            c.judged = t.judged;
+            out.voxels_removed += c.voxels.size();
+            out.changes.push_back(std::move(c));
+        }
+        if (!added[s].voxels.empty()) {
+            SegmentChange& c = added[s];
+            c.reason = ChangeReason::kNew;
+            c.score = score;
+            c.judged = t.judged;
+            out.changes.push_back(std::move(c));
+        }
+    }
+    for (SegmentChange& c : out.changes) {
+        c.id = (*next_id)++;
+        c.region = map.region();
+        Eigen::Vector3f sum = Eigen::Vector3f::Zero();
+        for (const Eigen::Vector3f& p : c.voxels) sum += p;
+        c.centroid = sum / float(c.voxels.size());
+    }
+    map.erase(remove);
+    out.time_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    return out;
+}
+
+}  // namespace ltm::maintenance

@@ -1,0 +1,259 @@
+// Change detection on small ray-cast scenes with exact ground truth: boxes on a flat ground seen by
+// a 32-beam LiDAR, across one or two sessions.
+#include "maintenance/core/change_detector.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <set>
+
+#include "common/core/config_check.hpp"
+#include "maintenance/core/long_term_map.hpp"
+
+namespace ltm::maintenance {
+namespace {
+
+struct Box {
+    Eigen::Vector3f lo, hi;
+    int id;
+};
+
+// The scan of `boxes` and the ground z = 0 from a sensor at `pose` (world frame), in the sensor
+// frame; hit_id[i] is the box a point came from (-1 ground).
+std::vector<Eigen::Vector3f> cast(const std::vector<Box>& boxes, const Eigen::Isometry3d& pose,
+                                  std::vector<int>* hit_id = nullptr, float max_range = 40.0f) {
+    std::vector<Eigen::Vector3f> pts;
+    if (hit_id) hit_id->clear();
+    const Eigen::Vector3f o = pose.translation().cast<float>();
+    const Eigen::Matrix3f R = pose.linear().cast<float>();
+    for (int ring = 0; ring < 32; ++ring) {
+        const float el = float((-20.0 + 30.0 * ring / 31.0) * M_PI / 180.0);
+        for (int k = 0; k < 900; ++k) {
+            const float az = float((-180.0 + 0.4 * k) * M_PI / 180.0);
+            const Eigen::Vector3f d_s(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az),
+                                      std::sin(el));
+            const Eigen::Vector3f d = R * d_s;
+            float best = max_range;
+            int id = -2;
+            if (d.z() < -1e-6f) {
+                const float t = -o.z() / d.z();
+                if (t < best) {
+                    best = t;
+                    id = -1;
+                }
+            }
+            for (const Box& b : boxes) {
+                float t0 = 0.0f, t1 = best;
+                bool hit = true;
+                for (int a = 0; a < 3 && hit; ++a) {
+                    if (std::abs(d[a]) < 1e-9f) {
+                        hit = o[a] >= b.lo[a] && o[a] <= b.hi[a];
+                        continue;
+                    }
+                    float ta = (b.lo[a] - o[a]) / d[a], tb = (b.hi[a] - o[a]) / d[a];
+                    if (ta > tb) std::swap(ta, tb);
+                    t0 = std::max(t0, ta);
+                    t1 = std::min(t1, tb);
+                    hit = t0 <= t1;
+                }
+                if (hit && t0 > 0.0f && t0 < best) {
+                    best = t0;
+                    id = b.id;
+                }
+            }
+            if (id == -2) continue;
+            pts.push_back(d_s * best);
+            if (hit_id) hit_id->push_back(id);
+        }
+    }
+    return pts;
+}
+
+Eigen::Isometry3d at(double x, double y) {
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.translation() = Eigen::Vector3d(x, y, 1.0);
+    return T;
+}
+
+MaintenanceConfig test_config() {
+    MaintenanceConfig c;
+    c.view_spacing = 0.0;
+    c.view_delay = 5.0;
+    c.session_gap = 10.0;
+    return c;
+}
+
+// Drives a straight line from a to b at `speed` m/s, 5 scans a second.
+void drive(LongTermMap& map, const std::vector<Box>& boxes, Eigen::Vector2d a, Eigen::Vector2d b,
+           double speed, double* stamp, std::set<std::tuple<int, int, int>>* made = nullptr,
+           int track_id = -100) {
+    const double length = (b - a).norm();
+    const int n = std::max(1, int(length / speed * 5.0));
+    for (int k = 0; k <= n; ++k) {
+        const Eigen::Vector2d p = a + (b - a) * (double(k) / n);
+        const Eigen::Isometry3d T = at(p.x(), p.y());
+        std::vector<int> ids;
+        const std::vector<Eigen::Vector3f> pts = cast(boxes, T, &ids);
+        map.add_scan(pts, T, *stamp);
+        if (made) {
+            for (std::size_t i = 0; i < pts.size(); ++i) {
+                if (ids[i] != track_id) continue;
+                const Eigen::Vector3f w = T.cast<float>() * pts[i];
+                const float s = float(map.config().voxel_size);
+                made->insert({int(std::floor(w.x() / s)), int(std::floor(w.y() / s)),
+                              int(std::floor(w.z() / s))});
+            }
+        }
+        *stamp += 0.2;
+    }
+}
+
+// How many of the cells the map still keeps.
+std::size_t kept_of(const LongTermMap& map, const std::set<std::tuple<int, int, int>>& cells) {
+    std::size_t n = 0;
+    const float s = float(map.config().voxel_size);
+    for (const auto& [x, y, z] : cells)
+        n += map.keeps(Eigen::Vector3f((x + 0.5f) * s, (y + 0.5f) * s, (z + 0.5f) * s)) ? 1 : 0;
+    return n;
+}
+
+TEST(ChangeDetector, ParkedCarThatLeftIsRemovedWallKeptNewContainerAdded) {
+    const Box wall{{-15, 8, 0}, {15, 8.3f, 3}, 1};
+    const Box car{{0, -5, 0}, {4, -3.2f, 1.5f}, 2};
+    const Box container{{-9, -5.5f, 0}, {-6, -3, 2.5f}, 3};
+    LongTermMap map(test_config());
+    std::set<std::tuple<int, int, int>> car_cells, wall_cells, container_cells;
+    double stamp = 1000.0;
+    map.begin_session(0, stamp);
+    drive(map, {wall, car}, {-12, 0}, {12, 0}, 2.0, &stamp, &car_cells, 2);
+    drive(map, {wall, car}, {12, 0}, {12, 0.1}, 2.0, &stamp, &wall_cells, 1);
+    const ChangeSet first = map.end_session();
+    EXPECT_LE(first.voxels_removed, first.voxels_before / 100) << "a static session";
+    ASSERT_GT(car_cells.size(), 50u);
+    EXPECT_EQ(kept_of(map, car_cells), car_cells.size()) << "the car was parked all session";
+
+    stamp = 1000.0 + 3 * 86400.0;  // three days later
+    map.begin_session(1, stamp);
+    drive(map, {wall, container}, {12, 0}, {-12, 0}, 2.0, &stamp, &container_cells, 3);
+    drive(map, {wall, container}, {-12, 12}, {12, 12}, 2.0, &stamp, &wall_cells, 1);
+    const ChangeSet second = map.end_session();
+
+    // The car's foot (the lowest 0.25 m) shares its voxels with the ground it stood on: they stay.
+    std::set<std::tuple<int, int, int>> car_body;
+    for (const auto& c : car_cells)
+        if (std::get<2>(c) >= 1) car_body.insert(c);
+    car_cells = car_body;
+    const std::size_t car_kept = kept_of(map, car_cells);
+    EXPECT_LE(car_kept, car_cells.size() / 20) << car_kept << " of " << car_cells.size();
+    EXPECT_GE(second.count(ChangeReason::kVanished), 1u);
+    ASSERT_GT(wall_cells.size(), 100u);
+    EXPECT_GE(kept_of(map, wall_cells), wall_cells.size() * 99 / 100) << "both faces of the wall";
+    ASSERT_GT(container_cells.size(), 50u);
+    EXPECT_GE(kept_of(map, container_cells), container_cells.size() * 95 / 100);
+    EXPECT_GE(second.count(ChangeReason::kNew), 1u);
+}
+
+TEST(ChangeDetector, MovingCarRemovedWithinOneSession) {
+    const Box wall{{-30, 9, 0}, {30, 9.3f, 3}, 1};
+    LongTermMap map(test_config());
+    std::set<std::tuple<int, int, int>> trace, wall_cells;
+    double stamp = 0.0;
+    map.begin_session(0, stamp);
+    // The robot creeps along y = 0 while a car drives past at 5 m/s along y = -6.
+    for (int k = 0; k <= 50; ++k) {
+        const double x_car = -20.0 + 5.0 * 0.2 * k;
+        const Box car{{float(x_car), -6.9f, 0.3f}, {float(x_car + 4), -5.1f, 1.5f}, 2};
+        const Eigen::Isometry3d T = at(-2.0 + 0.08 * k, 0.0);
+        std::vector<int> ids;
+        const std::vector<Eigen::Vector3f> pts = cast({wall, car}, T, &ids);
+        map.add_scan(pts, T, stamp);
+        for (std::size_t i = 0; i < pts.size(); ++i) {
+            const Eigen::Vector3f w = T.cast<float>() * pts[i];
+            const float s = float(map.config().voxel_size);
+            const std::tuple<int, int, int> cell{
+                int(std::floor(w.x() / s)), int(std::floor(w.y() / s)), int(std::floor(w.z() / s))};
+            if (ids[i] == 2) trace.insert(cell);
+            if (ids[i] == 1) wall_cells.insert(cell);
+        }
+        stamp += 0.2;
+    }
+    const ChangeSet c = map.end_session();
+    ASSERT_GT(trace.size(), 100u);
+    const std::size_t left = kept_of(map, trace);
+    EXPECT_LE(left, trace.size() / 20) << left << " of " << trace.size() << " trace voxels left";
+    EXPECT_GE(c.count(ChangeReason::kMoving), 1u);
+    EXPECT_GE(kept_of(map, wall_cells), wall_cells.size() * 99 / 100);
+}
+
+TEST(ChangeDetector, RegionSeenRarelyIsNotCalledDynamic) {
+    // A shed in range only at the start and the end of the session: its views are all hits.
+    const Box shed{{-37, 3, 0}, {-33, 7, 2.5f}, 4};
+    LongTermMap map(test_config());
+    std::set<std::tuple<int, int, int>> cells;
+    double stamp = 0.0;
+    map.begin_session(0, stamp);
+    drive(map, {shed}, {0, 0}, {40, 0}, 4.0, &stamp, &cells, 4);
+    drive(map, {shed}, {40, 0}, {0, 0}, 4.0, &stamp, &cells, 4);
+    const ChangeSet c = map.end_session();
+    ASSERT_GT(cells.size(), 20u);
+    EXPECT_EQ(kept_of(map, cells), cells.size());
+    EXPECT_EQ(c.voxels_removed, 0u);
+}
+
+TEST(ChangeDetector, VoxelVerdicts) {
+    ChangeConfig config;
+    ObservedVoxel v;
+    EXPECT_EQ(judge_voxel(config, 0.5, v).verdict, Verdict::kUnjudged);
+    for (int s = 0; s < 40; ++s) add_to_histogram(v.hits, s, 1, 64);
+    EXPECT_EQ(judge_voxel(config, 0.5, v).verdict, Verdict::kStatic);
+    ObservedVoxel gone;  // hit for 20 s, then seen through for 20 s
+    for (int s = 0; s < 40; ++s) add_to_histogram(gone.hits, s, 1, 64);
+    for (int s = 40; s < 80; ++s) add_to_histogram(gone.free, s, 1, 64);
+    const VoxelJudgement g = judge_voxel(config, 0.5, gone);
+    EXPECT_EQ(g.verdict, Verdict::kVanished);
+    EXPECT_NEAR(g.score, 1.0, 0.05);
+    ObservedVoxel fresh;  // seen through for 20 s, then hit
+    for (int s = 0; s < 40; ++s) add_to_histogram(fresh.free, s, 1, 64);
+    for (int s = 40; s < 80; ++s) add_to_histogram(fresh.hits, s, 1, 64);
+    EXPECT_EQ(judge_voxel(config, 0.5, fresh).verdict, Verdict::kNew);
+    ObservedVoxel passing;  // a short peak among views before and after
+    for (int s = 0; s < 80; ++s)
+        add_to_histogram(s >= 38 && s < 42 ? passing.hits : passing.free, s, 1, 64);
+    EXPECT_EQ(judge_voxel(config, 0.5, passing).verdict, Verdict::kMoving);
+    ObservedVoxel sparse;  // a pole hit in every other view: random misses are no change
+    for (int s = 0; s < 80; ++s) add_to_histogram(s % 2 ? sparse.hits : sparse.free, s, 1, 64);
+    EXPECT_EQ(judge_voxel(config, 0.5, sparse).verdict, Verdict::kStatic);
+}
+
+TEST(ChangeDetector, BadConfigurationIsOneLineNamingTheKey) {
+    MaintenanceConfig c;
+    c.voxel_size = -1.0;
+    try {
+        LongTermMap map(c);
+        FAIL() << "accepted";
+    } catch (const common::ConfigError& e) {
+        EXPECT_NE(std::string(e.what()).find("maintenance.voxel_size"), std::string::npos)
+            << e.what();
+    }
+    c = MaintenanceConfig{};
+    c.change.gone_hit_fraction = 0.9;
+    EXPECT_THROW(LongTermMap{c}, common::ConfigError);
+}
+
+TEST(ChangeDetector, EmptyAndNonFiniteScansChangeNothing) {
+    LongTermMap map(test_config());
+    map.begin_session(0, 0.0);
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    map.add_scan({}, at(0, 0), 0.0);
+    map.add_scan({{nan, 1, 1}, {1, nan, 2}}, at(0, 0), 0.1);
+    Eigen::Isometry3d bad = at(0, 0);
+    bad.translation().x() = nan;
+    map.add_scan({{5, 0, 0}}, bad, 0.2);
+    const ChangeSet c = map.end_session();
+    EXPECT_EQ(map.stats().voxels, 0u);
+    EXPECT_TRUE(c.changes.empty());
+}
+
+}  // namespace
+}  // namespace ltm::maintenance

@@ -1,0 +1,160 @@
+#include "maintenance/core/long_term_map.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "common/core/config_check.hpp"
+
+namespace ltm::maintenance {
+
+std::optional<common::ConfigProblem> validate(const MaintenanceConfig& config) {
+    common::ConfigChecker k;
+    MaintenanceConfig c = config;
+    visit_fields(c, "", k);
+    k.require(c.range_image.min_range < c.range_image.max_range, "range_image.min_range",
+              "must be below range_image.max_range");
+    k.require(c.change.gone_hit_fraction < c.change.new_hit_fraction, "change.gone_hit_fraction",
+              "must be below change.new_hit_fraction");
+    return k.problem();
+}
+
+LongTermMap::LongTermMap(const MaintenanceConfig& config) : config_(config) {
+    common::throw_if(validate(config), "maintenance");
+}
+
+void LongTermMap::begin_session(std::uint32_t session, double first_stamp) {
+    flush_views();
+    if (in_session_ || now_ > 0.0) session_offset_ = now_ + config_.session_gap;
+    session_ = session;
+    in_session_ = true;
+    session_start_stamp_ = std::isfinite(first_stamp) ? first_stamp : 0.0;
+    now_ = session_offset_;
+    last_view_time_ = -1e300;
+}
+
+double LongTermMap::map_time_of(double stamp) const {
+    if (!std::isfinite(stamp)) return now_;
+    return session_offset_ + std::max(0.0, stamp - session_start_stamp_);
+}
+
+Eigen::Vector2i LongTermMap::region_of(const Eigen::Vector3f& p) const {
+    const float inv = 1.0f / float(config_.region_size);
+    return {int(std::floor(p.x() * inv)), int(std::floor(p.y() * inv))};
+}
+
+ObservationMap& LongTermMap::region(const Eigen::Vector2i& key) {
+    auto& slot = regions_[{key.x(), key.y()}];
+    if (!slot) slot = std::make_unique<ObservationMap>(config_, key);
+    return *slot;
+}
+
+void LongTermMap::add_scan(const std::vector<Eigen::Vector3f>& points,
+                           const Eigen::Isometry3d& T_world_sensor, double stamp) {
+    if (!in_session_) begin_session(session_, stamp);
+    if (!T_world_sensor.matrix().allFinite()) return;
+    const double t = map_time_of(stamp);
+    now_ = std::max(now_, t);
+    // Points to their regions.
+    const Eigen::Isometry3f T = T_world_sensor.cast<float>();
+    const float max_range_sq = float(config_.max_range * config_.max_range);
+    const float min_range_sq = float(config_.range_image.min_range * config_.range_image.min_range);
+    std::map<std::pair<int, int>, std::vector<Eigen::Vector3f>> by_region;
+    for (const Eigen::Vector3f& p : points) {
+        if (!p.allFinite()) continue;
+        const float r2 = p.squaredNorm();
+        if (r2 > max_range_sq || r2 < min_range_sq) continue;
+        const Eigen::Vector3f q = T * p;
+        const Eigen::Vector2i r = region_of(q);
+        by_region[{r.x(), r.y()}].push_back(q);
+    }
+    for (auto& [key, pts] : by_region) region({key.first, key.second}).add_points(pts, t, session_);
+    // A view every view_spacing seconds.
+    if (t - last_view_time_ >= config_.view_spacing) {
+        last_view_time_ = t;
+        View v;
+        v.id = next_view_++;
+        v.session = session_;
+        v.map_time = t;
+        v.T_world_sensor = T_world_sensor;
+        v.image = RangeImage(config_.range_image, points);
+        pending_.push_back(std::move(v));
+    }
+    while (!pending_.empty() && pending_.front().map_time < now_ - config_.view_delay) {
+        judge(pending_.front());
+        pending_.pop_front();
+    }
+}
+
+void LongTermMap::judge(const View& view) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const Eigen::Vector3f s = view.T_world_sensor.translation().cast<float>();
+    const float reach = float(config_.max_range + config_.region_size);
+    for (auto& [key, map] : regions_) {
+        const Eigen::Vector2f centre =
+            (Eigen::Vector2f(float(key.first), float(key.second)) + Eigen::Vector2f(0.5f, 0.5f)) *
+            float(config_.region_size);
+        if ((centre - s.head<2>()).norm() > reach) continue;
+        map->judge(view);
+    }
+    ++views_;
+    judge_ms_ +=
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+void LongTermMap::flush_views() {
+    while (!pending_.empty()) {
+        judge(pending_.front());
+        pending_.pop_front();
+    }
+}
+
+ChangeSet LongTermMap::maintain() {
+    ChangeSet all;
+    all.session = session_;
+    all.map_time = now_;
+    all.voxel_size = float(config_.voxel_size);
+    for (auto& [key, map] : regions_)
+        all.append(maintain_region(config_, *map, session_, now_, session_offset_, &next_change_));
+    return all;
+}
+
+ChangeSet LongTermMap::end_session() {
+    flush_views();
+    ChangeSet c = maintain();
+    in_session_ = false;
+    return c;
+}
+
+const ObservedVoxel* LongTermMap::voxel_at(const Eigen::Vector3f& p) const {
+    const Eigen::Vector2i r = region_of(p);
+    const auto it = regions_.find({r.x(), r.y()});
+    if (it == regions_.end()) return nullptr;
+    const std::uint32_t i = it->second->find(p);
+    return i == ObservationMap::kNone ? nullptr : &it->second->voxel(i);
+}
+
+bool LongTermMap::keeps(const Eigen::Vector3f& p) const { return voxel_at(p) != nullptr; }
+
+std::vector<Eigen::Vector3f> LongTermMap::voxel_centres() const {
+    std::vector<Eigen::Vector3f> out;
+    for (const auto& [key, map] : regions_)
+        for (std::uint32_t i = 0; i < map->size(); ++i) out.push_back(map->centre(i));
+    return out;
+}
+
+LongTermMapStats LongTermMap::stats() const {
+    LongTermMapStats s;
+    s.regions = regions_.size();
+    for (const auto& [key, map] : regions_) {
+        s.voxels += map->size();
+        s.memory_bytes += map->memory_bytes();
+    }
+    for (const View& v : pending_) s.memory_bytes += v.image.memory_bytes();
+    s.views = views_;
+    s.views_pending = pending_.size();
+    s.judge_ms = judge_ms_;
+    return s;
+}
+
+}  // namespace ltm::maintenance

@@ -1,0 +1,83 @@
+#pragma once
+// The maintained map (METHOD.md section 5): sessions of registered scans, on one map, in square
+// regions of the map frame. Each scan adds its points to the regions' voxels and, every
+// view_spacing seconds, becomes a view (its range image) that judges the voxels in its range
+// view_delay seconds later (so the voxels a moving object leaves behind it exist by then).
+// maintain() runs the change decisions region by region and erases what is gone.
+//
+// Map time: the stamps of a session, shifted so that each session starts session_gap seconds
+// after the previous one ended (days between sessions would swamp seconds within them).
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <deque>
+#include <map>
+#include <memory>
+#include <utility>
+#include <vector>
+
+#include "maintenance/core/change_detector.hpp"
+#include "maintenance/core/change_set.hpp"
+#include "maintenance/core/observation_map.hpp"
+
+namespace ltm::maintenance {
+
+struct LongTermMapStats {
+    std::size_t regions = 0, voxels = 0, views = 0, views_pending = 0;
+    std::size_t memory_bytes = 0;
+    double judge_ms = 0.0;  // total time views spent judging voxels
+};
+
+class LongTermMap {
+  public:
+    // Throws common::ConfigError (naming the key) on an invalid configuration.
+    explicit LongTermMap(const MaintenanceConfig& config);
+
+    const MaintenanceConfig& config() const { return config_; }
+
+    // Starts a session whose first scan has `first_stamp`; the views of the previous one are
+    // judged first.
+    void begin_session(std::uint32_t session, double first_stamp);
+    std::uint32_t session() const { return session_; }
+    double map_time() const { return now_; }
+    double map_time_of(double stamp) const;  // in the current session
+
+    // A registered scan: points in the sensor frame, the sensor's world pose, its stamp.
+    // Non-finite points are skipped; points beyond max_range are not mapped.
+    void add_scan(const std::vector<Eigen::Vector3f>& points,
+                  const Eigen::Isometry3d& T_world_sensor, double stamp);
+
+    // Every pending view judges the voxels now.
+    void flush_views();
+    // Change decisions over every region (after flush_views()); the gone voxels are erased.
+    ChangeSet maintain();
+    // End of a session: flush_views() then maintain().
+    ChangeSet end_session();
+
+    // True when the map keeps the voxel holding p (world frame): it exists and was not erased.
+    bool keeps(const Eigen::Vector3f& p) const;
+    // Flags of the voxel holding p (kGround, kNew), or nothing when it is not in the map.
+    const ObservedVoxel* voxel_at(const Eigen::Vector3f& p) const;
+    // Centres of every voxel (world frame).
+    std::vector<Eigen::Vector3f> voxel_centres() const;
+
+    LongTermMapStats stats() const;
+
+  private:
+    Eigen::Vector2i region_of(const Eigen::Vector3f& p) const;
+    ObservationMap& region(const Eigen::Vector2i& key);
+    void judge(const View& view);
+
+    MaintenanceConfig config_;
+    std::map<std::pair<int, int>, std::unique_ptr<ObservationMap>> regions_;
+    std::deque<View> pending_;
+    std::uint32_t session_ = 0;
+    bool in_session_ = false;
+    double session_start_stamp_ = 0.0, session_offset_ = 0.0, now_ = 0.0;
+    double last_view_time_ = -1e300;
+    std::uint64_t next_view_ = 0, next_change_ = 1;
+    std::size_t views_ = 0;
+    double judge_ms_ = 0.0;
+    std::vector<std::vector<Eigen::Vector3f>> scratch_;
+};
+
+}  // namespace ltm::maintenance

@@ -1,0 +1,118 @@
+#pragma once
+// Configuration of map maintenance (METHOD.md section 5): voxel resolution and time slots, what a
+// view of the scene may judge (range image, margins), ground removal, segmentation, and the
+// change decisions (Eq. 14 and the "beyond the paper" notes). Defaults suit a spinning LiDAR on a
+// ground robot or car; every key is checked by validate().
+#include <optional>
+#include <string>
+
+#include "common/core/config_check.hpp"
+
+namespace ltm::maintenance {
+
+// The range image of a scan: what a view says about any small cube in its field of view.
+struct RangeImageConfig {
+    double azimuth_resolution = 0.2;    // [deg] pixel width
+    double elevation_resolution = 0.2;  // [deg] pixel height (rows between beams stay empty)
+    double min_range = 1.0;             // [m] nearer returns are ignored (the robot itself)
+    double max_range = 120.0;           // [m] farther returns are ignored
+    int max_samples = 5;                // pixels sampled per axis over a cube's angular footprint
+};
+
+// Ground removal on the voxels: the lowest voxel of each column neighbourhood, and the voxels just
+// above it whose normal is near vertical (no single plane: terrain slopes and roads tilt).
+struct GroundConfig {
+    double column_size = 1.0;  // [m] 2-D cells
+    int neighbourhood = 2;     // cells each way searched for the local lowest voxel
+    double height = 0.3;       // [m] above the local lowest: ground (with a near-vertical normal)
+    double max_tilt = 35.0;    // [deg] between a ground voxel's normal and the vertical
+    double flatness = 0.05;    // [m] z spread of a ground voxel's points when they have no plane
+};
+
+// Euclidean clustering of the remaining voxels into segments (PCL).
+struct SegmentationConfig {
+    double tolerance = 0.55;  // [m] between voxel centres of one segment
+    int min_voxels = 1;
+};
+
+// The decisions (Eq. 14): per voxel, the normalised W1 between its hit times and its view times;
+// per segment, the share of its judged voxels that changed.
+struct ChangeConfig {
+    double sigma = 1.0;              // [s] of map time: the kernel of Eq. 14
+    int min_views = 4;               // views (hit or seen through) before a voxel is judged
+    double changed_score = 0.35;     // normalised W1 (0 = always seen, 1 = the most one-sided)
+    double min_free_fraction = 0.2;  // a voxel seen through in fewer of its views is unchanged
+    double recent_window = 20.0;     // [s] of map time before a voxel's last view: "recent"
+    int min_recent_views = 3;        // recent views needed to call a voxel vanished or new
+    double new_hit_fraction = 0.8;   // hit in at least this share of recent views: new (kept)
+    double gone_hit_fraction = 0.1;  // hit in at most this share of recent views: gone
+    double moving_span = 15.0;  // [s] all hits within this span and gone: moving, else vanished
+    // [s] hits spanning less than this prove nothing: such a voxel (say, the last position of a
+    // car that no later view saw through) follows its segment's verdict.
+    double static_span = 3.0;
+    double segment_fraction = 0.5;  // share of a segment's judged voxels that changed: it did
+    bool voxel_level = false;       // also remove changed voxels of unchanged segments
+};
+
+struct MaintenanceConfig {
+    double voxel_size = 0.25;   // [m] maintenance voxels (finer than the registration voxels)
+    double region_size = 40.0;  // [m] the map is maintained in square regions of this size
+    double slot = 0.5;          // [s] of map time: the histogram slot of a voxel's times
+    int max_slots = 64;         // slots a voxel keeps of each history (older ones merge)
+    double max_range = 50.0;    // [m] a view judges voxels within this range
+    double free_margin = 0.3;   // [m] a return this much beyond a cube (plus half its diagonal)
+    double free_margin_per_m = 0.01;  // [m/m] ... plus this per metre of range: seen through
+    double view_spacing = 0.2;        // [s] scans become views at most this often
+    double view_delay = 10.0;         // [s] a view judges the voxels that exist this long after it
+    double session_gap = 60.0;        // [s] of map time between the end of a session and the next
+    RangeImageConfig range_image;
+    GroundConfig ground;
+    SegmentationConfig segmentation;
+    ChangeConfig change;
+};
+
+template <class Visitor>
+void visit_fields(MaintenanceConfig& c, const std::string& prefix, Visitor&& v) {
+    using namespace common::rules;
+    v(prefix + "voxel_size", c.voxel_size, in_range(0.02, 5.0));
+    v(prefix + "region_size", c.region_size, above(1.0));
+    v(prefix + "slot", c.slot, positive);
+    v(prefix + "max_slots", c.max_slots, in_range(2, 65535));
+    v(prefix + "max_range", c.max_range, positive);
+    v(prefix + "free_margin", c.free_margin, non_negative);
+    v(prefix + "free_margin_per_m", c.free_margin_per_m, non_negative);
+    v(prefix + "view_spacing", c.view_spacing, non_negative);
+    v(prefix + "view_delay", c.view_delay, non_negative);
+    v(prefix + "session_gap", c.session_gap, non_negative);
+    v(prefix + "range_image.azimuth_resolution", c.range_image.azimuth_resolution,
+      in_range(0.01, 10.0));
+    v(prefix + "range_image.elevation_resolution", c.range_image.elevation_resolution,
+      in_range(0.01, 10.0));
+    v(prefix + "range_image.min_range", c.range_image.min_range, non_negative);
+    v(prefix + "range_image.max_range", c.range_image.max_range, positive);
+    v(prefix + "range_image.max_samples", c.range_image.max_samples, in_range(1, 64));
+    v(prefix + "ground.column_size", c.ground.column_size, positive);
+    v(prefix + "ground.neighbourhood", c.ground.neighbourhood, in_range(0, 20));
+    v(prefix + "ground.height", c.ground.height, non_negative);
+    v(prefix + "ground.max_tilt", c.ground.max_tilt, in_range(0.0, 90.0));
+    v(prefix + "ground.flatness", c.ground.flatness, non_negative);
+    v(prefix + "segmentation.tolerance", c.segmentation.tolerance, positive);
+    v(prefix + "segmentation.min_voxels", c.segmentation.min_voxels, at_least(1));
+    v(prefix + "change.sigma", c.change.sigma, non_negative);
+    v(prefix + "change.min_views", c.change.min_views, at_least(1));
+    v(prefix + "change.changed_score", c.change.changed_score, unit);
+    v(prefix + "change.min_free_fraction", c.change.min_free_fraction, unit);
+    v(prefix + "change.recent_window", c.change.recent_window, non_negative);
+    v(prefix + "change.min_recent_views", c.change.min_recent_views, at_least(1));
+    v(prefix + "change.new_hit_fraction", c.change.new_hit_fraction, unit);
+    v(prefix + "change.gone_hit_fraction", c.change.gone_hit_fraction, unit);
+    v(prefix + "change.moving_span", c.change.moving_span, non_negative);
+    v(prefix + "change.static_span", c.change.static_span, non_negative);
+    v(prefix + "change.segment_fraction", c.change.segment_fraction, unit);
+    v(prefix + "change.voxel_level", c.change.voxel_level, unchecked);
+}
+
+// The first problem of a configuration (key relative to it), rules across fields included.
+std::optional<common::ConfigProblem> validate(const MaintenanceConfig& config);
+
+}  // namespace ltm::maintenance

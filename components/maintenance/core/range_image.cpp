@@ -1,0 +1,100 @@
+#include "maintenance/core/range_image.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace ltm::maintenance {
+
+namespace {
+constexpr float kPi = 3.14159265358979f;
+constexpr float kDeg = kPi / 180.0f;
+}  // namespace
+
+RangeImage::RangeImage(const RangeImageConfig& config, const std::vector<Eigen::Vector3f>& points)
+    : config_(config) {
+    az_res_ = float(config.azimuth_resolution) * kDeg;
+    el_res_ = float(config.elevation_resolution) * kDeg;
+    const float rmin = float(config.min_range), rmax = float(std::min(config.max_range, 650.0));
+    float el_lo = kPi, el_hi = -kPi;
+    std::vector<Eigen::Vector3f> polar;  // azimuth, elevation, range
+    polar.reserve(points.size());
+    for (const Eigen::Vector3f& p : points) {
+        if (!p.allFinite()) continue;
+        const float r = p.norm();
+        if (!(r >= rmin && r <= rmax) || r <= 0.0f) continue;
+        const float el = std::asin(std::clamp(p.z() / r, -1.0f, 1.0f));
+        polar.emplace_back(std::atan2(p.y(), p.x()), el, r);
+        el_lo = std::min(el_lo, el);
+        el_hi = std::max(el_hi, el);
+    }
+    if (polar.empty()) return;
+    el_min_ = el_lo - 0.5f * el_res_;
+    rows_ = int(std::floor((el_hi - el_min_) / el_res_)) + 1;
+    cols_ = std::max(1, int(std::ceil(2.0f * kPi / az_res_)));
+    range_cm_.assign(std::size_t(rows_) * std::size_t(cols_), 0);
+    for (const Eigen::Vector3f& q : polar) {
+        int col = int(std::floor((q.x() + kPi) / az_res_));
+        col = ((col % cols_) + cols_) % cols_;
+        const int row = std::clamp(int(std::floor((q.y() - el_min_) / el_res_)), 0, rows_ - 1);
+        std::uint16_t& cell = range_cm_[std::size_t(row) * std::size_t(cols_) + std::size_t(col)];
+        const auto cm = std::uint16_t(std::clamp(q.z() * 100.0f + 0.5f, 1.0f, 65535.0f));
+        if (cell == 0 || cm < cell) cell = cm;
+        ++returns_;
+    }
+    // Rows between the beams stay empty: the footprint of a cube is sampled on the beams' rows.
+    next_row_.assign(std::size_t(rows_) + 1, rows_);
+    for (int row = rows_ - 1; row >= 0; --row) {
+        bool any = false;
+        for (int c = 0; c < cols_ && !any; ++c) any = at(row, c) > 0.0f;
+        next_row_[std::size_t(row)] = any ? row : next_row_[std::size_t(row) + 1];
+    }
+}
+
+Visibility RangeImage::classify(const Eigen::Vector3f& p, float size, float margin) const {
+    if (rows_ == 0 || !p.allFinite()) return Visibility::kUnseen;
+    const float r = p.norm();
+    if (r <= 0.5f * size) return Visibility::kUnseen;
+    const float az = std::atan2(p.y(), p.x());
+    const float el = std::asin(std::clamp(p.z() / r, -1.0f, 1.0f));
+    // The cube's angular half-extent (its inscribed sphere: a beam this close passes through it).
+    const float half = std::atan2(0.5f * size, r);
+    const float cos_el = std::max(std::cos(el), 0.05f);
+    const float half_az = std::min(half / cos_el, kPi);
+    const int r0 = int(std::floor((el - half - el_min_) / el_res_));
+    const int r1 = int(std::floor((el + half - el_min_) / el_res_));
+    if (r1 < 0 || r0 >= rows_) return Visibility::kUnseen;
+    const int c0 = int(std::floor((az - half_az + kPi) / az_res_));
+    const int c1 = int(std::floor((az + half_az + kPi) / az_res_));
+    const int max_samples = std::max(1, config_.max_samples);
+    // The rows with returns in the footprint, max_samples of them evenly.
+    int rows[64];
+    int n_rows = 0;
+    for (int row = next_row_[std::size_t(std::max(r0, 0))]; row <= std::min(r1, rows_ - 1);
+         row = next_row_[std::size_t(row) + 1]) {
+        if (n_rows < 64) rows[n_rows++] = row;
+    }
+    if (n_rows == 0) return Visibility::kUnseen;
+    const int row_step = std::max(1, (n_rows + max_samples - 1) / max_samples);
+    const int col_step = std::max(1, (c1 - c0 + max_samples - 1) / max_samples);
+    int surface = 0, beyond = 0, before = 0;
+    for (int k = 0; k < n_rows; k += row_step) {
+        const int row = rows[k];
+        for (int c = c0; c <= c1; c += col_step) {
+            const float range = at(row, ((c % cols_) + cols_) % cols_);
+            if (range <= 0.0f) continue;
+            if (range > r + margin) {
+                ++beyond;
+            } else if (range < r - margin) {
+                ++before;
+            } else {
+                ++surface;
+            }
+        }
+    }
+    if (surface > 0) return Visibility::kSurface;
+    if (beyond > 0) return Visibility::kFree;
+    if (before > 0) return Visibility::kOccluded;
+    return Visibility::kUnseen;
+}
+
+}  // namespace ltm::maintenance
