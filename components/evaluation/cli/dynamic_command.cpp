@@ -23,7 +23,7 @@ namespace {
 struct DynamicOptions {
     std::string map, scans, labels, poses, poses_frame = "lidar", calib, label_scheme = "ltm";
     bool changed_is_dynamic = false;
-    std::size_t first = 0, count = 0;
+    std::size_t first = 0, count = 0, every = 1;
     bool has_count = false;
     double max_range = 0.0;
     std::string truth;
@@ -68,7 +68,7 @@ LabelledMap truth_from_scans(const DynamicOptions& o, Report& report) {
     LabelledMap map;
     std::size_t used = 0;
     common::Progress progress("labelled scans", end > first ? end - first : 0, "scans");
-    for (std::size_t i = first; i < end; ++i) {
+    for (std::size_t i = first; i < end; i += std::max<std::size_t>(1, o.every)) {
         const std::filesystem::path scan(scans[i]);
         const std::string label_path = label_of(i);
         const std::size_t frame = static_cast<std::size_t>(std::stoul(scan.stem().string()));
@@ -238,6 +238,8 @@ Run add_dynamic(CLI::App& parent) {
     app->add_flag("--changed-is-dynamic", o->changed_is_dynamic,
                   "count objects changed between sessions (class 3) as dynamic");
     app->add_option("--first", o->first, "first scan used");
+    app->add_option("--every", o->every, "every Nth scan from --first (long simulated sessions)")
+        ->check(common::cli::at_least(1));
     app->add_option("--count", o->count, "scans used (default: all that have labels)")
         ->default_str("")
         ->each([o](const std::string&) { o->has_count = true; });

@@ -27,6 +27,7 @@ void LongTermMap::begin_session(std::uint32_t session, double first_stamp) {
     flush_views();
     if (in_session_ || now_ > 0.0) session_offset_ = now_ + config_.session_gap;
     session_ = session;
+    if (sessions_.empty() || sessions_.back() != session) sessions_.push_back(session);
     in_session_ = true;
     session_start_stamp_ = std::isfinite(first_stamp) ? first_stamp : 0.0;
     now_ = session_offset_;
@@ -88,13 +89,12 @@ void LongTermMap::add_scan(const std::vector<Eigen::Vector3f>& points,
 
 void LongTermMap::judge(const View& view) {
     const auto t0 = std::chrono::steady_clock::now();
-    const Eigen::Vector3f s = view.T_world_sensor.translation().cast<float>();
-    const float reach = float(config_.max_range + config_.region_size);
-    for (auto& [key, map] : regions_) {
-        const Eigen::Vector2f centre =
-            (Eigen::Vector2f(float(key.first), float(key.second)) + Eigen::Vector2f(0.5f, 0.5f)) *
-            float(config_.region_size);
-        if ((centre - s.head<2>()).norm() > reach) continue;
+    const Eigen::Vector2f s = view.T_world_sensor.translation().head<2>().cast<float>();
+    const float size = float(config_.region_size), reach = float(config_.max_range);
+    for (auto& [key, map] : regions_) {  // regions whose square comes within max_range
+        const Eigen::Vector2f lo = Eigen::Vector2f(float(key.first), float(key.second)) * size;
+        const Eigen::Vector2f nearest = s.cwiseMax(lo).cwiseMin(lo + Eigen::Vector2f(size, size));
+        if ((nearest - s).norm() > reach) continue;
         map->judge(view);
     }
     ++views_;

@@ -12,6 +12,7 @@
 #include <deque>
 #include <map>
 #include <memory>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -62,6 +63,15 @@ class LongTermMap {
 
     LongTermMapStats stats() const;
 
+    // The map on disk (long_term_map_io.cpp): voxels, their histories and the map clock, in one
+    // file with a CRC-32 a section, written atomically. Views still pending are not saved: call
+    // end_session() first. load() refuses a damaged file, or one made with another voxel size,
+    // region size or slot, with one line (common::IoError / FormatError) and returns nothing.
+    void save(const std::string& path) const;
+    static LongTermMap load(const std::string& path, const MaintenanceConfig& config);
+    // Sessions that built the map, in order.
+    const std::vector<std::uint32_t>& sessions() const { return sessions_; }
+
   private:
     Eigen::Vector2i region_of(const Eigen::Vector3f& p) const;
     ObservationMap& region(const Eigen::Vector2i& key);
@@ -77,7 +87,7 @@ class LongTermMap {
     std::uint64_t next_view_ = 0, next_change_ = 1;
     std::size_t views_ = 0;
     double judge_ms_ = 0.0;
-    std::vector<std::vector<Eigen::Vector3f>> scratch_;
+    std::vector<std::uint32_t> sessions_;
 };
 
 }  // namespace ltm::maintenance

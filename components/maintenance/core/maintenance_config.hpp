@@ -58,7 +58,7 @@ struct MaintenanceConfig {
     double voxel_size = 0.25;   // [m] maintenance voxels (finer than the registration voxels)
     double region_size = 40.0;  // [m] the map is maintained in square regions of this size
     double slot = 0.5;          // [s] of map time: the histogram slot of a voxel's times
-    int max_slots = 64;         // slots a voxel keeps of each history (older ones merge)
+    int max_slots = 24;         // slots a voxel keeps of each history (older ones merge)
     double max_range = 50.0;    // [m] a view judges voxels within this range
     double free_margin = 0.3;   // [m] a return this much beyond a cube (plus half its diagonal)
     double free_margin_per_m = 0.01;  // [m/m] ... plus this per metre of range: seen through

@@ -107,6 +107,15 @@ Eigen::Vector3f ObservationMap::normal(std::uint32_t i) const {
     return es.eigenvectors().col(0).cast<float>().normalized();
 }
 
+bool ObservationMap::restore(registration::VoxelKey key, ObservedVoxel voxel) {
+    const auto [i, inserted] = hash_.insert(key, std::uint32_t(keys_.size()));
+    if (!inserted) return false;
+    keys_.push_back(key);
+    voxels_.push_back(std::move(voxel));
+    last_scan_.push_back(0);
+    return i == keys_.size() - 1;
+}
+
 void ObservationMap::erase(const std::vector<bool>& remove) {
     std::size_t out = 0;
     for (std::size_t i = 0; i < keys_.size(); ++i) {

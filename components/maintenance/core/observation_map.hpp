@@ -76,6 +76,9 @@ class ObservationMap {
     ObservedVoxel& voxel(std::uint32_t i) { return voxels_[i]; }
     float voxel_size() const { return voxel_size_; }
 
+    // Puts a voxel back as it was saved (the map file reader); false when the key is taken.
+    bool restore(registration::VoxelKey key, ObservedVoxel voxel);
+
     // Drops the voxels with remove[i] true (the hash is rebuilt).
     void erase(const std::vector<bool>& remove);
     std::size_t memory_bytes() const;

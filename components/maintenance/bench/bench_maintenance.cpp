@@ -1,0 +1,256 @@
+// ltm_bench_maintenance: sessions of scans at given poses, in order, on one maintained map
+// (METHOD.md section 5). Writes what the DynamicMap benchmark expects of a method:
+//   OUT/cleaned_map.ply  the scans' own points (within max_range) that the maintained map keeps,
+//                        in the world frame of the poses (LiDAR frame of the first scan for
+//                        camera poses converted with --calib);
+//   OUT/removed.ply      the points it removed;
+//   OUT/cleaned_map_sN.ply  with several sessions: session N's points that the map keeps;
+//   OUT/changes.txt      per session: segments removed (moving, vanished) and added (new);
+//   OUT/changes_sN.ply   the voxels each session removed (red) and added (green).
+// and prints per session the time, views, voxels, memory and the changes, so that
+//   ltm_eval dynamic --map OUT/cleaned_map.ply --scans DIR ... scores it.
+// Options: `ltm_bench_maintenance --help`.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "common/cli/cli.hpp"
+#include "common/core/config_check.hpp"
+#include "common/core/io_error.hpp"
+#include "common/core/kitti_io.hpp"
+#include "common/core/ply_io.hpp"
+#include "common/core/process_memory.hpp"
+#include "common/core/progress.hpp"
+#include "common/core/trajectory_io.hpp"
+#include "maintenance/core/long_term_map.hpp"
+#include "sources/core/scan_folder.hpp"
+
+namespace {
+
+using namespace ltm;
+using Clock = std::chrono::steady_clock;
+
+struct Args {
+    std::vector<std::string> sessions, poses, set;
+    std::string calib, out, preset = "default";
+    std::size_t first = 0, count = 0, every = 1;
+};
+
+// "key=value" overrides of the maintenance config, checked by its visit_fields list.
+struct Setter {
+    std::string key, value;
+    bool found = false;
+    void operator()(const std::string& k, double& v, const common::Rule&) { set(k, v); }
+    void operator()(const std::string& k, int& v, const common::Rule&) { set(k, v); }
+    void operator()(const std::string& k, bool& v, const common::Rule&) {
+        if (k != key) return;
+        found = true;
+        if (value != "true" && value != "false")
+            throw common::ConfigError(key, "must be true or false (got " + value + ")");
+        v = value == "true";
+    }
+    template <class T>
+    void set(const std::string& k, T& v) {
+        if (k != key) return;
+        found = true;
+        std::istringstream in(value);
+        T x{};
+        if (!(in >> x) || !in.eof())
+            throw common::ConfigError(key, "must be a number (got " + value + ")");
+        v = x;
+    }
+};
+
+maintenance::MaintenanceConfig make_config(const Args& a) {
+    maintenance::MaintenanceConfig c;
+    if (a.preset == "short") {  // a window of a second or two (KITTI snippets): every scan a
+        c.view_spacing = 0.0;   // view, all views judge every voxel, hits prove little
+        c.view_delay = 1e6;
+        c.change.static_span = 0.5;
+        c.change.recent_window = 1e6;
+        c.change.min_views = 3;
+        c.change.changed_score = 0.2;
+    }
+    for (const std::string& kv : a.set) {
+        const std::size_t eq = kv.find('=');
+        if (eq == std::string::npos)
+            throw common::cli::UsageError("--set " + kv + ": expected KEY=VALUE");
+        Setter s{kv.substr(0, eq), kv.substr(eq + 1)};
+        maintenance::visit_fields(c, "", s);
+        if (!s.found)
+            throw common::cli::UsageError("--set " + kv + ": unknown key " + s.key +
+                                          " (a key of MaintenanceConfig, e.g. change.sigma)");
+    }
+    return c;
+}
+
+void write_changes(std::ostream& out, const maintenance::ChangeSet& c) {
+    out << "session " << c.session << ": " << c.count(maintenance::ChangeReason::kMoving)
+        << " moving, " << c.count(maintenance::ChangeReason::kVanished) << " vanished, "
+        << c.count(maintenance::ChangeReason::kNew) << " new segments; " << c.voxels_removed
+        << " of " << c.voxels_before << " voxels removed, " << c.voxels_judged << " judged, "
+        << c.segments << " segments, " << c.ground_voxels << " ground; " << c.time_ms << " ms\n";
+    for (const maintenance::SegmentChange& s : c.changes) {
+        char line[256];
+        std::snprintf(line, sizeof line,
+                      "  %-8s id %llu  centre %.2f %.2f %.2f  size %.1f x %.1f x %.1f  voxels %zu  "
+                      "score %.2f  seen %.1f-%.1f s\n",
+                      maintenance::reason_name(s.reason), (unsigned long long)s.id, s.centroid.x(),
+                      s.centroid.y(), s.centroid.z(), s.bbox_max.x() - s.bbox_min.x(),
+                      s.bbox_max.y() - s.bbox_min.y(), s.bbox_max.z() - s.bbox_min.z(),
+                      s.voxels.size(), s.score, s.first_seen, s.last_seen);
+        out << line;
+    }
+}
+
+int run(const Args& a) {
+    const maintenance::MaintenanceConfig config = make_config(a);
+    maintenance::LongTermMap map(config);
+    if (!a.poses.empty() && a.poses.size() != a.sessions.size())
+        throw common::cli::UsageError(std::to_string(a.poses.size()) + " --poses for " +
+                                      std::to_string(a.sessions.size()) + " --sessions");
+    std::filesystem::create_directories(a.out);
+    // Each session's folder and poses (T_world_lidar).
+    std::vector<sources::ScanFolder> folders;
+    std::vector<common::PoseList> poses;
+    for (std::size_t s = 0; s < a.sessions.size(); ++s) {
+        sources::ScanFolderConfig fc;
+        fc.path = a.sessions[s];
+        fc.start = a.first;
+        fc.count = a.count;
+        folders.emplace_back(fc);
+        std::string p = a.poses.empty() ? "" : a.poses[s];
+        if (p.empty()) {
+            const std::string seq = common::kitti_sequence_dir(a.sessions[s]);
+            p = (std::filesystem::path(seq) / "poses.txt").string();
+        }
+        common::PoseList list = common::read_kitti_poses(p);
+        if (!a.calib.empty())
+            list = common::camera_to_lidar_poses(list, common::read_kitti_calib_tr(a.calib));
+        if (list.size() < a.first + folders.back().size())
+            throw common::IoError(p, std::to_string(list.size()) + " poses for scans up to " +
+                                         std::to_string(a.first + folders.back().size()));
+        poses.push_back(std::move(list));
+    }
+
+    std::ofstream changes(std::filesystem::path(a.out) / "changes.txt");
+    const auto t_all = Clock::now();
+    std::size_t scans = 0;
+    for (std::size_t s = 0; s < folders.size(); ++s) {
+        const sources::ScanFolder& f = folders[s];
+        const auto t0 = Clock::now();
+        map.begin_session(std::uint32_t(s), f.size() ? f.stamp(0) : 0.0);
+        common::Progress progress("session " + std::to_string(s), f.size(), "scans");
+        for (std::size_t i = 0; i < f.size(); ++i) {
+            const common::PointCloud cloud = f.load(i);
+            map.add_scan(cloud.points, poses[s][a.first + i], f.stamp(i));
+            progress.update(i + 1);
+        }
+        progress.finish();
+        const double add_s = std::chrono::duration<double>(Clock::now() - t0).count();
+        const maintenance::ChangeSet c = map.end_session();
+        scans += f.size();
+        const maintenance::LongTermMapStats st = map.stats();
+        std::printf(
+            "session %zu: %zu scans in %.1f s (%.1f scans/s; views judged voxels for %.1f s), "
+            "maintenance %.0f ms over %zu regions (%.1f ms a region)\n",
+            s, f.size(), add_s, f.size() / std::max(add_s, 1e-9), st.judge_ms / 1000.0, c.time_ms,
+            st.regions, c.time_ms / std::max<std::size_t>(1, st.regions));
+        std::printf(
+            "  removed: %zu moving, %zu vanished segments (%zu + %zu voxels); new: %zu; "
+            "map %zu voxels, %.1f MiB\n",
+            c.count(maintenance::ChangeReason::kMoving),
+            c.count(maintenance::ChangeReason::kVanished),
+            c.removed_voxels_by(maintenance::ChangeReason::kMoving),
+            c.removed_voxels_by(maintenance::ChangeReason::kVanished),
+            c.count(maintenance::ChangeReason::kNew), st.voxels, st.memory_bytes / 1048576.0);
+        write_changes(changes, c);
+        common::PlyCloud ply;
+        for (const maintenance::SegmentChange& sc : c.changes) {
+            for (const Eigen::Vector3f& p : sc.voxels) {
+                ply.points.push_back(p);
+                ply.intensity.push_back(sc.removed() ? 1.0f : 0.0f);
+            }
+        }
+        common::write_ply(
+            (std::filesystem::path(a.out) / ("changes_s" + std::to_string(s) + ".ply")).string(),
+            ply);
+    }
+    // The scans' own points, kept or removed by the final map (all sessions, and each session).
+    common::PlyCloud kept, removed;
+    const float max_range = float(config.max_range);
+    for (std::size_t s = 0; s < folders.size(); ++s) {
+        const sources::ScanFolder& f = folders[s];
+        common::PlyCloud kept_here;
+        for (std::size_t i = 0; i < f.size(); i += a.every) {
+            const common::PointCloud cloud = f.load(i);
+            const Eigen::Isometry3f T = poses[s][a.first + i].cast<float>();
+            for (const Eigen::Vector3f& p : cloud.points) {
+                if (!p.allFinite() || p.norm() > max_range) continue;
+                const Eigen::Vector3f w = T * p;
+                if (map.keeps(w)) {
+                    kept.points.push_back(w);
+                    kept_here.points.push_back(w);
+                } else {
+                    removed.points.push_back(w);
+                }
+            }
+        }
+        if (folders.size() > 1)
+            common::write_ply(
+                (std::filesystem::path(a.out) / ("cleaned_map_s" + std::to_string(s) + ".ply"))
+                    .string(),
+                kept_here);
+    }
+    common::write_ply((std::filesystem::path(a.out) / "cleaned_map.ply").string(), kept);
+    common::write_ply((std::filesystem::path(a.out) / "removed.ply").string(), removed);
+    const double total_s = std::chrono::duration<double>(Clock::now() - t_all).count();
+    const common::ProcessMemory mem = common::process_memory();
+    std::printf(
+        "%zu sessions, %zu scans in %.1f s; kept %zu points, removed %zu; peak memory "
+        "%.0f MiB\nwrote %s/{cleaned_map.ply, removed.ply, changes.txt, changes_s*.ply}\n",
+        folders.size(), scans, total_s, kept.points.size(), removed.points.size(), mem.peak_mib,
+        a.out.c_str());
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"Map maintenance over sessions of scans at given poses, on one map",
+                 "ltm_bench_maintenance"};
+    Args a;
+    common::cli::configure(app);
+    app.add_option("--sessions", a.sessions, "scan folders (KITTI layout), in order")
+        ->required()
+        ->expected(1, 1000);
+    app.add_option("--poses", a.poses,
+                   "KITTI-format poses, one file a session (default: DIR's sequence poses.txt)")
+        ->expected(1, 1000);
+    app.add_option("--calib", a.calib, "the poses are camera poses of this KITTI calib.txt");
+    app.add_option("--first", a.first, "first scan of each session");
+    app.add_option("--count", a.count, "scans of each session (0: all)");
+    app.add_option("--every", a.every,
+                   "the PLY files hold the points of every Nth scan (score with ltm_eval dynamic "
+                   "--every N)")
+        ->check(common::cli::at_least(1));
+    app.add_option("--preset", a.preset, "default (sessions of minutes) or short (a few seconds)")
+        ->check(common::cli::one_of({"default", "short"}));
+    app.add_option("--set", a.set, "KEY=VALUE overriding a maintenance key (repeatable)");
+    app.add_option("--out", a.out, "output folder")->required();
+    if (const int rc = common::cli::parse(app, argc, argv); rc >= 0) return rc;
+    try {
+        return run(a);
+    } catch (const common::cli::UsageError& e) {
+        return common::cli::usage_error(app, e);
+    } catch (const std::exception& e) {
+        std::cerr << "ltm_bench_maintenance: " << e.what() << "\n";
+        return 1;
+    }
+}

@@ -1,0 +1,316 @@
+// Map maintenance as a component: registered scans in (`points`, PointCloud2 in the sensor frame)
+// with their world poses (by default nav_msgs/Odometry on `odometry`, remapped to the mapping's
+// `corrected_odometry`; or a PoseStamped / PoseWithCovarianceStamped on `pose`: `input`), paired
+// by stamp; out `map_changes` (ltm_msgs/MapChangeSet) for every maintenance pass that changed the
+// map, and the state on the shared `status`. A LongTermMap (maintenance/core) takes the scans.
+//
+// Threads: the component's thread takes the inputs and pairs each scan with the pose of the same
+// stamp (a scan waits for its pose until a newer pose says it has none); the long-term map lives
+// on a worker thread of its own, which takes the paired scans in order, runs a pass every
+// `maintain_every_s` seconds of scan time (stamps, so that a replay at any speed makes the same
+// passes) and the last one at shutdown. At most `max_queue` scans wait for the worker: then the
+// oldest is dropped (skip_while_busy, a live sensor) or the component's thread waits (offline:
+// back-pressure on the sensor, nothing dropped).
+//
+// With `output_dir` (created when missing) every pass writes there its change record
+// (changes_NNNN.ltmc, maintenance/core/change_record.hpp), appends its summary to changes.txt and
+// rewrites changes_removed_added.ply (every change of the run: removed voxels red, added green).
+#include <chrono>
+#include <condition_variable>
+#include <cstdio>
+#include <deque>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <mutex>
+#include <thread>
+
+#include "common/convert/dds_string.hpp"
+#include "common/convert/geometry.hpp"
+#include "common/convert/pointcloud2.hpp"
+#include "common/convert/status.hpp"
+#include "common/core/one_line.hpp"
+#include "maintenance/component/maintenance_params.hpp"
+#include "maintenance/component/map_change_messages.hpp"
+#include "maintenance/core/change_record.hpp"
+#include "maintenance/core/change_report.hpp"
+#include "maintenance/core/long_term_map.hpp"
+#include "runtime/component.hpp"
+
+namespace ltm::maintenance {
+namespace {
+
+namespace fs = std::filesystem;
+using convert::StatusLevel;
+using runtime::TopicRole;
+
+constexpr double kSameStamp = 1e-4;     // a scan and its pose [s]
+constexpr std::size_t kMaxPoses = 400;  // poses kept for pairing
+constexpr std::size_t kMaxWaiting = 50;  // scans waiting for their pose
+
+struct Scan {
+    double stamp = 0.0;
+    std::vector<Eigen::Vector3f> points;  // sensor frame
+    Eigen::Isometry3d T_world_sensor = Eigen::Isometry3d::Identity();
+};
+
+class MaintenanceComponent : public runtime::Component {
+  public:
+    explicit MaintenanceComponent(runtime::ComponentContext& ctx) : ctx_(ctx) {
+        auto& p = ctx.params();
+        config_ = load_maintenance_params(p);
+        map_ = std::make_unique<LongTermMap>(config_.maintenance);
+        if (!config_.output_dir.empty()) {
+            std::error_code ec;
+            fs::create_directories(config_.output_dir, ec);
+            if (ec || !fs::is_directory(config_.output_dir))
+                p.fail("output_dir", "cannot create " + config_.output_dir + ": " +
+                                         (ec ? ec.message() : "not a directory"));
+            summary_.open(fs::path(config_.output_dir) / "changes.txt", std::ios::trunc);
+            if (!summary_) p.fail("output_dir", "cannot write " + config_.output_dir + "/changes.txt");
+        }
+        ctx.subscribe<msg::PointCloud2>("points", TopicRole::kSensor,
+                                        [this](const msg::PointCloud2& m) { on_points(m); });
+        switch (config_.input) {
+            case PoseInput::kOdometry:
+                ctx.subscribe<msg::Odometry>("odometry", TopicRole::kState,
+                                             [this](const msg::Odometry& m) {
+                                                 on_pose(convert::to_seconds(m.header.stamp),
+                                                         convert::to_isometry(m.pose.pose),
+                                                         m.header.frame_id);
+                                             });
+                break;
+            case PoseInput::kPose:
+                ctx.subscribe<msg::PoseStamped>("pose", TopicRole::kState,
+                                                [this](const msg::PoseStamped& m) {
+                                                    on_pose(convert::to_seconds(m.header.stamp),
+                                                            convert::to_isometry(m.pose),
+                                                            m.header.frame_id);
+                                                });
+                break;
+            case PoseInput::kPoseWithCovariance:
+                ctx.subscribe<msg::PoseWithCovarianceStamped>(
+                    "pose", TopicRole::kState, [this](const msg::PoseWithCovarianceStamped& m) {
+                        on_pose(convert::to_seconds(m.header.stamp),
+                                convert::to_isometry(m.pose.pose), m.header.frame_id);
+                    });
+                break;
+        }
+        changes_out_ = ctx.advertise<msg::MapChangeSet>("map_changes", TopicRole::kMap);
+        events_out_ = ctx.advertise<msg::Status>("status", TopicRole::kState);
+    }
+
+    ~MaintenanceComponent() override { stop_worker(); }
+
+    void on_activate() override {
+        worker_ = std::thread([this] { run_worker(); });
+    }
+
+    void on_shutdown() override {
+        stop_worker();
+        ctx_.log().info(std::to_string(scans_) + " scans: " + std::to_string(used_) +
+                        " maintained, " + std::to_string(no_pose_) + " without a pose, " +
+                        std::to_string(dropped_) + " dropped while busy; " +
+                        std::to_string(passes_) + " passes");
+    }
+
+  private:
+    // --- the component's thread: inputs, pairing ---
+
+    void on_points(const msg::PointCloud2& m) {
+        ++scans_;
+        common::PointCloud cloud;
+        const std::string err = convert::from_pointcloud2(m, cloud);
+        if (!err.empty()) {
+            event(StatusLevel::kError, "bad_cloud", "scan ignored: " + err, cloud.stamp);
+            return;
+        }
+        Scan s;
+        s.stamp = cloud.stamp;
+        s.points = std::move(cloud.points);
+        if (waiting_.size() == kMaxWaiting) {  // poses stopped coming
+            waiting_.pop_front();
+            ++no_pose_;
+        }
+        waiting_.push_back(std::move(s));
+        pair();
+    }
+
+    void on_pose(double stamp, const Eigen::Isometry3d& T, const char* frame_id) {
+        if (!T.matrix().allFinite()) return;
+        const std::string frame = convert::to_string(frame_id);
+        if (!frame.empty()) {
+            std::lock_guard<std::mutex> lock(mutex_);
+            frame_id_ = frame;
+        }
+        newest_pose_ = std::max(newest_pose_, stamp);
+        if (poses_.size() == kMaxPoses) poses_.pop_front();
+        poses_.emplace_back(stamp, T);
+        pair();
+    }
+
+    // Hands on every waiting scan whose pose came, and drops those whose pose will not come.
+    void pair() {
+        while (!waiting_.empty()) {
+            Scan& s = waiting_.front();
+            bool found = false;
+            for (auto it = poses_.begin(); it != poses_.end(); ++it) {
+                if (std::abs(it->first - s.stamp) >= kSameStamp) continue;
+                s.T_world_sensor = it->second;
+                poses_.erase(poses_.begin(), it + 1);
+                found = true;
+                break;
+            }
+            if (found) {
+                submit(std::move(s));
+            } else if (newest_pose_ > s.stamp + kSameStamp) {
+                ++no_pose_;
+            } else {
+                break;
+            }
+            waiting_.pop_front();
+        }
+    }
+
+    void submit(Scan&& scan) {
+        std::unique_lock<std::mutex> lock(mutex_);
+        if (!config_.skip_while_busy)
+            cv_.wait(lock, [&] { return queue_.size() < std::size_t(config_.max_queue) || stop_; });
+        if (queue_.size() >= std::size_t(config_.max_queue)) {
+            queue_.pop_front();
+            ++dropped_;
+        }
+        queue_.push_back(std::move(scan));
+        cv_.notify_all();
+    }
+
+    // --- the worker thread: the long-term map, the passes and their outputs ---
+
+    void run_worker() {
+        bool started = false;
+        double last_pass = 0.0, stamp = 0.0;
+        for (;;) {
+            Scan scan;
+            {
+                std::unique_lock<std::mutex> lock(mutex_);
+                cv_.wait(lock, [&] { return !queue_.empty() || stop_; });
+                if (queue_.empty()) break;  // stopped, and every scan taken
+                scan = std::move(queue_.front());
+                queue_.pop_front();
+            }
+            cv_.notify_all();  // room in the queue
+            stamp = scan.stamp;
+            try {
+                if (!started) {
+                    map_->begin_session(config_.session, stamp);
+                    started = true;
+                    last_pass = stamp;
+                }
+                map_->add_scan(scan.points, scan.T_world_sensor, stamp);
+                ++used_;
+                if (config_.maintain_every_s > 0 && stamp - last_pass >= config_.maintain_every_s) {
+                    last_pass = stamp;
+                    finish_pass(map_->maintain(), stamp);
+                }
+            } catch (const std::exception& e) {
+                event(StatusLevel::kError, "maintenance_failed", common::one_line(e.what()), stamp);
+            }
+        }
+        if (!started) return;
+        try {
+            finish_pass(map_->end_session(), stamp);
+        } catch (const std::exception& e) {
+            event(StatusLevel::kError, "maintenance_failed", common::one_line(e.what()), stamp);
+        }
+    }
+
+    void finish_pass(const ChangeSet& c, double stamp) {
+        const std::uint32_t pass = passes_++;
+        const LongTermMapStats st = map_->stats();
+        char text[300];
+        std::snprintf(text, sizeof text,
+                      "pass %u: %zu moving, %zu vanished, %zu new segments; %zu voxels removed; "
+                      "map %zu voxels, %.1f MiB; %.0f ms",
+                      pass, c.count(ChangeReason::kMoving), c.count(ChangeReason::kVanished),
+                      c.count(ChangeReason::kNew), c.voxels_removed, st.voxels,
+                      st.memory_bytes / 1048576.0, c.time_ms);
+        event(StatusLevel::kOk, "maintained", text, stamp);
+        if (!c.changes.empty()) changes_out_.publish(*to_msg(c, pass, stamp, frame_id()));
+        if (config_.output_dir.empty()) return;
+        all_.append(c);
+        all_.voxel_size = c.voxel_size;
+        const fs::path dir(config_.output_dir);
+        char name[40];
+        std::snprintf(name, sizeof name, "changes_%04u.ltmc", pass);
+        try {
+            write_change_record((dir / name).string(), c);
+            write_change_summary(summary_, c, pass);
+            summary_.flush();
+            write_change_ply((dir / "changes_removed_added.ply").string(), all_);
+        } catch (const std::exception& e) {
+            event(StatusLevel::kError, "write_failed", common::one_line(e.what()), stamp);
+        }
+    }
+
+    std::string frame_id() {
+        std::lock_guard<std::mutex> lock(mutex_);
+        return frame_id_;
+    }
+
+    // Thread-safe: the publisher and the logger are.
+    void event(StatusLevel level, const std::string& code, const std::string& text, double stamp) {
+        if (level == StatusLevel::kOk) {
+            ctx_.log().info(text);
+        } else if (level == StatusLevel::kError) {
+            ctx_.log().error(text);
+        } else {
+            ctx_.log().warn(text);
+        }
+        events_out_.publish(*convert::to_msg(convert::StatusData{
+            convert::to_time(stamp), frame_id(), ctx_.name(), level, code, text}));
+    }
+
+    void stop_worker() {
+        {
+            std::lock_guard<std::mutex> lock(mutex_);
+            stop_ = true;
+        }
+        cv_.notify_all();
+        if (worker_.joinable()) worker_.join();
+    }
+
+    runtime::ComponentContext& ctx_;
+    MaintenanceComponentConfig config_;
+
+    // The component's thread.
+    std::deque<Scan> waiting_;
+    std::deque<std::pair<double, Eigen::Isometry3d>> poses_;
+    double newest_pose_ = -1e300;
+    std::uint64_t scans_ = 0, no_pose_ = 0;
+
+    // Shared with the worker (under mutex_).
+    std::mutex mutex_;
+    std::condition_variable cv_;
+    std::deque<Scan> queue_;
+    bool stop_ = false;
+    std::uint64_t dropped_ = 0;
+    std::string frame_id_ = "map";
+
+    // The worker's (read by on_shutdown after the join).
+    std::thread worker_;
+    std::unique_ptr<LongTermMap> map_;
+    std::uint64_t used_ = 0;
+    std::uint32_t passes_ = 0;
+    ChangeSet all_;  // every change of the run (the PLY)
+    std::ofstream summary_;
+
+    runtime::Publisher<msg::MapChangeSet> changes_out_;
+    runtime::Publisher<msg::Status> events_out_;
+};
+
+}  // namespace
+}  // namespace ltm::maintenance
+
+LTM_REGISTER_COMPONENT(
+    ltm::maintenance::MaintenanceComponent, "maintenance",
+    "map maintenance: registered scans and their poses in; map_changes and change reports out")

@@ -1,0 +1,36 @@
+#include "maintenance/component/maintenance_params.hpp"
+
+namespace ltm::maintenance {
+
+MaintenanceComponentConfig load_maintenance_params(runtime::Parameters& p) {
+    MaintenanceComponentConfig c;
+    const std::string input = p.get<std::string>("input", "odometry");
+    if (input == "odometry") {
+        c.input = PoseInput::kOdometry;
+    } else if (input == "pose") {
+        c.input = PoseInput::kPose;
+    } else if (input == "pose_with_covariance") {
+        c.input = PoseInput::kPoseWithCovariance;
+    } else {
+        p.fail("input", "expected odometry, pose or pose_with_covariance, got '" + input + "'");
+    }
+    c.output_dir = p.path("output_dir", "", runtime::PathCheck::kNone);
+    c.maintain_every_s = p.get<double>("maintain_every_s", c.maintain_every_s);
+    if (!(c.maintain_every_s >= 0.0))
+        p.fail("maintain_every_s", "must be >= 0 (0: only at shutdown)");
+    const int session = p.get<int>("session", 0);
+    if (session < 0) p.fail("session", "must be >= 0");
+    c.session = static_cast<std::uint32_t>(session);
+    c.max_queue = p.get<int>("max_queue", c.max_queue);
+    if (c.max_queue < 1) p.fail("max_queue", "must be >= 1");
+    c.skip_while_busy = p.get<bool>("skip_while_busy", c.skip_while_busy);
+    visit_fields(c.maintenance, "maintenance.",
+                 [&](const std::string& key, auto& field, const auto& /*rule*/) {
+                     field = p.get(key, field);
+                 });
+    if (const auto problem = validate(c.maintenance))
+        p.fail("maintenance." + problem->key, problem->problem);
+    return c;
+}
+
+}  // namespace ltm::maintenance

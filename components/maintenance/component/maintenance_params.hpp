@@ -1,0 +1,34 @@
+#pragma once
+// The maintenance component's parameters: its own keys (what it listens to, how often it
+// maintains, where it writes) and the maintenance core's MaintenanceConfig under `maintenance.`
+// (`maintenance.voxel_size`, `maintenance.change.sigma`, ...: visit_fields in
+// maintenance/core/maintenance_config.hpp). Wrong types and invalid values fail with file, line
+// and key; the host refuses the keys nobody read.
+#include <cstdint>
+#include <string>
+
+#include "maintenance/core/maintenance_config.hpp"
+#include "runtime/parameters.hpp"
+
+namespace ltm::maintenance {
+
+enum class PoseInput {
+    kOdometry,            // nav_msgs/Odometry on `odometry` (remap: corrected_odometry)
+    kPose,                // geometry_msgs/PoseStamped on `pose` (e.g. ground_truth)
+    kPoseWithCovariance,  // geometry_msgs/PoseWithCovarianceStamped on `pose` (localisation)
+};
+
+struct MaintenanceComponentConfig {
+    PoseInput input = PoseInput::kOdometry;
+    std::string output_dir;         // "" : publish only; else created when missing
+    double maintain_every_s = 30.0;  // [s] of scan time between passes (0: only at shutdown)
+    std::uint32_t session = 0;       // the session number of this run on the map
+    int max_queue = 50;              // scans waiting for the worker
+    bool skip_while_busy = false;    // a full queue drops its oldest scan (live) or waits (offline)
+    MaintenanceConfig maintenance;
+};
+
+// Throws ConfigError naming file, line and key.
+MaintenanceComponentConfig load_maintenance_params(runtime::Parameters& params);
+
+}  // namespace ltm::maintenance

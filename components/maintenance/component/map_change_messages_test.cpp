@@ -1,0 +1,144 @@
+// ChangeSet <-> ltm_msgs/MapChangeSet: exact through the converter and through Cyclone DDS
+// (serialised, delivered, deserialised); malformed messages refused with one line.
+#include "maintenance/component/map_change_messages.hpp"
+
+#include <dds/dds.h>
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+
+#include "common/convert/dds_string.hpp"
+#include "common/convert/geometry.hpp"
+
+namespace ltm::maintenance {
+namespace {
+
+ChangeSet sample() {
+    ChangeSet c;
+    c.session = 2;
+    c.map_time = 301.25;
+    c.voxel_size = 0.25f;
+    c.voxels_before = 12345;
+    c.voxels_removed = 3;
+    c.voxels_judged = 999;
+    c.segments = 17;
+    c.ground_voxels = 8000;
+    c.time_ms = 4.75;
+    const ChangeReason reasons[] = {ChangeReason::kMoving, ChangeReason::kVanished,
+                                    ChangeReason::kNew};
+    for (int i = 0; i < 3; ++i) {
+        SegmentChange s;
+        s.id = 100 + i;
+        s.reason = reasons[i];
+        s.region = {i - 1, 2 * i};
+        s.voxels = {{0.1f * i, -1.3f, 0.7f}, {0.35f, 2.0f + i, -0.2f}};
+        s.centroid = (s.voxels[0] + s.voxels[1]) / 2;
+        s.bbox_min = s.voxels[0].cwiseMin(s.voxels[1]);
+        s.bbox_max = s.voxels[0].cwiseMax(s.voxels[1]);
+        s.first_seen = 10.0 * i;
+        s.last_seen = 10.0 * i + 2.5;
+        s.score = 0.3 + 0.1 * i;
+        s.judged = i;
+        c.changes.push_back(s);
+    }
+    c.changes.back().voxels.push_back({7.0f, 8.0f, 9.0f});
+    return c;
+}
+
+void expect_same(const ChangeSet& a, const ChangeSet& b) {
+    EXPECT_EQ(a.session, b.session);
+    EXPECT_EQ(a.map_time, b.map_time);
+    EXPECT_EQ(a.voxel_size, b.voxel_size);
+    EXPECT_EQ(a.voxels_before, b.voxels_before);
+    EXPECT_EQ(a.voxels_removed, b.voxels_removed);
+    EXPECT_EQ(a.voxels_judged, b.voxels_judged);
+    EXPECT_EQ(a.segments, b.segments);
+    EXPECT_EQ(a.ground_voxels, b.ground_voxels);
+    EXPECT_EQ(a.time_ms, b.time_ms);
+    ASSERT_EQ(a.changes.size(), b.changes.size());
+    for (std::size_t i = 0; i < a.changes.size(); ++i) {
+        const SegmentChange &x = a.changes[i], &y = b.changes[i];
+        EXPECT_EQ(x.id, y.id);
+        EXPECT_EQ(x.reason, y.reason);
+        EXPECT_EQ(x.region, y.region);
+        EXPECT_EQ(x.centroid, y.centroid);
+        EXPECT_EQ(x.bbox_min, y.bbox_min);
+        EXPECT_EQ(x.bbox_max, y.bbox_max);
+        EXPECT_EQ(x.first_seen, y.first_seen);
+        EXPECT_EQ(x.last_seen, y.last_seen);
+        EXPECT_EQ(x.score, y.score);
+        EXPECT_EQ(x.judged, y.judged);
+        EXPECT_EQ(x.voxels, y.voxels);
+    }
+}
+
+TEST(MapChangeMessages, RoundTripThroughTheConverterIsExact) {
+    const ChangeSet c = sample();
+    const convert::Owned<msg::MapChangeSet> m = to_msg(c, 5, 1700000000.5, "map");
+    EXPECT_EQ(m->pass, 5u);
+    EXPECT_EQ(convert::to_string(m->header.frame_id), "map");
+    EXPECT_DOUBLE_EQ(convert::to_seconds(m->header.stamp), 1700000000.5);
+    ASSERT_EQ(m->changes._length, 3u);
+    EXPECT_EQ(m->changes._buffer[1].reason, ltm_msgs_msg_SegmentChange_Constants_VANISHED);
+    EXPECT_EQ(m->changes._buffer[2].voxels._length, 9u);
+    expect_same(c, from_msg(*m));
+    expect_same(ChangeSet{}, from_msg(*to_msg(ChangeSet{}, 0, 0.0, "map")));
+}
+
+TEST(MapChangeMessages, MalformedMessagesAreRefusedInOneLine) {
+    convert::Owned<msg::MapChangeSet> m = to_msg(sample(), 0, 1.0, "map");
+    m->changes._buffer[1].reason = 7;
+    try {
+        from_msg(*m);
+        FAIL();
+    } catch (const std::invalid_argument& e) {
+        EXPECT_STREQ(e.what(), "map change set: changes[1]: unknown reason 7");
+    }
+    m->changes._buffer[1].reason = ltm_msgs_msg_SegmentChange_Constants_NEW;
+    m->changes._buffer[2].voxels._length = 8;
+    try {
+        from_msg(*m);
+        FAIL();
+    } catch (const std::invalid_argument& e) {
+        EXPECT_STREQ(e.what(),
+                     "map change set: changes[2]: 8 voxel coordinates, not x y z triples");
+    }
+    m->changes._buffer[2].voxels._length = 9;
+}
+
+// Serialised by Cyclone DDS and taken back by a reader of the same topic.
+TEST(MapChangeMessages, RoundTripThroughDds) {
+    const char* xml =
+        "<CycloneDDS><Domain Id=\"any\"><General><Interfaces><NetworkInterface name=\"lo\"/>"
+        "</Interfaces><AllowMulticast>false</AllowMulticast></General></Domain></CycloneDDS>";
+    const dds_entity_t domain = dds_create_domain(221, xml);
+    ASSERT_GT(domain, 0) << dds_strretcode(domain);
+    const dds_entity_t participant = dds_create_participant(221, nullptr, nullptr);
+    ASSERT_GT(participant, 0) << dds_strretcode(participant);
+    const dds_entity_t topic =
+        dds_create_topic(participant, runtime::MessageTraits<msg::MapChangeSet>::descriptor(),
+                         "rt/ltm_test/map_changes", nullptr, nullptr);
+    ASSERT_GT(topic, 0) << dds_strretcode(topic);
+    dds_qos_t* qos = dds_create_qos();
+    dds_qset_reliability(qos, DDS_RELIABILITY_RELIABLE, DDS_SECS(1));
+    const dds_entity_t reader = dds_create_reader(participant, topic, qos, nullptr);
+    const dds_entity_t writer = dds_create_writer(participant, topic, qos, nullptr);
+    dds_delete_qos(qos);
+    ASSERT_GT(reader, 0);
+    ASSERT_GT(writer, 0);
+    const ChangeSet c = sample();
+    ASSERT_EQ(dds_write(writer, &*to_msg(c, 3, 42.0, "map")), DDS_RETCODE_OK);
+    void* buf[1] = {nullptr};
+    dds_sample_info_t info;
+    ASSERT_EQ(dds_take(reader, buf, &info, 1, 1), 1);  // local delivery: synchronous
+    ASSERT_TRUE(info.valid_data);
+    const auto& r = *static_cast<const msg::MapChangeSet*>(buf[0]);
+    EXPECT_EQ(r.pass, 3u);
+    expect_same(c, from_msg(r));
+    dds_return_loan(reader, buf, 1);
+    dds_delete(participant);
+    dds_delete(domain);
+}
+
+}  // namespace
+}  // namespace ltm::maintenance
