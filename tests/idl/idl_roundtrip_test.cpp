@@ -314,20 +314,24 @@ TEST_F(Dds, KeyframeGraphLoopStatusChangesMesh) {
         EXPECT_EQ(r.skipped_scans, 4u);
     });
 
-    std::vector<msg::VoxelKey> keys = {{1, 2, 3}, {4, 5, 6}};
-    std::vector<msg::MapChange> removed(1);
-    removed[0].local_map_id = 4;
-    removed[0].reason = ltm_msgs_msg_MapChange_Constants_VANISHED;
-    removed[0].voxels._buffer = keys.data();
-    removed[0].voxels._length = removed[0].voxels._maximum = 2;
+    std::vector<float> voxels = {1, 2, 3, 4, 5, 6};
+    std::vector<msg::SegmentChange> changes(1);
+    changes[0].id = 4;
+    changes[0].reason = ltm_msgs_msg_SegmentChange_Constants_VANISHED;
+    changes[0].region[1] = -2;
+    changes[0].voxels._buffer = voxels.data();
+    changes[0].voxels._length = changes[0].voxels._maximum = 6;
     msg::MapChangeSet cs{};
     cs.header.frame_id = c(frame);
-    cs.removed._buffer = removed.data();
-    cs.removed._length = cs.removed._maximum = 1;
+    cs.voxel_size = 0.25f;
+    cs.changes._buffer = changes.data();
+    cs.changes._length = cs.changes._maximum = 1;
     roundtrip<msg::MapChangeSet>(cs, [&](const msg::MapChangeSet& r) {
-        ASSERT_EQ(r.removed._length, 1u);
-        EXPECT_EQ(r.removed._buffer[0].voxels._buffer[1].iz, 6);
-        EXPECT_EQ(r.added._length, 0u);
+        ASSERT_EQ(r.changes._length, 1u);
+        EXPECT_EQ(r.changes._buffer[0].reason, ltm_msgs_msg_SegmentChange_Constants_VANISHED);
+        EXPECT_EQ(r.changes._buffer[0].region[1], -2);
+        EXPECT_EQ(r.changes._buffer[0].voxels._buffer[5], 6.0f);
+        EXPECT_EQ(r.voxel_size, 0.25f);
     });
 
     std::vector<float> vertices = {0, 0, 0, 1, 0, 0, 0, 1, 0};
