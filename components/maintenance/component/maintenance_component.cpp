@@ -15,7 +15,8 @@
 // With `output_dir` (created when missing) every pass writes there its change record
 // (changes_NNNN.ltmc, maintenance/core/change_record.hpp), appends its summary to changes.txt and
 // rewrites changes_removed_added.ply (every change of the run: removed voxels red, added green).
-#include <chrono>
+#include <algorithm>
+#include <cmath>
 #include <condition_variable>
 #include <cstdio>
 #include <deque>
@@ -44,8 +45,8 @@ namespace fs = std::filesystem;
 using convert::StatusLevel;
 using runtime::TopicRole;
 
-constexpr double kSameStamp = 1e-4;     // a scan and its pose [s]
-constexpr std::size_t kMaxPoses = 400;  // poses kept for pairing
+constexpr double kSameStamp = 1e-4;      // a scan and its pose [s]
+constexpr std::size_t kMaxPoses = 400;   // poses kept for pairing
 constexpr std::size_t kMaxWaiting = 50;  // scans waiting for their pose
 
 struct Scan {
@@ -67,26 +68,25 @@ class MaintenanceComponent : public runtime::Component {
                 p.fail("output_dir", "cannot create " + config_.output_dir + ": " +
                                          (ec ? ec.message() : "not a directory"));
             summary_.open(fs::path(config_.output_dir) / "changes.txt", std::ios::trunc);
-            if (!summary_) p.fail("output_dir", "cannot write " + config_.output_dir + "/changes.txt");
+            if (!summary_)
+                p.fail("output_dir", "cannot write " + config_.output_dir + "/changes.txt");
         }
         ctx.subscribe<msg::PointCloud2>("points", TopicRole::kSensor,
                                         [this](const msg::PointCloud2& m) { on_points(m); });
         switch (config_.input) {
             case PoseInput::kOdometry:
-                ctx.subscribe<msg::Odometry>("odometry", TopicRole::kState,
-                                             [this](const msg::Odometry& m) {
-                                                 on_pose(convert::to_seconds(m.header.stamp),
-                                                         convert::to_isometry(m.pose.pose),
-                                                         m.header.frame_id);
-                                             });
+                ctx.subscribe<msg::Odometry>(
+                    "odometry", TopicRole::kState, [this](const msg::Odometry& m) {
+                        on_pose(convert::to_seconds(m.header.stamp),
+                                convert::to_isometry(m.pose.pose), m.header.frame_id);
+                    });
                 break;
             case PoseInput::kPose:
-                ctx.subscribe<msg::PoseStamped>("pose", TopicRole::kState,
-                                                [this](const msg::PoseStamped& m) {
-                                                    on_pose(convert::to_seconds(m.header.stamp),
-                                                            convert::to_isometry(m.pose),
-                                                            m.header.frame_id);
-                                                });
+                ctx.subscribe<msg::PoseStamped>(
+                    "pose", TopicRole::kState, [this](const msg::PoseStamped& m) {
+                        on_pose(convert::to_seconds(m.header.stamp), convert::to_isometry(m.pose),
+                                m.header.frame_id);
+                    });
                 break;
             case PoseInput::kPoseWithCovariance:
                 ctx.subscribe<msg::PoseWithCovarianceStamped>(

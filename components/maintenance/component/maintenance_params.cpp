@@ -24,12 +24,10 @@ MaintenanceComponentConfig load_maintenance_params(runtime::Parameters& p) {
     c.max_queue = p.get<int>("max_queue", c.max_queue);
     if (c.max_queue < 1) p.fail("max_queue", "must be >= 1");
     c.skip_while_busy = p.get<bool>("skip_while_busy", c.skip_while_busy);
-    visit_fields(c.maintenance, "maintenance.",
-                 [&](const std::string& key, auto& field, const auto& /*rule*/) {
-                     field = p.get(key, field);
-                 });
-    if (const auto problem = validate(c.maintenance))
-        p.fail("maintenance." + problem->key, problem->problem);
+    visit_fields(c.maintenance, "", [&](const std::string& key, auto& field, const auto& /*rule*/) {
+        field = p.get(key, field);
+    });
+    if (const auto problem = validate(c.maintenance)) p.fail(problem->key, problem->problem);
     return c;
 }
 

@@ -1,9 +1,9 @@
 #pragma once
 // The maintenance component's parameters: its own keys (what it listens to, how often it
-// maintains, where it writes) and the maintenance core's MaintenanceConfig under `maintenance.`
-// (`maintenance.voxel_size`, `maintenance.change.sigma`, ...: visit_fields in
-// maintenance/core/maintenance_config.hpp). Wrong types and invalid values fail with file, line
-// and key; the host refuses the keys nobody read.
+// maintains, where it writes) beside the keys of the core's MaintenanceConfig (`voxel_size`,
+// `change.sigma`, `ground.height`, ...: visit_fields in maintenance/core/maintenance_config.hpp).
+// Wrong types and invalid values fail with file, line and key; the host refuses the keys nobody
+// read.
 #include <cstdint>
 #include <string>
 
@@ -20,7 +20,7 @@ enum class PoseInput {
 
 struct MaintenanceComponentConfig {
     PoseInput input = PoseInput::kOdometry;
-    std::string output_dir;         // "" : publish only; else created when missing
+    std::string output_dir;          // "" : publish only; else created when missing
     double maintain_every_s = 30.0;  // [s] of scan time between passes (0: only at shutdown)
     std::uint32_t session = 0;       // the session number of this run on the map
     int max_queue = 50;              // scans waiting for the worker

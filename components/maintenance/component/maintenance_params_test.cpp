@@ -1,0 +1,78 @@
+#include "maintenance/component/maintenance_params.hpp"
+
+#include <gtest/gtest.h>
+
+namespace ltm::maintenance {
+namespace {
+
+runtime::Parameters params_of(const std::string& yaml) {
+    return runtime::Parameters(YAML::Load(yaml), "test.yaml", "maintenance");
+}
+
+std::string error_of(const std::string& yaml) {
+    try {
+        runtime::Parameters p = params_of(yaml);
+        load_maintenance_params(p);
+        p.check_all_used();
+    } catch (const runtime::ConfigError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+TEST(MaintenanceParams, DefaultsThenOverrides) {
+    runtime::Parameters p = params_of(
+        "input: pose\noutput_dir: /tmp/x\nmaintain_every_s: 5\nsession: 2\nmax_queue: 9\n"
+        "skip_while_busy: true\nvoxel_size: 0.3\nchange: {sigma: 2.5, voxel_level: true}\n"
+        "ground: {height: 0.4}\n");
+    const MaintenanceComponentConfig c = load_maintenance_params(p);
+    EXPECT_NO_THROW(p.check_all_used());
+    EXPECT_EQ(c.input, PoseInput::kPose);
+    EXPECT_EQ(c.output_dir, "/tmp/x");
+    EXPECT_DOUBLE_EQ(c.maintain_every_s, 5.0);
+    EXPECT_EQ(c.session, 2u);
+    EXPECT_EQ(c.max_queue, 9);
+    EXPECT_TRUE(c.skip_while_busy);
+    EXPECT_DOUBLE_EQ(c.maintenance.voxel_size, 0.3);
+    EXPECT_DOUBLE_EQ(c.maintenance.change.sigma, 2.5);
+    EXPECT_TRUE(c.maintenance.change.voxel_level);
+    EXPECT_DOUBLE_EQ(c.maintenance.ground.height, 0.4);
+    // Untouched keys: the core's defaults.
+    const MaintenanceConfig d;
+    EXPECT_DOUBLE_EQ(c.maintenance.max_range, d.max_range);
+    EXPECT_EQ(c.maintenance.change.min_views, d.change.min_views);
+
+    runtime::Parameters none = params_of("{}");
+    const MaintenanceComponentConfig n = load_maintenance_params(none);
+    EXPECT_EQ(n.input, PoseInput::kOdometry);
+    EXPECT_TRUE(n.output_dir.empty());
+}
+
+TEST(MaintenanceParams, ABadParameterIsOneLineNamingFileLineAndKey) {
+    EXPECT_EQ(error_of("input: lidar"),
+              "test.yaml:1: maintenance.input: expected odometry, pose or pose_with_covariance, "
+              "got 'lidar'");
+    EXPECT_EQ(error_of("maintain_every_s: -1"),
+              "test.yaml:1: maintenance.maintain_every_s: must be >= 0 (0: only at shutdown)");
+    EXPECT_EQ(error_of("maintain_every_s: often"),
+              "test.yaml:1: maintenance.maintain_every_s: expected a number, got 'often'");
+    EXPECT_EQ(error_of("a: 1\nvoxel_size: 0").rfind("test.yaml:2: maintenance.voxel_size: ", 0), 0u)
+        << error_of("a: 1\nvoxel_size: 0");
+    EXPECT_EQ(error_of("change: {sigmaa: 2}")
+                  .rfind("test.yaml:1: maintenance.change.sigmaa: unknown parameter", 0),
+              0u)
+        << error_of("change: {sigmaa: 2}");
+    // A rule across fields.
+    EXPECT_NE(error_of("change: {gone_hit_fraction: 0.9, new_hit_fraction: 0.5}")
+                  .find("maintenance.change.gone_hit_fraction: must be below"),
+              std::string::npos);
+    for (const std::string bad :
+         {"input: lidar", "max_queue: 0", "session: -2", "skip_while_busy: maybe", "slot: -1"}) {
+        const std::string e = error_of(bad);
+        EXPECT_FALSE(e.empty()) << bad;
+        EXPECT_EQ(e.find('\n'), std::string::npos) << e;
+    }
+}
+
+}  // namespace
+}  // namespace ltm::maintenance
