@@ -1,8 +1,8 @@
 // The maintenance component through the host: session 0 of the tiny simulated site (a service car
 // driving back and forth, two pedestrians) at its true poses; a probe component of the test host
 // writes what the component publishes. Every pass leaves its change record, the summary and the
-// PLY in the output folder, which the component creates; odd scans (empty, NaN points) are fine
-// and a bad parameter is one line.
+// PLY in the output folder, which the component creates; the maintained map is saved and carries
+// over to the next run; odd scans (empty, NaN points) are fine and a bad parameter is one line.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -13,6 +13,7 @@
 #include "host/temp_dir_test.hpp"
 #include "maintenance/core/change_ledger.hpp"
 #include "maintenance/core/change_record.hpp"
+#include "maintenance/core/long_term_map.hpp"
 
 namespace fs = std::filesystem;
 using ltm::tests::Process;
@@ -142,6 +143,51 @@ TEST_F(MaintenancePipeline, EmptyAndNanScansAreFine) {
         << host.err();
     EXPECT_EQ(host.err().find("maintenance_failed"), std::string::npos) << host.err();
     EXPECT_TRUE(fs::exists(path("out/changes_0000.ltmc")));
+}
+
+// The maintained map carries over: a second run on the map file the first saved is session 1 on it;
+// a damaged map file refuses the component in one line (the host does not start) and stays as it
+// was, not overwritten.
+TEST_F(MaintenancePipeline, TheSavedMapCarriesOverAndADamagedOneIsRefused) {
+    const std::string map = path("maps/long_term_map.bin");  // its folder created
+    const auto run = [&](int domain) {
+        return write("run.yaml", header(domain) + R"(  - name: source
+    type: test_odd_scans_source
+    params: {scans: 3}
+  - name: maintenance
+    type: maintenance
+    params: {input: pose, map_file: )" +
+                                     map + R"(, maintain_every_s: 0}
+)");
+    };
+    Process first({kTestHost, run(225)}, path("first"));
+    ASSERT_EQ(first.wait(60), 0) << first.err();
+    const maintenance::MaintenanceConfig config;
+    const maintenance::LongTermMap once = maintenance::LongTermMap::load(map, config);
+    EXPECT_EQ(once.sessions(), std::vector<std::uint32_t>{0});
+    EXPECT_GT(once.stats().voxels, 0u);
+    Process second({kTestHost, run(225)}, path("second"));
+    ASSERT_EQ(second.wait(60), 0) << second.err();
+    EXPECT_NE(second.err().find("map " + map + ": "), std::string::npos) << second.err();
+    const maintenance::LongTermMap twice = maintenance::LongTermMap::load(map, config);
+    EXPECT_EQ(twice.sessions(), (std::vector<std::uint32_t>{0, 1}));
+
+    std::string bytes;
+    {
+        std::ifstream in(map, std::ios::binary);
+        bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    }
+    ASSERT_GT(bytes.size(), 100u);
+    bytes[bytes.size() / 2] = static_cast<char>(bytes[bytes.size() / 2] ^ 0x20);
+    std::ofstream(map, std::ios::binary | std::ios::trunc) << bytes;
+    Process damaged({kTestHost, run(225)}, path("damaged"));
+    EXPECT_EQ(damaged.wait(60), 2);
+    const std::string err = damaged.err();
+    EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
+    EXPECT_NE(err.find("maintenance.map_file: " + map + ": "), std::string::npos) << err;
+    std::ifstream in(map, std::ios::binary);
+    EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()),
+              bytes);
 }
 
 // A bad parameter stops the host before it starts, with one line naming the file, line and key.

@@ -12,9 +12,12 @@
 // oldest is dropped (skip_while_busy, a live sensor) or the component's thread waits (offline:
 // back-pressure on the sensor, nothing dropped).
 //
-// With `output_dir` (created when missing) every pass writes there its change record
-// (changes_NNNN.ltmc, maintenance/core/change_record.hpp), appends its summary to changes.txt and
-// rewrites changes_removed_added.ply (every change of the run: removed voxels red, added green).
+// With `map_file`, the maintained map is loaded from it when it exists (this run is the next
+// session on it; a damaged file refuses the component with one line and stays as it is) and saved
+// to it at shutdown. With `output_dir` (created when missing) every pass writes there its change
+// record (changes_NNNN.ltmc, maintenance/core/change_record.hpp), appends its summary to
+// changes.txt and rewrites changes_removed_added.ply (every change of the run: removed voxels red,
+// added green).
 #include <algorithm>
 #include <cmath>
 #include <condition_variable>
@@ -30,6 +33,7 @@
 #include "common/convert/geometry.hpp"
 #include "common/convert/pointcloud2.hpp"
 #include "common/convert/status.hpp"
+#include "common/core/io_error.hpp"
 #include "common/core/one_line.hpp"
 #include "maintenance/component/maintenance_params.hpp"
 #include "maintenance/component/map_change_messages.hpp"
@@ -60,7 +64,7 @@ class MaintenanceComponent : public runtime::Component {
     explicit MaintenanceComponent(runtime::ComponentContext& ctx) : ctx_(ctx) {
         auto& p = ctx.params();
         config_ = load_maintenance_params(p);
-        map_ = std::make_unique<LongTermMap>(config_.maintenance);
+        load_map(p);
         if (!config_.output_dir.empty()) {
             std::error_code ec;
             fs::create_directories(config_.output_dir, ec);
@@ -115,6 +119,33 @@ class MaintenanceComponent : public runtime::Component {
     }
 
   private:
+    // The saved map when there is one (a damaged one, or one of another lattice, refuses the
+    // component: it would be overwritten at shutdown), else a new one; this run's session.
+    void load_map(runtime::Parameters& p) {
+        std::uint32_t session = 0;
+        if (!config_.map_file.empty() && fs::exists(config_.map_file)) {
+            try {
+                map_ = std::make_unique<LongTermMap>(
+                    LongTermMap::load(config_.map_file, config_.maintenance));
+            } catch (const common::IoError& e) {
+                p.fail("map_file", e.what());
+            }
+            if (!map_->sessions().empty()) session = map_->sessions().back() + 1;
+            const LongTermMapStats st = map_->stats();
+            ctx_.log().info("map " + config_.map_file + ": " + std::to_string(st.voxels) +
+                            " voxels of " + std::to_string(map_->sessions().size()) + " sessions");
+        } else {
+            map_ = std::make_unique<LongTermMap>(config_.maintenance);
+        }
+        if (!config_.map_file.empty()) {
+            std::error_code ec;
+            const fs::path parent = fs::path(config_.map_file).parent_path();
+            if (!parent.empty()) fs::create_directories(parent, ec);
+            if (ec) p.fail("map_file", "cannot create " + parent.string() + ": " + ec.message());
+        }
+        session_ = config_.session >= 0 ? std::uint32_t(config_.session) : session;
+    }
+
     // --- the component's thread: inputs, pairing ---
 
     void on_points(const msg::PointCloud2& m) {
@@ -202,7 +233,7 @@ class MaintenanceComponent : public runtime::Component {
             stamp = scan.stamp;
             try {
                 if (!started) {
-                    map_->begin_session(config_.session, stamp);
+                    map_->begin_session(session_, stamp);
                     started = true;
                     last_pass = stamp;
                 }
@@ -219,6 +250,14 @@ class MaintenanceComponent : public runtime::Component {
         if (!started) return;
         try {
             finish_pass(map_->end_session(), stamp);
+            if (!config_.map_file.empty()) {
+                map_->save(config_.map_file);
+                const LongTermMapStats st = map_->stats();
+                ctx_.log().info("map saved to " + config_.map_file + ": " +
+                                std::to_string(st.voxels) + " voxels, session " +
+                                std::to_string(session_) + " of " +
+                                std::to_string(map_->sessions().size()));
+            }
         } catch (const std::exception& e) {
             event(StatusLevel::kError, "maintenance_failed", common::one_line(e.what()), stamp);
         }
@@ -299,6 +338,7 @@ class MaintenanceComponent : public runtime::Component {
     // The worker's (read by on_shutdown after the join).
     std::thread worker_;
     std::unique_ptr<LongTermMap> map_;
+    std::uint32_t session_ = 0;
     std::uint64_t used_ = 0;
     std::uint32_t passes_ = 0;
     ChangeSet all_;  // every change of the run (the PLY)

@@ -18,9 +18,9 @@ MaintenanceComponentConfig load_maintenance_params(runtime::Parameters& p) {
     c.maintain_every_s = p.get<double>("maintain_every_s", c.maintain_every_s);
     if (!(c.maintain_every_s >= 0.0))
         p.fail("maintain_every_s", "must be >= 0 (0: only at shutdown)");
-    const int session = p.get<int>("session", 0);
-    if (session < 0) p.fail("session", "must be >= 0");
-    c.session = static_cast<std::uint32_t>(session);
+    c.map_file = p.path("map_file", "", runtime::PathCheck::kNone);
+    c.session = p.get<int>("session", c.session);
+    if (c.session < -1) p.fail("session", "must be >= 0 (or -1: after the map's last session)");
     c.max_queue = p.get<int>("max_queue", c.max_queue);
     if (c.max_queue < 1) p.fail("max_queue", "must be >= 1");
     c.skip_while_busy = p.get<bool>("skip_while_busy", c.skip_while_busy);

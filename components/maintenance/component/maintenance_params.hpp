@@ -22,9 +22,12 @@ struct MaintenanceComponentConfig {
     PoseInput input = PoseInput::kOdometry;
     std::string output_dir;          // "" : publish only; else created when missing
     double maintain_every_s = 30.0;  // [s] of scan time between passes (0: only at shutdown)
-    std::uint32_t session = 0;       // the session number of this run on the map
-    int max_queue = 50;              // scans waiting for the worker
-    bool skip_while_busy = false;    // a full queue drops its oldest scan (live) or waits (offline)
+    // The maintained map (LongTermMap::save/load): loaded when the file exists (this run is
+    // then another session on it), saved at shutdown. "": kept in memory only.
+    std::string map_file;
+    int session = -1;  // this run's session number on the map (-1: the loaded map's last + 1, or 0)
+    int max_queue = 50;            // scans waiting for the worker
+    bool skip_while_busy = false;  // a full queue drops its oldest scan (live) or waits (offline)
     MaintenanceConfig maintenance;
 };
 

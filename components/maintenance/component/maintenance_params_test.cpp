@@ -22,15 +22,17 @@ std::string error_of(const std::string& yaml) {
 
 TEST(MaintenanceParams, DefaultsThenOverrides) {
     runtime::Parameters p = params_of(
-        "input: pose\noutput_dir: /tmp/x\nmaintain_every_s: 5\nsession: 2\nmax_queue: 9\n"
+        "input: pose\noutput_dir: /tmp/x\nmap_file: /tmp/m.bin\nmaintain_every_s: 5\nsession: "
+        "2\nmax_queue: 9\n"
         "skip_while_busy: true\nvoxel_size: 0.3\nchange: {sigma: 2.5, voxel_level: true}\n"
         "ground: {height: 0.4}\n");
     const MaintenanceComponentConfig c = load_maintenance_params(p);
     EXPECT_NO_THROW(p.check_all_used());
     EXPECT_EQ(c.input, PoseInput::kPose);
     EXPECT_EQ(c.output_dir, "/tmp/x");
+    EXPECT_EQ(c.map_file, "/tmp/m.bin");
     EXPECT_DOUBLE_EQ(c.maintain_every_s, 5.0);
-    EXPECT_EQ(c.session, 2u);
+    EXPECT_EQ(c.session, 2);
     EXPECT_EQ(c.max_queue, 9);
     EXPECT_TRUE(c.skip_while_busy);
     EXPECT_DOUBLE_EQ(c.maintenance.voxel_size, 0.3);
@@ -46,6 +48,8 @@ TEST(MaintenanceParams, DefaultsThenOverrides) {
     const MaintenanceComponentConfig n = load_maintenance_params(none);
     EXPECT_EQ(n.input, PoseInput::kOdometry);
     EXPECT_TRUE(n.output_dir.empty());
+    EXPECT_TRUE(n.map_file.empty());
+    EXPECT_EQ(n.session, -1);
 }
 
 TEST(MaintenanceParams, ABadParameterIsOneLineNamingFileLineAndKey) {
