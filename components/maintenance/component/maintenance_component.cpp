@@ -14,10 +14,10 @@
 //
 // With `map_file`, the maintained map is loaded from it when it exists (this run is the next
 // session on it; a damaged file refuses the component with one line and stays as it is) and saved
-// to it at shutdown. With `output_dir` (created when missing) every pass writes there its change
-// record (changes_NNNN.ltmc, maintenance/core/change_record.hpp), appends its summary to
-// changes.txt and rewrites changes_removed_added.ply (every change of the run: removed voxels red,
-// added green).
+// to it at shutdown (its folder created then). With `output_dir` (created when missing) every pass
+// writes there its change record (changes_NNNN.ltmc, maintenance/core/change_record.hpp), appends
+// its summary to changes.txt and rewrites changes_removed_added.ply (every change of the run:
+// removed voxels red, added green).
 #include <algorithm>
 #include <cmath>
 #include <condition_variable>
@@ -137,12 +137,6 @@ class MaintenanceComponent : public runtime::Component {
         } else {
             map_ = std::make_unique<LongTermMap>(config_.maintenance);
         }
-        if (!config_.map_file.empty()) {
-            std::error_code ec;
-            const fs::path parent = fs::path(config_.map_file).parent_path();
-            if (!parent.empty()) fs::create_directories(parent, ec);
-            if (ec) p.fail("map_file", "cannot create " + parent.string() + ": " + ec.message());
-        }
         session_ = config_.session >= 0 ? std::uint32_t(config_.session) : session;
     }
 
@@ -251,6 +245,8 @@ class MaintenanceComponent : public runtime::Component {
         try {
             finish_pass(map_->end_session(), stamp);
             if (!config_.map_file.empty()) {
+                const fs::path parent = fs::path(config_.map_file).parent_path();
+                if (!parent.empty()) fs::create_directories(parent);  // throws: one line below
                 map_->save(config_.map_file);
                 const LongTermMapStats st = map_->stats();
                 ctx_.log().info("map saved to " + config_.map_file + ": " +
