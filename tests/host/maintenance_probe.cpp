@@ -56,11 +56,12 @@ class MapChangesProbe : public runtime::Component {
 
 // Publishes on `points` an empty scan, a scan of NaN points only, and `scans` scans of a wall
 // 5 m ahead with a few NaN points among them, each followed by its pose (PoseStamped, frame
-// `world`) on `pose`; then finishes.
+// `world`) on `pose` but scan `no_pose` (0-based); then finishes.
 class OddScansSource : public runtime::Component {
   public:
     explicit OddScansSource(runtime::ComponentContext& ctx) : ctx_(ctx) {
         scans_ = ctx.params().get<int>("scans", 5);
+        no_pose_ = ctx.params().get<int>("no_pose", -1);
         points_ = ctx.advertise<msg::PointCloud2>("points", TopicRole::kStream);
         pose_ = ctx.advertise<msg::PoseStamped>("pose", TopicRole::kState);
         ctx.declare_source();
@@ -83,12 +84,12 @@ class OddScansSource : public runtime::Component {
                         xyz.insert(xyz.end(), {5.0f, 0.1f * i - 2, 0.1f * j});
                 xyz.insert(xyz.end(), {nan, 0.0f, 0.0f});
             }
-            publish(100.0 + 0.1 * k, xyz);
+            publish(100.0 + 0.1 * k, xyz, k != no_pose_);
         }
         ctx_.finished();
     }
 
-    void publish(double stamp, std::vector<float>& xyz) {
+    void publish(double stamp, std::vector<float>& xyz, bool with_pose) {
         char x[] = "x", y[] = "y", z[] = "z", lidar[] = "lidar", world[] = "world";
         msg::PointField fields[3] = {{x, 0, 7, 1}, {y, 4, 7, 1}, {z, 8, 7, 1}};
         msg::PointCloud2 m{};
@@ -106,6 +107,7 @@ class OddScansSource : public runtime::Component {
         m.data._buffer = reinterpret_cast<std::uint8_t*>(xyz.data());
         m.data._length = m.data._maximum = static_cast<std::uint32_t>(xyz.size() * 4);
         points_.publish(m);
+        if (!with_pose) return;
         msg::PoseStamped p{};
         p.header.stamp = m.header.stamp;
         p.header.frame_id = world;
@@ -114,7 +116,7 @@ class OddScansSource : public runtime::Component {
     }
 
     runtime::ComponentContext& ctx_;
-    int scans_ = 5;
+    int scans_ = 5, no_pose_ = -1;
     runtime::Publisher<msg::PointCloud2> points_;
     runtime::Publisher<msg::PoseStamped> pose_;
 };

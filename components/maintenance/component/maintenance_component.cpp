@@ -111,6 +111,8 @@ class MaintenanceComponent : public runtime::Component {
     }
 
     void on_shutdown() override {
+        no_pose_ += waiting_.size();  // their poses will not come now
+        waiting_.clear();
         stop_worker();
         ctx_.log().info(std::to_string(scans_) + " scans: " + std::to_string(used_) +
                         " maintained, " + std::to_string(no_pose_) + " without a pose, " +
