@@ -66,10 +66,20 @@ std::vector<LoopCandidate> LoopDetector::query(const ScanContext& descriptor) co
 
 bool LoopDetector::add(const ScanContext& descriptor, std::uint32_t session, double stamp,
                        std::vector<LoopCandidate>* candidates) {
+    return search(descriptor, session, stamp, candidates) && keep(descriptor, session, stamp);
+}
+
+bool LoopDetector::search(const ScanContext& descriptor, std::uint32_t session, double stamp,
+                          std::vector<LoopCandidate>* candidates) {
     if (candidates) candidates->clear();
     if (!fits(descriptor)) return false;
     release(session, stamp);  // before the new keyframe joins: it never finds itself
     if (candidates) *candidates = query(descriptor);
+    return true;
+}
+
+bool LoopDetector::keep(const ScanContext& descriptor, std::uint32_t session, double stamp) {
+    if (!fits(descriptor)) return false;
     descriptors_.push_back(descriptor);
     pending_.push_back({std::uint32_t(descriptors_.size() - 1), session, stamp});
     return true;

@@ -63,6 +63,11 @@ class LoopDetector {
     // kind and shape (false: nothing kept, no candidates).
     bool add(const ScanContext& descriptor, std::uint32_t session, double stamp,
              std::vector<LoopCandidate>* candidates);
+    // add() in two halves, for a caller that decides after the search whether to keep the
+    // keyframe: the candidates (as add() finds them; nothing kept), then keep() it or not.
+    bool search(const ScanContext& descriptor, std::uint32_t session, double stamp,
+                std::vector<LoopCandidate>* candidates);
+    bool keep(const ScanContext& descriptor, std::uint32_t session, double stamp);
     // A keyframe of an earlier session (a loaded map): searchable at once.
     bool add_searchable(const ScanContext& descriptor);
     // Candidates among all searchable keyframes for a descriptor not kept (re-localisation).

@@ -464,8 +464,10 @@ void keyframes_file(IO& io, S& settings, List& list, std::uint64_t& first, std::
 
 }  // namespace
 
-std::uint32_t map_format_for(const ScanContextConfig& localisation_descriptor_config) {
-    return has_localisation_descriptors(localisation_descriptor_config) ? 2u : 1u;
+std::uint32_t map_format_for(const ScanContextConfig& localisation_descriptor_config,
+                             bool records_sessions) {
+    if (!has_localisation_descriptors(localisation_descriptor_config)) return 1u;
+    return records_sessions ? 3u : 2u;
 }
 
 std::string encode_local_map(const StoredLocalMap& map, std::uint32_t version) {
@@ -504,10 +506,11 @@ void decode_graph(const std::string& bytes, const std::string& file, std::uint64
 
 std::string encode_keyframes(const DescriptorSettings& settings,
                              const std::vector<std::shared_ptr<const StoredKeyframe>>& keyframes,
-                             std::size_t first, std::size_t count) {
+                             std::size_t first, std::size_t count, std::uint32_t version) {
     ByteWriter w;
     std::uint64_t first64 = first, count64 = count;
-    const std::uint32_t version = map_format_for(settings.localisation);
+    if (version == 0 || !has_localisation_descriptors(settings.localisation))
+        version = map_format_for(settings.localisation);
     keyframes_file(w, settings, keyframes, first64, count64, nullptr, version);
     return as_string(w);
 }

@@ -4,10 +4,13 @@
 // Keyframes and local maps are shared and immutable, so a snapshot is cheap and can be saved
 // from another thread while mapping goes on.
 //
-// Format versions: 1 (no localisation descriptors) and 2 (each keyframe also holds a ScanContext++
-// descriptor for global localisation). Both load. A map is saved in format 2, except a map without
-// localisation descriptors (localisation_descriptor_config.rings == 0, e.g. a loaded format-1
-// map): format 1 holds it exactly, so loading and saving such a map leaves its files unchanged.
+// Format versions: 1 (no localisation descriptors), 2 (each keyframe also holds a ScanContext++
+// descriptor for global localisation) and 3 (format 2, and the manifest lists the sessions that
+// built the map; the binary files are format 2's but for their version field). All three load. A
+// map is saved in the oldest format that holds it exactly: 3 when it records sessions, else 2,
+// and 1 without localisation descriptors (localisation_descriptor_config.rings == 0, e.g. a
+// loaded format-1 map; its sessions are not recorded), so loading and saving a map of format 1 or
+// 2 leaves its files unchanged.
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -20,17 +23,17 @@
 
 namespace ltm::mapping {
 
-constexpr std::uint32_t kMapFormatVersion = 2;  // the newest: what a map with every part takes
+constexpr std::uint32_t kMapFormatVersion = 3;  // the newest: what a map with every part takes
 constexpr std::uint32_t kOldestMapFormatVersion = 1;
 
 inline bool supported_map_format(std::uint32_t version) {
     return version >= kOldestMapFormatVersion && version <= kMapFormatVersion;
 }
-// "format version 3 is not supported (this build reads versions 1 and 2)"
+// "format version 4 is not supported (this build reads versions 1 to 3)"
 inline std::string unsupported_map_format(std::uint32_t version) {
     return "format version " + std::to_string(version) +
            " is not supported (this build reads versions " +
-           std::to_string(kOldestMapFormatVersion) + " and " + std::to_string(kMapFormatVersion) +
+           std::to_string(kOldestMapFormatVersion) + " to " + std::to_string(kMapFormatVersion) +
            ")";
 }
 
@@ -64,6 +67,14 @@ inline ScanContextConfig no_localisation_descriptors() {
 }
 inline bool has_localisation_descriptors(const ScanContextConfig& c) { return c.rings > 0; }
 
+// A session that built the map (format 3: the manifest lists them).
+struct SessionRecord {
+    std::uint32_t id = 0;
+    double first_stamp = 0.0, last_stamp = 0.0;  // of its keyframes [s]
+    std::uint64_t local_maps_added = 0;          // new local maps (graph nodes)
+    std::uint64_t local_maps_updated = 0;        // existing local maps it folded its own into
+};
+
 struct MapData {
     std::uint64_t revision = 0;           // increases with every optimisation of the graph
     ScanContextConfig descriptor_config;  // how the keyframe (loop) descriptors were made
@@ -73,6 +84,7 @@ struct MapData {
     std::vector<PoseGraphEdge> edges;
     std::vector<std::shared_ptr<const StoredKeyframe>> keyframes;  // in the order they came
     std::vector<StoredLocalMap> local_maps;                        // by node, ascending
+    std::vector<SessionRecord> sessions;  // by id, ascending; empty in a format-1 or -2 map
 };
 
 }  // namespace ltm::mapping

@@ -1,10 +1,13 @@
 #include "mapping/core/map_manifest.hpp"
 
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <sstream>
 #include <type_traits>
+
+#include "mapping/core/map_codec.hpp"
 
 namespace ltm::mapping {
 namespace {
@@ -97,7 +100,7 @@ class LineReader {
     // "'graph' out of place" for a key the manifest knows, else "unknown entry 'x'".
     static std::string unexpected(const std::string& key) {
         const bool known = key == "ltm_map" || key == "revision" || key == "descriptor" ||
-                           key == "localisation_descriptor" || key == "graph" ||
+                           key == "localisation_descriptor" || key == "session" || key == "graph" ||
                            key == "keyframes" || key == "local_map" || key == "end";
         return known ? "'" + key + "' out of place" : "unknown entry '" + key + "'";
     }
@@ -188,10 +191,27 @@ void descriptor_line(IO& io, const char* pattern, const std::string& key, C& d) 
     }
 }
 
+// One "session <id> <first_stamp> <last_stamp> <added> <updated>" line; prev: the session before
+// (reading: ids ascending).
+template <class IO, class S>
+void session_line(IO& io, S& s, const SessionRecord* prev) {
+    io.line("session <id> <first_stamp> <last_stamp> <local_maps_added> <local_maps_updated>", s.id,
+            s.first_stamp, s.last_stamp, s.local_maps_added, s.local_maps_updated);
+    if constexpr (IO::kReading) {
+        io.check(std::isfinite(s.first_stamp) && std::isfinite(s.last_stamp) &&
+                     s.first_stamp <= s.last_stamp,
+                 "session stamps must be finite, the first not after the last");
+        io.check(!prev || prev->id < s.id, [&] {
+            return "session " + std::to_string(s.id) + " after session " +
+                   std::to_string(prev->id) + " (ids ascending)";
+        });
+    }
+}
+
 template <class IO, class M>
 void manifest(IO& io, M& m) {
-    // Written: the format the localisation descriptors call for (map_data.hpp).
-    std::uint32_t version = has_localisation_descriptors(m.localisation_descriptor) ? 2 : 1;
+    // Written: the format the localisation descriptors and the sessions call for (map_data.hpp).
+    std::uint32_t version = map_format_for(m.localisation_descriptor, !m.sessions.empty());
     io.line("ltm_map <version>", version);
     io.check(supported_map_format(version), [&] { return unsupported_map_format(version); });
     io.line("revision <n>", m.revision);
@@ -207,6 +227,13 @@ void manifest(IO& io, M& m) {
     if constexpr (IO::kReading) {
         m.version = version;
         if (version < 2) m.localisation_descriptor = no_localisation_descriptors();
+        while (version >= 3 && io.peek() == "session") {
+            SessionRecord s;
+            session_line(io, s, m.sessions.empty() ? nullptr : &m.sessions.back());
+            m.sessions.push_back(s);
+        }
+    } else if (version >= 3) {
+        for (const SessionRecord& s : m.sessions) session_line(io, s, nullptr);
     }
     int graphs = 0;
     if constexpr (IO::kReading) {

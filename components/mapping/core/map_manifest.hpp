@@ -4,7 +4,9 @@
 //   revision <n>
 //   descriptor <kind 0|1> <rings> <sectors> <max_range> <min_range> <sensor_height>
 //   localisation_descriptor <kind 0|1> <rings> <sectors> <max_range> <min_range> <sensor_height>
-//                                                      (format 2 only)
+//                                                      (format 2 and 3)
+//   session <id> <first_stamp> <last_stamp> <local_maps_added> <local_maps_updated>
+//                                                      (format 3: one a session, ids ascending)
 //   graph <file> <size> <hash>
 //   keyframes <file> <size> <hash> <first> <count>     (any number of these two)
 //   local_map <node> <file> <size> <hash>
@@ -31,18 +33,20 @@ struct ManifestEntry {
 };
 
 struct Manifest {
-    // Parsed: 1 or 2. Written: 2 with localisation descriptors, else 1 (map_data.hpp).
+    // Parsed: 1, 2 or 3. Written: 1 without localisation descriptors, else 3 with sessions, else 2
+    // (map_data.hpp).
     std::uint32_t version = kMapFormatVersion;
     std::uint64_t revision = 0;
     ScanContextConfig descriptor;
     // Written in format 2 only; a format-1 manifest parses as no_localisation_descriptors().
     ScanContextConfig localisation_descriptor = no_localisation_descriptors();
-    std::vector<ManifestEntry> files;  // exactly one graph
+    std::vector<SessionRecord> sessions;  // format 3 (written only with localisation descriptors)
+    std::vector<ManifestEntry> files;     // exactly one graph
 };
 
 std::string write_manifest(const Manifest& manifest);
 // Throws MapFormatError naming the line and its byte offset ("manifest.txt: line 2 at byte 10:
-// ...") when the text is not a whole, valid manifest (of format 1 or 2).
+// ...") when the text is not a whole, valid manifest (of format 1, 2 or 3).
 Manifest parse_manifest(const std::string& text);
 
 }  // namespace ltm::mapping

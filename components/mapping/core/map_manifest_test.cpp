@@ -5,6 +5,14 @@
 namespace ltm::mapping {
 namespace {
 
+ScanContextConfig default_localisation_descriptor_for_test() {
+    ScanContextConfig c;
+    c.kind = ScanContextKind::kMeanVariance;
+    c.rings = 20;
+    c.sectors = 60;
+    return c;
+}
+
 Manifest sample() {
     Manifest m;
     m.revision = 12;
@@ -113,6 +121,42 @@ TEST(MapManifest, Format2AddsTheLocalisationDescriptorLine) {
               "manifest.txt: line 4 at byte 51: 'localisation_descriptor' out of place");
 }
 
+TEST(MapManifest, Format3ListsTheSessionsThatBuiltTheMap) {
+    Manifest m = sample();
+    m.localisation_descriptor = default_localisation_descriptor_for_test();
+    m.sessions = {{0, 12.5, 1180.25, 53, 0}, {2, 86400.0, 87000.5, 1, 40}};
+    const std::string text = write_manifest(m);
+    EXPECT_NE(text.find("ltm_map 3\n"), std::string::npos) << text;
+    EXPECT_NE(text.find("\nsession 0 12.5 1180.25 53 0\nsession 2 86400 87000.5 1 40\ngraph "),
+              std::string::npos)
+        << text;
+    const Manifest back = parse_manifest(text);
+    EXPECT_EQ(back.version, 3u);
+    ASSERT_EQ(back.sessions.size(), 2u);
+    EXPECT_EQ(back.sessions[1].id, 2u);
+    EXPECT_EQ(back.sessions[1].first_stamp, 86400.0);
+    EXPECT_EQ(back.sessions[1].last_stamp, 87000.5);
+    EXPECT_EQ(back.sessions[1].local_maps_added, 1u);
+    EXPECT_EQ(back.sessions[1].local_maps_updated, 40u);
+    EXPECT_EQ(write_manifest(back), text);
+    auto replaced = [&](const std::string& from, const std::string& to) {
+        std::string t = text;
+        t.replace(t.find(from), from.size(), to);
+        return t;
+    };
+    // Sessions out of order, stamps backwards, a session line in format 2.
+    EXPECT_EQ(error_of(replaced("session 2 ", "session 0 ")),
+              "manifest.txt: line 6 at byte 118: session 0 after session 0 (ids ascending)");
+    EXPECT_EQ(error_of(replaced("86400 87000.5", "87001 87000.5")),
+              "manifest.txt: line 6 at byte 118: session stamps must be finite, the first not "
+              "after the last");
+    EXPECT_EQ(error_of(replaced("ltm_map 3", "ltm_map 2")),
+              "manifest.txt: line 5 at byte 90: 'session' out of place");
+    // Without sessions the map stays in format 2.
+    m.sessions.clear();
+    EXPECT_EQ(write_manifest(m).rfind("ltm_map 2\n", 0), 0u);
+}
+
 TEST(MapManifest, DamageIsNamedByLineAndOffset) {
     const std::string text = write_manifest(sample());
     auto replaced = [&](const std::string& from, const std::string& to) {
@@ -125,12 +169,12 @@ TEST(MapManifest, DamageIsNamedByLineAndOffset) {
         "manifest.txt: line 2 at byte 10: unknown entry 'revisoin' (expected 'revision <n>')");
     EXPECT_EQ(error_of(replaced("revision 12", "end 3")),
               "manifest.txt: line 2 at byte 10: 'end' out of place (expected 'revision <n>')");
-    EXPECT_EQ(error_of(replaced("ltm_map 1", "ltm_map 3")),
-              "manifest.txt: line 1 at byte 0: format version 3 is not supported (this build "
-              "reads versions 1 and 2)");
+    EXPECT_EQ(error_of(replaced("ltm_map 1", "ltm_map 4")),
+              "manifest.txt: line 1 at byte 0: format version 4 is not supported (this build "
+              "reads versions 1 to 3)");
     EXPECT_EQ(error_of(replaced("ltm_map 1", "ltm_map 0")),
               "manifest.txt: line 1 at byte 0: format version 0 is not supported (this build "
-              "reads versions 1 and 2)");
+              "reads versions 1 to 3)");
     EXPECT_EQ(error_of(replaced(" 1567 ", " 15x7 ")),
               "manifest.txt: line 4 at byte 51: expected 'graph <file> <size> <hash>'");
     EXPECT_EQ(error_of(replaced("00000000000000ff\n", "00000000000000FF\n")),

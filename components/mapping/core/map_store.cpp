@@ -80,10 +80,12 @@ SaveStats MapWriter::save(const MapData& map) {
     fs::create_directories(fs::path(dir_) / "local_maps", ec);
     if (ec) throw common::IoError(dir_, "cannot create the map directory: " + ec.message());
 
-    const std::uint32_t version = map_format_for(map.localisation_descriptor_config);
+    const std::uint32_t version =
+        map_format_for(map.localisation_descriptor_config, !map.sessions.empty());
     const DescriptorSettings settings{map.descriptor_config, map.localisation_descriptor_config};
     Manifest manifest;
     manifest.revision = map.revision;
+    if (version >= 3) manifest.sessions = map.sessions;
     manifest.descriptor = map.descriptor_config;
     manifest.localisation_descriptor = map.localisation_descriptor_config;
     // Cache keys name the format too: a file of another format is not kept.
@@ -131,7 +133,7 @@ SaveStats MapWriter::save(const MapData& map) {
         ManifestEntry e =
             emit(v + "kf:" + std::to_string(a) + ":" + std::to_string(n), "keyframes",
                  "keyframes_" + padded(a, 8) + "_", map.keyframes[a], map.keyframes[a + n - 1],
-                 [&] { return encode_keyframes(settings, map.keyframes, a, n); });
+                 [&] { return encode_keyframes(settings, map.keyframes, a, n, version); });
         e.first = a;
         e.count = n;
         manifest.files.push_back(e);
@@ -185,6 +187,7 @@ LoadedMap load_map(const std::string& dir) {
     MapData& map = out.map;
     map.descriptor_config = manifest.descriptor;
     map.localisation_descriptor_config = manifest.localisation_descriptor;
+    map.sessions = manifest.sessions;
     const DescriptorSettings expected{manifest.descriptor, manifest.localisation_descriptor};
 
     // The graph first: without it nothing can be placed.

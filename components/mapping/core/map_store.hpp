@@ -1,8 +1,8 @@
 #pragma once
-// A map directory (format 2, or 1: map_data.hpp):
+// A map directory (format 3, 2 or 1: map_data.hpp):
 //   manifest.txt                       what the map is made of: every file with its size and
 //                                      FNV-1a 64 hash, the revision and the descriptor settings
-//                                      (map_manifest.hpp)
+//                                      and the sessions that built the map (map_manifest.hpp)
 //   graph_<hash>.bin                   the pose graph
 //   keyframes_<first>_<hash>.bin       keyframes with their descriptors, in chunks
 //   local_maps/lm_<node>_<hash>.bin    one file a local map (voxels with their life records)
@@ -11,7 +11,7 @@
 // manifest goes last: a crash during a save leaves the previous map intact. Files the new
 // manifest does not name are removed afterwards. Unchanged local maps are not written again.
 //
-// Loading validates everything; formats 1 and 2 load (every file of the format the manifest
+// Loading validates everything; formats 1 to 3 load (every file of the format the manifest
 // names), any other version fails with one line naming the file, the version and the supported
 // ones. A damaged manifest or graph fails the load (nothing could be placed); a damaged local-map
 // or keyframe file is refused, named with the field and the byte offset of the damage, and the

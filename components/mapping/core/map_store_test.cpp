@@ -421,6 +421,32 @@ TEST(MapStore, Format2KeepsTheLocalisationDescriptorsBitForBit) {
     }
 }
 
+TEST(MapStore, Format3RecordsTheSessionsThatBuiltTheMapAndLoadsThemBack) {
+    const fs::path dir = fresh_dir("format3");
+    MapData map = sample_map();
+    map.sessions = {{0, 0.5, 120.25, 2, 0}, {1, 86400.0, 86460.0, 0, 2}};
+    save_map(dir.string(), map);
+    const std::string manifest = common::read_file((dir / "manifest.txt").string(), "m");
+    EXPECT_EQ(manifest.rfind("ltm_map 3\n", 0), 0u) << manifest;
+    EXPECT_NE(manifest.find("\nsession 1 86400 86460 0 2\n"), std::string::npos) << manifest;
+    const LoadedMap loaded = load_map(dir.string());
+    ASSERT_TRUE(loaded.refused.empty()) << loaded.refused.front();
+    expect_same(map, loaded.map);
+    ASSERT_EQ(loaded.map.sessions.size(), 2u);
+    for (std::size_t i = 0; i < 2; ++i) {
+        const SessionRecord &a = map.sessions[i], &b = loaded.map.sessions[i];
+        EXPECT_EQ(a.id, b.id);
+        EXPECT_EQ(a.first_stamp, b.first_stamp);
+        EXPECT_EQ(a.last_stamp, b.last_stamp);
+        EXPECT_EQ(a.local_maps_added, b.local_maps_added);
+        EXPECT_EQ(a.local_maps_updated, b.local_maps_updated);
+    }
+    // Saved again unchanged: the same files.
+    const SaveStats again = save_map(dir.string(), loaded.map);
+    EXPECT_EQ(again.files_written, 1u);  // the manifest only
+    EXPECT_EQ(common::read_file((dir / "manifest.txt").string(), "m"), manifest);
+}
+
 TEST(MapStore, WithoutLocalisationDescriptorsAMapIsSavedInFormat1) {
     const fs::path dir = fresh_dir("format1");
     MapData map = sample_map();
@@ -444,7 +470,7 @@ TEST(MapStore, UnknownFormatVersionIsRefusedInOneLine) {
     const fs::path dir = fresh_dir("version");
     save_map(dir.string(), sample_map());
     const std::string manifest = common::read_file((dir / "manifest.txt").string(), "m");
-    for (const char* version : {"0", "3"}) {
+    for (const char* version : {"0", "4"}) {
         std::string text = manifest;
         text.replace(0, 9, std::string("ltm_map ") + version);
         std::ofstream(dir / "manifest.txt", std::ios::trunc) << text;
@@ -454,7 +480,7 @@ TEST(MapStore, UnknownFormatVersionIsRefusedInOneLine) {
         } catch (const MapFormatError& e) {
             EXPECT_EQ(std::string(e.what()),
                       std::string("manifest.txt: line 1 at byte 0: format version ") + version +
-                          " is not supported (this build reads versions 1 and 2)");
+                          " is not supported (this build reads versions 1 to 3)");
         }
     }
     std::ofstream(dir / "manifest.txt", std::ios::trunc) << manifest;
@@ -463,14 +489,14 @@ TEST(MapStore, UnknownFormatVersionIsRefusedInOneLine) {
     {
         std::fstream f(dir / victim, std::ios::in | std::ios::out | std::ios::binary);
         f.seekp(8);
-        const std::uint32_t three = 3;
-        f.write(reinterpret_cast<const char*>(&three), 4);
+        const std::uint32_t four = 4;
+        f.write(reinterpret_cast<const char*>(&four), 4);
     }
     const LoadedMap loaded = load_map(dir.string());
     ASSERT_EQ(loaded.refused.size(), 1u);
     EXPECT_EQ(loaded.refused[0], victim +
-                                     ": format version at byte 8: format version 3 is not "
-                                     "supported (this build reads versions 1 and 2)");
+                                     ": format version at byte 8: format version 4 is not "
+                                     "supported (this build reads versions 1 to 3)");
 }
 
 TEST(MapStore, DamagedLocalisationDescriptorIsRefusedNamingTheField) {

@@ -99,6 +99,28 @@ Mapper::Mapper(const MapperConfig& config, const MapData& loaded, bool freeze_lo
     }
     session_ = loaded.nodes.empty() ? 0 : last_session + 1;
     revision_ = loaded.revision;
+    past_sessions_ = loaded.sessions;
+    if (past_sessions_.empty() && !loaded.nodes.empty()) {
+        // A map of format 1 or 2 records no sessions: what its graph and keyframes say (no
+        // merging existed then, so nothing was updated).
+        std::map<std::uint32_t, SessionRecord> known;
+        for (const PoseGraphNode& n : loaded.nodes) {
+            known[n.session].id = n.session;
+            ++known[n.session].local_maps_added;
+        }
+        std::map<std::uint32_t, bool> stamped;
+        for (const std::shared_ptr<const StoredKeyframe>& k : loaded.keyframes) {
+            if (!k || !known.count(k->session)) continue;
+            SessionRecord& r = known[k->session];
+            r.first_stamp =
+                stamped[k->session] ? std::min(r.first_stamp, k->data.stamp) : k->data.stamp;
+            r.last_stamp =
+                stamped[k->session] ? std::max(r.last_stamp, k->data.stamp) : k->data.stamp;
+            stamped[k->session] = true;
+        }
+        for (const auto& [id, r] : known) past_sessions_.push_back(r);
+    }
+    session_ = std::max(session_, past_sessions_.empty() ? 0u : past_sessions_.back().id + 1);
     update_placement();
 }
 
@@ -117,15 +139,15 @@ Eigen::Isometry3d Mapper::predicted_world(std::uint32_t session, std::uint64_t l
     // The nearest map of the chain, preferably an earlier one: its correction carries over.
     auto it = chain->second.lower_bound(local_map_id);
     if (it != chain->second.begin()) --it;
-    const PoseGraphNode* n = graph_.find(it->second);
-    return n->T_world_anchor * n->T_odom_anchor.inverse() * T_odom_anchor;
+    const ChainAnchor a = chain_anchor(session, it->first, it->second);
+    return a.T_world_anchor * a.T_odom_anchor.inverse() * T_odom_anchor;
 }
 
 std::uint64_t Mapper::ensure_node(std::uint64_t local_map_id,
                                   const Eigen::Isometry3d& T_odom_anchor,
                                   std::optional<std::uint32_t> segment) {
     if (const std::optional<std::uint64_t> existing = node_of(local_map_id)) {
-        if (segment) set_segment(local_map_id, *segment);
+        if (segment && !folded(session_, local_map_id)) set_segment(local_map_id, *segment);
         return *existing;
     }
     PoseGraphNode n;
@@ -158,9 +180,9 @@ void Mapper::set_path(std::uint32_t session, std::uint64_t local_map_id) {
     const PoseGraphNode* node = graph_.find(it->second);
     double path = 0.0;
     if (it != chain.begin()) {
-        const PoseGraphNode* prev = graph_.find(std::prev(it)->second);
-        path = path_at_[prev->id] +
-               (prev->T_odom_anchor.translation() - node->T_odom_anchor.translation()).norm();
+        const ChainAnchor prev = chain_anchor(session, std::prev(it)->first, std::prev(it)->second);
+        path = prev.path +
+               (prev.T_odom_anchor.translation() - node->T_odom_anchor.translation()).norm();
     }
     path_at_[node->id] = path;
 }
@@ -168,32 +190,41 @@ void Mapper::set_path(std::uint32_t session, std::uint64_t local_map_id) {
 void Mapper::link_odometry(std::uint64_t local_map_id) {
     const std::map<std::uint64_t, std::uint64_t>& chain = chains_[session_];
     const auto it = chain.find(local_map_id);
-    const PoseGraphNode* node = graph_.find(it->second);
-    const PoseGraphNode* prev = it == chain.begin() ? nullptr : graph_.find(std::prev(it)->second);
-    const PoseGraphNode* next =
-        std::next(it) == chain.end() ? nullptr : graph_.find(std::next(it)->second);
-    if (prev && next) graph_.remove_edges(prev->id, next->id, EdgeKind::kOdometry);
-    auto link = [&](const PoseGraphNode* a, const PoseGraphNode* b) {
+    const ChainAnchor node = chain_anchor(session_, it->first, it->second);
+    std::optional<ChainAnchor> prev, next;
+    if (it != chain.begin())
+        prev = chain_anchor(session_, std::prev(it)->first, std::prev(it)->second);
+    if (std::next(it) != chain.end())
+        next = chain_anchor(session_, std::next(it)->first, std::next(it)->second);
+    // Not between maps folded into earlier ones: that edge is an earlier lap's or session's.
+    if (prev && next && !prev->folded && !next->folded)
+        graph_.remove_edges(prev->node, next->node, EdgeKind::kOdometry);
+    auto link = [&](const ChainAnchor& a, const ChainAnchor& b) {
+        if (a.node == b.node) return;
+        // Between two places already joined by an odometry edge (maps folded into earlier ones):
+        // the place pair is measured; the graph does not grow with the laps.
+        if ((a.folded || b.folded) && has_odometry_edge(a.node, b.node)) return;
         PoseGraphEdge e;
-        e.from = a->id;
-        e.to = b->id;
+        e.from = a.node;
+        e.to = b.node;
         e.kind = EdgeKind::kOdometry;
-        e.T_from_to = a->T_odom_anchor.inverse() * b->T_odom_anchor;
+        e.T_from_to = a.T_node_anchor * a.T_odom_anchor.inverse() * b.T_odom_anchor *
+                      b.T_node_anchor.inverse();
         // Into the first map of a new segment: the odometry's best estimate, not a measurement.
         e.information =
-            segment_of(a->id) == segment_of(b->id)
+            a.segment == b.segment
                 ? odometry_information(config_.odometry_edge, e.T_from_to.translation().norm())
                 : segment_break_information();
-        graph_.add_edge(e);
+        if (graph_.add_edge(e) && (a.folded || b.folded)) relayed_edges_.insert({e.from, e.to});
     };
-    // Pointers into the graph stay valid: add_edge does not touch the nodes.
-    if (prev) link(prev, node);
-    if (next) link(node, next);
+    if (prev) link(*prev, node);
+    if (next) link(node, *next);
 }
 
 void Mapper::unlink_odometry(std::uint64_t local_map_id) {
     const std::map<std::uint64_t, std::uint64_t>& chain = chains_[session_];
     const auto it = chain.find(local_map_id);
+    if (folded(session_, local_map_id)) return;
     if (it != chain.begin())
         graph_.remove_edges(std::prev(it)->second, it->second, EdgeKind::kOdometry);
     if (std::next(it) != chain.end())
@@ -227,6 +258,13 @@ LocalMapResult Mapper::add_local_map(std::shared_ptr<const common::LocalMapData>
         r.message = "local map " + std::to_string(map->id) + ": voxel size must be > 0";
         return r;
     }
+    if (const Folded* f = folded(session_, map->id)) {
+        r.node = f->node;
+        r.merged = true;
+        r.message = "local map " + std::to_string(map->id) +
+                    ": already folded into the local map of node " + std::to_string(f->node);
+        return r;
+    }
     r.node = ensure_node(map->id, map->T_odom_anchor, map->segment);
     const auto it = maps_.find(r.node);
     if (it != maps_.end() && it->second.stored.data->revision > map->revision) {
@@ -241,6 +279,12 @@ LocalMapResult Mapper::add_local_map(std::shared_ptr<const common::LocalMapData>
     e.stored.data = std::move(map);
     e.serial = next_serial_++;
     r.added = true;
+    if (e.stored.data->finished) {
+        if (const std::optional<std::uint64_t> into = try_fold(r.node)) {
+            r.node = *into;
+            r.merged = true;
+        }
+    }
     return r;
 }
 
@@ -264,30 +308,50 @@ KeyframeResult Mapper::add_keyframe(const common::KeyframeData& input) {
     const Eigen::Isometry3d T_odom_anchor =
         keyframe.T_odom_lidar * keyframe.T_anchor_lidar.inverse();
     const std::uint64_t node = ensure_node(keyframe.local_map_id, T_odom_anchor, std::nullopt);
+    // A keyframe of a local map folded already: its pose in the node it went into.
+    if (const Folded* f = folded(session_, keyframe.local_map_id))
+        keyframe.T_anchor_lidar = f->T_node_anchor * keyframe.T_anchor_lidar;
     auto stored = std::make_shared<StoredKeyframe>();
     stored->session = session_;
     stored->node = node;
     stored->descriptor = make_scan_context(input.points, config_.scan_context);
-    stored->localisation_descriptor =
-        make_scan_context(input.points, config_.localisation_descriptor);
     std::vector<LoopCandidate> candidates;
-    const bool added = config_.loop_closure ? detector_.add(stored->descriptor, session_,
-                                                            keyframe.stamp, &candidates)
-                                            : detector_.add_searchable(stored->descriptor);
-    if (!added) {
+    if (!(config_.loop_closure
+              ? detector_.search(stored->descriptor, session_, keyframe.stamp, &candidates)
+              : detector_.add_searchable(stored->descriptor))) {
         r.message = "keyframe " + std::to_string(keyframe.id) + ": descriptor has the wrong shape";
         return r;
     }
+    // At a mapped place (long_term): not stored again, the stored keyframe there stands for it.
+    const std::optional<std::uint32_t> standing =
+        config_.loop_closure
+            ? stand_in(keyframe.local_map_id, node,
+                       graph_.find(node)->T_world_anchor * keyframe.T_anchor_lidar, keyframe.stamp)
+            : std::nullopt;
+    if (config_.loop_closure && !standing)
+        detector_.keep(stored->descriptor, session_, keyframe.stamp);
     r.added = true;
-    r.index = std::uint32_t(keyframes_.size());
+    r.kept = !standing;
+    r.index = standing ? *standing : std::uint32_t(keyframes_.size());
     r.candidates = candidates.size();
+    if (session_record_.id != session_ || keyframes_seen_ == 0) {
+        session_record_.id = session_;
+        session_record_.first_stamp = session_record_.last_stamp = keyframe.stamp;
+    }
+    ++keyframes_seen_;
+    session_record_.first_stamp = std::min(session_record_.first_stamp, keyframe.stamp);
+    session_record_.last_stamp = std::max(session_record_.last_stamp, keyframe.stamp);
     if (cooldown_ > 0) {
         --cooldown_;
     } else if (!candidates.empty()) {
         r.verified = true;
         verify(keyframe, input.points, node, candidates, &r);
         if (!r.loops.empty()) cooldown_ = config_.loop_cooldown_keyframes;
+        for (const LoopClosure& l : r.loops) due_loops_ += l.agrees ? 0 : 1;
     }
+    if (standing) return r;
+    stored->localisation_descriptor =
+        make_scan_context(input.points, config_.localisation_descriptor);
     stored->data.id = keyframe.id;
     stored->data.scan_index = keyframe.scan_index;
     stored->data.local_map_id = keyframe.local_map_id;
@@ -302,6 +366,7 @@ KeyframeResult Mapper::add_keyframe(const common::KeyframeData& input) {
 OptimisationSummary Mapper::optimise() {
     const OptimisationSummary s = graph_.optimise();
     if (s.solved) {
+        due_loops_ = 0;
         ++revision_;
         update_placement();
         place_unjoined_segments();
@@ -311,6 +376,8 @@ OptimisationSummary Mapper::optimise() {
 
 bool Mapper::apply(const PoseGraph& optimised, const OptimisationSummary& summary) {
     if (!summary.solved) return false;
+    due_loops_ = 0;
+    // Nodes folded since the snapshot are gone: set_pose leaves them out.
     for (const PoseGraphNode& n : optimised.nodes()) graph_.set_pose(n.id, n.T_world_anchor);
     // Loop flags: edges are matched by their ends, kind and keyframes.
     using Key = std::tuple<std::uint64_t, std::uint64_t, int, std::uint64_t, std::uint64_t>;
@@ -335,7 +402,7 @@ bool Mapper::apply(const PoseGraph& optimised, const OptimisationSummary& summar
     // Nodes added since the snapshot follow their predecessor's correction.
     for (const auto& [session, chain] : chains_) {
         for (const auto& [local_map_id, id] : chain) {
-            if (optimised.find(id)) continue;
+            if (optimised.find(id) || folded(session, local_map_id)) continue;
             const PoseGraphNode* n = graph_.find(id);
             graph_.set_pose(id, predicted_world(session, local_map_id, n->T_odom_anchor));
         }
@@ -348,8 +415,8 @@ bool Mapper::apply(const PoseGraph& optimised, const OptimisationSummary& summar
 std::optional<Eigen::Isometry3d> Mapper::T_world_odom(std::uint64_t local_map_id) const {
     const std::optional<std::uint64_t> id = node_of(local_map_id);
     if (!id) return std::nullopt;
-    const PoseGraphNode* n = graph_.find(*id);
-    return n->T_world_anchor * n->T_odom_anchor.inverse();
+    const ChainAnchor a = chain_anchor(session_, local_map_id, *id);
+    return a.T_world_anchor * a.T_odom_anchor.inverse();
 }
 
 std::optional<Eigen::Isometry3d> Mapper::T_world_lidar(
@@ -389,6 +456,7 @@ MapData Mapper::snapshot() const {
     std::map<std::uint64_t, const MapEntry*> ordered;
     for (const auto& [node, entry] : maps_) ordered[node] = &entry;
     for (const auto& [node, entry] : ordered) m.local_maps.push_back(entry->stored);
+    m.sessions = sessions();
     return m;
 }
 
@@ -402,6 +470,8 @@ std::size_t Mapper::memory_bytes() const {
         for (const common::VoxelData& v : d.voxels)
             n += v.life.seen.capacity() * sizeof(std::uint16_t);
     }
+    n += folded_.size() * (sizeof(Folded) + 48);  // map node overhead
+    for (const auto& [session, chain] : chains_) n += chain.size() * 48;
     auto descriptor_bytes = [](const ScanContext& d) {
         return (d.value.capacity() + d.spread.capacity()) * sizeof(float) + d.occupied.capacity();
     };

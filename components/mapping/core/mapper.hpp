@@ -15,6 +15,16 @@
 // Synchronous, no threads, no I/O. An adapter may run the optimisation elsewhere: take
 // graph_snapshot(), call PoseGraph::optimise() on it on any thread, then apply() the result.
 //
+// Long-term (LongTermConfig, mapper_long_term.cpp): the map grows with the site, not with the
+// distance driven. A finished local map of the current session at a place an earlier lap or
+// session mapped (its anchor within long_term.merge_distance of that map's, by the graph) is folded
+// into that map (local_map_merge.hpp) when a verified loop ties it to the map and no optimisation
+// is due: its node leaves the graph, its edges and keyframes name the existing node (keyframe
+// poses re-expressed in its anchor), and the odometry chain goes on from the existing node (the
+// local map id stays known: T_world_odom, node_of, T_world_lidar answer for it). A keyframe near a
+// stored keyframe of an earlier lap or session is searched and verified but not stored. A loop
+// between places already joined that agrees with the graph does not make an optimisation due.
+//
 // Frames: every odometry pose belongs to the local map it was registered in; its world pose is
 // T_world_anchor * T_odom_anchor^-1 * T_odom_lidar. Voxels never move inside their local map.
 #include <Eigen/Geometry>
@@ -22,6 +32,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <unordered_map>
 #include <utility>
@@ -57,6 +68,9 @@ struct LoopClosure {
     double disagreement = 0.0;            // with the graph's estimate at the time [m]
     std::size_t structure_points = 0, structure_inliers = 0;  // see LoopVerification
     bool from_graph_guess = false;  // verified from the graph's estimate, not the descriptor's
+    // Between places already joined by loops, agreeing with the graph to within
+    // long_term.agree_translation / agree_rotation: added without making an optimisation due.
+    bool agrees = false;
     EIGEN_MAKE_ALIGNED_OPERATOR_NEW
 };
 
@@ -68,19 +82,30 @@ struct LoopRejection {
 
 struct KeyframeResult {
     bool added = false;
-    std::string message;                  // why it was not added (one line)
+    std::string message;  // why it was not added (one line)
+    // Stored (a new keyframe index). False: at a mapped place, within long_term.keyframe_distance
+    // and keyframe_angle of stored keyframe `index`, which stands for it (its loops name it).
+    bool kept = false;
     std::uint32_t index = 0;              // keyframe index when added
     std::size_t candidates = 0;           // descriptor candidates under the threshold
     bool verified = false;                // candidates were verified (not in the cool-down)
     std::vector<LoopClosure> loops;       // accepted: their edges are in the graph
     std::vector<LoopRejection> rejected;  // refused by the verification
-    bool optimisation_due() const { return !loops.empty(); }
+    // A loop that does not merely agree with the graph.
+    bool optimisation_due() const {
+        for (const LoopClosure& l : loops) {
+            if (!l.agrees) return true;
+        }
+        return false;
+    }
 };
 
 struct LocalMapResult {
     bool added = false;   // stored (new, or a newer snapshot of a known map)
     std::string message;  // why not (one line)
     std::uint64_t node = 0;
+    // Folded into the existing local map of graph node `node` (an earlier lap's or session's).
+    bool merged = false;
 };
 
 // An odometry segment of the current session.
@@ -149,6 +174,8 @@ class Mapper {
     // Everything a saved map holds (local maps and keyframes shared, not copied).
     MapData snapshot() const;
     std::size_t local_map_count() const { return maps_.size(); }
+    // The sessions that built the map, the current one last (when it added anything).
+    std::vector<SessionRecord> sessions() const;
     std::size_t memory_bytes() const;
 
   private:
@@ -156,12 +183,44 @@ class Mapper {
         StoredLocalMap stored;
         std::uint64_t serial = 0;  // changes with every stored snapshot (verification cache key)
     };
+    // A local map of the current session folded into an earlier map (its node).
+    struct Folded {
+        std::uint64_t node = 0;
+        Eigen::Isometry3d T_node_anchor = Eigen::Isometry3d::Identity();  // its anchor there
+        Eigen::Isometry3d T_odom_anchor = Eigen::Isometry3d::Identity();
+        std::uint32_t segment = 0;
+        double path = 0.0;  // odometry path to its anchor [m]
+        EIGEN_MAKE_ALIGNED_OPERATOR_NEW
+    };
+    // A local map of a chain, folded or not: its anchor as the graph places it.
+    struct ChainAnchor {
+        std::uint64_t node = 0;
+        bool folded = false;
+        Eigen::Isometry3d T_node_anchor = Eigen::Isometry3d::Identity();
+        Eigen::Isometry3d T_odom_anchor = Eigen::Isometry3d::Identity();
+        Eigen::Isometry3d T_world_anchor = Eigen::Isometry3d::Identity();
+        std::uint32_t segment = 0;
+        double path = 0.0;
+        EIGEN_MAKE_ALIGNED_OPERATOR_NEW
+    };
     struct NodeSegment {
         std::uint32_t segment = 0;
         bool told = false;  // by the node's local map (else taken from the map before it)
     };
     using SegmentKey = std::pair<std::uint32_t, std::uint32_t>;  // session, segment
     int loops_between(std::uint64_t a, std::uint64_t b) const;   // active loop edges, either way
+    const Folded* folded(std::uint32_t session, std::uint64_t local_map_id) const;
+    ChainAnchor chain_anchor(std::uint32_t session, std::uint64_t local_map_id,
+                             std::uint64_t node) const;
+    // Folds the finished local map of node `n` into an earlier map of the same place when the
+    // conditions hold (mapper_long_term.cpp); the node it went into, or nullopt.
+    std::optional<std::uint64_t> try_fold(std::uint64_t n);
+    void fold(std::uint64_t n, std::uint64_t into);
+    // The stored keyframe standing for a new keyframe at world pose T (long_term), if any.
+    std::optional<std::uint32_t> stand_in(std::uint64_t local_map_id, std::uint64_t node,
+                                          const Eigen::Isometry3d& T_world, double stamp) const;
+    bool tied_by_loop(std::uint64_t node) const;
+    bool has_odometry_edge(std::uint64_t a, std::uint64_t b) const;  // either way
     std::uint64_t ensure_node(std::uint64_t local_map_id, const Eigen::Isometry3d& T_odom_anchor,
                               std::optional<std::uint32_t> segment);
     void link_odometry(std::uint64_t local_map_id);
@@ -199,6 +258,13 @@ class Mapper {
     std::vector<std::shared_ptr<const StoredKeyframe>> keyframes_;
     std::vector<LoopClosure> loops_;
     int cooldown_ = 0;
+    std::map<std::uint64_t, Folded> folded_;  // current session: local map id -> where it went
+    std::size_t due_loops_ = 0;               // loops that made an optimisation due, since one
+    // Odometry edges (from, to) made through a folded map: their nodes' paths are of other laps.
+    std::set<std::pair<std::uint64_t, std::uint64_t>> relayed_edges_;
+    std::vector<SessionRecord> past_sessions_;  // of the loaded map
+    SessionRecord session_record_;              // the current session's (stamps)
+    std::size_t keyframes_seen_ = 0;            // this session's keyframes, stored or not
 };
 
 }  // namespace ltm::mapping

@@ -40,6 +40,32 @@ struct LoopConsistencyConfig {
     double rotation_per_m = 0.05;     // [deg/m]
 };
 
+// A map that grows with the site, not with the distance driven (issue 13, "sessions on one map"):
+// a finished local map of the current session at a place already mapped by an earlier lap or
+// session is folded into the existing local map there (local_map_merge.hpp) instead of becoming a
+// new graph node, and keyframes at mapped places are not stored again.
+struct LongTermConfig {
+    bool merge = true;  // fold local maps of mapped places into the existing ones
+    // A finished local map whose anchor (world pose, from the graph) is within this distance of
+    // an earlier lap's or session's anchor is folded into the nearest such map, when a verified
+    // loop ties it to the map (never on odometry alone). Default: half the odometry's local-map
+    // switch distance (20 m, odometry_config.hpp): anchors along a road driven again are at most
+    // half a switch distance from the nearest earlier one.
+    double merge_distance = 10.0;  // [m]
+    // A keyframe whose world pose is within this distance and angle of a stored keyframe of an
+    // earlier lap or session is not stored (its loops are still searched and verified, named by
+    // the stored keyframe that stands for it); only where the graph's pose is tied by a loop.
+    double keyframe_distance = 1.0;  // [m]
+    double keyframe_angle = 15.0;    // [deg]
+    // A verified loop between places already joined by loops that agrees with the graph's
+    // estimate to within these is added as an edge without making an optimisation due.
+    double agree_translation = 0.1;  // [m]
+    double agree_rotation = 1.0;     // [deg]
+    // A merged local map's observation times are bounded (local_map_merge.hpp: the newest half
+    // kept, the older ones thinned evenly); at most 65536 (16-bit indices in the life records).
+    int max_observation_times = 1024;
+};
+
 // The keyframes' localisation descriptor (ScanContext++, kind kMeanVariance), saved in the map
 // for global localisation; its range and sensor height follow scan_context's in mapper_preset().
 inline ScanContextConfig default_localisation_descriptor() {
@@ -60,6 +86,7 @@ struct MapperConfig {
     LoopEdgeConfig loop_edge;
     LoopConsistencyConfig loop_consistency;
     GlobalMapConfig global_map;
+    LongTermConfig long_term;
     int max_loops_per_keyframe = 1;  // verified loops kept a keyframe (best candidates first)
     // After a keyframe closes a loop, this many following keyframes are not verified (their
     // descriptors are still kept): a revisit is closed every few keyframes, not at each one.
@@ -108,6 +135,14 @@ void visit_own_fields(MapperConfig& c, Visitor&& v) {
     v("max_loops_per_anchor_pair", c.max_loops_per_anchor_pair, non_negative);
     v("keep_keyframe_points", c.keep_keyframe_points, unchecked);
     v("loop_closure", c.loop_closure, unchecked);
+    auto& l = c.long_term;
+    v("long_term.merge", l.merge, unchecked);
+    v("long_term.merge_distance", l.merge_distance, positive);
+    v("long_term.keyframe_distance", l.keyframe_distance, non_negative);
+    v("long_term.keyframe_angle", l.keyframe_angle, non_negative);
+    v("long_term.agree_translation", l.agree_translation, non_negative);
+    v("long_term.agree_rotation", l.agree_rotation, non_negative);
+    v("long_term.max_observation_times", l.max_observation_times, in_range(2, 65536));
 }
 
 // Every field but the Scan Context kinds (enums: loaders read scan_context.kind as a name; the

@@ -80,8 +80,12 @@ void Mapper::verify(const common::KeyframeData& keyframe,
         const double path =
             placed ? drift_distance(graph_, e.from, e.to,
                                     [this](const PoseGraphEdge& o) {
-                                        if (segment_of(o.from) != segment_of(o.to))
+                                        if (is_segment_break(o))
                                             return std::numeric_limits<double>::infinity();
+                                        // An edge made through a folded map joins nodes of
+                                        // other laps: its own length, not their paths.
+                                        if (relayed_edges_.count({o.from, o.to}))
+                                            return o.T_from_to.translation().norm();
                                         return std::abs(path_at_[o.to] - path_at_[o.from]);
                                     })
                    : std::numeric_limits<double>::infinity();
@@ -127,6 +131,11 @@ void Mapper::verify(const common::KeyframeData& keyframe,
         l.structure_points = v.structure_points;
         l.structure_inliers = v.structure_inliers;
         l.from_graph_guess = graph_guess && v.guess == 0;
+        // Places joined already (by loops, as of the last optimisation) and a loop that only
+        // confirms the graph: no optimisation due for it.
+        l.agrees = placed_root(match_key) == placed_root(query_key) &&
+                   disagreement <= config_.long_term.agree_translation &&
+                   disagreement_deg <= config_.long_term.agree_rotation;
         r->loops.push_back(l);
         loops_.push_back(l);
     }

@@ -25,6 +25,7 @@ void Mapper::set_segment(std::uint64_t local_map_id, std::uint32_t segment) {
     // The maps after it that only took their segment from it take the new one too.
     std::vector<std::uint64_t> relink = {local_map_id};
     for (auto next = std::next(it); next != chain.end(); ++next) {
+        if (folded(session_, next->first)) break;  // finished, so told
         NodeSegment& n = segment_of_[next->second];
         if (n.told) break;
         n.segment = segment;
@@ -68,20 +69,21 @@ void Mapper::update_placement() {
 
 void Mapper::place_unjoined_segments() {
     for (const auto& [session, chain] : chains_) {
-        const PoseGraphNode* prev = nullptr;
+        std::optional<ChainAnchor> prev;
         for (const auto& [local_map_id, id] : chain) {
-            const PoseGraphNode* node = graph_.find(id);
+            const ChainAnchor node = chain_anchor(session, local_map_id, id);
             const SegmentKey key = segment_key(id);
-            const bool starts_part = prev && segment_of(prev->id) != key.second &&
+            // A folded map was tied by a loop: it starts no unjoined part.
+            const bool starts_part = prev && !node.folded && prev->segment != node.segment &&
                                      placed_root(key) == key &&
-                                     placed_root(segment_key(prev->id)) != key;
+                                     placed_root(segment_key(prev->node)) != key;
             if (starts_part) {
                 // The first map of a segment that no loop joins to anything before it: its part
                 // is placed by the edge across the break alone, at the odometry's best estimate
                 // relative to the map before it. That is the optimum, which the solver approaches
                 // only slowly (the edge weighs next to nothing): set it here exactly.
                 const Eigen::Isometry3d C = prev->T_world_anchor * prev->T_odom_anchor.inverse() *
-                                            node->T_odom_anchor * node->T_world_anchor.inverse();
+                                            node.T_odom_anchor * node.T_world_anchor.inverse();
                 std::vector<std::uint64_t> part;
                 bool fixed = false;
                 for (const PoseGraphNode& n : graph_.nodes()) {
@@ -89,13 +91,12 @@ void Mapper::place_unjoined_segments() {
                     part.push_back(n.id);
                     fixed = fixed || n.fixed;
                 }
-                // set_pose changes the nodes in place: `prev` and `node` stay valid.
                 if (!fixed) {
                     for (const std::uint64_t p : part)
                         graph_.set_pose(p, C * graph_.find(p)->T_world_anchor);
                 }
             }
-            prev = node;
+            prev = chain_anchor(session, local_map_id, id);
         }
     }
 }
@@ -110,7 +111,8 @@ std::vector<SegmentStatus> Mapper::segments() const {
         return r.first < session_ || r == SegmentKey(session_, 0);
     };
     for (const auto& [local_map_id, node] : chain->second) {
-        const std::uint32_t s = segment_of(node);
+        const Folded* f = folded(session_, local_map_id);
+        const std::uint32_t s = f ? f->segment : segment_of(node);
         if (!out.empty() && out.back().segment == s) continue;
         SegmentStatus st;
         st.segment = s;

@@ -45,12 +45,14 @@ void SlamPipeline::map_frame(SlamFrame* frame) {
         f.keyframe = mapper_.add_keyframe(*f.handover.keyframe);
         f.keyframe_ms = ms_since(t0);
     }
-    hand_over_maps(f.handover.local_maps, &f.local_maps);
+    // Optimised before the maps are handed over, as the mapping component does on a keyframe: a
+    // finished map is folded into an earlier one only on a settled graph.
     if (f.keyframe && f.keyframe->optimisation_due()) {
         t0 = Clock::now();
         f.optimisation = mapper_.optimise();
         f.optimise_ms = ms_since(t0);
     }
+    hand_over_maps(f.handover.local_maps, &f.local_maps);
 }
 
 mapping::OptimisationSummary SlamPipeline::finish(

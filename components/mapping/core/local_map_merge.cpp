@@ -1,0 +1,201 @@
+#include "mapping/core/local_map_merge.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <unordered_map>
+
+namespace ltm::mapping {
+namespace {
+
+struct CellHash {
+    std::size_t operator()(const Eigen::Vector3i& c) const {
+        std::uint64_t h = 1469598103934665603ull;
+        for (int k = 0; k < 3; ++k) {
+            h ^= std::uint64_t(std::uint32_t(c[k]));
+            h *= 1099511628211ull;
+        }
+        return std::size_t(h);
+    }
+};
+
+std::uint32_t saturating_add(std::uint32_t a, std::uint32_t b) {
+    return b > std::numeric_limits<std::uint32_t>::max() - a
+               ? std::numeric_limits<std::uint32_t>::max()
+               : a + b;
+}
+
+// b folded into a (both in the same cell of the same grid frame; seen already remapped).
+void merge_voxel(common::VoxelData& a, const common::VoxelData& b) {
+    const double wa = double(std::max<std::uint32_t>(a.point_count, 1));
+    const double wb = double(std::max<std::uint32_t>(b.point_count, 1));
+    const double w = wa + wb;
+    a.centre = ((wa * a.centre.cast<double>() + wb * b.centre.cast<double>()) / w).cast<float>();
+    const bool na = a.normal.squaredNorm() > 0.0f, nb = b.normal.squaredNorm() > 0.0f;
+    if (!na && nb) {
+        a.normal = b.normal;
+    } else if (na && nb) {
+        Eigen::Vector3d n_b = b.normal.cast<double>();
+        if (a.normal.dot(b.normal) < 0.0f) n_b = -n_b;
+        const Eigen::Vector3d mean = wa * a.normal.cast<double>() + wb * n_b;
+        if (mean.norm() > 1e-6 * w) {
+            a.normal = mean.normalized().cast<float>();
+        } else if (wb > wa) {
+            a.normal = b.normal;
+        }
+    }
+    a.planarity = float((wa * a.planarity + wb * b.planarity) / w);
+    a.stability = float((wa * a.stability + wb * b.stability) / w);
+    a.point_count = saturating_add(a.point_count, b.point_count);
+    const double oa = double(std::max<std::uint32_t>(a.life.observations, 1));
+    const double ob = double(std::max<std::uint32_t>(b.life.observations, 1));
+    a.life.health = float((oa * a.life.health + ob * b.life.health) / (oa + ob));
+    a.life.created = std::min(a.life.created, b.life.created);
+    a.life.last_seen = std::max(a.life.last_seen, b.life.last_seen);
+    a.life.observations = saturating_add(a.life.observations, b.life.observations);
+    std::vector<std::uint16_t> seen;
+    seen.reserve(a.life.seen.size() + b.life.seen.size());
+    std::set_union(a.life.seen.begin(), a.life.seen.end(), b.life.seen.begin(), b.life.seen.end(),
+                   std::back_inserter(seen));
+    a.life.seen = std::move(seen);
+}
+
+// seen indices through `map` (old index -> new index), sorted, without repeats.
+void remap_seen(std::vector<std::uint16_t>* seen, const std::vector<std::uint32_t>& map) {
+    std::vector<std::uint16_t> out;
+    out.reserve(seen->size());
+    for (const std::uint16_t s : *seen) {
+        if (s < map.size()) out.push_back(std::uint16_t(map[s]));
+    }
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    *seen = std::move(out);
+}
+
+}  // namespace
+
+std::vector<std::uint32_t> bound_observation_times(const std::vector<double>& times,
+                                                   std::size_t max_times,
+                                                   std::vector<double>* kept) {
+    const std::size_t n = times.size();
+    max_times = std::max<std::size_t>(max_times, 2);
+    std::vector<std::uint32_t> index(n);
+    kept->clear();
+    if (n <= max_times) {
+        *kept = times;
+        for (std::size_t i = 0; i < n; ++i) index[i] = std::uint32_t(i);
+        return index;
+    }
+    const std::size_t recent = max_times / 2;  // newest, all kept
+    const std::size_t old_kept = max_times - recent;
+    const std::size_t old = n - recent;  // > old_kept
+    std::vector<std::size_t> picks;      // input indices kept, ascending
+    picks.reserve(max_times);
+    for (std::size_t k = 0; k < old_kept; ++k) {
+        // Even steps over [0, old - 1], first and last included.
+        picks.push_back(old_kept == 1 ? 0
+                                      : std::size_t(std::llround(double(k) * double(old - 1) /
+                                                                 double(old_kept - 1))));
+    }
+    for (std::size_t i = old; i < n; ++i) picks.push_back(i);
+    for (const std::size_t p : picks) kept->push_back(times[p]);
+    // Each input stamp: the kept one nearest in time (the earlier one on a tie).
+    std::size_t j = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        while (j + 1 < picks.size() && picks[j + 1] <= i) ++j;
+        std::size_t best = j;
+        if (picks[j] < i && j + 1 < picks.size() &&
+            times[picks[j + 1]] - times[i] < times[i] - times[picks[j]])
+            best = j + 1;
+        index[i] = std::uint32_t(best);
+    }
+    return index;
+}
+
+common::LocalMapData merge_local_maps(const common::LocalMapData& into,
+                                      const common::LocalMapData& add,
+                                      const Eigen::Isometry3d& T_into_add,
+                                      std::size_t max_observation_times) {
+    common::LocalMapData out;
+    out.id = into.id;
+    out.revision = into.revision + 1;
+    out.finished = into.finished;
+    out.segment = into.segment;
+    out.T_odom_anchor = into.T_odom_anchor;
+    out.T_anchor_grid = into.T_anchor_grid;
+    out.voxel_size = into.voxel_size;
+
+    // Observation times: the sorted union, then bounded; old index -> merged index per map.
+    std::vector<double> all;
+    all.reserve(into.observation_times.size() + add.observation_times.size());
+    all.insert(all.end(), into.observation_times.begin(), into.observation_times.end());
+    all.insert(all.end(), add.observation_times.begin(), add.observation_times.end());
+    std::sort(all.begin(), all.end());
+    all.erase(std::unique(all.begin(), all.end()), all.end());
+    const std::vector<std::uint32_t> bounded = bound_observation_times(
+        all, std::min<std::size_t>(max_observation_times, 65536), &out.observation_times);
+    auto index_map = [&](const std::vector<double>& times) {
+        std::vector<std::uint32_t> m(times.size());
+        for (std::size_t i = 0; i < times.size(); ++i) {
+            const auto it = std::lower_bound(all.begin(), all.end(), times[i]);
+            m[i] = bounded[std::size_t(it - all.begin())];
+        }
+        return m;
+    };
+    const std::vector<std::uint32_t> map_into = index_map(into.observation_times);
+    const std::vector<std::uint32_t> map_add = index_map(add.observation_times);
+
+    // `add`'s grid frame in `into`'s grid frame.
+    const Eigen::Isometry3d T_grid = into.T_anchor_grid.inverse() * T_into_add * add.T_anchor_grid;
+    const Eigen::Matrix3f R = T_grid.linear().cast<float>();
+    const double g = double(into.voxel_size);
+
+    out.voxels.reserve(into.voxels.size() + add.voxels.size());
+    std::unordered_map<Eigen::Vector3i, std::size_t, CellHash> cell;
+    cell.reserve(into.voxels.size() + add.voxels.size());
+    for (const common::VoxelData& v : into.voxels) {
+        common::VoxelData copy = v;
+        remap_seen(&copy.life.seen, map_into);
+        const auto [it, fresh] = cell.emplace(v.index, out.voxels.size());
+        if (fresh) {
+            out.voxels.push_back(std::move(copy));
+        } else {
+            merge_voxel(out.voxels[it->second], copy);
+        }
+    }
+    for (const common::VoxelData& v : add.voxels) {
+        common::VoxelData moved = v;
+        const Eigen::Vector3d p = T_grid * v.centre.cast<double>();
+        moved.index = Eigen::Vector3i(int(std::floor(p.x() / g)), int(std::floor(p.y() / g)),
+                                      int(std::floor(p.z() / g)));
+        // The centre, clamped into its cell against rounding at the cell's faces.
+        const Eigen::Vector3d lo = moved.index.cast<double>() * g;
+        const Eigen::Vector3d hi = lo + Eigen::Vector3d::Constant(g);
+        moved.centre = p.cwiseMax(lo).cwiseMin(hi).cast<float>();
+        moved.normal = R * v.normal;
+        if (moved.normal.squaredNorm() > 0.0f) moved.normal.normalize();
+        remap_seen(&moved.life.seen, map_add);
+        const auto [it, fresh] = cell.emplace(moved.index, out.voxels.size());
+        if (fresh) {
+            out.voxels.push_back(std::move(moved));
+        } else {
+            merge_voxel(out.voxels[it->second], moved);
+        }
+    }
+
+    out.voxels.shrink_to_fit();  // reserved for both: a merged map is kept for long
+    // The box: `into`'s and the corners of `add`'s, in `into`'s grid frame.
+    out.bbox_min = into.bbox_min;
+    out.bbox_max = into.bbox_max;
+    for (int c = 0; c < 8; ++c) {
+        const Eigen::Vector3d corner((c & 1) ? add.bbox_max.x() : add.bbox_min.x(),
+                                     (c & 2) ? add.bbox_max.y() : add.bbox_min.y(),
+                                     (c & 4) ? add.bbox_max.z() : add.bbox_min.z());
+        const Eigen::Vector3d q = T_grid * corner;
+        out.bbox_min = out.bbox_min.cwiseMin(q);
+        out.bbox_max = out.bbox_max.cwiseMax(q);
+    }
+    return out;
+}
+
+}  // namespace ltm::mapping

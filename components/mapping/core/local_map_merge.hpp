@@ -1,0 +1,46 @@
+#pragma once
+// Folding one local map into another of the same place (issue 13, "a map that grows with the
+// site"): the voxels of `add` moved into the grid frame of `into` and merged voxel by voxel on its
+// lattice, so that a revisit updates the existing local map instead of adding a new one.
+//   a voxel of `add` lands in the cell floor(p_grid / voxel_size) of `into`'s lattice; where the
+//   cell is taken, the two voxels become one:
+//     centre      point-count weighted mean (stays in the cell: both centres are in it)
+//     normal      sign-aligned (the added one turned to the existing one's side) point-count
+//                 weighted mean, normalised; the better-supported voxel's normal when the mean
+//                 cancels out, the other's when one has none
+//     point_count, life.observations: summed (saturating)
+//     planarity, stability: point-count weighted means; life.health: observation-weighted mean
+//     life.created = min, life.last_seen = max, life.seen: the union of both, as indices into the
+//     merged observation_times
+//   observation_times: the sorted union of both maps' stamps, bounded (bound_observation_times).
+// The result keeps `into`'s id, segment, anchor, grid, voxel size and finished flag; its revision
+// is `into`'s + 1 and its box covers both.
+#include <Eigen/Geometry>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "common/core/local_map_data.hpp"
+
+namespace ltm::mapping {
+
+// The stamps kept when a map's observation times grow beyond `max_times` (>= 2): the newest
+// max_times / 2 stamps are all kept; the older ones are thinned evenly to the remaining
+// max_times - max_times / 2 (the oldest and the last of them always among them, the rest at equal
+// steps of their index), so that old sessions keep a sparser but even record and the recent
+// history stays whole. Returns, for each input stamp, the index of the kept stamp that stands for
+// it (a dropped stamp: the kept one nearest in time), and the kept stamps in *kept. Input sorted
+// ascending; nothing is dropped when it has at most max_times stamps.
+std::vector<std::uint32_t> bound_observation_times(const std::vector<double>& times,
+                                                   std::size_t max_times,
+                                                   std::vector<double>* kept);
+
+// `into` with the voxels of `add` folded in (see above). T_into_add: `add`'s anchor in `into`'s
+// anchor frame. max_observation_times: see bound_observation_times (at most 65536: life.seen
+// holds 16-bit indices).
+common::LocalMapData merge_local_maps(const common::LocalMapData& into,
+                                      const common::LocalMapData& add,
+                                      const Eigen::Isometry3d& T_into_add,
+                                      std::size_t max_observation_times);
+
+}  // namespace ltm::mapping

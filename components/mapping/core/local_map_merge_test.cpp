@@ -1,0 +1,164 @@
+#include "mapping/core/local_map_merge.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+
+#include "mapping/core/test_data.hpp"
+
+namespace ltm::mapping {
+namespace {
+
+struct CellLess {
+    bool operator()(const Eigen::Vector3i& a, const Eigen::Vector3i& b) const {
+        return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
+    }
+};
+
+std::map<Eigen::Vector3i, const common::VoxelData*, CellLess> by_cell(
+    const common::LocalMapData& m) {
+    std::map<Eigen::Vector3i, const common::VoxelData*, CellLess> out;
+    for (const common::VoxelData& v : m.voxels) out[v.index] = &v;
+    return out;
+}
+
+common::VoxelData voxel(const Eigen::Vector3i& index, const Eigen::Vector3f& centre,
+                        const Eigen::Vector3f& normal, std::uint32_t points) {
+    common::VoxelData v;
+    v.index = index;
+    v.centre = centre;
+    v.normal = normal;
+    v.point_count = points;
+    v.planarity = 0.5f;
+    v.stability = 1.0f;
+    return v;
+}
+
+// A map built from a scene, and the same scene seen from 7 m further on and turned by 30 deg:
+// the second map's anchor is T_shift in the first's. Merged, the second adds no voxel where the
+// first already has one (the same surfaces land in the same cells), and every voxel of the second
+// is found in the merged map where the first's frame puts it.
+TEST(LocalMapMerge, AMapMergedWithItselfShiftedByAKnownTransformLandsOnItsOwnCells) {
+    const std::vector<Eigen::Vector3f> scene = test::with_dense_ground(test::synthetic_scene(5));
+    const Eigen::Isometry3d at_a = test::xy_yaw(0, 0, 0);
+    const common::LocalMapData a =
+        test::build_local_map(0, at_a, {test::view(scene, at_a, 30.0)}, {at_a}, 1.0, 30.0);
+    // The second map: the same view in another odometry frame, anchored 7 m on and turned.
+    const Eigen::Isometry3d T_shift = test::xy_yaw(7.0, -2.0, 30.0);
+    const Eigen::Isometry3d T_odom2_world = test::xy_yaw(-40.0, 12.0, -70.0);
+    const common::LocalMapData b =
+        test::build_local_map(1, T_odom2_world * T_shift, {test::view(scene, at_a, 30.0)},
+                              {T_odom2_world * at_a}, 1.0, 30.0);
+    const common::LocalMapData m = merge_local_maps(a, b, T_shift, 1024);
+
+    EXPECT_EQ(m.id, a.id);
+    EXPECT_EQ(m.revision, a.revision + 1);
+    EXPECT_TRUE(m.T_odom_anchor.isApprox(a.T_odom_anchor));
+    // Not every voxel lands on the identical cell (the second lattice is turned, so the means
+    // differ a little), but nearly all do, and the merged map is far smaller than the two.
+    EXPECT_LT(m.voxels.size(), a.voxels.size() + b.voxels.size() / 4);
+    std::uint64_t pa = 0, pb = 0, pm = 0;
+    for (const auto& v : a.voxels) pa += v.point_count;
+    for (const auto& v : b.voxels) pb += v.point_count;
+    for (const auto& v : m.voxels) pm += v.point_count;
+    EXPECT_EQ(pm, pa + pb);  // every point counted once
+    // Each voxel of b, through T_shift and a's grid, is in a cell of the merged map.
+    const auto cells = by_cell(m);
+    const Eigen::Isometry3d T = a.T_anchor_grid.inverse() * T_shift * b.T_anchor_grid;
+    for (const common::VoxelData& v : b.voxels) {
+        const Eigen::Vector3d p = T * v.centre.cast<double>();
+        const Eigen::Vector3i c(int(std::floor(p.x())), int(std::floor(p.y())),
+                                int(std::floor(p.z())));
+        ASSERT_TRUE(cells.count(c)) << p.transpose();
+        const common::VoxelData& w = *cells.at(c);
+        EXPECT_TRUE(((w.centre.cast<double>() - c.cast<double>()).array() >= -1e-4).all());
+        EXPECT_TRUE(((w.centre.cast<double>() - c.cast<double>()).array() <= 1.0 + 1e-4).all());
+        if (w.normal.squaredNorm() > 0.0f) {
+            EXPECT_NEAR(w.normal.norm(), 1.0f, 1e-4f);
+        }
+    }
+    // The box covers both.
+    EXPECT_LE(m.bbox_min.x(), a.bbox_min.x());
+    EXPECT_GE(m.bbox_max.x(), a.bbox_max.x() + 5.0);
+}
+
+TEST(LocalMapMerge, VoxelsInOneCellMergeTheirCentreNormalAndLife) {
+    common::LocalMapData a, b;
+    a.voxel_size = b.voxel_size = 1.0f;
+    a.observation_times = {1.0, 2.0, 3.0};
+    b.observation_times = {10.0, 11.0};
+    common::VoxelData va = voxel({0, 0, 0}, {0.2f, 0.5f, 0.5f}, {0, 0, 1}, 3);
+    va.life = {1.0, 3.0, 3, 1.0f, {0, 1, 2}};
+    common::VoxelData vb = voxel({0, 0, 0}, {0.8f, 0.5f, 0.5f}, {0, 0, -1}, 1);  // flipped normal
+    vb.life = {10.0, 11.0, 2, 0.0f, {0, 1}};
+    a.voxels = {va};
+    b.voxels = {vb};
+    const common::LocalMapData m = merge_local_maps(a, b, Eigen::Isometry3d::Identity(), 1024);
+    ASSERT_EQ(m.voxels.size(), 1u);
+    const common::VoxelData& v = m.voxels[0];
+    EXPECT_NEAR(v.centre.x(), (3 * 0.2f + 0.8f) / 4, 1e-6f);
+    EXPECT_NEAR(v.normal.z(), 1.0f, 1e-6f);  // sign-aligned: not cancelled
+    EXPECT_EQ(v.point_count, 4u);
+    EXPECT_EQ(v.life.created, 1.0);
+    EXPECT_EQ(v.life.last_seen, 11.0);
+    EXPECT_EQ(v.life.observations, 5u);
+    EXPECT_NEAR(v.life.health, 0.6f, 1e-6f);  // observation-weighted
+    EXPECT_EQ(m.observation_times, (std::vector<double>{1, 2, 3, 10, 11}));
+    EXPECT_EQ(v.life.seen, (std::vector<std::uint16_t>{0, 1, 2, 3, 4}));
+
+    // A voxel of b in a cell a does not have keeps its own record, its seen indices remapped.
+    b.voxels[0].index = {2, 0, 0};
+    b.voxels[0].centre = {2.5f, 0.5f, 0.5f};
+    const common::LocalMapData m2 = merge_local_maps(a, b, Eigen::Isometry3d::Identity(), 1024);
+    ASSERT_EQ(m2.voxels.size(), 2u);
+    EXPECT_EQ(m2.voxels[1].life.seen, (std::vector<std::uint16_t>{3, 4}));
+    EXPECT_EQ(m2.voxels[1].life.created, 10.0);
+}
+
+TEST(LocalMapMerge, ObservationTimesStayBoundedKeepingTheRecentOnesAndAnEvenSampleOfTheOld) {
+    std::vector<double> times;
+    for (int i = 0; i < 100; ++i) times.push_back(double(i));
+    std::vector<double> kept;
+    const std::vector<std::uint32_t> index = bound_observation_times(times, 10, &kept);
+    ASSERT_EQ(kept.size(), 10u);
+    // The newest five all kept; five of the 95 older ones, first and last among them.
+    EXPECT_EQ(kept, (std::vector<double>{0, 24, 47, 71, 94, 95, 96, 97, 98, 99}));
+    EXPECT_EQ(index[0], 0u);
+    EXPECT_EQ(index[99], 9u);
+    EXPECT_EQ(index[30], 1u);  // 30 is nearest to 24
+    EXPECT_EQ(index[40], 2u);  // 40 is nearest to 47
+    // Below the bound nothing changes.
+    const std::vector<std::uint32_t> same = bound_observation_times({1, 2, 3}, 10, &kept);
+    EXPECT_EQ(kept, (std::vector<double>{1, 2, 3}));
+    EXPECT_EQ(same, (std::vector<std::uint32_t>{0, 1, 2}));
+
+    // Merging maps again and again: the times stay within the bound, the seen indices valid and
+    // the newest map's stamps all there.
+    common::LocalMapData m;
+    m.voxel_size = 1.0f;
+    for (int round = 0; round < 12; ++round) {
+        common::LocalMapData next;
+        next.voxel_size = 1.0f;
+        common::VoxelData v = voxel({0, 0, 0}, {0.5f, 0.5f, 0.5f}, {0, 0, 1}, 1);
+        for (int k = 0; k < 20; ++k) {
+            next.observation_times.push_back(100.0 * round + k);
+            v.life.seen.push_back(std::uint16_t(k));
+        }
+        v.life.created = 100.0 * round;
+        v.life.last_seen = 100.0 * round + 19;
+        next.voxels = {v};
+        m = merge_local_maps(m, next, Eigen::Isometry3d::Identity(), 64);
+        ASSERT_LE(m.observation_times.size(), 64u);
+        ASSERT_TRUE(std::is_sorted(m.observation_times.begin(), m.observation_times.end()));
+        for (const std::uint16_t s : m.voxels[0].life.seen)
+            ASSERT_LT(s, m.observation_times.size());
+    }
+    EXPECT_EQ(m.observation_times.size(), 64u);
+    EXPECT_EQ(m.observation_times.back(), 1119.0);
+    EXPECT_EQ(m.observation_times.front(), 0.0);  // the oldest stays as the record's start
+    EXPECT_EQ(m.voxels[0].life.seen.size(), 64u);
+}
+
+}  // namespace
+}  // namespace ltm::mapping

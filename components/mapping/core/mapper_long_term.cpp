@@ -1,0 +1,253 @@
+// The Mapper on one map over many laps and sessions (see mapper.hpp, LongTermConfig): finished
+// local maps of mapped places folded into the existing ones, the graph kept consistent (edges and
+// keyframes of a folded map moved to the node it went into), keyframes at mapped places not
+// stored again, and the sessions that built the map. Split from mapper.cpp: one concept a file.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "mapping/core/local_map_merge.hpp"
+#include "mapping/core/mapper.hpp"
+
+namespace ltm::mapping {
+
+const Mapper::Folded* Mapper::folded(std::uint32_t session, std::uint64_t local_map_id) const {
+    if (session != session_) return nullptr;
+    const auto it = folded_.find(local_map_id);
+    return it == folded_.end() ? nullptr : &it->second;
+}
+
+Mapper::ChainAnchor Mapper::chain_anchor(std::uint32_t session, std::uint64_t local_map_id,
+                                         std::uint64_t node) const {
+    ChainAnchor a;
+    a.node = node;
+    const PoseGraphNode* n = graph_.find(node);
+    if (const Folded* f = folded(session, local_map_id)) {
+        a.folded = true;
+        a.T_node_anchor = f->T_node_anchor;
+        a.T_odom_anchor = f->T_odom_anchor;
+        a.T_world_anchor = n->T_world_anchor * f->T_node_anchor;
+        a.segment = f->segment;
+        a.path = f->path;
+        return a;
+    }
+    a.T_odom_anchor = n->T_odom_anchor;
+    a.T_world_anchor = n->T_world_anchor;
+    a.segment = segment_of(node);
+    const auto p = path_at_.find(node);
+    a.path = p == path_at_.end() ? 0.0 : p->second;
+    return a;
+}
+
+bool Mapper::has_odometry_edge(std::uint64_t a, std::uint64_t b) const {
+    for (const PoseGraphEdge& e : graph_.edges()) {
+        if (e.kind == EdgeKind::kOdometry &&
+            ((e.from == a && e.to == b) || (e.from == b && e.to == a)))
+            return true;
+    }
+    return false;
+}
+
+bool Mapper::tied_by_loop(std::uint64_t node) const {
+    for (const PoseGraphEdge& e : graph_.edges()) {
+        if (e.kind == EdgeKind::kLoop && e.active && (e.from == node || e.to == node)) return true;
+    }
+    return false;
+}
+
+std::optional<std::uint32_t> Mapper::stand_in(std::uint64_t local_map_id, std::uint64_t node,
+                                              const Eigen::Isometry3d& T_world,
+                                              double stamp) const {
+    const LongTermConfig& lt = config_.long_term;
+    if (!lt.merge || keyframes_.empty()) return std::nullopt;
+    // The keyframe's world pose must be tied to the map: its local map has a loop, or the map
+    // before it in the chain was folded into an earlier one or has a loop (then only one local
+    // map of odometry lies between): never on odometry drift alone.
+    bool tied = tied_by_loop(node);
+    if (!tied) {
+        const std::map<std::uint64_t, std::uint64_t>& chain = chains_.at(session_);
+        const auto it = chain.find(local_map_id);
+        if (it != chain.end() && it != chain.begin()) {
+            const auto prev = std::prev(it);
+            tied = folded(session_, prev->first) || tied_by_loop(prev->second);
+        }
+    }
+    if (!tied) return std::nullopt;
+    const double max_angle = lt.keyframe_angle * M_PI / 180.0;
+    const LoopDetectorConfig& recent = config_.loop_detection;
+    std::optional<std::uint32_t> best;
+    double best_d = lt.keyframe_distance;
+    for (std::uint32_t i = 0; i < keyframes_.size(); ++i) {
+        const StoredKeyframe& k = *keyframes_[i];
+        // An earlier lap's or session's keyframe, not one of this stretch of the drive (what the
+        // loop detection calls recent).
+        if (k.node == node) continue;
+        if (k.session == session_ &&
+            (keyframes_.size() - i < std::size_t(recent.exclude_recent_keyframes) ||
+             !(stamp - k.data.stamp >= recent.exclude_recent_seconds)))
+            continue;
+        const PoseGraphNode* n = graph_.find(k.node);
+        if (!n) continue;
+        const Eigen::Isometry3d T_k = n->T_world_anchor * k.data.T_anchor_lidar;
+        const double d = (T_k.translation() - T_world.translation()).norm();
+        if (d > best_d) continue;
+        if (Eigen::AngleAxisd(T_k.linear().transpose() * T_world.linear()).angle() > max_angle)
+            continue;
+        best_d = d;
+        best = i;
+    }
+    return best;
+}
+
+std::optional<std::uint64_t> Mapper::try_fold(std::uint64_t n) {
+    const LongTermConfig& lt = config_.long_term;
+    const PoseGraphNode* node = graph_.find(n);
+    const auto entry = maps_.find(n);
+    if (!lt.merge || !node || node->session != session_ || node->fixed || entry == maps_.end())
+        return std::nullopt;
+    // Tied to the map by a verified loop, and the graph settled (no optimisation due).
+    if (due_loops_ > 0 || !tied_by_loop(n)) return std::nullopt;
+    const SegmentKey root = placed_root(segment_key(n));
+    const common::LocalMapData& data = *entry->second.stored.data;
+    const double path = path_at_.count(n) ? path_at_.at(n) : 0.0;
+    std::optional<std::uint64_t> best;
+    double best_d = lt.merge_distance;
+    for (const auto& [id, e] : maps_) {
+        if (id == n || !e.stored.data->finished) continue;
+        if (e.stored.data->voxel_size != data.voxel_size) continue;
+        const PoseGraphNode* other = graph_.find(id);
+        if (!other) continue;
+        // An earlier lap: not a neighbour on this drive (anchors of consecutive maps can be
+        // closer than merge_distance after a turn).
+        if (other->session == session_) {
+            const auto p = path_at_.find(id);
+            if (p == path_at_.end() || path - p->second < 4.0 * lt.merge_distance) continue;
+        }
+        // Placed together by loops: never across parts no loop has joined.
+        if (placed_root(segment_key(id)) != root) continue;
+        const double d =
+            (other->T_world_anchor.translation() - node->T_world_anchor.translation()).norm();
+        if (d <= best_d) {
+            best_d = d;
+            best = id;
+        }
+    }
+    if (!best) return std::nullopt;
+    fold(n, *best);
+    return best;
+}
+
+void Mapper::fold(std::uint64_t n, std::uint64_t into) {
+    const PoseGraphNode folded_node = *graph_.find(n);
+    const PoseGraphNode& target = *graph_.find(into);
+    const Eigen::Isometry3d T_into_n = target.T_world_anchor.inverse() * folded_node.T_world_anchor;
+    const Eigen::Isometry3d T_n_into = T_into_n.inverse();
+
+    // The voxels.
+    MapEntry& e = maps_.at(into);
+    auto merged = std::make_shared<common::LocalMapData>(
+        merge_local_maps(*e.stored.data, *maps_.at(n).stored.data, T_into_n,
+                         std::size_t(config_.long_term.max_observation_times)));
+    e.stored.data = std::move(merged);
+    e.serial = next_serial_++;
+
+    // The graph without the node: its edges name `into`, measured from its anchor. An edge
+    // between the two disappears (the merge holds it); an odometry edge between two places
+    // already joined by one, or a loop edge beyond max_loops_per_anchor_pair, is left out.
+    PoseGraph updated(graph_.config());
+    for (const PoseGraphNode& x : graph_.nodes()) {
+        if (x.id != n) updated.add_node(x);
+    }
+    std::vector<PoseGraphEdge> moved;
+    for (const PoseGraphEdge& x : graph_.edges()) {
+        if (x.from != n && x.to != n) {
+            updated.add_edge(x);
+            continue;
+        }
+        PoseGraphEdge y = x;
+        if (y.from == n) {
+            y.from = into;
+            y.T_from_to = T_into_n * y.T_from_to;
+        }
+        if (y.to == n) {
+            y.to = into;
+            y.T_from_to = y.T_from_to * T_n_into;
+        }
+        if (y.from != y.to) moved.push_back(y);
+    }
+    std::set<std::pair<std::uint64_t, std::uint64_t>> relayed;
+    for (const auto& [a, b] : relayed_edges_) {
+        if (a != n && b != n) relayed.insert({a, b});
+    }
+    for (const PoseGraphEdge& y : moved) {
+        int same = 0;
+        for (const PoseGraphEdge& z : updated.edges()) {
+            same += z.kind == y.kind && (y.kind == EdgeKind::kOdometry || z.active) &&
+                    ((z.from == y.from && z.to == y.to) || (z.from == y.to && z.to == y.from));
+        }
+        const int limit = y.kind == EdgeKind::kOdometry ? 1
+                          : config_.max_loops_per_anchor_pair > 0
+                              ? config_.max_loops_per_anchor_pair
+                              : std::numeric_limits<int>::max();
+        if (same >= limit) continue;
+        if (updated.add_edge(y) && y.kind == EdgeKind::kOdometry) relayed.insert({y.from, y.to});
+    }
+    graph_ = std::move(updated);
+    relayed_edges_ = std::move(relayed);
+
+    // Keyframes of the folded map: in the node it went into.
+    for (std::shared_ptr<const StoredKeyframe>& k : keyframes_) {
+        if (k->node != n) continue;
+        auto copy = std::make_shared<StoredKeyframe>(*k);
+        copy->node = into;
+        copy->data.T_anchor_lidar = T_into_n * k->data.T_anchor_lidar;
+        k = std::move(copy);
+    }
+    for (LoopClosure& l : loops_) {
+        if (l.from_node == n) {
+            l.from_node = into;
+            l.T_from_to = T_into_n * l.T_from_to;
+        }
+        if (l.to_node == n) {
+            l.to_node = into;
+            l.T_from_to = l.T_from_to * T_n_into;
+        }
+    }
+
+    // The chain goes on from `into`: the local map id names it, with its own anchor there.
+    Folded f;
+    f.node = into;
+    f.T_node_anchor = T_into_n;
+    f.T_odom_anchor = folded_node.T_odom_anchor;
+    f.segment = segment_of(n);
+    f.path = path_at_.count(n) ? path_at_.at(n) : 0.0;
+    folded_[folded_node.local_map_id] = f;
+    chains_[session_][folded_node.local_map_id] = into;
+    maps_.erase(n);
+    segment_of_.erase(n);
+    path_at_.erase(n);
+}
+
+std::vector<SessionRecord> Mapper::sessions() const {
+    std::vector<SessionRecord> out = past_sessions_;
+    SessionRecord r = session_record_;
+    r.id = session_;
+    std::set<std::uint64_t> updated;
+    const auto chain = chains_.find(session_);
+    if (chain != chains_.end()) {
+        for (const auto& [local_map_id, node] : chain->second) {
+            if (const Folded* f = folded(session_, local_map_id)) {
+                // A map of this session folded into another map of this session counts as added.
+                const PoseGraphNode* into = graph_.find(f->node);
+                if (into && into->session != session_) updated.insert(f->node);
+            } else if (maps_.count(node)) {
+                ++r.local_maps_added;
+            }
+        }
+    }
+    r.local_maps_updated = updated.size();
+    if (keyframes_seen_ > 0 || r.local_maps_added > 0 || r.local_maps_updated > 0) out.push_back(r);
+    return out;
+}
+
+}  // namespace ltm::mapping

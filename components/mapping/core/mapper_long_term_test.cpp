@@ -1,0 +1,217 @@
+// The Mapper on one map over sessions (LongTermConfig): a second session over a mapped site
+// updates the existing local maps instead of adding its own, stores no keyframe where one is
+// stored already, and loops that agree with the graph make no optimisation due.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+
+#include "mapping/core/mapper.hpp"
+#include "mapping/core/test_data.hpp"
+
+namespace ltm::mapping {
+namespace {
+
+// A synthetic road driven east along y = 0: keyframes every 3 m, local maps of 4 keyframes (12 m
+// apart), each map finished after its last keyframe.
+struct Drive {
+    std::vector<Eigen::Vector3f> scene;
+    common::PoseList truth, odom;
+    std::vector<std::vector<Eigen::Vector3f>> points;
+    std::vector<common::LocalMapData> maps;
+    double t0 = 0.0;
+
+    // Keyframe i at x = x0 + 3 i, y = y0 in the world; the odometry frame is T_odom_world and,
+    // from keyframe `jump_at` on, off by `jump` more (an odometry error at a map switch).
+    Drive(const std::vector<Eigen::Vector3f>& s, double x0, double y0,
+          const Eigen::Isometry3d& T_odom_world, double start, std::size_t jump_at = 1000,
+          const Eigen::Isometry3d& jump = Eigen::Isometry3d::Identity())
+        : scene(s), t0(start) {
+        for (std::size_t i = 0; i < 16; ++i) {
+            truth.push_back(test::xy_yaw(x0 + 3.0 * double(i), y0, 0.0));
+            odom.push_back((i >= jump_at ? jump : Eigen::Isometry3d::Identity()) * T_odom_world *
+                           truth.back());
+            points.push_back(test::view(scene, truth.back(), 50.0));
+        }
+        for (std::uint64_t m = 0; m < 4; ++m) {
+            std::vector<std::vector<Eigen::Vector3f>> scans(points.begin() + 4 * m,
+                                                            points.begin() + 4 * m + 4);
+            common::PoseList poses(odom.begin() + 4 * m, odom.begin() + 4 * m + 4);
+            maps.push_back(test::build_local_map(m, poses.front(), scans, poses));
+            // Stamped in this drive's time.
+            for (double& t : maps.back().observation_times) t += start;
+            for (common::VoxelData& v : maps.back().voxels) {
+                v.life.created += start;
+                v.life.last_seen += start;
+            }
+        }
+    }
+
+    common::KeyframeData keyframe(std::size_t i) const {
+        common::KeyframeData k;
+        k.id = i;
+        k.scan_index = i;
+        k.local_map_id = i / 4;
+        k.stamp = t0 + double(i);
+        k.T_odom_lidar = odom[i];
+        k.T_anchor_lidar = maps[i / 4].T_odom_anchor.inverse() * odom[i];
+        k.points = points[i];
+        return k;
+    }
+};
+
+MapperConfig test_config() {
+    MapperConfig c;
+    c.loop_detection.exclude_recent_keyframes = 6;
+    c.loop_detection.exclude_recent_seconds = 0.0;
+    c.loop_detection.max_distance = 0.6;
+    c.loop_detection.max_results = 1;
+    c.loop_cooldown_keyframes = 1;
+    return c;
+}
+
+// Keyframes, each local map finished after its last one; optimised when a loop makes it due.
+std::vector<KeyframeResult> replay(const Drive& d, Mapper& mapper,
+                                   std::vector<LocalMapResult>* maps = nullptr) {
+    std::vector<KeyframeResult> out;
+    for (std::size_t i = 0; i < 16; ++i) {
+        out.push_back(mapper.add_keyframe(d.keyframe(i)));
+        EXPECT_TRUE(out.back().added) << out.back().message;
+        if (out.back().optimisation_due()) {
+            EXPECT_TRUE(mapper.optimise().solved);
+        }
+        if (i % 4 == 3) {
+            const LocalMapResult r = mapper.add_local_map(d.maps[i / 4]);
+            EXPECT_TRUE(r.added) << r.message;
+            if (maps) maps->push_back(r);
+        }
+    }
+    return out;
+}
+
+TEST(MapperLongTerm, ASecondSessionOverAMappedSiteAddsNoLocalMapWhereItDrivesOverMappedPlaces) {
+    const std::vector<Eigen::Vector3f> scene = test::with_dense_ground(test::synthetic_scene(71));
+    const MapperConfig config = test_config();
+    Mapper first(config);
+    replay(Drive(scene, 0.0, 0.0, Eigen::Isometry3d::Identity(), 0.0), first);
+    ASSERT_TRUE(first.optimise().solved);
+    ASSERT_EQ(first.local_map_count(), 4u);
+    const MapData map = first.snapshot();
+    std::size_t voxels_before = 0;
+    for (const StoredLocalMap& m : map.local_maps) voxels_before += m.data->voxels.size();
+
+    // A day later, the same road 0.5 m further on and 0.3 m aside, in another odometry frame;
+    // from keyframe 8 on, the odometry is off by 0.4 m more.
+    const Eigen::Isometry3d T_odom_world = test::xy_yaw(-20.0, 7.0, 35.0);
+    const Drive again(scene, 0.5, 0.3, T_odom_world, 86400.0, 8, test::xy_yaw(0.4, -0.2, 0.5));
+    Mapper next(config, map);
+    ASSERT_EQ(next.session(), 1u);
+    std::vector<LocalMapResult> results;
+    const std::vector<KeyframeResult> kf = replay(again, next, &results);
+
+    // Every local map of the second session went into a map of the first.
+    ASSERT_EQ(results.size(), 4u);
+    std::set<std::uint64_t> into;
+    for (const LocalMapResult& r : results) {
+        EXPECT_TRUE(r.merged) << "node " << r.node;
+        into.insert(r.node);
+        const PoseGraphNode* n = next.graph().find(r.node);
+        ASSERT_NE(n, nullptr);
+        EXPECT_EQ(n->session, 0u);
+    }
+    EXPECT_EQ(next.local_map_count(), 4u);
+    EXPECT_EQ(next.graph().nodes().size(), 4u);
+    for (const PoseGraphEdge& e : next.graph().edges()) {
+        EXPECT_NE(next.graph().find(e.from), nullptr);
+        EXPECT_NE(next.graph().find(e.to), nullptr);
+    }
+    // The updated maps hold the new observations and a higher revision; the voxels barely grow
+    // (the same surfaces), the stamps of both sessions are in them.
+    const MapData after = next.snapshot();
+    std::size_t voxels_after = 0;
+    for (const StoredLocalMap& m : after.local_maps) {
+        voxels_after += m.data->voxels.size();
+        if (into.count(m.node)) {
+            EXPECT_GT(m.data->revision, 1u);
+            EXPECT_GE(m.data->observation_times.back(), 86400.0);
+        }
+    }
+    EXPECT_LT(double(voxels_after), 1.15 * double(voxels_before));
+    // Keyframes within 1 m of a stored one are not stored again.
+    std::size_t kept = 0;
+    for (const KeyframeResult& r : kf) kept += r.kept;
+    EXPECT_LT(kept, 4u);
+    EXPECT_EQ(next.keyframes().size(), 16u + kept);
+    // Every keyframe names a node of the graph, at its true place.
+    for (std::uint32_t i = 0; i < next.keyframes().size(); ++i) {
+        ASSERT_NE(next.graph().find(next.keyframes()[i]->node), nullptr);
+    }
+    // The second session's poses, through the maps it folded, are where it really was.
+    for (std::size_t i = 0; i < 16; ++i) {
+        const std::optional<Eigen::Isometry3d> T = next.T_world_lidar(i / 4, again.odom[i]);
+        ASSERT_TRUE(T);
+        EXPECT_LT((T->translation() - again.truth[i].translation()).norm(), 0.15)
+            << "keyframe " << i;
+    }
+    // The sessions that built the map.
+    const std::vector<SessionRecord> sessions = next.sessions();
+    ASSERT_EQ(sessions.size(), 2u);
+    EXPECT_EQ(sessions[0].id, 0u);
+    EXPECT_EQ(sessions[0].local_maps_added, 4u);
+    EXPECT_EQ(sessions[1].id, 1u);
+    EXPECT_EQ(sessions[1].local_maps_added, 0u);
+    EXPECT_EQ(sessions[1].local_maps_updated, into.size());
+    EXPECT_EQ(sessions[1].first_stamp, 86400.0);
+    EXPECT_EQ(sessions[1].last_stamp, 86415.0);
+}
+
+TEST(MapperLongTerm, ALoopThatAgreesWithTheGraphMakesNoOptimisationDue) {
+    const std::vector<Eigen::Vector3f> scene = test::with_dense_ground(test::synthetic_scene(71));
+    const MapperConfig config = test_config();
+    Mapper first(config);
+    replay(Drive(scene, 0.0, 0.0, Eigen::Isometry3d::Identity(), 0.0), first);
+    ASSERT_TRUE(first.optimise().solved);
+    Mapper next(config, first.snapshot());
+    // Off by 0.4 m more from keyframe 8 on: a loop there disagrees with the graph.
+    const Drive again(scene, 0.5, 0.3, test::xy_yaw(-20.0, 7.0, 35.0), 86400.0, 8,
+                      test::xy_yaw(0.4, -0.2, 0.5));
+    const std::vector<KeyframeResult> kf = replay(again, next);
+    std::size_t agreeing = 0, first_loop = 16, jump_loop = 16;
+    for (std::size_t i = 0; i < kf.size(); ++i) {
+        for (const LoopClosure& l : kf[i].loops) {
+            if (first_loop == 16) first_loop = i;
+            if (i >= 8 && jump_loop == 16) jump_loop = i;
+            if (l.agrees) {
+                ++agreeing;
+                EXPECT_LE(l.disagreement, config.long_term.agree_translation);
+            }
+        }
+    }
+    ASSERT_LT(first_loop, 8u) << "no loop to the first session";
+    ASSERT_LT(jump_loop, 16u) << "no loop after the odometry's jump";
+    // The first loop joins the session to the map: an optimisation is due.
+    EXPECT_TRUE(kf[first_loop].optimisation_due());
+    EXPECT_FALSE(kf[first_loop].loops[0].agrees);
+    // The first loop after the jump disagrees by about 0.4 m: due again.
+    EXPECT_TRUE(kf[jump_loop].optimisation_due());
+    // The others agree: added without an optimisation.
+    EXPECT_GE(agreeing, 2u);
+    for (std::size_t i = 0; i < kf.size(); ++i) {
+        if (!kf[i].loops.empty() && kf[i].loops[0].agrees) {
+            EXPECT_FALSE(kf[i].optimisation_due()) << "keyframe " << i;
+        }
+    }
+    // With the bounds at zero every loop makes an optimisation due.
+    MapperConfig strict = config;
+    strict.long_term.agree_translation = 0.0;
+    strict.long_term.agree_rotation = 0.0;
+    Mapper other(strict, first.snapshot());
+    for (const KeyframeResult& r : replay(again, other)) {
+        if (!r.loops.empty()) {
+            EXPECT_TRUE(r.optimisation_due());
+        }
+    }
+}
+
+}  // namespace
+}  // namespace ltm::mapping
