@@ -31,6 +31,7 @@
 #include "evaluation/core/ate.hpp"
 #include "mapping/bench/graph_bench.hpp"
 #include "mapping/bench/km_memory.hpp"
+#include "mapping/bench/lap_growth.hpp"
 #include "mapping/bench/revisits.hpp"
 #include "mapping/bench/sim_source.hpp"
 #include "mapping/core/map_store.hpp"
@@ -256,6 +257,11 @@ int run(const Args& a) {
             a.poses.c_str());
     }
     mapping::bench::KmMemoryLog km_log;
+    mapping::bench::LapGrowthLog lap_log;  // --laps N > 1: growth per lap
+    std::unique_ptr<mapping::MapWriter> lap_writer;
+    if (a.laps > 1 && !a.out.empty())
+        lap_writer = std::make_unique<mapping::MapWriter>(a.out + "/map");
+    std::size_t lap_optimisations = 0;
     double path_so_far = 0.0;  // [m] odometry path
 
     slam::SlamPipelineConfig pc;
@@ -322,6 +328,7 @@ int run(const Args& a) {
         }
         if (f.optimisation) {
             optimise.add(f.optimise_ms);
+            ++lap_optimisations;
             if (!f.optimisation->solved)
                 std::fprintf(stderr, "optimisation failed: %s\n", f.optimisation->message.c_str());
         }
@@ -336,6 +343,24 @@ int run(const Args& a) {
             s.keyframes = keyframes;
             s.loops = mapper.loops().size();
             km_log.add(s, stdout);
+        }
+        if (a.laps > 1 && (i + 1) * a.laps / frames != i * a.laps / frames) {
+            mapping::bench::LapSample s;
+            s.lap = (i + 1) * a.laps / frames;
+            s.frame = i;
+            s.mapper_mib = double(mapper.memory_bytes()) / 1048576.0;
+            if (lap_writer)
+                s.disk_mib = double(lap_writer->save(mapper.snapshot()).bytes_total) / 1048576.0;
+            s.local_maps = mapper.local_map_count();
+            s.keyframes = mapper.keyframes().size();
+            s.nodes = mapper.graph().nodes().size();
+            s.edges = mapper.graph().edges().size();
+            s.loops = mapper.loops().size();
+            s.optimisations = lap_optimisations;
+            s.optimise_p95_ms = mapping::bench::p95(std::vector<double>(
+                optimise.v.end() - std::ptrdiff_t(lap_optimisations), optimise.v.end()));
+            lap_optimisations = 0;
+            lap_log.add(s, stdout);
         }
         progress.update(i + 1);
     }
@@ -356,9 +381,10 @@ int run(const Args& a) {
     for (const mapping::PoseGraphEdge& e : mapper.graph().edges()) {
         active += e.kind == mapping::EdgeKind::kLoop && e.active;
     }
-    std::printf("keyframes %zu, local maps %zu, graph %zu nodes %zu edges; path %.1f m\n",
-                keyframes, mapper.local_map_count(), mapper.graph().nodes().size(),
-                mapper.graph().edges().size(), path);
+    std::printf(
+        "keyframes %zu (%zu stored), local maps %zu, graph %zu nodes %zu edges; path %.1f m\n",
+        keyframes, mapper.keyframes().size(), mapper.local_map_count(),
+        mapper.graph().nodes().size(), mapper.graph().edges().size(), path);
     std::printf("%zu scans in %.1f s (%s)\n", frames, ms_since(t_start) / 1000.0,
                 given ? "placed at the given poses" : "odometry and mapping");
     std::printf(
@@ -390,6 +416,7 @@ int run(const Args& a) {
     std::printf("memory: mapper %.1f MiB (%.1f MiB/km), peak resident %.1f MiB\n", mib,
                 path > 0 ? mib / (path / 1000.0) : 0.0, common::process_memory().peak_mib);
     km_log.report(stdout);
+    lap_log.report(stdout);
 
     if (!a.reference.empty() || sim_data) {
         common::PoseList ref =
@@ -469,7 +496,9 @@ int run(const Args& a) {
                   << common::format_kitti_pose(l.T_match_query) << "\n";
         }
         t0 = Clock::now();
-        const mapping::SaveStats s = mapping::save_map(a.out + "/map", mapper.snapshot());
+        const mapping::SaveStats s = lap_writer
+                                         ? lap_writer->save(mapper.snapshot())
+                                         : mapping::save_map(a.out + "/map", mapper.snapshot());
         std::printf("map: %s/map, %zu files, %.1f MiB (%.1f MiB/km), saved in %.0f ms\n",
                     a.out.c_str(), s.files_written, double(s.bytes_total) / 1048576.0,
                     path > 0 ? double(s.bytes_total) / 1048576.0 / (path / 1000.0) : 0.0,

@@ -1,0 +1,65 @@
+#include "mapping/bench/lap_growth.hpp"
+
+#include <algorithm>
+
+namespace ltm::mapping::bench {
+namespace {
+
+// "+3.1 %" of b over a; "-" without a base.
+void growth(std::FILE* out, double a, double b) {
+    if (a > 0.0 && b >= 0.0) {
+        std::fprintf(out, " %+7.1f %%", 100.0 * (b - a) / a);
+    } else {
+        std::fprintf(out, " %9s", "-");
+    }
+}
+
+}  // namespace
+
+double p95(std::vector<double> v) {
+    if (v.empty()) return 0.0;
+    std::sort(v.begin(), v.end());
+    return v[std::min(v.size() - 1, std::size_t(0.95 * double(v.size())))];
+}
+
+void LapGrowthLog::add(const LapSample& s, std::FILE* out) {
+    samples_.push_back(s);
+    std::fprintf(
+        out,
+        "lap %zu (frame %zu): mapper %.1f MiB, disk %.1f MiB, %zu local maps, %zu "
+        "keyframes, graph %zu nodes %zu edges, %zu loops; %zu optimisations, p95 %.1f ms\n",
+        s.lap, s.frame, s.mapper_mib, s.disk_mib, s.local_maps, s.keyframes, s.nodes, s.edges,
+        s.loops, s.optimisations, s.optimise_p95_ms);
+    std::fflush(out);
+}
+
+void LapGrowthLog::report(std::FILE* out) const {
+    if (samples_.size() < 2) return;
+    std::fprintf(out,
+                 "growth by lap (over the lap before):\n  lap  mapper MiB    growth  disk MiB    "
+                 "growth  local maps    growth  keyframes    growth  nodes  edges  opt p95 ms\n");
+    for (std::size_t i = 0; i < samples_.size(); ++i) {
+        const LapSample& s = samples_[i];
+        const LapSample* p = i ? &samples_[i - 1] : nullptr;
+        std::fprintf(out, "  %3zu  %10.1f", s.lap, s.mapper_mib);
+        growth(out, p ? p->mapper_mib : 0.0, s.mapper_mib);
+        std::fprintf(out, "  %8.1f", s.disk_mib);
+        growth(out, p ? p->disk_mib : 0.0, s.disk_mib);
+        std::fprintf(out, "  %10zu", s.local_maps);
+        growth(out, p ? double(p->local_maps) : 0.0, double(s.local_maps));
+        std::fprintf(out, "  %9zu", s.keyframes);
+        growth(out, p ? double(p->keyframes) : 0.0, double(s.keyframes));
+        std::fprintf(out, "  %5zu  %5zu  %10.1f\n", s.nodes, s.edges, s.optimise_p95_ms);
+    }
+    double worst = 0.0;
+    for (std::size_t i = 1; i < samples_.size(); ++i) {
+        const double a = samples_[i - 1].mapper_mib, b = samples_[i].mapper_mib;
+        if (a > 0.0) worst = std::max(worst, 100.0 * (b - a) / a);
+        const double da = samples_[i - 1].disk_mib, db = samples_[i].disk_mib;
+        if (da > 0.0 && db >= 0.0) worst = std::max(worst, 100.0 * (db - da) / da);
+    }
+    std::fprintf(out, "largest growth of memory or disk in a lap after the first: %+.1f %%\n",
+                 worst);
+}
+
+}  // namespace ltm::mapping::bench
