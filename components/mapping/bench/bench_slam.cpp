@@ -262,6 +262,10 @@ int run(const Args& a) {
     if (a.laps > 1 && !a.out.empty())
         lap_writer = std::make_unique<mapping::MapWriter>(a.out + "/map");
     std::size_t lap_optimisations = 0;
+    // --laps: the last frame of each lap, and the reference to score each lap against.
+    const common::PoseList sim_ref = sim_data ? sim_data->reference() : common::PoseList();
+    std::vector<std::size_t> lap_end =
+        a.laps > 1 ? mapping::bench::lap_ends(sim_ref, a.laps) : std::vector<std::size_t>();
     double path_so_far = 0.0;  // [m] odometry path
 
     slam::SlamPipelineConfig pc;
@@ -284,6 +288,30 @@ int run(const Args& a) {
                 std::fprintf(stderr, "local map %lu: %s\n", (unsigned long)maps[k].id,
                              results[k].message.c_str());
         }
+    };
+    // ATE and revisits over frames 0..last (the laps so far), as scored at the end.
+    auto lap_quality = [&](std::size_t last, mapping::bench::LapSample* s) {
+        if (sim_ref.size() <= last) return;
+        common::PoseList est(last + 1), ref(sim_ref.begin(), sim_ref.begin() + last + 1);
+        double path = 0.0;
+        for (std::size_t j = 0; j <= last; ++j) {
+            const std::optional<Eigen::Isometry3d> w = mapper.T_world_lidar(frame_map[j], odom[j]);
+            est[j] = w ? *w : odom[j];
+            if (j) path += (odom[j].translation() - odom[j - 1].translation()).norm();
+        }
+        s->ate_rmse = eval::compute_ate(est, ref).rmse;
+        s->ate_percent = path > 0.0 ? 100.0 * s->ate_rmse / path : 0.0;
+        std::vector<std::size_t> queries;
+        for (const mapping::LoopClosure& l : mapper.loops()) {
+            if (l.query_scan <= last) queries.push_back(l.query_scan);
+        }
+        std::vector<mapping::bench::RevisitSegment> seg =
+            mapping::bench::revisit_segments(ref, 5.0, 300);
+        mapping::bench::mark_closed(queries, &seg);
+        s->revisits = seg.size();
+        s->revisits_closed =
+            std::count_if(seg.begin(), seg.end(), [](const auto& r) { return r.closed; });
+        s->longest_unclosed = mapping::bench::longest_unclosed_run(seg, queries);
     };
     common::Progress progress("slam", frames);
     for (std::size_t i = 0; i < frames; ++i) {
@@ -344,9 +372,10 @@ int run(const Args& a) {
             s.loops = mapper.loops().size();
             km_log.add(s, stdout);
         }
-        if (a.laps > 1 && (i + 1) * a.laps / frames != i * a.laps / frames) {
+        if (lap_log.samples().size() < lap_end.size() &&
+            (i == lap_end[lap_log.samples().size()] || i + 1 == frames)) {
             mapping::bench::LapSample s;
-            s.lap = (i + 1) * a.laps / frames;
+            s.lap = lap_log.samples().size() + 1;
             s.frame = i;
             s.mapper_mib = double(mapper.memory_bytes()) / 1048576.0;
             if (lap_writer)
@@ -360,6 +389,7 @@ int run(const Args& a) {
             s.optimise_p95_ms = mapping::bench::p95(std::vector<double>(
                 optimise.v.end() - std::ptrdiff_t(lap_optimisations), optimise.v.end()));
             lap_optimisations = 0;
+            lap_quality(i, &s);
             lap_log.add(s, stdout);
         }
         progress.update(i + 1);

@@ -1,6 +1,7 @@
 #include "mapping/bench/lap_growth.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace ltm::mapping::bench {
 namespace {
@@ -16,6 +17,31 @@ void growth(std::FILE* out, double a, double b) {
 
 }  // namespace
 
+std::vector<std::size_t> lap_ends(const common::PoseList& ref, std::size_t laps) {
+    std::vector<std::size_t> ends;
+    if (ref.empty() || laps == 0) return ends;
+    const Eigen::Vector3d start = ref[0].translation();
+    const Eigen::Vector3d heading = ref[0].linear().col(0);
+    std::size_t lap_start = 0;
+    std::size_t best = 0;
+    double best_d = -1.0;  // < 0: not near the start
+    for (std::size_t i = 1; i < ref.size() && ends.size() + 1 < laps; ++i) {
+        const double d = (ref[i].translation() - start).norm();
+        const bool near = i >= lap_start + 300 && d < 2.0 &&
+                          ref[i].linear().col(0).dot(heading) > std::cos(M_PI / 4);
+        if (near && (best_d < 0.0 || d < best_d)) {
+            best = i;
+            best_d = d;
+        } else if (!near && best_d >= 0.0) {
+            ends.push_back(best - 1);
+            lap_start = best;
+            best_d = -1.0;
+        }
+    }
+    ends.push_back(ref.size() - 1);
+    return ends;
+}
+
 double p95(std::vector<double> v) {
     if (v.empty()) return 0.0;
     std::sort(v.begin(), v.end());
@@ -30,6 +56,12 @@ void LapGrowthLog::add(const LapSample& s, std::FILE* out) {
         "keyframes, graph %zu nodes %zu edges, %zu loops; %zu optimisations, p95 %.1f ms\n",
         s.lap, s.frame, s.mapper_mib, s.disk_mib, s.local_maps, s.keyframes, s.nodes, s.edges,
         s.loops, s.optimisations, s.optimise_p95_ms);
+    if (s.ate_rmse >= 0.0) {
+        std::fprintf(out,
+                     "  so far: ATE rmse %.3f m (%.4f %% of the path), revisits %zu/%zu closed, "
+                     "longest revisit without a loop %zu frames\n",
+                     s.ate_rmse, s.ate_percent, s.revisits_closed, s.revisits, s.longest_unclosed);
+    }
     std::fflush(out);
 }
 

@@ -7,6 +7,8 @@
 #include <cstdio>
 #include <vector>
 
+#include "common/core/trajectory_io.hpp"
+
 namespace ltm::mapping::bench {
 
 struct LapSample {
@@ -16,7 +18,17 @@ struct LapSample {
     std::size_t local_maps = 0, keyframes = 0, nodes = 0, edges = 0, loops = 0;
     std::size_t optimisations = 0;  // of this lap
     double optimise_p95_ms = 0.0;   // of this lap's optimisations
+    // Against the reference, over every frame so far (< 0: not known).
+    double ate_rmse = -1.0, ate_percent = -1.0;  // [m], of the path
+    std::size_t revisits = 0, revisits_closed = 0;
+    std::size_t longest_unclosed = 0;  // revisiting frames in a row without a loop
 };
+
+// The last frame of each lap of a route driven `laps` times, from its reference: a lap after the
+// first starts where the reference comes back to its first pose (the nearest frame within 2 m,
+// heading within 45 deg) at least 300 frames after the lap before started. The last lap ends with
+// the last frame; fewer ends when the reference does not come back.
+std::vector<std::size_t> lap_ends(const common::PoseList& reference, std::size_t laps);
 
 class LapGrowthLog {
   public:

@@ -1,5 +1,7 @@
 #include "mapping/bench/revisits.hpp"
 
+#include <algorithm>
+
 namespace ltm::mapping::bench {
 
 std::vector<RevisitSegment> revisit_segments(const common::PoseList& ref, double radius,
@@ -27,6 +29,22 @@ void mark_closed(const std::vector<std::size_t>& queries, std::vector<RevisitSeg
             if (q >= s.first && q <= s.last) s.closed = true;
         }
     }
+}
+
+std::size_t longest_unclosed_run(const std::vector<RevisitSegment>& segments,
+                                 std::vector<std::size_t> queries) {
+    std::sort(queries.begin(), queries.end());
+    std::size_t longest = 0;
+    for (const RevisitSegment& s : segments) {
+        std::size_t from = s.first;  // the first frame of the current run
+        for (auto q = std::lower_bound(queries.begin(), queries.end(), s.first);
+             q != queries.end() && *q <= s.last; ++q) {
+            longest = std::max(longest, *q - from);
+            from = *q + 1;
+        }
+        if (from <= s.last) longest = std::max(longest, s.last + 1 - from);
+    }
+    return longest;
 }
 
 }  // namespace ltm::mapping::bench

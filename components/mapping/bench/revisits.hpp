@@ -22,4 +22,10 @@ std::vector<RevisitSegment> revisit_segments(const common::PoseList& reference, 
 void mark_closed(const std::vector<std::size_t>& query_frames,
                  std::vector<RevisitSegment>* segments);
 
+// The longest run of revisiting frames (inside a segment) with no query frame: on a route driven
+// many times the laps after the first are one long revisit, closed by its first loop; this says
+// how long the mapper went without one.
+std::size_t longest_unclosed_run(const std::vector<RevisitSegment>& segments,
+                                 std::vector<std::size_t> query_frames);
+
 }  // namespace ltm::mapping::bench
