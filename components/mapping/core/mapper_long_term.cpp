@@ -113,10 +113,11 @@ std::optional<std::uint64_t> Mapper::try_fold(std::uint64_t n) {
     std::optional<std::uint64_t> best;
     double best_d = lt.merge_distance;
     for (const auto& [id, e] : maps_) {
-        if (id == n || !e.stored.data->finished) continue;
-        if (e.stored.data->voxel_size != data.voxel_size) continue;
         const PoseGraphNode* other = graph_.find(id);
-        if (!other) continue;
+        if (id == n || !other || e.stored.data->voxel_size != data.voxel_size) continue;
+        // Not a map of this session still being built (its next snapshot would replace the
+        // merge); an earlier session's map gets no newer snapshot, finished or not.
+        if (other->session == session_ && !e.stored.data->finished) continue;
         // An earlier lap: not a neighbour on this drive (anchors of consecutive maps can be
         // closer than merge_distance after a turn).
         if (other->session == session_) {

@@ -20,13 +20,14 @@ struct Drive {
     std::vector<std::vector<Eigen::Vector3f>> points;
     std::vector<common::LocalMapData> maps;
     double t0 = 0.0;
+    std::uint64_t first_map = 0;  // local map ids first_map .. first_map + 3
 
     // Keyframe i at x = x0 + 3 i, y = y0 in the world; the odometry frame is T_odom_world and,
     // from keyframe `jump_at` on, off by `jump` more (an odometry error at a map switch).
     Drive(const std::vector<Eigen::Vector3f>& s, double x0, double y0,
           const Eigen::Isometry3d& T_odom_world, double start, std::size_t jump_at = 1000,
-          const Eigen::Isometry3d& jump = Eigen::Isometry3d::Identity())
-        : scene(s), t0(start) {
+          const Eigen::Isometry3d& jump = Eigen::Isometry3d::Identity(), std::uint64_t map0 = 0)
+        : scene(s), t0(start), first_map(map0) {
         for (std::size_t i = 0; i < 16; ++i) {
             truth.push_back(test::xy_yaw(x0 + 3.0 * double(i), y0, 0.0));
             odom.push_back((i >= jump_at ? jump : Eigen::Isometry3d::Identity()) * T_odom_world *
@@ -37,7 +38,7 @@ struct Drive {
             std::vector<std::vector<Eigen::Vector3f>> scans(points.begin() + 4 * m,
                                                             points.begin() + 4 * m + 4);
             common::PoseList poses(odom.begin() + 4 * m, odom.begin() + 4 * m + 4);
-            maps.push_back(test::build_local_map(m, poses.front(), scans, poses));
+            maps.push_back(test::build_local_map(first_map + m, poses.front(), scans, poses));
             // Stamped in this drive's time.
             for (double& t : maps.back().observation_times) t += start;
             for (common::VoxelData& v : maps.back().voxels) {
@@ -49,9 +50,9 @@ struct Drive {
 
     common::KeyframeData keyframe(std::size_t i) const {
         common::KeyframeData k;
-        k.id = i;
-        k.scan_index = i;
-        k.local_map_id = i / 4;
+        k.id = first_map * 4 + i;
+        k.scan_index = first_map * 4 + i;
+        k.local_map_id = first_map + i / 4;
         k.stamp = t0 + double(i);
         k.T_odom_lidar = odom[i];
         k.T_anchor_lidar = maps[i / 4].T_odom_anchor.inverse() * odom[i];
@@ -163,6 +164,42 @@ TEST(MapperLongTerm, ASecondSessionOverAMappedSiteAddsNoLocalMapWhereItDrivesOve
     EXPECT_EQ(sessions[1].local_maps_updated, into.size());
     EXPECT_EQ(sessions[1].first_stamp, 86400.0);
     EXPECT_EQ(sessions[1].last_stamp, 86415.0);
+}
+
+// Laps of one session: the second lap over the road folds its maps into the first lap's, and the
+// chain of odometry edges goes on through the maps they went into.
+TEST(MapperLongTerm, ASecondLapOfOneSessionUpdatesTheFirstLapsMaps) {
+    const std::vector<Eigen::Vector3f> scene = test::with_dense_ground(test::synthetic_scene(71));
+    Mapper mapper(test_config());
+    replay(Drive(scene, 0.0, 0.0, Eigen::Isometry3d::Identity(), 0.0), mapper);
+    // Back at the start 100 s later (the way back is not mapped here), 0.3 m aside, the odometry
+    // 0.3 m and 1 deg off by then.
+    const Drive lap2(scene, 0.5, 0.3, test::xy_yaw(0.3, -0.2, 1.0), 100.0, 1000,
+                     Eigen::Isometry3d::Identity(), 4);
+    std::vector<LocalMapResult> results;
+    replay(lap2, mapper, &results);
+    ASSERT_EQ(results.size(), 4u);
+    for (const LocalMapResult& r : results) {
+        EXPECT_TRUE(r.merged);
+        EXPECT_LT(r.node, 4u);  // a node of the first lap
+    }
+    EXPECT_EQ(mapper.local_map_count(), 4u);
+    EXPECT_EQ(mapper.graph().nodes().size(), 4u);
+    // The first lap's three odometry edges and the one back from its last map to its first (the
+    // way back, a new pair of places); no second copy of the first lap's.
+    std::size_t odometry = 0;
+    for (const PoseGraphEdge& e : mapper.graph().edges()) odometry += e.kind == EdgeKind::kOdometry;
+    EXPECT_EQ(odometry, 4u);
+    for (std::size_t i = 0; i < 16; ++i) {
+        const std::optional<Eigen::Isometry3d> T = mapper.T_world_lidar(4 + i / 4, lap2.odom[i]);
+        ASSERT_TRUE(T);
+        EXPECT_LT((T->translation() - lap2.truth[i].translation()).norm(), 0.15)
+            << "keyframe " << i;
+    }
+    const std::vector<SessionRecord> sessions = mapper.sessions();
+    ASSERT_EQ(sessions.size(), 1u);
+    EXPECT_EQ(sessions[0].local_maps_added, 4u);
+    EXPECT_EQ(sessions[0].local_maps_updated, 0u);  // its own maps: added, not updated
 }
 
 TEST(MapperLongTerm, ALoopThatAgreesWithTheGraphMakesNoOptimisationDue) {
