@@ -145,6 +145,14 @@ void report_objects(const DynamicRemovalResult& r, double min_travel, Report& re
             pad_left(std::to_string(d.points), 10) + pad_left(format("%.1f", d.removed_pct), 13));
     }
     if (unnamed) report.note("id 0: the points of that class that have no instance id");
+    if (r.static_losses.empty()) return;
+    report.note("static objects that lost the most points:");
+    report.note("    id  class    points  lost  lost [%]");
+    for (const DynamicObject& d : r.static_losses)
+        report.note(
+            pad_left(std::to_string(d.instance), 6) + pad_left(std::to_string(d.label_class), 7) +
+            pad_left(std::to_string(d.points), 10) + pad_left(std::to_string(d.removed), 6) +
+            pad_left(format("%.1f", d.removed_pct), 10));
 }
 
 // The per-object table as a JSON array.

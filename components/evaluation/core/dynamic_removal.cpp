@@ -109,6 +109,29 @@ DynamicRemovalResult evaluate_dynamic_removal(const LabelledMap& truth,
     r.aa_pct = std::sqrt(r.sa_pct * r.da_pct);
     if (r.sa_pct + r.da_pct > 0.0) r.ha_pct = 2.0 * r.sa_pct * r.da_pct / (r.sa_pct + r.da_pct);
     score_objects(truth, kept_flags, config.min_travel, r);
+    if (truth.labels.size() >= n) {  // static points lost, per object
+        std::map<std::uint32_t, std::pair<std::size_t, std::size_t>> lost;  // label: points, lost
+        for (std::size_t i = 0; i < n; ++i) {
+            if (truth.dynamic[i]) continue;
+            auto& l = lost[truth.labels[i]];
+            ++l.first;
+            if (!kept_flags[i]) ++l.second;
+        }
+        for (const auto& [label, l] : lost) {
+            if (l.second == 0) continue;
+            DynamicObject d;
+            d.instance = common::label_object_id(label);
+            d.label_class = common::label_class(label);
+            d.points = l.first;
+            d.removed = l.second;
+            d.removed_pct = percent(l.second, l.first);
+            r.static_losses.push_back(d);
+        }
+        std::sort(
+            r.static_losses.begin(), r.static_losses.end(),
+            [](const DynamicObject& a, const DynamicObject& b) { return a.removed > b.removed; });
+        if (r.static_losses.size() > 10) r.static_losses.resize(10);
+    }
     return r;
 }
 

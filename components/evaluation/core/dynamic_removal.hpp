@@ -56,6 +56,9 @@ struct DynamicRemovalResult {
     // Per object, ordered by instance id then class (instance 0 last); empty when the
     // truth has no per-point labels.
     std::vector<DynamicObject> objects;
+    // The static objects (class and instance id) that lost the most points, most first (at most
+    // 10; travel and frames unset): where a method hurts SA.
+    std::vector<DynamicObject> static_losses;
     // Over the objects that travel at least min_travel: their points, those removed, and
     // moving_da_pct = removed / points [%] (0 when there is none).
     std::size_t moving_objects = 0, moving_points = 0, moving_removed = 0;

@@ -76,6 +76,7 @@ maintenance::MaintenanceConfig make_config(const Args& a) {
         c.change.recent_window = 1e6;
         c.change.min_views = 3;
         c.change.changed_score = 0.2;
+        c.change.free_dominant = 0.6;  // seen through in most of a second's views: it moved
     }
     for (const std::string& kv : a.set) {
         const std::size_t eq = kv.find('=');

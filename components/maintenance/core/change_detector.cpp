@@ -79,7 +79,9 @@ VoxelJudgement judge_voxel(const ChangeConfig& config, double slot, const Observ
     const bool recent_known = j.recent_views >= std::uint32_t(config.min_recent_views);
     const double recent_hit_fraction =
         j.recent_views > 0 ? double(j.recent_hits) / double(j.recent_views) : 0.0;
-    const bool changed = j.score >= config.changed_score;
+    const bool changed =
+        j.score >= config.changed_score ||
+        (j.hits > 0 && free_fraction >= config.free_dominant && config.free_dominant < 1.0);
     const bool gone_now = recent_known && recent_hit_fraction <= config.gone_hit_fraction;
     if (changed && recent_known && recent_hit_fraction >= config.new_hit_fraction) {
         j.verdict = Verdict::kNew;
@@ -215,7 +217,8 @@ ChangeSet maintain_region(const MaintenanceConfig& config, ObservationMap& map,
             (double(t.fresh) >= config.change.segment_fraction * double(t.judged) || appeared[s]);
         const bool is_ground = (v.flags & kGround) != 0;
         if (!is_ground && ((segment_gone && (voxel_gone || verdict == Verdict::kUnjudged)) ||
-                           (voxel_gone && (config.change.voxel_level || s == 0)))) {
+                           (voxel_gone && (config.change.voxel_level || s == 0 ||
+                                           judged[i].score >= config.change.voxel_score)))) {
             remove[i] = true;
             note(gone[s], i);
         } else if (segment_new && !voxel_gone) {
@@ -223,8 +226,9 @@ ChangeSet maintain_region(const MaintenanceConfig& config, ObservationMap& map,
             v.flags = std::uint8_t(v.flags | kNew);
         }
     }
-    // Stale voxels touching what is gone go with it (the roof of a car that left, cut off from
-    // its sides by the segmentation of what remains): a flood through the 26-neighbourhood.
+    // Stale voxels of a segment touching what is gone in it go with it (the roof of a car that
+    // left, with only sky behind it since): a flood through the 26-neighbourhood, within the
+    // segment (a wall the robot has left behind is stale too, and must not follow a passer-by).
     std::vector<std::uint32_t> queue;
     for (std::uint32_t i = 0; i < map.size(); ++i)
         if (remove[i]) queue.push_back(i);
@@ -237,7 +241,9 @@ ChangeSet maintain_region(const MaintenanceConfig& config, ObservationMap& map,
             for (int dy = -1; dy <= 1; ++dy)
                 for (int dx = -1; dx <= 1; ++dx) {
                     const std::uint32_t n = map.find(c + Eigen::Vector3f(dx, dy, dz) * g);
-                    if (n == ObservationMap::kNone || remove[n] || !stale[n]) continue;
+                    if (n == ObservationMap::kNone || remove[n] || !stale[n] ||
+                        map.voxel(n).segment != map.voxel(i).segment)
+                        continue;
                     remove[n] = true;
                     note(gone[map.voxel(n).segment], n);
                     queue.push_back(n);

@@ -66,14 +66,16 @@ void LongTermMap::save(const std::string& path) const {
         for (std::uint32_t id : sessions_) s.value(id);
         s.value(static_cast<std::uint32_t>(regions_.size()));
     });
-    for (const auto& [key, map] : regions_) {
+    for (const auto& entry : regions_) {
+        const std::pair<int, int> key = entry.first;
+        const ObservationMap& map = *entry.second;
         w.section("region", [&](auto& s) {
             s.value(std::int32_t(key.first));
             s.value(std::int32_t(key.second));
-            s.value(static_cast<std::uint32_t>(map->size()));
-            for (std::uint32_t i = 0; i < map->size(); ++i) {
-                registration::VoxelKey k = map->key(i);
-                ObservedVoxel v = map->voxel(i);
+            s.value(static_cast<std::uint32_t>(map.size()));
+            for (std::uint32_t i = 0; i < map.size(); ++i) {
+                registration::VoxelKey k = map.key(i);
+                ObservedVoxel v = map.voxel(i);
                 voxel_io(s, k, v, std::size_t(config_.max_slots));
             }
         });

@@ -51,7 +51,14 @@ struct ChangeConfig {
     // car that no later view saw through) follows its segment's verdict.
     double static_span = 3.0;
     double segment_fraction = 0.5;  // share of a segment's judged voxels that changed: it did
-    bool voxel_level = false;       // also remove changed voxels of unchanged segments
+    // A voxel seen through in at least this share of its views changed, whatever its W1 (an
+    // actor that walks back and forth along one path is there now and then, never for long);
+    // 1 turns this off.
+    double free_dominant = 1.0;
+    // Changed voxels of unchanged segments are removed too when their score reaches this (a
+    // fence segment taken down, still joined to the rest of the fence); 1 turns this off.
+    double voxel_score = 1.0;
+    bool voxel_level = false;  // also remove changed voxels of unchanged segments
 };
 
 struct MaintenanceConfig {
@@ -109,6 +116,8 @@ void visit_fields(MaintenanceConfig& c, const std::string& prefix, Visitor&& v) 
     v(prefix + "change.moving_span", c.change.moving_span, non_negative);
     v(prefix + "change.static_span", c.change.static_span, non_negative);
     v(prefix + "change.segment_fraction", c.change.segment_fraction, unit);
+    v(prefix + "change.free_dominant", c.change.free_dominant, unit);
+    v(prefix + "change.voxel_score", c.change.voxel_score, unit);
     v(prefix + "change.voxel_level", c.change.voxel_level, unchecked);
 }
 

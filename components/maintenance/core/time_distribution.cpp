@@ -94,9 +94,16 @@ void add_to_histogram(SlotHistogram& h, std::int32_t slot, std::uint16_t n,
     }
     max_entries = std::max<std::size_t>(max_entries, 2);
     while (h.size() > max_entries) {
-        h[1].count =
-            std::uint16_t(std::min<std::uint32_t>(65535u, std::uint32_t(h[0].count) + h[1].count));
-        h.erase(h.begin());
+        // The closest neighbours (the oldest of equally close ones) become one entry at their
+        // count-weighted mean slot: the distribution keeps its shape and its mass.
+        std::size_t k = 0;
+        for (std::size_t j = 1; j + 1 < h.size(); ++j)
+            if (h[j + 1].slot - h[j].slot < h[k + 1].slot - h[k].slot) k = j;
+        const double a = h[k].count, b = h[k + 1].count;
+        const double mean = (a * h[k].slot + b * h[k + 1].slot) / std::max(a + b, 1.0);
+        h[k].slot = std::int32_t(std::lround(mean));
+        h[k].count = std::uint16_t(std::min(65535.0, a + b));
+        h.erase(h.begin() + std::ptrdiff_t(k) + 1);
     }
 }
 

@@ -35,8 +35,9 @@ struct SlotCount {
 using SlotHistogram = std::vector<SlotCount>;
 
 // Adds n observations in `slot`. When the histogram holds more than `max_entries` slots, the two
-// oldest neighbouring entries are merged (into the later slot) until it fits: memory is bounded
-// and recent history stays sharp.
+// closest neighbouring entries (the oldest of equally close pairs) are merged at their
+// count-weighted mean slot until it fits: memory is bounded, and the mass and the mean of the
+// distribution are kept (its shape coarsens evenly).
 void add_to_histogram(SlotHistogram& h, std::int32_t slot, std::uint16_t n,
                       std::size_t max_entries);
 std::uint32_t histogram_total(const SlotHistogram& h);

@@ -77,10 +77,22 @@ TEST(TimeDistribution, HistogramStaysBoundedAndKeepsItsMass) {
     for (int s = 0; s < 500; ++s) add_to_histogram(h, s * 3, 1, 16);
     EXPECT_EQ(h.size(), 16u);
     EXPECT_EQ(histogram_total(h), 500u);
-    EXPECT_EQ(h.back().slot, 499 * 3);  // recent slots stay sharp
+    double mean = 0.0;  // the mean time is kept (the true one is 3 * 249.5)
+    for (const SlotCount& e : h) mean += double(e.slot) * e.count / 500.0;
+    EXPECT_NEAR(mean, 3 * 249.5, 3.0);
+    EXPECT_GE(h.front().slot, 0);
+    EXPECT_LE(h.back().slot, 499 * 3);
     for (std::size_t k = 1; k < h.size(); ++k) EXPECT_LT(h[k - 1].slot, h[k].slot);
+    // A history of 2 short visits far apart stays two visits: merging never crosses the gap.
+    SlotHistogram visits;
+    for (int s = 0; s < 30; ++s) add_to_histogram(visits, s, 1, 8);
+    for (int s = 5000; s < 5030; ++s) add_to_histogram(visits, s, 1, 8);
+    int early = 0;
+    for (const SlotCount& e : visits) early += e.slot < 100 ? e.count : 0;
+    EXPECT_EQ(early, 30);
     add_to_histogram(h, 499 * 3, 65535, 16);  // saturates, never wraps
     EXPECT_EQ(h.back().count, 65535);
+    EXPECT_EQ(h.back().slot, 499 * 3);
 }
 
 }  // namespace
