@@ -178,6 +178,7 @@ void LocalisationMap::merge_voxels(const mapping::MapData& map,
             if (!(cell.cwiseAbs().maxCoeff() < float((1 << 20) - 1))) continue;
             w.index = cell.cast<int>();
             w.life.seen.clear();
+            w.stability *= std::clamp(w.life.health, 0.0f, 1.0f);  // established voxels weigh more
             const std::uint64_t key = (std::uint64_t(w.index.x() + (1 << 20)) << 42) |
                                       (std::uint64_t(w.index.y() + (1 << 20)) << 21) |
                                       std::uint64_t(w.index.z() + (1 << 20));

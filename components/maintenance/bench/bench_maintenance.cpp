@@ -39,6 +39,7 @@ using Clock = std::chrono::steady_clock;
 struct Args {
     std::vector<std::string> sessions, poses, set;
     std::string calib, out, preset = "default";
+    std::vector<float> inspect;  // x y z: print the histories of the voxels there
     std::size_t first = 0, count = 0, every = 1;
 };
 
@@ -155,6 +156,25 @@ int run(const Args& a) {
         }
         progress.finish();
         const double add_s = std::chrono::duration<double>(Clock::now() - t0).count();
+        if (a.inspect.size() == 3) {
+            map.flush_views();
+            const Eigen::Vector3f at(a.inspect[0], a.inspect[1], a.inspect[2]);
+            for (const Eigen::Vector3f& p : map.voxel_centres()) {
+                if ((p - at).norm() > 0.4f) continue;
+                const maintenance::ObservedVoxel& v = *map.voxel_at(p);
+                const maintenance::VoxelJudgement j =
+                    maintenance::judge_voxel(config.change, config.slot, v);
+                std::printf(
+                    "voxel %.2f %.2f %.2f: verdict %d score %.2f views %u hits %u "
+                    "recent %u/%u\n  hits:",
+                    p.x(), p.y(), p.z(), int(j.verdict), j.score, j.views, j.hits, j.recent_hits,
+                    j.recent_views);
+                for (const auto& e : v.hits) std::printf(" %d:%d", e.slot, e.count);
+                std::printf("\n  free:");
+                for (const auto& e : v.free) std::printf(" %d:%d", e.slot, e.count);
+                std::printf("\n");
+            }
+        }
         const maintenance::ChangeSet c = map.end_session();
         scans += f.size();
         const maintenance::LongTermMapStats st = map.stats();
@@ -245,6 +265,10 @@ int main(int argc, char** argv) {
         ->check(common::cli::one_of({"default", "short"}));
     app.add_option("--set", a.set, "KEY=VALUE overriding a maintenance key (repeatable)");
     app.add_option("--out", a.out, "output folder")->required();
+    app.add_option("--inspect", a.inspect,
+                   "X Y Z: before each session's maintenance, print the histories and verdicts of "
+                   "the voxels within 0.4 m (why was it kept or removed?)")
+        ->expected(3);
     if (const int rc = common::cli::parse(app, argc, argv); rc >= 0) return rc;
     try {
         return run(a);

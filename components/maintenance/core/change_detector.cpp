@@ -145,8 +145,7 @@ ChangeSet maintain_region(const MaintenanceConfig& config, ObservationMap& map,
         VoxelJudgement& j = judged[i];
         const std::uint32_t s = map.voxel(i).segment;
         if (s != 0 && (j.views == 0 || j.last_view_slot < region_latest - recent_slots)) {
-            j.verdict = Verdict::kUnjudged;  // stale: follows its segment
-            stale[i] = true;
+            stale[i] = true;  // its verdict votes, but a gone segment takes it along
         }
         if (j.verdict == Verdict::kUnjudged) continue;
         ++out.voxels_judged;
@@ -216,38 +215,16 @@ ChangeSet maintain_region(const MaintenanceConfig& config, ObservationMap& map,
             s != 0 && t.judged > 0 && !segment_gone &&
             (double(t.fresh) >= config.change.segment_fraction * double(t.judged) || appeared[s]);
         const bool is_ground = (v.flags & kGround) != 0;
-        if (!is_ground && ((segment_gone && (voxel_gone || verdict == Verdict::kUnjudged)) ||
-                           (voxel_gone && (config.change.voxel_level || s == 0 ||
-                                           judged[i].score >= config.change.voxel_score)))) {
+        if (!is_ground &&
+            ((segment_gone && (voxel_gone || verdict == Verdict::kUnjudged || stale[i])) ||
+             (voxel_gone && (config.change.voxel_level || s == 0 ||
+                             judged[i].score >= config.change.voxel_score)))) {
             remove[i] = true;
             note(gone[s], i);
         } else if (segment_new && !voxel_gone) {
             if (!(v.flags & kNew)) note(added[s], i);
             v.flags = std::uint8_t(v.flags | kNew);
         }
-    }
-    // Stale voxels of a segment touching what is gone in it go with it (the roof of a car that
-    // left, with only sky behind it since): a flood through the 26-neighbourhood, within the
-    // segment (a wall the robot has left behind is stale too, and must not follow a passer-by).
-    std::vector<std::uint32_t> queue;
-    for (std::uint32_t i = 0; i < map.size(); ++i)
-        if (remove[i]) queue.push_back(i);
-    const float g = map.voxel_size();
-    while (!queue.empty()) {
-        const std::uint32_t i = queue.back();
-        queue.pop_back();
-        const Eigen::Vector3f c = map.cell_centre(i);
-        for (int dz = -1; dz <= 1; ++dz)
-            for (int dy = -1; dy <= 1; ++dy)
-                for (int dx = -1; dx <= 1; ++dx) {
-                    const std::uint32_t n = map.find(c + Eigen::Vector3f(dx, dy, dz) * g);
-                    if (n == ObservationMap::kNone || remove[n] || !stale[n] ||
-                        map.voxel(n).segment != map.voxel(i).segment)
-                        continue;
-                    remove[n] = true;
-                    note(gone[map.voxel(n).segment], n);
-                    queue.push_back(n);
-                }
     }
     for (std::uint32_t s = 0; s <= seg.segments; ++s) {
         const Tally& t = tally[s];

@@ -14,9 +14,10 @@
 // Per segment (ground removed, Euclidean clusters): when the share of its judged voxels that are
 // gone reaches segment_fraction the segment is gone, and its voxels that could not be judged go
 // with it (a moving car's last position, which no later view saw through); judged voxels keep
-// their own verdict. A voxel whose hits span less than static_span, or whose latest view is
-// older than the region's recent window (stale: the latest session never saw it, e.g. the roof
-// of a car that left, with only sky behind it), has no vote and follows its segment.
+// their own verdict. A voxel whose hits span less than static_span has no verdict and follows its
+// segment. A voxel whose latest view is older than the region's recent window (stale: the latest
+// views never saw it, e.g. the roof of a car that left, with only sky behind it since) votes with
+// its last verdict but goes with its segment when the segment is gone.
 #include <cstdint>
 
 #include "maintenance/core/change_set.hpp"

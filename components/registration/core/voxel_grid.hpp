@@ -29,7 +29,8 @@ class VoxelGrid {
                                double min_planarity, std::size_t* skipped = nullptr);
 
     // The voxels as plain data (the inverse of from_data): index, centre, normal (zero unless
-    // usable), point count, planarity, stability and life record (health 1).
+    // usable), point count, planarity, stability and life record (health from it:
+    // common::life_health).
     std::vector<common::VoxelData> to_data() const;
 
     // A grid of `factor` times the voxel size whose voxels hold the merged sums of this grid's

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <unordered_map>
 
+#include "common/core/voxel_health.hpp"
 #include "registration/core/voxel_grid.hpp"
 
 namespace ltm::registration {
@@ -87,7 +88,7 @@ std::vector<common::VoxelData> VoxelGrid::to_data() const {
         v.life.created = r.created;
         v.life.last_seen = r.last_seen;
         v.life.observations = r.observations;
-        v.life.health = 1.0f;
+        v.life.health = common::life_health(v.life);
     }
     return out;
 }
