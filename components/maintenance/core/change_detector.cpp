@@ -126,6 +126,7 @@ ChangeSet maintain_region(const MaintenanceConfig& config, ObservationMap& map,
     std::vector<VoxelJudgement> judged(map.size());
     struct Tally {
         std::uint32_t judged = 0, moving = 0, vanished = 0, fresh = 0;
+        std::uint32_t gone_before = 0;  // gone voxels first seen in an earlier session
         double score = 0.0;
     };
     std::vector<Tally> tally(seg.segments + 1);
@@ -155,6 +156,9 @@ ChangeSet maintain_region(const MaintenanceConfig& config, ObservationMap& map,
         t.moving += j.verdict == Verdict::kMoving ? 1 : 0;
         t.vanished += j.verdict == Verdict::kVanished ? 1 : 0;
         t.fresh += j.verdict == Verdict::kNew ? 1 : 0;
+        if ((j.verdict == Verdict::kMoving || j.verdict == Verdict::kVanished) &&
+            map.voxel(i).created < session_start)
+            ++t.gone_before;
     }
 
     // Segments that appeared in this session on a place an earlier session mapped (its ground
@@ -214,11 +218,14 @@ ChangeSet maintain_region(const MaintenanceConfig& config, ObservationMap& map,
         const bool segment_new =
             s != 0 && t.judged > 0 && !segment_gone &&
             (double(t.fresh) >= config.change.segment_fraction * double(t.judged) || appeared[s]);
+        // Stale voxels go only with what was there with them (a vanished object), never with
+        // a passer-by of this session that touched them.
+        const bool vanished_segment = 2 * t.gone_before >= t.moving + t.vanished;
         const bool is_ground = (v.flags & kGround) != 0;
-        if (!is_ground &&
-            ((segment_gone && (voxel_gone || verdict == Verdict::kUnjudged || stale[i])) ||
-             (voxel_gone && (config.change.voxel_level || s == 0 ||
-                             judged[i].score >= config.change.voxel_score)))) {
+        if (!is_ground && ((segment_gone && (voxel_gone || verdict == Verdict::kUnjudged ||
+                                             (stale[i] && vanished_segment))) ||
+                           (voxel_gone && (config.change.voxel_level || s == 0 ||
+                                           judged[i].score >= config.change.voxel_score)))) {
             remove[i] = true;
             note(gone[s], i);
         } else if (segment_new && !voxel_gone) {

@@ -17,7 +17,8 @@
 // their own verdict. A voxel whose hits span less than static_span has no verdict and follows its
 // segment. A voxel whose latest view is older than the region's recent window (stale: the latest
 // views never saw it, e.g. the roof of a car that left, with only sky behind it since) votes with
-// its last verdict but goes with its segment when the segment is gone.
+// its last verdict but goes with its segment when the segment vanished (mostly first seen in an
+// earlier session); never with a passer-by of this session that touched it.
 #include <cstdint>
 
 #include "maintenance/core/change_set.hpp"
