@@ -82,11 +82,13 @@ VoxelJudgement judge_voxel(const ChangeConfig& config, double slot, const Observ
     const bool changed =
         j.score >= config.changed_score ||
         (j.hits > 0 && free_fraction >= config.free_dominant && config.free_dominant < 1.0);
+    // Missing from the recent views although there before them (hit at least min_recent_views
+    // times earlier): gone, whatever W1 says (a short later visit weighs little in it).
     const bool gone_now = recent_known && recent_hit_fraction <= config.gone_hit_fraction;
     if (changed && recent_known && recent_hit_fraction >= config.new_hit_fraction) {
         j.verdict = Verdict::kNew;
     } else if ((changed && !(recent_known && recent_hit_fraction >= config.new_hit_fraction)) ||
-               (gone_now && j.hits > 0)) {
+               (gone_now && j.hits - j.recent_hits >= std::uint32_t(config.min_recent_views))) {
         const double span =
             voxel.hits.empty() ? 0.0 : (voxel.hits.back().slot - voxel.hits.front().slot) * slot;
         j.verdict = span <= config.moving_span ? Verdict::kMoving : Verdict::kVanished;

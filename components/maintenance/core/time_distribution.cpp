@@ -145,9 +145,15 @@ double histogram_wasserstein1(const SlotHistogram& a, const SlotHistogram& b, do
     // c_k = slot + 0.5), by clusters of slots closer than 2 K (K = 6 sigma, beyond which Phi is
     // 0 or 1); between clusters G is the running sum.
     const int K = int(std::ceil(6.0 * sigma_slots));
-    std::vector<double> phi(std::size_t(2 * K + 2));  // Phi((m - 0.5) / sigma), m = -K..K+1
-    for (int m = -K; m <= K + 1; ++m)
-        phi[std::size_t(m + K)] = normal_cdf((double(m) - 0.5) / sigma_slots);
+    // Phi((m - 0.5) / sigma), m = -K..K+1, kept per thread for the last sigma (one per map).
+    thread_local double table_sigma = -1.0;
+    thread_local std::vector<double> phi;
+    if (sigma_slots != table_sigma) {
+        phi.assign(std::size_t(2 * K + 2), 0.0);
+        for (int m = -K; m <= K + 1; ++m)
+            phi[std::size_t(m + K)] = normal_cdf((double(m) - 0.5) / sigma_slots);
+        table_sigma = sigma_slots;
+    }
     double w = 0.0, before = 0.0;
     std::size_t first = 0;
     while (first < d.size()) {
