@@ -96,6 +96,7 @@ void LongTermMap::judge(const View& view) {
         const Eigen::Vector2f nearest = s.cwiseMax(lo).cwiseMin(lo + Eigen::Vector2f(size, size));
         if ((nearest - s).norm() > reach) continue;
         map->judge(view);
+        dirty_.insert(key);
     }
     ++views_;
     judge_ms_ +=
@@ -114,8 +115,13 @@ ChangeSet LongTermMap::maintain() {
     all.session = session_;
     all.map_time = now_;
     all.voxel_size = float(config_.voxel_size);
-    for (auto& [key, map] : regions_)
-        all.append(maintain_region(config_, *map, session_, now_, session_offset_, &next_change_));
+    for (const std::pair<int, int>& key : dirty_) {  // the regions a view judged since the last
+        const auto it = regions_.find(key);          // pass: nothing changed in the others
+        if (it == regions_.end()) continue;
+        all.append(
+            maintain_region(config_, *it->second, session_, now_, session_offset_, &next_change_));
+    }
+    dirty_.clear();
     return all;
 }
 

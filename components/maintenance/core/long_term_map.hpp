@@ -12,6 +12,7 @@
 #include <deque>
 #include <map>
 #include <memory>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -49,7 +50,8 @@ class LongTermMap {
 
     // Every pending view judges the voxels now.
     void flush_views();
-    // Change decisions over every region (after flush_views()); the gone voxels are erased.
+    // Change decisions over the regions views judged since the last pass (after flush_views()); the
+    // gone voxels are erased.
     ChangeSet maintain();
     // End of a session: flush_views() then maintain().
     ChangeSet end_session();
@@ -80,6 +82,7 @@ class LongTermMap {
     MaintenanceConfig config_;
     std::map<std::pair<int, int>, std::unique_ptr<ObservationMap>> regions_;
     std::deque<View> pending_;
+    std::set<std::pair<int, int>> dirty_;  // regions judged since the last maintain()
     std::uint32_t session_ = 0;
     bool in_session_ = false;
     double session_start_stamp_ = 0.0, session_offset_ = 0.0, now_ = 0.0;
