@@ -4,6 +4,7 @@
 #include <string>
 
 #include "common/convert/owned_message.hpp"
+#include "runtime/logging.hpp"
 #include "runtime/messages.hpp"
 
 namespace ltm::convert {
@@ -24,6 +25,17 @@ struct StatusData {
 };
 
 Owned<msg::Status> to_msg(const StatusData& status);
+
+// Logs a status line at its level: info, warn or error.
+inline void log_status(const runtime::Logger& log, StatusLevel level, const std::string& text) {
+    if (level == StatusLevel::kOk) {
+        log.info(text);
+    } else if (level == StatusLevel::kError) {
+        log.error(text);
+    } else {
+        log.warn(text);
+    }
+}
 StatusData from_msg(const msg::Status& message);
 
 }  // namespace ltm::convert

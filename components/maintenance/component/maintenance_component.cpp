@@ -296,13 +296,7 @@ class MaintenanceComponent : public runtime::Component {
 
     // Thread-safe: the publisher and the logger are.
     void event(StatusLevel level, const std::string& code, const std::string& text, double stamp) {
-        if (level == StatusLevel::kOk) {
-            ctx_.log().info(text);
-        } else if (level == StatusLevel::kError) {
-            ctx_.log().error(text);
-        } else {
-            ctx_.log().warn(text);
-        }
+        convert::log_status(ctx_.log(), level, text);
         events_out_.publish(*convert::to_msg(convert::StatusData{
             convert::to_time(stamp), frame_id(), ctx_.name(), level, code, text}));
     }

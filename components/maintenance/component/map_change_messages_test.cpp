@@ -9,6 +9,7 @@
 
 #include "common/convert/dds_string.hpp"
 #include "common/convert/geometry.hpp"
+#include "maintenance/core/change_set_expect.hpp"
 
 namespace ltm::maintenance {
 namespace {
@@ -45,33 +46,6 @@ ChangeSet sample() {
     return c;
 }
 
-void expect_same(const ChangeSet& a, const ChangeSet& b) {
-    EXPECT_EQ(a.session, b.session);
-    EXPECT_EQ(a.map_time, b.map_time);
-    EXPECT_EQ(a.voxel_size, b.voxel_size);
-    EXPECT_EQ(a.voxels_before, b.voxels_before);
-    EXPECT_EQ(a.voxels_removed, b.voxels_removed);
-    EXPECT_EQ(a.voxels_judged, b.voxels_judged);
-    EXPECT_EQ(a.segments, b.segments);
-    EXPECT_EQ(a.ground_voxels, b.ground_voxels);
-    EXPECT_EQ(a.time_ms, b.time_ms);
-    ASSERT_EQ(a.changes.size(), b.changes.size());
-    for (std::size_t i = 0; i < a.changes.size(); ++i) {
-        const SegmentChange &x = a.changes[i], &y = b.changes[i];
-        EXPECT_EQ(x.id, y.id);
-        EXPECT_EQ(x.reason, y.reason);
-        EXPECT_EQ(x.region, y.region);
-        EXPECT_EQ(x.centroid, y.centroid);
-        EXPECT_EQ(x.bbox_min, y.bbox_min);
-        EXPECT_EQ(x.bbox_max, y.bbox_max);
-        EXPECT_EQ(x.first_seen, y.first_seen);
-        EXPECT_EQ(x.last_seen, y.last_seen);
-        EXPECT_EQ(x.score, y.score);
-        EXPECT_EQ(x.judged, y.judged);
-        EXPECT_EQ(x.voxels, y.voxels);
-    }
-}
-
 TEST(MapChangeMessages, RoundTripThroughTheConverterIsExact) {
     const ChangeSet c = sample();
     const convert::Owned<msg::MapChangeSet> m = to_msg(c, 5, 1700000000.5, "map");
@@ -81,8 +55,8 @@ TEST(MapChangeMessages, RoundTripThroughTheConverterIsExact) {
     ASSERT_EQ(m->changes._length, 3u);
     EXPECT_EQ(m->changes._buffer[1].reason, ltm_msgs_msg_SegmentChange_Constants_VANISHED);
     EXPECT_EQ(m->changes._buffer[2].voxels._length, 9u);
-    expect_same(c, from_msg(*m));
-    expect_same(ChangeSet{}, from_msg(*to_msg(ChangeSet{}, 0, 0.0, "map")));
+    expect_same_changes(c, from_msg(*m));
+    expect_same_changes(ChangeSet{}, from_msg(*to_msg(ChangeSet{}, 0, 0.0, "map")));
 }
 
 TEST(MapChangeMessages, MalformedMessagesAreRefusedInOneLine) {
@@ -134,7 +108,7 @@ TEST(MapChangeMessages, RoundTripThroughDds) {
     ASSERT_TRUE(info.valid_data);
     const auto& r = *static_cast<const msg::MapChangeSet*>(buf[0]);
     EXPECT_EQ(r.pass, 3u);
-    expect_same(c, from_msg(r));
+    expect_same_changes(c, from_msg(r));
     dds_return_loan(reader, buf, 1);
     dds_delete(participant);
     dds_delete(domain);

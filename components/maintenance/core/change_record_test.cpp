@@ -12,6 +12,7 @@
 #include "common/core/io_error.hpp"
 #include "maintenance/core/change_ledger.hpp"
 #include "maintenance/core/change_report.hpp"
+#include "maintenance/core/change_set_expect.hpp"
 
 namespace ltm::maintenance {
 namespace {
@@ -59,33 +60,6 @@ ChangeSet sample(std::uint32_t session = 1) {
     return s;
 }
 
-void expect_same(const ChangeSet& a, const ChangeSet& b) {
-    EXPECT_EQ(a.session, b.session);
-    EXPECT_EQ(a.map_time, b.map_time);
-    EXPECT_EQ(a.voxel_size, b.voxel_size);
-    EXPECT_EQ(a.voxels_before, b.voxels_before);
-    EXPECT_EQ(a.voxels_removed, b.voxels_removed);
-    EXPECT_EQ(a.voxels_judged, b.voxels_judged);
-    EXPECT_EQ(a.segments, b.segments);
-    EXPECT_EQ(a.ground_voxels, b.ground_voxels);
-    EXPECT_EQ(a.time_ms, b.time_ms);
-    ASSERT_EQ(a.changes.size(), b.changes.size());
-    for (std::size_t i = 0; i < a.changes.size(); ++i) {
-        const SegmentChange &x = a.changes[i], &y = b.changes[i];
-        EXPECT_EQ(x.id, y.id);
-        EXPECT_EQ(x.reason, y.reason);
-        EXPECT_EQ(x.region, y.region);
-        EXPECT_EQ(x.centroid, y.centroid);
-        EXPECT_EQ(x.bbox_min, y.bbox_min);
-        EXPECT_EQ(x.bbox_max, y.bbox_max);
-        EXPECT_EQ(x.first_seen, y.first_seen);
-        EXPECT_EQ(x.last_seen, y.last_seen);
-        EXPECT_EQ(x.score, y.score);
-        EXPECT_EQ(x.judged, y.judged);
-        EXPECT_EQ(x.voxels, y.voxels);
-    }
-}
-
 // The decode of `bytes` must be refused with one FormatError line naming the source.
 void expect_refused(const std::string& bytes, const std::string& what) {
     try {
@@ -115,12 +89,12 @@ class ChangeRecordFiles : public ::testing::Test {
 TEST(ChangeRecord, RoundTripIsExact) {
     const ChangeSet s = sample();
     const std::string bytes = encode_change_record(s);
-    expect_same(s, decode_change_record(bytes, "rec.ltmc"));
+    expect_same_changes(s, decode_change_record(bytes, "rec.ltmc"));
     EXPECT_EQ(encode_change_record(decode_change_record(bytes, "rec.ltmc")), bytes);
     // An empty pass too.
     ChangeSet empty;
     empty.voxel_size = 0.5f;
-    expect_same(empty, decode_change_record(encode_change_record(empty), "empty.ltmc"));
+    expect_same_changes(empty, decode_change_record(encode_change_record(empty), "empty.ltmc"));
 }
 
 TEST(ChangeRecord, EverySingleByteCorruptionIsRefused) {
@@ -167,7 +141,7 @@ TEST(ChangeRecord, OtherVersionOrKindIsRefusedByName) {
 TEST_F(ChangeRecordFiles, FileRoundTripAndMissingFile) {
     const ChangeSet s = sample();
     write_change_record(path("c.ltmc"), s);
-    expect_same(s, read_change_record(path("c.ltmc")));
+    expect_same_changes(s, read_change_record(path("c.ltmc")));
     EXPECT_FALSE(fs::exists(path("c.ltmc.tmp")));
     try {
         read_change_record(path("none.ltmc"));
