@@ -6,7 +6,8 @@
 //   OUT/removed.ply      the points it removed;
 //   OUT/cleaned_map_sN.ply  with several sessions: session N's points that the map keeps;
 //   OUT/changes.txt      per session: segments removed (moving, vanished) and added (new);
-//   OUT/changes_sN.ply   the voxels each session removed (red) and added (green).
+//   OUT/changes_sN.ply   the voxels each session removed (red) and added (green), as the
+//                        component writes them (maintenance/core/change_report.hpp).
 // and prints per session the time, views, voxels, memory and the changes, so that
 //   ltm_eval dynamic --map OUT/cleaned_map.ply --scans DIR ... scores it.
 // Options: `ltm_bench_maintenance --help`.
@@ -28,6 +29,7 @@
 #include "common/core/process_memory.hpp"
 #include "common/core/progress.hpp"
 #include "common/core/trajectory_io.hpp"
+#include "maintenance/core/change_report.hpp"
 #include "maintenance/core/long_term_map.hpp"
 #include "sources/core/scan_folder.hpp"
 
@@ -90,25 +92,6 @@ maintenance::MaintenanceConfig make_config(const Args& a) {
                                           " (a key of MaintenanceConfig, e.g. change.sigma)");
     }
     return c;
-}
-
-void write_changes(std::ostream& out, const maintenance::ChangeSet& c) {
-    out << "session " << c.session << ": " << c.count(maintenance::ChangeReason::kMoving)
-        << " moving, " << c.count(maintenance::ChangeReason::kVanished) << " vanished, "
-        << c.count(maintenance::ChangeReason::kNew) << " new segments; " << c.voxels_removed
-        << " of " << c.voxels_before << " voxels removed, " << c.voxels_judged << " judged, "
-        << c.segments << " segments, " << c.ground_voxels << " ground; " << c.time_ms << " ms\n";
-    for (const maintenance::SegmentChange& s : c.changes) {
-        char line[256];
-        std::snprintf(line, sizeof line,
-                      "  %-8s id %llu  centre %.2f %.2f %.2f  size %.1f x %.1f x %.1f  voxels %zu  "
-                      "score %.2f  seen %.1f-%.1f s\n",
-                      maintenance::reason_name(s.reason), (unsigned long long)s.id, s.centroid.x(),
-                      s.centroid.y(), s.centroid.z(), s.bbox_max.x() - s.bbox_min.x(),
-                      s.bbox_max.y() - s.bbox_min.y(), s.bbox_max.z() - s.bbox_min.z(),
-                      s.voxels.size(), s.score, s.first_seen, s.last_seen);
-        out << line;
-    }
 }
 
 int run(const Args& a) {
@@ -191,17 +174,10 @@ int run(const Args& a) {
             c.removed_voxels_by(maintenance::ChangeReason::kMoving),
             c.removed_voxels_by(maintenance::ChangeReason::kVanished),
             c.count(maintenance::ChangeReason::kNew), st.voxels, st.memory_bytes / 1048576.0);
-        write_changes(changes, c);
-        common::PlyCloud ply;
-        for (const maintenance::SegmentChange& sc : c.changes) {
-            for (const Eigen::Vector3f& p : sc.voxels) {
-                ply.points.push_back(p);
-                ply.intensity.push_back(sc.removed() ? 1.0f : 0.0f);
-            }
-        }
-        common::write_ply(
+        maintenance::write_change_summary(changes, c, s);
+        maintenance::write_change_ply(
             (std::filesystem::path(a.out) / ("changes_s" + std::to_string(s) + ".ply")).string(),
-            ply);
+            c);
     }
     // The scans' own points, kept or removed by the final map (all sessions, and each session).
     common::PlyCloud kept, removed;
