@@ -3,8 +3,8 @@
 // or missed and the false loops), loop detection, verification and optimisation times, memory;
 // writes odometry.txt, slam.txt (LiDAR poses, KITTI format), loops.txt, the map and its PLY.
 // Also over scans a scenario renders in-process (--scenario, --laps), and --graph-bench N.
-// (Just over 500 lines: the modes share one report; the scenario source, revisit scoring, memory
-// log and graph bench are already in files of their own.)
+// (About 560 lines, one file: the modes share one report and one command line; the scenario
+// source, revisit scoring, memory log, lap growth and graph bench are in files of their own.)
 // With --poses (a trajectory from elsewhere: survey, GNSS-INS, another SLAM), the map is built at
 // the given poses: no registration, no loop closure.
 // Options: `ltm_bench_slam --help`.
