@@ -12,7 +12,7 @@ namespace ltm::eval::cli {
 namespace {
 
 struct MeshOptions {
-    std::string mesh, truth, out;
+    std::string mesh, truth, out, crop_to;
     MeshMetricConfig config;
 };
 
@@ -21,7 +21,11 @@ int run_mesh(const MeshOptions& o) {
     const common::PlyMesh mesh = read_mesh_file(o.mesh);
     const common::PlyMesh truth = read_mesh_file(o.truth);
 
-    const MeshMetricResult r = evaluate_mesh(mesh, truth, config);
+    std::vector<Eigen::Vector3d> crop;
+    if (!o.crop_to.empty())
+        for (const Eigen::Vector3f& p : read_mesh_file(o.crop_to).vertices)
+            crop.push_back(p.cast<double>());
+    const MeshMetricResult r = evaluate_mesh(mesh, truth, config, crop);
     Report report("ltm_eval mesh: " + o.mesh + " vs " + o.truth);
     report.section("input");
     report.add_count("mesh_vertices", mesh.vertices.size());
@@ -30,14 +34,17 @@ int run_mesh(const MeshOptions& o) {
     report.add_count("truth_triangles", truth.triangles.size());
     report.add_count("mesh_samples", r.mesh_samples);
     report.add_count("truth_samples", r.truth_samples);
+    if (!o.crop_to.empty()) report.add_count("truth_samples_cropped", r.truth_cropped);
     if (!r.valid) {
         std::cout << report.text();
         throw UsageError("a surface is empty: nothing to compare");
     }
     report.section("mesh");
     report.add("accuracy_mean", r.accuracy_mean, "m");
+    report.add("accuracy_median", r.accuracy_median, "m");
     report.add("accuracy_p90", r.accuracy_p90, "m");
     report.add("completeness_mean", r.completeness_mean, "m");
+    report.add("completeness_median", r.completeness_median, "m");
     report.add("completeness_p90", r.completeness_p90, "m");
     report.add("chamfer_l1", r.chamfer_l1, "m");
     report.add("threshold", r.threshold, "m");
@@ -63,6 +70,11 @@ Run add_mesh(CLI::App& parent) {
     app->add_option("--threshold", o->config.threshold,
                     "distance for precision / recall / F-score [m]");
     app->add_option("--seed", o->config.seed, "sampling seed");
+    app->add_option("--crop-to", o->crop_to,
+                    "points of what was observed (.ply): truth samples farther than --crop-radius "
+                    "from them are not scored");
+    app->add_option("--crop-radius", o->config.crop_radius, "[m] for --crop-to")
+        ->check(common::cli::at_least(0.001));
     app->add_option("--out", o->out, "write metrics.txt, metrics.json here");
     return [o] { return run_mesh(*o); };
 }

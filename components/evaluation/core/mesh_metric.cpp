@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <unordered_map>
 
 #include "evaluation/core/stats.hpp"
 #include "evaluation/core/triangle_bvh.hpp"
@@ -35,6 +36,40 @@ double share_within(const std::vector<double>& d, double threshold) {
     const auto n = std::count_if(d.begin(), d.end(), [&](double x) { return x <= threshold; });
     return 100.0 * static_cast<double>(n) / static_cast<double>(d.size());
 }
+
+// Whether a point lies within `radius` of any of `points` (a hash of radius-sized cells).
+class Proximity {
+  public:
+    Proximity(const std::vector<Eigen::Vector3d>& points, double radius)
+        : points_(points), radius_(radius) {
+        for (std::size_t i = 0; i < points.size(); ++i) cells_[key(cell(points[i]))].push_back(i);
+    }
+    bool near(const Eigen::Vector3d& p) const {
+        const Eigen::Vector3i c = cell(p);
+        for (int dz = -1; dz <= 1; ++dz)
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx) {
+                    const auto it = cells_.find(key(c + Eigen::Vector3i(dx, dy, dz)));
+                    if (it == cells_.end()) continue;
+                    for (const std::size_t i : it->second)
+                        if ((points_[i] - p).squaredNorm() <= radius_ * radius_) return true;
+                }
+        return false;
+    }
+
+  private:
+    Eigen::Vector3i cell(const Eigen::Vector3d& p) const {
+        return (p / radius_).array().floor().cast<int>();
+    }
+    static std::uint64_t key(const Eigen::Vector3i& c) {
+        return (std::uint64_t(std::uint32_t(c.x()) & 0x1FFFFFu) << 42) |
+               (std::uint64_t(std::uint32_t(c.y()) & 0x1FFFFFu) << 21) |
+               (std::uint64_t(std::uint32_t(c.z()) & 0x1FFFFFu));
+    }
+    const std::vector<Eigen::Vector3d>& points_;
+    double radius_;
+    std::unordered_map<std::uint64_t, std::vector<std::size_t>> cells_;
+};
 
 }  // namespace
 
@@ -77,13 +112,23 @@ std::vector<Eigen::Vector3d> sample_surface(const common::PlyMesh& mesh, std::si
 }
 
 MeshMetricResult evaluate_mesh(const common::PlyMesh& mesh, const common::PlyMesh& truth,
-                               const MeshMetricConfig& config) {
+                               const MeshMetricConfig& config,
+                               const std::vector<Eigen::Vector3d>& crop_to) {
     MeshMetricResult r;
     r.threshold = config.threshold;
     const std::vector<Eigen::Vector3d> mesh_samples =
         sample_surface(mesh, config.samples, config.seed);
-    const std::vector<Eigen::Vector3d> truth_samples =
+    std::vector<Eigen::Vector3d> truth_samples =
         sample_surface(truth, config.samples, config.seed + 1);
+    if (!crop_to.empty()) {
+        const Proximity observed(crop_to, config.crop_radius);
+        const std::size_t before = truth_samples.size();
+        truth_samples.erase(
+            std::remove_if(truth_samples.begin(), truth_samples.end(),
+                           [&](const Eigen::Vector3d& p) { return !observed.near(p); }),
+            truth_samples.end());
+        r.truth_cropped = before - truth_samples.size();
+    }
     r.mesh_samples = mesh_samples.size();
     r.truth_samples = truth_samples.size();
     if (mesh_samples.empty() || truth_samples.empty()) return r;
@@ -95,8 +140,10 @@ MeshMetricResult evaluate_mesh(const common::PlyMesh& mesh, const common::PlyMes
 
     const ErrorStats a = summarize(acc), c = summarize(comp);
     r.accuracy_mean = a.mean;
+    r.accuracy_median = percentile(acc, 50.0);
     r.accuracy_p90 = percentile(acc, 90.0);
     r.completeness_mean = c.mean;
+    r.completeness_median = percentile(comp, 50.0);
     r.completeness_p90 = percentile(comp, 90.0);
     r.chamfer_l1 = 0.5 * (a.mean + c.mean);
     r.precision_pct = share_within(acc, config.threshold);

@@ -21,16 +21,21 @@ struct MeshMetricConfig {
         200000;              // samples drawn on each surface (clouds: at most this many points)
     double threshold = 0.1;  // [m] for precision / recall / F-score
     std::uint64_t seed = 1;  // sampling seed
+    // With crop points: truth samples farther than this from every crop point are left out (the
+    // true surface no scan saw: roofs, the far side of objects, places the route never reached).
+    double crop_radius = 0.3;  // [m]
 };
 
 struct MeshMetricResult {
-    double accuracy_mean = 0.0, accuracy_p90 = 0.0;          // mesh -> truth [m]
-    double completeness_mean = 0.0, completeness_p90 = 0.0;  // truth -> mesh [m]
-    double chamfer_l1 = 0.0;                                 // [m]
+    double accuracy_mean = 0.0, accuracy_median = 0.0, accuracy_p90 = 0.0;  // mesh -> truth [m]
+    double completeness_mean = 0.0, completeness_median = 0.0,
+           completeness_p90 = 0.0;  // truth -> mesh [m]
+    double chamfer_l1 = 0.0;        // [m]
     double precision_pct = 0.0, recall_pct = 0.0, fscore_pct = 0.0;
     double threshold = 0.0;  // [m]
     std::size_t mesh_samples = 0, truth_samples = 0;
-    bool valid = false;  // false when either surface is empty
+    std::size_t truth_cropped = 0;  // truth samples left out by the crop
+    bool valid = false;             // false when either surface is empty
 };
 
 // Area-weighted uniform samples of a mesh's triangles (its points when it has none; a random
@@ -38,7 +43,10 @@ struct MeshMetricResult {
 std::vector<Eigen::Vector3d> sample_surface(const common::PlyMesh& mesh, std::size_t count,
                                             std::uint64_t seed);
 
+// `crop_to` (may be empty): points of what was observed; truth samples farther than
+// config.crop_radius from all of them are not scored.
 MeshMetricResult evaluate_mesh(const common::PlyMesh& mesh, const common::PlyMesh& truth,
-                               const MeshMetricConfig& config = {});
+                               const MeshMetricConfig& config = {},
+                               const std::vector<Eigen::Vector3d>& crop_to = {});
 
 }  // namespace ltm::eval

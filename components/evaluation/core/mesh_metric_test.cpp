@@ -42,6 +42,28 @@ TEST(MeshMetric, HalfCoverageByHand) {
     EXPECT_NEAR(r.recall_pct, 55.0, 0.5);
 }
 
+TEST(MeshMetric, CropToWhatWasObservedAndMedians) {
+    // Same half coverage, but only the covered half was observed (points on x in [0, 0.9]): the
+    // unseen truth is not scored, completeness is 0. Without the crop the median is 0.0 (half
+    // the samples at 0) and the mean 0.25.
+    MeshMetricConfig c;
+    c.samples = 20000;
+    c.crop_radius = 0.05;
+    std::vector<Eigen::Vector3d> observed;
+    for (int i = 0; i <= 18; ++i)
+        for (int j = 0; j <= 20; ++j) observed.emplace_back(0.05 * i, 0.05 * j, 0.0);
+    const MeshMetricResult r = evaluate_mesh(rectangle(1, 0), rectangle(2, 0), c, observed);
+    ASSERT_TRUE(r.valid);
+    EXPECT_NEAR(double(r.truth_cropped) / double(c.samples), 0.525, 0.015);  // x > 0.95
+    EXPECT_NEAR(r.completeness_mean, 0.0, 1e-6);
+    EXPECT_NEAR(r.recall_pct, 100.0, 1e-9);
+    const MeshMetricResult all = evaluate_mesh(rectangle(1, 0), rectangle(2, 0), c);
+    EXPECT_EQ(all.truth_cropped, 0u);
+    EXPECT_NEAR(all.completeness_mean, 0.25, 0.01);
+    EXPECT_LT(all.completeness_median, 0.02);  // the median sample is at the covered edge
+    EXPECT_NEAR(all.accuracy_median, 0.0, 1e-6);
+}
+
 TEST(MeshMetric, SamplesAreUniformByArea) {
     // Two triangles of areas 1 and 3 (disjoint): a quarter of the samples on the first.
     common::PlyMesh m;

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "common/cli/cli.hpp"
+#include "common/cli/config_set.hpp"
 #include "common/core/config_check.hpp"
 #include "common/core/io_error.hpp"
 #include "common/core/kitti_io.hpp"
@@ -45,31 +46,6 @@ struct Args {
     std::size_t first = 0, count = 0, every = 1;
 };
 
-// "key=value" overrides of the maintenance config, checked by its visit_fields list.
-struct Setter {
-    std::string key, value;
-    bool found = false;
-    void operator()(const std::string& k, double& v, const common::Rule&) { set(k, v); }
-    void operator()(const std::string& k, int& v, const common::Rule&) { set(k, v); }
-    void operator()(const std::string& k, bool& v, const common::Rule&) {
-        if (k != key) return;
-        found = true;
-        if (value != "true" && value != "false")
-            throw common::ConfigError(key, "must be true or false (got " + value + ")");
-        v = value == "true";
-    }
-    template <class T>
-    void set(const std::string& k, T& v) {
-        if (k != key) return;
-        found = true;
-        std::istringstream in(value);
-        T x{};
-        if (!(in >> x) || !in.eof())
-            throw common::ConfigError(key, "must be a number (got " + value + ")");
-        v = x;
-    }
-};
-
 maintenance::MaintenanceConfig make_config(const Args& a) {
     maintenance::MaintenanceConfig c;
     if (a.preset == "short") {  // a window of a second or two (KITTI snippets): every scan a
@@ -81,16 +57,7 @@ maintenance::MaintenanceConfig make_config(const Args& a) {
         c.change.changed_score = 0.2;
         c.change.free_dominant = 0.6;  // seen through in most of a second's views: it moved
     }
-    for (const std::string& kv : a.set) {
-        const std::size_t eq = kv.find('=');
-        if (eq == std::string::npos)
-            throw common::cli::UsageError("--set " + kv + ": expected KEY=VALUE");
-        Setter s{kv.substr(0, eq), kv.substr(eq + 1)};
-        maintenance::visit_fields(c, "", s);
-        if (!s.found)
-            throw common::cli::UsageError("--set " + kv + ": unknown key " + s.key +
-                                          " (a key of MaintenanceConfig, e.g. change.sigma)");
-    }
+    common::cli::apply_config_sets(c, a.set, "MaintenanceConfig", "change.sigma");
     return c;
 }
 

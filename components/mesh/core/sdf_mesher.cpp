@@ -59,7 +59,10 @@ common::PlyMesh mesh_voxels(const std::vector<common::VoxelData>& voxels, double
         auto acc_wd = sum_wd->getAccessor();
         auto acc_w = sum_w->getAccessor();
         for (const common::VoxelData& v : voxels) {
-            if (!usable(v, config.min_points)) continue;
+            if (!usable(v, config.min_points)) {
+                ++s.voxels_left;
+                continue;
+            }
             double base = config.planarity_floor + std::clamp(double(v.planarity), 0.0, 1.0);
             if (config.use_health) base *= std::clamp(double(v.life.health), 0.0, 1.0);
             if (!(base > 0.0)) continue;

@@ -19,6 +19,7 @@ namespace ltm::mesh {
 
 struct SdfStats {
     std::size_t voxels_used = 0;    // voxels that wrote distances
+    std::size_t voxels_left = 0;    // voxels without a usable normal, or too few points
     std::size_t grid_points = 0;    // grid points with a distance of enough weight
     std::size_t cells_dropped = 0;  // polygons left out: a corner of their cell had no value
     double fill_ms = 0.0;           // filling the grid
