@@ -48,6 +48,18 @@ struct ConfigKeySetter {
     }
 };
 
+namespace detail {
+// visit_fields(config, prefix, visitor), or visit_fields(config, visitor) for configs without one.
+template <class Config, class Visitor>
+auto visit_keys(Config& c, Visitor& v, int) -> decltype(visit_fields(c, std::string(), v), void()) {
+    visit_fields(c, std::string(), v);
+}
+template <class Config, class Visitor>
+void visit_keys(Config& c, Visitor& v, long) {
+    visit_fields(c, v);
+}
+}  // namespace detail
+
 // Applies every "KEY=VALUE" of `sets` to `config`; `example` names a key for the error of an
 // unknown one. Throws UsageError (--set) for a malformed or unknown key, ConfigError for a value
 // of the wrong type.
@@ -58,7 +70,7 @@ void apply_config_sets(Config& config, const std::vector<std::string>& sets,
         const std::size_t eq = kv.find('=');
         if (eq == std::string::npos) throw UsageError("--set", kv + ": expected KEY=VALUE");
         ConfigKeySetter s{kv.substr(0, eq), kv.substr(eq + 1)};
-        visit_fields(config, "", s);
+        detail::visit_keys(config, s, 0);
         if (!s.found)
             throw UsageError("--set", kv + ": unknown key " + s.key + " (a key of " + what +
                                           ", e.g. " + example + ")");

@@ -12,7 +12,7 @@ namespace ltm::eval::cli {
 namespace {
 
 struct MeshOptions {
-    std::string mesh, truth, out, crop_to;
+    std::string mesh, truth, out, crop_to, misses_out;
     MeshMetricConfig config;
 };
 
@@ -53,6 +53,19 @@ int run_mesh(const MeshOptions& o) {
     report.add("fscore", r.fscore_pct, "%");
     std::cout << report.text();
     if (!o.out.empty()) report.write(o.out);
+    if (!o.misses_out.empty()) {
+        // Red: true surface the mesh misses; blue: mesh far from the true surface.
+        common::PlyCloud c;
+        for (const Eigen::Vector3d& p : r.missed) {
+            c.points.push_back(p.cast<float>());
+            c.intensity.push_back(1.0f);
+        }
+        for (const Eigen::Vector3d& p : r.wrong) {
+            c.points.push_back(p.cast<float>());
+            c.intensity.push_back(0.0f);
+        }
+        common::write_ply(o.misses_out, c);
+    }
     return 0;
 }
 
@@ -76,6 +89,9 @@ Run add_mesh(CLI::App& parent) {
     app->add_option("--crop-radius", o->config.crop_radius, "[m] for --crop-to")
         ->check(common::cli::at_least(0.001));
     app->add_option("--out", o->out, "write metrics.txt, metrics.json here");
+    app->add_option("--misses-out", o->misses_out,
+                    "write the samples beyond the threshold as PLY: intensity 1 true surface the "
+                    "mesh misses, 0 mesh far from the true surface");
     return [o] { return run_mesh(*o); };
 }
 

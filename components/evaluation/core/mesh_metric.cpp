@@ -138,6 +138,10 @@ MeshMetricResult evaluate_mesh(const common::PlyMesh& mesh, const common::PlyMes
     const std::vector<double> acc = distances(mesh_samples, truth_bvh);
     const std::vector<double> comp = distances(truth_samples, mesh_bvh);
 
+    for (std::size_t i = 0; i < comp.size(); ++i)
+        if (comp[i] > config.threshold) r.missed.push_back(truth_samples[i]);
+    for (std::size_t i = 0; i < acc.size(); ++i)
+        if (acc[i] > config.threshold) r.wrong.push_back(mesh_samples[i]);
     const ErrorStats a = summarize(acc), c = summarize(comp);
     r.accuracy_mean = a.mean;
     r.accuracy_median = percentile(acc, 50.0);

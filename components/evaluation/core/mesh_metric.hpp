@@ -35,7 +35,10 @@ struct MeshMetricResult {
     double threshold = 0.0;  // [m]
     std::size_t mesh_samples = 0, truth_samples = 0;
     std::size_t truth_cropped = 0;  // truth samples left out by the crop
-    bool valid = false;             // false when either surface is empty
+    // Samples farther than the threshold from the other surface: where the mesh is incomplete
+    // (truth samples) and where it is wrong (mesh samples).
+    std::vector<Eigen::Vector3d> missed, wrong;
+    bool valid = false;  // false when either surface is empty
 };
 
 // Area-weighted uniform samples of a mesh's triangles (its points when it has none; a random

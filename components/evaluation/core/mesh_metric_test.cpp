@@ -62,6 +62,11 @@ TEST(MeshMetric, CropToWhatWasObservedAndMedians) {
     EXPECT_NEAR(all.completeness_mean, 0.25, 0.01);
     EXPECT_LT(all.completeness_median, 0.02);  // the median sample is at the covered edge
     EXPECT_NEAR(all.accuracy_median, 0.0, 1e-6);
+    // The missed samples are the truth beyond x = 1.1 (0.1 m threshold); nothing is wrong.
+    EXPECT_NEAR(double(all.missed.size()) / double(c.samples), 0.45, 0.015);
+    for (const Eigen::Vector3d& p : all.missed) ASSERT_GT(p.x(), 1.1 - 1e-9);
+    EXPECT_TRUE(all.wrong.empty());
+    EXPECT_TRUE(r.missed.empty());
 }
 
 TEST(MeshMetric, SamplesAreUniformByArea) {

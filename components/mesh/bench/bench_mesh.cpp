@@ -49,7 +49,7 @@ struct Args {
     std::string preset = "hdl64";
     double voxel = 0.0, observed_range = 0.0;
     std::size_t every = 1, offset = 0;
-    std::vector<std::string> set;
+    std::vector<std::string> set, odometry_set;
 };
 
 double percentile(std::vector<double> v, double q) {
@@ -95,6 +95,7 @@ std::pair<std::size_t, std::size_t> frame_range(const std::string& frames, std::
 int run(const Args& a) {
     odometry::OdometryConfig oc = odometry::preset_config(common::parse_sensor_preset(a.preset));
     if (a.voxel > 0.0) oc.voxel_size = a.voxel;
+    common::cli::apply_config_sets(oc, a.odometry_set, "OdometryConfig", "voxel.min_planarity");
     mesh::MeshConfig mc;
     common::cli::apply_config_sets(mc, a.set, "MeshConfig", "grid_size");
     common::throw_if(mesh::validate(mc), "mesh");
@@ -269,6 +270,8 @@ int main(int argc, char** argv) {
     app.add_option("--offset", a.offset, "... starting at this one (the others are held out)");
     app.add_option("--set", a.set,
                    "KEY=VALUE overriding a mesh key (repeatable), e.g. grid_size=0.1");
+    app.add_option("--odometry-set", a.odometry_set,
+                   "KEY=VALUE overriding a key of the odometry's local maps (repeatable)");
     app.add_option("--heldout-out", a.heldout_out,
                    "write the points of the scans left out (world frame, PLY)");
     app.add_option("--observed-out", a.observed_out,
