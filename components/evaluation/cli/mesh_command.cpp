@@ -51,6 +51,12 @@ int run_mesh(const MeshOptions& o) {
     report.add("precision", r.precision_pct, "%");
     report.add("recall", r.recall_pct, "%");
     report.add("fscore", r.fscore_pct, "%");
+    if (r.mesh_area > 0.0 && r.truth_area_scored > 0.0) {
+        report.add("mesh_area", r.mesh_area, "m^2");
+        report.add("truth_area_scored", r.truth_area_scored, "m^2");
+        // Near recall / 100 for one surface; a double surface adds its copies' area.
+        report.add("area_ratio", r.mesh_area / r.truth_area_scored, "");
+    }
     std::cout << report.text();
     if (!o.out.empty()) report.write(o.out);
     if (!o.misses_out.empty()) {

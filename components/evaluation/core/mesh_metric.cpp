@@ -111,6 +111,15 @@ std::vector<Eigen::Vector3d> sample_surface(const common::PlyMesh& mesh, std::si
     return out;
 }
 
+double mesh_area(const common::PlyMesh& mesh) {
+    const std::vector<Eigen::Vector3d> v = vertices_of(mesh);
+    double total = 0.0;
+    for (const auto& t : mesh.triangles)
+        if (valid_triangle(t, v.size()))
+            total += 0.5 * (v[t[1]] - v[t[0]]).cross(v[t[2]] - v[t[0]]).norm();
+    return total;
+}
+
 MeshMetricResult evaluate_mesh(const common::PlyMesh& mesh, const common::PlyMesh& truth,
                                const MeshMetricConfig& config,
                                const std::vector<Eigen::Vector3d>& crop_to) {
@@ -131,6 +140,10 @@ MeshMetricResult evaluate_mesh(const common::PlyMesh& mesh, const common::PlyMes
     }
     r.mesh_samples = mesh_samples.size();
     r.truth_samples = truth_samples.size();
+    r.mesh_area = mesh_area(mesh);
+    const std::size_t drawn = truth_samples.size() + r.truth_cropped;
+    r.truth_area_scored =
+        drawn ? mesh_area(truth) * double(truth_samples.size()) / double(drawn) : 0.0;
     if (mesh_samples.empty() || truth_samples.empty()) return r;
 
     const TriangleBvh mesh_bvh(vertices_of(mesh), mesh.triangles);

@@ -35,6 +35,10 @@ struct MeshMetricResult {
     double threshold = 0.0;  // [m]
     std::size_t mesh_samples = 0, truth_samples = 0;
     std::size_t truth_cropped = 0;  // truth samples left out by the crop
+    // Areas [m^2]: the mesh's, and the truth's that is scored (all of it without a crop). A mesh
+    // with a double surface (two copies of a wall slightly apart) has about twice the area of
+    // the truth it covers.
+    double mesh_area = 0.0, truth_area_scored = 0.0;
     // Samples farther than the threshold from the other surface: where the mesh is incomplete
     // (truth samples) and where it is wrong (mesh samples).
     std::vector<Eigen::Vector3d> missed, wrong;
@@ -45,6 +49,9 @@ struct MeshMetricResult {
 // subset of them when there are more than `count`). Triangles with bad indices are skipped.
 std::vector<Eigen::Vector3d> sample_surface(const common::PlyMesh& mesh, std::size_t count,
                                             std::uint64_t seed);
+
+// Total area of the valid triangles [m^2].
+double mesh_area(const common::PlyMesh& mesh);
 
 // `crop_to` (may be empty): points of what was observed; truth samples farther than
 // config.crop_radius from all of them are not scored.

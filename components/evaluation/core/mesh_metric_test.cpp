@@ -67,6 +67,9 @@ TEST(MeshMetric, CropToWhatWasObservedAndMedians) {
     for (const Eigen::Vector3d& p : all.missed) ASSERT_GT(p.x(), 1.1 - 1e-9);
     EXPECT_TRUE(all.wrong.empty());
     EXPECT_TRUE(r.missed.empty());
+    EXPECT_NEAR(all.mesh_area, 1.0, 1e-9);
+    EXPECT_NEAR(all.truth_area_scored, 2.0, 1e-9);
+    EXPECT_NEAR(r.truth_area_scored, 2.0 * 0.475, 0.03);
 }
 
 TEST(MeshMetric, SamplesAreUniformByArea) {

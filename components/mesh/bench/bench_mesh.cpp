@@ -45,7 +45,7 @@ double ms_since(Clock::time_point t0) {
 }
 
 struct Args {
-    std::string dir, poses, calib, out, heldout_out, observed_out, frames;
+    std::string dir, poses, calib, out, heldout_out, observed_out, union_out, frames;
     std::string preset = "hdl64";
     double voxel = 0.0, observed_range = 0.0;
     std::size_t every = 1, offset = 0;
@@ -175,6 +175,12 @@ int run(const Args& a) {
     const common::PlyMesh global = atlas.global_mesh();
     const double assemble_ms = ms_since(t0);
     common::write_ply(a.out, global);
+    if (!a.union_out.empty()) {  // every chunk whole: the overlaps twice (for comparison)
+        common::PlyMesh all;
+        for (const std::uint64_t id : atlas.ids())
+            mesh::append(all, atlas.chunk(id)->mesh, atlas.T_world_anchor(id));
+        common::write_ply(a.union_out, all);
+    }
 
     // An optimisation moves every anchor (a drift correction growing to 0.5 m and 0.5 deg along
     // the run): the chunks follow, nothing is re-integrated.
@@ -279,6 +285,8 @@ int main(int argc, char** argv) {
     app.add_option("--observed-range", a.observed_range,
                    "[m] --observed-out keeps points this near the sensor (default: the preset's "
                    "max range)");
+    app.add_option("--union-out", a.union_out,
+                   "also write every chunk whole, without ownership (overlaps twice), as PLY");
     app.add_option("--out", a.out, "the global mesh (PLY)")->required();
     if (const int rc = common::cli::parse(app, argc, argv); rc >= 0) return rc;
     try {
