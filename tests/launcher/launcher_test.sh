@@ -159,6 +159,8 @@ tool_launch_configs_are_valid() {
         --set 'dds={interfaces: [lo], multicast: false, peers: [127.0.0.1]}' > /dev/null || return 1
     "$HOST" "$ROOT/launch_configs/tools/map_request.yaml" --check --set map_request.command=save \
         --set "map_request.map_dir=$TMP/map" > /dev/null || return 1
+    "$HOST" "$ROOT/launch_configs/tools/map_request.yaml" --check --set map_request.command=mesh \
+        --set "map_request.mesh_file=$TMP/mesh.ply" > /dev/null || return 1
     local rec="$TMP/rec_TERM.mcap"
     [ -f "$rec" ] || rec="$TMP/rec_INT.mcap"
     "$HOST" "$ROOT/launch_configs/tools/replayer.yaml" --check --set "replayer.file=$rec" \

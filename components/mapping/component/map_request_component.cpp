@@ -1,7 +1,10 @@
 // A one-shot client of the mapping component: once a mapping component listens on `map_request`,
-// asks it to save the map and/or write the global map, waits for its answer on `status` and
-// finishes (the host then exits 0). No answer within `timeout_s`, or a refused request, fails the
-// component (the host exits 1) with one line saying why. `./ltm map` runs it.
+// asks it to save the map and/or write the global map (command `mesh`: asks the mesh component to
+// write the global mesh, to `mesh_file`), waits for its answer on `status` and finishes (the host
+// then exits 0). The request goes out once the readers on `map_request` stopped growing for a tick
+// (the mapping and the mesh component of one host are found together). No answer within
+// `timeout_s`, or a refused request, fails the component (the host exits 1) with one line saying
+// why. `./ltm map` runs it.
 #include <unistd.h>
 
 #include <chrono>
@@ -29,11 +32,21 @@ class MapRequestComponent : public runtime::Component {
             command_ = ltm_msgs_msg_MapRequest_Constants_WRITE_GLOBAL_MAP;
         } else if (what == "all") {
             command_ = ltm_msgs_msg_MapRequest_Constants_SAVE_ALL;
+        } else if (what == "mesh") {
+            command_ = ltm_msgs_msg_MapRequest_Constants_WRITE_MESH;
+            answerer_ = "mesh";
         } else {
-            p.fail("command", "expected save, global_map or all, got '" + what + "'");
+            p.fail("command", "expected save, global_map, all or mesh, got '" + what + "'");
         }
         map_dir_ = p.path("map_dir", "", PathCheck::kParentExists);
         global_map_file_ = p.path("global_map_file", "", PathCheck::kParentExists);
+        const std::string mesh_file = p.path("mesh_file", "", PathCheck::kParentExists);
+        const bool mesh = command_ == ltm_msgs_msg_MapRequest_Constants_WRITE_MESH;
+        if (!mesh && !mesh_file.empty()) p.fail("mesh_file", "only with command mesh");
+        if (mesh && !map_dir_.empty()) p.fail("map_dir", "not with command mesh");
+        if (mesh && !global_map_file_.empty())
+            p.fail("global_map_file", "not with command mesh (its file: mesh_file)");
+        if (mesh) global_map_file_ = mesh_file;  // the request's field names the mesh PLY
         timeout_s_ = p.get<double>("timeout_s", 30.0);
         if (!(timeout_s_ > 0)) p.fail("timeout_s", "must be > 0");
         // Unique enough among requesters of one robot: the process id and the clock.
@@ -55,7 +68,10 @@ class MapRequestComponent : public runtime::Component {
             started_ = true;
             start_ = now;
         }
-        if (!sent_ && request_out_.matched() > 0) {
+        const std::uint32_t readers = request_out_.matched();
+        const bool settled = readers > 0 && readers == last_readers_;
+        last_readers_ = readers;
+        if (!sent_ && settled) {
             convert::Owned<msg::MapRequest> r;
             r->id = id_;
             r->command = command_;
@@ -68,8 +84,9 @@ class MapRequestComponent : public runtime::Component {
         if (std::chrono::duration<double>(now - start_).count() > timeout_s_) {
             done_ = true;
             throw std::runtime_error(
-                sent_ ? "no answer from the mapping component within " + fmt(timeout_s_) + " s"
-                      : "no mapping component listens on '" + request_out_.topic() +
+                sent_ ? "no answer from the " + answerer_ + " component within " + fmt(timeout_s_) +
+                            " s"
+                      : "no " + answerer_ + " component listens on '" + request_out_.topic() +
                             "' (is it running, on the same domain and namespace?)");
         }
     }
@@ -96,6 +113,8 @@ class MapRequestComponent : public runtime::Component {
     runtime::ComponentContext& ctx_;
     std::uint8_t command_ = ltm_msgs_msg_MapRequest_Constants_SAVE_ALL;
     std::string map_dir_, global_map_file_;
+    std::string answerer_ = "mapping";  // the component the command is for
+    std::uint32_t last_readers_ = 0;
     double timeout_s_ = 30.0;
     std::uint32_t id_ = 0;
     bool started_ = false, sent_ = false, done_ = false;
@@ -108,4 +127,5 @@ class MapRequestComponent : public runtime::Component {
 
 LTM_REGISTER_COMPONENT(
     ltm::mapping::MapRequestComponent, "map_request",
-    "asks a running mapping component to save its map / global map, waits for the answer")
+    "asks a running mapping component to save its map / global map (or the mesh component to "
+    "write its mesh), waits for the answer")

@@ -3,10 +3,11 @@
 // corrected full-rate odometry (`corrected_odometry`, frame `map`) and the `map_to_odom`
 // correction out. The optimisation runs on this component's own thread, off the odometry's.
 // The map is saved (`map_dir`) as it goes, on request (`map_request`) and at shutdown; the global
-// voxel map is written as PLY (`global_map_file`) on request and at shutdown. With `load_map_dir`
-// a saved map is continued in a new session. `status` says when the odometry restarted in a new
-// segment (until a loop joins it, its corrected poses are the odometry's best estimate across the
-// break) and when a loop joins that segment to the map.
+// voxel map is written as PLY (`global_map_file`) on request and at shutdown (requests to write
+// the mesh are the mesh component's: left alone). With `load_map_dir` a saved map is continued in
+// a new session. `status` says when the odometry restarted in a new segment (until a loop joins
+// it, its corrected poses are the odometry's best estimate across the break) and when a loop joins
+// that segment to the map.
 #include <deque>
 #include <filesystem>
 #include <map>
@@ -167,6 +168,7 @@ class MappingComponent : public runtime::Component {
     }
 
     void on_request(const msg::MapRequest& m) {
+        if (m.command == ltm_msgs_msg_MapRequest_Constants_WRITE_MESH) return;  // the mesh's
         const std::string requested_dir = convert::to_string(m.map_dir);
         const std::string requested_file = convert::to_string(m.global_map_file);
         const std::string dir = requested_dir.empty() ? map_dir_ : requested_dir;

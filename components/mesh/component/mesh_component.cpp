@@ -1,0 +1,339 @@
+// The dense mesh as a component: finished local maps in (`local_map`, the odometry's; snapshots of
+// maps still being built are skipped) with the optimised anchors (`pose_graph`, the mapping's);
+// out `mesh` (ltm_msgs/Mesh), one message per chunk whose owned triangles or pose changed (its
+// triangles in its anchor frame, with its current T_map_anchor), and lines on the shared `status`.
+// A MeshAtlas (mesh/core) keeps one chunk per local map, placed by the graph.
+//
+// The global mesh (PLY, map frame) is written at shutdown to `mesh_file` and on request: a
+// `map_request` with command WRITE_MESH (`./ltm map mesh`), to the request's global_map_file or
+// else `mesh_file`; the answer on `status` is "map_request_done" or "map_request_failed" with a
+// message starting "request <id>: ", as the mapping component answers. Other commands are the
+// mapping component's and are left alone.
+//
+// Threads: the component's thread takes the inputs; the atlas lives on a worker thread, which
+// meshes the maps in order, applies the newest graph, updates the ownership and publishes the
+// changed chunks; requests go first. At most `max_queue` maps wait for the worker: then the
+// oldest is dropped (skip_while_busy, live) or the component's thread waits (offline). At shutdown
+// the worker finishes what waits, then the mesh file is written.
+#include <chrono>
+#include <condition_variable>
+#include <cstdio>
+#include <deque>
+#include <filesystem>
+#include <mutex>
+#include <optional>
+#include <thread>
+
+#include "common/convert/dds_string.hpp"
+#include "common/convert/geometry.hpp"
+#include "common/convert/status.hpp"
+#include "common/core/one_line.hpp"
+#include "common/core/ply_io.hpp"
+#include "mesh/component/mesh_messages.hpp"
+#include "mesh/component/mesh_params.hpp"
+#include "mesh/core/mesh_atlas.hpp"
+#include "runtime/component.hpp"
+
+namespace ltm::mesh {
+namespace {
+
+namespace fs = std::filesystem;
+using convert::StatusLevel;
+using runtime::TopicRole;
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point t0) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+struct MapInput {
+    common::LocalMapData map;
+    msg::Time stamp{};
+};
+
+struct GraphInput {
+    std::map<std::uint64_t, Eigen::Isometry3d> anchors;
+    std::uint32_t revision = 0;
+    std::string frame_id;
+    msg::Time stamp{};
+};
+
+struct Request {
+    std::uint32_t id = 0;
+    std::string file;  // "": the component's mesh_file
+};
+
+class MeshComponent : public runtime::Component {
+  public:
+    explicit MeshComponent(runtime::ComponentContext& ctx)
+        : ctx_(ctx), config_(load_mesh_params(ctx.params())), atlas_(config_.mesh) {
+        frame_id_ = config_.frame_id;
+        ctx.subscribe<msg::LocalMap>("local_map", TopicRole::kMap,
+                                     [this](const msg::LocalMap& m) { on_local_map(m); });
+        ctx.subscribe<msg::PoseGraph>("pose_graph", TopicRole::kMap,
+                                      [this](const msg::PoseGraph& m) { on_graph(m); });
+        ctx.subscribe<msg::MapRequest>("map_request", TopicRole::kState,
+                                       [this](const msg::MapRequest& m) { on_request(m); });
+        mesh_out_ = ctx.advertise<msg::Mesh>("mesh", TopicRole::kMap);
+        status_out_ = ctx.advertise<msg::Status>("status", TopicRole::kState);
+    }
+
+    ~MeshComponent() override { stop_worker(); }
+
+    void on_activate() override {
+        worker_ = std::thread([this] { run_worker(); });
+    }
+
+    void on_shutdown() override {
+        stop_worker();
+        const AtlasTotals t = atlas_.totals();
+        char text[200];
+        std::snprintf(text, sizeof text,
+                      "%zu local maps: %zu meshed, %zu snapshots skipped, %zu refused, %zu dropped "
+                      "while busy; %zu chunks, %zu of %zu triangles owned; meshing %.0f ms",
+                      maps_, meshed_, snapshots_, refused_, dropped_, t.chunks, t.kept_triangles,
+                      t.triangles, meshing_ms_);
+        ctx_.log().info(text);
+        if (!config_.mesh_file.empty()) write_mesh(config_.mesh_file, nullptr);
+    }
+
+  private:
+    // --- the component's thread: inputs ---
+
+    void on_local_map(const msg::LocalMap& m) {
+        ++maps_;
+        if (!m.finished) {
+            ++snapshots_;
+            return;
+        }
+        MapInput in;
+        in.stamp = m.header.stamp;
+        try {
+            in.map = local_map_from_msg(m);
+        } catch (const std::invalid_argument& e) {
+            ++refused_;
+            event(StatusLevel::kError, "bad_local_map", common::one_line(e.what()), m.header.stamp);
+            return;
+        }
+        std::unique_lock<std::mutex> lock(mutex_);
+        // A newer revision of a map still waiting takes its place.
+        for (MapInput& q : queue_) {
+            if (q.map.id != in.map.id) continue;
+            if (in.map.revision > q.map.revision) q = std::move(in);
+            return;
+        }
+        if (!config_.skip_while_busy)
+            cv_.wait(lock, [&] { return queue_.size() < std::size_t(config_.max_queue) || stop_; });
+        if (queue_.size() >= std::size_t(config_.max_queue)) {
+            queue_.pop_front();
+            ++dropped_;
+        }
+        queue_.push_back(std::move(in));
+        cv_.notify_all();
+    }
+
+    void on_graph(const msg::PoseGraph& m) {
+        GraphInput g;
+        try {
+            g.anchors = anchors_from_msg(m);
+        } catch (const std::invalid_argument& e) {
+            event(StatusLevel::kError, "bad_pose_graph", common::one_line(e.what()),
+                  m.header.stamp);
+            return;
+        }
+        g.revision = m.revision;
+        g.frame_id = convert::to_string(m.header.frame_id);
+        g.stamp = m.header.stamp;
+        std::lock_guard<std::mutex> lock(mutex_);
+        graph_ = std::move(g);  // only the newest matters
+        cv_.notify_all();
+    }
+
+    void on_request(const msg::MapRequest& m) {
+        if (m.command != ltm_msgs_msg_MapRequest_Constants_WRITE_MESH) return;  // the mapping's
+        std::lock_guard<std::mutex> lock(mutex_);
+        requests_.push_back({m.id, convert::to_string(m.global_map_file)});
+        cv_.notify_all();
+    }
+
+    // --- the worker thread: the atlas ---
+
+    void run_worker() {
+        for (;;) {
+            std::optional<Request> request;
+            std::optional<GraphInput> graph;
+            std::optional<MapInput> map;
+            {
+                std::unique_lock<std::mutex> lock(mutex_);
+                cv_.wait(lock, [&] {
+                    return !requests_.empty() || graph_.has_value() || !queue_.empty() || stop_;
+                });
+                if (!requests_.empty()) {
+                    request = std::move(requests_.front());
+                    requests_.pop_front();
+                } else {
+                    if (!queue_.empty()) {
+                        map = std::move(queue_.front());
+                        queue_.pop_front();
+                    }
+                    graph.swap(graph_);
+                    if (!map && !graph) break;  // stopped, and everything taken
+                }
+            }
+            cv_.notify_all();  // room in the queue
+            if (request) {
+                answer(*request);
+                continue;
+            }
+            const bool meshed = map && add_map(*map);
+            if (graph) {
+                atlas_.set_graph(graph->anchors);
+                if (!graph->frame_id.empty()) {
+                    std::lock_guard<std::mutex> lock(frame_mutex_);
+                    frame_id_ = graph->frame_id;
+                }
+                stamp_ = graph->stamp;
+            }
+            if (meshed || graph) publish_changes();
+        }
+    }
+
+    bool add_map(const MapInput& in) {
+        const common::LocalMapData& m = in.map;
+        const auto t0 = Clock::now();
+        try {
+            MeshChunk chunk = make_chunk(m, config_.mesh);
+            const double ms = ms_since(t0);
+            meshing_ms_ += ms;
+            ++meshed_;
+            char text[200];
+            std::snprintf(text, sizeof text,
+                          "local map %llu revision %u: %zu vertices, %zu triangles from %zu voxels "
+                          "in %.0f ms (grid %.0f ms, marching cubes %.0f ms)",
+                          static_cast<unsigned long long>(m.id), m.revision,
+                          chunk.mesh.vertices.size(), chunk.mesh.triangles.size(),
+                          chunk.stats.voxels_used, ms, chunk.stats.fill_ms, chunk.stats.mesh_ms);
+            event(StatusLevel::kOk, "meshed", text, in.stamp);
+            stamp_ = in.stamp;
+            return atlas_.add(std::move(chunk));
+        } catch (const std::exception& e) {
+            event(StatusLevel::kError, "mesh_failed",
+                  "local map " + std::to_string(m.id) + ": " + common::one_line(e.what()),
+                  in.stamp);
+            return false;
+        }
+    }
+
+    // Ownership where something changed; one `mesh` message a changed chunk.
+    void publish_changes() {
+        const auto t0 = Clock::now();
+        const std::vector<std::uint64_t> changed = atlas_.update();
+        const double update_ms = ms_since(t0);
+        for (const std::uint64_t id : changed)
+            mesh_out_.publish(*to_msg(placed_chunk(atlas_, id), stamp_, frame_id_));
+        const AtlasTotals t = atlas_.totals();
+        char text[200];
+        std::snprintf(text, sizeof text,
+                      "%zu chunks, %zu of %zu triangles owned; %zu chunks changed (ownership "
+                      "%.0f ms)",
+                      t.chunks, t.kept_triangles, t.triangles, changed.size(), update_ms);
+        event(StatusLevel::kOk, "mesh_updated", text, stamp_);
+    }
+
+    void answer(const Request& r) {
+        const std::string file = r.file.empty() ? config_.mesh_file : r.file;
+        std::string outcome;
+        bool ok = false;
+        if (file.empty()) {
+            outcome = "nowhere to write: no mesh file in the request or the component's mesh_file";
+        } else {
+            ok = write_mesh(file, &outcome);
+        }
+        event(ok ? StatusLevel::kOk : StatusLevel::kError,
+              ok ? "map_request_done" : "map_request_failed",
+              "request " + std::to_string(r.id) + ": " + outcome, stamp_);
+    }
+
+    // The global mesh as PLY (its folder created); says how it went on `status` (or in
+    // `outcome`, for a request's answer).
+    bool write_mesh(const std::string& file, std::string* outcome) {
+        std::string line;
+        bool ok = false;
+        try {
+            const common::PlyMesh mesh = atlas_.global_mesh();
+            const fs::path parent = fs::path(file).parent_path();
+            if (!parent.empty()) fs::create_directories(parent);
+            common::write_ply(file, mesh);
+            line = "mesh written to " + file + ": " + std::to_string(mesh.vertices.size()) +
+                   " vertices, " + std::to_string(mesh.triangles.size()) + " triangles (" +
+                   std::to_string(atlas_.totals().chunks) + " chunks)";
+            ok = true;
+        } catch (const std::exception& e) {
+            line = "mesh not written to " + file + ": " + common::one_line(e.what());
+        }
+        if (outcome) {
+            convert::log_status(ctx_.log(), ok ? StatusLevel::kOk : StatusLevel::kError, line);
+            *outcome = line;
+        } else {
+            event(ok ? StatusLevel::kOk : StatusLevel::kError,
+                  ok ? "mesh_written" : "mesh_not_written", line, stamp_);
+        }
+        return ok;
+    }
+
+    // Thread-safe: the publisher and the logger are.
+    void event(StatusLevel level, const std::string& code, const std::string& text,
+               const msg::Time& stamp) {
+        convert::log_status(ctx_.log(), level, text);
+        status_out_.publish(*convert::to_msg(
+            convert::StatusData{stamp, frame_id(), ctx_.name(), level, code, text}));
+    }
+
+    std::string frame_id() {
+        std::lock_guard<std::mutex> lock(frame_mutex_);
+        return frame_id_;
+    }
+
+    void stop_worker() {
+        {
+            std::lock_guard<std::mutex> lock(mutex_);
+            stop_ = true;
+        }
+        cv_.notify_all();
+        if (worker_.joinable()) worker_.join();
+    }
+
+    runtime::ComponentContext& ctx_;
+    const MeshComponentConfig config_;
+
+    // Shared with the worker (under mutex_).
+    std::mutex mutex_;
+    std::condition_variable cv_;
+    std::deque<MapInput> queue_;
+    std::optional<GraphInput> graph_;
+    std::deque<Request> requests_;
+    bool stop_ = false;
+    std::size_t dropped_ = 0;
+
+    // The component's thread.
+    std::size_t maps_ = 0, snapshots_ = 0, refused_ = 0;
+
+    // The worker's (read by on_shutdown after the join).
+    std::thread worker_;
+    MeshAtlas atlas_;
+    std::mutex frame_mutex_;
+    std::string frame_id_;
+    msg::Time stamp_{};
+    std::size_t meshed_ = 0;
+    double meshing_ms_ = 0.0;
+
+    runtime::Publisher<msg::Mesh> mesh_out_;
+    runtime::Publisher<msg::Status> status_out_;
+};
+
+}  // namespace
+}  // namespace ltm::mesh
+
+LTM_REGISTER_COMPONENT(
+    ltm::mesh::MeshComponent, "mesh",
+    "dense mesh: finished local maps and the pose graph in; mesh chunks out, global mesh PLY")
