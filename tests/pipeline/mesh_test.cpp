@@ -102,6 +102,8 @@ components:
     ASSERT_EQ(requester.wait(60), 0) << requester.err() << host.err();
     EXPECT_NE(requester.err().find("mesh written to " + requested), std::string::npos)
         << requester.err();
+    // The mapping component leaves the mesh's request alone (no "unknown command" answer).
+    EXPECT_EQ(host.err().find("unknown command"), std::string::npos) << host.err();
     const Counts answered = said(host.err(), requested);
     EXPECT_GT(answered.triangles, 0) << host.err();
     const Counts on_disk = read_by_pcl(requested);
