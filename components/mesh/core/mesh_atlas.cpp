@@ -1,8 +1,10 @@
 #include "mesh/core/mesh_atlas.hpp"
 
+#include <thread>
 #include <utility>
 
 #include "mesh/core/triangle_mesh.hpp"
+#include "registration/core/parallel.hpp"
 
 namespace ltm::mesh {
 
@@ -16,7 +18,14 @@ bool same_pose(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
 
 MeshAtlas::MeshAtlas(const MeshConfig& config) : config_(config) {
     common::throw_if(validate(config), "mesh");
+    const int threads = config.threads > 0 ? config.threads
+                                           : int(std::max(1u, std::thread::hardware_concurrency()));
+    parallel_ = std::make_unique<registration::ParallelFor>(threads);
 }
+
+MeshAtlas::~MeshAtlas() = default;
+MeshAtlas::MeshAtlas(MeshAtlas&&) noexcept = default;
+MeshAtlas& MeshAtlas::operator=(MeshAtlas&&) noexcept = default;
 
 bool MeshAtlas::add(MeshChunk chunk) {
     const std::uint64_t id = chunk.local_map_id;
@@ -81,6 +90,55 @@ void MeshAtlas::place() {
     }
 }
 
+std::vector<std::uint64_t> MeshAtlas::owned_cells(
+    const Entry& e, const std::vector<const Entry*>& neighbours) const {
+    std::vector<std::uint64_t> owned;
+    owned.reserve(e.chunk.cells.size());
+    const Eigen::Isometry3d T_world_grid = e.T_world_anchor * e.chunk.T_anchor_grid;
+    const Eigen::Vector3d a = e.T_world_anchor.translation();
+    for (const std::uint64_t key : e.chunk.cells) {
+        const Eigen::Vector3d x = T_world_grid * cell_centre(key, e.chunk.cell_size);
+        const double d_mine = (x - a).squaredNorm();
+        bool mine = true;
+        for (const Entry* o : neighbours) {
+            if ((x - o->centre_world).squaredNorm() > o->chunk.radius * o->chunk.radius) continue;
+            const double d = (x - o->T_world_anchor.translation()).squaredNorm();
+            const bool nearer =
+                d < d_mine || (d == d_mine && o->chunk.local_map_id < e.chunk.local_map_id);
+            if (nearer && o->chunk.covers(o->T_grid_world * x)) {
+                mine = false;
+                break;
+            }
+        }
+        if (mine) owned.push_back(key);
+    }
+    return owned;
+}
+
+std::unordered_set<std::uint64_t> MeshAtlas::cells_to_mesh(
+    const Entry& e, const std::vector<const Entry*>& neighbours) const {
+    std::unordered_set<std::uint64_t> cells;
+    if (e.chunk.complete) return cells;
+    const std::vector<std::uint64_t> owned = owned_cells(e, neighbours);
+    bool missing = e.chunk.meshed_cells.empty() && !owned.empty();
+    for (std::size_t i = 0; i < owned.size() && !missing; ++i) missing = !e.chunk.meshed(owned[i]);
+    if (!missing) return cells;
+    // The owned cells and the chunk's cells within the margin of them.
+    cells.insert(owned.begin(), owned.end());
+    const int m = config_.ownership_margin;
+    for (const std::uint64_t key : owned) {
+        const Eigen::Vector3i c = cell_index(key);
+        for (int dz = -m; dz <= m; ++dz)
+            for (int dy = -m; dy <= m; ++dy)
+                for (int dx = -m; dx <= m; ++dx) {
+                    const std::uint64_t k =
+                        cell_key(Eigen::Vector3i(c + Eigen::Vector3i(dx, dy, dz)));
+                    if (e.chunk.cells.count(k)) cells.insert(k);
+                }
+    }
+    return cells;
+}
+
 void MeshAtlas::own(Entry& e, const std::vector<const Entry*>& neighbours) {
     const common::PlyMesh& mesh = e.chunk.mesh;
     std::vector<std::uint8_t> keep(mesh.triangles.size(), 1);
@@ -121,15 +179,37 @@ std::vector<std::uint64_t> MeshAtlas::update() {
                 }
         if (touched) affected.push_back(&e);
     }
-    for (Entry* e : affected) {
-        std::vector<const Entry*> neighbours;
+    // Each affected chunk's neighbours, the cells it must mesh (none: its mesh covers what it
+    // owns), then meshing and ownership, a chunk a task (each task writes its own chunk only).
+    const std::size_t n = affected.size();
+    std::vector<std::vector<const Entry*>> neighbours(n);
+    for (std::size_t i = 0; i < n; ++i) {
         for (const auto& [oid, o] : entries_)
-            if (&o != e &&
-                (o.centre_world - e->centre_world).norm() < o.chunk.radius + e->chunk.radius)
-                neighbours.push_back(&o);
-        if (e->dirty) e->reported = true;
-        own(*e, neighbours);
+            if (&o != affected[i] && (o.centre_world - affected[i]->centre_world).norm() <
+                                         o.chunk.radius + affected[i]->chunk.radius)
+                neighbours[i].push_back(&o);
+        if (affected[i]->dirty) affected[i]->reported = true;
     }
+    std::vector<std::unordered_set<std::uint64_t>> cells(n);
+    parallel_->run(n, 1, [&](std::size_t, std::size_t b, std::size_t end) {
+        for (std::size_t i = b; i < end; ++i) {
+            cells[i] = cells_to_mesh(*affected[i], neighbours[i]);
+            if (cells[i].empty()) continue;
+            Entry& e = *affected[i];
+            mesh_cells(e.chunk, cells[i], config_);
+            e.keep.assign(e.chunk.mesh.triangles.size(), 1);
+            e.reported = true;
+        }
+    });
+    for (std::size_t i = 0; i < n; ++i)
+        if (!cells[i].empty()) {
+            ++meshings_;
+            fill_ms_ += affected[i]->chunk.stats.fill_ms;
+            mesh_ms_ += affected[i]->chunk.stats.mesh_ms;
+        }
+    parallel_->run(n, 1, [&](std::size_t, std::size_t b, std::size_t end) {
+        for (std::size_t i = b; i < end; ++i) own(*affected[i], neighbours[i]);
+    });
     std::vector<std::uint64_t> changed;
     for (auto& [id, e] : entries_) {
         if (e.reported) changed.push_back(id);
@@ -167,8 +247,37 @@ common::PlyMesh MeshAtlas::owned_mesh(std::uint64_t local_map_id) const {
 
 common::PlyMesh MeshAtlas::global_mesh() const {
     common::PlyMesh out;
-    for (const auto& [id, e] : entries_)
-        append(out, sub_mesh(e.chunk.mesh, e.keep), e.T_world_anchor);
+    std::size_t vertices = 0, triangles = 0;
+    bool normals = true;
+    for (const auto& [id, e] : entries_) {
+        vertices += e.chunk.mesh.vertices.size();
+        for (const std::uint8_t k : e.keep) triangles += k;
+        normals = normals && e.chunk.mesh.normals.size() == e.chunk.mesh.vertices.size();
+    }
+    out.vertices.reserve(vertices);
+    out.triangles.reserve(triangles);
+    if (normals) out.normals.reserve(vertices);
+    std::vector<int> remap;
+    for (const auto& [id, e] : entries_) {
+        const common::PlyMesh& m = e.chunk.mesh;
+        const Eigen::Isometry3f T = e.T_world_anchor.cast<float>();
+        const Eigen::Matrix3f R = T.linear();
+        remap.assign(m.vertices.size(), -1);
+        for (std::size_t t = 0; t < m.triangles.size() && t < e.keep.size(); ++t) {
+            if (!e.keep[t]) continue;
+            Eigen::Vector3i u;
+            for (int k = 0; k < 3; ++k) {
+                int& r = remap[m.triangles[t][k]];
+                if (r < 0) {
+                    r = int(out.vertices.size());
+                    out.vertices.push_back(T * m.vertices[m.triangles[t][k]]);
+                    if (normals) out.normals.push_back(R * m.normals[m.triangles[t][k]]);
+                }
+                u[k] = r;
+            }
+            out.triangles.push_back(u);
+        }
+    }
     return out;
 }
 
@@ -180,6 +289,9 @@ AtlasTotals MeshAtlas::totals() const {
         t.triangles += e.chunk.mesh.triangles.size();
         for (const std::uint8_t k : e.keep) t.kept_triangles += k;
     }
+    t.meshings = meshings_;
+    t.fill_ms = fill_ms_;
+    t.mesh_ms = mesh_ms_;
     return t;
 }
 

@@ -9,6 +9,12 @@
 // with its chunk. So where maps overlap there is one surface, not two slightly apart, and the
 // seam follows the bisector between the anchors; where only one map saw a place, it keeps it.
 //
+// A chunk added without its mesh (prepare_chunk) is meshed in update(), over the cells it owns
+// then and config.ownership_margin cells around them: local maps overlap a lot (a map takes the
+// scans of 40 m of driving, 50 m around), and meshing each whole would mesh most places several
+// times. When a chunk comes to own cells it has not meshed (anchors moved, a neighbour left), it
+// is meshed again from its own voxels; nothing is re-integrated.
+//
 // Chunks not (yet) in the graph (a local map folded into another by the long-term map, or one
 // that arrived before its graph node) are placed by odometry: the correction of the graph chunk
 // of the same odometry segment nearest in id before it (after it when none), or as the odometry
@@ -16,11 +22,17 @@
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <map>
+#include <memory>
+#include <unordered_set>
 #include <vector>
 
 #include "common/core/ply_io.hpp"
 #include "mesh/core/mesh_chunk.hpp"
 #include "mesh/core/mesh_config.hpp"
+
+namespace ltm::registration {
+class ParallelFor;
+}
 
 namespace ltm::mesh {
 
@@ -28,11 +40,16 @@ struct AtlasTotals {
     std::size_t chunks = 0;
     std::size_t vertices = 0, triangles = 0;  // of every chunk's whole mesh
     std::size_t kept_triangles = 0;           // owned (what global_mesh holds)
+    std::size_t meshings = 0;                 // chunks meshed by update() so far
+    double fill_ms = 0.0, mesh_ms = 0.0;      // ... signed distance and marching cubes
 };
 
 class MeshAtlas {
   public:
     explicit MeshAtlas(const MeshConfig& config = {});
+    ~MeshAtlas();
+    MeshAtlas(MeshAtlas&&) noexcept;
+    MeshAtlas& operator=(MeshAtlas&&) noexcept;
 
     // Adds a chunk or replaces the chunk of the same local map with a newer revision; an older or
     // equal revision is ignored (returns false).
@@ -43,8 +60,9 @@ class MeshAtlas {
     // longer in the graph).
     void set_graph(const std::map<std::uint64_t, Eigen::Isometry3d>& T_world_anchor);
 
-    // Recomputes ownership where a chunk was added, replaced or moved (and in its neighbours).
-    // Returns the ids of the chunks whose kept triangles or pose changed since the last update.
+    // Recomputes ownership where a chunk was added, replaced or moved (and in its neighbours),
+    // meshes the chunks that own cells they have not meshed. Returns the ids of the chunks whose
+    // kept triangles, mesh or pose changed since the last update.
     std::vector<std::uint64_t> update();
 
     bool has(std::uint64_t local_map_id) const { return entries_.count(local_map_id) > 0; }
@@ -72,11 +90,20 @@ class MeshAtlas {
     };
 
     void place();
+    // The chunk's cells it owns (it has a voxel there and no nearer chunk does).
+    std::vector<std::uint64_t> owned_cells(const Entry& e,
+                                           const std::vector<const Entry*>& neighbours) const;
+    // The owned cells and the margin around them when some are not meshed yet (else empty).
+    std::unordered_set<std::uint64_t> cells_to_mesh(
+        const Entry& e, const std::vector<const Entry*>& neighbours) const;
     void own(Entry& e, const std::vector<const Entry*>& neighbours);
 
     MeshConfig config_;
     std::map<std::uint64_t, Entry> entries_;
     std::map<std::uint64_t, Eigen::Isometry3d> graph_;
+    std::unique_ptr<registration::ParallelFor> parallel_;
+    std::size_t meshings_ = 0;
+    double fill_ms_ = 0.0, mesh_ms_ = 0.0;
 };
 
 }  // namespace ltm::mesh

@@ -100,13 +100,14 @@ TEST(MeshAtlas, MeshMovedWithItsAnchorEqualsTheMeshRebuiltAtTheNewPose) {
 struct TwoMaps {
     MeshAtlas atlas;
     double s = 0.5;
+    bool prepared = false;  // chunks meshed by the atlas (their owned places) instead of whole
     void add(std::uint64_t id, double y0, double y1, const Eigen::Isometry3d& T_world_anchor,
              double offset = 0.0) {
         auto wall = test::plane_voxels(-Eigen::Vector3d::UnitX(), -(5.0 + offset), {4, y0, 0},
                                        {6, y1, 3}, s);
-        atlas.add(make_chunk(
-            test::local_map(id, to_grid(wall, T_world_anchor.inverse(), s), s, T_world_anchor),
-            MeshConfig{}));
+        const common::LocalMapData m =
+            test::local_map(id, to_grid(wall, T_world_anchor.inverse(), s), s, T_world_anchor);
+        atlas.add(prepared ? prepare_chunk(m, MeshConfig{}) : make_chunk(m, MeshConfig{}));
     }
     int layers(double y, double z) const {
         return test::crossings(atlas.global_mesh(), {0.0, y, z}, {10.0, y + 0.001, z + 0.002});
@@ -132,6 +133,33 @@ TEST(MeshAtlas, OverlappingLocalMapsGiveOneSurface) {
     EXPECT_TRUE(w.atlas.update().empty());
     w.atlas.set_graph({{1, pose(0, 0, 0, 0)}, {2, pose(0, 19, 0, 90)}});
     EXPECT_EQ(w.atlas.update().size(), 2u);
+}
+
+TEST(MeshAtlas, PreparedChunksMeshOnlyWhatTheyOwnAndMeshMoreWhenTheyComeToOwnMore) {
+    TwoMaps w;
+    w.prepared = true;
+    w.add(1, -10, 15, pose(0, 0, 0, 0));
+    w.add(2, 5, 30, pose(0, 20, 0, 90), 0.03);
+    w.atlas.set_graph({{1, pose(0, 0, 0, 0)}, {2, pose(0, 20, 0, 90)}});
+    EXPECT_EQ(w.atlas.update().size(), 2u);
+    EXPECT_EQ(w.atlas.totals().meshings, 2u);
+    double sum = 0.0;
+    for (const std::uint64_t id : w.atlas.ids()) sum += surface_area(w.atlas.chunk(id)->mesh);
+    EXPECT_LT(sum, 1.15 * 120.0);  // the overlap meshed about once, not twice
+    EXPECT_NEAR(surface_area(w.atlas.global_mesh()), 120.0, 0.1 * 120.0);
+    for (const double y : {-8.3, 3.7, 8.9, 11.3, 13.6, 24.4})
+        for (const double z : {0.73, 2.37}) EXPECT_EQ(w.layers(y, z), 1) << y << " " << z;
+    // Map 2 moves 6 m along the wall (a loop closure): each map now owns places of its own it
+    // did not mesh (the seam moved in both their frames) and meshes them again from its own
+    // voxels; still one surface everywhere.
+    w.atlas.set_graph({{1, pose(0, 0, 0, 0)}, {2, pose(0, 26, 0, 90)}});
+    w.atlas.update();
+    EXPECT_EQ(w.atlas.totals().meshings, 4u);
+    for (const double y : {-8.3, 3.7, 8.9, 11.3, 13.6})
+        for (const double z : {0.73, 2.37}) EXPECT_EQ(w.layers(y, z), 1) << y << " " << z;
+    // Nothing moves: nothing is meshed again.
+    w.atlas.update();
+    EXPECT_EQ(w.atlas.totals().meshings, 4u);
 }
 
 TEST(MeshAtlas, APlaceOnlyTheFartherMapSawStaysWithIt) {

@@ -31,8 +31,14 @@ struct MeshConfig {
     // those that have a voxel in its ownership cell (this many voxel sizes on a side, in that
     // map's lattice); each map keeps only the triangles of the places it owns.
     double ownership_cell = 2.0;
+    // A chunk meshes the places it owns and this many ownership cells around them (so that its
+    // surface reaches across the seam, and anchors may move a little before it must mesh more).
+    int ownership_margin = 1;
     // Vertex normals (area-weighted face normals), for shading in viewers.
     bool vertex_normals = true;
+    // Local maps a MeshAtlas meshes at once (0: one a core). One keeps a core free for the
+    // odometry on the robot; the base station or an offline run may use more.
+    int threads = 1;
 };
 
 template <class Visitor>
@@ -47,7 +53,9 @@ void visit_fields(MeshConfig& c, const std::string& prefix, Visitor&& v) {
     v(prefix + "min_points", c.min_points, at_least(1));
     v(prefix + "min_weight", c.min_weight, non_negative);
     v(prefix + "ownership_cell", c.ownership_cell, in_range(0.5, 50.0));
+    v(prefix + "ownership_margin", c.ownership_margin, in_range(0, 10));
     v(prefix + "vertex_normals", c.vertex_normals, unchecked);
+    v(prefix + "threads", c.threads, in_range(0, 256));
 }
 
 // The first problem of a configuration (key relative to it), rules across fields included.

@@ -33,8 +33,35 @@ bool usable(const common::VoxelData& v, int min_points) {
 
 }  // namespace
 
+std::vector<SurfaceVoxel> surface_voxels(const std::vector<common::VoxelData>& voxels,
+                                         const MeshConfig& config, std::size_t* left_out) {
+    std::vector<SurfaceVoxel> out;
+    out.reserve(voxels.size());
+    std::size_t left = 0;
+    for (const common::VoxelData& v : voxels) {
+        double base = config.planarity_floor + std::clamp(double(v.planarity), 0.0, 1.0);
+        if (config.use_health) base *= std::clamp(double(v.life.health), 0.0, 1.0);
+        if (!usable(v, config.min_points) || !(base > 0.0)) {
+            ++left;
+            continue;
+        }
+        out.push_back({v.centre, v.normal.normalized(), float(base)});
+    }
+    if (left_out) *left_out = left;
+    return out;
+}
+
 common::PlyMesh mesh_voxels(const std::vector<common::VoxelData>& voxels, double voxel_size,
                             const MeshConfig& config, SdfStats* stats) {
+    std::size_t left = 0;
+    const std::vector<SurfaceVoxel> surface = surface_voxels(voxels, config, &left);
+    common::PlyMesh mesh = mesh_surface(surface, voxel_size, config, stats);
+    if (stats) stats->voxels_left = left;
+    return mesh;
+}
+
+common::PlyMesh mesh_surface(const std::vector<SurfaceVoxel>& voxels, double voxel_size,
+                             const MeshConfig& config, SdfStats* stats) {
     common::throw_if(validate(config), "mesh");
     if (!(voxel_size > 0.0) || !std::isfinite(voxel_size))
         throw common::ConfigError("mesh.voxel_size", "must be > 0 (the local map's voxel size)");
@@ -58,16 +85,11 @@ common::PlyMesh mesh_voxels(const std::vector<common::VoxelData>& voxels, double
     {
         auto acc_wd = sum_wd->getAccessor();
         auto acc_w = sum_w->getAccessor();
-        for (const common::VoxelData& v : voxels) {
-            if (!usable(v, config.min_points)) {
-                ++s.voxels_left;
-                continue;
-            }
-            double base = config.planarity_floor + std::clamp(double(v.planarity), 0.0, 1.0);
-            if (config.use_health) base *= std::clamp(double(v.life.health), 0.0, 1.0);
-            if (!(base > 0.0)) continue;
+        for (const SurfaceVoxel& v : voxels) {
+            if (!(v.weight > 0.0f) || !v.centre.allFinite() || !v.normal.allFinite()) continue;
+            const double base = v.weight;
             const Eigen::Vector3d c = v.centre.cast<double>();
-            const Eigen::Vector3d n = v.normal.cast<double>().normalized();
+            const Eigen::Vector3d n = v.normal.cast<double>();
             const Eigen::Vector3i o((c / g).array().round().cast<int>());
             ++s.voxels_used;
             for (int dz = -reach; dz <= reach; ++dz)

@@ -26,10 +26,26 @@ struct SdfStats {
     double mesh_ms = 0.0;           // marching cubes and the mesh's arrays
 };
 
-// The surface of `voxels` (one lattice of `voxel_size`), in the voxels' frame. Voxels without a
-// unit normal, with a non-finite centre, or with fewer than config.min_points points are left
-// out. Outward faces (counter-clockwise seen from where the normals point: the sensor's side).
+// What the signed distance needs of a voxel: centre, unit normal (towards the sensor's side) and
+// base weight (planarity_floor + planarity, times health when config.use_health), voxel frame.
+struct SurfaceVoxel {
+    Eigen::Vector3f centre = Eigen::Vector3f::Zero();
+    Eigen::Vector3f normal = Eigen::Vector3f::Zero();
+    float weight = 0.0f;
+};
+
+// The voxels that take part: a unit normal, a finite centre, at least config.min_points points
+// and a positive weight; the others are counted in *left_out.
+std::vector<SurfaceVoxel> surface_voxels(const std::vector<common::VoxelData>& voxels,
+                                         const MeshConfig& config, std::size_t* left_out = nullptr);
+
+// The surface of `voxels` (one lattice of `voxel_size`), in the voxels' frame, outward faces
+// (counter-clockwise seen from where the normals point: the sensor's side).
 // Throws common::ConfigError (key under "mesh.") for a bad config or voxel size.
+common::PlyMesh mesh_surface(const std::vector<SurfaceVoxel>& voxels, double voxel_size,
+                             const MeshConfig& config, SdfStats* stats = nullptr);
+
+// surface_voxels then mesh_surface.
 common::PlyMesh mesh_voxels(const std::vector<common::VoxelData>& voxels, double voxel_size,
                             const MeshConfig& config, SdfStats* stats = nullptr);
 
