@@ -166,3 +166,26 @@ TEST_F(MeshPipeline, BadParameterIsOneLine) {
     EXPECT_NE(err.find(cfg + ":7: mesh.truncation: must be at least grid_size"), std::string::npos)
         << err;
 }
+
+// The mesh request names its file with mesh_file; the mapping's keys are refused with it (and
+// mesh_file with the mapping's commands), in one line.
+TEST_F(MeshPipeline, AMeshRequestTakesOnlyAMeshFile) {
+    const auto refused = [&](const std::string& params) {
+        const std::string cfg = write("request.yaml", header(230) + R"(components:
+  - name: map_request
+    type: map_request
+    params: )" + params + "\n");
+        Process host({kHost, cfg, "--check"}, path("host"));
+        EXPECT_EQ(host.wait(30), 2) << params;
+        const std::string err = host.err();
+        EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
+        return err;
+    };
+    EXPECT_NE(refused("{command: mesh, global_map_file: " + path("g.ply") + "}")
+                  .find(":7: map_request.global_map_file: not with command mesh (its file: "
+                        "mesh_file)"),
+              std::string::npos);
+    EXPECT_NE(refused("{command: global_map, mesh_file: " + path("m.ply") + "}")
+                  .find(":7: map_request.mesh_file: only with command mesh"),
+              std::string::npos);
+}

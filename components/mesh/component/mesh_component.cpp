@@ -200,6 +200,8 @@ class MeshComponent : public runtime::Component {
 
     bool add_map(const MapInput& in) {
         const common::LocalMapData& m = in.map;
+        const MeshChunk* have = atlas_.chunk(m.id);
+        if (have && have->revision >= m.revision) return false;  // meshed already
         const auto t0 = Clock::now();
         try {
             MeshChunk chunk = make_chunk(m, config_.mesh);
