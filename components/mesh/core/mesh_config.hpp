@@ -33,7 +33,7 @@ struct MeshConfig {
     double ownership_cell = 2.0;
     // A chunk meshes the places it owns and this many ownership cells around them (so that its
     // surface reaches across the seam, and anchors may move a little before it must mesh more).
-    int ownership_margin = 1;
+    int ownership_margin = 0;
     // Vertex normals (area-weighted face normals), for shading in viewers.
     bool vertex_normals = true;
     // Local maps a MeshAtlas meshes at once (0: one a core). One keeps a core free for the

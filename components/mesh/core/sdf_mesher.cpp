@@ -15,6 +15,9 @@ namespace ltm::mesh {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+// (sum of weights, sum of weighted distances) per grid point: one tree walk for both.
+using Vec2STree = openvdb::tree::Tree4<openvdb::Vec2s, 5, 4, 3>::Type;
+using Vec2SGrid = openvdb::Grid<Vec2STree>;
 
 double ms_since(Clock::time_point t0) {
     return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
@@ -78,34 +81,36 @@ common::PlyMesh mesh_surface(const std::vector<SurfaceVoxel>& voxels, double vox
     const double inv_h2 = 1.0 / (h * h);
     const int reach = int(std::ceil(std::max(support, tau) / g));
 
-    // Weighted sums: sum of w * d and of w per grid point (index space: q = ijk * g).
+    // Weighted sums per grid point (index space: q = ijk * g): (sum of w, sum of w * d).
     const auto t_fill = Clock::now();
-    openvdb::FloatGrid::Ptr sum_wd = openvdb::FloatGrid::create(0.0f);
-    openvdb::FloatGrid::Ptr sum_w = openvdb::FloatGrid::create(0.0f);
+    Vec2SGrid::Ptr sums = Vec2SGrid::create(openvdb::Vec2s(0.0f, 0.0f));
     {
-        auto acc_wd = sum_wd->getAccessor();
-        auto acc_w = sum_w->getAccessor();
+        auto acc = sums->getAccessor();
+        const float gf = float(g), tauf = float(tau), support2f = float(support2);
+        const float inv_h2f = float(inv_h2);
         for (const SurfaceVoxel& v : voxels) {
             if (!(v.weight > 0.0f) || !v.centre.allFinite() || !v.normal.allFinite()) continue;
-            const double base = v.weight;
-            const Eigen::Vector3d c = v.centre.cast<double>();
-            const Eigen::Vector3d n = v.normal.cast<double>();
-            const Eigen::Vector3i o((c / g).array().round().cast<int>());
+            const Eigen::Vector3f& c = v.centre;
+            const Eigen::Vector3f& n = v.normal;
+            const Eigen::Vector3i o((c / gf).array().round().cast<int>());
             ++s.voxels_used;
             for (int dz = -reach; dz <= reach; ++dz)
                 for (int dy = -reach; dy <= reach; ++dy)
                     for (int dx = -reach; dx <= reach; ++dx) {
                         const openvdb::Coord ijk(o.x() + dx, o.y() + dy, o.z() + dz);
-                        const Eigen::Vector3d dq =
-                            Eigen::Vector3d(ijk.x() * g, ijk.y() * g, ijk.z() * g) - c;
-                        const double d = n.dot(dq);
-                        if (std::abs(d) > tau) continue;
-                        const double r2 = dq.squaredNorm();
-                        if (r2 - d * d > support2) continue;
-                        const float w = float(base * std::exp(-r2 * inv_h2));
-                        const float wd = float(w * d);
-                        acc_w.modifyValue(ijk, [w](float& x) { x += w; });
-                        acc_wd.modifyValue(ijk, [wd](float& x) { x += wd; });
+                        const Eigen::Vector3f dq =
+                            Eigen::Vector3f(float(ijk.x()) * gf, float(ijk.y()) * gf,
+                                            float(ijk.z()) * gf) -
+                            c;
+                        const float d = n.dot(dq);
+                        if (std::abs(d) > tauf) continue;
+                        const float r2 = dq.squaredNorm();
+                        if (r2 - d * d > support2f) continue;
+                        const float w = v.weight * std::exp(-r2 * inv_h2f);
+                        acc.modifyValue(ijk, [w, d](openvdb::Vec2s& x) {
+                            x[0] += w;
+                            x[1] += w * d;
+                        });
                     }
         }
     }
@@ -115,12 +120,11 @@ common::PlyMesh mesh_surface(const std::vector<SurfaceVoxel>& voxels, double vox
     sdf->setGridClass(openvdb::GRID_LEVEL_SET);
     {
         auto acc = sdf->getAccessor();
-        auto acc_wd = sum_wd->getConstAccessor();
         const float min_w = float(config.min_weight);
-        for (auto it = sum_w->cbeginValueOn(); it; ++it) {
-            const float w = *it;
+        for (auto it = sums->cbeginValueOn(); it; ++it) {
+            const float w = (*it)[0];
             if (!(w > 0.0f) || w < min_w) continue;
-            const float d = acc_wd.getValue(it.getCoord()) / w;
+            const float d = (*it)[1] / w;
             acc.setValueOn(it.getCoord(), std::clamp(d, -float(tau), float(tau)));
             ++s.grid_points;
         }
