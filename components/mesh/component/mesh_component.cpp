@@ -75,6 +75,8 @@ class MeshComponent : public runtime::Component {
         ctx.subscribe<msg::MapRequest>("map_request", TopicRole::kState,
                                        [this](const msg::MapRequest& m) { on_request(m); });
         mesh_out_ = ctx.advertise<msg::Mesh>("mesh", TopicRole::kMap);
+        const runtime::QosProfile q = ctx.role_profile("mesh", TopicRole::kMap);
+        if (q.transient_local && !q.keep_all) kept_for_late_readers_ = std::size_t(q.depth);
         status_out_ = ctx.advertise<msg::Status>("status", TopicRole::kState);
     }
 
@@ -240,6 +242,14 @@ class MeshComponent : public runtime::Component {
                       "%.0f ms)",
                       t.chunks, t.kept_triangles, t.triangles, changed.size(), update_ms);
         event(StatusLevel::kOk, "mesh_updated", text, stamp_);
+        if (kept_for_late_readers_ > 0 && t.chunks > kept_for_late_readers_ && !warned_depth_) {
+            warned_depth_ = true;
+            event(StatusLevel::kWarn, "mesh_depth",
+                  "more chunks than `" + mesh_out_.topic() + "` keeps for late readers (" +
+                      std::to_string(kept_for_late_readers_) +
+                      " messages): they get the chunks that changed last (qos: map: depth)",
+                  stamp_);
+        }
     }
 
     void answer(const Request& r) {
@@ -328,6 +338,8 @@ class MeshComponent : public runtime::Component {
     msg::Time stamp_{};
     std::size_t meshed_ = 0;
     double meshing_ms_ = 0.0;
+    std::size_t kept_for_late_readers_ = 0;  // the mesh topic's history (0: all, or none)
+    bool warned_depth_ = false;
 
     runtime::Publisher<msg::Mesh> mesh_out_;
     runtime::Publisher<msg::Status> status_out_;
