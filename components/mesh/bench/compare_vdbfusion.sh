@@ -192,19 +192,20 @@ num() { [[ "$1" =~ ^-?[0-9.]+(e[-+]?[0-9]+)?$ ]] && printf "%.${2}f" "$1" || pri
         "P %" "R %" "CD-L1" area
     for r in "${ROWS[@]+"${ROWS[@]}"}"; do
         IFS='|' read -r a b s i l m f cm cp fs p rc cd ar _ <<< "$r"
-        printf "$fmt" "$a" "$b" "$s" "$i" "$l" "$m" "$f" "$(num "$cm" 3)" "$(num "$cp" 3)" \
+        printf "$fmt" "$a" "$b" "$s" "$i" "$l" "$m" "$f" "$(num "$cm" 4)" "$(num "$cp" 3)" \
             "$(num "$fs" 1)" "$(num "$p" 1)" "$(num "$rc" 1)" "$(num "$cd" 3)" "$(num "$ar" 2)"
     done
     cat << EOF
-VDBFusion $PEER_COMMIT at its KITTI settings (voxel 0.1 m, trunc 0.3 m, min weight 5, range
-2.5..120 m), correct_scan off: it integrates the same points as ltm. Time: wall clock, both on one
-thread pinned to CPU 0 (taskset -c 0; load average $LOAD at the start); int = ms a scan of ltm's
-voxel map / VDBFusion's Integrate; mesh = ms of all meshing (ltm: every local map's signed
-distance + marching cubes + the global mesh; VDBFusion: ExtractTriangleMesh); all = int + mesh /
-scans. kitti-*: even scans integrated, scored on the odd scans' points (c.med, c.p90: held-out
-point to mesh [m]; P: mesh samples within 0.1 m of a held-out point). sim-*: truth mesh cropped
-to 0.3 m around ltm's integrated points within $OBSERVED_RANGE m; F, P, R at 0.1 m; CD-L1 [m];
-area = mesh area / scored truth area (a double surface inflates it).
+VDBFusion ${PEER_COMMIT:0:7} at its KITTI settings (voxel 0.1 m, trunc 0.3 m, min weight 5,
+range 2.5..120 m), correct_scan off: it integrates the same points as ltm. Time: wall clock, each
+on one thread pinned to CPU 0 (taskset -c 0; ltm's mesh threads=1 is its default; load average
+$LOAD at the start); int = ms a scan of ltm's voxel map / VDBFusion's Integrate; mesh = ms
+of all meshing (ltm: every local map's signed distance + marching cubes + the global mesh;
+VDBFusion: ExtractTriangleMesh); all = int + mesh / scans. kitti-*: even scans integrated, scored
+on the odd scans' raw points (c.med, c.p90: held-out point to mesh [m]; P: mesh samples within
+0.1 m of a held-out point). sim-*: truth mesh cropped to 0.3 m around ltm's integrated points
+within $OBSERVED_RANGE m; F, P, R at 0.1 m; CD-L1 [m]; area = the whole mesh's area / the scored
+(cropped) truth's area: a double surface inflates it, and so does surface meshed beyond the crop.
 EOF
 } | tee "$OUT/table.txt"
 printf '(logs, meshes, scores: %s)\n' "$OUT"
