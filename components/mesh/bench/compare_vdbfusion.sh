@@ -125,12 +125,12 @@ score() {
         local all
         all="$(awk -v i="$int" -v m="$mesh_ms" -v n="$scans" 'BEGIN {printf "%.1f", i + m / n}')"
         ROWS+=("$name|$system|$scans|$(printf '%.1f' "$int")|$all|$(printf '%.0f' "$mesh_ms")|$faces|$(
-            printf '%s|' "$(value "$ev" completeness_median)" "$(value "$ev" completeness_p90)" \
+            printf '%s|' "$(value "$ev" accuracy_median)" "$(value "$ev" completeness_median)" "$(value "$ev" completeness_p90)" \
                 "$(value "$ev" fscore)" "$(value "$ev" precision)" "$(value "$ev" recall)" \
                 "$(value "$ev" chamfer_l1)" "$(value "$ev" area_ratio)")")
     else
         say "$name: scoring $system failed: $(tail -1 "$ev")"
-        ROWS+=("$name|$system|${scans:--}|fail|||||||||||")
+        ROWS+=("$name|$system|${scans:--}|fail||||||||||||")
     fi
 }
 
@@ -141,7 +141,7 @@ run() {
     say "$name: $system"
     if "${PIN[@]}" "$@" > "$log" 2>&1; then return 0; fi
     say "$name: $system failed: $(grep -v '^mesh: ' "$log" | tail -1)"
-    ROWS+=("$name|$system|-|fail|||||||||||")
+    ROWS+=("$name|$system|-|fail||||||||||||")
     return 1
 }
 
@@ -185,27 +185,28 @@ for c in "${SELECTED[@]}"; do
         score "$name" VDBFusion "$base.vdbfusion.log" "$base.vdbfusion.ply" "$held"
 done
 
-fmt='%-14s %-14s %5s %7s %7s %7s %8s %7s %7s %6s %6s %6s %7s %6s\n'
+fmt='%-14s %-14s %5s %7s %7s %7s %8s %7s %7s %7s %6s %6s %6s %7s %6s\n'
 num() { [[ "$1" =~ ^-?[0-9.]+(e[-+]?[0-9]+)?$ ]] && printf "%.${2}f" "$1" || printf '%s' "$1"; }
 {
-    printf "$fmt" case system scans "int ms" "all ms" "mesh ms" faces "c.med" "c.p90" "F %" \
+    printf "$fmt" case system scans "int ms" "all ms" "mesh ms" faces "a.med" "c.med" "c.p90" "F %" \
         "P %" "R %" "CD-L1" area
     for r in "${ROWS[@]+"${ROWS[@]}"}"; do
-        IFS='|' read -r a b s i l m f cm cp fs p rc cd ar _ <<< "$r"
-        printf "$fmt" "$a" "$b" "$s" "$i" "$l" "$m" "$f" "$(num "$cm" 4)" "$(num "$cp" 3)" \
+        IFS='|' read -r a b s i l m f am cm cp fs p rc cd ar _ <<< "$r"
+        printf "$fmt" "$a" "$b" "$s" "$i" "$l" "$m" "$f" "$(num "$am" 4)" "$(num "$cm" 4)" "$(num "$cp" 3)" \
             "$(num "$fs" 1)" "$(num "$p" 1)" "$(num "$rc" 1)" "$(num "$cd" 3)" "$(num "$ar" 2)"
     done
     cat << EOF
-VDBFusion ${PEER_COMMIT:0:7} at its KITTI settings (voxel 0.1 m, trunc 0.3 m, min weight 5,
-range 2.5..120 m), correct_scan off: it integrates the same points as ltm. Time: wall clock, each
-on one thread pinned to CPU 0 (taskset -c 0; ltm's mesh threads=1 is its default; load average
-$LOAD at the start); int = ms a scan of ltm's voxel map / VDBFusion's Integrate; mesh = ms
-of all meshing (ltm: every local map's signed distance + marching cubes + the global mesh;
-VDBFusion: ExtractTriangleMesh); all = int + mesh / scans. kitti-*: even scans integrated, scored
-on the odd scans' raw points (c.med, c.p90: held-out point to mesh [m]; P: mesh samples within
-0.1 m of a held-out point). sim-*: truth mesh cropped to 0.3 m around ltm's integrated points
-within $OBSERVED_RANGE m; F, P, R at 0.1 m; CD-L1 [m]; area = the whole mesh's area / the scored
-(cropped) truth's area: a double surface inflates it, and so does surface meshed beyond the crop.
+VDBFusion ${PEER_COMMIT:0:7} at its KITTI settings (voxel 0.1 m, trunc 0.3 m, min weight 5, range 2.5..120 m),
+correct_scan off: it integrates the same points as ltm. Time: wall clock, each on one thread
+pinned to CPU 0 (taskset -c 0; ltm's mesh threads=1 is its default; load average $LOAD at
+the start); int = ms a scan of ltm's voxel map / VDBFusion's Integrate; mesh = ms of all meshing
+(ltm: every local map's signed distance + marching cubes + the global mesh; VDBFusion:
+ExtractTriangleMesh); all = int + mesh / scans. a.med: mesh to reference; c.med, c.p90:
+reference to mesh [m]. kitti-*: even scans integrated, the reference is the odd scans' raw points
+(P: mesh samples within 0.1 m of a held-out point). sim-*: the reference is the truth mesh
+cropped to 0.3 m around ltm's integrated points within $OBSERVED_RANGE m; F, P, R at 0.1 m [%];
+CD-L1 [m]; area = the whole mesh's area / the scored (cropped) truth's area: a double surface
+inflates it, and so does surface meshed beyond the crop.
 EOF
 } | tee "$OUT/table.txt"
 printf '(logs, meshes, scores: %s)\n' "$OUT"
