@@ -27,7 +27,7 @@
 # range 2.5..120 m, no space carving, no hole filling) with correct_scan off: it reads exactly the
 # points ltm reads and the held-out points are raw.
 # Time: wall clock, each program pinned to CPU 0 (taskset -c 0), one thread each (ltm's mesh
-# threads=1 is its default; VDBFusion's integration and meshing are single-threaded, the runner
+# threads=1, its default, given explicitly; VDBFusion's integration and meshing are single-threaded, the runner
 # limits TBB to one thread). int = ltm's voxel map a scan (odometry local map at the given pose) /
 # VDBFusion's Integrate a scan; mesh = ltm's signed distance + marching cubes of every local map +
 # the global mesh / VDBFusion's ExtractTriangleMesh; all = int + mesh / scans.
@@ -162,6 +162,7 @@ for c in "${SELECTED[@]}"; do
         poses="$dir/poses.txt"
         crop="$base.observed.ply"
         run "$name" "ltm vlp32" "$base.ltm.log" "$BENCH" "$dir" --poses "$poses" --preset vlp32 \
+            --set threads=1 \
             --frames "$frames" --observed-out "$crop" --observed-range "$OBSERVED_RANGE" \
             --out "$base.ltm.ply" &&
             score "$name" "ltm vlp32" "$base.ltm.log" "$base.ltm.ply" "$dir/truth_mesh.ply" "$crop"
@@ -174,10 +175,10 @@ for c in "${SELECTED[@]}"; do
     fi
     held="$base.heldout.ply"
     common=("$dir" --poses "$poses" --calib "$calib" --frames "$frames" --every 2 --offset 0)
-    run "$name" "ltm hdl64" "$base.ltm.log" "$BENCH" "${common[@]}" --heldout-out "$held" \
+    run "$name" "ltm hdl64" "$base.ltm.log" "$BENCH" "${common[@]}" --set threads=1 --heldout-out "$held" \
         --out "$base.ltm.ply" && score "$name" "ltm hdl64" "$base.ltm.log" "$base.ltm.ply" "$held"
     [ -f "$held" ] || { say "$name: no held-out points from ltm: skipped"; continue; }
-    run "$name" "ltm voxel 0.4" "$base.ltm_v04.log" "$BENCH" "${common[@]}" --voxel 0.4 \
+    run "$name" "ltm voxel 0.4" "$base.ltm_v04.log" "$BENCH" "${common[@]}" --set threads=1 --voxel 0.4 \
         --out "$base.ltm_v04.ply" &&
         score "$name" "ltm voxel 0.4" "$base.ltm_v04.log" "$base.ltm_v04.ply" "$held"
     run "$name" VDBFusion "$base.vdbfusion.log" "$RUNNER" "${common[@]}" --correct-scan 0 \
@@ -198,7 +199,7 @@ num() { [[ "$1" =~ ^-?[0-9.]+(e[-+]?[0-9]+)?$ ]] && printf "%.${2}f" "$1" || pri
     cat << EOF
 VDBFusion ${PEER_COMMIT:0:7} at its KITTI settings (voxel 0.1 m, trunc 0.3 m, min weight 5, range 2.5..120 m),
 correct_scan off: it integrates the same points as ltm. Time: wall clock, each on one thread
-pinned to CPU 0 (taskset -c 0; ltm's mesh threads=1 is its default; load average $LOAD at
+pinned to CPU 0 (taskset -c 0; ltm with --set threads=1, its default; load average $LOAD at
 the start); int = ms a scan of ltm's voxel map / VDBFusion's Integrate; mesh = ms of all meshing
 (ltm: every local map's signed distance + marching cubes + the global mesh; VDBFusion:
 ExtractTriangleMesh); all = int + mesh / scans. a.med: mesh to reference; c.med, c.p90:
