@@ -120,9 +120,14 @@ std::unordered_set<std::uint64_t> MeshAtlas::cells_to_mesh(
     std::unordered_set<std::uint64_t> cells;
     if (e.chunk.complete) return cells;
     const std::vector<std::uint64_t> owned = owned_cells(e, neighbours);
-    bool missing = e.chunk.meshed_cells.empty() && !owned.empty();
-    for (std::size_t i = 0; i < owned.size() && !missing; ++i) missing = !e.chunk.meshed(owned[i]);
-    if (!missing) return cells;
+    // Meshed again when too much of what it owns is not meshed (the others keep their surface
+    // there meanwhile, see own()).
+    std::size_t missing = 0;
+    for (const std::uint64_t key : owned) missing += e.chunk.meshed(key) ? 0 : 1;
+    const bool never = e.chunk.meshed_cells.empty() && !owned.empty();
+    if (!never &&
+        (missing == 0 || double(missing) <= config_.remesh_fraction * double(owned.size())))
+        return cells;
     // The owned cells and the chunk's cells within the margin of them.
     cells.insert(owned.begin(), owned.end());
     const int m = config_.ownership_margin;
@@ -154,7 +159,9 @@ void MeshAtlas::own(Entry& e, const std::vector<const Entry*>& neighbours) {
                 const double d = (x - o->T_world_anchor.translation()).squaredNorm();
                 const bool nearer =
                     d < d_mine || (d == d_mine && o->chunk.local_map_id < e.chunk.local_map_id);
-                if ((!mine || nearer) && o->chunk.covers(o->T_grid_world * x)) {
+                // Given up to the other chunk when it saw the place and has meshed it (until it
+                // does, this chunk's surface stays: no hole while ownership moves).
+                if ((!mine || nearer) && o->chunk.covers_meshed(o->T_grid_world * x)) {
                     keep[t] = 0;
                     break;
                 }

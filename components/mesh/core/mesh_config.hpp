@@ -33,7 +33,10 @@ struct MeshConfig {
     double ownership_cell = 2.0;
     // A chunk meshes the places it owns and this many ownership cells around them (so that its
     // surface reaches across the seam, and anchors may move a little before it must mesh more).
-    int ownership_margin = 0;
+    int ownership_margin = 1;
+    // A chunk is meshed again when more than this share of the cells it owns is not meshed (after
+    // anchors moved); until then the chunks that meshed those places keep their surface there.
+    double remesh_fraction = 0.05;
     // Vertex normals (area-weighted face normals), for shading in viewers.
     bool vertex_normals = true;
     // Local maps a MeshAtlas meshes at once (0: one a core). One keeps a core free for the
@@ -54,6 +57,7 @@ void visit_fields(MeshConfig& c, const std::string& prefix, Visitor&& v) {
     v(prefix + "min_weight", c.min_weight, non_negative);
     v(prefix + "ownership_cell", c.ownership_cell, in_range(0.5, 50.0));
     v(prefix + "ownership_margin", c.ownership_margin, in_range(0, 10));
+    v(prefix + "remesh_fraction", c.remesh_fraction, unit);
     v(prefix + "vertex_normals", c.vertex_normals, unchecked);
     v(prefix + "threads", c.threads, in_range(0, 256));
 }
