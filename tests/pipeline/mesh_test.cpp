@@ -89,7 +89,7 @@ components:
     params: {mesh_file: )" + mesh_file + R"(}
 )");
     Process host({kHost, mission}, path("mission"));
-    ASSERT_TRUE(wait_for_log(host, "chunks changed", 120)) << host.err();
+    ASSERT_TRUE(wait_for_log(host, " triangles owned; ", 120)) << host.err();
 
     // `./ltm map mesh --mesh-file requested.ply` while it runs.
     const std::string requested = path("requested.ply");

@@ -11,8 +11,9 @@
 // mapping component's and are left alone.
 //
 // Threads: the component's thread takes the inputs; the atlas lives on a worker thread, which
-// meshes the maps in order, applies the newest graph, updates the ownership and publishes the
-// changed chunks; requests go first. At most `max_queue` maps wait for the worker: then the
+// takes the maps in order, applies the newest graph, updates the ownership, meshes the places a
+// chunk owns and has not meshed yet (`threads` chunks at once) and publishes the changed chunks;
+// requests go first. At most `max_queue` maps wait for the worker: then the
 // oldest is dropped (skip_while_busy, live) or the component's thread waits (offline). At shutdown
 // the worker finishes what waits, then the mesh file is written.
 #include <chrono>
@@ -89,12 +90,13 @@ class MeshComponent : public runtime::Component {
     void on_shutdown() override {
         stop_worker();
         const AtlasTotals t = atlas_.totals();
-        char text[200];
+        char text[300];
         std::snprintf(text, sizeof text,
-                      "%zu local maps: %zu meshed, %zu snapshots skipped, %zu refused, %zu dropped "
-                      "while busy; %zu chunks, %zu of %zu triangles owned; meshing %.0f ms",
-                      maps_, meshed_, snapshots_, refused_, dropped_, t.chunks, t.kept_triangles,
-                      t.triangles, meshing_ms_);
+                      "%zu local maps: %zu taken, %zu snapshots skipped, %zu refused, %zu dropped "
+                      "while busy; %zu chunks, %zu triangles owned; %zu meshings: grid %.0f ms, "
+                      "marching cubes %.0f ms; updates %.0f ms",
+                      maps_, added_, snapshots_, refused_, dropped_, t.chunks, t.kept_triangles,
+                      t.meshings, t.fill_ms, t.mesh_ms, update_ms_);
         ctx_.log().info(text);
         if (!config_.mesh_file.empty()) write_mesh(config_.mesh_file, nullptr);
     }
@@ -200,24 +202,17 @@ class MeshComponent : public runtime::Component {
         }
     }
 
+    // The map's chunk, prepared (voxels, cells); update() meshes the places it owns.
     bool add_map(const MapInput& in) {
         const common::LocalMapData& m = in.map;
         const MeshChunk* have = atlas_.chunk(m.id);
-        if (have && have->revision >= m.revision) return false;  // meshed already
-        const auto t0 = Clock::now();
+        if (have && have->revision >= m.revision) return false;  // taken already
         try {
-            MeshChunk chunk = make_chunk(m, config_.mesh);
-            const double ms = ms_since(t0);
-            meshing_ms_ += ms;
-            ++meshed_;
-            char text[200];
-            std::snprintf(text, sizeof text,
-                          "local map %llu revision %u: %zu vertices, %zu triangles from %zu voxels "
-                          "in %.0f ms (grid %.0f ms, marching cubes %.0f ms)",
-                          static_cast<unsigned long long>(m.id), m.revision,
-                          chunk.mesh.vertices.size(), chunk.mesh.triangles.size(),
-                          chunk.stats.voxels_used, ms, chunk.stats.fill_ms, chunk.stats.mesh_ms);
-            event(StatusLevel::kOk, "meshed", text, in.stamp);
+            MeshChunk chunk = prepare_chunk(m, config_.mesh);
+            ++added_;
+            ctx_.log().debug("local map " + std::to_string(m.id) + " revision " +
+                             std::to_string(m.revision) + ": " +
+                             std::to_string(chunk.voxels.size()) + " surface voxels");
             stamp_ = in.stamp;
             return atlas_.add(std::move(chunk));
         } catch (const std::exception& e) {
@@ -228,19 +223,30 @@ class MeshComponent : public runtime::Component {
         }
     }
 
-    // Ownership where something changed; one `mesh` message a changed chunk.
+    // Ownership where something changed, the chunks meshed where they own places they have not
+    // meshed; one `mesh` message a changed chunk.
     void publish_changes() {
+        const AtlasTotals before = atlas_.totals();
         const auto t0 = Clock::now();
-        const std::vector<std::uint64_t> changed = atlas_.update();
+        std::vector<std::uint64_t> changed;
+        try {
+            changed = atlas_.update();
+        } catch (const std::exception& e) {
+            event(StatusLevel::kError, "mesh_failed", common::one_line(e.what()), stamp_);
+            return;
+        }
         const double update_ms = ms_since(t0);
+        update_ms_ += update_ms;
         for (const std::uint64_t id : changed)
             mesh_out_.publish(*to_msg(placed_chunk(atlas_, id), stamp_, frame_id_));
         const AtlasTotals t = atlas_.totals();
-        char text[200];
+        char text[300];
         std::snprintf(text, sizeof text,
-                      "%zu chunks, %zu of %zu triangles owned; %zu chunks changed (ownership "
-                      "%.0f ms)",
-                      t.chunks, t.kept_triangles, t.triangles, changed.size(), update_ms);
+                      "%zu chunks, %zu triangles owned; %zu chunks meshed (grid %.0f ms, marching "
+                      "cubes %.0f ms), %zu changed; update %.0f ms",
+                      t.chunks, t.kept_triangles, t.meshings - before.meshings,
+                      t.fill_ms - before.fill_ms, t.mesh_ms - before.mesh_ms, changed.size(),
+                      update_ms);
         event(StatusLevel::kOk, "mesh_updated", text, stamp_);
         if (kept_for_late_readers_ > 0 && t.chunks > kept_for_late_readers_ && !warned_depth_) {
             warned_depth_ = true;
@@ -336,8 +342,8 @@ class MeshComponent : public runtime::Component {
     std::mutex frame_mutex_;
     std::string frame_id_;
     msg::Time stamp_{};
-    std::size_t meshed_ = 0;
-    double meshing_ms_ = 0.0;
+    std::size_t added_ = 0;
+    double update_ms_ = 0.0;                 // atlas updates: ownership and meshing
     std::size_t kept_for_late_readers_ = 0;  // the mesh topic's history (0: all, or none)
     bool warned_depth_ = false;
 
