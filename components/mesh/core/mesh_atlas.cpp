@@ -1,5 +1,6 @@
 #include "mesh/core/mesh_atlas.hpp"
 
+#include <algorithm>
 #include <thread>
 #include <utility>
 
@@ -82,12 +83,27 @@ void MeshAtlas::place() {
                 T = graph_.at(ref_id) * ref->chunk.T_odom_anchor.inverse() * e.chunk.T_odom_anchor;
         }
         if (!same_pose(T, e.T_world_anchor) || e.dirty) {
+            e.moved = e.moved || !same_pose(T, e.T_world_anchor);
             e.T_world_anchor = T;
             e.T_grid_world = (T * e.chunk.T_anchor_grid).inverse();
             e.centre_world = T * e.chunk.centre;
-            e.dirty = true;
         }
     }
+}
+
+bool MeshAtlas::moved_relative(const Entry& e, const std::vector<const Entry*>& neighbours) const {
+    if (neighbours.size() != e.neighbours_owned.size()) return true;
+    for (const Entry* o : neighbours) {
+        const auto it = e.neighbours_owned.find(o->chunk.local_map_id);
+        if (it == e.neighbours_owned.end()) return true;
+        const Eigen::Isometry3d then = e.T_owned.inverse() * it->second;
+        const Eigen::Isometry3d now = e.T_world_anchor.inverse() * o->T_world_anchor;
+        const Eigen::Isometry3d d = then.inverse() * now;
+        const double angle = Eigen::AngleAxisd(d.linear()).angle();
+        if (d.translation().norm() + angle * e.chunk.radius > config_.ownership_tolerance)
+            return true;
+    }
+    return false;
 }
 
 std::vector<std::uint64_t> MeshAtlas::owned_cells(
@@ -170,33 +186,40 @@ void MeshAtlas::own(Entry& e, const std::vector<const Entry*>& neighbours) {
     }
     if (keep != e.keep) e.reported = true;
     e.keep = std::move(keep);
+    e.T_owned = e.T_world_anchor;
+    e.neighbours_owned.clear();
+    for (const Entry* o : neighbours) e.neighbours_owned[o->chunk.local_map_id] = o->T_world_anchor;
 }
 
 std::vector<std::uint64_t> MeshAtlas::update() {
     place();
+    // Ownership is worked out again for new or replaced chunks, their neighbours, and chunks
+    // whose neighbours moved relative to them.
     std::vector<Entry*> affected;
+    std::vector<std::vector<const Entry*>> neighbours;
     for (auto& [id, e] : entries_) {
+        std::vector<const Entry*> near;
         bool touched = e.dirty;
-        if (!touched)
-            for (const auto& [oid, o] : entries_)
-                if (o.dirty &&
-                    (o.centre_world - e.centre_world).norm() < o.chunk.radius + e.chunk.radius) {
-                    touched = true;
-                    break;
-                }
-        if (touched) affected.push_back(&e);
+        for (const auto& [oid, o] : entries_) {
+            if (&o == &e ||
+                (o.centre_world - e.centre_world).norm() >= o.chunk.radius + e.chunk.radius)
+                continue;
+            near.push_back(&o);
+            touched = touched || o.dirty;
+        }
+        if (!touched && (e.moved || std::any_of(near.begin(), near.end(),
+                                                [](const Entry* o) { return o->moved; })))
+            touched = moved_relative(e, near);
+        if (e.moved) e.reported = true;  // its pose changed: worth publishing
+        if (!touched) continue;
+        affected.push_back(&e);
+        neighbours.push_back(std::move(near));
     }
     // Each affected chunk's neighbours, the cells it must mesh (none: its mesh covers what it
     // owns), then meshing and ownership, a chunk a task (each task writes its own chunk only).
     const std::size_t n = affected.size();
-    std::vector<std::vector<const Entry*>> neighbours(n);
-    for (std::size_t i = 0; i < n; ++i) {
-        for (const auto& [oid, o] : entries_)
-            if (&o != affected[i] && (o.centre_world - affected[i]->centre_world).norm() <
-                                         o.chunk.radius + affected[i]->chunk.radius)
-                neighbours[i].push_back(&o);
+    for (std::size_t i = 0; i < n; ++i)
         if (affected[i]->dirty) affected[i]->reported = true;
-    }
     std::vector<std::unordered_set<std::uint64_t>> cells(n);
     parallel_->run(n, 1, [&](std::size_t, std::size_t b, std::size_t end) {
         for (std::size_t i = b; i < end; ++i) {
@@ -222,6 +245,7 @@ std::vector<std::uint64_t> MeshAtlas::update() {
         if (e.reported) changed.push_back(id);
         e.reported = false;
         e.dirty = false;
+        e.moved = false;
     }
     return changed;
 }

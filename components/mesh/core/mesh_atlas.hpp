@@ -13,7 +13,9 @@
 // then and config.ownership_margin cells around them: local maps overlap a lot (a map takes the
 // scans of 40 m of driving, 50 m around), and meshing each whole would mesh most places several
 // times. When a chunk comes to own cells it has not meshed (anchors moved, a neighbour left), it
-// is meshed again from its own voxels; nothing is re-integrated.
+// is meshed again from its own voxels; nothing is re-integrated. When the graph moves chunks
+// together (an optimisation spreads a correction along the route), ownership is worked out again
+// only where neighbours moved relative to each other by more than config.ownership_tolerance.
 //
 // Chunks not (yet) in the graph (a local map folded into another by the long-term map, or one
 // that arrived before its graph node) are placed by odometry: the correction of the graph chunk
@@ -84,12 +86,19 @@ class MeshAtlas {
         Eigen::Isometry3d T_grid_world = Eigen::Isometry3d::Identity();
         Eigen::Vector3d centre_world = Eigen::Vector3d::Zero();
         std::vector<std::uint8_t> keep;  // per triangle of chunk.mesh
-        bool dirty = true;               // new, replaced or moved since the last update
+        bool dirty = true;               // new or replaced, or a neighbour was: ownership to redo
+        bool moved = false;              // pose changed since the last update
         bool reported = false;           // changed since the last update's report
+        // The poses ownership was last worked out at: the chunk's and its neighbours' (by id).
+        Eigen::Isometry3d T_owned = Eigen::Isometry3d::Identity();
+        std::map<std::uint64_t, Eigen::Isometry3d> neighbours_owned;
         EIGEN_MAKE_ALIGNED_OPERATOR_NEW
     };
 
     void place();
+    // Whether e's neighbours moved relative to it (or are new) by more than the tolerance since
+    // its ownership was last worked out.
+    bool moved_relative(const Entry& e, const std::vector<const Entry*>& neighbours) const;
     // The chunk's cells it owns (it has a voxel there and no nearer chunk does).
     std::vector<std::uint64_t> owned_cells(const Entry& e,
                                            const std::vector<const Entry*>& neighbours) const;

@@ -37,6 +37,10 @@ struct MeshConfig {
     // A chunk is meshed again when more than this share of the cells it owns is not meshed (after
     // anchors moved); until then the chunks that meshed those places keep their surface there.
     double remesh_fraction = 0.05;
+    // [m] After an optimisation, ownership is worked out again for the chunks whose neighbours
+    // moved relative to them by more than this (at the chunk's edge); below it the seams stay
+    // where they were (an overlap or gap of at most this much).
+    double ownership_tolerance = 0.1;
     // Vertex normals (area-weighted face normals), for shading in viewers.
     bool vertex_normals = true;
     // Local maps a MeshAtlas meshes at once (0: one a core). One keeps a core free for the
@@ -58,6 +62,7 @@ void visit_fields(MeshConfig& c, const std::string& prefix, Visitor&& v) {
     v(prefix + "ownership_cell", c.ownership_cell, in_range(0.5, 50.0));
     v(prefix + "ownership_margin", c.ownership_margin, in_range(0, 10));
     v(prefix + "remesh_fraction", c.remesh_fraction, unit);
+    v(prefix + "ownership_tolerance", c.ownership_tolerance, non_negative);
     v(prefix + "vertex_normals", c.vertex_normals, unchecked);
     v(prefix + "threads", c.threads, in_range(0, 256));
 }
