@@ -165,19 +165,42 @@ void MeshAtlas::own(Entry& e, const std::vector<const Entry*>& neighbours) {
     std::vector<std::uint8_t> keep(mesh.triangles.size(), 1);
     if (!neighbours.empty()) {
         const Eigen::Vector3d a = e.T_world_anchor.translation();
+        // Consecutive triangles mostly share their cells (marching cubes goes leaf by leaf): the
+        // last cell's answer of each chunk is kept.
+        struct Memo {
+            std::uint64_t key = ~std::uint64_t(0);
+            bool value = false;
+        };
+        auto cached = [](Memo& m, std::uint64_t key, auto&& compute) {
+            if (m.key != key) {
+                m.key = key;
+                m.value = compute(key);
+            }
+            return m.value;
+        };
+        Memo mine_memo;
+        std::vector<Memo> memo(neighbours.size());
         for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
             const Eigen::Vector3d x = e.T_world_anchor * centroid(mesh, t).cast<double>();
-            const bool mine = e.chunk.covers(e.T_grid_world * x);
+            const bool mine = cached(mine_memo, cell_key(e.T_grid_world * x, e.chunk.cell_size),
+                                     [&](std::uint64_t k) { return e.chunk.cells.count(k) > 0; });
             const double d_mine = (x - a).squaredNorm();
-            for (const Entry* o : neighbours) {
+            for (std::size_t j = 0; j < neighbours.size(); ++j) {
+                const Entry* o = neighbours[j];
                 if ((x - o->centre_world).squaredNorm() > o->chunk.radius * o->chunk.radius)
                     continue;
                 const double d = (x - o->T_world_anchor.translation()).squaredNorm();
                 const bool nearer =
                     d < d_mine || (d == d_mine && o->chunk.local_map_id < e.chunk.local_map_id);
+                if (mine && !nearer) continue;
                 // Given up to the other chunk when it saw the place and has meshed it (until it
                 // does, this chunk's surface stays: no hole while ownership moves).
-                if ((!mine || nearer) && o->chunk.covers_meshed(o->T_grid_world * x)) {
+                const bool theirs =
+                    cached(memo[j], cell_key(o->T_grid_world * x, o->chunk.cell_size),
+                           [&](std::uint64_t k) {
+                               return o->chunk.cells.count(k) > 0 && o->chunk.meshed(k);
+                           });
+                if (theirs) {
                     keep[t] = 0;
                     break;
                 }
