@@ -1,5 +1,4 @@
 // Every message type survives a trip through Cyclone DDS (serialise, deliver, deserialise).
-#include <dds/dds.h>
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -18,6 +17,7 @@
 #include "common/convert/status.hpp"
 #include "common/convert/transform.hpp"
 #include "runtime/messages.hpp"
+#include "runtime/testing/dds_loopback.hpp"
 
 using namespace ltm;
 
@@ -25,48 +25,13 @@ namespace {
 
 class Dds : public ::testing::Test {
   protected:
-    static void SetUpTestSuite() {
-        const char* xml =
-            "<CycloneDDS><Domain Id=\"any\"><General><Interfaces><NetworkInterface "
-            "name=\"lo\"/></Interfaces>"
-            "<AllowMulticast>false</AllowMulticast></General></Domain></CycloneDDS>";
-        domain_ = dds_create_domain(212, xml);
-        participant_ = dds_create_participant(212, nullptr, nullptr);
-    }
-    static void TearDownTestSuite() {
-        dds_delete(participant_);
-        dds_delete(domain_);
-    }
-
     // Writes `in` and hands the received sample to `check`.
     template <class T>
     void roundtrip(const T& in, const std::function<void(const T&)>& check) {
-        ASSERT_GT(participant_, 0);
-        static int n = 0;
-        const std::string name = "rt/ltm_test/roundtrip_" + std::to_string(n++);
-        const dds_entity_t topic = dds_create_topic(
-            participant_, runtime::MessageTraits<T>::descriptor(), name.c_str(), nullptr, nullptr);
-        ASSERT_GT(topic, 0);
-        dds_qos_t* qos = dds_create_qos();
-        dds_qset_reliability(qos, DDS_RELIABILITY_RELIABLE, DDS_SECS(1));
-        const dds_entity_t reader = dds_create_reader(participant_, topic, qos, nullptr);
-        const dds_entity_t writer = dds_create_writer(participant_, topic, qos, nullptr);
-        dds_delete_qos(qos);
-        ASSERT_EQ(dds_write(writer, &in), DDS_RETCODE_OK);
-        void* buf[1] = {nullptr};
-        dds_sample_info_t info;
-        ASSERT_EQ(dds_take(reader, buf, &info, 1, 1), 1);
-        ASSERT_TRUE(info.valid_data);
-        check(*static_cast<const T*>(buf[0]));
-        dds_return_loan(reader, buf, 1);
-        dds_delete(writer);
-        dds_delete(reader);
+        static runtime::testing::DdsLoopback dds(212);
+        dds.roundtrip(in, check);
     }
-
-    static dds_entity_t domain_, participant_;
 };
-dds_entity_t Dds::domain_ = 0;
-dds_entity_t Dds::participant_ = 0;
 
 Eigen::Isometry3d some_pose(double k) {
     Eigen::Isometry3d T = Eigen::Isometry3d::Identity();

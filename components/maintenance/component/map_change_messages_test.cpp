@@ -2,7 +2,6 @@
 // (serialised, delivered, deserialised); malformed messages refused with one line.
 #include "maintenance/component/map_change_messages.hpp"
 
-#include <dds/dds.h>
 #include <gtest/gtest.h>
 
 #include <stdexcept>
@@ -10,6 +9,7 @@
 #include "common/convert/dds_string.hpp"
 #include "common/convert/geometry.hpp"
 #include "maintenance/core/change_set_expect.hpp"
+#include "runtime/testing/dds_loopback.hpp"
 
 namespace ltm::maintenance {
 namespace {
@@ -82,36 +82,12 @@ TEST(MapChangeMessages, MalformedMessagesAreRefusedInOneLine) {
 
 // Serialised by Cyclone DDS and taken back by a reader of the same topic.
 TEST(MapChangeMessages, RoundTripThroughDds) {
-    const char* xml =
-        "<CycloneDDS><Domain Id=\"any\"><General><Interfaces><NetworkInterface name=\"lo\"/>"
-        "</Interfaces><AllowMulticast>false</AllowMulticast></General></Domain></CycloneDDS>";
-    const dds_entity_t domain = dds_create_domain(221, xml);
-    ASSERT_GT(domain, 0) << dds_strretcode(domain);
-    const dds_entity_t participant = dds_create_participant(221, nullptr, nullptr);
-    ASSERT_GT(participant, 0) << dds_strretcode(participant);
-    const dds_entity_t topic =
-        dds_create_topic(participant, runtime::MessageTraits<msg::MapChangeSet>::descriptor(),
-                         "rt/ltm_test/map_changes", nullptr, nullptr);
-    ASSERT_GT(topic, 0) << dds_strretcode(topic);
-    dds_qos_t* qos = dds_create_qos();
-    dds_qset_reliability(qos, DDS_RELIABILITY_RELIABLE, DDS_SECS(1));
-    const dds_entity_t reader = dds_create_reader(participant, topic, qos, nullptr);
-    const dds_entity_t writer = dds_create_writer(participant, topic, qos, nullptr);
-    dds_delete_qos(qos);
-    ASSERT_GT(reader, 0);
-    ASSERT_GT(writer, 0);
     const ChangeSet c = sample();
-    ASSERT_EQ(dds_write(writer, &*to_msg(c, 3, 42.0, "map")), DDS_RETCODE_OK);
-    void* buf[1] = {nullptr};
-    dds_sample_info_t info;
-    ASSERT_EQ(dds_take(reader, buf, &info, 1, 1), 1);  // local delivery: synchronous
-    ASSERT_TRUE(info.valid_data);
-    const auto& r = *static_cast<const msg::MapChangeSet*>(buf[0]);
-    EXPECT_EQ(r.pass, 3u);
-    expect_same_changes(c, from_msg(r));
-    dds_return_loan(reader, buf, 1);
-    dds_delete(participant);
-    dds_delete(domain);
+    runtime::testing::DdsLoopback dds(221);
+    dds.roundtrip<msg::MapChangeSet>(*to_msg(c, 3, 42.0, "map"), [&](const msg::MapChangeSet& r) {
+        EXPECT_EQ(r.pass, 3u);
+        expect_same_changes(c, from_msg(r));
+    });
 }
 
 }  // namespace

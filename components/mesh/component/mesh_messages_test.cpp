@@ -2,7 +2,6 @@
 // maps and pose graphs refused in one line.
 #include "mesh/component/mesh_messages.hpp"
 
-#include <dds/dds.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -12,6 +11,7 @@
 #include "common/convert/local_map.hpp"
 #include "common/convert/pose_graph.hpp"
 #include "mesh/core/test_surfaces.hpp"
+#include "runtime/testing/dds_loopback.hpp"
 
 namespace ltm::mesh {
 namespace {
@@ -169,38 +169,14 @@ TEST(MeshMessages, LocalMapsAndGraphsAreChecked) {
 
 // Serialised by Cyclone DDS and taken back by a reader of the same topic.
 TEST(MeshMessages, RoundTripThroughDds) {
-    const char* xml =
-        "<CycloneDDS><Domain Id=\"any\"><General><Interfaces><NetworkInterface name=\"lo\"/>"
-        "</Interfaces><AllowMulticast>false</AllowMulticast></General></Domain></CycloneDDS>";
-    const dds_entity_t domain = dds_create_domain(226, xml);
-    ASSERT_GT(domain, 0) << dds_strretcode(domain);
-    const dds_entity_t participant = dds_create_participant(226, nullptr, nullptr);
-    ASSERT_GT(participant, 0) << dds_strretcode(participant);
-    const dds_entity_t topic =
-        dds_create_topic(participant, runtime::MessageTraits<msg::Mesh>::descriptor(),
-                         "rt/ltm_test/mesh", nullptr, nullptr);
-    ASSERT_GT(topic, 0) << dds_strretcode(topic);
-    dds_qos_t* qos = dds_create_qos();
-    dds_qset_reliability(qos, DDS_RELIABILITY_RELIABLE, DDS_SECS(1));
-    const dds_entity_t reader = dds_create_reader(participant, topic, qos, nullptr);
-    const dds_entity_t writer = dds_create_writer(participant, topic, qos, nullptr);
-    dds_delete_qos(qos);
-    ASSERT_GT(reader, 0);
-    ASSERT_GT(writer, 0);
     const PlacedMesh p = placed_chunk(two_chunks(), 2);
     ASSERT_FALSE(p.mesh.triangles.empty());
-    ASSERT_EQ(dds_write(writer, &*to_msg(p, {40, 7}, "map")), DDS_RETCODE_OK);
-    void* buf[1] = {nullptr};
-    dds_sample_info_t info;
-    ASSERT_EQ(dds_take(reader, buf, &info, 1, 1), 1);  // local delivery: synchronous
-    ASSERT_TRUE(info.valid_data);
-    const auto& r = *static_cast<const msg::Mesh*>(buf[0]);
-    EXPECT_EQ(convert::to_string(r.header.frame_id), "map");
-    EXPECT_EQ(r.header.stamp.nanosec, 7u);
-    expect_same(p, from_msg(r));
-    dds_return_loan(reader, buf, 1);
-    dds_delete(participant);
-    dds_delete(domain);
+    runtime::testing::DdsLoopback dds(226);
+    dds.roundtrip<msg::Mesh>(*to_msg(p, {40, 7}, "map"), [&](const msg::Mesh& r) {
+        EXPECT_EQ(convert::to_string(r.header.frame_id), "map");
+        EXPECT_EQ(r.header.stamp.nanosec, 7u);
+        expect_same(p, from_msg(r));
+    });
 }
 
 }  // namespace
