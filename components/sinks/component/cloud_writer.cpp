@@ -11,6 +11,8 @@
 #include "common/core/io_error.hpp"
 #include "common/core/kitti_io.hpp"
 #include "common/core/ply_io.hpp"
+#include "mesh/component/mesh_messages.hpp"
+#include "mesh/core/triangle_mesh.hpp"
 #include "runtime/component.hpp"
 
 namespace ltm::sinks {
@@ -106,29 +108,13 @@ class CloudWriter : public runtime::Component {
     }
 
     void on_mesh(const msg::Mesh& m) {
-        const auto vertices = convert::view(m.vertices), normals = convert::view(m.normals);
-        const auto triangles = convert::view(m.triangles);
-        if (vertices.size() % 3 || triangles.size() % 3 ||
-            (!normals.empty() && normals.size() != vertices.size())) {
-            ++rejected_;
-            ctx_.log().warn("rejected mesh chunk " + std::to_string(m.local_map_id) +
-                            ": sizes not multiples of 3");
-            return;
-        }
-        common::PlyMesh mesh;
-        const Eigen::Isometry3f T = convert::to_isometry(m.anchor).cast<float>();
-        for (std::uint32_t i = 0; i < vertices.size(); i += 3)
-            mesh.vertices.push_back(T *
-                                    Eigen::Vector3f(vertices[i], vertices[i + 1], vertices[i + 2]));
-        for (std::uint32_t i = 0; i < normals.size(); i += 3)
-            mesh.normals.push_back(T.linear() *
-                                   Eigen::Vector3f(normals[i], normals[i + 1], normals[i + 2]));
-        for (std::uint32_t i = 0; i < triangles.size(); i += 3)
-            mesh.triangles.emplace_back(triangles[i], triangles[i + 1], triangles[i + 2]);
         try {
-            common::write_ply(dir_ + "/mesh_" + std::to_string(m.local_map_id) + ".ply", mesh);
+            // Checked (sizes, indices, finite values), then placed where its anchor is.
+            const mesh::PlacedMesh p = mesh::from_msg(m);
+            common::write_ply(dir_ + "/mesh_" + std::to_string(m.local_map_id) + ".ply",
+                              mesh::transformed(p.mesh, p.T_map_anchor));
             ++meshes_;
-        } catch (const common::IoError& e) {
+        } catch (const std::exception& e) {
             ++rejected_;
             ctx_.log().warn(std::string("rejected mesh chunk: ") + e.what());
         }
