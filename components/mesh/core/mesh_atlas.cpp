@@ -42,6 +42,7 @@ bool MeshAtlas::add(MeshChunk chunk) {
     e.chunk = std::move(chunk);
     e.keep.assign(e.chunk.mesh.triangles.size(), 1);
     e.dirty = true;
+    e.fresh = it == entries_.end();
     return true;
 }
 
@@ -160,9 +161,10 @@ std::unordered_set<std::uint64_t> MeshAtlas::cells_to_mesh(
     return cells;
 }
 
-void MeshAtlas::own(Entry& e, const std::vector<const Entry*>& neighbours) {
+void MeshAtlas::own(Entry& e, const std::vector<const Entry*>& neighbours, bool from_scratch) {
     const common::PlyMesh& mesh = e.chunk.mesh;
-    std::vector<std::uint8_t> keep(mesh.triangles.size(), 1);
+    std::vector<std::uint8_t> keep =
+        from_scratch ? std::vector<std::uint8_t>(mesh.triangles.size(), 1) : e.keep;
     if (!neighbours.empty()) {
         const Eigen::Vector3d a = e.T_world_anchor.translation();
         // Consecutive triangles mostly share their cells (marching cubes goes leaf by leaf): the
@@ -181,6 +183,7 @@ void MeshAtlas::own(Entry& e, const std::vector<const Entry*>& neighbours) {
         Memo mine_memo;
         std::vector<Memo> memo(neighbours.size());
         for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+            if (!keep[t]) continue;  // given up already (from scratch: none is)
             const Eigen::Vector3d x = e.T_world_anchor * centroid(mesh, t).cast<double>();
             const bool mine = cached(mine_memo, cell_key(e.T_grid_world * x, e.chunk.cell_size),
                                      [&](std::uint64_t k) { return e.chunk.cells.count(k) > 0; });
@@ -209,34 +212,48 @@ void MeshAtlas::own(Entry& e, const std::vector<const Entry*>& neighbours) {
     }
     if (keep != e.keep) e.reported = true;
     e.keep = std::move(keep);
-    e.T_owned = e.T_world_anchor;
-    e.neighbours_owned.clear();
+    if (from_scratch) {
+        e.T_owned = e.T_world_anchor;
+        e.neighbours_owned.clear();
+    }
     for (const Entry* o : neighbours) e.neighbours_owned[o->chunk.local_map_id] = o->T_world_anchor;
 }
 
 std::vector<std::uint64_t> MeshAtlas::update() {
     place();
-    // Ownership is worked out again for new or replaced chunks, their neighbours, and chunks
-    // whose neighbours moved relative to them.
+    // Ownership is worked out again for new or replaced chunks, the neighbours of replaced ones,
+    // and chunks whose neighbours moved relative to them; a chunk with only new neighbours gives
+    // them what they take (a new chunk can only take places, never give any).
     std::vector<Entry*> affected;
     std::vector<std::vector<const Entry*>> neighbours;
+    std::vector<std::uint8_t> from_scratch;
     for (auto& [id, e] : entries_) {
-        std::vector<const Entry*> near;
-        bool touched = e.dirty;
+        std::vector<const Entry*> near, fresh;
+        bool full = e.dirty;
         for (const auto& [oid, o] : entries_) {
             if (&o == &e ||
                 (o.centre_world - e.centre_world).norm() >= o.chunk.radius + e.chunk.radius)
                 continue;
-            near.push_back(&o);
-            touched = touched || o.dirty;
+            if (o.fresh)
+                fresh.push_back(&o);
+            else
+                near.push_back(&o);
+            full = full || (o.dirty && !o.fresh);
         }
-        if (!touched && (e.moved || std::any_of(near.begin(), near.end(),
-                                                [](const Entry* o) { return o->moved; })))
-            touched = moved_relative(e, near);
+        if (!full && (e.moved || std::any_of(near.begin(), near.end(),
+                                             [](const Entry* o) { return o->moved; })))
+            full = moved_relative(e, near);
         if (e.moved) e.reported = true;  // its pose changed: worth publishing
-        if (!touched) continue;
-        affected.push_back(&e);
-        neighbours.push_back(std::move(near));
+        if (full) {
+            near.insert(near.end(), fresh.begin(), fresh.end());
+            affected.push_back(&e);
+            neighbours.push_back(std::move(near));
+            from_scratch.push_back(1);
+        } else if (!fresh.empty()) {
+            affected.push_back(&e);
+            neighbours.push_back(std::move(fresh));
+            from_scratch.push_back(0);
+        }
     }
     // Each affected chunk's neighbours, the cells it must mesh (none: its mesh covers what it
     // owns), then meshing and ownership, a chunk a task (each task writes its own chunk only).
@@ -246,6 +263,7 @@ std::vector<std::uint64_t> MeshAtlas::update() {
     std::vector<std::unordered_set<std::uint64_t>> cells(n);
     parallel_->run(n, 1, [&](std::size_t, std::size_t b, std::size_t end) {
         for (std::size_t i = b; i < end; ++i) {
+            if (!from_scratch[i]) continue;  // new neighbours only take places away
             cells[i] = cells_to_mesh(*affected[i], neighbours[i]);
             if (cells[i].empty()) continue;
             Entry& e = *affected[i];
@@ -261,13 +279,15 @@ std::vector<std::uint64_t> MeshAtlas::update() {
             mesh_ms_ += affected[i]->chunk.stats.mesh_ms;
         }
     parallel_->run(n, 1, [&](std::size_t, std::size_t b, std::size_t end) {
-        for (std::size_t i = b; i < end; ++i) own(*affected[i], neighbours[i]);
+        for (std::size_t i = b; i < end; ++i)
+            own(*affected[i], neighbours[i], from_scratch[i] || !cells[i].empty());
     });
     std::vector<std::uint64_t> changed;
     for (auto& [id, e] : entries_) {
         if (e.reported) changed.push_back(id);
         e.reported = false;
         e.dirty = false;
+        e.fresh = false;
         e.moved = false;
     }
     return changed;

@@ -87,6 +87,7 @@ class MeshAtlas {
         Eigen::Vector3d centre_world = Eigen::Vector3d::Zero();
         std::vector<std::uint8_t> keep;  // per triangle of chunk.mesh
         bool dirty = true;               // new or replaced, or a neighbour was: ownership to redo
+        bool fresh = true;               // new since the last update (neighbours only lose places)
         bool moved = false;              // pose changed since the last update
         bool reported = false;           // changed since the last update's report
         // The poses ownership was last worked out at: the chunk's and its neighbours' (by id).
@@ -105,7 +106,9 @@ class MeshAtlas {
     // The owned cells and the margin around them when some are not meshed yet (else empty).
     std::unordered_set<std::uint64_t> cells_to_mesh(
         const Entry& e, const std::vector<const Entry*>& neighbours) const;
-    void own(Entry& e, const std::vector<const Entry*>& neighbours);
+    // Which triangles the chunk keeps against `others`: from scratch (its neighbours), or, when
+    // `others` are only new neighbours, what it kept less what they take.
+    void own(Entry& e, const std::vector<const Entry*>& others, bool from_scratch);
 
     MeshConfig config_;
     std::map<std::uint64_t, Entry> entries_;

@@ -172,6 +172,39 @@ TEST(MeshAtlas, PreparedChunksMeshOnlyWhatTheyOwnAndMeshMoreWhenTheyComeToOwnMor
     EXPECT_EQ(w.atlas.totals().meshings, before + 2);
 }
 
+TEST(MeshAtlas, ChunksAddedOneByOneOwnWhatTheyOwnWhenAddedTogether) {
+    // New neighbours only take places away: adding chunks one update at a time gives what one
+    // update over all of them gives, triangle for triangle.
+    TwoMaps one, all;
+    const std::map<std::uint64_t, Eigen::Isometry3d> graph = {
+        {1, pose(0, 0, 0, 0)}, {2, pose(0, 20, 0, 90)}, {3, pose(1, 9, 0, 30)}};
+    auto add = [&](TwoMaps& w, std::uint64_t id) {
+        const double y0[] = {0, -10, 5, -2}, y1[] = {0, 15, 30, 22};
+        w.add(id, y0[id], y1[id], graph.at(id), 0.01 * double(id));
+    };
+    for (const std::uint64_t id : {1, 2, 3}) {
+        add(one, id);
+        std::map<std::uint64_t, Eigen::Isometry3d> g;
+        for (std::uint64_t k = 1; k <= id; ++k) g[k] = graph.at(k);
+        one.atlas.set_graph(g);
+        one.atlas.update();
+    }
+    for (const std::uint64_t id : {1, 2, 3}) add(all, id);
+    all.atlas.set_graph(graph);
+    all.atlas.update();
+    for (const std::uint64_t id : {1, 2, 3}) {
+        const common::PlyMesh a = one.atlas.owned_mesh(id), b = all.atlas.owned_mesh(id);
+        EXPECT_GT(a.triangles.size(), 0u) << id;
+        EXPECT_EQ(a.triangles, b.triangles) << id;
+        EXPECT_EQ(a.vertices, b.vertices) << id;
+    }
+    // Each of the first two gave places to a later one.
+    for (const std::uint64_t id : {1, 2})
+        EXPECT_LT(one.atlas.owned_mesh(id).triangles.size(),
+                  one.atlas.chunk(id)->mesh.triangles.size())
+            << id;
+}
+
 TEST(MeshAtlas, APlaceOnlyTheFartherMapSawStaysWithIt) {
     TwoMaps w;
     w.add(1, -10, 2, pose(0, 0, 0, 0));
