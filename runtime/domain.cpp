@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "runtime/dds_error.hpp"
+#include "runtime/dds_security.hpp"
 #include "runtime/logging.hpp"
 #include "runtime/topic_names.hpp"
 
@@ -35,7 +36,9 @@ std::string cyclone_xml(const DdsSettings& dds) {
         for (const auto& p : dds.peers) xml += "<Peer Address=\"" + p + "\"/>";
         xml += "</Peers>";
     }
-    xml += "</Discovery>" + dds.extra_xml + "</Domain></CycloneDDS>";
+    xml += "</Discovery>";
+    if (dds.security.enabled()) xml += dds_security_xml(dds.security);
+    xml += dds.extra_xml + "</Domain></CycloneDDS>";
     return xml;
 }
 
@@ -46,7 +49,11 @@ namespace {
 // a problem: Cyclone's warning about it is dropped.
 void cyclone_log(void*, const dds_log_data_t* data) {
     // The text after Cyclone's own header (time, domain, thread).
-    const std::size_t skip = data->hdrsize <= data->size ? data->hdrsize : 0;
+    // Cyclone 0.10 passes the message without that header but with its size in hdrsize; skipping it
+    // drops a configuration error's "config: //CycloneDDS/Domain/...:" prefix by coincidence and
+    // cuts others mid-word ("icate not valid"): skip only when it ends at a ": ".
+    std::size_t skip = data->hdrsize < data->size ? data->hdrsize : 0;
+    if (skip < 1 || data->message[skip - 1] != ':' || data->message[skip] != ' ') skip = 0;
     std::string message(data->message + skip, data->size - skip);
     while (!message.empty() && (message.back() == '\n' || message.back() == ' '))
         message.pop_back();
@@ -72,7 +79,12 @@ Domain::Domain(const LaunchConfig& config) : config_(config), domain_id_(config.
     if (participant_ < 0) {
         const dds_return_t rc = participant_;
         if (domain_ > 0) dds_delete(domain_);
-        throw DdsError("creating the DDS participant on domain " + std::to_string(domain_id_), rc);
+        throw DdsError("creating the DDS participant on domain " + std::to_string(domain_id_) +
+                           (config.dds.security.enabled()
+                                ? " (dds.security: a certificate, key or signed document was "
+                                  "refused; the [dds] error above says which)"
+                                : ""),
+                       rc);
     }
 }
 

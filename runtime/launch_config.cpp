@@ -131,7 +131,8 @@ void apply_override(YAML::Node root, const std::string& arg) {
         }
     }
     if (const YAML::Node top = croot[key.substr(0, dot == std::string::npos ? key.size() : dot)];
-        dot != std::string::npos && !(top.IsDefined() && top.IsMap()))
+        dot != std::string::npos && !(top.IsDefined() && top.IsMap()) &&
+        key.compare(0, 4, "dds.") != 0)  // dds.security=... on a config with Cyclone defaults
         throw ConfigError("<command line>", 0, "--set " + key,
                           "no component named '" + key.substr(0, dot) + "' in the launch config");
     set_dotted(root, key, value);
@@ -153,6 +154,37 @@ QosProfile load_profile(const std::string& file, const YAML::Node& n, const std:
         throw ConfigError(file, key_line(n, "max_blocking_s"), where + ".max_blocking_s",
                           "must be positive");
     return p;
+}
+
+// `dds.security`: every file named, ${VAR}s expanded, made absolute and checked to exist.
+DdsSecurity load_security(const std::string& file, const YAML::Node& dds, const YAML::Node& sec) {
+    const std::string where = "dds.security";
+    if (!sec.IsMap()) throw ConfigError(file, key_line(dds, "security"), where, "expected a map");
+    const std::pair<const char*, std::string DdsSecurity::*> keys[] = {
+        {"identity_ca", &DdsSecurity::identity_ca},
+        {"certificate", &DdsSecurity::certificate},
+        {"private_key", &DdsSecurity::private_key},
+        {"permissions_ca", &DdsSecurity::permissions_ca},
+        {"governance", &DdsSecurity::governance},
+        {"permissions", &DdsSecurity::permissions}};
+    std::set<std::string> known;
+    for (const auto& k : keys) known.insert(k.first);
+    check_keys(file, sec, where, known);
+    DdsSecurity out;
+    for (const auto& [key, member] : keys) {
+        const std::string raw = scalar<std::string>(file, sec, key, where, "");
+        const std::string path = expand_env(raw);
+        if (path.empty())
+            throw ConfigError(file, line_of(sec), where + "." + key,
+                              "missing (a file; launch_configs/security/make_site_certs.sh "
+                              "makes them)");
+        std::error_code ec;
+        if (!std::filesystem::is_regular_file(path, ec))
+            throw ConfigError(file, key_line(sec, key), where + "." + key,
+                              "no such file: " + path + (raw != path ? " (" + raw + ")" : ""));
+        out.*member = std::filesystem::absolute(path, ec).lexically_normal().string();
+    }
+    return out;
 }
 
 }  // namespace
@@ -203,14 +235,17 @@ LaunchConfig load_launch_config(const std::string& path,
 
     if (const YAML::Node dds = croot["dds"]; dds.IsDefined() && !dds.IsNull()) {
         if (!dds.IsMap()) throw ConfigError(f, line_of(dds), "dds", "expected a map");
-        check_keys(f, dds, "dds",
-                   {"interfaces", "peers", "multicast", "max_participant_index", "extra_xml"});
+        check_keys(
+            f, dds, "dds",
+            {"interfaces", "peers", "multicast", "max_participant_index", "extra_xml", "security"});
         cfg.dds.custom = true;
         cfg.dds.interfaces = string_list(f, dds, "interfaces", "dds");
         cfg.dds.peers = string_list(f, dds, "peers", "dds");
         cfg.dds.multicast = scalar<bool>(f, dds, "multicast", "dds", true);
         cfg.dds.max_participant_index = scalar<int>(f, dds, "max_participant_index", "dds", 20);
         cfg.dds.extra_xml = scalar<std::string>(f, dds, "extra_xml", "dds", "");
+        if (const YAML::Node sec = dds["security"]; sec.IsDefined() && !sec.IsNull())
+            cfg.dds.security = load_security(f, dds, sec);
     }
 
     for (TopicRole r : {TopicRole::kSensor, TopicRole::kState, TopicRole::kMap, TopicRole::kStream})

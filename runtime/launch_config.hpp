@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "runtime/dds_security.hpp"
 #include "runtime/qos.hpp"
 
 namespace ltm::runtime {
@@ -18,6 +19,7 @@ struct DdsSettings {
     bool multicast = true;
     int max_participant_index = 20;  // unicast discovery probes this many ports a peer
     std::string extra_xml;           // appended inside <Domain>, for anything else
+    DdsSecurity security;            // off unless `dds.security` names the files
 };
 
 struct ComponentSpec {
