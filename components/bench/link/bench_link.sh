@@ -1,0 +1,251 @@
+#!/usr/bin/env bash
+# ./ltm bench link [--loss PCT] [--loss-on in|out|both] [--rate MBIT] [--outage S@T ...]
+#                  [--scenario FILE] [--frames A:B] [--out DIR] [--require TOPIC ...]
+# The robot and the base station over a link you can break: two network namespaces (robot, base)
+# joined by a veth pair, nftables `numgen random` drops on the base station's side for loss (this
+# kernel has no netem), `tc tbf` on both ends for the rate, a drop-all rule for each outage. The
+# scenario is simulated to a KITTI folder, launch_configs/robot.yaml runs in the robot namespace
+# and base_station.yaml in the base namespace, each with a recorder of the topics that cross the
+# link added to its process; the report compares the two recordings message by message (CRC).
+set -euo pipefail
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/../../.." && pwd)"
+BUILD="${LTM_BUILD_DIR:-$ROOT/build}"
+BIN="$BUILD/bin"
+LOSS=0; LOSS_ON=both; RATE=0; SCENARIO="$ROOT/components/simulator/scenarios/tiny_loop.yaml"
+FRAMES=""; OUT=""; OUTAGES=(); REQUIRE=(); TOPICS=(odometry keyframe local_map)
+usage() {
+    echo "Robot and base station in two network namespaces over a veth link with loss, a rate"
+    echo "limit and outages; per topic what was sent and delivered, the bytes on the link"
+    printf 'Usage: ./ltm bench link [OPTIONS]\n\nOptions:\n'
+    printf '  %-24s%s\n' "-h,--help" "Print this help message and exit" \
+        "--loss PCT=0" "packets dropped at random [%] (0..100, two decimals)" \
+        "--loss-on in|out|both" "where on the base station: ingress, egress or both (both)" \
+        "--rate MBIT=0" "tc tbf rate of each direction [Mbit/s] (0: unlimited)" \
+        "--outage S@T" "drop everything for S s from T s after the robot starts (repeatable)" \
+        "--scenario FILE" "simulator scenario (default tiny_loop)" \
+        "--frames A:B" "scans A..B-1 of the scenario's session 0 (default all)" \
+        "--out DIR" "keep the run here (default: a temporary folder, removed)" \
+        "--require TOPIC" "exit 1 unless every message of TOPIC arrived (repeatable)"
+}
+fail() { echo "ltm bench link: $*" >&2; exit 2; }   # a wrong command line
+die() { echo "ltm bench link: $*" >&2; exit 1; }    # the machine cannot do it
+number='^[0-9]+([.][0-9]+)?$'
+while [ $# -gt 0 ]; do
+    case "$1" in
+        -h|--help) usage; exit 0 ;;
+        --loss|--loss-on|--rate|--outage|--scenario|--frames|--out|--require)
+            if [ $# -lt 2 ] || [ "${2:0:2}" = "--" ]; then fail "$1: needs a value"; fi
+            case "$1" in
+                --loss) if ! [[ "$2" =~ $number ]] || ! awk -v v="$2" 'BEGIN {exit !(v <= 100)}'; then
+                            fail "--loss: expected a percentage 0..100, got '$2'"
+                        fi
+                        LOSS="$2" ;;
+                --loss-on) case "$2" in in|out|both) LOSS_ON="$2" ;;
+                               *) fail "--loss-on: expected in, out or both, got '$2'" ;; esac ;;
+                --rate) [[ "$2" =~ $number ]] || fail "--rate: expected Mbit/s, got '$2'"
+                        RATE="$2" ;;
+                --outage) [[ "$2" =~ ^[0-9]+([.][0-9]+)?@[0-9]+([.][0-9]+)?$ ]] \
+                              || fail "--outage: expected SECONDS@START (30@20), got '$2'"
+                          OUTAGES+=("$2") ;;
+                --scenario) [ -f "$2" ] || fail "--scenario: no such file: $2"
+                            SCENARIO="$(cd "$(dirname "$2")" && pwd)/$(basename "$2")" ;;
+                --frames) [[ "$2" =~ ^[0-9]*:[0-9]*$ ]] || fail "--frames: expected A:B, got '$2'"
+                          FRAMES="$2" ;;
+                --out) OUT="$2" ;;
+                --require) case " ${TOPICS[*]} " in *" $2 "*) REQUIRE+=("$2") ;;
+                               *) fail "--require: expected one of ${TOPICS[*]}, got '$2'" ;; esac ;;
+            esac
+            shift 2 ;;
+        -*) fail "$1: unknown option" ;;
+        *) fail "$1: unexpected argument" ;;
+    esac
+done
+
+[ "$(id -u)" -eq 0 ] || die "needs root (network namespaces, nftables, tc): run it as root"
+command -v ip >/dev/null || die "ip (iproute2) is not installed: run ./ltm setup"
+command -v tc >/dev/null || die "tc (iproute2) is not installed: run ./ltm setup"
+command -v nft >/dev/null || die "nft (nftables) is not installed: run ./ltm setup"
+for exe in ltm_host ltm_sim ltm_mcap; do
+    [ -x "$BIN/$exe" ] || die "$exe is not built in $BUILD: run ./ltm setup"
+done
+
+# Names unique to this run, so that two runs (or a stale one) do not meet.
+TAG="$$"
+NS_ROBOT="ltm_robot_$TAG"; NS_BASE="ltm_base_$TAG"
+DEV_ROBOT="ltmr$TAG"; DEV_BASE="ltmb$TAG"
+ADDR_ROBOT=10.77.0.1; ADDR_BASE=10.77.0.2
+WORK="$(mktemp -d)"
+PIDS=()
+cleanup() {
+    local pid
+    for pid in "${PIDS[@]}"; do kill -TERM "$pid" 2>/dev/null || true; done
+    for pid in "${PIDS[@]}"; do wait "$pid" 2>/dev/null || true; done
+    ip netns del "$NS_ROBOT" 2>/dev/null || true
+    ip netns del "$NS_BASE" 2>/dev/null || true
+    ip link del "$DEV_ROBOT" 2>/dev/null || true   # still here when the move failed
+    rm -rf "$WORK"
+}
+trap cleanup EXIT
+trap 'exit 130' INT
+trap 'exit 143' TERM
+
+ip netns add "$NS_ROBOT" 2>/dev/null || die "cannot create a network namespace (ip netns add failed): not available here"
+ip netns add "$NS_BASE" || die "cannot create a second network namespace"
+ip link add "$DEV_ROBOT" type veth peer name "$DEV_BASE" || die "cannot create a veth pair"
+ip link set "$DEV_ROBOT" netns "$NS_ROBOT"
+ip link set "$DEV_BASE" netns "$NS_BASE"
+ip -n "$NS_ROBOT" addr add "$ADDR_ROBOT/24" dev "$DEV_ROBOT"
+ip -n "$NS_BASE" addr add "$ADDR_BASE/24" dev "$DEV_BASE"
+for ns in "$NS_ROBOT" "$NS_BASE"; do ip -n "$ns" link set lo up; done
+ip -n "$NS_ROBOT" link set "$DEV_ROBOT" up
+ip -n "$NS_BASE" link set "$DEV_BASE" up
+
+# Loss: numgen random drops of Ethernet frames (IP fragments one by one, as a radio loses them) on
+# the base station's end of the veth: netdev ingress (robot -> base) and egress (base -> robot).
+loss_rules=""
+if awk -v v="$LOSS" 'BEGIN {exit !(v > 0)}'; then
+    n=$(awk -v v="$LOSS" 'BEGIN {printf "%d", v * 100 + 0.5}')
+    [ "$LOSS_ON" = out ] || loss_rules+="add rule netdev ltm_link in numgen random mod 10000 < $n counter drop
+"
+    [ "$LOSS_ON" = in ] || loss_rules+="add rule netdev ltm_link out numgen random mod 10000 < $n counter drop
+"
+fi
+# The outage chains come first (priority -10): an outage adds a drop-all rule to both.
+ip netns exec "$NS_BASE" nft -f - <<NFT || die "nft could not load the link rules (no nf_tables netdev hooks in this kernel?)"
+add table netdev ltm_link
+add chain netdev ltm_link outage_in { type filter hook ingress device "$DEV_BASE" priority -10; policy accept; }
+add chain netdev ltm_link outage_out { type filter hook egress device "$DEV_BASE" priority -10; policy accept; }
+add chain netdev ltm_link in { type filter hook ingress device "$DEV_BASE" priority 0; policy accept; }
+add chain netdev ltm_link out { type filter hook egress device "$DEV_BASE" priority 0; policy accept; }
+$loss_rules
+NFT
+if awk -v v="$RATE" 'BEGIN {exit !(v > 0)}'; then
+    # tbf: a burst of 10 ms at the rate (at least 16 KiB), 100 ms of queue.
+    burst=$(awk -v r="$RATE" 'BEGIN {b = r * 1e6 / 8 / 100; if (b < 16384) b = 16384; printf "%d", b}')
+    ip netns exec "$NS_ROBOT" tc qdisc add dev "$DEV_ROBOT" root tbf rate "${RATE}mbit" burst "$burst" latency 100ms \
+        || die "tc tbf is not available"
+    ip netns exec "$NS_BASE" tc qdisc add dev "$DEV_BASE" root tbf rate "${RATE}mbit" burst "$burst" latency 100ms
+fi
+
+# The scenario as a KITTI folder; the odometry and mapping presets follow its sensor.
+DATA="$WORK/data"
+sim_args=(--quiet --out "$DATA")
+[ -n "$FRAMES" ] && sim_args+=(--frames "$FRAMES")
+"$BIN/ltm_sim" "${sim_args[@]}" "$SCENARIO" >/dev/null || die "the simulator failed on $SCENARIO"
+model=$(awk '/^ *model:/ {print $2; exit}' "$DATA/scenario.yaml")
+case "$model" in
+    hdl64e) preset=hdl64 ;; vlp32c) preset=vlp32 ;; vlp16) preset=vlp16 ;; *) preset=narrow ;;
+esac
+scans=$(wc -l < "$DATA/times.txt")
+
+RUN="${OUT:-$WORK/run}"
+mkdir -p "$RUN"
+RUN="$(cd "$RUN" && pwd)"
+rm -rf "$RUN/robot" "$RUN/base"
+topic_list="[$(printf '%s, ' "${TOPICS[@]}" | sed 's/, $//')]"
+# Each launch config with a recorder of the crossing topics in its own process (what the robot
+# published; what the base station's participant received), so the recording adds no traffic.
+with_recorder() {
+    cat "$1"
+    printf '  - name: link_recorder\n    type: recorder\n    params: {file: %s, topics: %s, compression: none}\n' \
+        "$2" "$topic_list"
+}
+with_recorder "$ROOT/launch_configs/robot.yaml" "$RUN/robot/sent.mcap" > "$WORK/robot.yaml"
+with_recorder "$ROOT/launch_configs/base_station.yaml" "$RUN/base/delivered.mcap" > "$WORK/base.yaml"
+dds() { echo "dds={interfaces: [$1], multicast: false, peers: [$2]}"; }
+
+rate_text="$RATE Mbit/s"; [ "$rate_text" = "0 Mbit/s" ] && rate_text=unlimited
+echo "== link: loss $LOSS % ($LOSS_ON), rate $rate_text, outages: ${OUTAGES[*]:-none}"
+echo "   scenario $(basename "$SCENARIO") ${FRAMES:+frames $FRAMES }($scans scans, $model), run in $RUN"
+ip netns exec "$NS_BASE" env LTM_ROOT="$ROOT" LTM_OUT="$RUN/base" \
+    "$BIN/ltm_host" "$WORK/base.yaml" --set "$(dds "$DEV_BASE" "$ADDR_ROBOT")" \
+    --set "mapping.preset=$preset" --set idle_exit_s=8 > "$RUN/base.log" 2>&1 &
+base_pid=$!; PIDS+=("$base_pid")
+sleep 1
+start=$(date +%s.%N)
+ip netns exec "$NS_ROBOT" env LTM_ROOT="$ROOT" LTM_DATA="$DATA" LTM_OUT="$RUN/robot" \
+    "$BIN/ltm_host" "$WORK/robot.yaml" --set "$(dds "$DEV_ROBOT" "$ADDR_BASE")" \
+    --set "odometry.preset=$preset" > "$RUN/robot.log" 2>&1 &
+robot_pid=$!; PIDS+=("$robot_pid")
+for o in "${OUTAGES[@]}"; do
+    (
+        s="${o%@*}"; t="${o#*@}"
+        sleep "$t"
+        ip netns exec "$NS_BASE" nft -f - <<NFT
+add rule netdev ltm_link outage_in counter drop
+add rule netdev ltm_link outage_out counter drop
+NFT
+        sleep "$s"
+        ip netns exec "$NS_BASE" nft flush chain netdev ltm_link outage_in
+        ip netns exec "$NS_BASE" nft flush chain netdev ltm_link outage_out
+    ) &
+    PIDS+=("$!")
+done
+robot_rc=0; wait "$robot_pid" || robot_rc=$?
+robot_end=$(date +%s.%N)
+base_rc=0; wait "$base_pid" || base_rc=$?
+end=$(date +%s.%N)
+[ "$robot_rc" -eq 0 ] || { echo "   robot exited with $robot_rc:"; tail -n 3 "$RUN/robot.log"; }
+[ "$base_rc" -eq 0 ] || { echo "   base station exited with $base_rc:"; tail -n 3 "$RUN/base.log"; }
+if [ "$robot_rc" -ne 0 ] || [ "$base_rc" -ne 0 ]; then die "a side of the link failed (its last lines above)"; fi
+awk -v a="$start" -v b="$robot_end" -v c="$end" \
+    'BEGIN {printf "   robot ran %.1f s, base station stopped %.1f s after it (8 s idle exit)\n", b - a, c - b}'
+
+# Bytes on the link: the veth counters of the robot's end (TX: robot -> base, RX: base -> robot).
+link_stats() {  # rx_bytes rx_packets tx_bytes tx_packets
+    ip -n "$NS_ROBOT" -s link show dev "$DEV_ROBOT" |
+        awk '/RX:/ {getline; rb=$1; rp=$2} /TX:/ {getline; tb=$1; tp=$2} END {print rb, rp, tb, tp}'
+}
+read -r rx_bytes rx_packets tx_bytes tx_packets < <(link_stats)
+echo "== link bytes (veth, robot end)"
+awk -v tb="$tx_bytes" -v tp="$tx_packets" -v rb="$rx_bytes" -v rp="$rx_packets" -v a="$start" -v b="$robot_end" \
+    'BEGIN {d = b - a; printf "   robot -> base: %d bytes in %d packets (%.2f Mbit/s over the robot'"'"'s %.1f s)\n", tb, tp, tb * 8 / d / 1e6, d
+            printf "   base -> robot: %d bytes in %d packets\n", rb, rp}'
+# Frames dropped by the loss rules of each direction (outage drops are flushed with their rule).
+dropped() {
+    ip netns exec "$NS_BASE" nft list chain netdev ltm_link "$1" |
+        awk '/counter packets/ {for (i = 1; i < NF; i++) if ($i == "packets") n += $(i + 1)} END {print n + 0}'
+}
+echo "   frames dropped for loss: $(dropped in) robot -> base, $(dropped out) base -> robot"
+
+echo "== per topic: sent by the robot, delivered to the base station (compared byte for byte)"
+for side in robot/sent base/delivered; do
+    [ -f "$RUN/$side.mcap" ] || die "no recording $RUN/$side.mcap (--out DIR keeps the logs)"
+    "$BIN/ltm_mcap" manifest "$RUN/$side.mcap" -o "$RUN/$side.json"
+done
+# One manifest line a message: topic, publish time (the writer's) and the CDR bytes. A message is
+# delivered when the base station recorded the same three; one missing before the topic's first
+# delivered message was published before the base station's reader was matched (discovery).
+awk -v req=" ${REQUIRE[*]} " '
+    function field(name,   i, r) {
+        i = index($0, "\"" name "\": \""); if (!i) return ""
+        r = substr($0, i + length(name) + 5); return substr(r, 1, index(r, "\"") - 1)
+    }
+    !/"data_hex"/ || !/"topic"/ { next }
+    { t = field("topic"); sub(/^rt\/[^\/]*\//, "", t); p = field("publish_time"); d = field("data_hex") }
+    FNR == NR { key = t SUBSEP p SUBSEP d; got[key] = 1
+                if (!(t in first) || p < first[t]) first[t] = p; next }
+    {
+        n++; topic[n] = t; pub[n] = p; sent[t]++; bytes[t] += length(d) / 2
+        if ((t SUBSEP p SUBSEP d) in got) { ok[t]++ } else { miss[n] = 1 }
+        if (!(t in order)) { order[t] = ++nt; name[nt] = t }
+    }
+    END {
+        bad = 0
+        for (i = 1; i <= nt; i++) {
+            t = name[i]; early = 0; late = 0; list = ""
+            for (j = 1; j <= n; j++) if (topic[j] == t && (j in miss)) {
+                if (!(t in first) || pub[j] < first[t]) early++; else late++
+                list = list (list == "" ? "" : ",") j
+            }
+            printf "   %-10s sent %4d (%8.2f MiB)  delivered %4d  missing %d", t, sent[t], bytes[t] / 1048576, ok[t] + 0, sent[t] - ok[t]
+            if (sent[t] > ok[t]) printf " (%d before the base station matched, %d after)", early, late
+            printf "\n"
+            if (sent[t] > ok[t] && index(req, " " t " ")) bad = 1
+        }
+        exit bad
+    }' "$RUN/base/delivered.json" "$RUN/robot/sent.json" || required_missing=1
+if [ "${required_missing:-0}" = 1 ]; then
+    echo "== FAILED: a message of ${REQUIRE[*]} did not reach the base station"
+    exit 1
+fi

@@ -1,0 +1,60 @@
+#!/usr/bin/env bash
+# The robot and the base station over a lossy link (issue 15): tiny_loop through robot.yaml and
+# base_station.yaml in two network namespaces, 5 % of the frames dropped each way, every local
+# map must arrive; then a run stopped half-way must leave no namespace behind. Needs root,
+# network namespaces and nft: skipped (exit 77) with the reason otherwise.
+set -uo pipefail
+ROOT="$(cd "$(dirname "$0")/../.." && pwd)"
+BENCH="$ROOT/components/bench/link/bench_link.sh"
+skip() { echo "SKIPPED: $*"; exit 77; }
+[ "$(id -u)" -eq 0 ] || skip "needs root (network namespaces, nftables, tc)"
+command -v nft >/dev/null || skip "nft is not installed (./ltm setup installs nftables)"
+probe="ltm_link_probe_$$"
+ip netns add "$probe" 2>/dev/null || skip "network namespaces are not available here"
+ip netns del "$probe"
+
+fails=0
+check() {  # check NAME FUNCTION
+    local out
+    if out="$("$2" 2>&1)"; then
+        echo "ok   $1"
+    else
+        echo "FAIL $1"; echo "${out//$'\n'/$'\n'     }"; fails=$((fails + 1))
+    fi
+}
+namespaces() { ip netns list | grep -c '^ltm_\(robot\|base\)_' || true; }
+
+every_local_map_at_5_percent_loss() {
+    local out rc
+    out="$(bash "$BENCH" --loss 5 --require local_map 2>&1)"; rc=$?
+    echo "$out"
+    [ "$rc" = 0 ] || return 1
+    # Frames were really dropped, and local maps were really sent (and all delivered).
+    echo "$out" | grep -Eq 'frames dropped for loss: [1-9][0-9]* robot -> base' || return 1
+    echo "$out" | grep -Eq '^   local_map +sent +([1-9][0-9]*) .*delivered +\1 +missing 0$'
+}
+
+stopped_run_cleans_up() {
+    local before rc
+    before="$(namespaces)"
+    timeout --preserve-status -s INT 5 bash "$BENCH" --loss 1; rc=$?
+    [ "$rc" = 130 ] || { echo "exit code $rc, expected 130 (SIGINT)"; return 1; }
+    [ "$(namespaces)" = "$before" ] || { echo "namespaces left: $(ip netns list)"; return 1; }
+}
+
+usage_errors_are_one_line() {
+    local err rc
+    err="$(bash "$BENCH" --loss 120 2>&1)"; rc=$?
+    if [ "$rc" != 2 ] || [ "$err" != "ltm bench link: --loss: expected a percentage 0..100, got '120'" ]; then
+        echo "rc=$rc: $err"; return 1
+    fi
+    err="$(bash "$BENCH" --outage 30 2>&1)"; rc=$?
+    if [ "$rc" != 2 ] || [ "$err" != "ltm bench link: --outage: expected SECONDS@START (30@20), got '30'" ]; then
+        echo "rc=$rc: $err"; return 1
+    fi
+}
+
+check "usage errors are one line" usage_errors_are_one_line
+check "every local map arrives at 5 % loss" every_local_map_at_5_percent_loss
+check "a run stopped with SIGINT leaves no namespace" stopped_run_cleans_up
+[ "$fails" = 0 ]
