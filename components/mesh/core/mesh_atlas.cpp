@@ -200,9 +200,7 @@ void MeshAtlas::own(Entry& e, const std::vector<const Entry*>& neighbours, bool 
                 // does, this chunk's surface stays: no hole while ownership moves).
                 const bool theirs =
                     cached(memo[j], cell_key(o->T_grid_world * x, o->chunk.cell_size),
-                           [&](std::uint64_t k) {
-                               return o->chunk.cells.count(k) > 0 && o->chunk.meshed(k);
-                           });
+                           [&](std::uint64_t k) { return o->chunk.covers_meshed(k); });
                 if (theirs) {
                     keep[t] = 0;
                     break;

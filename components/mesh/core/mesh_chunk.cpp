@@ -39,11 +39,6 @@ bool MeshChunk::covers(const Eigen::Vector3d& p_grid) const {
     return cells.count(cell_key(p_grid, cell_size)) > 0;
 }
 
-bool MeshChunk::covers_meshed(const Eigen::Vector3d& p_grid) const {
-    const std::uint64_t key = cell_key(p_grid, cell_size);
-    return cells.count(key) > 0 && meshed(key);
-}
-
 MeshChunk prepare_chunk(const common::LocalMapData& map, const MeshConfig& config) {
     common::throw_if(validate(config), "mesh");
     if (!(map.voxel_size > 0.0f) || !std::isfinite(map.voxel_size))

@@ -38,8 +38,8 @@ struct MeshChunk {
     // Whether the cell of p_grid (a point in the grid frame) holds a surface voxel.
     bool covers(const Eigen::Vector3d& p_grid) const;
     bool meshed(std::uint64_t cell) const { return complete || meshed_cells.count(cell) > 0; }
-    // Whether the cell of p_grid holds a surface voxel and is meshed.
-    bool covers_meshed(const Eigen::Vector3d& p_grid) const;
+    // Whether the cell holds a surface voxel and is meshed.
+    bool covers_meshed(std::uint64_t cell) const { return cells.count(cell) > 0 && meshed(cell); }
     EIGEN_MAKE_ALIGNED_OPERATOR_NEW
 };
 
