@@ -33,6 +33,8 @@ const std::vector<MessageTypeInfo>& known_message_types() {
         info<msg::Mesh>(),
         info<msg::Status>(),
         info<msg::MapRequest>(),
+        info<msg::LinkPacket>(),
+        info<msg::LinkAck>(),
     };
     return types;
 }

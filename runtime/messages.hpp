@@ -20,6 +20,8 @@
 #include "geometry_msgs/msg/TwistWithCovariance.h"
 #include "geometry_msgs/msg/Vector3.h"
 #include "ltm_msgs/msg/Keyframe.h"
+#include "ltm_msgs/msg/LinkAck.h"
+#include "ltm_msgs/msg/LinkPacket.h"
 #include "ltm_msgs/msg/LocalMap.h"
 #include "ltm_msgs/msg/LocalisationStatus.h"
 #include "ltm_msgs/msg/LoopClosure.h"
@@ -68,6 +70,8 @@ using MapChangeSet = ltm_msgs_msg_dds__MapChangeSet_;
 using Mesh = ltm_msgs_msg_dds__Mesh_;
 using Status = ltm_msgs_msg_dds__Status_;
 using MapRequest = ltm_msgs_msg_dds__MapRequest_;
+using LinkPacket = ltm_msgs_msg_dds__LinkPacket_;
+using LinkAck = ltm_msgs_msg_dds__LinkAck_;
 }  // namespace ltm::msg
 
 namespace ltm::runtime {
@@ -103,6 +107,8 @@ LTM_MESSAGE_TRAITS(ltm_msgs_msg_dds__MapChangeSet_, "ltm_msgs/msg/MapChangeSet")
 LTM_MESSAGE_TRAITS(ltm_msgs_msg_dds__Mesh_, "ltm_msgs/msg/Mesh")
 LTM_MESSAGE_TRAITS(ltm_msgs_msg_dds__Status_, "ltm_msgs/msg/Status")
 LTM_MESSAGE_TRAITS(ltm_msgs_msg_dds__MapRequest_, "ltm_msgs/msg/MapRequest")
+LTM_MESSAGE_TRAITS(ltm_msgs_msg_dds__LinkPacket_, "ltm_msgs/msg/LinkPacket")
+LTM_MESSAGE_TRAITS(ltm_msgs_msg_dds__LinkAck_, "ltm_msgs/msg/LinkAck")
 
 // The table of known top-level types: for `--all` recording, replay and `ltm_host --list-types`.
 struct MessageTypeInfo {

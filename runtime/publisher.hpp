@@ -41,6 +41,15 @@ class Publisher {
     Publisher() = default;
     explicit Publisher(std::shared_ptr<WriterHandle> h) : h_(std::move(h)) {}
     bool publish(const T& message) { return h_ && write_sample(*h_, &message); }
+    // One attempt, blocking at most the profile's max_blocking_s: DDS_RETCODE_OK, or
+    // DDS_RETCODE_TIMEOUT while the writer's history is full of unacknowledged samples (a slow or
+    // broken link), or another DDS error. Neither retries nor logs: the caller decides.
+    dds_return_t try_publish(const T& message) {
+        if (!h_) return DDS_RETCODE_PRECONDITION_NOT_MET;
+        const dds_return_t rc = dds_write(h_->writer, &message);
+        if (rc == DDS_RETCODE_OK) ++h_->published;
+        return rc;
+    }
     bool valid() const { return h_ != nullptr; }
     const std::string& topic() const { return h_->topic; }
     // Readers currently matched (in this process or elsewhere).

@@ -1,0 +1,263 @@
+// The base station's end of the link (issue 15). Takes the robot's `link/packets`, hands each
+// packet on once and in order (ReceiveWindow), appends it to a journal on the base station's disk
+// and acknowledges it (`link/ack`) once the journal is synced; then publishes the message on
+// `/<robot>/<topic>` (`keyframe`, `local_map`) for the mapping. A restarted base station replays
+// its journal first (the mapping starts again from the map it loaded, so nothing is applied
+// twice) and tells the robot what it holds: the robot sends the rest.
+#include <dds/dds.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "common/convert/dds_string.hpp"
+#include "common/core/io_error.hpp"
+#include "link/component/link_clock.hpp"
+#include "link/core/link_journal.hpp"
+#include "link/core/receive_window.hpp"
+#include "runtime/component.hpp"
+
+namespace ltm::link {
+namespace {
+
+using runtime::PathCheck;
+using runtime::TopicRole;
+
+class Downlink : public runtime::Component {
+  public:
+    explicit Downlink(runtime::ComponentContext& ctx) : ctx_(ctx) {
+        auto& p = ctx.params();
+        robot_ = p.get<std::string>("robot", robot_from_namespace(ctx.ns()));
+        dir_ = p.path("journal_dir", "", PathCheck::kParentExists);
+        out_ns_ = p.get<std::string>("output_namespace", "/" + robot_);
+        const double ack_period = p.get<double>("ack_period_s", 0.5);
+        max_held_ = p.get<std::size_t>("max_held", 512);
+        if (robot_.empty() || robot_.find('/') != std::string::npos)
+            p.fail("robot", "a name without '/' (the robot's namespace)");
+        if (dir_.empty()) p.fail("journal_dir", "required: where received packets are kept");
+        if (out_ns_.empty() || out_ns_.front() != '/')
+            p.fail("output_namespace", "an absolute namespace (\"/robot1\")");
+        if (!(ack_period > 0)) p.fail("ack_period_s", "must be > 0");
+        if (max_held_ == 0) p.fail("max_held", "must be > 0");
+        dir_ += "/" + robot_;
+        base_run_ = new_run_id();
+        try {
+            load_runs();
+        } catch (const common::IoError& e) {
+            p.fail("journal_dir", e.what());
+        }
+        // Keyframes and local maps of the journal (and later the link) go to the mapping
+        // losslessly: the outputs take the host's `topics:` role, else a lossless stream.
+        for (const std::string topic : {"keyframe", "local_map"}) output(topic);
+        ctx.subscribe<msg::LinkPacket>("link/packets", TopicRole::kState,
+                                       [this](const msg::LinkPacket& m) { on_packet(m); });
+        ack_out_ = ctx.advertise<msg::LinkAck>("link/ack", TopicRole::kState);
+        ctx.add_timer(ack_period, [this] { ack(); });
+        ctx.add_timer(10.0, [this] { report(false); });
+    }
+
+    void on_activate() override { replay(); }
+
+    void on_shutdown() override {
+        ack();
+        report(true);
+    }
+
+  private:
+    struct Run {
+        std::unique_ptr<LinkJournal> journal;
+        std::unique_ptr<ReceiveWindow> window;
+        bool dirty = true;  // an acknowledgement is due
+        std::uint64_t delivered = 0;
+    };
+
+    // Runs journaled by an earlier start of this base station.
+    void load_runs() {
+        namespace fs = std::filesystem;
+        std::error_code ec;
+        if (!fs::exists(dir_, ec)) return;
+        std::vector<std::pair<std::int64_t, std::string>> found;  // first stamp, run folder
+        for (const auto& e : fs::directory_iterator(dir_, ec)) {
+            if (!e.is_directory()) continue;
+            const std::string name = e.path().filename().string();
+            std::uint64_t run = 0;
+            try {
+                run = std::stoull(name, nullptr, 16);
+            } catch (const std::exception&) {
+                continue;
+            }
+            Run r;
+            r.journal = std::make_unique<LinkJournal>(e.path().string());
+            if (!r.journal->recovery().empty())
+                ctx_.log().warn("journal of run " + name + ": " + r.journal->recovery());
+            r.window = std::make_unique<ReceiveWindow>(r.journal->last_seq(), max_held_);
+            const auto first = r.journal->read_from(0);
+            found.emplace_back(first ? first->stamp_ns : 0, name);
+            runs_[run] = std::move(r);
+            replay_order_.push_back(run);
+        }
+        std::sort(found.begin(), found.end());
+        replay_order_.clear();
+        for (const auto& f : found) replay_order_.push_back(std::stoull(f.second, nullptr, 16));
+    }
+
+    // A restarted base station: what it journaled before goes to the mapping again, in order.
+    void replay() {
+        for (const std::uint64_t id : replay_order_) {
+            Run& r = runs_.at(id);
+            std::uint64_t seq = 0, n = 0;
+            while (const auto rec = r.journal->read_from(seq + 1)) {
+                seq = rec->seq;
+                deliver(*rec);
+                ++n;
+                if (ctx_.stop_requested()) return;
+            }
+            ctx_.log().info("replayed " + std::to_string(n) + " messages of run " + run_hex(id) +
+                            " from " + r.journal->dir());
+            replayed_ += n;
+        }
+    }
+
+    runtime::RawWriterHandle* output(const std::string& topic) {
+        auto it = writers_.find(topic);
+        if (it != writers_.end()) return it->second.get();
+        const runtime::MessageTypeInfo* info = nullptr;
+        if (topic == "keyframe") info = type("ltm_msgs::msg::dds_::Keyframe_");
+        if (topic == "local_map") info = type("ltm_msgs::msg::dds_::LocalMap_");
+        return nullptr == info ? nullptr : add_writer(topic, info);
+    }
+    static const runtime::MessageTypeInfo* type(const std::string& dds_name) {
+        return runtime::find_message_type_by_dds_name(dds_name);
+    }
+    runtime::RawWriterHandle* add_writer(const std::string& topic,
+                                         const runtime::MessageTypeInfo* info) {
+        const std::string name = out_ns_ + "/" + topic;
+        const TopicRole declared = topic == "local_map" ? TopicRole::kMap : TopicRole::kState;
+        runtime::QosProfile q = ctx_.role_profile(name, declared);
+        auto w = ctx_.advertise_raw(name, info->descriptor, q);
+        return (writers_[topic] = std::move(w)).get();
+    }
+
+    void deliver(const JournalRecord& r) {
+        runtime::RawWriterHandle* w = nullptr;
+        auto it = writers_.find(r.topic);
+        if (it != writers_.end()) {
+            w = it->second.get();
+        } else if (const runtime::MessageTypeInfo* info = type(r.type)) {
+            w = add_writer(r.topic, info);
+        }
+        if (!w) {
+            ++undeliverable_;
+            ctx_.log().warn("packet " + std::to_string(r.seq) + " on '" + r.topic +
+                            "' is of an unknown type '" + r.type + "': kept, not delivered");
+            return;
+        }
+        if (runtime::write_raw(*w, r.payload.data(), r.payload.size())) ++delivered_;
+    }
+
+    void on_packet(const msg::LinkPacket& m) {
+        if (convert::to_string(m.robot) != robot_) {
+            ++other_robots_;
+            return;
+        }
+        auto it = runs_.find(m.run);
+        if (it == runs_.end()) {
+            Run r;
+            try {
+                r.journal = std::make_unique<LinkJournal>(dir_ + "/" + run_hex(m.run));
+            } catch (const common::IoError& e) {
+                ctx_.log().error(std::string("packets of run ") + run_hex(m.run) +
+                                 " not kept: " + e.what());
+                return;
+            }
+            r.window = std::make_unique<ReceiveWindow>(r.journal->last_seq(), max_held_);
+            it = runs_.emplace(m.run, std::move(r)).first;
+            ctx_.log().info("run " + run_hex(m.run) + " of " + robot_ + " connected");
+        }
+        Run& run = it->second;
+        JournalRecord rec;
+        rec.seq = m.seq;
+        rec.stamp_ns = m.stamp_ns;
+        rec.topic = convert::to_string(m.topic);
+        rec.type = convert::to_string(m.type);
+        rec.payload.assign(m.payload._buffer, m.payload._buffer + m.payload._length);
+        const std::uint64_t lost_before = run.window->stats().lost;
+        std::vector<JournalRecord> ready = run.window->offer(std::move(rec), m.first_seq);
+        if (run.window->stats().lost != lost_before)
+            ctx_.log().error("run " + run_hex(m.run) + ": " +
+                             std::to_string(run.window->stats().lost - lost_before) +
+                             " packets lost for good (the robot no longer holds them)");
+        run.dirty = true;
+        for (const JournalRecord& r : ready) {
+            try {
+                run.journal->append(r);
+            } catch (const std::exception& e) {
+                // Not on disk: still delivered now, but a restart would not replay it.
+                ctx_.log().error(std::string("packet not journaled: ") + e.what());
+            }
+            deliver(r);
+        }
+    }
+
+    // The robot learns what is safe here: synced to disk, then acknowledged. Every run is
+    // acknowledged each period, so a robot sees a restarted base station within one period.
+    void ack() {
+        for (auto& [id, run] : runs_) {
+            try {
+                if (run.dirty) run.journal->sync();
+            } catch (const std::exception& e) {
+                ctx_.log().error(std::string("journal not synced: ") + e.what());
+                continue;
+            }
+            run.dirty = false;
+            msg::LinkAck a{};
+            a.robot = const_cast<char*>(robot_.c_str());
+            a.run = id;
+            a.through = std::min(run.window->through(), run.journal->last_seq());
+            a.base_run = base_run_;
+            a.received = run.window->stats().received;
+            a.duplicates = run.window->stats().duplicates;
+            ack_out_.publish(a);
+        }
+    }
+
+    void report(bool final) {
+        std::uint64_t received = 0, dup = 0, lost = 0, held = 0;
+        for (const auto& [id, run] : runs_) {
+            received += run.window->stats().received;
+            dup += run.window->stats().duplicates;
+            lost += run.window->stats().lost;
+            held += run.window->held();
+        }
+        const std::string line =
+            std::string(final ? "final: " : "") + std::to_string(received) + " packets received (" +
+            std::to_string(dup) + " duplicates), " + std::to_string(delivered_) +
+            " messages delivered (" + std::to_string(replayed_) + " replayed from the journal), " +
+            std::to_string(held) + " waiting for a gap, " + std::to_string(lost) + " lost";
+        if (lost > 0 || undeliverable_ > 0) {
+            ctx_.log().warn(line);
+        } else {
+            ctx_.log().info(line);
+        }
+    }
+
+    runtime::ComponentContext& ctx_;
+    std::string robot_, dir_, out_ns_;
+    std::size_t max_held_ = 512;
+    std::uint64_t base_run_ = 0;
+    std::map<std::uint64_t, Run> runs_;
+    std::vector<std::uint64_t> replay_order_;
+    std::map<std::string, std::shared_ptr<runtime::RawWriterHandle>> writers_;
+    std::uint64_t delivered_ = 0, replayed_ = 0, undeliverable_ = 0, other_robots_ = 0;
+    runtime::Publisher<msg::LinkAck> ack_out_;
+};
+
+}  // namespace
+}  // namespace ltm::link
+
+LTM_REGISTER_COMPONENT(ltm::link::Downlink, "downlink",
+                       "base-station side of the link: packets handed on once and in order, "
+                       "journaled, acknowledged, and published for the mapping")

@@ -1,0 +1,44 @@
+#pragma once
+// Clocks and run ids of the link components.
+#include <chrono>
+#include <cstdint>
+#include <random>
+#include <sstream>
+#include <string>
+
+namespace ltm::link {
+
+inline double mono_s() {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
+        .count();
+}
+
+inline std::int64_t wall_ns() {
+    return std::chrono::duration_cast<std::chrono::nanoseconds>(
+               std::chrono::system_clock::now().time_since_epoch())
+        .count();
+}
+
+// A random, non-zero run id.
+inline std::uint64_t new_run_id() {
+    std::random_device rd;
+    std::uint64_t v = 0;
+    while (v == 0) v = (static_cast<std::uint64_t>(rd()) << 32) ^ rd();
+    return v;
+}
+
+inline std::string run_hex(std::uint64_t run) {
+    std::ostringstream s;
+    s << std::hex << run;
+    return s.str();
+}
+
+// The robot's name from a namespace: "/robot1" -> "robot1"; "" -> "robot".
+inline std::string robot_from_namespace(const std::string& ns) {
+    std::string r = ns;
+    while (!r.empty() && r.front() == '/') r.erase(r.begin());
+    while (!r.empty() && r.back() == '/') r.pop_back();
+    return r.empty() ? "robot" : r;
+}
+
+}  // namespace ltm::link

@@ -1,0 +1,255 @@
+// The robot's end of the link (issue 15): store and forward. Every message of the configured
+// topics (read in-process from `input_prefix` + topic, e.g. the odometry's `onboard/keyframe`) is
+// appended to a journal on the robot's disk and sent to the base station as a `link/packets`
+// LinkPacket, in order, until the base station's `link/ack` says it is on the base station's
+// disk. Sending never blocks the robot: a full link only delays it, an outage leaves the packets
+// on disk, a restarted base station gets everything after what it holds. Nothing here blocks the
+// odometry: its messages are only appended to the journal on arrival.
+#include <dds/dds.h>
+
+#include <algorithm>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "common/convert/dds_string.hpp"
+#include "common/core/io_error.hpp"
+#include "link/component/link_clock.hpp"
+#include "link/core/link_journal.hpp"
+#include "link/core/send_window.hpp"
+#include "runtime/component.hpp"
+
+namespace ltm::link {
+namespace {
+
+using runtime::PathCheck;
+using runtime::QosProfile;
+using runtime::TopicRole;
+
+// The type of a forwarded topic: given, or known for ltm's own topics.
+std::string default_type(const std::string& topic) {
+    if (topic == "keyframe") return "ltm_msgs/msg/Keyframe";
+    if (topic == "local_map") return "ltm_msgs/msg/LocalMap";
+    if (topic == "map_changes") return "ltm_msgs/msg/MapChangeSet";
+    if (topic == "loop_closure") return "ltm_msgs/msg/LoopClosure";
+    return "";
+}
+
+const runtime::MessageTypeInfo* type_by_ros_name(const std::string& name) {
+    for (const auto& t : runtime::known_message_types())
+        if (t.ros_name == name) return &t;
+    return nullptr;
+}
+
+class Uplink : public runtime::Component {
+  public:
+    explicit Uplink(runtime::ComponentContext& ctx) : ctx_(ctx) {
+        auto& p = ctx.params();
+        robot_ = p.get<std::string>("robot", robot_from_namespace(ctx.ns()));
+        const std::vector<std::string> topics =
+            p.get<std::vector<std::string>>("topics", {"keyframe", "local_map"});
+        const std::vector<std::string> types = p.get<std::vector<std::string>>("types", {});
+        const std::string prefix = p.get<std::string>("input_prefix", "onboard/");
+        const std::string dir = p.path("backlog_dir", "", PathCheck::kParentExists);
+        const double max_mb = p.get<double>("max_backlog_mb", 4096.0);
+        SendConfig send;
+        send.window_bytes =
+            static_cast<std::uint64_t>(p.get<double>("window_mb", 16.0) * (1 << 20));
+        send.resend_after_s = p.get<double>("resend_after_s", send.resend_after_s);
+        send_period_s_ = p.get<double>("send_period_s", 0.01);
+        drain_s_ = p.get<double>("drain_s", 10.0);
+        if (robot_.empty() || robot_.find('/') != std::string::npos)
+            p.fail("robot", "a name without '/' (the robot's namespace)");
+        if (topics.empty()) p.fail("topics", "forward at least one topic");
+        if (!types.empty() && types.size() != topics.size())
+            p.fail("types", "one type per topic (" + std::to_string(topics.size()) + ")");
+        if (dir.empty()) p.fail("backlog_dir", "required: where unacknowledged packets wait");
+        if (!(max_mb > 0)) p.fail("max_backlog_mb", "must be > 0");
+        if (!(send.window_bytes > 0)) p.fail("window_mb", "must be > 0");
+        if (!(send.resend_after_s > 0)) p.fail("resend_after_s", "must be > 0");
+        if (!(send_period_s_ > 0)) p.fail("send_period_s", "must be > 0");
+        if (drain_s_ < 0) p.fail("drain_s", "must be >= 0");
+        window_ = SendWindow(send);
+        run_ = new_run_id();
+        JournalConfig jc;
+        jc.max_bytes = static_cast<std::uint64_t>(max_mb * (1 << 20));
+        try {
+            journal_ = std::make_unique<LinkJournal>(dir + "/" + run_hex(run_), jc);
+        } catch (const common::IoError& e) {
+            p.fail("backlog_dir", e.what());
+        }
+        for (std::size_t i = 0; i < topics.size(); ++i) {
+            const std::string type = types.empty() ? default_type(topics[i]) : types[i];
+            const runtime::MessageTypeInfo* info = type_by_ros_name(type);
+            if (!info)
+                p.fail(types.empty() ? "topics" : "types",
+                       "no known message type for '" + topics[i] + "'" +
+                           (type.empty() ? " (name it in `types`)" : ": '" + type + "'"));
+            // Deep and reliable, so the odometry is never held up and nothing is overwritten
+            // while the journal takes it.
+            QosProfile q = ctx.role_profile(prefix + topics[i], TopicRole::kState);
+            q.reliable = true;
+            q.depth = std::max(q.depth, 1000);
+            const std::string topic = topics[i], dds_type = info->dds_name;
+            ctx.subscribe_raw(prefix + topics[i], info->descriptor, q,
+                              [this, topic, dds_type](const std::vector<std::uint8_t>& cdr,
+                                                      const dds_sample_info_t& si) {
+                                  store(topic, dds_type, cdr, si.source_timestamp);
+                              });
+        }
+        packets_ = ctx.advertise<msg::LinkPacket>("link/packets", TopicRole::kState);
+        ctx.subscribe<msg::LinkAck>("link/ack", TopicRole::kState,
+                                    [this](const msg::LinkAck& m) { on_ack(m); });
+        ack_topic_ = ctx.resolve("link/ack");
+        ctx.add_timer(send_period_s_, [this] { pump(); });
+        ctx.add_timer(10.0, [this] { report(false); });
+        ctx.log().info("run " + run_hex(run_) + " of " + robot_ + ": backlog in " +
+                       journal_->dir());
+    }
+
+    void on_shutdown() override {
+        // The robot is stopping: give the link drain_s to take what is still unacknowledged.
+        const double until = mono_s() + drain_s_;
+        while (window_.acked() < journal_->last_seq() && mono_s() < until) {
+            pump();
+            take_acks();
+            dds_sleepfor(DDS_MSECS(20));
+        }
+        report(true);
+    }
+
+  private:
+    void store(const std::string& topic, const std::string& type,
+               const std::vector<std::uint8_t>& cdr, dds_time_t source_ns) {
+        JournalRecord r;
+        r.seq = journal_->last_seq() + 1;
+        r.stamp_ns = source_ns > 0 ? source_ns : wall_ns();
+        r.topic = topic;
+        r.type = type;
+        r.payload = cdr;
+        try {
+            const std::size_t dropped = journal_->append(r);
+            if (dropped > 0) {
+                dropped_ += dropped;
+                ctx_.log().error("backlog full: the " + std::to_string(dropped) +
+                                 " oldest unacknowledged packets dropped (" +
+                                 std::to_string(dropped_) + " so far); raise max_backlog_mb");
+            }
+            ++stored_;
+            stored_bytes_ += cdr.size();
+        } catch (const std::exception& e) {
+            // Without its journal copy the message cannot be sent (packets are sent from the
+            // journal): say so every time, the base station will see the gap.
+            ctx_.log().error("a " + topic + " message is lost: " + e.what());
+        }
+        pump();
+    }
+
+    void on_ack(const msg::LinkAck& m) {
+        if (convert::to_string(m.robot) != robot_ || m.run != run_) return;
+        const bool first = !window_.heard_base();
+        const std::uint64_t restarts = window_.stats().base_restarts;
+        window_.on_ack(m.through, m.base_run, mono_s());
+        if (first)
+            ctx_.log().info("base station " + run_hex(m.base_run) + " holds " +
+                            std::to_string(m.through) + " packets of this run");
+        if (window_.stats().base_restarts != restarts)
+            ctx_.log().warn("the base station restarted (run " + run_hex(m.base_run) +
+                            "): it holds " + std::to_string(m.through) +
+                            " packets; sending the rest again");
+        if (window_.acked() > journal_->released_through()) {
+            try {
+                journal_->release_through(std::min(window_.acked(), journal_->last_seq()));
+            } catch (const std::exception& e) {
+                ctx_.log().warn(std::string("backlog not trimmed: ") + e.what());
+            }
+        }
+    }
+
+    void take_acks() {
+        for (auto& s : ctx_.subscriptions()) {
+            if (s.topic != ack_topic_) continue;
+            void* samples[16] = {nullptr};
+            dds_sample_info_t infos[16];
+            const dds_return_t n = dds_take(s.reader, samples, infos, 16, 16);
+            for (dds_return_t i = 0; i < n; ++i)
+                if (infos[i].valid_data) on_ack(*static_cast<const msg::LinkAck*>(samples[i]));
+            if (n > 0) dds_return_loan(s.reader, samples, n);
+        }
+    }
+
+    void pump() {
+        const double now = mono_s();
+        while (true) {
+            const std::uint64_t first =
+                journal_->empty() ? journal_->last_seq() + 1 : journal_->first_seq();
+            const auto seq = window_.next(first, journal_->last_seq(), now);
+            if (!seq) return;
+            std::optional<JournalRecord> r;
+            try {
+                r = journal_->read_from(*seq);
+            } catch (const std::exception& e) {
+                ctx_.log().error(std::string("backlog unreadable: ") + e.what());
+                return;
+            }
+            if (!r) return;
+            if (!send(*r, first)) return;  // the link is full: later
+            window_.sent(r->seq, r->payload.size(), now);
+        }
+    }
+
+    bool send(const JournalRecord& r, std::uint64_t first_held) {
+        msg::LinkPacket m{};
+        m.robot = const_cast<char*>(robot_.c_str());
+        m.run = run_;
+        m.seq = r.seq;
+        m.first_seq = first_held;
+        m.stamp_ns = r.stamp_ns;
+        m.topic = const_cast<char*>(r.topic.c_str());
+        m.type = const_cast<char*>(r.type.c_str());
+        m.payload._buffer = const_cast<std::uint8_t*>(r.payload.data());
+        m.payload._length = m.payload._maximum = static_cast<std::uint32_t>(r.payload.size());
+        m.payload._release = false;
+        const dds_return_t rc = packets_.try_publish(m);
+        if (rc == DDS_RETCODE_OK) return true;
+        if (rc != DDS_RETCODE_TIMEOUT) {
+            const std::uint64_t n = ++send_errors_;
+            if (n <= 3 || (n & (n - 1)) == 0)
+                ctx_.log().warn(std::string("packet not sent (") + dds_strretcode(rc) + "), " +
+                                std::to_string(n) + " so far");
+        }
+        return false;
+    }
+
+    void report(bool final) {
+        const SendStats& s = window_.stats();
+        const std::string line =
+            std::string(final ? "final: " : "") + std::to_string(stored_) + " messages (" +
+            std::to_string(stored_bytes_ >> 20) + " MiB) stored, " + std::to_string(s.sent) +
+            " sent, " + std::to_string(s.resent) + " resent, acknowledged through " +
+            std::to_string(window_.acked()) + " of " + std::to_string(journal_->last_seq()) +
+            "; backlog " + std::to_string(journal_->size()) + " packets (" +
+            std::to_string(journal_->bytes() >> 20) + " MiB)";
+        if (final && window_.acked() < journal_->last_seq()) {
+            ctx_.log().warn(line + ": the unacknowledged packets stay in " + journal_->dir());
+        } else {
+            ctx_.log().info(line);
+        }
+    }
+
+    runtime::ComponentContext& ctx_;
+    std::string robot_, ack_topic_;
+    std::uint64_t run_ = 0;
+    double send_period_s_ = 0.01, drain_s_ = 10.0;
+    std::unique_ptr<LinkJournal> journal_;
+    SendWindow window_;
+    std::uint64_t stored_ = 0, stored_bytes_ = 0, dropped_ = 0, send_errors_ = 0;
+    runtime::Publisher<msg::LinkPacket> packets_;
+};
+
+}  // namespace
+}  // namespace ltm::link
+
+LTM_REGISTER_COMPONENT(ltm::link::Uplink, "uplink",
+                       "robot side of the link: keyframes and local maps journaled on disk and "
+                       "sent until the base station acknowledges them")
