@@ -1,5 +1,6 @@
 #include "runtime/domain.hpp"
 
+#include <cmath>
 #include <cstdlib>
 #include <stdexcept>
 
@@ -10,13 +11,45 @@
 
 namespace ltm::runtime {
 
+namespace {
+
+std::string bytes(std::int64_t b) { return std::to_string(b) + " B"; }
+std::string duration(double s) { return std::to_string(std::llround(s * 1e9)) + " ns"; }
+
+// `<Name>text</Name>` when the setting is given.
+template <class T, class F>
+std::string element(const char* name, const std::optional<T>& value, F text) {
+    if (!value) return "";
+    return std::string("<") + name + ">" + text(*value) + "</" + name + ">";
+}
+
+}  // namespace
+
 std::string cyclone_xml(const DdsSettings& dds) {
     // Socket buffers large enough for bursts of 1-2 MB scans (the OS may grant less: rmem_max).
     // Warnings off: a writer waiting for a full keep-all reader (the `stream` role's intended
     // back-pressure) would be reported every max_blocking_s. Errors still show.
-    std::string xml =
-        "<CycloneDDS><Domain Id=\"any\"><Internal><SocketReceiveBufferSize max=\"8MiB\"/>"
-        "</Internal><Tracing><Verbosity>severe</Verbosity></Tracing>";
+    // The element names are Cyclone DDS 0.10's; the launch config's link settings
+    // (launch_config.hpp) go in the same <General> and <Internal> as ltm's own.
+    const auto str = [](const std::string& v) { return v; };
+    std::string xml = "<CycloneDDS><Domain Id=\"any\"><Internal><SocketReceiveBufferSize max=\"" +
+                      (dds.socket_receive_buffer_size ? bytes(*dds.socket_receive_buffer_size)
+                                                      : std::string("8MiB")) +
+                      "\"/>";
+    if (dds.socket_send_buffer_size)
+        xml += "<SocketSendBufferSize max=\"" + bytes(*dds.socket_send_buffer_size) + "\"/>";
+    xml += element("HeartbeatInterval", dds.heartbeat_interval_s, duration) +
+           element("NackDelay", dds.nack_delay_s, duration) +
+           element("RetransmitMerging", dds.retransmit_merging, str);
+    if (dds.whc_low || dds.whc_high || dds.whc_high_init || dds.whc_adaptive)
+        xml += "<Watermarks>" + element("WhcLow", dds.whc_low, bytes) +
+               element("WhcHigh", dds.whc_high, bytes) +
+               element("WhcHighInit", dds.whc_high_init, bytes) +
+               element("WhcAdaptive", dds.whc_adaptive,
+                       [](bool b) { return std::string(b ? "true" : "false"); }) +
+               "</Watermarks>";
+    xml += element("WriterLingerDuration", dds.writer_linger_s, duration);
+    xml += "</Internal><Tracing><Verbosity>severe</Verbosity></Tracing>";
     if (!dds.custom) return xml + "</Domain></CycloneDDS>";
     xml += "<General>";
     if (!dds.interfaces.empty()) {
@@ -24,11 +57,14 @@ std::string cyclone_xml(const DdsSettings& dds) {
         for (const auto& i : dds.interfaces) xml += "<NetworkInterface name=\"" + i + "\"/>";
         xml += "</Interfaces>";
         // Loopback only: large datagrams cost nothing there and cut per-fragment overhead.
-        if (dds.interfaces.size() == 1 && dds.interfaces[0] == "lo")
+        if (dds.interfaces.size() == 1 && dds.interfaces[0] == "lo" && !dds.max_message_size)
             xml += "<MaxMessageSize>65000B</MaxMessageSize>";
     }
     xml += std::string("<AllowMulticast>") + (dds.multicast ? "default" : "false") +
            "</AllowMulticast>";
+    xml += element("FragmentSize", dds.fragment_size, bytes) +
+           element("MaxMessageSize", dds.max_message_size, bytes) +
+           element("MaxRexmitMessageSize", dds.max_retransmit_message_size, bytes);
     xml += "</General><Discovery>";
     if (!dds.peers.empty()) {
         xml += "<ParticipantIndex>auto</ParticipantIndex><MaxAutoParticipantIndex>" +

@@ -1,5 +1,7 @@
 #include "runtime/launch_config.hpp"
 
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <set>
 
@@ -187,6 +189,108 @@ DdsSecurity load_security(const std::string& file, const YAML::Node& dds, const 
     return out;
 }
 
+// "1344", "1344 B", "64 KiB", "8 MiB", "1.5 MB" (SI kB/MB, binary KiB/MiB) -> bytes; false when
+// the text is not a size.
+bool parse_size(const std::string& text, std::int64_t& bytes) {
+    std::size_t used = 0;
+    double value = 0;
+    try {
+        value = std::stod(text, &used);
+    } catch (const std::exception&) {
+        return false;
+    }
+    std::string unit = text.substr(used);
+    unit.erase(0, unit.find_first_not_of(' '));
+    static const std::pair<const char*, double> units[] = {
+        {"", 1}, {"B", 1}, {"kB", 1e3}, {"KiB", 1024}, {"MB", 1e6}, {"MiB", 1048576}};
+    for (const auto& [name, factor] : units) {
+        if (unit != name) continue;
+        const double b = value * factor;
+        if (!std::isfinite(b) || b < 0 || b > 1e15 || b != std::floor(b)) return false;
+        bytes = static_cast<std::int64_t>(b);
+        return true;
+    }
+    return false;
+}
+
+// True when `key` is in `map` with a value (not null).
+bool given(const YAML::Node& map, const std::string& key) {
+    const YAML::Node n = map[key];
+    return n.IsDefined() && !n.IsNull();
+}
+
+// An optional size in bytes within [min, max].
+std::optional<std::int64_t> size_key(const std::string& file, const YAML::Node& map,
+                                     const std::string& key, std::int64_t min, std::int64_t max) {
+    if (!given(map, key)) return std::nullopt;
+    const std::string text = scalar<std::string>(file, map, key, "dds", "");
+    std::int64_t bytes = 0;
+    if (!parse_size(text, bytes))
+        throw ConfigError(file, key_line(map, key), "dds." + key,
+                          "expected a size in bytes (1344, 64 KiB, 8 MiB), got '" + text + "'");
+    if (bytes < min || bytes > max)
+        throw ConfigError(file, key_line(map, key), "dds." + key,
+                          "must be " + std::to_string(min) + ".." + std::to_string(max) +
+                              " bytes, got " + std::to_string(bytes));
+    return bytes;
+}
+
+// An optional duration [s] within [min, max].
+std::optional<double> seconds_key(const std::string& file, const YAML::Node& map,
+                                  const std::string& key, double min, double max) {
+    if (!given(map, key)) return std::nullopt;
+    const double s = scalar<double>(file, map, key, "dds", 0.0);
+    if (!(s >= min && s <= max)) {
+        char range[64];
+        std::snprintf(range, sizeof range, "must be %g..%g s", min, max);
+        throw ConfigError(file, key_line(map, key), "dds." + key, range);
+    }
+    return s;
+}
+
+// The Cyclone tuning keys of `dds:` (DdsSettings), checked against Cyclone 0.10's limits.
+void load_dds_tuning(const std::string& f, const YAML::Node& dds, DdsSettings& d) {
+    const std::int64_t kMax = std::int64_t{1} << 31;
+    // Cyclone refuses fragments over 65000 B; under ~512 B the headers dominate.
+    d.fragment_size = size_key(f, dds, "fragment_size", 512, 65000);
+    d.max_message_size = size_key(f, dds, "max_message_size", 512, 65500);
+    d.max_retransmit_message_size = size_key(f, dds, "max_retransmit_message_size", 512, 65500);
+    if (d.fragment_size && d.max_message_size && *d.fragment_size > *d.max_message_size)
+        throw ConfigError(
+            f, key_line(dds, "fragment_size"), "dds.fragment_size",
+            "must not exceed dds.max_message_size (" + std::to_string(*d.max_message_size) + " B)");
+    d.socket_receive_buffer_size = size_key(f, dds, "socket_receive_buffer_size", 65536, kMax);
+    d.socket_send_buffer_size = size_key(f, dds, "socket_send_buffer_size", 65536, kMax);
+    // Cyclone's own bounds of the heartbeat interval (its min and max attributes: 5 ms, 8 s).
+    d.heartbeat_interval_s = seconds_key(f, dds, "heartbeat_interval_s", 0.005, 8.0);
+    d.nack_delay_s = seconds_key(f, dds, "nack_delay_s", 0.0, 10.0);
+    d.writer_linger_s = seconds_key(f, dds, "writer_linger_s", 0.0, 3600.0);
+    if (given(dds, "retransmit_merging")) {
+        const std::string merging = scalar<std::string>(f, dds, "retransmit_merging", "dds", "");
+        if (merging != "never" && merging != "adaptive" && merging != "always")
+            throw ConfigError(f, key_line(dds, "retransmit_merging"), "dds.retransmit_merging",
+                              "expected never, adaptive or always, got '" + merging + "'");
+        d.retransmit_merging = merging;
+    }
+    d.whc_low = size_key(f, dds, "whc_low", 0, kMax);
+    d.whc_high = size_key(f, dds, "whc_high", 1, kMax);
+    d.whc_high_init = size_key(f, dds, "whc_high_init", 0, kMax);
+    if (given(dds, "whc_adaptive"))
+        d.whc_adaptive = scalar<bool>(f, dds, "whc_adaptive", "dds", true);
+    // Cyclone refuses the domain unless low <= high_init <= high and low < high ("Invalid
+    // watermark settings"); checked here with its defaults for the ones not given.
+    const std::int64_t low = d.whc_low.value_or(1024), high = d.whc_high.value_or(500 * 1024),
+                       init = d.whc_high_init.value_or(30 * 1024);
+    if (!(low < high && low <= init && init <= high)) {
+        const char* key = d.whc_high_init ? "whc_high_init" : d.whc_high ? "whc_high" : "whc_low";
+        throw ConfigError(f, key_line(dds, key), std::string("dds.") + key,
+                          "expected whc_low <= whc_high_init <= whc_high and whc_low < whc_high "
+                          "(Cyclone's defaults 1 KiB, 30 KiB, 500 KiB for those not given), got " +
+                              std::to_string(low) + ", " + std::to_string(init) + ", " +
+                              std::to_string(high) + " B");
+    }
+}
+
 }  // namespace
 
 LaunchConfig load_launch_config(const std::string& path,
@@ -235,9 +339,12 @@ LaunchConfig load_launch_config(const std::string& path,
 
     if (const YAML::Node dds = croot["dds"]; dds.IsDefined() && !dds.IsNull()) {
         if (!dds.IsMap()) throw ConfigError(f, line_of(dds), "dds", "expected a map");
-        check_keys(
-            f, dds, "dds",
-            {"interfaces", "peers", "multicast", "max_participant_index", "extra_xml", "security"});
+        check_keys(f, dds, "dds",
+                   {"interfaces", "peers", "multicast", "max_participant_index", "extra_xml",
+                    "security", "fragment_size", "max_message_size", "max_retransmit_message_size",
+                    "socket_receive_buffer_size", "socket_send_buffer_size", "heartbeat_interval_s",
+                    "nack_delay_s", "retransmit_merging", "whc_low", "whc_high", "whc_high_init",
+                    "whc_adaptive", "writer_linger_s"});
         cfg.dds.custom = true;
         cfg.dds.interfaces = string_list(f, dds, "interfaces", "dds");
         cfg.dds.peers = string_list(f, dds, "peers", "dds");
@@ -246,6 +353,7 @@ LaunchConfig load_launch_config(const std::string& path,
         cfg.dds.extra_xml = scalar<std::string>(f, dds, "extra_xml", "dds", "");
         if (const YAML::Node sec = dds["security"]; sec.IsDefined() && !sec.IsNull())
             cfg.dds.security = load_security(f, dds, sec);
+        load_dds_tuning(f, dds, cfg.dds);
     }
 
     for (TopicRole r : {TopicRole::kSensor, TopicRole::kState, TopicRole::kMap, TopicRole::kStream})

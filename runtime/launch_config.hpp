@@ -3,7 +3,9 @@
 // launch_configs/README.md for every key).
 #include <yaml-cpp/yaml.h>
 
+#include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,6 +22,23 @@ struct DdsSettings {
     int max_participant_index = 20;  // unicast discovery probes this many ports a peer
     std::string extra_xml;           // appended inside <Domain>, for anything else
     DdsSecurity security;            // off unless `dds.security` names the files
+
+    // Cyclone settings for a narrow, lossy link; unset: Cyclone's default (the Cyclone DDS 0.10
+    // element each one sets in brackets; launch_configs/README.md says when to change them).
+    std::optional<std::int64_t> fragment_size;  // [B] General/FragmentSize (1344)
+    std::optional<std::int64_t>
+        max_message_size;  // [B] General/MaxMessageSize (14720; 65000 on lo)
+    std::optional<std::int64_t> max_retransmit_message_size;  // [B] General/MaxRexmitMessageSize
+    std::optional<std::int64_t> socket_receive_buffer_size;  // [B] Internal/SocketReceiveBufferSize
+    std::optional<std::int64_t> socket_send_buffer_size;     // [B] Internal/SocketSendBufferSize
+    std::optional<double> heartbeat_interval_s;              // Internal/HeartbeatInterval (0.1)
+    std::optional<double> nack_delay_s;                      // Internal/NackDelay (0.1)
+    std::optional<std::string> retransmit_merging;           // Internal/RetransmitMerging (never)
+    std::optional<std::int64_t> whc_low;        // [B] Internal/Watermarks/WhcLow (1 KiB)
+    std::optional<std::int64_t> whc_high;       // [B] Internal/Watermarks/WhcHigh (500 KiB)
+    std::optional<std::int64_t> whc_high_init;  // [B] Internal/Watermarks/WhcHighInit (30 KiB)
+    std::optional<bool> whc_adaptive;           // Internal/Watermarks/WhcAdaptive (true)
+    std::optional<double> writer_linger_s;      // Internal/WriterLingerDuration (1)
 };
 
 struct ComponentSpec {

@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <fstream>
+#include <iterator>
 
 #include "runtime/config_error.hpp"
 #include "runtime/domain.hpp"
@@ -154,4 +155,136 @@ TEST(LaunchConfig, CycloneXmlForLoopbackUnicast) {
     EXPECT_NE(xml.find("<AllowMulticast>false</AllowMulticast>"), std::string::npos);
     EXPECT_NE(xml.find("<Peer Address=\"127.0.0.1\"/>"), std::string::npos);
     EXPECT_NE(xml.find("<ParticipantIndex>auto</ParticipantIndex>"), std::string::npos);
+}
+
+namespace {
+
+// Every Cyclone setting of a narrow, lossy link (launch_configs/README.md).
+const char* kLink = R"(dds:
+  interfaces: [lo]
+  multicast: false
+  peers: [127.0.0.1]
+  fragment_size: 1344
+  max_message_size: 1456 B
+  max_retransmit_message_size: 1456
+  socket_receive_buffer_size: 4 MiB
+  socket_send_buffer_size: 2 MiB
+  heartbeat_interval_s: 0.05
+  nack_delay_s: 0.01
+  retransmit_merging: adaptive
+  whc_low: 64 KiB
+  whc_high: 8 MiB
+  whc_high_init: 1 MB
+  whc_adaptive: false
+  writer_linger_s: 15
+components: [{type: a}]
+)";
+
+std::string read_file(const std::string& path) {
+    std::ifstream in(path);
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+}  // namespace
+
+TEST(LaunchConfig, ParsesTheLinkSettings) {
+    const DdsSettings d = load_launch_config(write_temp(kLink)).dds;
+    EXPECT_EQ(d.fragment_size, 1344);
+    EXPECT_EQ(d.max_message_size, 1456);
+    EXPECT_EQ(d.max_retransmit_message_size, 1456);
+    EXPECT_EQ(d.socket_receive_buffer_size, 4 << 20);
+    EXPECT_EQ(d.socket_send_buffer_size, 2 << 20);
+    EXPECT_EQ(d.heartbeat_interval_s, 0.05);
+    EXPECT_EQ(d.nack_delay_s, 0.01);
+    EXPECT_EQ(d.retransmit_merging, "adaptive");
+    EXPECT_EQ(d.whc_low, 64 << 10);
+    EXPECT_EQ(d.whc_high, 8 << 20);
+    EXPECT_EQ(d.whc_high_init, 1000000);
+    EXPECT_EQ(d.whc_adaptive, false);
+    EXPECT_EQ(d.writer_linger_s, 15.0);
+    // Not given: Cyclone's defaults (nothing emitted).
+    const DdsSettings plain = load_launch_config(write_temp(kGood)).dds;
+    EXPECT_FALSE(plain.fragment_size || plain.whc_high || plain.writer_linger_s);
+    EXPECT_EQ(cyclone_xml(plain).find("Watermarks"), std::string::npos);
+    EXPECT_EQ(cyclone_xml(plain).find("FragmentSize"), std::string::npos);
+    // --set reaches them on a config with a dds: block and on one without.
+    EXPECT_EQ(load_launch_config(write_temp(kGood), {"dds.writer_linger_s=3"}).dds.writer_linger_s,
+              3.0);
+    EXPECT_EQ(load_launch_config(write_temp("components: [{type: a}]\n"), {"dds.whc_high=2 MiB"})
+                  .dds.whc_high,
+              2 << 20);
+}
+
+TEST(LaunchConfig, BadLinkSettingsAreOneLine) {
+    const auto err = [](const std::string& dds) {
+        return error_of("dds:\n" + dds + "\ncomponents: [{type: a}]\n");
+    };
+    EXPECT_EQ(
+        err("  fragment_size: 1.5 kb"),
+        ":2: dds.fragment_size: expected a size in bytes (1344, 64 KiB, 8 MiB), got '1.5 kb'");
+    EXPECT_EQ(err("  fragment_size: -4"),
+              ":2: dds.fragment_size: expected a size in bytes (1344, 64 KiB, 8 MiB), got '-4'");
+    EXPECT_EQ(err("  fragment_size: [1]"), ":2: dds.fragment_size: expected a string");
+    EXPECT_EQ(err("  fragment_size: 70000"),
+              ":2: dds.fragment_size: must be 512..65000 bytes, got 70000");
+    EXPECT_EQ(err("  max_message_size: 1400\n  fragment_size: 1456"),
+              ":3: dds.fragment_size: must not exceed dds.max_message_size (1400 B)");
+    EXPECT_EQ(err("  socket_receive_buffer_size: 1 kB"),
+              ":2: dds.socket_receive_buffer_size: must be 65536..2147483648 bytes, got 1000");
+    EXPECT_EQ(err("  heartbeat_interval_s: 0.001"),
+              ":2: dds.heartbeat_interval_s: must be 0.005..8 s");
+    EXPECT_EQ(err("  nack_delay_s: soon"), ":2: dds.nack_delay_s: expected a number");
+    EXPECT_EQ(err("  writer_linger_s: -1"), ":2: dds.writer_linger_s: must be 0..3600 s");
+    EXPECT_EQ(err("  retransmit_merging: sometimes"),
+              ":2: dds.retransmit_merging: expected never, adaptive or always, got 'sometimes'");
+    EXPECT_EQ(err("  whc_adaptive: maybe"), ":2: dds.whc_adaptive: expected true or false");
+    // Cyclone's "Invalid watermark settings", said before Cyclone sees them.
+    EXPECT_EQ(err("  whc_high: 20 KiB"),
+              ":2: dds.whc_high: expected whc_low <= whc_high_init <= whc_high and whc_low < "
+              "whc_high (Cyclone's defaults 1 KiB, 30 KiB, 500 KiB for those not given), got "
+              "1024, 30720, 20480 B");
+    EXPECT_EQ(err("  whc_low: 1 MiB\n  whc_high: 1 MiB\n  whc_high_init: 1 MiB").substr(0, 29),
+              ":4: dds.whc_high_init: expect");
+    EXPECT_EQ(err("  fragmentsize: 1344").substr(0, 46),
+              ":2: dds.fragmentsize: unknown key (known: extr");
+}
+
+TEST(LaunchConfig, CycloneTakesTheLinkSettings) {
+    const DdsSettings d = load_launch_config(write_temp(kLink)).dds;
+    const std::string xml = cyclone_xml(d);
+    for (const char* e :
+         {"<FragmentSize>1344 B</FragmentSize>", "<MaxMessageSize>1456 B</MaxMessageSize>",
+          "<MaxRexmitMessageSize>1456 B</MaxRexmitMessageSize>",
+          "<SocketReceiveBufferSize max=\"4194304 B\"/>",
+          "<SocketSendBufferSize max=\"2097152 B\"/>",
+          "<HeartbeatInterval>50000000 ns</HeartbeatInterval>",
+          "<NackDelay>10000000 ns</NackDelay>", "<RetransmitMerging>adaptive</RetransmitMerging>",
+          "<Watermarks><WhcLow>65536 B</WhcLow><WhcHigh>8388608 B</WhcHigh><WhcHighInit>1000000 "
+          "B</WhcHighInit><WhcAdaptive>false</WhcAdaptive></Watermarks>",
+          "<WriterLingerDuration>15000000000 ns</WriterLingerDuration>"})
+        EXPECT_NE(xml.find(e), std::string::npos) << e;
+    EXPECT_EQ(xml.find("65000B"), std::string::npos);  // lo's large datagrams: not over ours
+    // Cyclone DDS itself accepts every element and takes the values: its configuration trace.
+    const std::string log =
+        ::testing::TempDir() + "cyclone_config_" + std::to_string(::getpid()) + ".log";
+    const std::string uri = xml +
+                            ",<CycloneDDS><Domain Id=\"any\"><Tracing><Verbosity>config</Verbosity>"
+                            "<OutputFile>" +
+                            log + "</OutputFile></Tracing></Domain></CycloneDDS>";
+    const dds_entity_t domain = dds_create_domain(211, uri.c_str());
+    ASSERT_GT(domain, 0) << dds_strretcode(domain);
+    dds_delete(domain);
+    const std::string trace = read_file(log);
+    std::remove(log.c_str());
+    for (const char* line :
+         {"General/FragmentSize/#text: 1344 B", "General/MaxMessageSize/#text: 1456 B",
+          "General/MaxRexmitMessageSize/#text: 1456 B",
+          "Internal/SocketReceiveBufferSize[@max]: 4 MiB",
+          "Internal/SocketSendBufferSize[@max]: 2 MiB", "Internal/HeartbeatInterval/#text: 50 ms",
+          "Internal/NackDelay/#text: 10 ms", "Internal/RetransmitMerging/#text: adaptive",
+          "Internal/Watermarks/WhcLow/#text: 64 KiB", "Internal/Watermarks/WhcHigh/#text: 8 MiB",
+          "Internal/Watermarks/WhcHighInit/#text: 1000000 B",
+          "Internal/Watermarks/WhcAdaptive/#text: false",
+          "Internal/WriterLingerDuration/#text: 15 s"})
+        EXPECT_NE(trace.find(line), std::string::npos) << line << " not in Cyclone's trace";
 }
