@@ -146,16 +146,22 @@ dds_entity_t Domain::topic(const std::string& dds_name, const dds_topic_descript
 }
 
 TopicRole Domain::role(const std::string& absolute_name, TopicRole declared) const {
-    for (const auto& [name, role] : config_.topic_roles) {
-        std::string err;
-        const std::string abs = resolve_name(name, config_.ns, "", err);
-        if (abs == absolute_name) return role;
-    }
-    return declared;
+    const TopicQos* q = topic_qos(absolute_name);
+    return q && q->role ? *q->role : declared;
 }
 
 QosProfile Domain::profile(const std::string& absolute_name, TopicRole declared) const {
-    return config_.qos.at(role(absolute_name, declared));
+    const QosProfile base = config_.qos.at(role(absolute_name, declared));
+    const TopicQos* q = topic_qos(absolute_name);
+    return q ? q->apply(base) : base;
+}
+
+const TopicQos* Domain::topic_qos(const std::string& absolute_name) const {
+    for (const auto& [name, q] : config_.topics) {
+        std::string err;
+        if (resolve_name(name, config_.ns, "", err) == absolute_name) return &q;
+    }
+    return nullptr;
 }
 
 }  // namespace ltm::runtime

@@ -26,11 +26,15 @@ class Domain {
     // std::invalid_argument when the name is already used with another type.
     dds_entity_t topic(const std::string& dds_name, const dds_topic_descriptor_t* desc);
 
-    // The QoS of a topic: the launch config's per-topic role override, else the declared role.
+    // The QoS of a topic: the profile of its role (the launch config's `topics:` role, else the
+    // declared one) with the keys its `topics:` entry sets.
     QosProfile profile(const std::string& absolute_name, TopicRole declared) const;
     TopicRole role(const std::string& absolute_name, TopicRole declared) const;
 
   private:
+    // The launch config's `topics:` entry of this topic, null when it has none.
+    const TopicQos* topic_qos(const std::string& absolute_name) const;
+
     const LaunchConfig& config_;
     int domain_id_;
     dds_entity_t domain_ = 0, participant_ = 0;

@@ -291,6 +291,49 @@ void load_dds_tuning(const std::string& f, const YAML::Node& dds, DdsSettings& d
     }
 }
 
+// A `topics:` entry: `name: role`, or `name: {role: ..., reliable: ..., depth: ...}` (the keys of
+// a `qos:` profile; each one given replaces the role's).
+TopicQos load_topic_qos(const std::string& file, const YAML::Node& key, const YAML::Node& n) {
+    const std::string where = "topics." + key.as<std::string>();
+    const std::string roles = "sensor, state, map or stream";
+    TopicQos q;
+    TopicRole r;
+    if (n.IsScalar()) {
+        if (!parse_role(n.as<std::string>(), r))
+            throw ConfigError(file, key.Mark().line + 1, where, "expected a role: " + roles);
+        q.role = r;
+        return q;
+    }
+    if (!n.IsMap())
+        throw ConfigError(file, key.Mark().line + 1, where,
+                          "expected a role (" + roles + ") or a map of role and qos keys");
+    check_keys(file, n, where,
+               {"role", "reliable", "transient_local", "keep_all", "depth", "max_blocking_s"});
+    if (given(n, "role")) {
+        const std::string role = scalar<std::string>(file, n, "role", where, "");
+        if (!parse_role(role, r))
+            throw ConfigError(file, key_line(n, "role"), where + ".role",
+                              "expected " + roles + ", got '" + role + "'");
+        q.role = r;
+    }
+    if (given(n, "reliable")) q.reliable = scalar<bool>(file, n, "reliable", where, true);
+    if (given(n, "transient_local"))
+        q.transient_local = scalar<bool>(file, n, "transient_local", where, false);
+    if (given(n, "keep_all")) q.keep_all = scalar<bool>(file, n, "keep_all", where, false);
+    if (given(n, "depth")) {
+        q.depth = scalar<int>(file, n, "depth", where, 1);
+        if (*q.depth < 1)
+            throw ConfigError(file, key_line(n, "depth"), where + ".depth", "must be at least 1");
+    }
+    if (given(n, "max_blocking_s")) {
+        q.max_blocking_s = scalar<double>(file, n, "max_blocking_s", where, 1.0);
+        if (!(*q.max_blocking_s > 0))
+            throw ConfigError(file, key_line(n, "max_blocking_s"), where + ".max_blocking_s",
+                              "must be positive");
+    }
+    return q;
+}
+
 }  // namespace
 
 LaunchConfig load_launch_config(const std::string& path,
@@ -370,15 +413,11 @@ LaunchConfig load_launch_config(const std::string& path,
     }
     if (const YAML::Node topics = croot["topics"]; topics.IsDefined() && !topics.IsNull()) {
         if (!topics.IsMap())
-            throw ConfigError(f, line_of(topics), "topics", "expected a map of name: role");
-        for (const auto& kv : topics) {
-            const std::string name = kv.first.as<std::string>();
-            TopicRole r;
-            if (!kv.second.IsScalar() || !parse_role(kv.second.as<std::string>(), r))
-                throw ConfigError(f, kv.first.Mark().line + 1, "topics." + name,
-                                  "expected a role: sensor, state, map or stream");
-            cfg.topic_roles[name] = r;  // resolved against the namespace by the host
-        }
+            throw ConfigError(f, line_of(topics), "topics",
+                              "expected a map of name: role or name: {role: ..., reliable: ...}");
+        // Names are resolved against the namespace by the host.
+        for (const auto& kv : topics)
+            cfg.topics[kv.first.as<std::string>()] = load_topic_qos(f, kv.first, kv.second);
     }
 
     const YAML::Node comps = croot["components"];

@@ -58,8 +58,8 @@ struct LaunchConfig {
     int domain_id = 0;
     std::string ns;  // namespace of every relative topic name
     DdsSettings dds;
-    std::map<TopicRole, QosProfile> qos;           // a profile for every role
-    std::map<std::string, TopicRole> topic_roles;  // absolute name -> role override
+    std::map<TopicRole, QosProfile> qos;     // a profile for every role
+    std::map<std::string, TopicQos> topics;  // topic name -> role and profile overrides
     ErrorPolicy on_error = ErrorPolicy::kStop;
     int max_restarts = 3;
     bool exit_when_sources_done =

@@ -64,7 +64,8 @@ TEST(LaunchConfig, ParsesEverySection) {
     EXPECT_FALSE(c.dds.multicast);
     EXPECT_EQ(c.qos.at(TopicRole::kStream).depth, 3);
     EXPECT_TRUE(c.qos.at(TopicRole::kStream).keep_all);
-    EXPECT_EQ(c.topic_roles.at("points"), TopicRole::kStream);
+    EXPECT_EQ(c.topics.at("points").role, TopicRole::kStream);
+    EXPECT_FALSE(c.topics.at("points").depth);
     EXPECT_EQ(c.on_error, ErrorPolicy::kRestart);
     ASSERT_EQ(c.components.size(), 2u);
     EXPECT_EQ(c.components[0].name, "player");
@@ -287,4 +288,62 @@ TEST(LaunchConfig, CycloneTakesTheLinkSettings) {
           "Internal/Watermarks/WhcAdaptive/#text: false",
           "Internal/WriterLingerDuration/#text: 15 s"})
         EXPECT_NE(trace.find(line), std::string::npos) << line << " not in Cyclone's trace";
+}
+
+TEST(LaunchConfig, PerTopicQos) {
+    const LaunchConfig c = load_launch_config(write_temp(R"(domain_id: 212
+namespace: /robot
+dds: {interfaces: [lo], multicast: false, peers: [127.0.0.1]}
+qos:
+  state: {depth: 20}
+topics:
+  points: stream
+  odometry: {role: state, reliable: false, depth: 1}
+  /robot/status: {reliable: false}
+  map_to_odom: {role: map, depth: 1, max_blocking_s: 2}
+  link/packets: {keep_all: true, depth: 4, transient_local: true}
+components: [{type: a}]
+)"));
+    const TopicQos& odometry = c.topics.at("odometry");
+    EXPECT_EQ(odometry.role, TopicRole::kState);
+    EXPECT_EQ(odometry.reliable, false);
+    EXPECT_EQ(odometry.depth, 1);
+    EXPECT_FALSE(odometry.keep_all || odometry.transient_local || odometry.max_blocking_s);
+    // What the host's writers and readers get: the role's profile with the entry's keys.
+    const Domain domain(c);
+    const QosProfile o = domain.profile("/robot/odometry", TopicRole::kMap);
+    EXPECT_FALSE(o.reliable);
+    EXPECT_FALSE(o.transient_local);  // state's, not the declared map role's
+    EXPECT_EQ(o.depth, 1);
+    const QosProfile s = domain.profile("/robot/status", TopicRole::kState);  // no role: declared
+    EXPECT_FALSE(s.reliable);
+    EXPECT_EQ(s.depth, 20);  // qos.state's
+    EXPECT_EQ(domain.role("/robot/status", TopicRole::kState), TopicRole::kState);
+    const QosProfile m = domain.profile("/robot/map_to_odom", TopicRole::kState);
+    EXPECT_TRUE(m.reliable && m.transient_local);
+    EXPECT_EQ(m.depth, 1);
+    EXPECT_EQ(m.max_blocking_s, 2.0);
+    const QosProfile l = domain.profile("/robot/link/packets", TopicRole::kState);
+    EXPECT_TRUE(l.reliable && l.keep_all && l.transient_local);
+    EXPECT_EQ(l.depth, 4);
+    EXPECT_EQ(domain.profile("/robot/points", TopicRole::kSensor).keep_all, true);  // old form
+    EXPECT_EQ(domain.profile("/robot/other", TopicRole::kSensor).reliable, false);  // untouched
+}
+
+TEST(LaunchConfig, BadPerTopicQosIsOneLine) {
+    const auto err = [](const std::string& topics) {
+        return error_of("topics:\n" + topics + "\ncomponents: [{type: a}]\n");
+    };
+    EXPECT_EQ(err("  odometry: {role: fast}"),
+              ":2: topics.odometry.role: expected sensor, state, map or stream, got 'fast'");
+    EXPECT_EQ(err("  odometry: {reliabel: false}").substr(0, 50),
+              ":2: topics.odometry.reliabel: unknown key (known: ");
+    EXPECT_EQ(err("  odometry:\n    depth: 0"), ":3: topics.odometry.depth: must be at least 1");
+    EXPECT_EQ(err("  odometry: {max_blocking_s: 0}"),
+              ":2: topics.odometry.max_blocking_s: must be positive");
+    EXPECT_EQ(err("  odometry: {reliable: sometimes}"),
+              ":2: topics.odometry.reliable: expected true or false");
+    EXPECT_EQ(err("  odometry: [state]"),
+              ":2: topics.odometry: expected a role (sensor, state, map or stream) or a map of "
+              "role and qos keys");
 }

@@ -24,6 +24,15 @@ QosProfile default_profile(TopicRole role) {
     return p;
 }
 
+QosProfile TopicQos::apply(QosProfile base) const {
+    base.reliable = reliable.value_or(base.reliable);
+    base.transient_local = transient_local.value_or(base.transient_local);
+    base.keep_all = keep_all.value_or(base.keep_all);
+    base.depth = depth.value_or(base.depth);
+    base.max_blocking_s = max_blocking_s.value_or(base.max_blocking_s);
+    return base;
+}
+
 const char* role_name(TopicRole role) {
     switch (role) {
         case TopicRole::kSensor:

@@ -2,6 +2,7 @@
 // Quality of service by topic role (STYLE.md section 4).
 #include <dds/dds.h>
 
+#include <optional>
 #include <string>
 
 namespace ltm::runtime {
@@ -19,6 +20,19 @@ struct QosProfile {
     bool keep_all = false;
     int depth = 10;               // keep-last depth, or the reader's queue bound for keep-all
     double max_blocking_s = 0.1;  // a blocked reliable write returns after this and is retried
+};
+
+// A `topics:` entry of the launch config: the role and the profile keys it sets for one topic.
+// What it leaves unset comes from the role's profile (its role, else the one the component
+// declared).
+struct TopicQos {
+    std::optional<TopicRole> role;
+    std::optional<bool> reliable, transient_local, keep_all;
+    std::optional<int> depth;
+    std::optional<double> max_blocking_s;
+
+    // `base` with the keys this entry sets.
+    QosProfile apply(QosProfile base) const;
 };
 
 QosProfile default_profile(TopicRole role);
