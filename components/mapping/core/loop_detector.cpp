@@ -34,17 +34,38 @@ bool LoopDetector::fits(const ScanContext& sc) const {
 }
 
 void LoopDetector::release(std::uint32_t session, double stamp) {
-    // pending_ is in add() order; keyframes of another session are never recent.
-    while (!pending_.empty()) {
-        const Pending& p = pending_.front();
-        const std::size_t newer = descriptors_.size() - 1 - p.item;  // kept after it
-        const bool other_session = p.session != session;
-        if (!other_session && (newer < std::size_t(config_.exclude_recent_keyframes) ||
-                               stamp - p.stamp < config_.exclude_recent_seconds)) {
+    const auto it = pending_.find(session);
+    if (it == pending_.end()) return;
+    std::deque<Pending>& pending = it->second;
+    const std::uint64_t kept = kept_[session];
+    while (!pending.empty()) {
+        const Pending& p = pending.front();
+        const std::uint64_t newer = kept - 1 - p.ordinal;  // of its session, kept after it
+        if (newer < std::uint64_t(config_.exclude_recent_keyframes) ||
+            stamp - p.stamp < config_.exclude_recent_seconds) {
             break;
         }
         index_.add(ring_key(descriptors_[p.item]), p.item);
-        pending_.pop_front();
+        pending.pop_front();
+    }
+}
+
+void LoopDetector::query_pending(const ScanContext& descriptor, std::uint32_t session,
+                                 std::vector<LoopCandidate>* out) const {
+    // The nearest ring keys first, as the index does, then the full comparison.
+    const Eigen::VectorXf key = ring_key(descriptor);
+    std::vector<std::pair<float, std::uint32_t>> near;
+    for (const auto& [other, pending] : pending_) {
+        if (other == session) continue;
+        for (const Pending& p : pending)
+            near.emplace_back((ring_key(descriptors_[p.item]) - key).norm(), p.item);
+    }
+    const std::size_t n = std::min(near.size(), std::size_t(config_.candidates));
+    std::partial_sort(near.begin(), near.begin() + std::ptrdiff_t(n), near.end());
+    for (std::size_t i = 0; i < n; ++i) {
+        const ScanContextMatch m = compare(descriptor, descriptors_[near[i].second], sc_config_);
+        if (!m.valid || !(m.distance <= config_.max_distance)) continue;
+        out->push_back({near[i].second, m.distance, m.yaw, m.shift});
     }
 }
 
@@ -74,14 +95,25 @@ bool LoopDetector::search(const ScanContext& descriptor, std::uint32_t session, 
     if (candidates) candidates->clear();
     if (!fits(descriptor)) return false;
     release(session, stamp);  // before the new keyframe joins: it never finds itself
-    if (candidates) *candidates = query(descriptor);
+    if (!candidates) return true;
+    *candidates = query(descriptor);
+    // Another session's recent keyframes (robots at once): not recent for this one.
+    const std::size_t from_index = candidates->size();
+    query_pending(descriptor, session, candidates);
+    if (candidates->size() == from_index) return true;
+    std::sort(candidates->begin(), candidates->end(),
+              [](const LoopCandidate& a, const LoopCandidate& b) {
+                  return a.distance < b.distance || (a.distance == b.distance && a.match < b.match);
+              });
+    if (candidates->size() > std::size_t(config_.max_results))
+        candidates->resize(std::size_t(config_.max_results));
     return true;
 }
 
 bool LoopDetector::keep(const ScanContext& descriptor, std::uint32_t session, double stamp) {
     if (!fits(descriptor)) return false;
     descriptors_.push_back(descriptor);
-    pending_.push_back({std::uint32_t(descriptors_.size() - 1), session, stamp});
+    pending_[session].push_back({std::uint32_t(descriptors_.size() - 1), kept_[session]++, stamp});
     return true;
 }
 

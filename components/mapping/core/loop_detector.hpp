@@ -3,9 +3,13 @@
 // kept; a new keyframe is compared with the keyframes that are not recent (an exclusion window in
 // keyframes and seconds within its session), retrieved by ring key from a k-d tree, and the
 // column-shift distance under a threshold makes a candidate, with the yaw between the scans.
+// Several sessions may run at once (robots on one site): a keyframe of another session is never
+// recent, so it is searched from the moment it is kept (the newest ones by ring key among those
+// still recent for their own session), while its own session sees it only after the window.
 // The caller verifies candidates geometrically.
 #include <cstdint>
 #include <deque>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -76,17 +80,23 @@ class LoopDetector {
   private:
     struct Pending {
         std::uint32_t item;
-        std::uint32_t session;
+        std::uint64_t ordinal;  // the keyframes of its session kept before it
         double stamp;
     };
     bool fits(const ScanContext& sc) const;
+    // Into the index: the keyframes of `session` no longer recent for it.
     void release(std::uint32_t session, double stamp);
+    // Candidates among the recent keyframes of the sessions other than `session`.
+    void query_pending(const ScanContext& descriptor, std::uint32_t session,
+                       std::vector<LoopCandidate>* out) const;
 
     ScanContextConfig sc_config_;
     LoopDetectorConfig config_;
     std::vector<ScanContext> descriptors_;
     RingKeyIndex index_;
-    std::deque<Pending> pending_;  // recent keyframes, not yet searchable (oldest first)
+    // Per session: recent keyframes, not yet in the index (oldest first), and how many it kept.
+    std::map<std::uint32_t, std::deque<Pending>> pending_;
+    std::map<std::uint32_t, std::uint64_t> kept_;
 };
 
 }  // namespace ltm::mapping

@@ -73,6 +73,7 @@ struct SessionRecord {
     double first_stamp = 0.0, last_stamp = 0.0;  // of its keyframes [s]
     std::uint64_t local_maps_added = 0;          // new local maps (graph nodes)
     std::uint64_t local_maps_updated = 0;        // existing local maps it folded its own into
+    std::string robot{};  // the robot that drove it ("" when one robot built the map)
 };
 
 struct MapData {

@@ -65,6 +65,8 @@ class LineReader {
 
     // The key of the next line that has text; "" at the end.
     const std::string& peek() const { return tokens_.empty() ? kNone : tokens_[0]; }
+    // How many fields the next line has after its key.
+    std::size_t fields() const { return tokens_.empty() ? 0 : tokens_.size() - 1; }
 
     template <class... T>
     void line(const char* pattern, T&&... fields) {
@@ -191,12 +193,22 @@ void descriptor_line(IO& io, const char* pattern, const std::string& key, C& d) 
     }
 }
 
-// One "session <id> <first_stamp> <last_stamp> <added> <updated>" line; prev: the session before
+// One "session <id> <first_stamp> <last_stamp> <added> <updated> [<robot>]" line (the robot of a
+// map that several robots built; none when one robot built it); prev: the session before
 // (reading: ids ascending).
 template <class IO, class S>
 void session_line(IO& io, S& s, const SessionRecord* prev) {
-    io.line("session <id> <first_stamp> <last_stamp> <local_maps_added> <local_maps_updated>", s.id,
-            s.first_stamp, s.last_stamp, s.local_maps_added, s.local_maps_updated);
+    bool named = !s.robot.empty();
+    if constexpr (IO::kReading) named = io.fields() == 6;
+    if (named) {
+        io.line(
+            "session <id> <first_stamp> <last_stamp> <local_maps_added> <local_maps_updated> "
+            "<robot>",
+            s.id, s.first_stamp, s.last_stamp, s.local_maps_added, s.local_maps_updated, s.robot);
+    } else {
+        io.line("session <id> <first_stamp> <last_stamp> <local_maps_added> <local_maps_updated>",
+                s.id, s.first_stamp, s.last_stamp, s.local_maps_added, s.local_maps_updated);
+    }
     if constexpr (IO::kReading) {
         io.check(std::isfinite(s.first_stamp) && std::isfinite(s.last_stamp) &&
                      s.first_stamp <= s.last_stamp,

@@ -5,8 +5,9 @@
 //   descriptor <kind 0|1> <rings> <sectors> <max_range> <min_range> <sensor_height>
 //   localisation_descriptor <kind 0|1> <rings> <sectors> <max_range> <min_range> <sensor_height>
 //                                                      (format 2 and 3)
-//   session <id> <first_stamp> <last_stamp> <local_maps_added> <local_maps_updated>
-//                                                      (format 3: one a session, ids ascending)
+//   session <id> <first_stamp> <last_stamp> <local_maps_added> <local_maps_updated> [<robot>]
+//                                                      (format 3: one a session, ids ascending;
+//                                                      the robot's name when several built it)
 //   graph <file> <size> <hash>
 //   keyframes <file> <size> <hash> <first> <count>     (any number of these two)
 //   local_map <node> <file> <size> <hash>

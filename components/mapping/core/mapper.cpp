@@ -1,5 +1,6 @@
 #include "mapping/core/mapper.hpp"
 
+#include <cctype>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -49,7 +50,9 @@ Mapper::Mapper(const MapperConfig& config)
     : config_(checked(config)),
       graph_(config.pose_graph),
       detector_(config.scan_context, config.loop_detection),
-      verifier_(config.verification) {}
+      verifier_(config.verification) {
+    live_[session_];
+}
 
 Mapper::Mapper(const MapperConfig& config, const MapData& loaded, bool freeze_loaded)
     : Mapper(config) {
@@ -121,11 +124,53 @@ Mapper::Mapper(const MapperConfig& config, const MapData& loaded, bool freeze_lo
         for (const auto& [id, r] : known) past_sessions_.push_back(r);
     }
     session_ = std::max(session_, past_sessions_.empty() ? 0u : past_sessions_.back().id + 1);
+    live_.clear();
+    live_[session_];
     update_placement();
 }
 
+std::uint32_t Mapper::open_session(const std::string& name) {
+    // A name is one word (the map's manifest lists it on the session's line).
+    std::string robot = name;
+    for (char& c : robot) {
+        if (std::isspace(static_cast<unsigned char>(c))) c = '_';
+    }
+    for (const auto& [id, live] : live_) {
+        if (live.robot == robot && !robot.empty()) return id;
+    }
+    Live& first = live_.at(session_);
+    if (first.robot.empty() && first.keyframes_seen == 0 && !chains_.count(session_)) {
+        first.robot = robot;
+        return session_;
+    }
+    std::uint32_t id = live_.rbegin()->first;
+    if (!chains_.empty()) id = std::max(id, chains_.rbegin()->first);
+    live_[id + 1].robot = robot;
+    return id + 1;
+}
+
+std::vector<std::uint32_t> Mapper::open_sessions() const {
+    std::vector<std::uint32_t> out;
+    for (const auto& [id, live] : live_) out.push_back(id);
+    return out;
+}
+
+std::string Mapper::robot(std::uint32_t session) const {
+    const auto it = live_.find(session);
+    if (it != live_.end()) return it->second.robot;
+    for (const SessionRecord& r : past_sessions_) {
+        if (r.id == session) return r.robot;
+    }
+    return "";
+}
+
 std::optional<std::uint64_t> Mapper::node_of(std::uint64_t local_map_id) const {
-    const auto chain = chains_.find(session_);
+    return node_of(local_map_id, session_);
+}
+
+std::optional<std::uint64_t> Mapper::node_of(std::uint64_t local_map_id,
+                                             std::uint32_t session) const {
+    const auto chain = chains_.find(session);
     if (chain == chains_.end()) return std::nullopt;
     const auto it = chain->second.find(local_map_id);
     if (it == chain->second.end()) return std::nullopt;
@@ -143,22 +188,22 @@ Eigen::Isometry3d Mapper::predicted_world(std::uint32_t session, std::uint64_t l
     return a.T_world_anchor * a.T_odom_anchor.inverse() * T_odom_anchor;
 }
 
-std::uint64_t Mapper::ensure_node(std::uint64_t local_map_id,
+std::uint64_t Mapper::ensure_node(std::uint32_t session, std::uint64_t local_map_id,
                                   const Eigen::Isometry3d& T_odom_anchor,
                                   std::optional<std::uint32_t> segment) {
-    if (const std::optional<std::uint64_t> existing = node_of(local_map_id)) {
-        if (segment && !folded(session_, local_map_id)) set_segment(local_map_id, *segment);
+    if (const std::optional<std::uint64_t> existing = node_of(local_map_id, session)) {
+        if (segment && !folded(session, local_map_id)) set_segment(session, local_map_id, *segment);
         return *existing;
     }
     PoseGraphNode n;
     n.id = next_node_++;
-    n.session = session_;
+    n.session = session;
     n.local_map_id = local_map_id;
     n.T_odom_anchor = T_odom_anchor;
     // Across a break too: the odometry restarted at its best estimate, in the same odometry frame.
-    n.T_world_anchor = predicted_world(session_, local_map_id, T_odom_anchor);
+    n.T_world_anchor = predicted_world(session, local_map_id, T_odom_anchor);
     graph_.add_node(n);
-    std::map<std::uint64_t, std::uint64_t>& chain = chains_[session_];
+    std::map<std::uint64_t, std::uint64_t>& chain = chains_[session];
     const auto it = chain.emplace(local_map_id, n.id).first;
     if (segment) {
         segment_of_[n.id] = NodeSegment{*segment, true};
@@ -169,8 +214,8 @@ std::uint64_t Mapper::ensure_node(std::uint64_t local_map_id,
         const std::uint32_t s = prev == chain.end() ? 0 : segment_of(prev->second);
         segment_of_[n.id] = NodeSegment{s, false};
     }
-    link_odometry(local_map_id);
-    set_path(session_, local_map_id);
+    link_odometry(session, local_map_id);
+    set_path(session, local_map_id);
     return n.id;
 }
 
@@ -187,15 +232,15 @@ void Mapper::set_path(std::uint32_t session, std::uint64_t local_map_id) {
     path_at_[node->id] = path;
 }
 
-void Mapper::link_odometry(std::uint64_t local_map_id) {
-    const std::map<std::uint64_t, std::uint64_t>& chain = chains_[session_];
+void Mapper::link_odometry(std::uint32_t session, std::uint64_t local_map_id) {
+    const std::map<std::uint64_t, std::uint64_t>& chain = chains_[session];
     const auto it = chain.find(local_map_id);
-    const ChainAnchor node = chain_anchor(session_, it->first, it->second);
+    const ChainAnchor node = chain_anchor(session, it->first, it->second);
     std::optional<ChainAnchor> prev, next;
     if (it != chain.begin())
-        prev = chain_anchor(session_, std::prev(it)->first, std::prev(it)->second);
+        prev = chain_anchor(session, std::prev(it)->first, std::prev(it)->second);
     if (std::next(it) != chain.end())
-        next = chain_anchor(session_, std::next(it)->first, std::next(it)->second);
+        next = chain_anchor(session, std::next(it)->first, std::next(it)->second);
     // Not between maps folded into earlier ones: that edge is an earlier lap's or session's.
     if (prev && next && !prev->folded && !next->folded)
         graph_.remove_edges(prev->node, next->node, EdgeKind::kOdometry);
@@ -221,10 +266,10 @@ void Mapper::link_odometry(std::uint64_t local_map_id) {
     if (next) link(node, *next);
 }
 
-void Mapper::unlink_odometry(std::uint64_t local_map_id) {
-    const std::map<std::uint64_t, std::uint64_t>& chain = chains_[session_];
+void Mapper::unlink_odometry(std::uint32_t session, std::uint64_t local_map_id) {
+    const std::map<std::uint64_t, std::uint64_t>& chain = chains_[session];
     const auto it = chain.find(local_map_id);
-    if (folded(session_, local_map_id)) return;
+    if (folded(session, local_map_id)) return;
     if (it != chain.begin())
         graph_.remove_edges(std::prev(it)->second, it->second, EdgeKind::kOdometry);
     if (std::next(it) != chain.end())
@@ -232,11 +277,24 @@ void Mapper::unlink_odometry(std::uint64_t local_map_id) {
 }
 
 LocalMapResult Mapper::add_local_map(const common::LocalMapData& map) {
-    return add_local_map(std::make_shared<const common::LocalMapData>(map));
+    return add_local_map(map, session_);
 }
 
 LocalMapResult Mapper::add_local_map(std::shared_ptr<const common::LocalMapData> map) {
+    return add_local_map(std::move(map), session_);
+}
+
+LocalMapResult Mapper::add_local_map(const common::LocalMapData& map, std::uint32_t session) {
+    return add_local_map(std::make_shared<const common::LocalMapData>(map), session);
+}
+
+LocalMapResult Mapper::add_local_map(std::shared_ptr<const common::LocalMapData> map,
+                                     std::uint32_t session) {
     LocalMapResult r;
+    if (!is_open(session)) {
+        r.message = "session " + std::to_string(session) + " is not open";
+        return r;
+    }
     if (!map) {
         r.message = "no local map";
         return r;
@@ -258,14 +316,14 @@ LocalMapResult Mapper::add_local_map(std::shared_ptr<const common::LocalMapData>
         r.message = "local map " + std::to_string(map->id) + ": voxel size must be > 0";
         return r;
     }
-    if (const Folded* f = folded(session_, map->id)) {
+    if (const Folded* f = folded(session, map->id)) {
         r.node = f->node;
         r.merged = true;
         r.message = "local map " + std::to_string(map->id) +
                     ": already folded into the local map of node " + std::to_string(f->node);
         return r;
     }
-    r.node = ensure_node(map->id, map->T_odom_anchor, map->segment);
+    r.node = ensure_node(session, map->id, map->T_odom_anchor, map->segment);
     const auto it = maps_.find(r.node);
     if (it != maps_.end() && it->second.stored.data->revision > map->revision) {
         r.message = "local map " + std::to_string(map->id) + ": revision " +
@@ -275,7 +333,7 @@ LocalMapResult Mapper::add_local_map(std::shared_ptr<const common::LocalMapData>
     }
     MapEntry& e = maps_[r.node];
     e.stored.node = r.node;
-    e.stored.session = session_;
+    e.stored.session = session;
     e.stored.data = std::move(map);
     e.serial = next_serial_++;
     r.added = true;
@@ -289,7 +347,18 @@ LocalMapResult Mapper::add_local_map(std::shared_ptr<const common::LocalMapData>
 }
 
 KeyframeResult Mapper::add_keyframe(const common::KeyframeData& input) {
+    return add_keyframe(input, session_);
+}
+
+KeyframeResult Mapper::add_keyframe(const common::KeyframeData& input, std::uint32_t session) {
     KeyframeResult r;
+    const auto live = live_.find(session);
+    if (live == live_.end()) {
+        r.message = "keyframe " + std::to_string(input.id) + ": session " +
+                    std::to_string(session) + " is not open";
+        return r;
+    }
+    Live& own = live->second;
     common::KeyframeData keyframe;  // the poses re-orthonormalised; the points are not copied
     if (!rigid(input.T_odom_lidar, &keyframe.T_odom_lidar) ||
         !rigid(input.T_anchor_lidar, &keyframe.T_anchor_lidar)) {
@@ -307,17 +376,18 @@ KeyframeResult Mapper::add_keyframe(const common::KeyframeData& input) {
     }
     const Eigen::Isometry3d T_odom_anchor =
         keyframe.T_odom_lidar * keyframe.T_anchor_lidar.inverse();
-    const std::uint64_t node = ensure_node(keyframe.local_map_id, T_odom_anchor, std::nullopt);
+    const std::uint64_t node =
+        ensure_node(session, keyframe.local_map_id, T_odom_anchor, std::nullopt);
     // A keyframe of a local map folded already: its pose in the node it went into.
-    if (const Folded* f = folded(session_, keyframe.local_map_id))
+    if (const Folded* f = folded(session, keyframe.local_map_id))
         keyframe.T_anchor_lidar = f->T_node_anchor * keyframe.T_anchor_lidar;
     auto stored = std::make_shared<StoredKeyframe>();
-    stored->session = session_;
+    stored->session = session;
     stored->node = node;
     stored->descriptor = make_scan_context(input.points, config_.scan_context);
     std::vector<LoopCandidate> candidates;
     if (!(config_.loop_closure
-              ? detector_.search(stored->descriptor, session_, keyframe.stamp, &candidates)
+              ? detector_.search(stored->descriptor, session, keyframe.stamp, &candidates)
               : detector_.add_searchable(stored->descriptor))) {
         r.message = "keyframe " + std::to_string(keyframe.id) + ": descriptor has the wrong shape";
         return r;
@@ -325,28 +395,25 @@ KeyframeResult Mapper::add_keyframe(const common::KeyframeData& input) {
     // At a mapped place (long_term): not stored again, the stored keyframe there stands for it.
     const std::optional<std::uint32_t> standing =
         config_.loop_closure
-            ? stand_in(keyframe.local_map_id, node,
+            ? stand_in(session, keyframe.local_map_id, node,
                        graph_.find(node)->T_world_anchor * keyframe.T_anchor_lidar, keyframe.stamp)
             : std::nullopt;
     if (config_.loop_closure && !standing)
-        detector_.keep(stored->descriptor, session_, keyframe.stamp);
+        detector_.keep(stored->descriptor, session, keyframe.stamp);
     r.added = true;
     r.kept = !standing;
     r.index = standing ? *standing : std::uint32_t(keyframes_.size());
     r.candidates = candidates.size();
-    if (session_record_.id != session_ || keyframes_seen_ == 0) {
-        session_record_.id = session_;
-        session_record_.first_stamp = session_record_.last_stamp = keyframe.stamp;
-    }
-    ++keyframes_seen_;
-    session_record_.first_stamp = std::min(session_record_.first_stamp, keyframe.stamp);
-    session_record_.last_stamp = std::max(session_record_.last_stamp, keyframe.stamp);
-    if (cooldown_ > 0) {
-        --cooldown_;
+    if (own.keyframes_seen == 0) own.record.first_stamp = own.record.last_stamp = keyframe.stamp;
+    ++own.keyframes_seen;
+    own.record.first_stamp = std::min(own.record.first_stamp, keyframe.stamp);
+    own.record.last_stamp = std::max(own.record.last_stamp, keyframe.stamp);
+    if (own.cooldown > 0) {
+        --own.cooldown;
     } else if (!candidates.empty()) {
         r.verified = true;
-        verify(keyframe, input.points, node, candidates, &r);
-        if (!r.loops.empty()) cooldown_ = config_.loop_cooldown_keyframes;
+        verify(session, keyframe, input.points, node, candidates, &r);
+        if (!r.loops.empty()) own.cooldown = config_.loop_cooldown_keyframes;
         for (const LoopClosure& l : r.loops) due_loops_ += l.agrees ? 0 : 1;
     }
     if (standing) return r;
@@ -413,15 +480,26 @@ bool Mapper::apply(const PoseGraph& optimised, const OptimisationSummary& summar
 }
 
 std::optional<Eigen::Isometry3d> Mapper::T_world_odom(std::uint64_t local_map_id) const {
-    const std::optional<std::uint64_t> id = node_of(local_map_id);
+    return T_world_odom(local_map_id, session_);
+}
+
+std::optional<Eigen::Isometry3d> Mapper::T_world_odom(std::uint64_t local_map_id,
+                                                      std::uint32_t session) const {
+    const std::optional<std::uint64_t> id = node_of(local_map_id, session);
     if (!id) return std::nullopt;
-    const ChainAnchor a = chain_anchor(session_, local_map_id, *id);
+    const ChainAnchor a = chain_anchor(session, local_map_id, *id);
     return a.T_world_anchor * a.T_odom_anchor.inverse();
 }
 
 std::optional<Eigen::Isometry3d> Mapper::T_world_lidar(
     std::uint64_t local_map_id, const Eigen::Isometry3d& T_odom_lidar) const {
-    const std::optional<Eigen::Isometry3d> c = T_world_odom(local_map_id);
+    return T_world_lidar(local_map_id, T_odom_lidar, session_);
+}
+
+std::optional<Eigen::Isometry3d> Mapper::T_world_lidar(std::uint64_t local_map_id,
+                                                       const Eigen::Isometry3d& T_odom_lidar,
+                                                       std::uint32_t session) const {
+    const std::optional<Eigen::Isometry3d> c = T_world_odom(local_map_id, session);
     if (!c) return std::nullopt;
     return *c * T_odom_lidar;
 }
@@ -470,7 +548,8 @@ std::size_t Mapper::memory_bytes() const {
         for (const common::VoxelData& v : d.voxels)
             n += v.life.seen.capacity() * sizeof(std::uint16_t);
     }
-    n += folded_.size() * (sizeof(Folded) + 48);  // map node overhead
+    for (const auto& [session, live] : live_)
+        n += live.folded.size() * (sizeof(Folded) + 48);  // map node overhead
     for (const auto& [session, chain] : chains_) n += chain.size() * 48;
     auto descriptor_bytes = [](const ScanContext& d) {
         return (d.value.capacity() + d.spread.capacity()) * sizeof(float) + d.occupied.capacity();

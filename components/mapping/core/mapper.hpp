@@ -25,6 +25,18 @@
 // stored keyframe of an earlier lap or session is searched and verified but not stored. A loop
 // between places already joined that agrees with the graph does not make an optimisation due.
 //
+// Several robots at once (open_session): each robot's session has its own odometry chain, folded
+// maps, loop cool-down, segments and record; the calls without a session mean the first (default)
+// session, which the first open_session() takes while it is unused. Loop detection searches every
+// other session's keyframes as they arrive (a robot at a place another one mapped a minute ago,
+// either way). A session that no loop ties to the map yet is where its own odometry puts it (its
+// own connected part of the graph, like a segment across a break that no loop joined): candidates
+// between it and another session are verified from the descriptor's guess and judged by the
+// verification alone. The first loop that ties it to another session's part sets the part that
+// holds no fixed node (the later one) rigidly where that loop says, and the optimisation puts it
+// in place; from then on, loops between open sessions placed together start from the graph's
+// estimate and are bounded by the odometry between them, as within one session.
+//
 // Frames: every odometry pose belongs to the local map it was registered in; its world pose is
 // T_world_anchor * T_odom_anchor^-1 * T_odom_lidar. Voxels never move inside their local map.
 #include <Eigen/Geometry>
@@ -108,6 +120,18 @@ struct LocalMapResult {
     bool merged = false;
 };
 
+// A session of the Mapper (robot), placed on the map by loops or not.
+struct SessionStatus {
+    std::uint32_t session = 0;
+    std::string robot;  // "" for the default session unless it was opened for a robot
+    // Placed with the map's first session by loops (as of the last optimisation); the map's first
+    // session always.
+    bool joined = false;
+    std::uint32_t joined_at_keyframe = 0;  // query keyframe of the earliest loop joining it
+    // "session 1 (robot2) joined to the map by a loop at keyframe 40", or what its poses are.
+    std::string message;
+};
+
 // An odometry segment of the current session.
 struct SegmentStatus {
     std::uint32_t segment = 0;
@@ -133,7 +157,17 @@ class Mapper {
     Mapper(const MapperConfig& config, const MapData& loaded, bool freeze_loaded = true);
 
     const MapperConfig& config() const { return config_; }
+    // The default session (the one the calls without a session mean).
     std::uint32_t session() const { return session_; }
+    // A new session for robot `robot` (another robot mapping the same site at the same time); the
+    // default session when it has no robot yet and nothing was added to it. Its id.
+    std::uint32_t open_session(const std::string& robot);
+    // The sessions open in this Mapper (the default one first), and the robot of each.
+    std::vector<std::uint32_t> open_sessions() const;
+    bool is_open(std::uint32_t session) const { return live_.count(session) > 0; }
+    std::string robot(std::uint32_t session) const;
+    // Where an open session stands (joined to the map by loops, or not yet).
+    SessionStatus session_status(std::uint32_t session) const;
     std::uint64_t revision() const { return revision_; }
 
     // A local map, or a newer snapshot of one (same id, higher or equal revision). Never throws.
@@ -141,6 +175,11 @@ class Mapper {
     LocalMapResult add_local_map(std::shared_ptr<const common::LocalMapData> map);
     // A keyframe: loop detection and verification; accepted loops become graph edges.
     KeyframeResult add_keyframe(const common::KeyframeData& keyframe);
+    // The same for an open session (a session that is not open: not added, the message says so).
+    LocalMapResult add_local_map(const common::LocalMapData& map, std::uint32_t session);
+    LocalMapResult add_local_map(std::shared_ptr<const common::LocalMapData> map,
+                                 std::uint32_t session);
+    KeyframeResult add_keyframe(const common::KeyframeData& keyframe, std::uint32_t session);
 
     // Optimises the graph now; the revision increases when it succeeds.
     OptimisationSummary optimise();
@@ -162,6 +201,13 @@ class Mapper {
                                                    const Eigen::Isometry3d& T_odom_lidar) const;
     // The correction of that local map's odometry frame: T_world_odom.
     std::optional<Eigen::Isometry3d> T_world_odom(std::uint64_t local_map_id) const;
+    // The same three for a local map of session `session` (any session with nodes).
+    std::optional<std::uint64_t> node_of(std::uint64_t local_map_id, std::uint32_t session) const;
+    std::optional<Eigen::Isometry3d> T_world_lidar(std::uint64_t local_map_id,
+                                                   const Eigen::Isometry3d& T_odom_lidar,
+                                                   std::uint32_t session) const;
+    std::optional<Eigen::Isometry3d> T_world_odom(std::uint64_t local_map_id,
+                                                  std::uint32_t session) const;
     // World pose of keyframe i.
     Eigen::Isometry3d keyframe_pose(std::uint32_t index) const;
     // The odometry segment of a graph node (0 for an unknown node). A node made by a keyframe
@@ -169,12 +215,14 @@ class Mapper {
     std::uint32_t segment_of(std::uint64_t node) const;
     // The current session's segments, in order.
     std::vector<SegmentStatus> segments() const;
+    // An open session's segments, in order (none for a session that is not open).
+    std::vector<SegmentStatus> segments(std::uint32_t session) const;
 
     common::PlyCloud global_map(GlobalMapStats* stats = nullptr) const;
     // Everything a saved map holds (local maps and keyframes shared, not copied).
     MapData snapshot() const;
     std::size_t local_map_count() const { return maps_.size(); }
-    // The sessions that built the map, the current one last (when it added anything).
+    // The sessions that built the map, the open ones last (each when it added anything), by id.
     std::vector<SessionRecord> sessions() const;
     std::size_t memory_bytes() const;
 
@@ -183,7 +231,7 @@ class Mapper {
         StoredLocalMap stored;
         std::uint64_t serial = 0;  // changes with every stored snapshot (verification cache key)
     };
-    // A local map of the current session folded into an earlier map (its node).
+    // A local map of an open session folded into an earlier map (its node).
     struct Folded {
         std::uint64_t node = 0;
         Eigen::Isometry3d T_node_anchor = Eigen::Isometry3d::Identity();  // its anchor there
@@ -203,6 +251,14 @@ class Mapper {
         double path = 0.0;
         EIGEN_MAKE_ALIGNED_OPERATOR_NEW
     };
+    // What an open session holds of its own.
+    struct Live {
+        std::string robot;
+        int cooldown = 0;
+        std::map<std::uint64_t, Folded> folded;  // local map id -> where it went
+        SessionRecord record;                    // stamps
+        std::size_t keyframes_seen = 0;          // stored or not
+    };
     struct NodeSegment {
         std::uint32_t segment = 0;
         bool told = false;  // by the node's local map (else taken from the map before it)
@@ -217,15 +273,17 @@ class Mapper {
     std::optional<std::uint64_t> try_fold(std::uint64_t n);
     void fold(std::uint64_t n, std::uint64_t into);
     // The stored keyframe standing for a new keyframe at world pose T (long_term), if any.
-    std::optional<std::uint32_t> stand_in(std::uint64_t local_map_id, std::uint64_t node,
-                                          const Eigen::Isometry3d& T_world, double stamp) const;
+    std::optional<std::uint32_t> stand_in(std::uint32_t session, std::uint64_t local_map_id,
+                                          std::uint64_t node, const Eigen::Isometry3d& T_world,
+                                          double stamp) const;
     bool tied_by_loop(std::uint64_t node) const;
     bool has_odometry_edge(std::uint64_t a, std::uint64_t b) const;  // either way
-    std::uint64_t ensure_node(std::uint64_t local_map_id, const Eigen::Isometry3d& T_odom_anchor,
+    std::uint64_t ensure_node(std::uint32_t session, std::uint64_t local_map_id,
+                              const Eigen::Isometry3d& T_odom_anchor,
                               std::optional<std::uint32_t> segment);
-    void link_odometry(std::uint64_t local_map_id);
-    void unlink_odometry(std::uint64_t local_map_id);
-    void set_segment(std::uint64_t local_map_id, std::uint32_t segment);
+    void link_odometry(std::uint32_t session, std::uint64_t local_map_id);
+    void unlink_odometry(std::uint32_t session, std::uint64_t local_map_id);
+    void set_segment(std::uint32_t session, std::uint64_t local_map_id, std::uint32_t segment);
     SegmentKey segment_key(std::uint64_t node) const;
     SegmentKey placed_root(const SegmentKey& key) const;
     // Joined segments from the active loop edges, after an optimisation.
@@ -236,9 +294,14 @@ class Mapper {
     void set_path(std::uint32_t session, std::uint64_t local_map_id);
     Eigen::Isometry3d predicted_world(std::uint32_t session, std::uint64_t local_map_id,
                                       const Eigen::Isometry3d& T_odom_anchor) const;
-    void verify(const common::KeyframeData& keyframe, const std::vector<Eigen::Vector3f>& points,
-                std::uint64_t node, const std::vector<LoopCandidate>& candidates,
-                KeyframeResult* result);
+    void verify(std::uint32_t session, const common::KeyframeData& keyframe,
+                const std::vector<Eigen::Vector3f>& points, std::uint64_t node,
+                const std::vector<LoopCandidate>& candidates, KeyframeResult* result);
+    // A loop edge between two parts no loop had placed together (sessions): the part without a
+    // fixed node, the later one, set rigidly where the edge puts it (the optimisation's start).
+    void align_parts(const PoseGraphEdge& loop);
+    // The map's first session: the lowest with nodes (a loaded map's first, or the default).
+    std::uint32_t reference_session() const;
 
     MapperConfig config_;
     std::uint32_t session_ = 0;
@@ -257,14 +320,11 @@ class Mapper {
     std::map<SegmentKey, SegmentKey> placed_;
     std::vector<std::shared_ptr<const StoredKeyframe>> keyframes_;
     std::vector<LoopClosure> loops_;
-    int cooldown_ = 0;
-    std::map<std::uint64_t, Folded> folded_;  // current session: local map id -> where it went
-    std::size_t due_loops_ = 0;               // loops that made an optimisation due, since one
+    std::map<std::uint32_t, Live> live_;  // the open sessions (the default one always)
+    std::size_t due_loops_ = 0;           // loops that made an optimisation due, since one
     // Odometry edges (from, to) made through a folded map: their nodes' paths are of other laps.
     std::set<std::pair<std::uint64_t, std::uint64_t>> relayed_edges_;
     std::vector<SessionRecord> past_sessions_;  // of the loaded map
-    SessionRecord session_record_;              // the current session's (stamps)
-    std::size_t keyframes_seen_ = 0;            // this session's keyframes, stored or not
 };
 
 }  // namespace ltm::mapping

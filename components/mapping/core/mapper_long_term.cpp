@@ -12,9 +12,10 @@
 namespace ltm::mapping {
 
 const Mapper::Folded* Mapper::folded(std::uint32_t session, std::uint64_t local_map_id) const {
-    if (session != session_) return nullptr;
-    const auto it = folded_.find(local_map_id);
-    return it == folded_.end() ? nullptr : &it->second;
+    const auto live = live_.find(session);
+    if (live == live_.end()) return nullptr;
+    const auto it = live->second.folded.find(local_map_id);
+    return it == live->second.folded.end() ? nullptr : &it->second;
 }
 
 Mapper::ChainAnchor Mapper::chain_anchor(std::uint32_t session, std::uint64_t local_map_id,
@@ -55,8 +56,8 @@ bool Mapper::tied_by_loop(std::uint64_t node) const {
     return false;
 }
 
-std::optional<std::uint32_t> Mapper::stand_in(std::uint64_t local_map_id, std::uint64_t node,
-                                              const Eigen::Isometry3d& T_world,
+std::optional<std::uint32_t> Mapper::stand_in(std::uint32_t session, std::uint64_t local_map_id,
+                                              std::uint64_t node, const Eigen::Isometry3d& T_world,
                                               double stamp) const {
     const LongTermConfig& lt = config_.long_term;
     if (!lt.merge || keyframes_.empty()) return std::nullopt;
@@ -65,11 +66,11 @@ std::optional<std::uint32_t> Mapper::stand_in(std::uint64_t local_map_id, std::u
     // map of odometry lies between): never on odometry drift alone.
     bool tied = tied_by_loop(node);
     if (!tied) {
-        const std::map<std::uint64_t, std::uint64_t>& chain = chains_.at(session_);
+        const std::map<std::uint64_t, std::uint64_t>& chain = chains_.at(session);
         const auto it = chain.find(local_map_id);
         if (it != chain.end() && it != chain.begin()) {
             const auto prev = std::prev(it);
-            tied = folded(session_, prev->first) || tied_by_loop(prev->second);
+            tied = folded(session, prev->first) || tied_by_loop(prev->second);
         }
     }
     if (!tied) return std::nullopt;
@@ -82,7 +83,7 @@ std::optional<std::uint32_t> Mapper::stand_in(std::uint64_t local_map_id, std::u
         // An earlier lap's or session's keyframe, not one of this stretch of the drive (what the
         // loop detection calls recent).
         if (k.node == node) continue;
-        if (k.session == session_ &&
+        if (k.session == session &&
             (keyframes_.size() - i < std::size_t(recent.exclude_recent_keyframes) ||
              !(stamp - k.data.stamp >= recent.exclude_recent_seconds)))
             continue;
@@ -103,8 +104,9 @@ std::optional<std::uint64_t> Mapper::try_fold(std::uint64_t n) {
     const LongTermConfig& lt = config_.long_term;
     const PoseGraphNode* node = graph_.find(n);
     const auto entry = maps_.find(n);
-    if (!lt.merge || !node || node->session != session_ || node->fixed || entry == maps_.end())
+    if (!lt.merge || !node || !is_open(node->session) || node->fixed || entry == maps_.end())
         return std::nullopt;
+    const std::uint32_t session = node->session;
     // Tied to the map by a verified loop, and the graph settled (no optimisation due).
     if (due_loops_ > 0 || !tied_by_loop(n)) return std::nullopt;
     const SegmentKey root = placed_root(segment_key(n));
@@ -115,12 +117,13 @@ std::optional<std::uint64_t> Mapper::try_fold(std::uint64_t n) {
     for (const auto& [id, e] : maps_) {
         const PoseGraphNode* other = graph_.find(id);
         if (id == n || !other || e.stored.data->voxel_size != data.voxel_size) continue;
-        // Not a map of this session still being built (its next snapshot would replace the
-        // merge); an earlier session's map gets no newer snapshot, finished or not.
-        if (other->session == session_ && !e.stored.data->finished) continue;
+        // Not a map still being built by an open session, this one or another robot's (its next
+        // snapshot would replace the merge); an earlier session's map gets no newer snapshot,
+        // finished or not.
+        if (is_open(other->session) && !e.stored.data->finished) continue;
         // An earlier lap: not a neighbour on this drive (anchors of consecutive maps can be
         // closer than merge_distance after a turn).
-        if (other->session == session_) {
+        if (other->session == session) {
             const auto p = path_at_.find(id);
             if (p == path_at_.end() || path - p->second < 4.0 * lt.merge_distance) continue;
         }
@@ -222,8 +225,8 @@ void Mapper::fold(std::uint64_t n, std::uint64_t into) {
     f.T_odom_anchor = folded_node.T_odom_anchor;
     f.segment = segment_of(n);
     f.path = path_at_.count(n) ? path_at_.at(n) : 0.0;
-    folded_[folded_node.local_map_id] = f;
-    chains_[session_][folded_node.local_map_id] = into;
+    live_.at(folded_node.session).folded[folded_node.local_map_id] = f;
+    chains_[folded_node.session][folded_node.local_map_id] = into;
     maps_.erase(n);
     segment_of_.erase(n);
     path_at_.erase(n);
@@ -231,23 +234,27 @@ void Mapper::fold(std::uint64_t n, std::uint64_t into) {
 
 std::vector<SessionRecord> Mapper::sessions() const {
     std::vector<SessionRecord> out = past_sessions_;
-    SessionRecord r = session_record_;
-    r.id = session_;
-    std::set<std::uint64_t> updated;
-    const auto chain = chains_.find(session_);
-    if (chain != chains_.end()) {
-        for (const auto& [local_map_id, node] : chain->second) {
-            if (const Folded* f = folded(session_, local_map_id)) {
-                // A map of this session folded into another map of this session counts as added.
-                const PoseGraphNode* into = graph_.find(f->node);
-                if (into && into->session != session_) updated.insert(f->node);
-            } else if (maps_.count(node)) {
-                ++r.local_maps_added;
+    for (const auto& [session, live] : live_) {
+        SessionRecord r = live.record;
+        r.id = session;
+        r.robot = live.robot;
+        std::set<std::uint64_t> updated;
+        const auto chain = chains_.find(session);
+        if (chain != chains_.end()) {
+            for (const auto& [local_map_id, node] : chain->second) {
+                if (const Folded* f = folded(session, local_map_id)) {
+                    // A map folded into another map of this session counts as added.
+                    const PoseGraphNode* into = graph_.find(f->node);
+                    if (into && into->session != session) updated.insert(f->node);
+                } else if (maps_.count(node)) {
+                    ++r.local_maps_added;
+                }
             }
         }
+        r.local_maps_updated = updated.size();
+        if (live.keyframes_seen > 0 || r.local_maps_added > 0 || r.local_maps_updated > 0)
+            out.push_back(r);
     }
-    r.local_maps_updated = updated.size();
-    if (keyframes_seen_ > 0 || r.local_maps_added > 0 || r.local_maps_updated > 0) out.push_back(r);
     return out;
 }
 

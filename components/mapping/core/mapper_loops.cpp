@@ -23,7 +23,7 @@ Eigen::Isometry3d yawed(const Eigen::Isometry3d& T, double yaw) {
 
 }  // namespace
 
-void Mapper::verify(const common::KeyframeData& keyframe,
+void Mapper::verify(std::uint32_t session, const common::KeyframeData& keyframe,
                     const std::vector<Eigen::Vector3f>& points, std::uint64_t node,
                     const std::vector<LoopCandidate>& candidates, KeyframeResult* r) {
     for (const LoopCandidate& c : candidates) {
@@ -49,12 +49,14 @@ void Mapper::verify(const common::KeyframeData& keyframe,
         // odometry bounds its error; it is a first guess and the consistency check below. Not
         // across a segment break that no optimised loop joins yet: there it is only the
         // odometry's guess across the break (metres and tens of degrees off), so the descriptor's
-        // guess is the one that counts and the verification's quality alone decides.
+        // guess is the one that counts and the verification's quality alone decides. The same
+        // between two robots' sessions (open at once) that no optimised loop placed together yet.
         const Eigen::Isometry3d predicted =
             graph_.find(match.node)->T_world_anchor.inverse() * graph_.find(node)->T_world_anchor;
-        const bool same_session = match.session == session_;
+        const bool same_session = match.session == session;
         const SegmentKey match_key = segment_key(match.node), query_key = segment_key(node);
-        const bool placed = same_session && placed_root(match_key) == placed_root(query_key);
+        const bool together = placed_root(match_key) == placed_root(query_key);
+        const bool placed = together && (same_session || is_open(match.session));
         GuessList guesses;
         const bool graph_guess = placed && config_.verify_from_graph;
         if (graph_guess) guesses.push_back(predicted * keyframe.T_anchor_lidar);
@@ -107,12 +109,14 @@ void Mapper::verify(const common::KeyframeData& keyframe,
         e.query_keyframe = r->index;
         e.match_keyframe = c.match;
         if (!graph_.add_edge(e)) continue;
+        // The first loop between two sessions' parts: the later part set where it says.
+        if (!same_session && !together) align_parts(e);
         LoopClosure l;
         l.query_keyframe = r->index;
         l.match_keyframe = c.match;
         l.query_scan = keyframe.scan_index;
         l.match_scan = match.data.scan_index;
-        l.query_session = session_;
+        l.query_session = session;
         l.match_session = match.session;
         l.query_segment = query_key.second;
         l.match_segment = match_key.second;
@@ -139,6 +143,34 @@ void Mapper::verify(const common::KeyframeData& keyframe,
         r->loops.push_back(l);
         loops_.push_back(l);
     }
+}
+
+void Mapper::align_parts(const PoseGraphEdge& loop) {
+    const SegmentKey from_root = placed_root(segment_key(loop.from));
+    const SegmentKey to_root = placed_root(segment_key(loop.to));
+    if (from_root == to_root) return;
+    std::vector<std::uint64_t> from_part, to_part;
+    bool from_fixed = false, to_fixed = false;
+    for (const PoseGraphNode& n : graph_.nodes()) {
+        const SegmentKey r = placed_root(segment_key(n.id));
+        if (r == from_root) {
+            from_part.push_back(n.id);
+            from_fixed = from_fixed || n.fixed;
+        } else if (r == to_root) {
+            to_part.push_back(n.id);
+            to_fixed = to_fixed || n.fixed;
+        }
+    }
+    // The later part moves (the map's first session stays), unless it holds a fixed node.
+    bool move_to = from_root < to_root;
+    if (move_to ? to_fixed : from_fixed) move_to = !move_to;
+    if (move_to ? to_fixed : from_fixed) return;
+    const Eigen::Isometry3d& T_from = graph_.find(loop.from)->T_world_anchor;
+    const Eigen::Isometry3d& T_to = graph_.find(loop.to)->T_world_anchor;
+    const Eigen::Isometry3d C = move_to ? T_from * loop.T_from_to * T_to.inverse()
+                                        : T_to * loop.T_from_to.inverse() * T_from.inverse();
+    for (const std::uint64_t id : move_to ? to_part : from_part)
+        graph_.set_pose(id, C * graph_.find(id)->T_world_anchor);
 }
 
 int Mapper::loops_between(std::uint64_t a, std::uint64_t b) const {

@@ -15,8 +15,8 @@ std::uint32_t Mapper::segment_of(std::uint64_t node) const {
     return it == segment_of_.end() ? 0 : it->second.segment;
 }
 
-void Mapper::set_segment(std::uint64_t local_map_id, std::uint32_t segment) {
-    const std::map<std::uint64_t, std::uint64_t>& chain = chains_[session_];
+void Mapper::set_segment(std::uint32_t session, std::uint64_t local_map_id, std::uint32_t segment) {
+    const std::map<std::uint64_t, std::uint64_t>& chain = chains_[session];
     auto it = chain.find(local_map_id);
     NodeSegment& own = segment_of_[it->second];
     const bool changed = own.segment != segment;
@@ -25,15 +25,15 @@ void Mapper::set_segment(std::uint64_t local_map_id, std::uint32_t segment) {
     // The maps after it that only took their segment from it take the new one too.
     std::vector<std::uint64_t> relink = {local_map_id};
     for (auto next = std::next(it); next != chain.end(); ++next) {
-        if (folded(session_, next->first)) break;  // finished, so told
+        if (folded(session, next->first)) break;  // finished, so told
         NodeSegment& n = segment_of_[next->second];
         if (n.told) break;
         n.segment = segment;
         relink.push_back(next->first);
     }
     for (const std::uint64_t id : relink) {
-        unlink_odometry(id);
-        link_odometry(id);
+        unlink_odometry(session, id);
+        link_odometry(session, id);
     }
 }
 
@@ -101,23 +101,27 @@ void Mapper::place_unjoined_segments() {
     }
 }
 
-std::vector<SegmentStatus> Mapper::segments() const {
+std::vector<SegmentStatus> Mapper::segments() const { return segments(session_); }
+
+std::vector<SegmentStatus> Mapper::segments(std::uint32_t session) const {
     std::vector<SegmentStatus> out;
-    const auto chain = chains_.find(session_);
-    if (chain == chains_.end()) return out;
-    // What counts as the map: this session's segment 0 and every earlier session.
+    const auto chain = chains_.find(session);
+    if (chain == chains_.end() || !is_open(session)) return out;
+    // What counts as the map: this session's segment 0 and whatever it is joined to, and every
+    // earlier session.
+    const SegmentKey first = placed_root(SegmentKey(session, 0));
     auto on_map = [&](const SegmentKey& k) {
         const SegmentKey r = placed_root(k);
-        return r.first < session_ || r == SegmentKey(session_, 0);
+        return r.first < session || r == first;
     };
     for (const auto& [local_map_id, node] : chain->second) {
-        const Folded* f = folded(session_, local_map_id);
+        const Folded* f = folded(session, local_map_id);
         const std::uint32_t s = f ? f->segment : segment_of(node);
         if (!out.empty() && out.back().segment == s) continue;
         SegmentStatus st;
         st.segment = s;
         st.first_local_map = local_map_id;
-        st.joined = s == 0 || on_map(SegmentKey(session_, s));
+        st.joined = s == 0 || on_map(SegmentKey(session, s));
         std::ostringstream m;
         if (s == 0) {
             m << "segment 0: the session's first";
@@ -127,7 +131,7 @@ std::vector<SegmentStatus> Mapper::segments() const {
             for (const PoseGraphEdge& e : graph_.edges()) {
                 if (e.kind != EdgeKind::kLoop || !e.active) continue;
                 const SegmentKey a = segment_key(e.from), b = segment_key(e.to);
-                if (a == b || (a != SegmentKey(session_, s) && b != SegmentKey(session_, s)))
+                if (a == b || (a != SegmentKey(session, s) && b != SegmentKey(session, s)))
                     continue;
                 const std::uint32_t k = std::uint32_t(e.query_keyframe);
                 if (!found || k < st.joined_at_keyframe) st.joined_at_keyframe = k;
@@ -144,6 +148,51 @@ std::vector<SegmentStatus> Mapper::segments() const {
         out.push_back(st);
     }
     return out;
+}
+
+std::uint32_t Mapper::reference_session() const {
+    return chains_.empty() ? session_ : std::min(chains_.begin()->first, session_);
+}
+
+SessionStatus Mapper::session_status(std::uint32_t session) const {
+    SessionStatus st;
+    st.session = session;
+    st.robot = robot(session);
+    std::ostringstream name;
+    name << "session " << session;
+    if (!st.robot.empty()) name << " (" << st.robot << ")";
+    if (!is_open(session)) {
+        st.message = name.str() + " is not open";
+        return st;
+    }
+    const std::uint32_t reference = reference_session();
+    const SegmentKey own = placed_root(SegmentKey(session, 0));
+    std::ostringstream m;
+    if (session == reference) {
+        st.joined = true;
+        m << name.str() << ": the map's first";
+    } else if (own == placed_root(SegmentKey(reference, 0))) {
+        st.joined = true;
+        // The earliest active loop between this session and another one.
+        bool found = false;
+        for (const PoseGraphEdge& e : graph_.edges()) {
+            if (e.kind != EdgeKind::kLoop || !e.active) continue;
+            const std::uint32_t a = segment_key(e.from).first, b = segment_key(e.to).first;
+            if (a == b || (a != session && b != session)) continue;
+            const std::uint32_t k = std::uint32_t(e.query_keyframe);
+            if (!found || k < st.joined_at_keyframe) st.joined_at_keyframe = k;
+            found = true;
+        }
+        m << name.str() << " joined to the map by a loop at keyframe " << st.joined_at_keyframe;
+    } else if (!chains_.count(session)) {
+        m << name.str() << " has no local map yet";
+    } else {
+        m << name.str()
+          << " not joined to the map yet: its poses, corrected_odometry and map_to_odom are its "
+             "own odometry's, from where it started";
+    }
+    st.message = m.str();
+    return st;
 }
 
 }  // namespace ltm::mapping

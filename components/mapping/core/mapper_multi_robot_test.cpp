@@ -1,0 +1,205 @@
+// Several robots at once in one Mapper (open_session): two robots' sessions fed interleaved join
+// into one graph by loops found either way, each placed on the truth; a robot that never meets the
+// other stays where its own odometry puts it and says so; the map records each session's robot.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "mapping/core/map_store.hpp"
+#include "mapping/core/mapper.hpp"
+#include "mapping/core/test_data.hpp"
+
+namespace ltm::mapping {
+namespace {
+
+constexpr double kDeg = M_PI / 180.0;
+
+double angle_deg(const Eigen::Isometry3d& T) {
+    return Eigen::AngleAxisd(T.linear()).angle() / kDeg;
+}
+
+// One robot's drive over a synthetic scene: 16 keyframes 3 m apart along y = y0 from x0 (east,
+// or west when `west`), local maps 0-3 of 4 keyframes each (every robot numbers its own maps from
+// 0). Its odometry starts at the identity where it starts: its odometry frame is its first pose.
+struct Robot {
+    common::PoseList truth, odom;
+    std::vector<std::vector<Eigen::Vector3f>> points;
+    std::vector<common::LocalMapData> maps;
+    Eigen::Isometry3d T_odom_world = Eigen::Isometry3d::Identity();
+    double stamp0 = 0.0;
+
+    Robot(const std::vector<Eigen::Vector3f>& scene, double x0, double y0, bool west, double t0)
+        : stamp0(t0) {
+        for (int i = 0; i < 16; ++i) {
+            truth.push_back(west ? test::xy_yaw(x0 - 3.0 * i, y0, 180.0)
+                                 : test::xy_yaw(x0 + 3.0 * i, y0, 0.0));
+            points.push_back(test::view(scene, truth.back(), 50.0));
+        }
+        T_odom_world = truth.front().inverse();
+        for (const Eigen::Isometry3d& T : truth) odom.push_back(T_odom_world * T);
+        for (std::uint64_t m = 0; m < 4; ++m) {
+            std::vector<std::vector<Eigen::Vector3f>> scans(points.begin() + 4 * m,
+                                                            points.begin() + 4 * m + 4);
+            common::PoseList poses(odom.begin() + 4 * m, odom.begin() + 4 * m + 4);
+            maps.push_back(test::build_local_map(m, poses.front(), scans, poses));
+        }
+    }
+
+    common::KeyframeData keyframe(std::size_t i) const {
+        common::KeyframeData k;
+        k.id = i;
+        k.scan_index = i;
+        k.local_map_id = i / 4;
+        k.stamp = stamp0 + double(i);
+        k.T_odom_lidar = odom[i];
+        k.T_anchor_lidar = maps[i / 4].T_odom_anchor.inverse() * odom[i];
+        k.points = points[i];
+        return k;
+    }
+};
+
+MapperConfig robots_config() {
+    MapperConfig c;
+    c.loop_detection.exclude_recent_keyframes = 6;
+    c.loop_detection.exclude_recent_seconds = 0.0;
+    c.loop_detection.max_distance = 0.6;  // the robots pass 2 m apart, facing each other
+    c.loop_detection.max_results = 1;     // the best candidate only: a fast test
+    c.loop_cooldown_keyframes = 1;
+    return c;
+}
+
+// Both robots at once: keyframe i of robot 1, then keyframe i of robot 2; each local map arrives
+// before its keyframes; the graph is optimised when a loop is accepted, as the component does.
+void interleave(const Robot& r1, const Robot& r2, std::uint32_t s1, std::uint32_t s2,
+                Mapper& mapper) {
+    for (std::size_t i = 0; i < 16; ++i) {
+        for (const auto& [robot, session] : {std::make_pair(&r1, s1), std::make_pair(&r2, s2)}) {
+            if (i % 4 == 0) {
+                const LocalMapResult m = mapper.add_local_map(robot->maps[i / 4], session);
+                EXPECT_TRUE(m.added) << m.message;
+            }
+            const KeyframeResult k = mapper.add_keyframe(robot->keyframe(i), session);
+            EXPECT_TRUE(k.added) << k.message;
+            if (k.optimisation_due()) {
+                EXPECT_TRUE(mapper.optimise().solved);
+            }
+        }
+    }
+}
+
+// Robot 1 drives east along y = 0 from x = 0; robot 2 at the same time west along y = 2 from
+// x = 45, its odometry frame 45 m and 180 deg from robot 1's (which is the world here). They meet
+// half-way: from then on each one drives where the other has just been.
+TEST(MapperMultiRobot, TwoRobotsInterleavedJoinIntoOneGraphEachOnTheTruth) {
+    const std::vector<Eigen::Vector3f> scene = test::with_dense_ground(test::synthetic_scene(61));
+    const Robot r1(scene, 0.0, 0.0, false, 100.0), r2(scene, 45.0, 2.0, true, 100.5);
+    Mapper mapper(robots_config());
+    const std::uint32_t s1 = mapper.open_session("robot1");
+    const std::uint32_t s2 = mapper.open_session("robot2");
+    EXPECT_EQ(s1, mapper.session());  // the default session, unused, is the first robot's
+    EXPECT_NE(s2, s1);
+    EXPECT_EQ(mapper.open_session("robot2"), s2);
+    EXPECT_EQ(mapper.robot(s2), "robot2");
+    EXPECT_EQ(mapper.open_sessions(), (std::vector<std::uint32_t>{s1, s2}));
+    EXPECT_FALSE(mapper.add_keyframe(r1.keyframe(0), s2 + 7).added);
+
+    interleave(r1, r2, s1, s2, mapper);
+
+    // Loops between the robots, found either way, each with the true relative pose.
+    std::size_t from_1 = 0, from_2 = 0;
+    for (const LoopClosure& l : mapper.loops()) {
+        const Robot& q = l.query_session == s1 ? r1 : r2;
+        const Robot& m = l.match_session == s1 ? r1 : r2;
+        from_1 += l.query_session == s1 && l.match_session == s2;
+        from_2 += l.query_session == s2 && l.match_session == s1;
+        const Eigen::Isometry3d truth = m.truth[l.match_scan].inverse() * q.truth[l.query_scan];
+        const Eigen::Isometry3d err = truth.inverse() * l.T_match_query;
+        EXPECT_LT(err.translation().norm(), 0.05) << l.query_scan << " -> " << l.match_scan;
+        EXPECT_LT(angle_deg(err), 0.3) << l.query_scan << " -> " << l.match_scan;
+    }
+    EXPECT_GE(from_1, 1u) << "robot 1 found no place of robot 2";
+    EXPECT_GE(from_2, 1u) << "robot 2 found no place of robot 1";
+
+    // One graph: one connected part, robot 2 joined to the map by a loop.
+    const OptimisationSummary o = mapper.optimise();
+    ASSERT_TRUE(o.solved) << o.message;
+    EXPECT_EQ(o.components, 1u);
+    EXPECT_TRUE(mapper.session_status(s1).joined);
+    const SessionStatus st = mapper.session_status(s2);
+    EXPECT_TRUE(st.joined) << st.message;
+    EXPECT_NE(st.message.find("session 1 (robot2) joined to the map by a loop at keyframe"),
+              std::string::npos)
+        << st.message;
+
+    // Each robot's keyframes on the truth (the world is robot 1's odometry frame, whose first map
+    // holds the gauge), and robot 2's odometry frame corrected onto the world.
+    for (const auto& [robot, session] : {std::make_pair(&r1, s1), std::make_pair(&r2, s2)}) {
+        for (std::size_t i = 0; i < 16; ++i) {
+            const std::optional<Eigen::Isometry3d> T =
+                mapper.T_world_lidar(i / 4, robot->odom[i], session);
+            ASSERT_TRUE(T);
+            const Eigen::Isometry3d err = robot->truth[i].inverse() * *T;
+            EXPECT_LT(err.translation().norm(), 0.05) << "session " << session << " keyframe " << i;
+            EXPECT_LT(angle_deg(err), 0.2) << "session " << session << " keyframe " << i;
+        }
+    }
+    const Eigen::Isometry3d c = *mapper.T_world_odom(3, s2) * r2.T_odom_world;
+    EXPECT_LT(c.translation().norm(), 0.05);
+    EXPECT_LT(angle_deg(c), 0.2);
+    // The default-session calls are robot 1's.
+    EXPECT_TRUE(mapper.T_world_odom(2)->isApprox(*mapper.T_world_odom(2, s1), 1e-12));
+
+    // The saved map records each session with its robot; a map continued from it knows them.
+    const std::vector<SessionRecord> records = mapper.sessions();
+    ASSERT_EQ(records.size(), 2u);
+    EXPECT_EQ(records[0].robot, "robot1");
+    EXPECT_EQ(records[1].robot, "robot2");
+    EXPECT_EQ(records[1].local_maps_added + records[1].local_maps_updated, 4u);
+    const std::string dir = std::string(LTM_BINARY_DIR) + "/mapping_test_maps/two_robots";
+    std::filesystem::remove_all(dir);
+    save_map(dir, mapper.snapshot());
+    const LoadedMap loaded = load_map(dir);
+    ASSERT_TRUE(loaded.refused.empty()) << loaded.refused[0];
+    ASSERT_EQ(loaded.map.sessions.size(), 2u);
+    EXPECT_EQ(loaded.map.sessions[1].robot, "robot2");
+    EXPECT_EQ(loaded.map.sessions[1].first_stamp, records[1].first_stamp);
+    const Mapper continued(robots_config(), loaded.map);
+    EXPECT_EQ(continued.robot(s2), "robot2");
+    EXPECT_EQ(continued.session(), s2 + 1);
+    EXPECT_EQ(continued.graph().nodes().size(), mapper.graph().nodes().size());
+}
+
+// Robot 2 maps another site (another scene) at the same time: no loop ties it to robot 1, it
+// stays its own part of the graph at its own odometry's estimate, and says so.
+TEST(MapperMultiRobot, ARobotThatNeverMeetsTheOtherStaysUnjoinedAndSaysSo) {
+    const Robot r1(test::with_dense_ground(test::synthetic_scene(61)), 0.0, 0.0, false, 100.0);
+    const Robot r2(test::with_dense_ground(test::synthetic_scene(7)), 45.0, 2.0, true, 100.5);
+    Mapper mapper(robots_config());
+    const std::uint32_t s1 = mapper.open_session("robot1");
+    const std::uint32_t s2 = mapper.open_session("robot2");
+    EXPECT_NE(mapper.session_status(s2).message.find("has no local map yet"), std::string::npos);
+    interleave(r1, r2, s1, s2, mapper);
+    for (const LoopClosure& l : mapper.loops())
+        EXPECT_EQ(l.query_session, l.match_session) << "a loop between the two sites";
+    const OptimisationSummary o = mapper.optimise();
+    ASSERT_TRUE(o.solved) << o.message;
+    EXPECT_EQ(o.components, 2u);
+    const SessionStatus st = mapper.session_status(s2);
+    EXPECT_FALSE(st.joined);
+    EXPECT_EQ(st.message,
+              "session 1 (robot2) not joined to the map yet: its poses, corrected_odometry and "
+              "map_to_odom are its own odometry's, from where it started");
+    // Its poses are its odometry's: its odometry frame is not moved (its own loops, between maps
+    // along its straight drive, agree with its odometry to millimetres).
+    for (std::uint64_t m = 0; m < 4; ++m) {
+        const Eigen::Isometry3d c = *mapper.T_world_odom(m, s2);
+        EXPECT_LT(c.translation().norm(), 0.01) << "local map " << m;
+        EXPECT_LT(angle_deg(c), 0.05) << "local map " << m;
+    }
+    ASSERT_EQ(mapper.segments(s2).size(), 1u);
+    EXPECT_TRUE(mapper.session_status(s1).joined);
+}
+
+}  // namespace
+}  // namespace ltm::mapping
