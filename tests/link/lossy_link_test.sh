@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # The robot and the base station over a lossy link (issue 15): tiny_loop through robot.yaml and
-# base_station.yaml in two network namespaces, 5 % of the frames dropped each way, every local
-# map must arrive; then a run stopped half-way must leave no namespace behind. Needs root,
-# network namespaces and nft: skipped (exit 77) with the reason otherwise.
+# base_station.yaml in two network namespaces, 5 % of the frames dropped each way, every keyframe
+# and local map must arrive once; an outage and a base-station crash and restart in one run must
+# lose nothing, apply nothing twice and leave the base station with the composed run's map; a run
+# stopped half-way must leave no namespace behind. Needs root, network namespaces and nft:
+# skipped (exit 77) with the reason otherwise.
 set -uo pipefail
 ROOT="$(cd "$(dirname "$0")/../.." && pwd)"
 BENCH="$ROOT/components/bench/link/bench_link.sh"
@@ -26,12 +28,27 @@ namespaces() { ip netns list | grep -c '^ltm_\(robot\|base\)_' || true; }
 
 every_local_map_at_5_percent_loss() {
     local out rc
-    out="$(bash "$BENCH" --loss 5 --require local_map 2>&1)"; rc=$?
+    out="$(bash "$BENCH" --loss 5 --require local_map --require keyframe 2>&1)"; rc=$?
     echo "$out"
     [ "$rc" = 0 ] || return 1
-    # Frames were really dropped, and local maps were really sent (and all delivered).
+    # Frames were really dropped, and local maps and keyframes were really sent (and all
+    # delivered, once).
     echo "$out" | grep -Eq 'frames dropped for loss: [1-9][0-9]* robot -> base' || return 1
-    echo "$out" | grep -Eq '^   local_map +sent +([1-9][0-9]*) .*delivered +\1 +missing 0$'
+    echo "$out" | grep -Eq '^   local_map +sent +([1-9][0-9]*) .*delivered +\1 +missing 0$' || return 1
+    echo "$out" | grep -Eq '^   keyframe +sent +([1-9][0-9]*) .*delivered +\1 +missing 0$'
+}
+
+# tiny_loop runs ~8 s: the link is cut from 2 s to 5 s, the base station is killed at 6 s and
+# started again (its journal replayed, the robot's backlog resent).
+outage_and_restart_lose_nothing() {
+    local out rc
+    out="$(bash "$BENCH" --loss 1 --outage 3@2 --restart-base 6 --require local_map \
+        --require keyframe --require-same-map 2>&1)"; rc=$?
+    echo "$out"
+    [ "$rc" = 0 ] || return 1
+    echo "$out" | grep -q 'base station killed (SIGKILL)' || return 1
+    echo "$out" | grep -Eq 'replayed from the journal' || return 1
+    echo "$out" | grep -q '^   same map$'
 }
 
 stopped_run_cleans_up() {
@@ -56,5 +73,6 @@ usage_errors_are_one_line() {
 
 check "usage errors are one line" usage_errors_are_one_line
 check "every local map arrives at 5 % loss" every_local_map_at_5_percent_loss
+check "an outage and a base-station restart lose nothing" outage_and_restart_lose_nothing
 check "a run stopped with SIGINT leaves no namespace" stopped_run_cleans_up
 [ "$fails" = 0 ]

@@ -1,18 +1,27 @@
 #!/usr/bin/env bash
 # ./ltm bench link [--loss PCT] [--loss-on in|out|both] [--rate MBIT] [--outage S@T ...]
 #                  [--linger S] [--drain S] [--scenario FILE] [--frames A:B] [--out DIR] [--require TOPIC ...]
+#                  [--restart-base T] [--compare] [--require-same-map]
 # The robot and the base station over a link you can break: two network namespaces (robot, base)
 # joined by a veth pair, nftables `numgen random` drops on the base station's side for loss (this
 # kernel has no netem), `tc tbf` on both ends for the rate, a drop-all rule for each outage. The
 # scenario is simulated to a KITTI folder, launch_configs/robot.yaml runs in the robot namespace
 # and base_station.yaml in the base namespace, each with a recorder of the topics that cross the
 # link added to its process; the report compares the two recordings message by message (CRC).
+# Keyframes and local maps cross through the robot's uplink and the base station's downlink
+# (components/link: journaled on both sides, acknowledged, resent): the robot's recording holds
+# what its odometry published (onboard/...), the base station's what its downlink handed on.
+# --restart-base T kills the base station T s after the robot started (SIGKILL: a crash) and
+# starts it again; the last base station's recording must then hold every message exactly once.
+# --compare also runs the same scans through one process (player, odometry, mapping: the
+# composed run) and compares its saved map with the base station's (ltm_map_diff).
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/../../.." && pwd)"
 BUILD="${LTM_BUILD_DIR:-$ROOT/build}"
 BIN="$BUILD/bin"
 LOSS=0; LOSS_ON=both; RATE=0; SCENARIO="$ROOT/components/simulator/scenarios/tiny_loop.yaml"
 LINGER=""; DRAIN=3; FRAMES=""; OUT=""; OUTAGES=(); REQUIRE=(); TOPICS=(odometry keyframe local_map)
+RESTART=""; COMPARE=0; SAME_MAP=0
 usage() {
     echo "Robot and base station in two network namespaces over a veth link with loss, a rate"
     echo "limit and outages; per topic what was sent and delivered, the bytes on the link"
@@ -27,7 +36,10 @@ usage() {
         "--scenario FILE" "simulator scenario (default tiny_loop)" \
         "--frames A:B" "scans A..B-1 of the scenario's session 0 (default all)" \
         "--out DIR" "keep the run here (default: a temporary folder, removed)" \
-        "--require TOPIC" "exit 1 unless every message of TOPIC arrived (repeatable)"
+        "--require TOPIC" "exit 1 unless every message of TOPIC arrived (repeatable)" \
+        "--restart-base T" "kill the base station T s after the robot started, start it again" \
+        "--compare" "also run the scans in one process; compare its map with the base station's" \
+        "--require-same-map" "with --compare: exit 1 unless anchors agree to 1 mm, same loops"
 }
 fail() { echo "ltm bench link: $*" >&2; exit 2; }   # a wrong command line
 die() { echo "ltm bench link: $*" >&2; exit 1; }    # the machine cannot do it
@@ -35,7 +47,9 @@ number='^[0-9]+([.][0-9]+)?$'
 while [ $# -gt 0 ]; do
     case "$1" in
         -h|--help) usage; exit 0 ;;
-        --loss|--loss-on|--rate|--outage|--linger|--drain|--scenario|--frames|--out|--require)
+        --compare) COMPARE=1; shift; continue ;;
+        --require-same-map) COMPARE=1; SAME_MAP=1; shift; continue ;;
+        --loss|--loss-on|--rate|--outage|--linger|--drain|--scenario|--frames|--out|--require|--restart-base)
             if [ $# -lt 2 ] || [ "${2:0:2}" = "--" ]; then fail "$1: needs a value"; fi
             case "$1" in
                 --loss) if ! [[ "$2" =~ $number ]] || ! awk -v v="$2" 'BEGIN {exit !(v <= 100)}'; then
@@ -58,6 +72,8 @@ while [ $# -gt 0 ]; do
                 --frames) [[ "$2" =~ ^[0-9]*:[0-9]*$ ]] || fail "--frames: expected A:B, got '$2'"
                           FRAMES="$2" ;;
                 --out) OUT="$2" ;;
+                --restart-base) [[ "$2" =~ $number ]] || fail "--restart-base: expected seconds, got '$2'"
+                                RESTART="$2" ;;
                 --require) case " ${TOPICS[*]} " in *" $2 "*) REQUIRE+=("$2") ;;
                                *) fail "--require: expected one of ${TOPICS[*]}, got '$2'" ;; esac ;;
             esac
@@ -71,7 +87,7 @@ done
 command -v ip >/dev/null || die "ip (iproute2) is not installed: run ./ltm setup"
 command -v tc >/dev/null || die "tc (iproute2) is not installed: run ./ltm setup"
 command -v nft >/dev/null || die "nft (nftables) is not installed: run ./ltm setup"
-for exe in ltm_host ltm_sim ltm_mcap; do
+for exe in ltm_host ltm_sim ltm_mcap ltm_map_diff; do
     [ -x "$BIN/$exe" ] || die "$exe is not built in $BUILD: run ./ltm setup"
 done
 
@@ -147,17 +163,19 @@ scans=$(wc -l < "$DATA/times.txt")
 RUN="${OUT:-$WORK/run}"
 mkdir -p "$RUN"
 RUN="$(cd "$RUN" && pwd)"
-rm -rf "$RUN/robot" "$RUN/base"
-topic_list="[$(printf '%s, ' "${TOPICS[@]}" | sed 's/, $//')]"
-# Each launch config with a recorder of the crossing topics in its own process (what the robot
-# published; what the base station's participant received), so the recording adds no traffic.
+rm -rf "$RUN/robot" "$RUN/base" "$RUN/composed"
+rm -f "$RUN"/base*.log "$RUN/robot.log" "$RUN/composed.log"
+# Each launch config with a recorder in its own process (what the robot's odometry published; what
+# the base station's mapping was given), so the recording adds no traffic.
 with_recorder() {
     cat "$1"
-    printf '  - name: link_recorder\n    type: recorder\n    params: {file: %s, topics: %s, compression: none}\n' \
-        "$2" "$topic_list"
+    printf '  - name: link_recorder\n    type: recorder\n    params: {file: "%s", topics: %s, compression: none}\n' \
+        "$2" "$3"
 }
-with_recorder "$ROOT/launch_configs/robot.yaml" "$RUN/robot/sent.mcap" > "$WORK/robot.yaml"
-with_recorder "$ROOT/launch_configs/base_station.yaml" "$RUN/base/delivered.mcap" > "$WORK/base.yaml"
+with_recorder "$ROOT/launch_configs/robot.yaml" "$RUN/robot/sent.mcap" \
+    "[odometry, onboard/keyframe, onboard/local_map]" > "$WORK/robot.yaml"
+with_recorder "$ROOT/launch_configs/base_station.yaml" '${LTM_RECORDING}' \
+    "[odometry, keyframe, local_map]" > "$WORK/base.yaml"
 dds() { echo "dds={interfaces: [$1], multicast: false, peers: [$2]${3:+, extra_xml: \"$3\"}}"; }
 robot_xml=""
 [ -n "$LINGER" ] && robot_xml="<Internal><WriterLingerDuration>${LINGER} s</WriterLingerDuration></Internal>"
@@ -165,11 +183,16 @@ robot_xml=""
 rate_text="$RATE Mbit/s"; [ "$rate_text" = "0 Mbit/s" ] && rate_text=unlimited
 echo "== link: loss $LOSS % ($LOSS_ON), rate $rate_text, outages: ${OUTAGES[*]:-none}"
 echo "   scenario $(basename "$SCENARIO") ${FRAMES:+frames $FRAMES }($scans scans, $model), run in $RUN"
-ip netns exec "$NS_BASE" env LTM_ROOT="$ROOT" LTM_OUT="$RUN/base" \
-    "$BIN/ltm_host" "$WORK/base.yaml" --set "$(dds "$DEV_BASE" "$ADDR_ROBOT")" \
-    --set "mapping.preset=$preset" --set idle_exit_s=0 --set shutdown_timeout_s=60 \
-    > "$RUN/base.log" 2>&1 &
-base_pid=$!; PIDS+=("$base_pid")
+start_base() {  # start_base N: the Nth start of the base station (its own recording and log)
+    local suffix=""; [ "$1" -gt 1 ] && suffix="$1"
+    BASE_RECORDING="$RUN/base/delivered$suffix.mcap"
+    ip netns exec "$NS_BASE" env LTM_ROOT="$ROOT" LTM_OUT="$RUN/base" LTM_RECORDING="$BASE_RECORDING" \
+        "$BIN/ltm_host" "$WORK/base.yaml" --set "$(dds "$DEV_BASE" "$ADDR_ROBOT")" \
+        --set "mapping.preset=$preset" --set idle_exit_s=0 --set shutdown_timeout_s=60 \
+        >> "$RUN/base$suffix.log" 2>&1 &
+    base_pid=$!; PIDS+=("$base_pid")
+}
+start_base 1
 sleep 1
 start=$(date +%s.%N)
 ip netns exec "$NS_ROBOT" env LTM_ROOT="$ROOT" LTM_DATA="$DATA" LTM_OUT="$RUN/robot" \
@@ -187,9 +210,21 @@ NFT
         sleep "$s"
         ip netns exec "$NS_BASE" nft flush chain netdev ltm_link outage_in
         ip netns exec "$NS_BASE" nft flush chain netdev ltm_link outage_out
+        date +%H:%M:%S.%N > "$WORK/outage_end_$t"
     ) &
     PIDS+=("$!")
 done
+if [ -n "$RESTART" ]; then
+    sleep "$RESTART"
+    if kill -0 "$robot_pid" 2>/dev/null; then
+        echo "   base station killed (SIGKILL) $RESTART s after the robot started; started again"
+        kill -KILL "$base_pid" 2>/dev/null || true
+        wait "$base_pid" 2>/dev/null || true
+        start_base 2
+    else
+        echo "   --restart-base $RESTART: the robot had finished already; no restart"
+    fi
+fi
 robot_rc=0; wait "$robot_pid" || robot_rc=$?
 robot_end=$(date +%s.%N)
 # The base station runs until the robot is gone and DRAIN s more (not an idle timer: a discovery
@@ -224,15 +259,18 @@ dropped() {
 echo "   frames dropped for loss: $(dropped in) robot -> base, $(dropped out) base -> robot"
 
 echo "== per topic: sent by the robot, delivered to the base station (compared byte for byte)"
-for side in robot/sent base/delivered; do
+BASE_SIDE="${BASE_RECORDING%.mcap}"; BASE_SIDE="${BASE_SIDE#$RUN/}"
+for side in robot/sent "$BASE_SIDE"; do
     [ -f "$RUN/$side.mcap" ] || die "no recording $RUN/$side.mcap (--out DIR keeps the logs)"
     "$BIN/ltm_mcap" manifest "$RUN/$side.mcap" -o "$RUN/$side.json"
 done
 # One manifest line a message: topic, publish time (the writer's) and the CDR bytes. A message is
-# delivered when the base station recorded the same three; one missing before the topic's first
-# delivered message was published before the base station's reader was matched (discovery). The
-# robot's recorder finds the topics by discovery too and can miss a topic's first message: what
-# only the base station recorded counts as sent (and is reported).
+# delivered when the base station recorded the same topic and bytes (the downlink publishes again,
+# so its publish time is its own); a second copy in the base station's recording is a duplicate
+# (applied twice). One missing before the topic's first delivered message was published before
+# the base station's reader was matched (discovery). The robot's recorder finds the topics by
+# discovery too and can miss a topic's first message: what only the base station recorded counts
+# as sent (and is reported).
 awk -v req=" ${REQUIRE[*]} " '
     function field(name,   i, r) {
         i = index($0, "\"" name "\": \""); if (!i) return ""
@@ -240,12 +278,13 @@ awk -v req=" ${REQUIRE[*]} " '
     }
     function topic_of(t) { if (!(t in order)) { order[t] = ++nt; name[nt] = t } }
     !/"data_hex"/ || !/"topic"/ { next }
-    { t = field("topic"); sub(/^rt\/[^\/]*\//, "", t); p = field("publish_time"); d = field("data_hex") }
-    FNR == NR { key = t SUBSEP p SUBSEP d; got[key] = length(d) / 2
+    { t = field("topic"); sub(/^rt\/[^\/]*\//, "", t); sub(/^onboard\//, "", t)
+      p = field("publish_time"); d = field("data_hex") }
+    FNR == NR { key = t SUBSEP d; if (key in got) dup[t]++; got[key] = length(d) / 2
                 if (!(t in first) || p < first[t]) first[t] = p; next }
     {
         n++; topic[n] = t; pub[n] = p; sent[t]++; bytes[t] += length(d) / 2; topic_of(t)
-        key = t SUBSEP p SUBSEP d
+        key = t SUBSEP d
         if (key in got) { ok[t]++; seen[key] = 1 } else { miss[n] = 1 }
     }
     END {
@@ -262,16 +301,55 @@ awk -v req=" ${REQUIRE[*]} " '
             printf "   %-10s sent %4d (%8.2f MiB)  delivered %4d  missing %d", t, sent[t], bytes[t] / 1048576, ok[t] + 0, sent[t] - ok[t]
             if (sent[t] > ok[t]) printf " (%d before the base station matched, %d after)", early, late
             if (unrec[t]) printf " [%d only in the base station'"'"'s recording]", unrec[t]
+            if (dup[t]) printf " DUPLICATES %d", dup[t]
             printf "\n"
-            if (sent[t] > ok[t] && index(req, " " t " ")) bad = 1
+            if ((sent[t] > ok[t] || dup[t]) && index(req, " " t " ")) bad = 1
         }
         exit bad
-    }' "$RUN/base/delivered.json" "$RUN/robot/sent.json" || required_missing=1
+    }' "$RUN/$BASE_SIDE.json" "$RUN/robot/sent.json" || required_missing=1
 awk -v end="$robot_end" '/"log_time"/ {i = index($0, "\"log_time\": \""); t = substr($0, i + 13, 19) + 0
                                if (t > last) last = t}
     END {if (last) printf "   last message received by the base station %.1f s %s the robot exited\n", \
              (last / 1e9 > end ? last / 1e9 - end : end - last / 1e9), (last / 1e9 > end ? "after" : "before")}' \
-    "$RUN/base/delivered.json"
+    "$RUN/$BASE_SIDE.json"
+# Each outage: how long after the link came back the uplink's backlog was delivered (its log).
+sod() { awk -F: '{printf "%.3f", $1 * 3600 + $2 * 60 + $3}' <<< "$1"; }
+for o in "${OUTAGES[@]}"; do
+    t="${o#*@}"; [ -f "$WORK/outage_end_$t" ] || continue
+    back=$(sod "$(cut -c1-12 "$WORK/outage_end_$t")")
+    line=$(awk -v b="$back" '/\[uplink\] backlog delivered/ {split($1, h, ":"); s = h[1] * 3600 + h[2] * 60 + h[3]
+                                                            if (s >= b) {print s - b; exit}}' "$RUN/robot.log")
+    if [ -n "$line" ]; then
+        printf '   outage %s: the backlog was delivered %.1f s after the link came back\n' "$o" "$line"
+    else
+        echo "   outage $o: no 'backlog delivered' after the link came back (robot.log)"
+    fi
+done
+# The link components' own account (their final lines).
+grep -h "uplink.*final\|downlink.*final" "$RUN/robot.log" "$RUN"/base*.log 2>/dev/null | sed 's/^/   /' || true
+if [ "$COMPARE" = 1 ]; then
+    echo "== the same scans in one process (the composed run): its map against the base station's"
+    mkdir -p "$RUN/composed"
+    cat > "$WORK/composed.yaml" <<YAML
+namespace: /robot
+topics: {points: stream, keyframe: stream, local_map: stream}  # every scan, nothing dropped
+components:
+  - {name: player, type: kitti_player, params: {path: "$DATA", mode: fast}}
+  - {name: odometry, type: odometry, params: {preset: $preset}}
+  - {name: mapping, type: mapping, params: {preset: $preset, map_dir: "$RUN/composed/map"}}
+YAML
+    ip netns exec "$NS_BASE" "$BIN/ltm_host" "$WORK/composed.yaml" --set "$(dds lo 127.0.0.1)" \
+        > "$RUN/composed.log" 2>&1 || die "the composed run failed (its log: $RUN/composed.log)"
+    "$BIN/ltm_map_diff" "$RUN/composed/map" "$RUN/base/map" --tolerance 0.001 --require-same-loops \
+        | sed 's/^/   /' || map_differs=1
+    # Scans the robot's odometry did not process (real time on a shared machine) explain a
+    # difference.
+    grep -ho "[0-9]* scans skipped[^,;]*" "$RUN/robot.log" | tail -n 1 | sed 's/^/   robot: /' || true
+fi
+if [ "$SAME_MAP" = 1 ] && [ "${map_differs:-0}" = 1 ]; then
+    echo "== FAILED: the base station's map is not the composed run's"
+    exit 1
+fi
 if [ "${required_missing:-0}" = 1 ]; then
     echo "== FAILED: a message of ${REQUIRE[*]} did not reach the base station"
     exit 1

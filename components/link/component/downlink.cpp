@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,11 @@ class Downlink : public runtime::Component {
         dir_ = p.path("journal_dir", "", PathCheck::kParentExists);
         out_ns_ = p.get<std::string>("output_namespace", "/" + robot_);
         const double ack_period = p.get<double>("ack_period_s", 0.5);
+        // Readers in other processes, and recorders in this one, find the outputs by discovery:
+        // the journal's replay waits for them this long.
+        const double replay_delay = p.get<double>("replay_delay_s", 1.0);
+        if (replay_delay < 0) p.fail("replay_delay_s", "must be >= 0");
+        start_at_ = mono_s() + replay_delay;
         max_held_ = p.get<std::size_t>("max_held", 512);
         if (robot_.empty() || robot_.find('/') != std::string::npos)
             p.fail("robot", "a name without '/' (the robot's namespace)");
@@ -56,10 +62,9 @@ class Downlink : public runtime::Component {
                                        [this](const msg::LinkPacket& m) { on_packet(m); });
         ack_out_ = ctx.advertise<msg::LinkAck>("link/ack", TopicRole::kState);
         ctx.add_timer(ack_period, [this] { ack(); });
+        ctx.add_timer(0.05, [this] { deliver_pending(); });
         ctx.add_timer(10.0, [this] { report(false); });
     }
-
-    void on_activate() override { replay(); }
 
     void on_shutdown() override {
         ack();
@@ -70,8 +75,9 @@ class Downlink : public runtime::Component {
     struct Run {
         std::unique_ptr<LinkJournal> journal;
         std::unique_ptr<ReceiveWindow> window;
-        bool dirty = true;  // an acknowledgement is due
-        std::uint64_t delivered = 0;
+        bool dirty = true;              // an acknowledgement is due
+        std::uint64_t delivered = 0;    // every seq <= delivered was handed on (or skipped)
+        std::uint64_t replay_last = 0;  // the journal's last seq when this base station started
     };
 
     // Runs journaled by an earlier start of this base station.
@@ -94,30 +100,45 @@ class Downlink : public runtime::Component {
             if (!r.journal->recovery().empty())
                 ctx_.log().warn("journal of run " + name + ": " + r.journal->recovery());
             r.window = std::make_unique<ReceiveWindow>(r.journal->last_seq(), max_held_);
+            r.replay_last = r.journal->last_seq();
             const auto first = r.journal->read_from(0);
             found.emplace_back(first ? first->stamp_ns : 0, name);
             runs_[run] = std::move(r);
-            replay_order_.push_back(run);
         }
         std::sort(found.begin(), found.end());
-        replay_order_.clear();
-        for (const auto& f : found) replay_order_.push_back(std::stoull(f.second, nullptr, 16));
+        for (const auto& f : found) order_.push_back(std::stoull(f.second, nullptr, 16));
     }
 
-    // A restarted base station: what it journaled before goes to the mapping again, in order.
-    void replay() {
-        for (const std::uint64_t id : replay_order_) {
+    // Everything journaled and not yet handed on, run by run in the order they started: a
+    // restarted base station's journal first (the mapping gets it again, in order), then what
+    // arrives. Delivery reads the journal back, so it is the same path either way.
+    void deliver_pending() {
+        if (!started_) {
+            if (mono_s() < start_at_) return;
+            started_ = true;
+        }
+        for (const std::uint64_t id : order_) {
             Run& r = runs_.at(id);
-            std::uint64_t seq = 0, n = 0;
-            while (const auto rec = r.journal->read_from(seq + 1)) {
-                seq = rec->seq;
+            while (r.delivered < r.journal->last_seq() && !ctx_.stop_requested()) {
+                std::optional<JournalRecord> rec;
+                try {
+                    rec = r.journal->read_from(r.delivered + 1);
+                } catch (const std::exception& e) {
+                    ctx_.log().error(std::string("journal unreadable, run ") + run_hex(id) +
+                                     " stalled: " + e.what());
+                    break;
+                }
+                if (!rec) break;
+                r.delivered = rec->seq;
                 deliver(*rec);
-                ++n;
-                if (ctx_.stop_requested()) return;
+                if (rec->seq <= r.replay_last) {
+                    ++replayed_;
+                    if (rec->seq == r.replay_last)
+                        ctx_.log().info("replayed the " + std::to_string(r.journal->size()) +
+                                        " journaled messages of run " + run_hex(id) + " from " +
+                                        r.journal->dir());
+                }
             }
-            ctx_.log().info("replayed " + std::to_string(n) + " messages of run " + run_hex(id) +
-                            " from " + r.journal->dir());
-            replayed_ += n;
         }
     }
 
@@ -175,6 +196,7 @@ class Downlink : public runtime::Component {
             }
             r.window = std::make_unique<ReceiveWindow>(r.journal->last_seq(), max_held_);
             it = runs_.emplace(m.run, std::move(r)).first;
+            order_.push_back(m.run);
             ctx_.log().info("run " + run_hex(m.run) + " of " + robot_ + " connected");
         }
         Run& run = it->second;
@@ -195,11 +217,14 @@ class Downlink : public runtime::Component {
             try {
                 run.journal->append(r);
             } catch (const std::exception& e) {
-                // Not on disk: still delivered now, but a restart would not replay it.
-                ctx_.log().error(std::string("packet not journaled: ") + e.what());
+                // Not kept, not acknowledged: the robot sends it again.
+                ctx_.log().error(std::string("packet not journaled (the robot will resend it): ") +
+                                 e.what());
+                run.window = std::make_unique<ReceiveWindow>(run.journal->last_seq(), max_held_);
+                break;
             }
-            deliver(r);
         }
+        deliver_pending();
     }
 
     // The robot learns what is safe here: synced to disk, then acknowledged. Every run is
@@ -249,7 +274,9 @@ class Downlink : public runtime::Component {
     std::size_t max_held_ = 512;
     std::uint64_t base_run_ = 0;
     std::map<std::uint64_t, Run> runs_;
-    std::vector<std::uint64_t> replay_order_;
+    std::vector<std::uint64_t> order_;  // runs, in the order they started
+    double start_at_ = 0.0;
+    bool started_ = false;
     std::map<std::string, std::shared_ptr<runtime::RawWriterHandle>> writers_;
     std::uint64_t delivered_ = 0, replayed_ = 0, undeliverable_ = 0, other_robots_ = 0;
     runtime::Publisher<msg::LinkAck> ack_out_;

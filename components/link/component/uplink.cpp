@@ -8,6 +8,7 @@
 #include <dds/dds.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <memory>
 #include <string>
 #include <vector>
@@ -149,7 +150,24 @@ class Uplink : public runtime::Component {
         if (convert::to_string(m.robot) != robot_ || m.run != run_) return;
         const bool first = !window_.heard_base();
         const std::uint64_t restarts = window_.stats().base_restarts;
-        window_.on_ack(m.through, m.base_run, mono_s());
+        const double now = mono_s();
+        // Acknowledgements back after a silence (an outage, a base station away): say how much
+        // waited, and later how long it took to deliver.
+        if (!first && now - last_ack_s_ >= kSilence_s) {
+            catch_up_to_ = journal_->last_seq();
+            resumed_s_ = now;
+            ctx_.log().info("acknowledgements resumed after " + seconds(now - last_ack_s_) +
+                            " of silence: " + std::to_string(catch_up_to_ - window_.acked()) +
+                            " packets (" + std::to_string(journal_->bytes() >> 20) +
+                            " MiB) to deliver");
+        }
+        last_ack_s_ = now;
+        window_.on_ack(m.through, m.base_run, now);
+        if (catch_up_to_ > 0 && window_.acked() >= catch_up_to_) {
+            ctx_.log().info("backlog delivered " + seconds(now - resumed_s_) +
+                            " after acknowledgements resumed");
+            catch_up_to_ = 0;
+        }
         if (first)
             ctx_.log().info("base station " + run_hex(m.base_run) + " holds " +
                             std::to_string(m.through) + " packets of this run");
@@ -164,6 +182,12 @@ class Uplink : public runtime::Component {
                 ctx_.log().warn(std::string("backlog not trimmed: ") + e.what());
             }
         }
+    }
+
+    static std::string seconds(double s) {
+        char b[32];
+        std::snprintf(b, sizeof b, "%.1f s", s);
+        return b;
     }
 
     void take_acks() {
@@ -241,6 +265,9 @@ class Uplink : public runtime::Component {
     std::string robot_, ack_topic_;
     std::uint64_t run_ = 0;
     double send_period_s_ = 0.01, drain_s_ = 10.0;
+    static constexpr double kSilence_s = 2.0;  // acknowledgements come every 0.5 s
+    double last_ack_s_ = 0.0, resumed_s_ = 0.0;
+    std::uint64_t catch_up_to_ = 0;
     std::unique_ptr<LinkJournal> journal_;
     SendWindow window_;
     std::uint64_t stored_ = 0, stored_bytes_ = 0, dropped_ = 0, send_errors_ = 0;
