@@ -44,11 +44,15 @@ convert::LoopClosureData loop_data(const Mapper& mapper, const LoopClosure& loop
 }
 
 common::Trajectory session_path(const Mapper& mapper) {
+    return session_path(mapper, mapper.session());
+}
+
+common::Trajectory session_path(const Mapper& mapper, std::uint32_t session) {
     const auto& keyframes = mapper.keyframes();
     common::Trajectory poses;
     poses.reserve(keyframes.size());
     for (std::uint32_t i = 0; i < keyframes.size(); ++i) {
-        if (keyframes[i]->session != mapper.session()) continue;  // a loaded map's
+        if (keyframes[i]->session != session) continue;  // a loaded map's, another robot's
         poses.push_back({keyframes[i]->data.stamp, mapper.keyframe_pose(i)});
     }
     return poses;

@@ -19,5 +19,7 @@ convert::LoopClosureData loop_data(const Mapper& mapper, const LoopClosure& loop
 
 // This session's keyframes (not a loaded map's) at their optimised poses.
 common::Trajectory session_path(const Mapper& mapper);
+// The same for one session (a robot's, when several map at once).
+common::Trajectory session_path(const Mapper& mapper, std::uint32_t session);
 
 }  // namespace ltm::mapping

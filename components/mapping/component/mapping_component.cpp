@@ -8,11 +8,19 @@
 // a new session. `status` says when the odometry restarted in a new segment (until a loop joins
 // it, its corrected poses are the odometry's best estimate across the break) and when a loop joins
 // that segment to the map.
+// Several robots at once (`robots: [robot1, robot2]`): a mapper session a robot; for each robot R
+// the inputs are /R/keyframe, /R/local_map, /R/odometry and the outputs /R/map_to_odom,
+// /R/corrected_odometry and /R/path, while pose_graph, loop_closure and status are shared; `status`
+// also says when a robot's session is joined to the map by a loop (until then its poses are its own
+// odometry's). Without robots (the default) the topic names are relative, as for one robot.
+#include <algorithm>
+#include <cctype>
 #include <deque>
 #include <filesystem>
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 
 #include "common/convert/dds_string.hpp"
 #include "common/convert/local_map.hpp"
@@ -47,35 +55,47 @@ class MappingComponent : public runtime::Component {
         const double save_period = p.get<double>("save_period_s", 30.0);
         if (save_period < 0)
             p.fail("save_period_s", "must be >= 0 (0: save only on request and at shutdown)");
+        const std::vector<std::string> robots = p.get<std::vector<std::string>>("robots", {});
         const MapperConfig config = load_mapper_config(p, "", "hdl64");
         create_mapper(p, config, load_dir, freeze_loaded);
+        check_robots(p, robots);
         if (!map_dir_.empty()) writer_ = std::make_unique<MapWriter>(map_dir_);
         // Saving as it goes keeps the save at shutdown small (only what changed is rewritten),
         // and a crash loses at most one period.
         if (writer_ && save_period > 0) ctx.add_timer(save_period, [this] { save(); });
-        ctx.subscribe<msg::LocalMap>("local_map", TopicRole::kMap, [this](const msg::LocalMap& m) {
-            const LocalMapResult r = mapper_->add_local_map(convert::from_msg(m));
-            if (!r.added && !r.message.empty()) ctx_.log().debug(r.message);
-            report_segments();
-            flush_waiting();
-        });
-        ctx.subscribe<msg::Keyframe>("keyframe", TopicRole::kState,
-                                     [this](const msg::Keyframe& m) { on_keyframe(m); });
-        ctx.subscribe<msg::Odometry>("odometry", TopicRole::kState,
-                                     [this](const msg::Odometry& m) { on_odometry(m); });
+        // One robot (relative topic names, the mapper's default session), or one a robot.
+        for (const std::string& name : robots.empty() ? std::vector<std::string>{""} : robots) {
+            auto robot = std::make_unique<Robot>();
+            robot->name = name;
+            robot->session = name.empty() ? mapper_->session() : mapper_->open_session(name);
+            Robot* r = robot.get();
+            ctx.subscribe<msg::LocalMap>(
+                topic(*r, "local_map"), TopicRole::kMap,
+                [this, r](const msg::LocalMap& m) { on_local_map(*r, m); });
+            ctx.subscribe<msg::Keyframe>(topic(*r, "keyframe"), TopicRole::kState,
+                                         [this, r](const msg::Keyframe& m) { on_keyframe(*r, m); });
+            ctx.subscribe<msg::Odometry>(topic(*r, "odometry"), TopicRole::kState,
+                                         [this, r](const msg::Odometry& m) { on_odometry(*r, m); });
+            r->path_out = ctx.advertise<msg::Path>(topic(*r, "path"), TopicRole::kMap);
+            r->odometry_out =
+                ctx.advertise<msg::Odometry>(topic(*r, "corrected_odometry"), TopicRole::kState);
+            r->correction_out =
+                ctx.advertise<msg::TransformStamped>(topic(*r, "map_to_odom"), TopicRole::kState);
+            robots_.push_back(std::move(robot));
+        }
         ctx.subscribe<msg::MapRequest>("map_request", TopicRole::kState,
                                        [this](const msg::MapRequest& m) { on_request(m); });
         graph_out_ = ctx.advertise<msg::PoseGraph>("pose_graph", TopicRole::kMap);
-        path_out_ = ctx.advertise<msg::Path>("path", TopicRole::kMap);
         loop_out_ = ctx.advertise<msg::LoopClosure>("loop_closure", TopicRole::kState);
-        odometry_out_ = ctx.advertise<msg::Odometry>("corrected_odometry", TopicRole::kState);
-        correction_out_ = ctx.advertise<msg::TransformStamped>("map_to_odom", TopicRole::kState);
         status_out_ = ctx.advertise<msg::Status>("status", TopicRole::kState);
     }
 
     void on_shutdown() override {
         if (loops_since_optimise_ > 0) optimise();
-        publish_path();
+        for (const auto& r : robots_) {
+            publish_path(*r);
+            if (!r->name.empty()) ctx_.log().info(mapper_->session_status(r->session).message);
+        }
         ctx_.log().info(std::to_string(mapper_->keyframes().size()) + " keyframes, " +
                         std::to_string(mapper_->local_map_count()) + " local maps, " +
                         std::to_string(mapper_->loops().size()) + " loops closed");
@@ -84,6 +104,52 @@ class MappingComponent : public runtime::Component {
     }
 
   private:
+    // A robot's inputs, outputs and the state of its corrected odometry.
+    struct Robot {
+        std::string name;  // "" without `robots`: relative topic names
+        std::uint32_t session = 0;
+        std::deque<convert::OdometryData> waiting;
+        bool warned_waiting = false;
+        std::uint64_t current_map = 0;
+        bool has_current_map = false;
+        std::map<std::uint32_t, bool> segment_joined;  // as last reported
+        std::optional<bool> session_joined;            // as last reported
+        runtime::Publisher<msg::Path> path_out;
+        runtime::Publisher<msg::Odometry> odometry_out;
+        runtime::Publisher<msg::TransformStamped> correction_out;
+    };
+
+    // "keyframe", or "/robot1/keyframe" for robot robot1.
+    static std::string topic(const Robot& r, const std::string& name) {
+        return r.name.empty() ? name : "/" + r.name + "/" + name;
+    }
+
+    // Robot names are topic namespaces: a letter, then letters, digits or '_'; each once.
+    static void check_robots(runtime::Parameters& p, const std::vector<std::string>& robots) {
+        std::set<std::string> seen;
+        for (const std::string& r : robots) {
+            const bool ok = !r.empty() && std::isalpha(static_cast<unsigned char>(r[0])) &&
+                            std::all_of(r.begin(), r.end(), [](char c) {
+                                return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+                            });
+            if (!ok)
+                p.fail("robots", "'" + r +
+                                     "' is not a robot name (a letter, then letters, digits or "
+                                     "'_': its topics are /NAME/...)");
+            if (!seen.insert(r).second) p.fail("robots", "'" + r + "' is named twice");
+        }
+    }
+
+    // "robot2: " before a robot's messages when several map at once.
+    static std::string prefix(const Robot& r) { return r.name.empty() ? "" : r.name + ": "; }
+
+    void on_local_map(Robot& r, const msg::LocalMap& m) {
+        const LocalMapResult result = mapper_->add_local_map(convert::from_msg(m), r.session);
+        if (!result.added && !result.message.empty()) ctx_.log().debug(prefix(r) + result.message);
+        report_segments();
+        flush_waiting(r);
+    }
+
     void create_mapper(runtime::Parameters& p, const MapperConfig& config,
                        const std::string& load_dir, bool freeze_loaded) {
         try {
@@ -196,63 +262,65 @@ class MappingComponent : public runtime::Component {
                "request " + std::to_string(m.id) + ": " + outcome);
     }
 
-    void on_keyframe(const msg::Keyframe& m) {
-        const KeyframeResult r = mapper_->add_keyframe(convert::from_msg(m));
+    void on_keyframe(Robot& robot, const msg::Keyframe& m) {
+        const KeyframeResult r = mapper_->add_keyframe(convert::from_msg(m), robot.session);
         if (!r.added) {
-            ctx_.log().warn("keyframe " + std::to_string(m.id) + " not added: " + r.message);
+            ctx_.log().warn(prefix(robot) + "keyframe " + std::to_string(m.id) +
+                            " not added: " + r.message);
             return;
         }
-        current_map_ = m.local_map_id;
-        has_current_map_ = true;
-        flush_waiting();
+        robot.current_map = m.local_map_id;
+        robot.has_current_map = true;
+        flush_waiting(robot);
         for (const LoopClosure& loop : r.loops) publish_loop(loop, m.header.stamp);
         loops_since_optimise_ += r.loops.size();
         if (r.optimisation_due()) optimise();
-        publish_correction(m.header.stamp);
+        publish_correction(robot, m.header.stamp);
     }
 
     // The odometry pose corrected by the newest keyframe's local map: T_world_odom * T_odom_lidar.
     // Poses wait until that correction is known (the odometry publishes a frame's pose before its
     // keyframe, and a new local map some time after its first keyframe).
-    void on_odometry(const msg::Odometry& m) {
-        if (waiting_.empty()) {
-            if (const std::optional<Eigen::Isometry3d> T = correction()) {
-                publish_corrected(convert::from_msg(m), *T);
+    void on_odometry(Robot& r, const msg::Odometry& m) {
+        if (r.waiting.empty()) {
+            if (const std::optional<Eigen::Isometry3d> T = correction(r)) {
+                publish_corrected(r, convert::from_msg(m), *T);
                 return;
             }
         }
-        if (waiting_.size() == kMaxWaiting) {
-            waiting_.pop_front();
-            if (!warned_waiting_)
-                ctx_.log().warn(
-                    "no local map for the odometry's poses yet: the oldest waiting ones are "
-                    "dropped");
-            warned_waiting_ = true;
+        if (r.waiting.size() == kMaxWaiting) {
+            r.waiting.pop_front();
+            if (!r.warned_waiting)
+                ctx_.log().warn(prefix(r) +
+                                "no local map for the odometry's poses yet: the oldest waiting "
+                                "ones are dropped");
+            r.warned_waiting = true;
         }
-        waiting_.push_back(convert::from_msg(m));
-        flush_waiting();
+        r.waiting.push_back(convert::from_msg(m));
+        flush_waiting(r);
     }
 
-    std::optional<Eigen::Isometry3d> correction() const {
-        return has_current_map_ ? mapper_->T_world_odom(current_map_) : std::nullopt;
+    std::optional<Eigen::Isometry3d> correction(const Robot& r) const {
+        return r.has_current_map ? mapper_->T_world_odom(r.current_map, r.session) : std::nullopt;
     }
 
-    void flush_waiting() {
-        if (waiting_.empty()) return;
-        const std::optional<Eigen::Isometry3d> T = correction();
+    void flush_waiting(Robot& r) {
+        if (r.waiting.empty()) return;
+        const std::optional<Eigen::Isometry3d> T = correction(r);
         if (!T) return;
-        for (const convert::OdometryData& o : waiting_) publish_corrected(o, *T);
-        waiting_.clear();
+        for (const convert::OdometryData& o : r.waiting) publish_corrected(r, o, *T);
+        r.waiting.clear();
     }
 
-    void publish_corrected(const convert::OdometryData& o, const Eigen::Isometry3d& T_world_odom) {
-        odometry_out_.publish(*convert::to_msg(convert::reparent(o, T_world_odom, frame_id_)));
+    void publish_corrected(Robot& r, const convert::OdometryData& o,
+                           const Eigen::Isometry3d& T_world_odom) {
+        r.odometry_out.publish(*convert::to_msg(convert::reparent(o, T_world_odom, frame_id_)));
     }
 
-    void publish_correction(const msg::Time& stamp) {
-        const std::optional<Eigen::Isometry3d> T = mapper_->T_world_odom(current_map_);
+    void publish_correction(Robot& r, const msg::Time& stamp) {
+        const std::optional<Eigen::Isometry3d> T = correction(r);
         if (!T) return;
-        correction_out_.publish(
+        r.correction_out.publish(
             *convert::to_msg(convert::TransformData{stamp, frame_id_, "odom", *T}));
     }
 
@@ -265,25 +333,41 @@ class MappingComponent : public runtime::Component {
             return;
         }
         publish_graph();
-        publish_path();
+        for (const auto& r : robots_) publish_path(*r);
         report_segments();
     }
 
     // A new odometry segment (the odometry lost track and restarted), and its joining by a loop:
-    // one status each time a segment's state changes.
+    // one status each time a segment's state changes; with several robots, each robot's session
+    // joined to the map or not, the same way.
     void report_segments() {
-        for (const SegmentStatus& s : mapper_->segments()) {
-            if (s.segment == 0) continue;
-            const auto it = segment_joined_.find(s.segment);
-            if (it != segment_joined_.end() && it->second == s.joined) continue;
-            segment_joined_[s.segment] = s.joined;
-            if (s.joined) {
-                ctx_.log().info(s.message);
-                status(StatusLevel::kOk, "segment_joined", s.message);
-            } else {
-                ctx_.log().warn(s.message);
-                status(StatusLevel::kWarn, "segment_not_joined", s.message);
+        for (const auto& robot : robots_) {
+            Robot& r = *robot;
+            for (const SegmentStatus& s : mapper_->segments(r.session)) {
+                if (s.segment == 0) continue;
+                const auto it = r.segment_joined.find(s.segment);
+                if (it != r.segment_joined.end() && it->second == s.joined) continue;
+                r.segment_joined[s.segment] = s.joined;
+                report_joined(s.joined, "segment", prefix(r) + s.message);
             }
+            if (r.name.empty()) continue;
+            const SessionStatus st = mapper_->session_status(r.session);
+            if (r.session_joined == st.joined ||
+                st.message.find("has no local map") != std::string::npos)
+                continue;
+            r.session_joined = st.joined;
+            report_joined(st.joined, "session", st.message);
+        }
+    }
+
+    // "segment_joined" / "segment_not_joined" (kind "segment"), "session_..." likewise.
+    void report_joined(bool joined, const std::string& kind, const std::string& message) {
+        if (joined) {
+            ctx_.log().info(message);
+            status(StatusLevel::kOk, kind + "_joined", message);
+        } else {
+            ctx_.log().warn(message);
+            status(StatusLevel::kWarn, kind + "_not_joined", message);
         }
     }
 
@@ -294,36 +378,35 @@ class MappingComponent : public runtime::Component {
 
     void publish_loop(const LoopClosure& loop, const msg::Time& stamp) {
         loop_out_.publish(*convert::to_msg(loop_data(*mapper_, loop, stamp, frame_id_)));
-        const std::string other = loop.match_session == loop.query_session
-                                      ? ""
-                                      : " of session " + std::to_string(loop.match_session);
-        ctx_.log().info("loop closed: scan " + std::to_string(loop.query_scan) + " with scan " +
-                        std::to_string(loop.match_scan) + other + " (" +
+        auto who = [this](std::uint32_t session) {
+            const std::string robot = mapper_->robot(session);
+            return robot.empty() ? "session " + std::to_string(session) : robot;
+        };
+        const std::string other =
+            loop.match_session == loop.query_session ? "" : " of " + who(loop.match_session);
+        const std::string own = robots_.size() > 1 ? who(loop.query_session) + ": " : "";
+        ctx_.log().info(own + "loop closed: scan " + std::to_string(loop.query_scan) +
+                        " with scan " + std::to_string(loop.match_scan) + other + " (" +
                         std::to_string(loop.inliers) + " inliers)");
     }
 
     void publish_graph() { graph_out_.publish(*convert::to_msg(graph_data(*mapper_, frame_id_))); }
 
-    // The corrected trajectory of this session: its keyframes at their optimised poses.
-    void publish_path() { path_out_.publish(*convert::to_msg(session_path(*mapper_), frame_id_)); }
+    // The corrected trajectory of a robot's session: its keyframes at their optimised poses.
+    void publish_path(Robot& r) {
+        r.path_out.publish(*convert::to_msg(session_path(*mapper_, r.session), frame_id_));
+    }
 
     runtime::ComponentContext& ctx_;
     std::unique_ptr<Mapper> mapper_;
     std::string map_dir_, global_map_file_, frame_id_;
     std::size_t loops_since_optimise_ = 0;
-    std::map<std::uint32_t, bool> segment_joined_;  // as last reported
+    std::vector<std::unique_ptr<Robot>> robots_;  // callbacks hold their robot's address
     std::unique_ptr<MapWriter> writer_;
     std::uint64_t saved_state_ = 0;
     static constexpr std::size_t kMaxWaiting = 1000;  // 100 s at 10 Hz
-    std::deque<convert::OdometryData> waiting_;
-    bool warned_waiting_ = false;
-    std::uint64_t current_map_ = 0;
-    bool has_current_map_ = false;
     runtime::Publisher<msg::PoseGraph> graph_out_;
-    runtime::Publisher<msg::Path> path_out_;
     runtime::Publisher<msg::LoopClosure> loop_out_;
-    runtime::Publisher<msg::Odometry> odometry_out_;
-    runtime::Publisher<msg::TransformStamped> correction_out_;
     runtime::Publisher<msg::Status> status_out_;
 };
 

@@ -202,7 +202,17 @@ std::uint64_t Mapper::ensure_node(std::uint32_t session, std::uint64_t local_map
     n.T_odom_anchor = T_odom_anchor;
     // Across a break too: the odometry restarted at its best estimate, in the same odometry frame.
     n.T_world_anchor = predicted_world(session, local_map_id, T_odom_anchor);
-    graph_.add_node(n);
+    // The optimisation holds the first node of each connected part: the first node of the map's
+    // first session goes first, so that robots joined to it move, not it (and its frame).
+    if (!chains_.count(session) && session == reference_session() && !graph_.nodes().empty()) {
+        PoseGraph reordered(graph_.config());
+        reordered.add_node(n);
+        for (const PoseGraphNode& other : graph_.nodes()) reordered.add_node(other);
+        for (const PoseGraphEdge& e : graph_.edges()) reordered.add_edge(e);
+        graph_ = std::move(reordered);
+    } else {
+        graph_.add_node(n);
+    }
     std::map<std::uint64_t, std::uint64_t>& chain = chains_[session];
     const auto it = chain.emplace(local_map_id, n.id).first;
     if (segment) {

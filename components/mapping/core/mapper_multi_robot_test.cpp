@@ -69,12 +69,13 @@ MapperConfig robots_config() {
     return c;
 }
 
-// Both robots at once: keyframe i of robot 1, then keyframe i of robot 2; each local map arrives
+// Both robots at once: keyframe i of robot 2, then keyframe i of robot 1 (robot 2's data arrives
+// first, yet robot 1's session, the map's first, keeps its frame); each local map arrives
 // before its keyframes; the graph is optimised when a loop is accepted, as the component does.
 void interleave(const Robot& r1, const Robot& r2, std::uint32_t s1, std::uint32_t s2,
                 Mapper& mapper) {
     for (std::size_t i = 0; i < 16; ++i) {
-        for (const auto& [robot, session] : {std::make_pair(&r1, s1), std::make_pair(&r2, s2)}) {
+        for (const auto& [robot, session] : {std::make_pair(&r2, s2), std::make_pair(&r1, s1)}) {
             if (i % 4 == 0) {
                 const LocalMapResult m = mapper.add_local_map(robot->maps[i / 4], session);
                 EXPECT_TRUE(m.added) << m.message;

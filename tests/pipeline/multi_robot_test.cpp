@@ -1,0 +1,119 @@
+// Two robots on one map through the host: the tiny simulated site's two sessions driven at once
+// by two simulators, each with its own odometry under /robot1 and /robot2, and one mapping
+// component with `robots: [robot1, robot2]`. The saved map is one graph with loops between the
+// robots' sessions, each session recorded with its robot; each robot gets its own corrected
+// odometry.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <map>
+
+#include "common/core/trajectory_io.hpp"
+#include "host/process.hpp"
+#include "host/temp_dir_test.hpp"
+#include "mapping/core/map_store.hpp"
+
+namespace fs = std::filesystem;
+using ltm::tests::Process;
+using namespace ltm;
+
+namespace {
+
+const std::string kHost = std::string(LTM_BINARY_DIR) + "/bin/ltm_host";
+const std::string kScenario =
+    std::string(LTM_SOURCE_DIR) + "/components/simulator/scenarios/tiny_loop.yaml";
+
+class MultiRobotPipeline : public ltm::tests::TempDirTest {
+  protected:
+    MultiRobotPipeline() : TempDirTest("ltm_multi_robot_") {}
+
+    // A simulator and an odometry for robot `r` (session `session` of the tiny site), every topic
+    // under /r, and a writer of its corrected odometry and of its true poses.
+    std::string robot(const std::string& r, int session) const {
+        const std::string topics = "{points: /" + r + "/points, odometry: /" + r +
+                                   "/odometry, keyframe: /" + r + "/keyframe, local_map: /" + r +
+                                   "/local_map, status: /" + r + "/status}";
+        return "  - name: sensor_" + r +
+               "\n    type: simulator\n    params: {scenario: " + kScenario +
+               ", mode: fast, session: " + std::to_string(session) + "}\n    remap: {points: /" +
+               r + "/points, ground_truth: /" + r + "/ground_truth}\n  - name: odometry_" + r +
+               "\n    type: odometry\n    params: {preset: vlp16, threads: 1}\n    remap: " +
+               topics + "\n  - name: corrected_" + r +
+               "\n    type: trajectory_writer\n    params: {tum_file: " + path(r + "_slam.txt") +
+               ", input: odometry}\n    remap: {odometry: /" + r +
+               "/corrected_odometry}\n  - name: truth_" + r +
+               "\n    type: trajectory_writer\n    params: {tum_file: " + path(r + "_truth.txt") +
+               ", input: pose}\n    remap: {pose: /" + r + "/ground_truth}\n";
+    }
+};
+
+// Connected parts of a graph (by its edges).
+std::size_t components(const mapping::MapData& map) {
+    std::map<std::uint64_t, std::uint64_t> parent;
+    for (const mapping::PoseGraphNode& n : map.nodes) parent[n.id] = n.id;
+    auto root = [&](std::uint64_t x) {
+        while (parent[x] != x) x = parent[x];
+        return x;
+    };
+    for (const mapping::PoseGraphEdge& e : map.edges) {
+        if (e.active) parent[root(e.from)] = root(e.to);
+    }
+    std::size_t n = 0;
+    for (const auto& [id, up] : parent) n += root(id) == id;
+    return n;
+}
+
+}  // namespace
+
+TEST_F(MultiRobotPipeline, TwoRobotsAreJoinedIntoOneGraph) {
+    const std::string cfg = write("robots.yaml", R"(domain_id: 231
+dds: {interfaces: [lo], multicast: false, peers: [127.0.0.1]}
+topics: {/robot1/points: stream, /robot1/ground_truth: stream, /robot2/points: stream,
+         /robot2/ground_truth: stream}
+qos: {stream: {max_blocking_s: 2.0}}
+components:
+)" + robot("robot1", 0) + robot("robot2", 1) +
+                                                     R"(  - name: mapping
+    type: mapping
+    params: {preset: vlp16, robots: [robot1, robot2], map_dir: )" +
+                                                     path("map") + R"(, save_period_s: 0}
+)");
+    Process host({kHost, cfg}, path("host"));
+    ASSERT_EQ(host.wait(300), 0) << host.err();
+
+    const mapping::LoadedMap loaded = mapping::load_map(path("map"));
+    ASSERT_TRUE(loaded.refused.empty()) << loaded.refused[0];
+    const mapping::MapData& map = loaded.map;
+    ASSERT_EQ(map.sessions.size(), 2u) << host.err();
+    EXPECT_EQ(map.sessions[0].robot, "robot1");
+    EXPECT_EQ(map.sessions[1].robot, "robot2");
+    std::map<std::uint64_t, std::uint32_t> session_of;
+    for (const mapping::PoseGraphNode& n : map.nodes) session_of[n.id] = n.session;
+    std::size_t cross = 0;
+    for (const mapping::PoseGraphEdge& e : map.edges) {
+        cross += e.kind == mapping::EdgeKind::kLoop && e.active &&
+                 session_of[e.from] != session_of[e.to];
+    }
+    EXPECT_GE(cross, 1u) << "no loop between the robots\n" << host.err();
+    EXPECT_EQ(components(map), 1u) << "not one graph\n" << host.err();
+    EXPECT_NE(host.err().find("session 1 (robot2) joined to the map by a loop"), std::string::npos)
+        << host.err();
+
+    // Each robot's corrected odometry, on its own topic, a pose a scan; both in the one map frame
+    // (robot 1's odometry frame: its first pose there is its first true pose): each robot's last
+    // corrected pose where its truth is.
+    std::map<std::string, common::Trajectory> slam, truth;
+    for (const std::string r : {"robot1", "robot2"}) {
+        slam[r] = common::read_tum_trajectory(path(r + "_slam.txt"));
+        truth[r] = common::read_tum_trajectory(path(r + "_truth.txt"));
+        ASSERT_GT(truth[r].size(), 20u) << r;
+        ASSERT_EQ(slam[r].size(), truth[r].size()) << r;
+    }
+    const Eigen::Isometry3d T_world_map =
+        truth["robot1"].front().pose * slam["robot1"].front().pose.inverse();
+    for (const std::string r : {"robot1", "robot2"}) {
+        const Eigen::Vector3d err =
+            (T_world_map * slam[r].back().pose).translation() - truth[r].back().pose.translation();
+        EXPECT_LT(err.norm(), 1.0) << r << "'s last pose off the truth\n" << host.err();
+    }
+}
