@@ -272,7 +272,7 @@ TEST(LaunchConfig, CycloneTakesTheLinkSettings) {
                             ",<CycloneDDS><Domain Id=\"any\"><Tracing><Verbosity>config</Verbosity>"
                             "<OutputFile>" +
                             log + "</OutputFile></Tracing></Domain></CycloneDDS>";
-    const dds_entity_t domain = dds_create_domain(211, uri.c_str());
+    const dds_entity_t domain = dds_create_domain(229, uri.c_str());
     ASSERT_GT(domain, 0) << dds_strretcode(domain);
     dds_delete(domain);
     const std::string trace = read_file(log);
@@ -291,7 +291,7 @@ TEST(LaunchConfig, CycloneTakesTheLinkSettings) {
 }
 
 TEST(LaunchConfig, PerTopicQos) {
-    const LaunchConfig c = load_launch_config(write_temp(R"(domain_id: 212
+    const LaunchConfig c = load_launch_config(write_temp(R"(domain_id: 228
 namespace: /robot
 dds: {interfaces: [lo], multicast: false, peers: [127.0.0.1]}
 qos:
