@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # ./ltm bench link [--loss PCT] [--loss-on in|out|both] [--rate MBIT] [--outage S@T ...]
 #                  [--linger S] [--drain S] [--scenario FILE] [--frames A:B] [--out DIR] [--require TOPIC ...]
-#                  [--restart-base T] [--compare] [--require-same-map]
+#                  [--restart-base T] [--compare] [--require-same-map] [--robots N] [--security]
 # The robot and the base station over a link you can break: two network namespaces (robot, base)
 # joined by a veth pair, nftables `numgen random` drops on the base station's side for loss (this
 # kernel has no netem), `tc tbf` on both ends for the rate, a drop-all rule for each outage. The
@@ -21,7 +21,7 @@ BUILD="${LTM_BUILD_DIR:-$ROOT/build}"
 BIN="$BUILD/bin"
 LOSS=0; LOSS_ON=both; RATE=0; SCENARIO="$ROOT/components/simulator/scenarios/tiny_loop.yaml"
 LINGER=""; DRAIN=3; FRAMES=""; OUT=""; OUTAGES=(); REQUIRE=(); TOPICS=(odometry keyframe local_map)
-RESTART=""; COMPARE=0; SAME_MAP=0
+RESTART=""; COMPARE=0; SAME_MAP=0; ROBOTS=1; SECURITY=0; INTRUDER=0
 usage() {
     echo "Robot and base station in two network namespaces over a veth link with loss, a rate"
     echo "limit and outages; per topic what was sent and delivered, the bytes on the link"
@@ -39,7 +39,10 @@ usage() {
         "--require TOPIC" "exit 1 unless every message of TOPIC arrived (repeatable)" \
         "--restart-base T" "kill the base station T s after the robot started, start it again" \
         "--compare" "also run the scans in one process; compare its map with the base station's" \
-        "--require-same-map" "with --compare: exit 1 unless anchors agree to 1 mm, same loops"
+        "--require-same-map" "with --compare: exit 1 unless anchors agree to 1 mm, same loops" \
+        "--robots N=1" "robots (namespaces /robot1.. on links of their own; robot i drives session i-1)" \
+        "--security" "DDS Security on every participant; an intruder without credentials listens" \
+        "--intruder" "a participant of no robot on a link of its own records what it hears"
 }
 fail() { echo "ltm bench link: $*" >&2; exit 2; }   # a wrong command line
 die() { echo "ltm bench link: $*" >&2; exit 1; }    # the machine cannot do it
@@ -48,8 +51,10 @@ while [ $# -gt 0 ]; do
     case "$1" in
         -h|--help) usage; exit 0 ;;
         --compare) COMPARE=1; shift; continue ;;
+        --security) SECURITY=1; INTRUDER=1; shift; continue ;;
+        --intruder) INTRUDER=1; shift; continue ;;
         --require-same-map) COMPARE=1; SAME_MAP=1; shift; continue ;;
-        --loss|--loss-on|--rate|--outage|--linger|--drain|--scenario|--frames|--out|--require|--restart-base)
+        --loss|--loss-on|--rate|--outage|--linger|--drain|--scenario|--frames|--out|--require|--restart-base|--robots)
             if [ $# -lt 2 ] || [ "${2:0:2}" = "--" ]; then fail "$1: needs a value"; fi
             case "$1" in
                 --loss) if ! [[ "$2" =~ $number ]] || ! awk -v v="$2" 'BEGIN {exit !(v <= 100)}'; then
@@ -72,6 +77,8 @@ while [ $# -gt 0 ]; do
                 --frames) [[ "$2" =~ ^[0-9]*:[0-9]*$ ]] || fail "--frames: expected A:B, got '$2'"
                           FRAMES="$2" ;;
                 --out) OUT="$2" ;;
+                --robots) [[ "$2" =~ ^[1-9]$ ]] || fail "--robots: expected 1..9, got '$2'"
+                          ROBOTS="$2" ;;
                 --restart-base) [[ "$2" =~ $number ]] || fail "--restart-base: expected seconds, got '$2'"
                                 RESTART="$2" ;;
                 --require) case " ${TOPICS[*]} " in *" $2 "*) REQUIRE+=("$2") ;;
@@ -91,80 +98,103 @@ for exe in ltm_host ltm_sim ltm_mcap ltm_map_diff; do
     [ -x "$BIN/$exe" ] || die "$exe is not built in $BUILD: run ./ltm setup"
 done
 
-# Names unique to this run, so that two runs (or a stale one) do not meet.
+# Names unique to this run, so that two runs (or a stale one) do not meet. The base station's
+# namespace holds a bridge; each robot (and, with --security, an intruder without credentials)
+# has its own namespace and a veth pair to that bridge: its own link, broken on its own port.
 TAG="$$"
-NS_ROBOT="ltm_robot_$TAG"; NS_BASE="ltm_base_$TAG"
-DEV_ROBOT="ltmr$TAG"; DEV_BASE="ltmb$TAG"
-ADDR_ROBOT=10.77.0.1; ADDR_BASE=10.77.0.2
+NS_BASE="ltm_base_$TAG"; BRIDGE="ltmbr$TAG"; ADDR_BASE=10.77.0.254
+NS_R=(); DEV_R=(); DEV_B=(); ADDR_R=(); NAME_R=()
+for i in $(seq 1 "$ROBOTS"); do
+    if [ "$ROBOTS" = 1 ]; then NS_R+=("ltm_robot_$TAG"); NAME_R+=(robot); else NS_R+=("ltm_robot${i}_$TAG"); NAME_R+=("robot$i"); fi
+    DEV_R+=("ltmr${TAG}x$i"); DEV_B+=("ltmb${TAG}x$i"); ADDR_R+=("10.77.0.$i")
+done
+NS_X="ltm_intruder_$TAG"; DEV_XR="ltmi${TAG}x"; DEV_XB="ltmj${TAG}x"; ADDR_X=10.77.0.200
 WORK="$(mktemp -d)"
 PIDS=()
 cleanup() {
-    local pid
+    local pid ns
     for pid in "${PIDS[@]}"; do kill -TERM "$pid" 2>/dev/null || true; done
     for pid in "${PIDS[@]}"; do wait "$pid" 2>/dev/null || true; done
-    ip netns del "$NS_ROBOT" 2>/dev/null || true
-    ip netns del "$NS_BASE" 2>/dev/null || true
-    ip link del "$DEV_ROBOT" 2>/dev/null || true   # still here when the move failed
+    for ns in "${NS_R[@]}" "$NS_BASE" "$NS_X"; do ip netns del "$ns" 2>/dev/null || true; done
+    for dev in "${DEV_R[@]}" "$DEV_XR"; do ip link del "$dev" 2>/dev/null || true; done  # when a move failed
     rm -rf "$WORK"
 }
 trap cleanup EXIT
 trap 'exit 130' INT
 trap 'exit 143' TERM
 
-ip netns add "$NS_ROBOT" 2>/dev/null || die "cannot create a network namespace (ip netns add failed): not available here"
-ip netns add "$NS_BASE" || die "cannot create a second network namespace"
-ip link add "$DEV_ROBOT" type veth peer name "$DEV_BASE" || die "cannot create a veth pair"
-ip link set "$DEV_ROBOT" netns "$NS_ROBOT"
-ip link set "$DEV_BASE" netns "$NS_BASE"
-ip -n "$NS_ROBOT" addr add "$ADDR_ROBOT/24" dev "$DEV_ROBOT"
-ip -n "$NS_BASE" addr add "$ADDR_BASE/24" dev "$DEV_BASE"
-for ns in "$NS_ROBOT" "$NS_BASE"; do ip -n "$ns" link set lo up; done
-ip -n "$NS_ROBOT" link set "$DEV_ROBOT" up
-ip -n "$NS_BASE" link set "$DEV_BASE" up
+ip netns add "$NS_BASE" 2>/dev/null || die "cannot create a network namespace (ip netns add failed): not available here"
+ip -n "$NS_BASE" link set lo up
+ip -n "$NS_BASE" link add "$BRIDGE" type bridge || die "cannot create a bridge"
+ip -n "$NS_BASE" addr add "$ADDR_BASE/24" dev "$BRIDGE"
+ip -n "$NS_BASE" link set "$BRIDGE" up
+# join NS DEV_NS DEV_BASE ADDR: a namespace with its end of a veth pair, the other end on the bridge.
+join() {
+    ip netns add "$1" || die "cannot create network namespace $1"
+    ip -n "$1" link set lo up
+    ip link add "$2" type veth peer name "$3" || die "cannot create a veth pair"
+    ip link set "$2" netns "$1"
+    ip link set "$3" netns "$NS_BASE"
+    ip -n "$1" addr add "$4/24" dev "$2"
+    ip -n "$1" link set "$2" up
+    ip -n "$NS_BASE" link set "$3" master "$BRIDGE"
+    ip -n "$NS_BASE" link set "$3" up
+}
+for i in "${!NS_R[@]}"; do join "${NS_R[$i]}" "${DEV_R[$i]}" "${DEV_B[$i]}" "${ADDR_R[$i]}"; done
+[ "$INTRUDER" = 1 ] && join "$NS_X" "$DEV_XR" "$DEV_XB" "$ADDR_X"
 
 # Loss: numgen random drops of Ethernet frames (IP fragments one by one, as a radio loses them) on
-# the base station's end of the veth: netdev ingress (robot -> base) and egress (base -> robot).
-loss_rules=""
-if awk -v v="$LOSS" 'BEGIN {exit !(v > 0)}'; then
-    n=$(awk -v v="$LOSS" 'BEGIN {printf "%d", v * 100 + 0.5}')
-    [ "$LOSS_ON" = out ] || loss_rules+="add rule netdev ltm_link in numgen random mod 10000 < $n counter drop
+# the base station's end of each robot's veth: netdev ingress (robot -> base) and egress
+# (base -> robot). The outage chains come first (priority -10): an outage adds a drop-all rule.
+nft_rules="add table netdev ltm_link
 "
-    [ "$LOSS_ON" = in ] || loss_rules+="add rule netdev ltm_link out numgen random mod 10000 < $n counter drop
+n=$(awk -v v="$LOSS" 'BEGIN {printf "%d", v * 100 + 0.5}')
+for i in "${!NS_R[@]}"; do
+    d="${DEV_B[$i]}"
+    nft_rules+="add chain netdev ltm_link outage_in_$i { type filter hook ingress device \"$d\" priority -10; policy accept; }
+add chain netdev ltm_link outage_out_$i { type filter hook egress device \"$d\" priority -10; policy accept; }
+add chain netdev ltm_link in_$i { type filter hook ingress device \"$d\" priority 0; policy accept; }
+add chain netdev ltm_link out_$i { type filter hook egress device \"$d\" priority 0; policy accept; }
 "
-fi
-# The outage chains come first (priority -10): an outage adds a drop-all rule to both.
-ip netns exec "$NS_BASE" nft -f - <<NFT || die "nft could not load the link rules (no nf_tables netdev hooks in this kernel?)"
-add table netdev ltm_link
-add chain netdev ltm_link outage_in { type filter hook ingress device "$DEV_BASE" priority -10; policy accept; }
-add chain netdev ltm_link outage_out { type filter hook egress device "$DEV_BASE" priority -10; policy accept; }
-add chain netdev ltm_link in { type filter hook ingress device "$DEV_BASE" priority 0; policy accept; }
-add chain netdev ltm_link out { type filter hook egress device "$DEV_BASE" priority 0; policy accept; }
-$loss_rules
-NFT
+    if [ "$n" -gt 0 ]; then
+        [ "$LOSS_ON" = out ] || nft_rules+="add rule netdev ltm_link in_$i numgen random mod 10000 < $n counter drop
+"
+        [ "$LOSS_ON" = in ] || nft_rules+="add rule netdev ltm_link out_$i numgen random mod 10000 < $n counter drop
+"
+    fi
+done
+ip netns exec "$NS_BASE" nft -f - <<< "$nft_rules" || die "nft could not load the link rules (no nf_tables netdev hooks in this kernel?)"
 if awk -v v="$RATE" 'BEGIN {exit !(v > 0)}'; then
-    # tbf: a burst of 10 ms at the rate (at least 16 KiB), 100 ms of queue.
+    # tbf on both ends of each link: a burst of 10 ms at the rate (at least 16 KiB), 100 ms of queue.
     burst=$(awk -v r="$RATE" 'BEGIN {b = r * 1e6 / 8 / 100; if (b < 16384) b = 16384; printf "%d", b}')
-    ip netns exec "$NS_ROBOT" tc qdisc add dev "$DEV_ROBOT" root tbf rate "${RATE}mbit" burst "$burst" latency 100ms \
-        || die "tc tbf is not available"
-    ip netns exec "$NS_BASE" tc qdisc add dev "$DEV_BASE" root tbf rate "${RATE}mbit" burst "$burst" latency 100ms
+    for i in "${!NS_R[@]}"; do
+        ip netns exec "${NS_R[$i]}" tc qdisc add dev "${DEV_R[$i]}" root tbf rate "${RATE}mbit" burst "$burst" latency 100ms \
+            || die "tc tbf is not available"
+        ip netns exec "$NS_BASE" tc qdisc add dev "${DEV_B[$i]}" root tbf rate "${RATE}mbit" burst "$burst" latency 100ms
+    done
 fi
 
-# The scenario as a KITTI folder; the odometry and mapping presets follow its sensor.
-DATA="$WORK/data"
-sim_args=(--quiet --out "$DATA")
-[ -n "$FRAMES" ] && sim_args+=(--frames "$FRAMES")
-"$BIN/ltm_sim" "${sim_args[@]}" "$SCENARIO" >/dev/null || die "the simulator failed on $SCENARIO"
-model=$(awk '/^ *model:/ {print $2; exit}' "$DATA/scenario.yaml")
+# The scenario as KITTI folders, robot i driving session i-1 (one robot: session 0); the odometry
+# and mapping presets follow its sensor.
+DATA=()
+for i in "${!NS_R[@]}"; do
+    DATA+=("$WORK/data$((i + 1))")
+    sim_args=(--quiet --out "${DATA[$i]}" --session "$i")
+    [ -n "$FRAMES" ] && sim_args+=(--frames "$FRAMES")
+    "$BIN/ltm_sim" "${sim_args[@]}" "$SCENARIO" > "$WORK/sim$i.log" 2>&1 \
+        || die "the simulator failed on session $i of $SCENARIO: $(tail -n 1 "$WORK/sim$i.log")"
+done
+model=$(awk '/^ *model:/ {print $2; exit}' "${DATA[0]}/scenario.yaml")
 case "$model" in
     hdl64e) preset=hdl64 ;; vlp32c) preset=vlp32 ;; vlp16) preset=vlp16 ;; *) preset=narrow ;;
 esac
-scans=$(wc -l < "$DATA/times.txt")
+scans=$(wc -l < "${DATA[0]}/times.txt")
 
 RUN="${OUT:-$WORK/run}"
 mkdir -p "$RUN"
 RUN="$(cd "$RUN" && pwd)"
-rm -rf "$RUN/robot" "$RUN/base" "$RUN/composed"
-rm -f "$RUN"/base*.log "$RUN/robot.log" "$RUN/composed.log"
+rm -rf "$RUN"/robot* "$RUN/base" "$RUN/composed" "$RUN/intruder"
+rm -f "$RUN"/*.log
 # Each launch config with a recorder in its own process (what the robot's odometry published; what
 # the base station's mapping was given), so the recording adds no traffic.
 with_recorder() {
@@ -172,97 +202,154 @@ with_recorder() {
     printf '  - name: link_recorder\n    type: recorder\n    params: {file: "%s", topics: %s, compression: none}\n' \
         "$2" "$3"
 }
-with_recorder "$ROOT/launch_configs/robot.yaml" "$RUN/robot/sent.mcap" \
+with_recorder "$ROOT/launch_configs/robot.yaml" '${LTM_OUT}/sent.mcap' \
     "[odometry, onboard/keyframe, onboard/local_map]" > "$WORK/robot.yaml"
-with_recorder "$ROOT/launch_configs/base_station.yaml" '${LTM_RECORDING}' \
-    "[odometry, keyframe, local_map]" > "$WORK/base.yaml"
+if [ "$ROBOTS" = 1 ]; then
+    with_recorder "$ROOT/launch_configs/base_station.yaml" '${LTM_RECORDING}' \
+        "[odometry, keyframe, local_map]" > "$WORK/base.yaml"
+else
+    # base_station_multi.yaml names robot1 and robot2: its robot1 lines and entries are repeated
+    # for every robot, its robot2 ones dropped, the mapping's list rewritten.
+    list=$(printf 'robot%s, ' $(seq 1 "$ROBOTS") | sed 's/, $//')
+    awk -v n="$ROBOTS" -v list="$list" '
+        function flush(   i, b) { if (block == "") return
+            if (bname ~ /robot2/) { block = ""; return }
+            if (bname ~ /robot1/) { for (i = 1; i <= n; i++) { b = block; gsub(/robot1/, "robot" i, b); printf "%s", b } }
+            else printf "%s", block
+            block = "" }
+        /^  - name:/ { flush(); inblock = 1; bname = $0 }
+        /^[a-z_]+:/ { flush(); inblock = 0 }
+        inblock { line = $0; sub(/robots: \[robot1, robot2\]/, "robots: [" list "]", line); block = block line "\n"; next }
+        /^#/ { print; next }
+        /robot2/ { next }
+        /robot1/ { for (i = 1; i <= n; i++) { l = $0; gsub(/robot1/, "robot" i, l); print l }; next }
+        { print }
+        END { flush() }' "$ROOT/launch_configs/base_station_multi.yaml" > "$WORK/base_multi.yaml"
+    base_topics=$(for r in "${NAME_R[@]}"; do printf '/%s/odometry, /%s/keyframe, /%s/local_map, ' "$r" "$r" "$r"; done | sed 's/, $//')
+    with_recorder "$WORK/base_multi.yaml" '${LTM_RECORDING}' "[$base_topics]" > "$WORK/base.yaml"
+fi
 dds() { echo "dds={interfaces: [$1], multicast: false, peers: [$2]${3:+, extra_xml: \"$3\"}}"; }
 robot_xml=""
 [ -n "$LINGER" ] && robot_xml="<Internal><WriterLingerDuration>${LINGER} s</WriterLingerDuration></Internal>"
+# DDS Security: the site's certificates (the base station and every robot; not the intruder).
+security_set=()
+if [ "$SECURITY" = 1 ]; then
+    command -v openssl >/dev/null || die "openssl is not installed: run ./ltm setup"
+    bash "$ROOT/launch_configs/security/make_site_certs.sh" "$WORK/certs" "${NAME_R[@]}" > "$WORK/certs.log" 2>&1 \
+        || die "make_site_certs.sh failed: $(tail -n 1 "$WORK/certs.log")"
+    security_set=(--set "dds.security=$(cat "$ROOT/launch_configs/security/dds_security.yaml")")
+fi
 
 rate_text="$RATE Mbit/s"; [ "$rate_text" = "0 Mbit/s" ] && rate_text=unlimited
-echo "== link: loss $LOSS % ($LOSS_ON), rate $rate_text, outages: ${OUTAGES[*]:-none}"
+echo "== link: loss $LOSS % ($LOSS_ON), rate $rate_text, outages: ${OUTAGES[*]:-none}${RESTART:+, base station restarted at $RESTART s}, ${ROBOTS} robot(s)$([ "$SECURITY" = 1 ] && echo ", DDS Security on")"
 echo "   scenario $(basename "$SCENARIO") ${FRAMES:+frames $FRAMES }($scans scans, $model), run in $RUN"
+robot_peers=$(printf '%s, ' "${ADDR_R[@]}" | sed 's/, $//')
 start_base() {  # start_base N: the Nth start of the base station (its own recording and log)
     local suffix=""; [ "$1" -gt 1 ] && suffix="$1"
     BASE_RECORDING="$RUN/base/delivered$suffix.mcap"
     ip netns exec "$NS_BASE" env LTM_ROOT="$ROOT" LTM_OUT="$RUN/base" LTM_RECORDING="$BASE_RECORDING" \
-        "$BIN/ltm_host" "$WORK/base.yaml" --set "$(dds "$DEV_BASE" "$ADDR_ROBOT")" \
+        LTM_SECURITY_DIR="$WORK/certs" LTM_PARTICIPANT=base_station \
+        "$BIN/ltm_host" "$WORK/base.yaml" --set "$(dds "$BRIDGE" "$robot_peers")" "${security_set[@]}" \
         --set "mapping.preset=$preset" --set idle_exit_s=0 --set shutdown_timeout_s=60 \
         >> "$RUN/base$suffix.log" 2>&1 &
     base_pid=$!; PIDS+=("$base_pid")
 }
 start_base 1
+if [ "$INTRUDER" = 1 ]; then
+    # A participant without the site's credentials on a link of its own: it records every topic
+    # of the domain it can see.
+    ip netns exec "$NS_X" env LTM_ROOT="$ROOT" "$BIN/ltm_host" "$ROOT/launch_configs/tools/recorder.yaml" \
+        --set "$(dds "$DEV_XR" "$ADDR_BASE, $robot_peers")" --set "recorder.file=$RUN/intruder/heard.mcap" \
+        --set recorder.all=true > "$RUN/intruder.log" 2>&1 &
+    intruder_pid=$!; PIDS+=("$intruder_pid")
+    mkdir -p "$RUN/intruder"
+fi
 sleep 1
 start=$(date +%s.%N)
-ip netns exec "$NS_ROBOT" env LTM_ROOT="$ROOT" LTM_DATA="$DATA" LTM_OUT="$RUN/robot" \
-    "$BIN/ltm_host" "$WORK/robot.yaml" --set "$(dds "$DEV_ROBOT" "$ADDR_BASE" "$robot_xml")" \
-    --set "odometry.preset=$preset" > "$RUN/robot.log" 2>&1 &
-robot_pid=$!; PIDS+=("$robot_pid")
+ROBOT_PIDS=()
+for i in "${!NS_R[@]}"; do
+    ns_set=(); [ "$ROBOTS" -gt 1 ] && ns_set=(--set "namespace=/${NAME_R[$i]}")
+    mkdir -p "$RUN/${NAME_R[$i]}"
+    ip netns exec "${NS_R[$i]}" env LTM_ROOT="$ROOT" LTM_DATA="${DATA[$i]}" LTM_OUT="$RUN/${NAME_R[$i]}" \
+        LTM_SECURITY_DIR="$WORK/certs" LTM_PARTICIPANT="${NAME_R[$i]}" \
+        "$BIN/ltm_host" "$WORK/robot.yaml" --set "$(dds "${DEV_R[$i]}" "$ADDR_BASE" "$robot_xml")" \
+        "${ns_set[@]}" "${security_set[@]}" --set "odometry.preset=$preset" > "$RUN/${NAME_R[$i]}.log" 2>&1 &
+    ROBOT_PIDS+=("$!"); PIDS+=("$!")
+done
 for o in "${OUTAGES[@]}"; do
     (
         s="${o%@*}"; t="${o#*@}"
         sleep "$t"
-        ip netns exec "$NS_BASE" nft -f - <<NFT
-add rule netdev ltm_link outage_in counter drop
-add rule netdev ltm_link outage_out counter drop
-NFT
+        for i in "${!NS_R[@]}"; do
+            printf 'add rule netdev ltm_link outage_in_%s counter drop\nadd rule netdev ltm_link outage_out_%s counter drop\n' "$i" "$i"
+        done | ip netns exec "$NS_BASE" nft -f -
         sleep "$s"
-        ip netns exec "$NS_BASE" nft flush chain netdev ltm_link outage_in
-        ip netns exec "$NS_BASE" nft flush chain netdev ltm_link outage_out
+        for i in "${!NS_R[@]}"; do
+            ip netns exec "$NS_BASE" nft flush chain netdev ltm_link "outage_in_$i"
+            ip netns exec "$NS_BASE" nft flush chain netdev ltm_link "outage_out_$i"
+        done
         date +%H:%M:%S.%N > "$WORK/outage_end_$t"
     ) &
     PIDS+=("$!")
 done
+robots_running() { local p; for p in "${ROBOT_PIDS[@]}"; do kill -0 "$p" 2>/dev/null && return 0; done; return 1; }
 if [ -n "$RESTART" ]; then
     sleep "$RESTART"
-    if kill -0 "$robot_pid" 2>/dev/null; then
-        echo "   base station killed (SIGKILL) $RESTART s after the robot started; started again"
+    if robots_running; then
+        echo "   base station killed (SIGKILL) $RESTART s after the robots started; started again"
         kill -KILL "$base_pid" 2>/dev/null || true
         wait "$base_pid" 2>/dev/null || true
         start_base 2
     else
-        echo "   --restart-base $RESTART: the robot had finished already; no restart"
+        echo "   --restart-base $RESTART: the robots had finished already; no restart"
     fi
 fi
-robot_rc=0; wait "$robot_pid" || robot_rc=$?
+robot_rc=0
+for p in "${ROBOT_PIDS[@]}"; do wait "$p" || robot_rc=$?; done
 robot_end=$(date +%s.%N)
-# The base station runs until the robot is gone and DRAIN s more (not an idle timer: a discovery
+# The base station runs until the robots are gone and DRAIN s more (not an idle timer: a discovery
 # slowed by loss would stop it before the first message), then stops cleanly (maps saved).
 sleep "$DRAIN"
 kill -TERM "$base_pid" 2>/dev/null || true
 base_rc=0; wait "$base_pid" || base_rc=$?
-[ "$robot_rc" -eq 0 ] || { echo "   robot exited with $robot_rc:"; tail -n 3 "$RUN/robot.log"; }
+[ "$INTRUDER" = 1 ] && { kill -TERM "$intruder_pid" 2>/dev/null || true; wait "$intruder_pid" 2>/dev/null || true; }
+[ "$robot_rc" -eq 0 ] || { echo "   a robot exited with $robot_rc:"; tail -n 3 "$RUN"/robot*.log; }
 [ "$base_rc" -eq 0 ] || { echo "   base station exited with $base_rc:"; tail -n 3 "$RUN/base.log"; }
 if [ "$robot_rc" -ne 0 ] || [ "$base_rc" -ne 0 ]; then die "a side of the link failed (its last lines above)"; fi
-awk -v a="$start" -v b="$robot_end" 'BEGIN {printf "   robot ran %.1f s\n", b - a}'
+awk -v a="$start" -v b="$robot_end" 'BEGIN {printf "   robots ran %.1f s\n", b - a}'
 
-# Bytes on the link: the veth counters of the robot's end (TX: robot -> base, RX: base -> robot).
-link_stats() {  # rx_bytes rx_packets tx_bytes tx_packets
-    ip -n "$NS_ROBOT" -s link show dev "$DEV_ROBOT" |
-        awk '/RX:/ {getline; rb=$1; rp=$2} /TX:/ {getline; tb=$1; tp=$2} END {print rb, rp, tb, tp}'
-}
-read -r rx_bytes rx_packets tx_bytes tx_packets < <(link_stats)
+# Bytes on each link: the veth counters of the robot's end (TX: robot -> base, RX: base -> robot);
+# per km: the path of the simulated ground truth (KITTI poses: x, y, z in columns 4, 8, 12).
 echo "== link bytes (veth, robot end)"
-awk -v tb="$tx_bytes" -v tp="$tx_packets" -v rb="$rx_bytes" -v rp="$rx_packets" -v a="$start" -v b="$robot_end" \
-    'BEGIN {d = b - a; printf "   robot -> base: %d bytes in %d packets (%.2f Mbit/s over the robot'"'"'s %.1f s)\n", tb, tp, tb * 8 / d / 1e6, d
-            printf "   base -> robot: %d bytes in %d packets\n", rb, rp}'
-# Bytes per km: the path of the simulated ground truth (KITTI poses: x, y, z in columns 4, 8, 12).
-km=$(awk 'NR > 1 {d += sqrt(($4 - x) ^ 2 + ($8 - y) ^ 2 + ($12 - z) ^ 2)} {x = $4; y = $8; z = $12}
-          END {printf "%.4f", d / 1000}' "$DATA/poses.txt")
-awk -v tb="$tx_bytes" -v km="$km" 'BEGIN {if (km > 0) printf "   robot -> base per km driven (%.0f m): %.1f MB\n", km * 1000, tb / 1e6 / km}'
+for i in "${!NS_R[@]}"; do
+    read -r rb rp tb tp < <(ip -n "${NS_R[$i]}" -s link show dev "${DEV_R[$i]}" |
+        awk '/RX:/ {getline; rb=$1; rp=$2} /TX:/ {getline; tb=$1; tp=$2} END {print rb, rp, tb, tp}')
+    km=$(awk 'NR > 1 {d += sqrt(($4 - x) ^ 2 + ($8 - y) ^ 2 + ($12 - z) ^ 2)} {x = $4; y = $8; z = $12}
+              END {printf "%.4f", d / 1000}' "${DATA[$i]}/poses.txt")
+    awk -v who="${NAME_R[$i]}" -v tb="$tb" -v tp="$tp" -v rb="$rb" -v rp="$rp" -v a="$start" -v b="$robot_end" -v km="$km" \
+        'BEGIN {d = b - a; printf "   %s -> base: %d bytes in %d packets (%.2f Mbit/s over %.1f s", who, tb, tp, tb * 8 / d / 1e6, d
+                if (km > 0) printf "; %.1f MB per km driven, %.0f m", tb / 1e6 / km, km * 1000
+                printf ")\n   base -> %s: %d bytes in %d packets\n", who, rb, rp}'
+done
 # Frames dropped by the loss rules of each direction (outage drops are flushed with their rule).
 dropped() {
-    ip netns exec "$NS_BASE" nft list chain netdev ltm_link "$1" |
-        awk '/counter packets/ {for (i = 1; i < NF; i++) if ($i == "packets") n += $(i + 1)} END {print n + 0}'
+    local i n=0 c
+    for i in "${!NS_R[@]}"; do
+        c=$(ip netns exec "$NS_BASE" nft list chain netdev ltm_link "${1}_$i" |
+            awk '/counter packets/ {for (i = 1; i < NF; i++) if ($i == "packets") n += $(i + 1)} END {print n + 0}')
+        n=$((n + c))
+    done
+    echo "$n"
 }
 echo "   frames dropped for loss: $(dropped in) robot -> base, $(dropped out) base -> robot"
 
 echo "== per topic: sent by the robot, delivered to the base station (compared byte for byte)"
 BASE_SIDE="${BASE_RECORDING%.mcap}"; BASE_SIDE="${BASE_SIDE#$RUN/}"
-for side in robot/sent "$BASE_SIDE"; do
+SENT_JSON=()
+for side in "$BASE_SIDE" "${NAME_R[@]/%//sent}"; do
     [ -f "$RUN/$side.mcap" ] || die "no recording $RUN/$side.mcap (--out DIR keeps the logs)"
     "$BIN/ltm_mcap" manifest "$RUN/$side.mcap" -o "$RUN/$side.json"
+    [ "$side" = "$BASE_SIDE" ] || SENT_JSON+=("$RUN/$side.json")
 done
 # One manifest line a message: topic, publish time (the writer's) and the CDR bytes. A message is
 # delivered when the base station recorded the same topic and bytes (the downlink publishes again,
@@ -270,22 +357,26 @@ done
 # (applied twice). One missing before the topic's first delivered message was published before
 # the base station's reader was matched (discovery). The robot's recorder finds the topics by
 # discovery too and can miss a topic's first message: what only the base station recorded counts
-# as sent (and is reported).
+# as sent (and is reported). Local maps: the time from the odometry's publishing to the base
+# station's mapping receiving it (one clock: the same machine).
 awk -v req=" ${REQUIRE[*]} " '
     function field(name,   i, r) {
         i = index($0, "\"" name "\": \""); if (!i) return ""
         r = substr($0, i + length(name) + 5); return substr(r, 1, index(r, "\"") - 1)
     }
     function topic_of(t) { if (!(t in order)) { order[t] = ++nt; name[nt] = t } }
+    function short(t,   s) { s = t; sub(/^[^\/]*\//, "", s); return s }
     !/"data_hex"/ || !/"topic"/ { next }
-    { t = field("topic"); sub(/^rt\/[^\/]*\//, "", t); sub(/^onboard\//, "", t)
-      p = field("publish_time"); d = field("data_hex") }
-    FNR == NR { key = t SUBSEP d; if (key in got) dup[t]++; got[key] = length(d) / 2
+    { t = field("topic"); sub(/^rt\//, "", t); sub(/\/onboard\//, "/", t)
+      p = field("publish_time"); l = field("log_time"); d = field("data_hex") }
+    FNR == NR { key = t SUBSEP d; if (key in got) dup[t]++; got[key] = length(d) / 2; at[key] = l
                 if (!(t in first) || p < first[t]) first[t] = p; next }
     {
         n++; topic[n] = t; pub[n] = p; sent[t]++; bytes[t] += length(d) / 2; topic_of(t)
         key = t SUBSEP d
-        if (key in got) { ok[t]++; seen[key] = 1 } else { miss[n] = 1 }
+        if (key in got) { ok[t]++; seen[key] = 1
+                          if (short(t) == "local_map") lat[++nl] = (at[key] - p) / 1e6 }
+        else { miss[n] = 1 }
     }
     END {
         for (key in got) if (!(key in seen)) {
@@ -298,43 +389,63 @@ awk -v req=" ${REQUIRE[*]} " '
             for (j = 1; j <= n; j++) if (topic[j] == t && (j in miss)) {
                 if (!(t in first) || pub[j] < first[t]) early++; else late++
             }
-            printf "   %-10s sent %4d (%8.2f MiB)  delivered %4d  missing %d", t, sent[t], bytes[t] / 1048576, ok[t] + 0, sent[t] - ok[t]
+            printf "   %-17s sent %4d (%8.2f MiB)  delivered %4d  missing %d", t, sent[t], bytes[t] / 1048576, ok[t] + 0, sent[t] - ok[t]
             if (sent[t] > ok[t]) printf " (%d before the base station matched, %d after)", early, late
             if (unrec[t]) printf " [%d only in the base station'"'"'s recording]", unrec[t]
             if (dup[t]) printf " DUPLICATES %d", dup[t]
             printf "\n"
-            if ((sent[t] > ok[t] || dup[t]) && index(req, " " t " ")) bad = 1
+            if ((sent[t] > ok[t] || dup[t]) && index(req, " " short(t) " ")) bad = 1
+        }
+        if (nl > 0) {
+            for (i = 1; i <= nl; i++) for (j = i + 1; j <= nl; j++) if (lat[j] < lat[i]) { x = lat[i]; lat[i] = lat[j]; lat[j] = x }
+            printf "   local map latency (odometry -> base station mapping): median %.0f ms, max %.0f ms over %d\n", lat[int((nl + 1) / 2)], lat[nl], nl
         }
         exit bad
-    }' "$RUN/$BASE_SIDE.json" "$RUN/robot/sent.json" || required_missing=1
+    }' "$RUN/$BASE_SIDE.json" "${SENT_JSON[@]}" || required_missing=1
 awk -v end="$robot_end" '/"log_time"/ {i = index($0, "\"log_time\": \""); t = substr($0, i + 13, 19) + 0
                                if (t > last) last = t}
-    END {if (last) printf "   last message received by the base station %.1f s %s the robot exited\n", \
+    END {if (last) printf "   last message received by the base station %.1f s %s the robots exited\n", \
              (last / 1e9 > end ? last / 1e9 - end : end - last / 1e9), (last / 1e9 > end ? "after" : "before")}' \
     "$RUN/$BASE_SIDE.json"
-# Each outage: how long after the link came back the uplink's backlog was delivered (its log).
+# Each outage: how long after the link came back each uplink's backlog was delivered (its log).
 sod() { awk -F: '{printf "%.3f", $1 * 3600 + $2 * 60 + $3}' <<< "$1"; }
 for o in "${OUTAGES[@]}"; do
     t="${o#*@}"; [ -f "$WORK/outage_end_$t" ] || continue
     back=$(sod "$(cut -c1-12 "$WORK/outage_end_$t")")
-    line=$(awk -v b="$back" '/\[uplink\] backlog delivered/ {split($1, h, ":"); s = h[1] * 3600 + h[2] * 60 + h[3]
-                                                            if (s >= b) {print s - b; exit}}' "$RUN/robot.log")
-    if [ -n "$line" ]; then
-        printf '   outage %s: the backlog was delivered %.1f s after the link came back\n' "$o" "$line"
-    else
-        echo "   outage $o: no 'backlog delivered' after the link came back (robot.log)"
-    fi
+    for r in "${NAME_R[@]}"; do
+        line=$(awk -v b="$back" '/\[uplink\] backlog delivered/ {split($1, h, ":"); s = h[1] * 3600 + h[2] * 60 + h[3]
+                                                                if (s >= b) {print s - b; exit}}' "$RUN/$r.log")
+        if [ -n "$line" ]; then
+            printf '   outage %s: %s'"'"'s backlog was delivered %.1f s after the link came back\n' "$o" "$r" "$line"
+        else
+            echo "   outage $o: no 'backlog delivered' in $r.log after the link came back"
+        fi
+    done
 done
-# The link components' own account (their final lines).
-grep -h "uplink.*final\|downlink.*final" "$RUN/robot.log" "$RUN"/base*.log 2>/dev/null | sed 's/^/   /' || true
-if [ "$COMPARE" = 1 ]; then
+# Scans each robot's odometry processed (its rate unchanged: every scan) and the link
+# components' own account (their final lines).
+for r in "${NAME_R[@]}"; do
+    grep -h "\[odometry\].*scans" "$RUN/$r.log" | tail -n 1 | sed "s/^/   $r: /" || true
+done
+grep -h "uplink.*final\|downlink.*final" "$RUN"/robot*.log "$RUN"/base*.log 2>/dev/null | sed 's/^/   /' || true
+if [ "$INTRUDER" = 1 ]; then
+    heard=0
+    if [ -f "$RUN/intruder/heard.mcap" ]; then
+        "$BIN/ltm_mcap" manifest "$RUN/intruder/heard.mcap" -o "$RUN/intruder/heard.json"
+        heard=$(grep -c '"data_hex"' "$RUN/intruder/heard.json" || true)
+    fi
+    topics_heard=$(grep -o '"topic": "[^"]*"' "$RUN/intruder/heard.json" 2>/dev/null | sort -u | wc -l)
+    echo "== a participant without credentials (its own namespace and link): $heard messages received on $topics_heard topics"
+    [ "$SECURITY" = 1 ] && [ "$heard" != 0 ] && intruder_heard=1
+fi
+if [ "$COMPARE" = 1 ] && [ "$ROBOTS" = 1 ]; then
     echo "== the same scans in one process (the composed run): its map against the base station's"
     mkdir -p "$RUN/composed"
     cat > "$WORK/composed.yaml" <<YAML
 namespace: /robot
 topics: {points: stream, keyframe: stream, local_map: stream}  # every scan, nothing dropped
 components:
-  - {name: player, type: kitti_player, params: {path: "$DATA", mode: fast}}
+  - {name: player, type: kitti_player, params: {path: "${DATA[0]}", mode: fast}}
   - {name: odometry, type: odometry, params: {preset: $preset}}
   - {name: mapping, type: mapping, params: {preset: $preset, map_dir: "$RUN/composed/map"}}
 YAML
@@ -342,12 +453,36 @@ YAML
         > "$RUN/composed.log" 2>&1 || die "the composed run failed (its log: $RUN/composed.log)"
     "$BIN/ltm_map_diff" "$RUN/composed/map" "$RUN/base/map" --tolerance 0.001 --require-same-loops \
         | sed 's/^/   /' || map_differs=1
-    # Scans the robot's odometry did not process (real time on a shared machine) explain a
-    # difference.
-    grep -ho "[0-9]* scans skipped[^,;]*" "$RUN/robot.log" | tail -n 1 | sed 's/^/   robot: /' || true
+fi
+if [ "$ROBOTS" -gt 1 ]; then
+    # Each robot's corrected path against its ground truth: aligned alone (its own shape), and all
+    # robots with one alignment (one map: a robot not joined to the others is off by its start).
+    echo "== one map of ${ROBOTS} robots: the base station's corrected paths against the ground truth"
+    ate() {  # ate EST REF: the aligned ATE RMSE [m]
+        "$BIN/ltm_eval" traj --estimate "$1" --reference "$2" --format tum > "$WORK/ate.txt" 2>&1 || { echo nan; return; }
+        awk '/^\[ate_se3_aligned\]/ {f = 1} f && /rmse/ {print $NF; exit}' "$WORK/ate.txt"
+    }
+    : > "$WORK/all_est.txt"; : > "$WORK/all_ref.txt"; total=0
+    for i in "${!NS_R[@]}"; do
+        r="${NAME_R[$i]}"; est="$RUN/base/slam_${r}_tum.txt"; ref="${DATA[$i]}/poses_tum.txt"
+        path=$(awk 'NR > 1 {d += sqrt(($4 - x) ^ 2 + ($8 - y) ^ 2 + ($12 - z) ^ 2)} {x = $4; y = $8; z = $12} END {printf "%.1f", d}' "${DATA[$i]}/poses.txt")
+        total=$(awk -v a="$total" -v b="$path" 'BEGIN {print a + b}')
+        if [ ! -s "$est" ]; then echo "   $r: no corrected path from the base station ($est)"; continue; fi
+        cat "$est" >> "$WORK/all_est.txt"; cat "$ref" >> "$WORK/all_ref.txt"
+        awk -v r="$r" -v a="$(ate "$est" "$ref")" -v m="$path" \
+            'BEGIN {printf "   %s: ATE %.3f m over its %.0f m path (%.2f %%)\n", r, a, m, (m > 0 ? 100 * a / m : 0)}'
+    done
+    sort -n -o "$WORK/all_est.txt" "$WORK/all_est.txt"; sort -n -o "$WORK/all_ref.txt" "$WORK/all_ref.txt"
+    awk -v a="$(ate "$WORK/all_est.txt" "$WORK/all_ref.txt")" -v m="$total" \
+        'BEGIN {printf "   all robots, one alignment: ATE %.3f m over %.0f m (%.2f %%)\n", a, m, (m > 0 ? 100 * a / m : 0)}'
+    grep -h "\[mapping\].*\(joined\|sessions\)" "$RUN/base.log" | tail -n "$ROBOTS" | sed 's/^/   /' || true
 fi
 if [ "$SAME_MAP" = 1 ] && [ "${map_differs:-0}" = 1 ]; then
     echo "== FAILED: the base station's map is not the composed run's"
+    exit 1
+fi
+if [ "${intruder_heard:-0}" = 1 ]; then
+    echo "== FAILED: a participant without credentials received messages"
     exit 1
 fi
 if [ "${required_missing:-0}" = 1 ]; then

@@ -18,6 +18,7 @@
 #include "common/core/io_error.hpp"
 #include "link/component/link_clock.hpp"
 #include "link/core/link_journal.hpp"
+#include "link/core/payload_codec.hpp"
 #include "link/core/receive_window.hpp"
 #include "runtime/component.hpp"
 
@@ -176,7 +177,16 @@ class Downlink : public runtime::Component {
                             "' is of an unknown type '" + r.type + "': kept, not delivered");
             return;
         }
-        if (runtime::write_raw(*w, r.payload.data(), r.payload.size())) ++delivered_;
+        std::vector<std::uint8_t> cdr;
+        try {
+            cdr = decode_payload(r.type, r.payload);
+        } catch (const std::exception& e) {
+            ++undeliverable_;
+            ctx_.log().error("packet " + std::to_string(r.seq) + " on '" + r.topic +
+                             "' does not decode: " + e.what());
+            return;
+        }
+        if (runtime::write_raw(*w, cdr.data(), cdr.size())) ++delivered_;
     }
 
     void on_packet(const msg::LinkPacket& m) {

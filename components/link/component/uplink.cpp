@@ -17,6 +17,7 @@
 #include "common/core/io_error.hpp"
 #include "link/component/link_clock.hpp"
 #include "link/core/link_journal.hpp"
+#include "link/core/payload_codec.hpp"
 #include "link/core/send_window.hpp"
 #include "runtime/component.hpp"
 
@@ -59,6 +60,10 @@ class Uplink : public runtime::Component {
         send.resend_after_s = p.get<double>("resend_after_s", send.resend_after_s);
         send_period_s_ = p.get<double>("send_period_s", 0.01);
         drain_s_ = p.get<double>("drain_s", 10.0);
+        // The journal and the link carry each message's wire form (payload_codec: lossless).
+        codec_.level = p.get<int>("compression_level", codec_.level);
+        if (codec_.level < 1 || codec_.level > 19)
+            p.fail("compression_level", "expected a zstd level 1..19");
         if (robot_.empty() || robot_.find('/') != std::string::npos)
             p.fail("robot", "a name without '/' (the robot's namespace)");
         if (topics.empty()) p.fail("topics", "forward at least one topic");
@@ -127,8 +132,8 @@ class Uplink : public runtime::Component {
         r.stamp_ns = source_ns > 0 ? source_ns : wall_ns();
         r.topic = topic;
         r.type = type;
-        r.payload = cdr;
         try {
+            r.payload = encode_payload(type, cdr, codec_);
             const std::size_t dropped = journal_->append(r);
             if (dropped > 0) {
                 dropped_ += dropped;
@@ -138,6 +143,7 @@ class Uplink : public runtime::Component {
             }
             ++stored_;
             stored_bytes_ += cdr.size();
+            wire_bytes_ += r.payload.size();
         } catch (const std::exception& e) {
             // Without its journal copy the message cannot be sent (packets are sent from the
             // journal): say so every time, the base station will see the gap.
@@ -249,8 +255,9 @@ class Uplink : public runtime::Component {
         const SendStats& s = window_.stats();
         const std::string line =
             std::string(final ? "final: " : "") + std::to_string(stored_) + " messages (" +
-            std::to_string(stored_bytes_ >> 20) + " MiB) stored, " + std::to_string(s.sent) +
-            " sent, " + std::to_string(s.resent) + " resent, acknowledged through " +
+            std::to_string(stored_bytes_ >> 20) + " MiB, " + std::to_string(wire_bytes_ >> 20) +
+            " MiB compressed) stored, " + std::to_string(s.sent) + " sent, " +
+            std::to_string(s.resent) + " resent, acknowledged through " +
             std::to_string(window_.acked()) + " of " + std::to_string(journal_->last_seq()) +
             "; backlog " + std::to_string(journal_->size()) + " packets (" +
             std::to_string(journal_->bytes() >> 20) + " MiB)";
@@ -270,7 +277,8 @@ class Uplink : public runtime::Component {
     std::uint64_t catch_up_to_ = 0;
     std::unique_ptr<LinkJournal> journal_;
     SendWindow window_;
-    std::uint64_t stored_ = 0, stored_bytes_ = 0, dropped_ = 0, send_errors_ = 0;
+    std::uint64_t stored_ = 0, stored_bytes_ = 0, wire_bytes_ = 0, dropped_ = 0, send_errors_ = 0;
+    PayloadCodecConfig codec_;
     runtime::Publisher<msg::LinkPacket> packets_;
 };
 
