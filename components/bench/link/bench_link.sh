@@ -21,7 +21,7 @@ BUILD="${LTM_BUILD_DIR:-$ROOT/build}"
 BIN="$BUILD/bin"
 LOSS=0; LOSS_ON=both; RATE=0; SCENARIO="$ROOT/components/simulator/scenarios/tiny_loop.yaml"
 LINGER=""; DRAIN=3; FRAMES=""; OUT=""; OUTAGES=(); REQUIRE=(); TOPICS=(odometry keyframe local_map)
-RESTART=""; COMPARE=0; SAME_MAP=0; ROBOTS=1; SECURITY=0; INTRUDER=0
+RESTART=""; COMPARE=0; SAME_MAP=0; ROBOTS=1; SECURITY=0; INTRUDER=0; ROBOT_SETS=()
 usage() {
     echo "Robot and base station in two network namespaces over a veth link with loss, a rate"
     echo "limit and outages; per topic what was sent and delivered, the bytes on the link"
@@ -42,7 +42,8 @@ usage() {
         "--require-same-map" "with --compare: exit 1 unless anchors agree to 1 mm, same loops" \
         "--robots N=1" "robots (namespaces /robot1.. on links of their own; robot i drives session i-1)" \
         "--security" "DDS Security on every participant; an intruder without credentials listens" \
-        "--intruder" "a participant of no robot on a link of its own records what it hears"
+        "--intruder" "a participant of no robot on a link of its own records what it hears" \
+        "--robot-set NAME.KEY=V" "a --set for each robot's host (odometry.* ones for the composed run too)"
 }
 fail() { echo "ltm bench link: $*" >&2; exit 2; }   # a wrong command line
 die() { echo "ltm bench link: $*" >&2; exit 1; }    # the machine cannot do it
@@ -54,7 +55,7 @@ while [ $# -gt 0 ]; do
         --security) SECURITY=1; INTRUDER=1; shift; continue ;;
         --intruder) INTRUDER=1; shift; continue ;;
         --require-same-map) COMPARE=1; SAME_MAP=1; shift; continue ;;
-        --loss|--loss-on|--rate|--outage|--linger|--drain|--scenario|--frames|--out|--require|--restart-base|--robots)
+        --loss|--loss-on|--rate|--outage|--linger|--drain|--scenario|--frames|--out|--require|--restart-base|--robots|--robot-set)
             if [ $# -lt 2 ] || [ "${2:0:2}" = "--" ]; then fail "$1: needs a value"; fi
             case "$1" in
                 --loss) if ! [[ "$2" =~ $number ]] || ! awk -v v="$2" 'BEGIN {exit !(v <= 100)}'; then
@@ -77,6 +78,8 @@ while [ $# -gt 0 ]; do
                 --frames) [[ "$2" =~ ^[0-9]*:[0-9]*$ ]] || fail "--frames: expected A:B, got '$2'"
                           FRAMES="$2" ;;
                 --out) OUT="$2" ;;
+                --robot-set) [[ "$2" == *.*=* ]] || fail "--robot-set: expected NAME.KEY=VALUE, got '$2'"
+                             ROBOT_SETS+=(--set "$2") ;;
                 --robots) [[ "$2" =~ ^[1-9]$ ]] || fail "--robots: expected 1..9, got '$2'"
                           ROBOTS="$2" ;;
                 --restart-base) [[ "$2" =~ $number ]] || fail "--restart-base: expected seconds, got '$2'"
@@ -273,7 +276,8 @@ for i in "${!NS_R[@]}"; do
     ip netns exec "${NS_R[$i]}" env LTM_ROOT="$ROOT" LTM_DATA="${DATA[$i]}" LTM_OUT="$RUN/${NAME_R[$i]}" \
         LTM_SECURITY_DIR="$WORK/certs" LTM_PARTICIPANT="${NAME_R[$i]}" \
         "$BIN/ltm_host" "$WORK/robot.yaml" --set "$(dds "${DEV_R[$i]}" "$ADDR_BASE" "$robot_xml")" \
-        "${ns_set[@]}" "${security_set[@]}" --set "odometry.preset=$preset" > "$RUN/${NAME_R[$i]}.log" 2>&1 &
+        "${ns_set[@]}" "${security_set[@]}" --set "odometry.preset=$preset" "${ROBOT_SETS[@]}" \
+        > "$RUN/${NAME_R[$i]}.log" 2>&1 &
     ROBOT_PIDS+=("$!"); PIDS+=("$!")
 done
 for o in "${OUTAGES[@]}"; do
@@ -449,8 +453,12 @@ components:
   - {name: odometry, type: odometry, params: {preset: $preset}}
   - {name: mapping, type: mapping, params: {preset: $preset, map_dir: "$RUN/composed/map"}}
 YAML
+    composed_sets=()
+    for ((k = 1; k < ${#ROBOT_SETS[@]}; k += 2)); do
+        case "${ROBOT_SETS[$k]}" in odometry.*) composed_sets+=(--set "${ROBOT_SETS[$k]}") ;; esac
+    done
     ip netns exec "$NS_BASE" "$BIN/ltm_host" "$WORK/composed.yaml" --set "$(dds lo 127.0.0.1)" \
-        > "$RUN/composed.log" 2>&1 || die "the composed run failed (its log: $RUN/composed.log)"
+        "${composed_sets[@]}" > "$RUN/composed.log" 2>&1 || die "the composed run failed (its log: $RUN/composed.log)"
     "$BIN/ltm_map_diff" "$RUN/composed/map" "$RUN/base/map" --tolerance 0.001 --require-same-loops \
         | sed 's/^/   /' || map_differs=1
 fi
