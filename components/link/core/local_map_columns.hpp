@@ -1,9 +1,12 @@
 #pragma once
 // A LocalMap_'s CDR (idl/ltm_msgs/msg/LocalMap.idl) rearranged as columns for compression: the
-// bytes before the voxels as they are, then each voxel field of every voxel in turn (ix, iy, iz as
-// differences to the previous voxel), every column grouped by byte position (all low bytes, ...,
-// all high bytes), then the `seen` indices and whatever follows the voxels. A lossless
-// rearrangement: from_columns(to_columns(cdr)) == cdr whenever to_columns succeeds.
+// bytes before the voxels as they are, then each voxel field of every voxel in turn, every column
+// grouped by byte position (all low bytes, ..., all high bytes), then the `seen` indices and
+// whatever follows the voxels. Fields are stored as what a prediction leaves: ix, iy, iz as
+// differences to the previous voxel; the centre as the difference of its float bits to its
+// cell's middle; the normal's z to sqrt(1 - x^2 - y^2); created and last_seen as indices into
+// the map's observation_times when they are one of them. Integer bijections throughout: lossless,
+// from_columns(to_columns(cdr)) == cdr whenever to_columns succeeds.
 #include <cstdint>
 #include <optional>
 #include <vector>

@@ -11,8 +11,8 @@
 // kShuffled (keyframes; any type whose float arrays are found): the point cloud's bytes grouped
 // by byte position within a point (all x low bytes, ..., all intensity high bytes), the
 // descriptor's floats by byte position, so that zstd sees runs of similar bytes. kLocalMap: the
-// voxels' fields as columns (indices as differences to the previous voxel), each column grouped
-// by byte position. Anything else, or a message that does not parse as its type, is plain zstd;
+// voxels' fields as columns, each the residual of a prediction (local_map_columns.hpp) grouped by
+// byte position. Anything else, or a message that does not parse as its type, is plain zstd;
 // a message that zstd does not shrink is stored. The decoder needs no schema for kShuffled, so an
 // older base station reads any newer robot's keyframes; an unknown codec byte is an error.
 #include <cstdint>
