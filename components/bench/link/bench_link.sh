@@ -16,7 +16,15 @@
 # --compare also runs the same scans through one process (player, odometry, mapping: the
 # composed run) and compares its saved map with the base station's (ltm_map_diff).
 set -euo pipefail
-ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/../../.." && pwd)"
+# Runs from a copy: bash reads a script as it goes, and a run takes minutes (a checkout or an edit
+# meanwhile must not change what the running one executes).
+if [ -z "${LTM_BENCH_LINK_ROOT:-}" ]; then
+    copy="$(mktemp)"; cp "${BASH_SOURCE[0]}" "$copy"
+    LTM_BENCH_LINK_ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/../../.." && pwd)" LTM_BENCH_LINK_COPY="$copy" \
+        exec bash "$copy" "$@"
+fi
+ROOT="$LTM_BENCH_LINK_ROOT"
+[ -n "${LTM_BENCH_LINK_COPY:-}" ] && rm -f "$LTM_BENCH_LINK_COPY"
 BUILD="${LTM_BUILD_DIR:-$ROOT/build}"
 BIN="$BUILD/bin"
 LOSS=0; LOSS_ON=both; RATE=0; SCENARIO="$ROOT/components/simulator/scenarios/tiny_loop.yaml"
@@ -445,20 +453,21 @@ fi
 if [ "$COMPARE" = 1 ] && [ "$ROBOTS" = 1 ]; then
     echo "== the same scans in one process (the composed run): its map against the base station's"
     mkdir -p "$RUN/composed"
-    cat > "$WORK/composed.yaml" <<YAML
-namespace: /robot
-topics: {points: stream, keyframe: stream, local_map: stream}  # every scan, nothing dropped
-components:
-  - {name: player, type: kitti_player, params: {path: "${DATA[0]}", mode: fast}}
-  - {name: odometry, type: odometry, params: {preset: $preset}}
-  - {name: mapping, type: mapping, params: {preset: $preset, map_dir: "$RUN/composed/map"}}
-YAML
+    # robot.yaml without its uplink (the odometry's outputs not remapped) and with a mapping: the
+    # robot's own settings, the scans played as fast as the odometry takes them.
+    awk '/^  - name:/ {skip = ($3 == "uplink")} skip {next}
+         /remap: \{keyframe: onboard\/keyframe/ {next} {print}' "$ROOT/launch_configs/robot.yaml" > "$WORK/composed.yaml"
+    printf '  - {name: mapping, type: mapping, params: {preset: %s, map_dir: "%s"}}\n' \
+        "$preset" "$RUN/composed/map" >> "$WORK/composed.yaml"
     composed_sets=()
     for ((k = 1; k < ${#ROBOT_SETS[@]}; k += 2)); do
         case "${ROBOT_SETS[$k]}" in odometry.*) composed_sets+=(--set "${ROBOT_SETS[$k]}") ;; esac
     done
-    ip netns exec "$NS_BASE" "$BIN/ltm_host" "$WORK/composed.yaml" --set "$(dds lo 127.0.0.1)" \
-        "${composed_sets[@]}" > "$RUN/composed.log" 2>&1 || die "the composed run failed (its log: $RUN/composed.log)"
+    ip netns exec "$NS_BASE" env LTM_ROOT="$ROOT" LTM_DATA="${DATA[0]}" LTM_OUT="$RUN/composed" \
+        "$BIN/ltm_host" "$WORK/composed.yaml" --set "$(dds lo 127.0.0.1)" --set player.mode=fast \
+        --set 'topics={points: stream, keyframe: stream, local_map: stream}' \
+        --set "odometry.preset=$preset" "${composed_sets[@]}" > "$RUN/composed.log" 2>&1 \
+        || die "the composed run failed (its log: $RUN/composed.log)"
     "$BIN/ltm_map_diff" "$RUN/composed/map" "$RUN/base/map" --tolerance 0.001 --require-same-loops \
         | sed 's/^/   /' || map_differs=1
 fi
