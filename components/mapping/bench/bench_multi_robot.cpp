@@ -6,10 +6,11 @@
 // as % of its path, the revisits of the other robot's places (within --radius of a place the
 // other one had passed by then) and how many a loop between the robots closed, the loops, and
 // whether its session is joined to the map; then the graph (nodes, edges, connected parts).
-// `./ltm bench multi_robot --help`.
+// LTM_BENCH_LOOPS=1 prints every loop and refusal. `./ltm bench multi_robot --help`.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -106,6 +107,7 @@ int run(const Args& a) {
         longest = std::max(longest, r->frames);
         total += r->frames;
     }
+    const bool verbose = std::getenv("LTM_BENCH_LOOPS") != nullptr;  // every loop and refusal
     const auto t_start = Clock::now();
     auto optimise = [&] {
         ++optimisations;
@@ -128,6 +130,21 @@ int run(const Args& a) {
             if (h.keyframe) {
                 const mapping::KeyframeResult k = mapper.add_keyframe(*h.keyframe, r->session);
                 if (!k.added) std::fprintf(stderr, "%s: %s\n", r->name.c_str(), k.message.c_str());
+                if (verbose) {
+                    for (const mapping::LoopRejection& j : k.rejected) {
+                        const mapping::StoredKeyframe& m = *mapper.keyframes()[j.match_keyframe];
+                        std::printf(
+                            "  %s scan %zu: refused scan %lu of session %u (distance "
+                            "%.3f): %s\n",
+                            r->name.c_str(), i, (unsigned long)m.data.scan_index, m.session,
+                            j.descriptor_distance, j.reason.c_str());
+                    }
+                    for (const mapping::LoopClosure& l : k.loops) {
+                        std::printf("  %s scan %zu: loop with scan %lu of session %u%s\n",
+                                    r->name.c_str(), i, (unsigned long)l.match_scan,
+                                    l.match_session, l.across_break ? " (across a break)" : "");
+                    }
+                }
                 if (k.optimisation_due()) optimise();
             }
             for (const common::LocalMapData& m : h.local_maps) mapper.add_local_map(m, r->session);
@@ -142,6 +159,19 @@ int run(const Args& a) {
     progress.finish();
     const double seconds = std::chrono::duration<double>(Clock::now() - t_start).count();
 
+    if (verbose) {  // the loop edges between the robots' sessions after the last optimisation
+        for (const mapping::PoseGraphEdge& e : mapper.graph().edges()) {
+            const mapping::PoseGraphNode* from = mapper.graph().find(e.from);
+            const mapping::PoseGraphNode* to = mapper.graph().find(e.to);
+            if (e.kind != mapping::EdgeKind::kLoop || from->session == to->session) continue;
+            std::printf(
+                "  loop edge session %u segment %u -> session %u segment %u (keyframe %lu): "
+                "%s, error %.3f m\n",
+                from->session, mapper.segment_of(e.from), to->session, mapper.segment_of(e.to),
+                (unsigned long)e.query_keyframe, e.active ? "active" : "disabled",
+                e.error_translation);
+        }
+    }
     // Corrected poses; the one alignment of every robot's poses together.
     common::PoseList all_est, all_ref;
     std::vector<common::PoseList> est(robots.size());
@@ -219,10 +249,11 @@ int run(const Args& a) {
         }
     }
     std::printf(
-        "graph: %zu nodes, %zu edges, %zu connected part(s); %zu loops (%zu false); all robots "
-        "with one alignment: ATE rmse %.3f m (%zu poses); final optimisation %s\n",
+        "graph: %zu nodes, %zu edges, %zu connected part(s), %zu part(s) placed together by "
+        "loops; %zu loops (%zu false); all robots with one alignment: ATE rmse %.3f m (%zu poses); "
+        "final optimisation %s\n",
         mapper.graph().nodes().size(), mapper.graph().edges().size(), final_opt.components,
-        mapper.loops().size(), false_loops, joint.stats.rmse, joint.stats.n,
+        mapper.placed_parts(), mapper.loops().size(), false_loops, joint.stats.rmse, joint.stats.n,
         final_opt.solved ? "solved" : final_opt.message.c_str());
     if (!a.out.empty()) {
         std::filesystem::create_directories(a.out);

@@ -168,6 +168,10 @@ class Mapper {
     std::string robot(std::uint32_t session) const;
     // Where an open session stands (joined to the map by loops, or not yet).
     SessionStatus session_status(std::uint32_t session) const;
+    // The parts of the map that loops have placed together, as of the last optimisation: 1 when
+    // every session and segment is joined (the graph's connected parts also count the weak edges
+    // across odometry breaks).
+    std::size_t placed_parts() const;
     std::uint64_t revision() const { return revision_; }
 
     // A local map, or a newer snapshot of one (same id, higher or equal revision). Never throws.
@@ -285,6 +289,8 @@ class Mapper {
     void unlink_odometry(std::uint32_t session, std::uint64_t local_map_id);
     void set_segment(std::uint32_t session, std::uint64_t local_map_id, std::uint32_t segment);
     SegmentKey segment_key(std::uint64_t node) const;
+    // The node's segment is known (its local map said it, or it came with a loaded map).
+    bool segment_known(std::uint64_t node) const;
     SegmentKey placed_root(const SegmentKey& key) const;
     // Joined segments from the active loop edges, after an optimisation.
     void update_placement();
@@ -297,6 +303,12 @@ class Mapper {
     void verify(std::uint32_t session, const common::KeyframeData& keyframe,
                 const std::vector<Eigen::Vector3f>& points, std::uint64_t node,
                 const std::vector<LoopCandidate>& candidates, KeyframeResult* result);
+    // A loop between two open sessions' parts that no loop placed together (the first ones are
+    // held until session_join.loops agree): true when it is to be added now, with the held loops
+    // that agree with it (their edges added here, their closures appended to `joined`).
+    bool confirm_join(const SegmentKey& match_root, const SegmentKey& query_root,
+                      const PoseGraphEdge& edge, const LoopClosure& loop,
+                      std::vector<LoopClosure>* joined);
     // A loop edge between two parts no loop had placed together (sessions): the part without a
     // fixed node, the later one, set rigidly where the edge puts it (the optimisation's start).
     void align_parts(const PoseGraphEdge& loop);
@@ -321,7 +333,15 @@ class Mapper {
     std::vector<std::shared_ptr<const StoredKeyframe>> keyframes_;
     std::vector<LoopClosure> loops_;
     std::map<std::uint32_t, Live> live_;  // the open sessions (the default one always)
-    std::size_t due_loops_ = 0;           // loops that made an optimisation due, since one
+    // Loops between two open sessions' parts, held until enough agree (SessionJoinConfig).
+    struct HeldJoin {
+        SegmentKey match_root, query_root;
+        PoseGraphEdge edge;
+        LoopClosure loop;
+        EIGEN_MAKE_ALIGNED_OPERATOR_NEW
+    };
+    std::vector<HeldJoin> held_joins_;
+    std::size_t due_loops_ = 0;  // loops that made an optimisation due, since one
     // Odometry edges (from, to) made through a folded map: their nodes' paths are of other laps.
     std::set<std::pair<std::uint64_t, std::uint64_t>> relayed_edges_;
     std::vector<SessionRecord> past_sessions_;  // of the loaded map

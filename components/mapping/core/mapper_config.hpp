@@ -66,6 +66,18 @@ struct LongTermConfig {
     int max_observation_times = 1024;
 };
 
+// Joining two robots' sessions (open in one Mapper at once) that no loop has placed together yet.
+// Such a loop is judged by the verification alone (no odometry bounds where one session lies in
+// the other), and a site of repeated bays and fences can fool it once: the first loop is held until
+// `loops` loops in all, from at least two keyframes and between local maps whose odometry segment
+// is known, agree on where the one part lies in the other (each predicts the other's relative pose
+// to within agree_translation / agree_rotation); then all of them join the parts.
+struct SessionJoinConfig {
+    int loops = 2;                   // agreeing loops that join two parts (1: the first one joins)
+    double agree_translation = 2.0;  // [m]
+    double agree_rotation = 3.0;     // [deg]
+};
+
 // The keyframes' localisation descriptor (ScanContext++, kind kMeanVariance), saved in the map
 // for global localisation; its range and sensor height follow scan_context's in mapper_preset().
 inline ScanContextConfig default_localisation_descriptor() {
@@ -87,6 +99,7 @@ struct MapperConfig {
     LoopConsistencyConfig loop_consistency;
     GlobalMapConfig global_map;
     LongTermConfig long_term;
+    SessionJoinConfig session_join;
     int max_loops_per_keyframe = 1;  // verified loops kept a keyframe (best candidates first)
     // After a keyframe closes a loop, this many following keyframes are not verified (their
     // descriptors are still kept): a revisit is closed every few keyframes, not at each one.
@@ -143,6 +156,10 @@ void visit_own_fields(MapperConfig& c, Visitor&& v) {
     v("long_term.agree_translation", l.agree_translation, non_negative);
     v("long_term.agree_rotation", l.agree_rotation, non_negative);
     v("long_term.max_observation_times", l.max_observation_times, in_range(2, 65536));
+    auto& j = c.session_join;
+    v("session_join.loops", j.loops, at_least(1));
+    v("session_join.agree_translation", j.agree_translation, positive);
+    v("session_join.agree_rotation", j.agree_rotation, positive);
 }
 
 // Every field but the Scan Context kinds (enums: loaders read scan_context.kind as a name; the

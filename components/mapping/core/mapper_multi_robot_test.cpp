@@ -126,6 +126,7 @@ TEST(MapperMultiRobot, TwoRobotsInterleavedJoinIntoOneGraphEachOnTheTruth) {
     const OptimisationSummary o = mapper.optimise();
     ASSERT_TRUE(o.solved) << o.message;
     EXPECT_EQ(o.components, 1u);
+    EXPECT_EQ(mapper.placed_parts(), 1u);
     EXPECT_TRUE(mapper.session_status(s1).joined);
     const SessionStatus st = mapper.session_status(s2);
     EXPECT_TRUE(st.joined) << st.message;
@@ -171,6 +172,40 @@ TEST(MapperMultiRobot, TwoRobotsInterleavedJoinIntoOneGraphEachOnTheTruth) {
     EXPECT_EQ(continued.graph().nodes().size(), mapper.graph().nodes().size());
 }
 
+// The first loop between two robots' parts is held until another agrees (a repetitive site can
+// fool a verification once): asked for more agreeing loops than the drive gives, the robots stay
+// apart, every loop between them held and said so.
+TEST(MapperMultiRobot, LoopsBetweenTwoRobotsAreHeldUntilEnoughAgree) {
+    const std::vector<Eigen::Vector3f> scene = test::with_dense_ground(test::synthetic_scene(61));
+    const Robot r1(scene, 0.0, 0.0, false, 100.0), r2(scene, 45.0, 2.0, true, 100.5);
+    MapperConfig c = robots_config();
+    c.session_join.loops = 100;
+    Mapper mapper(c);
+    const std::uint32_t s1 = mapper.open_session("robot1");
+    const std::uint32_t s2 = mapper.open_session("robot2");
+    std::size_t held = 0;
+    for (std::size_t i = 0; i < 16; ++i) {
+        for (const auto& [robot, session] : {std::make_pair(&r2, s2), std::make_pair(&r1, s1)}) {
+            if (i % 4 == 0) {
+                ASSERT_TRUE(mapper.add_local_map(robot->maps[i / 4], session).added);
+            }
+            const KeyframeResult k = mapper.add_keyframe(robot->keyframe(i), session);
+            for (const LoopRejection& j : k.rejected)
+                held += j.reason.rfind("held: the first loop between session", 0) == 0;
+            if (k.optimisation_due()) {
+                ASSERT_TRUE(mapper.optimise().solved);
+            }
+        }
+    }
+    EXPECT_GE(held, 2u);
+    for (const LoopClosure& l : mapper.loops())
+        EXPECT_EQ(l.query_session, l.match_session) << "a loop between the robots was added";
+    const OptimisationSummary o = mapper.optimise();
+    ASSERT_TRUE(o.solved) << o.message;
+    EXPECT_EQ(o.components, 2u);
+    EXPECT_FALSE(mapper.session_status(s2).joined);
+}
+
 // Robot 2 maps another site (another scene) at the same time: no loop ties it to robot 1, it
 // stays its own part of the graph at its own odometry's estimate, and says so.
 TEST(MapperMultiRobot, ARobotThatNeverMeetsTheOtherStaysUnjoinedAndSaysSo) {
@@ -186,6 +221,7 @@ TEST(MapperMultiRobot, ARobotThatNeverMeetsTheOtherStaysUnjoinedAndSaysSo) {
     const OptimisationSummary o = mapper.optimise();
     ASSERT_TRUE(o.solved) << o.message;
     EXPECT_EQ(o.components, 2u);
+    EXPECT_EQ(mapper.placed_parts(), 2u);
     const SessionStatus st = mapper.session_status(s2);
     EXPECT_FALSE(st.joined);
     EXPECT_EQ(st.message,

@@ -3,6 +3,7 @@
 // break), and the status of every segment. Split from mapper.cpp: one concept a file.
 #include <algorithm>
 #include <map>
+#include <set>
 #include <sstream>
 #include <vector>
 
@@ -37,6 +38,11 @@ void Mapper::set_segment(std::uint32_t session, std::uint64_t local_map_id, std:
     }
 }
 
+bool Mapper::segment_known(std::uint64_t node) const {
+    const auto it = segment_of_.find(node);
+    return it == segment_of_.end() || it->second.told;
+}
+
 Mapper::SegmentKey Mapper::segment_key(std::uint64_t node) const {
     const PoseGraphNode* n = graph_.find(node);
     return {n ? n->session : 0, segment_of(node)};
@@ -56,9 +62,14 @@ void Mapper::update_placement() {
             k = it->second;
         return k;
     };
+    // An odometry edge between two segments that is not a break joins them too: one made through
+    // a local map folded into another session's (the chain goes on from that map), where the loop
+    // that tied them has gone with the fold.
     for (const PoseGraphEdge& e : graph_.edges()) {
-        if (e.kind != EdgeKind::kLoop || !e.active) continue;
+        const bool joins = e.kind == EdgeKind::kLoop ? e.active : !is_segment_break(e);
+        if (!joins) continue;
         const SegmentKey a = root(segment_key(e.from)), b = root(segment_key(e.to));
+        if (a == b) continue;
         parent.emplace(a, a);
         parent.emplace(b, b);
         if (a != b) parent[std::max(a, b)] = std::min(a, b);
@@ -148,6 +159,12 @@ std::vector<SegmentStatus> Mapper::segments(std::uint32_t session) const {
         out.push_back(st);
     }
     return out;
+}
+
+std::size_t Mapper::placed_parts() const {
+    std::set<SegmentKey> roots;
+    for (const PoseGraphNode& n : graph_.nodes()) roots.insert(placed_root(segment_key(n.id)));
+    return roots.size();
 }
 
 std::uint32_t Mapper::reference_session() const {
