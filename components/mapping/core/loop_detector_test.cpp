@@ -53,6 +53,29 @@ TEST(LoopDetector, RecentKeyframesAreExcludedByTimeButNotAcrossSessions) {
     EXPECT_EQ(c.size(), 15u);
 }
 
+// Two robots at once (sessions 0 and 1 interleaved): each finds the other's keyframes as soon as
+// they are kept, never its own recent ones.
+TEST(LoopDetector, SessionsAtOnceFindEachOthersKeyframesAtOnceAndNotTheirOwnRecentOnes) {
+    const std::vector<Eigen::Vector3f> scene = test::synthetic_scene(9);
+    ScanContextConfig sc;
+    LoopDetectorConfig cfg;
+    cfg.exclude_recent_keyframes = 100;
+    cfg.exclude_recent_seconds = 100.0;
+    cfg.max_results = 50;
+    cfg.candidates = 50;
+    LoopDetector d(sc, cfg);
+    const ScanContext same = make_scan_context(test::view(scene, test::xy_yaw(2, 1, 30), 80), sc);
+    for (std::uint32_t i = 0; i < 10; ++i) {
+        for (std::uint32_t session = 0; session < 2; ++session) {
+            std::vector<LoopCandidate> c;
+            ASSERT_TRUE(d.add(same, session, 1.0 * i, &c));
+            // The other session's keyframes kept so far (they alternate: 0, 1, 0, 1, ...).
+            EXPECT_EQ(c.size(), session == 0 ? i : i + 1) << "keyframe " << i << " of " << session;
+            for (const LoopCandidate& x : c) EXPECT_NE(x.match % 2, session);
+        }
+    }
+}
+
 TEST(LoopDetector, FindsATurnedRevisitAndNotAnotherPlace) {
     const std::vector<Eigen::Vector3f> scene = test::synthetic_scene(12);
     const std::vector<Eigen::Vector3f> other = test::synthetic_scene(13);
