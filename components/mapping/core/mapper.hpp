@@ -32,10 +32,11 @@
 // either way). A session that no loop ties to the map yet is where its own odometry puts it (its
 // own connected part of the graph, like a segment across a break that no loop joined): candidates
 // between it and another session are verified from the descriptor's guess and judged by the
-// verification alone. The first loop that ties it to another session's part sets the part that
-// holds no fixed node (the later one) rigidly where that loop says, and the optimisation puts it
-// in place; from then on, loops between open sessions placed together start from the graph's
-// estimate and are bounded by the odometry between them, as within one session.
+// verification alone, and held until session_join.loops of them agree (a repetitive site can fool
+// one verification). The loop that joins two open sessions' parts sets the part that holds no
+// fixed node (the later one) rigidly where it says, and the optimisation puts it in place; from
+// then on, loops between open sessions placed together start from the graph's estimate and are
+// bounded by the odometry between them, as within one session.
 //
 // Frames: every odometry pose belongs to the local map it was registered in; its world pose is
 // T_world_anchor * T_odom_anchor^-1 * T_odom_lidar. Voxels never move inside their local map.
