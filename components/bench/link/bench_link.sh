@@ -39,7 +39,7 @@ usage() {
         "--loss-on in|out|both" "where on the base station: ingress, egress or both (both)" \
         "--rate MBIT=0" "tc tbf rate of each direction [Mbit/s] (0: unlimited)" \
         "--outage S@T" "drop everything for S s from T s after the robot starts (repeatable)" \
-        "--linger S" "the robot's writers wait S s for acknowledgements at exit (Cyclone's 1 s)" \
+        "--linger S" "the robots' writers wait S s for acknowledgements at exit (robot.yaml: 5 s)" \
         "--drain S=$DRAIN" "the base station keeps listening S s after the robot exited" \
         "--scenario FILE" "simulator scenario (default tiny_loop)" \
         "--frames A:B" "scans A..B-1 of the scenario's session 0 (default all)" \
@@ -239,9 +239,11 @@ else
     base_topics=$(for r in "${NAME_R[@]}"; do printf '/%s/odometry, /%s/keyframe, /%s/local_map, ' "$r" "$r" "$r"; done | sed 's/, $//')
     with_recorder "$WORK/base_multi.yaml" '${LTM_RECORDING}' "[$base_topics]" > "$WORK/base.yaml"
 fi
-dds() { echo "dds={interfaces: [$1], multicast: false, peers: [$2]${3:+, extra_xml: \"$3\"}}"; }
-robot_xml=""
-[ -n "$LINGER" ] && robot_xml="<Internal><WriterLingerDuration>${LINGER} s</WriterLingerDuration></Internal>"
+# A host's interface and unicast peers as dotted --sets: the launch config's link profile (the
+# rest of its dds: block) stays as it is.
+dds() { DDS=(--set "dds.interfaces=[$1]" --set "dds.peers=[$2]" --set dds.multicast=false); }
+linger_set=()
+[ -n "$LINGER" ] && linger_set=(--set "dds.writer_linger_s=$LINGER")
 # DDS Security: the site's certificates (the base station and every robot; not the intruder).
 security_set=()
 if [ "$SECURITY" = 1 ]; then
@@ -258,9 +260,10 @@ robot_peers=$(printf '%s, ' "${ADDR_R[@]}" | sed 's/, $//')
 start_base() {  # start_base N: the Nth start of the base station (its own recording and log)
     local suffix=""; [ "$1" -gt 1 ] && suffix="$1"
     BASE_RECORDING="$RUN/base/delivered$suffix.mcap"
+    dds "$BRIDGE" "$robot_peers"
     ip netns exec "$NS_BASE" env LTM_ROOT="$ROOT" LTM_OUT="$RUN/base" LTM_RECORDING="$BASE_RECORDING" \
         LTM_SECURITY_DIR="$WORK/certs" LTM_PARTICIPANT=base_station \
-        "$BIN/ltm_host" "$WORK/base.yaml" --set "$(dds "$BRIDGE" "$robot_peers")" "${security_set[@]}" \
+        "$BIN/ltm_host" "$WORK/base.yaml" "${DDS[@]}" "${security_set[@]}" \
         --set "mapping.preset=$preset" --set idle_exit_s=0 --set shutdown_timeout_s=60 \
         >> "$RUN/base$suffix.log" 2>&1 &
     base_pid=$!; PIDS+=("$base_pid")
@@ -269,8 +272,9 @@ start_base 1
 if [ "$INTRUDER" = 1 ]; then
     # A participant without the site's credentials on a link of its own: it records every topic
     # of the domain it can see.
+    dds "$DEV_XR" "$ADDR_BASE, $robot_peers"
     ip netns exec "$NS_X" env LTM_ROOT="$ROOT" "$BIN/ltm_host" "$ROOT/launch_configs/tools/recorder.yaml" \
-        --set "$(dds "$DEV_XR" "$ADDR_BASE, $robot_peers")" --set "recorder.file=$RUN/intruder/heard.mcap" \
+        "${DDS[@]}" --set "recorder.file=$RUN/intruder/heard.mcap" \
         --set recorder.all=true > "$RUN/intruder.log" 2>&1 &
     intruder_pid=$!; PIDS+=("$intruder_pid")
     mkdir -p "$RUN/intruder"
@@ -281,9 +285,10 @@ ROBOT_PIDS=()
 for i in "${!NS_R[@]}"; do
     ns_set=(); [ "$ROBOTS" -gt 1 ] && ns_set=(--set "namespace=/${NAME_R[$i]}")
     mkdir -p "$RUN/${NAME_R[$i]}"
+    dds "${DEV_R[$i]}" "$ADDR_BASE"
     ip netns exec "${NS_R[$i]}" env LTM_ROOT="$ROOT" LTM_DATA="${DATA[$i]}" LTM_OUT="$RUN/${NAME_R[$i]}" \
         LTM_SECURITY_DIR="$WORK/certs" LTM_PARTICIPANT="${NAME_R[$i]}" \
-        "$BIN/ltm_host" "$WORK/robot.yaml" --set "$(dds "${DEV_R[$i]}" "$ADDR_BASE" "$robot_xml")" \
+        "$BIN/ltm_host" "$WORK/robot.yaml" "${DDS[@]}" "${linger_set[@]}" \
         "${ns_set[@]}" "${security_set[@]}" --set "odometry.preset=$preset" "${ROBOT_SETS[@]}" \
         > "$RUN/${NAME_R[$i]}.log" 2>&1 &
     ROBOT_PIDS+=("$!"); PIDS+=("$!")
@@ -446,7 +451,7 @@ if [ "$INTRUDER" = 1 ]; then
         "$BIN/ltm_mcap" manifest "$RUN/intruder/heard.mcap" -o "$RUN/intruder/heard.json"
         heard=$(grep -c '"data_hex"' "$RUN/intruder/heard.json" || true)
     fi
-    topics_heard=$(grep -o '"topic": "[^"]*"' "$RUN/intruder/heard.json" 2>/dev/null | sort -u | wc -l)
+    topics_heard=$({ grep -o '"topic": "[^"]*"' "$RUN/intruder/heard.json" 2>/dev/null || true; } | sort -u | wc -l)
     echo "== a participant without credentials (its own namespace and link): $heard messages received on $topics_heard topics"
     [ "$SECURITY" = 1 ] && [ "$heard" != 0 ] && intruder_heard=1
 fi
@@ -463,8 +468,9 @@ if [ "$COMPARE" = 1 ] && [ "$ROBOTS" = 1 ]; then
     for ((k = 1; k < ${#ROBOT_SETS[@]}; k += 2)); do
         case "${ROBOT_SETS[$k]}" in odometry.*) composed_sets+=(--set "${ROBOT_SETS[$k]}") ;; esac
     done
+    dds lo 127.0.0.1
     ip netns exec "$NS_BASE" env LTM_ROOT="$ROOT" LTM_DATA="${DATA[0]}" LTM_OUT="$RUN/composed" \
-        "$BIN/ltm_host" "$WORK/composed.yaml" --set "$(dds lo 127.0.0.1)" --set player.mode=fast \
+        "$BIN/ltm_host" "$WORK/composed.yaml" "${DDS[@]}" --set player.mode=fast \
         --set 'topics={points: stream, keyframe: stream, local_map: stream}' \
         --set "odometry.preset=$preset" "${composed_sets[@]}" > "$RUN/composed.log" 2>&1 \
         || die "the composed run failed (its log: $RUN/composed.log)"
