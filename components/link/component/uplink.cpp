@@ -109,6 +109,9 @@ class Uplink : public runtime::Component {
         ack_topic_ = ctx.resolve("link/ack");
         ctx.add_timer(send_period_s_, [this] { pump(); });
         ctx.add_timer(10.0, [this] { report(false); });
+        // On the disk within a second (a power cut loses at most that); appends are flushed to
+        // the kernel at once, so a crash of the process loses nothing.
+        ctx.add_timer(1.0, [this] { sync(); });
         ctx.log().info("run " + run_hex(run_) + " of " + robot_ + ": backlog in " +
                        journal_->dir());
     }
@@ -142,14 +145,26 @@ class Uplink : public runtime::Component {
                                  std::to_string(dropped_) + " so far); raise max_backlog_mb");
             }
             ++stored_;
+            unsynced_ = true;
             stored_bytes_ += cdr.size();
             wire_bytes_ += r.payload.size();
         } catch (const std::exception& e) {
             // Without its journal copy the message cannot be sent (packets are sent from the
-            // journal): say so every time, the base station will see the gap.
+            // journal): said every time; its seq goes to the next message, so the base station
+            // sees no gap.
             ctx_.log().error("a " + topic + " message is lost: " + e.what());
         }
         pump();
+    }
+
+    void sync() {
+        if (!unsynced_) return;
+        unsynced_ = false;
+        try {
+            journal_->sync();
+        } catch (const std::exception& e) {
+            ctx_.log().warn(std::string("backlog not synced: ") + e.what());
+        }
     }
 
     void on_ack(const msg::LinkAck& m) {
@@ -279,6 +294,7 @@ class Uplink : public runtime::Component {
     SendWindow window_;
     std::uint64_t stored_ = 0, stored_bytes_ = 0, wire_bytes_ = 0, dropped_ = 0, send_errors_ = 0;
     PayloadCodecConfig codec_;
+    bool unsynced_ = false;
     runtime::Publisher<msg::LinkPacket> packets_;
 };
 
