@@ -59,6 +59,10 @@ class Uplink : public runtime::Component {
             static_cast<std::uint64_t>(p.get<double>("window_mb", 16.0) * (1 << 20));
         send.resend_after_s = p.get<double>("resend_after_s", send.resend_after_s);
         send_period_s_ = p.get<double>("send_period_s", 0.01);
+        // Cyclone's participant lease (10 s): after a longer silence the base station's reader was
+        // dropped and matched again, and what was in flight must be sent again.
+        rematch_after_s_ = p.get<double>("rematch_after_s", 10.0);
+        if (!(rematch_after_s_ > 0)) p.fail("rematch_after_s", "must be > 0");
         drain_s_ = p.get<double>("drain_s", 10.0);
         // The journal and the link carry each message's wire form (payload_codec: lossless).
         codec_.level = p.get<int>("compression_level", codec_.level);
@@ -182,8 +186,10 @@ class Uplink : public runtime::Component {
                             " packets (" + std::to_string(journal_->bytes() >> 20) +
                             " MiB) to deliver");
         }
+        const bool rematched = !first && now - last_ack_s_ >= rematch_after_s_;
         last_ack_s_ = now;
         window_.on_ack(m.through, m.base_run, now);
+        if (rematched) window_.resume_after_silence(now);
         if (catch_up_to_ > 0 && window_.acked() >= catch_up_to_) {
             ctx_.log().info("backlog delivered " + seconds(now - resumed_s_) +
                             " after acknowledgements resumed");
@@ -286,7 +292,7 @@ class Uplink : public runtime::Component {
     runtime::ComponentContext& ctx_;
     std::string robot_, ack_topic_;
     std::uint64_t run_ = 0;
-    double send_period_s_ = 0.01, drain_s_ = 10.0;
+    double send_period_s_ = 0.01, drain_s_ = 10.0, rematch_after_s_ = 10.0;
     static constexpr double kSilence_s = 2.0;  // acknowledgements come every 0.5 s
     double last_ack_s_ = 0.0, resumed_s_ = 0.0;
     std::uint64_t catch_up_to_ = 0;

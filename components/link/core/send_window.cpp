@@ -41,6 +41,13 @@ void SendWindow::on_ack(std::uint64_t through, std::uint64_t base_run, double no
     }
 }
 
+void SendWindow::resume_after_silence(double now) {
+    if (in_flight_.empty()) return;
+    ++stats_.go_backs;
+    go_back(now);
+    wait_s_ = config_.resend_after_s;
+}
+
 std::optional<std::uint64_t> SendWindow::next(std::uint64_t first_held, std::uint64_t last_held,
                                               double /*now*/) {
     next_ = std::max({next_, first_held, acked_ + 1});

@@ -31,6 +31,10 @@ class SendWindow {
 
     // An acknowledgement: the base station (run `base_run`) holds every seq <= through.
     void on_ack(std::uint64_t through, std::uint64_t base_run, double now);
+    // Acknowledgements come back after a silence long enough for DDS to have dropped the base
+    // station's reader (its participant's lease): what was in flight is gone, send it again now
+    // rather than after resend_after_s.
+    void resume_after_silence(double now);
     // The seq to send now, given the seqs held [first_held, last_held] (first_held > last_held:
     // none); nullopt when everything held is sent or the window is full.
     std::optional<std::uint64_t> next(std::uint64_t first_held, std::uint64_t last_held,

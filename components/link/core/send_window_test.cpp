@@ -64,6 +64,16 @@ TEST(SendWindow, ARestartedBaseStationGetsWhatItLacksAtOnce) {
     EXPECT_EQ(pump(w, 3, 8, 1.0), (V{5, 6, 7, 8}));
 }
 
+TEST(SendWindow, AcknowledgementsBackAfterALongSilenceResendAtOnce) {
+    SendWindow w({1000, 3.0, 24.0});
+    w.on_ack(0, 1, 0.0);
+    EXPECT_EQ(pump(w, 1, 5, 0.0), (V{1, 2, 3, 4, 5}));
+    w.on_ack(2, 1, 0.5);
+    w.resume_after_silence(31.0);  // an outage: 3..5 went nowhere
+    EXPECT_EQ(pump(w, 3, 5, 31.0), (V{3, 4, 5}));
+    EXPECT_EQ(w.stats().go_backs, 1u);
+}
+
 TEST(SendWindow, ReleasedOrDroppedSeqsAreSkipped) {
     SendWindow w({1000, 3.0, 24.0});
     EXPECT_EQ(pump(w, 5, 6, 0.0), (V{5, 6}));  // 1..4 no longer held
