@@ -439,6 +439,12 @@ for o in "${OUTAGES[@]}"; do
         fi
     done
 done
+# A base-station restart: how long after it the uplinks had delivered what it lacked.
+if [ -n "$RESTART" ]; then
+    for r in "${NAME_R[@]}"; do
+        grep -h "\[uplink\] \(the base station restarted\|backlog delivered\)" "$RUN/$r.log" | sed "s/^/   $r: /" || true
+    done
+fi
 # Scans each robot's odometry processed (its rate unchanged: every scan) and the link
 # components' own account (their final lines).
 for r in "${NAME_R[@]}"; do

@@ -135,9 +135,9 @@ class Downlink : public runtime::Component {
                 if (rec->seq <= r.replay_last) {
                     ++replayed_;
                     if (rec->seq == r.replay_last)
-                        ctx_.log().info("replayed the " + std::to_string(r.journal->size()) +
-                                        " journaled messages of run " + run_hex(id) + " from " +
-                                        r.journal->dir());
+                        ctx_.log().info("replayed the journal of run " + run_hex(id) +
+                                        " up to packet " + std::to_string(r.replay_last) +
+                                        " from " + r.journal->dir());
                 }
             }
         }

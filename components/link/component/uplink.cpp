@@ -192,16 +192,19 @@ class Uplink : public runtime::Component {
         if (rematched) window_.resume_after_silence(now);
         if (catch_up_to_ > 0 && window_.acked() >= catch_up_to_) {
             ctx_.log().info("backlog delivered " + seconds(now - resumed_s_) +
-                            " after acknowledgements resumed");
+                            " after the base station was heard again");
             catch_up_to_ = 0;
         }
         if (first)
             ctx_.log().info("base station " + run_hex(m.base_run) + " holds " +
                             std::to_string(m.through) + " packets of this run");
-        if (window_.stats().base_restarts != restarts)
+        if (window_.stats().base_restarts != restarts) {
             ctx_.log().warn("the base station restarted (run " + run_hex(m.base_run) +
                             "): it holds " + std::to_string(m.through) +
                             " packets; sending the rest again");
+            catch_up_to_ = journal_->last_seq();
+            resumed_s_ = now;
+        }
         if (window_.acked() > journal_->released_through()) {
             try {
                 journal_->release_through(std::min(window_.acked(), journal_->last_seq()));
