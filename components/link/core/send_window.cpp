@@ -19,9 +19,14 @@ void SendWindow::on_ack(std::uint64_t through, std::uint64_t base_run, double no
         // A restarted base station holds what it says, no more (its journal is the truth).
         acked_ = through;
         wait_s_ = config_.resend_after_s;
+        last_heard_ = now;
         go_back(now);
         return;
     }
+    // The stall clock runs only while the base station is heard: after a silence (an outage)
+    // DDS repairs what was in flight once the link is back, which takes time of its own.
+    if (now - last_heard_ >= wait_s_) stalled_since_ = now;
+    last_heard_ = now;
     if (through > acked_) {
         acked_ = through;
         while (!in_flight_.empty() && in_flight_.begin()->first <= through) {

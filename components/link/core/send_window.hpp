@@ -57,6 +57,7 @@ class SendWindow {
     std::map<std::uint64_t, std::uint64_t> in_flight_;  // seq -> bytes, sent and unacknowledged
     std::uint64_t in_flight_bytes_ = 0;
     double stalled_since_ = 0.0;  // last ack progress (or go-back)
+    double last_heard_ = 0.0;     // last acknowledgement
     double wait_s_ = 0.0;         // current go-back wait
     SendStats stats_;
 };

@@ -74,6 +74,19 @@ TEST(SendWindow, AcknowledgementsBackAfterALongSilenceResendAtOnce) {
     EXPECT_EQ(w.stats().go_backs, 1u);
 }
 
+TEST(SendWindow, ASilenceIsNotAStall) {
+    SendWindow w({1000, 3.0, 24.0});
+    w.on_ack(0, 1, 0.0);
+    EXPECT_EQ(pump(w, 1, 3, 0.0), (V{1, 2, 3}));
+    w.on_ack(1, 1, 0.5);
+    w.on_ack(1, 1, 30.0);  // back after an outage: DDS repairs 2..3 now, no go-back yet
+    EXPECT_TRUE(pump(w, 2, 3, 30.0).empty());
+    w.on_ack(1, 1, 32.0);
+    EXPECT_TRUE(pump(w, 2, 3, 32.0).empty());
+    w.on_ack(1, 1, 33.1);  // 3 s heard without progress: a stall
+    EXPECT_EQ(pump(w, 2, 3, 33.1), (V{2, 3}));
+}
+
 TEST(SendWindow, ReleasedOrDroppedSeqsAreSkipped) {
     SendWindow w({1000, 3.0, 24.0});
     EXPECT_EQ(pump(w, 5, 6, 0.0), (V{5, 6}));  // 1..4 no longer held
