@@ -39,12 +39,13 @@ every_local_map_at_5_percent_loss() {
     echo "$out" | grep -Eq '^   robot/keyframe +sent +([1-9][0-9]*) .*delivered +\1 +missing 0$'
 }
 
-# tiny_loop runs ~8 s: the link is cut from 2 s to 5 s, the base station is killed at 6 s and
-# started again (its journal replayed, the robot's backlog resent).
+# tiny_loop played at half speed (~16 s, so that a loaded machine's odometry still takes every
+# scan, as the composed run does): the link is cut from 4 s to 10 s, the base station is killed at
+# 12 s and started again (its journal replayed, the robot's backlog resent).
 outage_and_restart_lose_nothing() {
     local out rc
-    out="$(bash "$BENCH" --loss 1 --outage 3@2 --restart-base 6 --require local_map \
-        --require keyframe --require-same-map 2>&1)"; rc=$?
+    out="$(bash "$BENCH" --loss 1 --outage 6@4 --restart-base 12 --robot-set player.rate=0.5 \
+        --require local_map --require keyframe --require-same-map 2>&1)"; rc=$?
     echo "$out"
     [ "$rc" = 0 ] || return 1
     echo "$out" | grep -q 'base station killed (SIGKILL)' || return 1
