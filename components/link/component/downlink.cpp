@@ -56,8 +56,8 @@ class Downlink : public runtime::Component {
         } catch (const common::IoError& e) {
             p.fail("journal_dir", e.what());
         }
-        // Keyframes and local maps of the journal (and later the link) go to the mapping
-        // losslessly: the outputs take the host's `topics:` role, else a lossless stream.
+        // The outputs take the host's `topics:` role (base_station.yaml: stream, lossless with
+        // back-pressure), else the role their readers declare (local_map: map, others: state).
         for (const std::string topic : {"keyframe", "local_map"}) output(topic);
         ctx.subscribe<msg::LinkPacket>("link/packets", TopicRole::kState,
                                        [this](const msg::LinkPacket& m) { on_packet(m); });
