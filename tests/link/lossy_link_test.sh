@@ -35,8 +35,8 @@ every_local_map_at_5_percent_loss() {
     # Frames were really dropped, and local maps and keyframes were really sent (and all
     # delivered, once).
     echo "$out" | grep -Eq 'frames dropped for loss: [1-9][0-9]* robot -> base' || return 1
-    echo "$out" | grep -Eq '^   robot/local_map +sent +([1-9][0-9]*) .*delivered +\1 +missing 0$' || return 1
-    echo "$out" | grep -Eq '^   robot/keyframe +sent +([1-9][0-9]*) .*delivered +\1 +missing 0$'
+    echo "$out" | grep -Eq '^   robot/local_map +sent +([1-9][0-9]*) .*delivered +\1 +late +[0-9]+ +missing 0$' || return 1
+    echo "$out" | grep -Eq '^   robot/keyframe +sent +([1-9][0-9]*) .*delivered +\1 +late +[0-9]+ +missing 0$'
 }
 
 # tiny_loop played at half speed (~16 s, so that a loaded machine's odometry still takes every
@@ -66,7 +66,7 @@ intruder_hears_nothing_with_security() {
     echo "$out"
     [ "$rc" = 0 ] || return 1
     echo "$out" | grep -Eq 'without credentials .*: 0 messages received' || return 1
-    echo "$out" | grep -Eq '^   robot/keyframe +sent +([1-9][0-9]*) .*delivered +\1 +missing 0$'
+    echo "$out" | grep -Eq '^   robot/keyframe +sent +([1-9][0-9]*) .*delivered +\1 +late +[0-9]+ +missing 0$'
 }
 
 stopped_run_cleans_up() {

@@ -374,8 +374,8 @@ done
 # (applied twice). One missing before the topic's first delivered message was published before
 # the base station's reader was matched (discovery). The robot's recorder finds the topics by
 # discovery too and can miss a topic's first message: what only the base station recorded counts
-# as sent (and is reported). Local maps: the time from the odometry's publishing to the base
-# station's mapping receiving it (one clock: the same machine).
+# as sent (and is reported). Late: delivered more than 1 s after the odometry published it (one
+# clock: the same machine); for local maps the latency's median and maximum too.
 awk -v req=" ${REQUIRE[*]} " '
     function field(name,   i, r) {
         i = index($0, "\"" name "\": \""); if (!i) return ""
@@ -391,8 +391,9 @@ awk -v req=" ${REQUIRE[*]} " '
     {
         n++; topic[n] = t; pub[n] = p; sent[t]++; bytes[t] += length(d) / 2; topic_of(t)
         key = t SUBSEP d
-        if (key in got) { ok[t]++; seen[key] = 1
-                          if (short(t) == "local_map") lat[++nl] = (at[key] - p) / 1e6 }
+        if (key in got) { ok[t]++; seen[key] = 1; ms = (at[key] - p) / 1e6
+                          if (ms > 1000) slow[t]++
+                          if (short(t) == "local_map") lat[++nl] = ms }
         else { miss[n] = 1 }
     }
     END {
@@ -406,7 +407,7 @@ awk -v req=" ${REQUIRE[*]} " '
             for (j = 1; j <= n; j++) if (topic[j] == t && (j in miss)) {
                 if (!(t in first) || pub[j] < first[t]) early++; else late++
             }
-            printf "   %-17s sent %4d (%8.2f MiB)  delivered %4d  missing %d", t, sent[t], bytes[t] / 1048576, ok[t] + 0, sent[t] - ok[t]
+            printf "   %-17s sent %4d (%8.2f MiB)  delivered %4d  late %4d  missing %d", t, sent[t], bytes[t] / 1048576, ok[t] + 0, slow[t] + 0, sent[t] - ok[t]
             if (sent[t] > ok[t]) printf " (%d before the base station matched, %d after)", early, late
             if (unrec[t]) printf " [%d only in the base station'"'"'s recording]", unrec[t]
             if (dup[t]) printf " DUPLICATES %d", dup[t]
