@@ -1,0 +1,93 @@
+// The Mapper's queries: world poses of odometry frames and keyframes, the global map, the
+// snapshot a save takes, memory (mapper.hpp; split from mapper.cpp, which adds and optimises).
+#include <cmath>
+
+#include "mapping/core/global_map.hpp"
+#include "mapping/core/mapper.hpp"
+
+namespace ltm::mapping {
+
+std::optional<Eigen::Isometry3d> Mapper::T_world_odom(std::uint64_t local_map_id) const {
+    return T_world_odom(local_map_id, session_);
+}
+
+std::optional<Eigen::Isometry3d> Mapper::T_world_odom(std::uint64_t local_map_id,
+                                                      std::uint32_t session) const {
+    const std::optional<std::uint64_t> id = node_of(local_map_id, session);
+    if (!id) return std::nullopt;
+    const ChainAnchor a = chain_anchor(session, local_map_id, *id);
+    return a.T_world_anchor * a.T_odom_anchor.inverse();
+}
+
+std::optional<Eigen::Isometry3d> Mapper::T_world_lidar(
+    std::uint64_t local_map_id, const Eigen::Isometry3d& T_odom_lidar) const {
+    return T_world_lidar(local_map_id, T_odom_lidar, session_);
+}
+
+std::optional<Eigen::Isometry3d> Mapper::T_world_lidar(std::uint64_t local_map_id,
+                                                       const Eigen::Isometry3d& T_odom_lidar,
+                                                       std::uint32_t session) const {
+    const std::optional<Eigen::Isometry3d> c = T_world_odom(local_map_id, session);
+    if (!c) return std::nullopt;
+    return *c * T_odom_lidar;
+}
+
+Eigen::Isometry3d Mapper::keyframe_pose(std::uint32_t index) const {
+    const StoredKeyframe& k = *keyframes_.at(index);
+    return graph_.find(k.node)->T_world_anchor * k.data.T_anchor_lidar;
+}
+
+common::PlyCloud Mapper::global_map(GlobalMapStats* stats) const {
+    std::map<std::uint64_t, const MapEntry*> ordered;
+    for (const auto& [node, entry] : maps_) ordered[node] = &entry;
+    std::vector<PlacedLocalMap> placed;
+    placed.reserve(ordered.size());
+    for (const auto& [node, entry] : ordered) {
+        PlacedLocalMap p;
+        p.map = entry->stored.data.get();
+        p.T_world_anchor = graph_.find(node)->T_world_anchor;
+        placed.push_back(p);
+    }
+    return build_global_map(placed, config_.global_map, stats);
+}
+
+MapData Mapper::snapshot() const {
+    MapData m;
+    m.revision = revision_;
+    m.descriptor_config = config_.scan_context;
+    m.localisation_descriptor_config = config_.localisation_descriptor;
+    m.nodes = graph_.nodes();
+    m.edges = graph_.edges();
+    m.keyframes = keyframes_;
+    std::map<std::uint64_t, const MapEntry*> ordered;
+    for (const auto& [node, entry] : maps_) ordered[node] = &entry;
+    for (const auto& [node, entry] : ordered) m.local_maps.push_back(entry->stored);
+    m.sessions = sessions();
+    return m;
+}
+
+std::size_t Mapper::memory_bytes() const {
+    std::size_t n = graph_.nodes().capacity() * sizeof(PoseGraphNode) +
+                    graph_.edges().capacity() * sizeof(PoseGraphEdge);
+    for (const auto& [node, entry] : maps_) {
+        const common::LocalMapData& d = *entry.stored.data;
+        n += sizeof(common::LocalMapData) + d.voxels.capacity() * sizeof(common::VoxelData) +
+             d.observation_times.capacity() * sizeof(double);
+        for (const common::VoxelData& v : d.voxels)
+            n += v.life.seen.capacity() * sizeof(std::uint16_t);
+    }
+    for (const auto& [session, live] : live_)
+        n += live.folded.size() * (sizeof(Folded) + 48);  // map node overhead
+    for (const auto& [session, chain] : chains_) n += chain.size() * 48;
+    auto descriptor_bytes = [](const ScanContext& d) {
+        return (d.value.capacity() + d.spread.capacity()) * sizeof(float) + d.occupied.capacity();
+    };
+    for (const auto& k : keyframes_) {
+        n += sizeof(StoredKeyframe) + descriptor_bytes(k->descriptor) +
+             descriptor_bytes(k->localisation_descriptor) +
+             k->data.points.capacity() * sizeof(Eigen::Vector3f);
+    }
+    return n;
+}
+
+}  // namespace ltm::mapping
