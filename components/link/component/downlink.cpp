@@ -41,7 +41,9 @@ class Downlink : public runtime::Component {
         const double replay_delay = p.get<double>("replay_delay_s", 1.0);
         if (replay_delay < 0) p.fail("replay_delay_s", "must be >= 0");
         start_at_ = mono_s() + replay_delay;
-        max_held_ = p.get<std::size_t>("max_held", 512);
+        // Packets ahead of a gap wait in memory (each up to a local map's size): few arrive out of
+        // order (DDS delivers in order; only the uplink's resends overtake), so few are kept.
+        max_held_ = p.get<std::size_t>("max_held", 64);
         if (robot_.empty() || robot_.find('/') != std::string::npos)
             p.fail("robot", "a name without '/' (the robot's namespace)");
         if (dir_.empty()) p.fail("journal_dir", "required: where received packets are kept");
@@ -271,7 +273,10 @@ class Downlink : public runtime::Component {
             std::string(final ? "final: " : "") + std::to_string(received) + " packets received (" +
             std::to_string(dup) + " duplicates), " + std::to_string(delivered_) +
             " messages delivered (" + std::to_string(replayed_) + " replayed from the journal), " +
-            std::to_string(held) + " waiting for a gap, " + std::to_string(lost) + " lost";
+            std::to_string(held) + " waiting for a gap, " + std::to_string(lost) + " lost" +
+            (other_robots_
+                 ? ", " + std::to_string(other_robots_) + " packets of other robots ignored"
+                 : "");
         if (lost > 0 || undeliverable_ > 0) {
             ctx_.log().warn(line);
         } else {
@@ -281,7 +286,7 @@ class Downlink : public runtime::Component {
 
     runtime::ComponentContext& ctx_;
     std::string robot_, dir_, out_ns_;
-    std::size_t max_held_ = 512;
+    std::size_t max_held_ = 64;
     std::uint64_t base_run_ = 0;
     std::map<std::uint64_t, Run> runs_;
     std::vector<std::uint64_t> order_;  // runs, in the order they started

@@ -20,7 +20,7 @@ struct ReceiveStats {
 class ReceiveWindow {
   public:
     // `through`: every seq <= through was handed on already (a restarted base station's journal).
-    explicit ReceiveWindow(std::uint64_t through = 0, std::size_t max_held = 512)
+    explicit ReceiveWindow(std::uint64_t through = 0, std::size_t max_held = 64)
         : through_(through), max_held_(max_held) {}
 
     // Offers a packet; `first_seq` is the oldest seq its sender still holds (seqs below it that
