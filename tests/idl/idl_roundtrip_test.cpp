@@ -192,6 +192,7 @@ TEST_F(Dds, LocalMapDataAndKeyframeDataThroughTheConverters) {
     k.id = 3;
     k.scan_index = 30;
     k.local_map_id = 5;
+    k.segment = 1;
     k.stamp = 3.05;
     k.T_odom_lidar = some_pose(2);
     k.T_anchor_lidar = some_pose(0.2);
@@ -200,6 +201,7 @@ TEST_F(Dds, LocalMapDataAndKeyframeDataThroughTheConverters) {
     roundtrip<msg::Keyframe>(kb.build(k, "odom", "lidar"), [&](const msg::Keyframe& m) {
         const common::KeyframeData r = convert::from_msg(m);
         EXPECT_EQ(r.scan_index, 30u);
+        EXPECT_EQ(r.segment, std::optional<std::uint32_t>(1));
         EXPECT_NEAR(r.stamp, 3.05, 1e-9);
         EXPECT_TRUE(r.T_anchor_lidar.isApprox(k.T_anchor_lidar, 1e-12));
         EXPECT_EQ(r.points, k.points);
@@ -208,7 +210,8 @@ TEST_F(Dds, LocalMapDataAndKeyframeDataThroughTheConverters) {
 
 TEST_F(Dds, KeyframeGraphLoopStatusChangesMesh) {
     std::string frame = "map", comp = "odometry", code = "skip", text = "empty scan";
-    std::vector<float> values(20 * 60, 1.5f), ring(20, 0.5f);
+    std::vector<float> values(20 * 60, 1.5f), spreads(20 * 60, 0.5f);
+    std::vector<std::uint8_t> occupied(20 * 60, 1);
     msg::Keyframe k{};
     k.header.frame_id = c(frame);
     k.points.header.frame_id = c(frame);
@@ -219,12 +222,20 @@ TEST_F(Dds, KeyframeGraphLoopStatusChangesMesh) {
     k.descriptor.sectors = 60;
     k.descriptor.values._buffer = values.data();
     k.descriptor.values._length = k.descriptor.values._maximum = values.size();
-    k.descriptor.ring_key._buffer = ring.data();
-    k.descriptor.ring_key._length = k.descriptor.ring_key._maximum = ring.size();
+    k.descriptor.spreads._buffer = spreads.data();
+    k.descriptor.spreads._length = k.descriptor.spreads._maximum = spreads.size();
+    k.descriptor.occupied._buffer = occupied.data();
+    k.descriptor.occupied._length = k.descriptor.occupied._maximum = occupied.size();
+    k.descriptor.sensor_height = 1.73f;
+    k.segment = 4;
     roundtrip<msg::Keyframe>(k, [&](const msg::Keyframe& r) {
         EXPECT_EQ(r.descriptor.values._length, 1200u);
-        EXPECT_EQ(r.descriptor.ring_key._buffer[19], 0.5f);
+        EXPECT_EQ(r.descriptor.spreads._buffer[19], 0.5f);
+        EXPECT_EQ(r.descriptor.occupied._buffer[1199], 1);
+        EXPECT_EQ(r.descriptor.sensor_height, 1.73f);
+        EXPECT_EQ(r.localisation_descriptor.rings, 0);
         EXPECT_EQ(r.local_map_id, 2u);
+        EXPECT_EQ(r.segment, 4u);
     });
 
     std::vector<msg::AnchorPose> anchors(2);

@@ -289,7 +289,7 @@ for i in "${!NS_R[@]}"; do
     ip netns exec "${NS_R[$i]}" env LTM_ROOT="$ROOT" LTM_DATA="${DATA[$i]}" LTM_OUT="$RUN/${NAME_R[$i]}" \
         LTM_SECURITY_DIR="$WORK/certs" LTM_PARTICIPANT="${NAME_R[$i]}" \
         "$BIN/ltm_host" "$WORK/robot.yaml" "${DDS[@]}" "${linger_set[@]}" \
-        "${ns_set[@]}" "${security_set[@]}" --set "odometry.preset=$preset" "${ROBOT_SETS[@]}" \
+        "${ns_set[@]}" "${security_set[@]}" --set "odometry.preset=$preset" --set "keyframe_digest.preset=$preset" "${ROBOT_SETS[@]}" \
         > "$RUN/${NAME_R[$i]}.log" 2>&1 &
     ROBOT_PIDS+=("$!"); PIDS+=("$!")
 done
@@ -467,8 +467,8 @@ if [ "$COMPARE" = 1 ] && [ "$ROBOTS" = 1 ]; then
     mkdir -p "$RUN/composed"
     # robot.yaml without its uplink (the odometry's outputs not remapped) and with a mapping: the
     # robot's own settings, the scans played as fast as the odometry takes them.
-    awk '/^  - name:/ {skip = ($3 == "uplink")} skip {next}
-         /remap: \{keyframe: onboard\/keyframe/ {next} {print}' "$ROOT/launch_configs/robot.yaml" > "$WORK/composed.yaml"
+    awk '/^  - name:/ {skip = ($3 == "uplink" || $3 == "keyframe_digest")} skip {next}
+         /remap: \{keyframe: onboard\// {next} {print}' "$ROOT/launch_configs/robot.yaml" > "$WORK/composed.yaml"
     printf '  - {name: mapping, type: mapping, params: {preset: %s, map_dir: "%s"}}\n' \
         "$preset" "$RUN/composed/map" >> "$WORK/composed.yaml"
     composed_sets=()

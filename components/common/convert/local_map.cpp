@@ -47,6 +47,7 @@ common::KeyframeData from_msg(const msg::Keyframe& m) {
     k.id = m.id;
     k.scan_index = m.scan_index;
     k.local_map_id = m.local_map_id;
+    k.segment = m.segment;
     k.stamp = to_seconds(m.header.stamp);
     k.T_odom_lidar = to_isometry(m.pose);
     k.T_anchor_lidar = to_isometry(m.pose_in_anchor);
@@ -110,6 +111,7 @@ const msg::Keyframe& KeyframeBuilder::build(const common::KeyframeData& k,
     message_.id = k.id;
     message_.scan_index = k.scan_index;
     message_.local_map_id = k.local_map_id;
+    message_.segment = k.segment.value_or(0);
     message_.pose = to_pose(k.T_odom_lidar);
     message_.pose_in_anchor = to_pose(k.T_anchor_lidar);
     message_.points = points_.build(cloud_);

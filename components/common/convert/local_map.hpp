@@ -26,7 +26,8 @@ class LocalMapBuilder {
     msg::LocalMap message_{};
 };
 
-// Builds a Keyframe message (points as PointCloud2, no descriptor unless given).
+// Builds a Keyframe message (points as PointCloud2, without descriptors: rings 0; an unknown
+// segment as 0).
 class KeyframeBuilder {
   public:
     const msg::Keyframe& build(const common::KeyframeData& keyframe, const std::string& frame_id,

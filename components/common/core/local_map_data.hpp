@@ -3,6 +3,7 @@
 // map files, localisation and maintenance (mirrors ltm_msgs/LocalMap and ltm_msgs/Keyframe).
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 namespace ltm::common {
@@ -51,6 +52,9 @@ struct KeyframeData {
     std::uint64_t id = 0;
     std::uint64_t scan_index = 0;  // index of the scan in its input stream
     std::uint64_t local_map_id = 0;
+    // Odometry segment of that local map (LocalMapData::segment), when the sender knew it: a
+    // keyframe can arrive long before its local map does (a map crosses a link when finished).
+    std::optional<std::uint32_t> segment;
     double stamp = 0.0;  // [s]
     Eigen::Isometry3d T_odom_lidar = Eigen::Isometry3d::Identity();
     Eigen::Isometry3d T_anchor_lidar = Eigen::Isometry3d::Identity();

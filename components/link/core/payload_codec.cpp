@@ -44,7 +44,7 @@ bool skip_header(CdrReader& r) {
     return r.read(sec) && r.read(nsec) && r.skip_string();
 }
 
-// The arrays of a Keyframe_ worth shuffling: the point cloud's data by point, the descriptor's
+// The arrays of a Keyframe_ worth shuffling: the point cloud's data by point, the descriptors'
 // float sequences by float. Whatever does not parse ends the list (still lossless: the ranges are
 // only a permutation).
 std::vector<Range> keyframe_ranges(const std::vector<std::uint8_t>& cdr) {
@@ -58,7 +58,8 @@ std::vector<Range> keyframe_ranges(const std::vector<std::uint8_t>& cdr) {
     double d;
     float f;
     std::size_t offset;
-    if (!skip_header(r) || !r.read(u64) || !r.read(u64) || !r.read(u64)) return ranges;
+    if (!skip_header(r) || !r.read(u64) || !r.read(u64) || !r.read(u64) || !r.read(u32))
+        return ranges;
     for (int i = 0; i < 14; ++i)  // pose, pose_in_anchor
         if (!r.read(d)) return ranges;
     if (!skip_header(r) || !r.read(height) || !r.read(width) || !r.read(fields)) return ranges;
@@ -67,10 +68,14 @@ std::vector<Range> keyframe_ranges(const std::vector<std::uint8_t>& cdr) {
     if (!r.read(u8) || !r.read(point_step) || !r.read(u32) || !r.sequence(1, count, offset))
         return ranges;
     if (point_step > 0) add_range(ranges, offset, count / point_step, point_step, true);
-    if (!r.read(u8) || !r.read(u8) || !r.read(u16) || !r.read(u16) || !r.read(f)) return ranges;
-    for (int i = 0; i < 3; ++i) {  // values, variances, ring_key
-        if (!r.sequence(4, count, offset)) return ranges;
-        add_range(ranges, offset, count, 4, false);
+    if (!r.read(u8)) return ranges;  // is_dense
+    for (int d = 0; d < 2; ++d) {    // descriptor, localisation_descriptor
+        if (!r.read(u8) || !r.read(u16) || !r.read(u16) || !r.read(f)) return ranges;
+        for (int i = 0; i < 2; ++i) {  // values, spreads
+            if (!r.sequence(4, count, offset)) return ranges;
+            add_range(ranges, offset, count, 4, false);
+        }
+        if (!r.sequence(1, count, offset) || !r.read(f) || !r.read(f)) return ranges;  // occupied
     }
     return ranges;
 }

@@ -44,7 +44,8 @@ struct Cdr {
     }
 };
 
-// A keyframe: `points` x y z intensity points of a scan around the sensor, a 20 x 60 descriptor.
+// A keyframe: `points` x y z intensity points of a scan around the sensor, two 20 x 60
+// descriptors (Scan Context, ScanContext++).
 std::vector<std::uint8_t> keyframe(int points, std::uint32_t seed) {
     std::mt19937 rng(seed);
     std::uniform_real_distribution<float> angle(0.0f, 6.2832f), range(2.0f, 60.0f), z(-2, 8);
@@ -53,6 +54,7 @@ std::vector<std::uint8_t> keyframe(int points, std::uint32_t seed) {
     c.put(std::uint64_t{42});
     c.put(std::uint64_t{420});
     c.put(std::uint64_t{3});
+    c.put(std::uint32_t{1});  // segment
     c.pose(10.5);
     c.pose(0.25);
     c.header("lidar");
@@ -75,16 +77,24 @@ std::vector<std::uint8_t> keyframe(int points, std::uint32_t seed) {
         const float p[4] = {r * std::cos(a), r * std::sin(a), z(rng), std::floor(r)};
         c.w.bytes(p, sizeof p);
     }
-    c.put(std::uint8_t{1});  // is_dense
-    c.put(std::uint8_t{0});  // descriptor: kind, rings, sectors, max_range, values, ...
-    c.put(std::uint16_t{20});
-    c.put(std::uint16_t{60});
-    c.put(80.0f);
-    std::vector<float> values(1200);
-    for (float& v : values) v = std::round(z(rng) * 100) / 100;
-    c.floats(values);
-    c.floats({});
-    c.floats(std::vector<float>(values.begin(), values.begin() + 20));
+    c.put(std::uint8_t{1});             // is_dense
+    for (std::uint8_t kind : {0, 1}) {  // kind, rings, sectors, max_range, values, spreads, ...
+        c.put(kind);
+        c.put(std::uint16_t{20});
+        c.put(std::uint16_t{60});
+        c.put(80.0f);
+        std::vector<float> values(1200);
+        for (std::size_t i = 0; i < values.size(); ++i)  // heights, 0 in empty bins
+            values[i] = i % 3 == 0 ? 0.0f : z(rng);
+        c.floats(values);
+        std::vector<float> spreads;
+        for (int i = 0; kind == 1 && i < 1200; ++i) spreads.push_back(std::abs(z(rng)) / 8);
+        c.floats(spreads);
+        c.put(std::uint32_t{1200});  // occupied: every third bin empty
+        for (int i = 0; i < 1200; ++i) c.put(std::uint8_t(i % 3 != 0));
+        c.put(0.0f);   // min_range
+        c.put(1.73f);  // sensor_height
+    }
     return c.bytes;
 }
 

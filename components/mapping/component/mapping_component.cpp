@@ -31,6 +31,7 @@
 #include "common/core/io_error.hpp"
 #include "common/core/ply_io.hpp"
 #include "mapping/component/mapper_messages.hpp"
+#include "mapping/component/place_descriptor_msg.hpp"
 #include "mapping/core/map_store.hpp"
 #include "mapping/core/mapper.hpp"
 #include "mapping/params/mapper_params.hpp"
@@ -110,6 +111,7 @@ class MappingComponent : public runtime::Component {
         std::uint32_t session = 0;
         std::deque<convert::OdometryData> waiting;
         bool warned_waiting = false;
+        bool told_loop = false, told_localisation = false;  // about its keyframes' descriptors
         std::uint64_t current_map = 0;
         bool has_current_map = false;
         std::map<std::uint32_t, bool> segment_joined;  // as last reported
@@ -263,7 +265,13 @@ class MappingComponent : public runtime::Component {
     }
 
     void on_keyframe(Robot& robot, const msg::Keyframe& m) {
-        const KeyframeResult r = mapper_->add_keyframe(convert::from_msg(m), robot.session);
+        KeyframeDescriptors given;
+        given.loop = descriptor(robot, m.descriptor, mapper_->config().scan_context, "scan_context",
+                                &robot.told_loop);
+        given.localisation =
+            descriptor(robot, m.localisation_descriptor, mapper_->config().localisation_descriptor,
+                       "localisation_descriptor", &robot.told_localisation);
+        const KeyframeResult r = mapper_->add_keyframe(convert::from_msg(m), robot.session, given);
         if (!r.added) {
             ctx_.log().warn(prefix(robot) + "keyframe " + std::to_string(m.id) +
                             " not added: " + r.message);
@@ -276,6 +284,23 @@ class MappingComponent : public runtime::Component {
         loops_since_optimise_ += r.loops.size();
         if (r.optimisation_due()) optimise();
         publish_correction(robot, m.header.stamp);
+    }
+
+    // A keyframe's descriptor made on the robot (keyframe_digest); made here again from its points
+    // (said once a robot) when it is damaged or made with other settings than the mapping's.
+    MadeDescriptor descriptor(const Robot& robot, const msg::PlaceDescriptor& m,
+                              const ScanContextConfig& mine, const std::string& key, bool* told) {
+        std::string problem;
+        MadeDescriptor d = from_msg(m, &problem);
+        if (problem.empty() && !d.descriptor.empty() && !usable(d, mine))
+            problem = "made with other settings than mapping." + key +
+                      " (set the robot's keyframe_digest as the mapping)";
+        if (!problem.empty() && !*told) {
+            *told = true;
+            ctx_.log().warn(prefix(robot) + "keyframe " + key + " descriptors: " + problem +
+                            "; made here from the keyframe's points instead");
+        }
+        return d;
     }
 
     // The odometry pose corrected by the newest keyframe's local map: T_world_odom * T_odom_lidar.

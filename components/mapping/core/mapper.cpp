@@ -360,6 +360,11 @@ KeyframeResult Mapper::add_keyframe(const common::KeyframeData& input) {
 }
 
 KeyframeResult Mapper::add_keyframe(const common::KeyframeData& input, std::uint32_t session) {
+    return add_keyframe(input, session, KeyframeDescriptors{});
+}
+
+KeyframeResult Mapper::add_keyframe(const common::KeyframeData& input, std::uint32_t session,
+                                    const KeyframeDescriptors& given) {
     KeyframeResult r;
     const auto live = live_.find(session);
     if (live == live_.end()) {
@@ -386,14 +391,16 @@ KeyframeResult Mapper::add_keyframe(const common::KeyframeData& input, std::uint
     const Eigen::Isometry3d T_odom_anchor =
         keyframe.T_odom_lidar * keyframe.T_anchor_lidar.inverse();
     const std::uint64_t node =
-        ensure_node(session, keyframe.local_map_id, T_odom_anchor, std::nullopt);
+        ensure_node(session, keyframe.local_map_id, T_odom_anchor, input.segment);
     // A keyframe of a local map folded already: its pose in the node it went into.
     if (const Folded* f = folded(session, keyframe.local_map_id))
         keyframe.T_anchor_lidar = f->T_node_anchor * keyframe.T_anchor_lidar;
     auto stored = std::make_shared<StoredKeyframe>();
     stored->session = session;
     stored->node = node;
-    stored->descriptor = make_scan_context(input.points, config_.scan_context);
+    const ScanContext* loop_descriptor = usable(given.loop, config_.scan_context);
+    stored->descriptor =
+        loop_descriptor ? *loop_descriptor : make_scan_context(input.points, config_.scan_context);
     std::vector<LoopCandidate> candidates;
     if (!(config_.loop_closure
               ? detector_.search(stored->descriptor, session, keyframe.stamp, &candidates)
@@ -426,8 +433,10 @@ KeyframeResult Mapper::add_keyframe(const common::KeyframeData& input, std::uint
         for (const LoopClosure& l : r.loops) due_loops_ += l.agrees ? 0 : 1;
     }
     if (standing) return r;
+    const ScanContext* localisation = usable(given.localisation, config_.localisation_descriptor);
     stored->localisation_descriptor =
-        make_scan_context(input.points, config_.localisation_descriptor);
+        localisation ? *localisation
+                     : make_scan_context(input.points, config_.localisation_descriptor);
     stored->data.id = keyframe.id;
     stored->data.scan_index = keyframe.scan_index;
     stored->data.local_map_id = keyframe.local_map_id;

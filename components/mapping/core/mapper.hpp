@@ -54,6 +54,7 @@
 #include "common/core/io_error.hpp"
 #include "common/core/local_map_data.hpp"
 #include "common/core/ply_io.hpp"
+#include "mapping/core/keyframe_digest.hpp"
 #include "mapping/core/loop_detector.hpp"
 #include "mapping/core/loop_verifier.hpp"
 #include "mapping/core/map_data.hpp"
@@ -185,6 +186,12 @@ class Mapper {
     LocalMapResult add_local_map(std::shared_ptr<const common::LocalMapData> map,
                                  std::uint32_t session);
     KeyframeResult add_keyframe(const common::KeyframeData& keyframe, std::uint32_t session);
+    // The same with the keyframe's descriptors made elsewhere from its whole scan (a keyframe
+    // digested on the robot, keyframe_digest.hpp: its points are the verification's sample).
+    // Each descriptor made as this Mapper makes it is used as it is; one made otherwise (or none)
+    // is made here from the keyframe's points.
+    KeyframeResult add_keyframe(const common::KeyframeData& keyframe, std::uint32_t session,
+                                const KeyframeDescriptors& given);
 
     // Optimises the graph now; the revision increases when it succeeds.
     OptimisationSummary optimise();

@@ -240,6 +240,29 @@ TEST(MapperSegments, ASegmentLearntFromALateLocalMapRelinksTheEdges) {
     EXPECT_EQ(r.components, 1u);
 }
 
+// A keyframe that says its segment (as the odometry's do) places its node at once: the weak edge
+// is there before any local map of the new segment arrives (over a link, a map comes when
+// finished).
+TEST(MapperSegments, AKeyframeThatSaysItsSegmentMakesTheBreakAtOnce) {
+    const LostAndBack s(1);
+    Mapper mapper(segment_config());
+    for (std::size_t i = 0; i < 16; i += 2) {
+        common::KeyframeData k = s.keyframe(i);
+        k.points.resize(100);
+        k.segment = s.maps[s.map_of[i]].segment;
+        ASSERT_TRUE(mapper.add_keyframe(k).added);
+    }
+    std::vector<std::uint64_t> to;
+    for (const PoseGraphEdge& e : mapper.graph().edges()) {
+        if (is_segment_break(e)) to.push_back(mapper.graph().find(e.to)->local_map_id);
+    }
+    EXPECT_EQ(to, std::vector<std::uint64_t>{2});
+    const std::vector<SegmentStatus> st = mapper.segments();
+    ASSERT_EQ(st.size(), 2u);
+    EXPECT_EQ(st[1].first_local_map, 2u);
+    EXPECT_EQ(mapper.segment_of(*mapper.node_of(3)), 1u);
+}
+
 // A segment that no loop has joined follows the corrections of the map before it: its anchors
 // keep the odometry's best estimate across the break relative to that map. Here a saved graph
 // (the file keeps no segment numbers: the break is known from its edge) is continued and

@@ -17,6 +17,7 @@ Handover MapHandover::after_frame(Odometry& odometry, const FrameResult& frame,
         for (const LocalMap& m : odometry.active_local_maps()) {
             if (m.id() != frame.keyframe->local_map_id) continue;
             h.keyframe = to_keyframe_data(*frame.keyframe, m.T_odom_anchor(), scan_index);
+            h.keyframe->segment = m.segment();
             ++keyframes_;
         }
     }
