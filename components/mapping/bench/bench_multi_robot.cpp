@@ -4,7 +4,8 @@
 // Mapper a session a robot (Mapper::open_session). Prints per robot: scans, path length, ATE
 // (SE(3)-aligned on its own, and with one alignment for both robots: the one map's consistency),
 // as % of its path, the revisits of the other robot's places (within --radius of a place the
-// other one had passed by then) and how many a loop between the robots closed, the loops, and
+// other one had passed by then) and how many a loop between the robots closed (at one of their
+// frames, or joining their local maps: cross_revisits.hpp), the loops, and
 // whether its session is joined to the map; then the graph (nodes, edges, connected parts).
 // LTM_BENCH_LOOPS=1 prints every loop and refusal. `./ltm bench multi_robot --help`.
 #include <algorithm>
@@ -197,6 +198,8 @@ int run(const Args& a) {
             eval::compute_ate(eval::transform_poses(joint.T_ref_est, est[k]), r.reference, false);
         std::size_t intra = 0, cross = 0, cross_false = 0;
         std::vector<std::size_t> frames_with_others;  // this robot's frames in loops with others
+        // Per other robot: the frames of the loops with it (this robot's, the other's).
+        std::vector<std::vector<std::pair<std::size_t, std::size_t>>> with(robots.size());
         for (const mapping::LoopClosure& l : mapper.loops()) {
             const bool query = l.query_session == r.session, match = l.match_session == r.session;
             if (!query && !match) continue;
@@ -220,6 +223,11 @@ int run(const Args& a) {
                 }
             }
             frames_with_others.push_back(query ? l.query_scan : l.match_scan);
+            for (std::size_t o = 0; o < robots.size(); ++o) {
+                if (robots[o]->session == (query ? l.match_session : l.query_session))
+                    with[o].push_back(query ? std::make_pair(l.query_scan, l.match_scan)
+                                            : std::make_pair(l.match_scan, l.query_scan));
+            }
         }
         std::printf(
             "%s: %zu scans, path %.1f m; ATE rmse %.3f m = %.3f %% of its path (aligned alone), "
@@ -232,10 +240,20 @@ int run(const Args& a) {
             std::vector<mapping::bench::RevisitSegment> seg =
                 mapping::bench::cross_revisit_segments(r.reference, robots[o]->reference, a.radius);
             mapping::bench::mark_closed(frames_with_others, &seg);
-            const std::size_t closed =
-                std::count_if(seg.begin(), seg.end(), [](const auto& s) { return s.closed; });
-            std::printf("  revisits of %s's places (within %.1f m): %zu segments, %zu closed\n",
-                        robots[o]->name.c_str(), a.radius, seg.size(), closed);
+            auto count_closed = [&seg] {
+                return std::size_t(
+                    std::count_if(seg.begin(), seg.end(), [](const auto& s) { return s.closed; }));
+            };
+            const std::size_t at_frames = count_closed();
+            mapping::bench::mark_closed_by_local_maps(r.reference, robots[o]->reference,
+                                                      r.frame_map, robots[o]->frame_map, a.radius,
+                                                      with[o], &seg);
+            const std::size_t closed = count_closed();
+            std::printf(
+                "  revisits of %s's places (within %.1f m): %zu segments, %zu closed (%zu by a "
+                "loop at one of their frames, %zu by a loop joining their local maps)\n",
+                robots[o]->name.c_str(), a.radius, seg.size(), closed, at_frames,
+                closed - at_frames);
             for (const auto& s : seg) {
                 if (!s.closed)
                     std::printf("    missed: frames %zu-%zu (%.0f m)\n", s.first, s.last,
