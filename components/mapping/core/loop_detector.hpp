@@ -49,6 +49,9 @@ struct LoopCandidate {
     double distance = 0.0;    // descriptor distance
     double yaw = 0.0;         // R_match_query = Rz(yaw) [rad]
     int shift = 0;            // sectors
+    // Found by place, not by descriptor (the Mapper: another robot's keyframe near this one in
+    // the graph); distance and yaw are still the descriptors' (for the record).
+    bool by_place = false;
 };
 
 class LoopDetector {

@@ -308,6 +308,12 @@ class Mapper {
     void set_path(std::uint32_t session, std::uint64_t local_map_id);
     Eigen::Isometry3d predicted_world(std::uint32_t session, std::uint64_t local_map_id,
                                       const Eigen::Isometry3d& T_odom_anchor) const;
+    // Appends the loop candidate by place (PlaceCandidateConfig) for a keyframe of `session` in
+    // node `node` at T_anchor_lidar, with its descriptor, to the descriptor's candidates.
+    void add_place_candidates(std::uint32_t session, std::uint64_t node,
+                              const Eigen::Isometry3d& T_anchor_lidar,
+                              const ScanContext& descriptor,
+                              std::vector<LoopCandidate>* candidates) const;
     void verify(std::uint32_t session, const common::KeyframeData& keyframe,
                 const std::vector<Eigen::Vector3f>& points, std::uint64_t node,
                 const std::vector<LoopCandidate>& candidates, KeyframeResult* result);

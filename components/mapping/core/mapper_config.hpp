@@ -78,6 +78,21 @@ struct SessionJoinConfig {
     double agree_rotation = 3.0;     // [deg]
 };
 
+// Loop candidates by place between robots (open sessions) that loops have placed together: the
+// graph says where the other robot's keyframes lie, so a keyframe within `radius` of one (world
+// positions) is verified against that keyframe's local map from the graph's estimate, also when
+// their descriptors do not match (the robots cross or turn at the same spot with other headings,
+// or pass a few metres apart: a Scan Context is made for a revisit along the same path). The
+// nearest such keyframe whose local map is not among the descriptor's candidates and not yet
+// joined to the keyframe's by max_loops_per_anchor_pair loops, one a keyframe, after the
+// descriptor's candidates. Default: the verification's reach from a matched keyframe's place
+// (verification.max_correction_translation): a revisit farther than that is not one the
+// verifier accepts from a descriptor either. 0: off. Within one session, and towards an earlier
+// session's (loaded) map, loops are found by descriptor only.
+struct PlaceCandidateConfig {
+    double radius = 8.0;  // [m]
+};
+
 // The keyframes' localisation descriptor (ScanContext++, kind kMeanVariance), saved in the map
 // for global localisation; its range and sensor height follow scan_context's in mapper_preset().
 inline ScanContextConfig default_localisation_descriptor() {
@@ -100,6 +115,7 @@ struct MapperConfig {
     GlobalMapConfig global_map;
     LongTermConfig long_term;
     SessionJoinConfig session_join;
+    PlaceCandidateConfig place_candidates;
     int max_loops_per_keyframe = 1;  // verified loops kept a keyframe (best candidates first)
     // After a keyframe closes a loop, this many following keyframes are not verified (their
     // descriptors are still kept): a revisit is closed every few keyframes, not at each one.
@@ -160,6 +176,7 @@ void visit_own_fields(MapperConfig& c, Visitor&& v) {
     v("session_join.loops", j.loops, at_least(1));
     v("session_join.agree_translation", j.agree_translation, positive);
     v("session_join.agree_rotation", j.agree_rotation, positive);
+    v("place_candidates.radius", c.place_candidates.radius, non_negative);
 }
 
 // Every field but the Scan Context kinds (enums: loaders read scan_context.kind as a name; the

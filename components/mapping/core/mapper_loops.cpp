@@ -5,9 +5,11 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <tuple>
+#include <unordered_map>
 
 #include "mapping/core/drift_distance.hpp"
 #include "mapping/core/mapper.hpp"
@@ -23,6 +25,57 @@ Eigen::Isometry3d yawed(const Eigen::Isometry3d& T, double yaw) {
 }
 
 }  // namespace
+
+void Mapper::add_place_candidates(std::uint32_t session, std::uint64_t node,
+                                  const Eigen::Isometry3d& T_anchor_lidar,
+                                  const ScanContext& descriptor,
+                                  std::vector<LoopCandidate>* candidates) const {
+    const double radius = config_.place_candidates.radius;
+    const PoseGraphNode* own = graph_.find(node);
+    if (!config_.loop_closure || !config_.verify_from_graph || !(radius > 0.0) || !own ||
+        live_.size() < 2)
+        return;  // off, or no other robot's session open
+    const SegmentKey root = placed_root(segment_key(node));
+    const Eigen::Vector3d at = (own->T_world_anchor * T_anchor_lidar).translation();
+    std::set<std::uint64_t> listed;  // the descriptor's candidates' local maps: verified anyway
+    for (const LoopCandidate& c : *candidates) listed.insert(keyframes_[c.match]->node);
+    // Per local map: another open session's, placed with this keyframe's part by loops (the graph
+    // knows where it lies), received, and not yet joined to this one by enough loops.
+    std::unordered_map<std::uint64_t, bool> eligible;
+    auto usable = [&](std::uint64_t n) {
+        const auto [it, fresh] = eligible.try_emplace(n, false);
+        if (!fresh) return it->second;
+        const SegmentKey key = segment_key(n);
+        const int pair_limit = config_.max_loops_per_anchor_pair;
+        it->second = n != node && !listed.count(n) && key.first != session && is_open(key.first) &&
+                     placed_root(key) == root && maps_.count(n) > 0 &&
+                     (pair_limit == 0 || loops_between(n, node) < pair_limit);
+        return it->second;
+    };
+    double best = radius * radius;
+    std::optional<std::uint32_t> nearest;
+    for (std::uint32_t i = 0; i < keyframes_.size(); ++i) {
+        const StoredKeyframe& k = *keyframes_[i];
+        const PoseGraphNode* n = graph_.find(k.node);
+        if (!n || !usable(k.node)) continue;
+        const double d2 =
+            ((n->T_world_anchor * k.data.T_anchor_lidar).translation() - at).squaredNorm();
+        if (d2 <= best) {
+            best = d2;
+            nearest = i;
+        }
+    }
+    if (!nearest) return;
+    const ScanContextMatch m =
+        compare(descriptor, keyframes_[*nearest]->descriptor, config_.scan_context);
+    LoopCandidate c;
+    c.match = *nearest;
+    c.distance = m.valid ? m.distance : std::numeric_limits<double>::quiet_NaN();
+    c.yaw = m.yaw;
+    c.shift = m.shift;
+    c.by_place = true;
+    candidates->push_back(c);
+}
 
 void Mapper::verify(std::uint32_t session, const common::KeyframeData& keyframe,
                     const std::vector<Eigen::Vector3f>& points, std::uint64_t node,
@@ -61,7 +114,13 @@ void Mapper::verify(std::uint32_t session, const common::KeyframeData& keyframe,
         GuessList guesses;
         const bool graph_guess = placed && config_.verify_from_graph;
         if (graph_guess) guesses.push_back(predicted * keyframe.T_anchor_lidar);
-        guesses.push_back(yawed(match.data.T_anchor_lidar, c.yaw));
+        // A candidate by place: the graph's estimate only (the descriptors did not match).
+        if (!c.by_place) guesses.push_back(yawed(match.data.T_anchor_lidar, c.yaw));
+        if (guesses.empty()) {
+            rejection.reason = "a candidate by place whose part is not placed with this one";
+            r->rejected.push_back(rejection);
+            continue;
+        }
         const LoopVerification v =
             verifier_.verify(points, entry->second.serial, *entry->second.stored.data, guesses);
         if (!v.accepted) {
