@@ -57,10 +57,10 @@ void Mapper::add_place_candidates(std::uint32_t session, std::uint64_t node,
     for (std::uint32_t i = 0; i < keyframes_.size(); ++i) {
         const StoredKeyframe& k = *keyframes_[i];
         const PoseGraphNode* n = graph_.find(k.node);
-        if (!n || !usable(k.node)) continue;
+        if (!n) continue;
         const double d2 =
             ((n->T_world_anchor * k.data.T_anchor_lidar).translation() - at).squaredNorm();
-        if (d2 <= best) {
+        if (d2 <= best && usable(k.node)) {  // only the maps within reach are judged
             best = d2;
             nearest = i;
         }
