@@ -5,10 +5,14 @@
 // disk. Sending never blocks the robot: a full link only delays it, an outage leaves the packets
 // on disk, a restarted base station gets everything after what it holds. Nothing here blocks the
 // odometry: its messages are only appended to the journal on arrival.
+// A robot that restarts (a new run) first sends what its earlier runs left unacknowledged in
+// backlog_dir, and numbers its keyframes, local maps and segments on after theirs (robot_ids.hpp:
+// the restart reaches the base station's mapping as a new odometry segment of the same robot).
 #include <dds/dds.h>
 
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
@@ -18,6 +22,7 @@
 #include "link/component/link_clock.hpp"
 #include "link/core/link_journal.hpp"
 #include "link/core/payload_codec.hpp"
+#include "link/core/robot_ids.hpp"
 #include "link/core/send_window.hpp"
 #include "runtime/component.hpp"
 
@@ -79,12 +84,15 @@ class Uplink : public runtime::Component {
         if (!(send.resend_after_s > 0)) p.fail("resend_after_s", "must be > 0");
         if (!(send_period_s_ > 0)) p.fail("send_period_s", "must be > 0");
         if (drain_s_ < 0) p.fail("drain_s", "must be >= 0");
+        send_config_ = send;
         window_ = SendWindow(send);
         run_ = new_run_id();
         JournalConfig jc;
         jc.max_bytes = static_cast<std::uint64_t>(max_mb * (1 << 20));
         try {
             journal_ = std::make_unique<LinkJournal>(dir + "/" + run_hex(run_), jc);
+            ids_ = std::make_unique<RobotIdRenumbering>(dir + "/ids");
+            find_earlier_runs(dir);
         } catch (const common::IoError& e) {
             p.fail("backlog_dir", e.what());
         }
@@ -118,20 +126,88 @@ class Uplink : public runtime::Component {
         ctx.add_timer(1.0, [this] { sync(); });
         ctx.log().info("run " + run_hex(run_) + " of " + robot_ + ": backlog in " +
                        journal_->dir());
+        const RobotIds& o = ids_->offsets();
+        if (!(o == RobotIds{}))
+            ctx.log().info(
+                "this robot ran before: its keyframes, local maps and segments are "
+                "numbered on from " +
+                std::to_string(o.keyframe) + ", " + std::to_string(o.local_map) + " and " +
+                std::to_string(o.segment) +
+                " (the base station takes the restart as a new odometry segment)");
     }
 
     void on_shutdown() override {
         // The robot is stopping: give the link drain_s to take what is still unacknowledged.
         const double until = mono_s() + drain_s_;
-        while (window_.acked() < journal_->last_seq() && mono_s() < until) {
+        while ((window_.acked() < journal_->last_seq() || !earlier_.empty()) && mono_s() < until) {
             pump();
             take_acks();
             dds_sleepfor(DDS_MSECS(20));
         }
+        save_ids();
         report(true);
     }
 
   private:
+    // What an earlier run of this robot left unacknowledged: sent before this run's packets.
+    struct Earlier {
+        std::uint64_t run = 0;
+        std::unique_ptr<LinkJournal> journal;
+        SendWindow window;
+    };
+
+    // Earlier runs' folders in the backlog: those holding packets are sent first, oldest first;
+    // empty ones are removed.
+    void find_earlier_runs(const std::string& dir) {
+        namespace fs = std::filesystem;
+        std::vector<std::pair<std::int64_t, Earlier>> found;
+        std::error_code ec;
+        for (const auto& e : fs::directory_iterator(dir, ec)) {
+            const std::string name = e.path().filename().string();
+            std::uint64_t run = 0;
+            try {
+                run = std::stoull(name, nullptr, 16);
+            } catch (const std::exception&) {
+                continue;
+            }
+            if (!e.is_directory() || run == run_) continue;
+            Earlier r;
+            r.run = run;
+            std::optional<JournalRecord> first;
+            try {
+                r.journal = std::make_unique<LinkJournal>(e.path().string());
+                first = r.journal->read_from(0);
+            } catch (const std::exception& err) {
+                ctx_.log().error("backlog of earlier run " + name +
+                                 " unreadable, left where it is: " + err.what());
+                continue;
+            }
+            if (!r.journal->recovery().empty())
+                ctx_.log().warn("backlog of earlier run " + name + ": " + r.journal->recovery());
+            if (r.journal->empty()) {
+                r.journal.reset();
+                fs::remove_all(e.path(), ec);
+                continue;
+            }
+            r.window = SendWindow(send_config_);
+            ctx_.log().info("earlier run " + name + " left " + std::to_string(r.journal->size()) +
+                            " unacknowledged packets (" + std::to_string(r.journal->bytes() >> 20) +
+                            " MiB): sent first");
+            found.emplace_back(first ? first->stamp_ns : 0, std::move(r));
+        }
+        std::sort(found.begin(), found.end(),
+                  [](const auto& a, const auto& b) { return a.first < b.first; });
+        for (auto& f : found) earlier_.push_back(std::move(f.second));
+    }
+
+    void save_ids() {
+        try {
+            ids_->save();
+        } catch (const std::exception& e) {
+            ctx_.log().warn(std::string("robot ids not saved: ") + e.what());
+        }
+    }
+
     void store(const std::string& topic, const std::string& type,
                const std::vector<std::uint8_t>& cdr, dds_time_t source_ns) {
         JournalRecord r;
@@ -140,7 +216,9 @@ class Uplink : public runtime::Component {
         r.topic = topic;
         r.type = type;
         try {
-            r.payload = encode_payload(type, cdr, codec_);
+            std::vector<std::uint8_t> numbered = cdr;
+            ids_->renumber(type, numbered);
+            r.payload = encode_payload(type, numbered, codec_);
             const std::size_t dropped = journal_->append(r);
             if (dropped > 0) {
                 dropped_ += dropped;
@@ -164,6 +242,7 @@ class Uplink : public runtime::Component {
     void sync() {
         if (!unsynced_) return;
         unsynced_ = false;
+        save_ids();  // before the records that use the numbers are on the disk
         try {
             journal_->sync();
         } catch (const std::exception& e) {
@@ -172,7 +251,11 @@ class Uplink : public runtime::Component {
     }
 
     void on_ack(const msg::LinkAck& m) {
-        if (convert::to_string(m.robot) != robot_ || m.run != run_) return;
+        if (convert::to_string(m.robot) != robot_) return;
+        if (m.run != run_) {
+            on_earlier_ack(m);
+            return;
+        }
         const bool first = !window_.heard_base();
         const std::uint64_t restarts = window_.stats().base_restarts;
         const double now = mono_s();
@@ -189,7 +272,9 @@ class Uplink : public runtime::Component {
         const bool rematched = !first && now - last_ack_s_ >= rematch_after_s_;
         last_ack_s_ = now;
         window_.on_ack(m.through, m.base_run, now);
-        if (rematched) window_.resume_after_silence(now);
+        // Unless the match itself sent everything again already.
+        if (rematched && !matched_again_) window_.resume_after_silence(now);
+        matched_again_ = false;
         if (catch_up_to_ > 0 && window_.acked() >= catch_up_to_) {
             ctx_.log().info("backlog delivered " + seconds(now - resumed_s_) +
                             " after the base station was heard again");
@@ -214,6 +299,25 @@ class Uplink : public runtime::Component {
         }
     }
 
+    void on_earlier_ack(const msg::LinkAck& m) {
+        const auto it = std::find_if(earlier_.begin(), earlier_.end(),
+                                     [&](const Earlier& e) { return e.run == m.run; });
+        if (it == earlier_.end()) return;
+        it->window.on_ack(m.through, m.base_run, mono_s());
+        const std::uint64_t acked = std::min(it->window.acked(), it->journal->last_seq());
+        try {
+            if (acked > it->journal->released_through()) it->journal->release_through(acked);
+        } catch (const std::exception& e) {
+            ctx_.log().warn(std::string("backlog not trimmed: ") + e.what());
+        }
+        if (acked < it->journal->last_seq()) return;
+        const std::string dir = it->journal->dir();
+        ctx_.log().info("the backlog of earlier run " + run_hex(it->run) + " is delivered");
+        earlier_.erase(it);
+        std::error_code ec;
+        std::filesystem::remove_all(dir, ec);
+    }
+
     static std::string seconds(double s) {
         char b[32];
         std::snprintf(b, sizeof b, "%.1f s", s);
@@ -232,30 +336,51 @@ class Uplink : public runtime::Component {
         }
     }
 
+    // Earlier runs' backlogs first, then this run's; nothing while no base station listens (what
+    // a volatile writer sends then reaches nobody, and a base station that never heard of a run
+    // never acknowledges it). When one is matched again, what was in flight goes again.
     void pump() {
+        if (packets_.matched() == 0) {
+            unmatched_ = true;
+            return;
+        }
+        if (unmatched_) {
+            unmatched_ = false;
+            matched_again_ = true;
+            const double now = mono_s();
+            window_.resume_after_silence(now);
+            for (Earlier& e : earlier_) e.window.resume_after_silence(now);
+        }
+        for (Earlier& e : earlier_)
+            if (!pump(e.run, *e.journal, e.window)) return;
+        pump(run_, *journal_, window_);
+    }
+
+    // False when the link is full (or the backlog unreadable): nothing more now.
+    bool pump(std::uint64_t run, const LinkJournal& journal, SendWindow& window) {
         const double now = mono_s();
         while (true) {
             const std::uint64_t first =
-                journal_->empty() ? journal_->last_seq() + 1 : journal_->first_seq();
-            const auto seq = window_.next(first, journal_->last_seq(), now);
-            if (!seq) return;
+                journal.empty() ? journal.last_seq() + 1 : journal.first_seq();
+            const auto seq = window.next(first, journal.last_seq(), now);
+            if (!seq) return true;
             std::optional<JournalRecord> r;
             try {
-                r = journal_->read_from(*seq);
+                r = journal.read_from(*seq);
             } catch (const std::exception& e) {
                 ctx_.log().error(std::string("backlog unreadable: ") + e.what());
-                return;
+                return false;
             }
-            if (!r) return;
-            if (!send(*r, first)) return;  // the link is full: later
-            window_.sent(r->seq, r->payload.size(), now);
+            if (!r) return true;
+            if (!send(run, *r, first)) return false;  // the link is full: later
+            window.sent(r->seq, r->payload.size(), now);
         }
     }
 
-    bool send(const JournalRecord& r, std::uint64_t first_held) {
+    bool send(std::uint64_t run, const JournalRecord& r, std::uint64_t first_held) {
         msg::LinkPacket m{};
         m.robot = const_cast<char*>(robot_.c_str());
-        m.run = run_;
+        m.run = run;
         m.seq = r.seq;
         m.first_seq = first_held;
         m.stamp_ns = r.stamp_ns;
@@ -284,7 +409,10 @@ class Uplink : public runtime::Component {
             std::to_string(s.resent) + " resent, acknowledged through " +
             std::to_string(window_.acked()) + " of " + std::to_string(journal_->last_seq()) +
             "; backlog " + std::to_string(journal_->size()) + " packets (" +
-            std::to_string(journal_->bytes() >> 20) + " MiB)";
+            std::to_string(journal_->bytes() >> 20) + " MiB)" +
+            (earlier_.empty() ? ""
+                              : ", and " + std::to_string(earlier_.size()) +
+                                    " earlier runs' backlogs being sent");
         if (final && window_.acked() < journal_->last_seq()) {
             ctx_.log().warn(line + ": the unacknowledged packets stay in " + journal_->dir());
         } else {
@@ -300,10 +428,15 @@ class Uplink : public runtime::Component {
     double last_ack_s_ = 0.0, resumed_s_ = 0.0;
     std::uint64_t catch_up_to_ = 0;
     std::unique_ptr<LinkJournal> journal_;
+    SendConfig send_config_;
     SendWindow window_;
+    std::unique_ptr<RobotIdRenumbering> ids_;
+    std::vector<Earlier> earlier_;
     std::uint64_t stored_ = 0, stored_bytes_ = 0, wire_bytes_ = 0, dropped_ = 0, send_errors_ = 0;
     PayloadCodecConfig codec_;
     bool unsynced_ = false;
+    bool unmatched_ = true;       // no base station's reader matched (at the last pump)
+    bool matched_again_ = false;  // matched again since the last acknowledgement
     runtime::Publisher<msg::LinkPacket> packets_;
 };
 
