@@ -426,11 +426,15 @@ KeyframeResult Mapper::add_keyframe(const common::KeyframeData& input, std::uint
     own.record.last_stamp = std::max(own.record.last_stamp, keyframe.stamp);
     if (own.cooldown > 0) {
         --own.cooldown;
-    } else if (!candidates.empty()) {
-        r.verified = true;
-        verify(session, keyframe, input.points, node, candidates, &r);
-        if (!r.loops.empty()) own.cooldown = config_.loop_cooldown_keyframes;
-        for (const LoopClosure& l : r.loops) due_loops_ += l.agrees ? 0 : 1;
+    } else {
+        add_place_candidates(session, node, keyframe.T_anchor_lidar, stored->descriptor,
+                             &candidates);
+        if (!candidates.empty()) {
+            r.verified = true;
+            verify(session, keyframe, input.points, node, candidates, &r);
+            if (!r.loops.empty()) own.cooldown = config_.loop_cooldown_keyframes;
+            for (const LoopClosure& l : r.loops) due_loops_ += l.agrees ? 0 : 1;
+        }
     }
     if (standing) return r;
     const ScanContext* localisation = usable(given.localisation, config_.localisation_descriptor);

@@ -3,8 +3,10 @@
 // other stays where its own odometry puts it and says so; the map records each session's robot.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <set>
 
 #include "mapping/core/map_store.hpp"
 #include "mapping/core/mapper.hpp"
@@ -204,6 +206,97 @@ TEST(MapperMultiRobot, LoopsBetweenTwoRobotsAreHeldUntilEnoughAgree) {
     ASSERT_TRUE(o.solved) << o.message;
     EXPECT_EQ(o.components, 2u);
     EXPECT_FALSE(mapper.session_status(s2).joined);
+}
+
+// A drive along any route over the synthetic scene: keyframe i at truth[i], local maps of 4
+// keyframes each, its odometry frame its first pose.
+struct Route {
+    common::PoseList truth, odom;
+    std::vector<std::vector<Eigen::Vector3f>> points;
+    std::vector<common::LocalMapData> maps;
+    double stamp0 = 0.0;
+
+    Route(const std::vector<Eigen::Vector3f>& scene, const common::PoseList& poses, double t0)
+        : truth(poses), stamp0(t0) {
+        for (const Eigen::Isometry3d& T : truth) {
+            points.push_back(test::view(scene, T, 50.0));
+            odom.push_back(truth.front().inverse() * T);
+        }
+        for (std::uint64_t m = 0; 4 * m < truth.size(); ++m) {
+            const std::size_t end = std::min(truth.size(), std::size_t(4 * m + 4));
+            std::vector<std::vector<Eigen::Vector3f>> scans(points.begin() + 4 * m,
+                                                            points.begin() + end);
+            common::PoseList p(odom.begin() + 4 * m, odom.begin() + end);
+            maps.push_back(test::build_local_map(m, p.front(), scans, p));
+        }
+    }
+
+    common::KeyframeData keyframe(std::size_t i) const {
+        common::KeyframeData k;
+        k.id = i;
+        k.scan_index = i;
+        k.local_map_id = i / 4;
+        k.stamp = stamp0 + double(i);
+        k.T_odom_lidar = odom[i];
+        k.T_anchor_lidar = maps[i / 4].T_odom_anchor.inverse() * odom[i];
+        k.points = points[i];
+        return k;
+    }
+};
+
+// Once two robots are placed together by loops, the graph says where the other's keyframes lie: a
+// robot passing the other's place on another path (4 m aside, the other way), where no descriptor
+// matches, still closes loops with the other's local maps there, verified from the graph's
+// estimate. Robot 2 drives east along y = 0 from x = -9; robot 1 at the same time east along
+// y = 0 from x = 0 (the same places, seen alike: the robots join), then back west along y = 4.
+// The descriptors match identical views only here, so whatever closes the way back is a
+// candidate by place.
+TEST(MapperMultiRobot, ARobotPassingAnotherRobotsPlacesOnAnotherPathClosesLoopsByPlace) {
+    const std::vector<Eigen::Vector3f> scene = test::with_dense_ground(test::synthetic_scene(61));
+    common::PoseList out_back, ahead;
+    for (int i = 0; i < 16; ++i) out_back.push_back(test::xy_yaw(3.0 * i, 0.0, 0.0));
+    for (int i = 0; i < 16; ++i) out_back.push_back(test::xy_yaw(45.0 - 3.0 * i, 4.0, 180.0));
+    for (int i = 0; i < 16; ++i) ahead.push_back(test::xy_yaw(-9.0 + 3.0 * i, 0.0, 0.0));
+    const Route r1(scene, out_back, 100.0), r2(scene, ahead, 100.5);
+    MapperConfig c = robots_config();
+    c.loop_detection.max_distance = 1e-3;  // identical views only
+    c.long_term.merge = false;             // robot 2's maps stay its own (not folded into 1's)
+    Mapper mapper(c);
+    const std::uint32_t s1 = mapper.open_session("robot1");
+    const std::uint32_t s2 = mapper.open_session("robot2");
+    for (std::size_t i = 0; i < r1.truth.size(); ++i) {
+        for (const auto& [route, session] : {std::make_pair(&r2, s2), std::make_pair(&r1, s1)}) {
+            if (i >= route->truth.size()) continue;
+            if (i % 4 == 0) {
+                ASSERT_TRUE(mapper.add_local_map(route->maps[i / 4], session).added);
+            }
+            const KeyframeResult k = mapper.add_keyframe(route->keyframe(i), session);
+            ASSERT_TRUE(k.added) << k.message;
+            if (k.optimisation_due()) {
+                ASSERT_TRUE(mapper.optimise().solved);
+            }
+        }
+    }
+    ASSERT_TRUE(mapper.session_status(s2).joined) << mapper.session_status(s2).message;
+    // Every local map of robot 1's way back is joined to one of robot 2's by a loop, each with
+    // the true relative pose.
+    std::set<std::uint64_t> joined;
+    for (const LoopClosure& l : mapper.loops()) {
+        if (l.query_session != s1 || l.match_session != s2 || l.query_scan < 16) continue;
+        joined.insert(l.query_scan / 4);
+        const Eigen::Isometry3d truth = r2.truth[l.match_scan].inverse() * r1.truth[l.query_scan];
+        const Eigen::Isometry3d err = truth.inverse() * l.T_match_query;
+        EXPECT_LT(err.translation().norm(), 0.05) << l.query_scan << " -> " << l.match_scan;
+        EXPECT_LT(angle_deg(err), 0.3) << l.query_scan << " -> " << l.match_scan;
+    }
+    EXPECT_EQ(joined, (std::set<std::uint64_t>{4, 5, 6, 7}));
+    const OptimisationSummary o = mapper.optimise();
+    ASSERT_TRUE(o.solved) << o.message;
+    for (std::size_t i = 16; i < r1.truth.size(); ++i) {
+        const Eigen::Isometry3d err =
+            r1.truth[i].inverse() * *mapper.T_world_lidar(i / 4, r1.odom[i], s1);
+        EXPECT_LT(err.translation().norm(), 0.05) << "keyframe " << i;
+    }
 }
 
 // Robot 2 maps another site (another scene) at the same time: no loop ties it to robot 1, it
