@@ -67,9 +67,11 @@ std::string error_of(const std::string& dir, const std::string& security) {
 
 bool make_site(const std::string& dir, const std::string& args) {
     return std::system(
-               ("bash '" + kScript + "' " + args + " '" + dir + "' robot1 >/dev/null").c_str()) ==
-           0;
+               ("bash '" + kScript + "' " + args + " '" + dir + "' robot1 robot2 >/dev/null")
+                   .c_str()) == 0;
 }
+
+const char* const kRobot1Topic = "rt/robot1/ltm_test/secure";
 
 // What one participant saw, sent from its process through a pipe.
 struct Seen {
@@ -84,11 +86,10 @@ enum class Role { kReader, kWriter, kIntruder };
 // Runs one participant: the reader takes samples until it has 5 from the site's writer and
 // `min_s` passed; the writer waits for a reader, writes 5 samples and waits for their acks; the
 // intruder writes and reads for `min_s`.
-Seen participate(const LaunchConfig& cfg, Role role, double min_s) {
+Seen participate(const LaunchConfig& cfg, Role role, double min_s, const std::string& name) {
     Seen seen;
     Domain domain(cfg);
-    const dds_entity_t topic =
-        domain.topic("rt/ltm_test/secure", MessageTraits<ltm::msg::Header>::descriptor());
+    const dds_entity_t topic = domain.topic(name, MessageTraits<ltm::msg::Header>::descriptor());
     dds_qos_t* qos = dds_create_qos();
     dds_qset_reliability(qos, DDS_RELIABILITY_RELIABLE, DDS_SECS(1));
     dds_qset_history(qos, DDS_HISTORY_KEEP_ALL, 0);
@@ -142,13 +143,15 @@ Seen participate(const LaunchConfig& cfg, Role role, double min_s) {
 // Forks a process running participate(); wait() returns what it saw.
 class Participant {
   public:
-    Participant(const LaunchConfig& cfg, Role role, double min_s) {
+    // `topic`: robot1's by default (a robot's permissions cover its own namespace).
+    Participant(const LaunchConfig& cfg, Role role, double min_s,
+                const std::string& topic = kRobot1Topic) {
         if (pipe(fds_) != 0) return;
         pid_ = fork();
         if (pid_ == 0) {
             Seen seen;
             try {
-                seen = participate(cfg, role, min_s);
+                seen = participate(cfg, role, min_s, topic);
             } catch (const std::exception& e) {
                 fprintf(stderr, "participant: %s\n", e.what());
             }
@@ -251,5 +254,34 @@ TEST(DdsSecurity, OnlyTheSitesParticipantsTalk) {
         EXPECT_EQ(s.trusted, 0) << "a participant without the site's credentials read its data";
         EXPECT_EQ(s.matched, 0) << "a participant without the site's credentials matched";
     }
+    fs::remove_all(dir);
+}
+
+// A robot's permissions cover its own namespace only: robot2, with the site's credentials, may not
+// create a reader or a writer on robot1's topic (and so neither reads nor forges robot1's data),
+// while robot1 and the base station talk on it.
+TEST(DdsSecurity, ARobotCannotReadOrWriteAnotherRobotsTopics) {
+    std::string searched;
+    if (dds_security_plugin_dir(&searched).empty())
+        GTEST_SKIP() << "Cyclone DDS Security plugins not found in " << searched;
+    if (std::system("openssl version >/dev/null 2>&1") != 0) GTEST_SKIP() << "openssl not found";
+    const std::string dir = temp_dir("namespaces");
+    ASSERT_TRUE(make_site(dir + "/site", ""));
+    const int domain = 150 + (::getpid() + 30) % 60;
+    const LaunchConfig base = config(dir, domain, security_yaml(dir + "/site", "base_station"));
+    const LaunchConfig robot1 = config(dir, domain, security_yaml(dir + "/site", "robot1"));
+    const LaunchConfig robot2 = config(dir, domain, security_yaml(dir + "/site", "robot2"));
+
+    Participant other(robot2, Role::kIntruder, 3.0);
+    Participant reader(base, Role::kReader, 3.0);
+    Participant writer(robot1, Role::kWriter, 0.0);
+    Participant own(robot2, Role::kIntruder, 1.0, "rt/robot2/ltm_test/secure");
+    const Seen w = writer.wait(), r = reader.wait(), o = other.wait(), mine = own.wait();
+
+    EXPECT_EQ(w.ok, 1) << "robot1 could not write its own topic";
+    EXPECT_EQ(r.trusted, 5);
+    EXPECT_EQ(r.intruder, 0);
+    EXPECT_EQ(o.ok, 0) << "robot2 was allowed a reader and a writer on robot1's topic";
+    EXPECT_EQ(mine.ok, 1) << "robot2 was refused its own namespace";
     fs::remove_all(dir);
 }

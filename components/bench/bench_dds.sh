@@ -99,14 +99,18 @@ echo "   $(cat "$WORK/inproc.txt")"
 echo "   CPU: $(cat "$WORK/inproc.cpu") s (user+sys, whole process)"
 
 echo "== latency, two processes on loopback (unicast discovery): same scans"
+# With security in the robot's namespace: a robot may publish only there (make_site_certs.sh).
+NS_LINE=""; [ -n "$ROBOT" ] && NS_LINE="namespace: /$ROBOT"
 cat > "$WORK/pub.yaml" <<YAML
 domain_id: $DOMAIN
+$NS_LINE
 $(dds "${ROBOT:-base_station}")
 components:
 $source_entry
 YAML
 cat > "$WORK/sub.yaml" <<YAML
 domain_id: $DOMAIN
+$NS_LINE
 $(dds base_station)
 idle_exit_s: 3
 components:

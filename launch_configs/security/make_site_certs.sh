@@ -5,7 +5,10 @@
 #   OUT_DIR/permissions_ca.{pem,key}   signs the governance and every permissions document
 #   OUT_DIR/governance.{xml,p7s}       discovery, liveliness and data of every topic encrypted
 #   OUT_DIR/NAME/{cert,key}.pem        identity of base_station and of each ROBOT
-#   OUT_DIR/NAME/permissions.{xml,p7s} NAME may publish and subscribe every ROS topic (rt/*)
+#   OUT_DIR/NAME/permissions.{xml,p7s} base_station may publish and subscribe every topic; a
+#                                      robot only its own namespace's (rt/ROBOT/*: run it with
+#                                      --set namespace=/ROBOT), so a robot cannot read or forge
+#                                      another robot's data
 # Idempotent: existing keys and certificates are kept (a robot added later joins the same site);
 # documents are signed again only when missing or older than the permissions CA.
 set -euo pipefail
@@ -141,6 +144,7 @@ for n in "${NAMES[@]}"; do
     # The grant names the certificate's subject; validity from the certificate's own dates.
     not_after=$(date -u +%Y-%m-%dT%H:%M:%S -d "$(openssl x509 -in "$dir/cert.pem" -noout -enddate | cut -d= -f2)")
     old_before=$(sed -n 's:.*<not_before>\(.*\)</not_before>.*:\1:p' "$dir/permissions.xml" 2>/dev/null || true)
+    topics='*'; [ "$n" = base_station ] || topics="rt/$n/*"
     write_if_changed "$dir/permissions.xml" "$(cat <<XML
 <?xml version="1.0" encoding="UTF-8"?>
 <dds xmlns:xsi="http://www.w3.org/2001/XMLSchema-instance"
@@ -151,8 +155,8 @@ for n in "${NAMES[@]}"; do
       <validity><not_before>${old_before:-$NOT_BEFORE}</not_before><not_after>$not_after</not_after></validity>
       <allow_rule>
         $DOMAIN_XML
-        <publish><topics><topic>*</topic></topics></publish>
-        <subscribe><topics><topic>*</topic></topics></subscribe>
+        <publish><topics><topic>$topics</topic></topics></publish>
+        <subscribe><topics><topic>$topics</topic></topics></subscribe>
       </allow_rule>
       <default>DENY</default>
     </grant>
