@@ -85,21 +85,11 @@ class Downlink : public runtime::Component {
 
     // Runs journaled by an earlier start of this base station.
     void load_runs() {
-        namespace fs = std::filesystem;
-        std::error_code ec;
-        if (!fs::exists(dir_, ec)) return;
         std::vector<std::pair<std::int64_t, std::string>> found;  // first stamp, run folder
-        for (const auto& e : fs::directory_iterator(dir_, ec)) {
-            if (!e.is_directory()) continue;
-            const std::string name = e.path().filename().string();
-            std::uint64_t run = 0;
-            try {
-                run = std::stoull(name, nullptr, 16);
-            } catch (const std::exception&) {
-                continue;
-            }
+        for (const auto& [run, path] : run_folders(dir_)) {
+            const std::string name = run_hex(run);
             Run r;
-            r.journal = std::make_unique<LinkJournal>(e.path().string());
+            r.journal = std::make_unique<LinkJournal>(path);
             if (!r.journal->recovery().empty())
                 ctx_.log().warn("journal of run " + name + ": " + r.journal->recovery());
             r.window = std::make_unique<ReceiveWindow>(r.journal->last_seq(), max_held_);

@@ -1,10 +1,13 @@
 #pragma once
-// Clocks and run ids of the link components.
+// Clocks, run ids and run folders of the link components.
 #include <chrono>
 #include <cstdint>
+#include <filesystem>
 #include <random>
 #include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace ltm::link {
 
@@ -31,6 +34,22 @@ inline std::string run_hex(std::uint64_t run) {
     std::ostringstream s;
     s << std::hex << run;
     return s.str();
+}
+
+// The journal folders in `dir` (named by their run's id in hex, run_hex), with their runs; none
+// when `dir` does not exist. Other entries are skipped.
+inline std::vector<std::pair<std::uint64_t, std::string>> run_folders(const std::string& dir) {
+    namespace fs = std::filesystem;
+    std::vector<std::pair<std::uint64_t, std::string>> out;
+    std::error_code ec;
+    for (const auto& e : fs::directory_iterator(dir, ec)) {
+        const std::string name = e.path().filename().string();
+        if (!e.is_directory() || name.empty() || name.size() > 16 ||
+            name.find_first_not_of("0123456789abcdef") != std::string::npos)
+            continue;
+        out.emplace_back(std::stoull(name, nullptr, 16), e.path().string());
+    }
+    return out;
 }
 
 // The robot's name from a namespace: "/robot1" -> "robot1"; "" -> "robot".

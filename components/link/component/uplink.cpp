@@ -159,23 +159,15 @@ class Uplink : public runtime::Component {
     // Earlier runs' folders in the backlog: those holding packets are sent first, oldest first;
     // empty ones are removed.
     void find_earlier_runs(const std::string& dir) {
-        namespace fs = std::filesystem;
         std::vector<std::pair<std::int64_t, Earlier>> found;
-        std::error_code ec;
-        for (const auto& e : fs::directory_iterator(dir, ec)) {
-            const std::string name = e.path().filename().string();
-            std::uint64_t run = 0;
-            try {
-                run = std::stoull(name, nullptr, 16);
-            } catch (const std::exception&) {
-                continue;
-            }
-            if (!e.is_directory() || run == run_) continue;
+        for (const auto& [run, path] : run_folders(dir)) {
+            if (run == run_) continue;
+            const std::string name = run_hex(run);
             Earlier r;
             r.run = run;
             std::optional<JournalRecord> first;
             try {
-                r.journal = std::make_unique<LinkJournal>(e.path().string());
+                r.journal = std::make_unique<LinkJournal>(path);
                 first = r.journal->read_from(0);
             } catch (const std::exception& err) {
                 ctx_.log().error("backlog of earlier run " + name +
@@ -186,7 +178,8 @@ class Uplink : public runtime::Component {
                 ctx_.log().warn("backlog of earlier run " + name + ": " + r.journal->recovery());
             if (r.journal->empty()) {
                 r.journal.reset();
-                fs::remove_all(e.path(), ec);
+                std::error_code ec;
+                std::filesystem::remove_all(path, ec);
                 continue;
             }
             r.window = SendWindow(send_config_);
