@@ -44,6 +44,9 @@ struct Args {
     std::string preset = "vlp32", config, mapping_config, out;
     std::size_t max_frames = 0;
     double radius = 5.0;
+    // The odometry's snapshots of its active local maps (the component's default; robot.yaml sends
+    // finished maps only, 0).
+    int snapshot_every = odometry::HandoverConfig{}.snapshot_every_keyframes;
 };
 
 // One robot: its scans, odometry, hand-over and what it did.
@@ -52,7 +55,7 @@ struct Robot {
     std::uint32_t session = 0;
     std::unique_ptr<mapping::bench::SimSource> source;
     std::unique_ptr<odometry::Odometry> odometry;
-    odometry::MapHandover handover;
+    std::unique_ptr<odometry::MapHandover> handover;
     std::size_t frames = 0;
     common::PoseList odom, reference;
     std::vector<std::uint64_t> frame_map;
@@ -93,6 +96,9 @@ int run(const Args& a) {
         so.session = a.sessions[r];
         robot->source = std::make_unique<mapping::bench::SimSource>(so);
         robot->odometry = std::make_unique<odometry::Odometry>(oc);
+        odometry::HandoverConfig hc;
+        hc.snapshot_every_keyframes = a.snapshot_every;
+        robot->handover = std::make_unique<odometry::MapHandover>(hc);
         robot->frames =
             a.max_frames ? std::min(a.max_frames, robot->source->size()) : robot->source->size();
         robot->reference = robot->source->reference();
@@ -126,7 +132,7 @@ int run(const Args& a) {
             const odometry::FrameResult f = r->odometry->register_frame(r->source->load(i));
             r->odom[i] = f.T_odom_lidar;
             r->frame_map[i] = f.local_map_id;
-            const odometry::Handover h = r->handover.after_frame(*r->odometry, f, i);
+            const odometry::Handover h = r->handover->after_frame(*r->odometry, f, i);
             // As the mapping component: the keyframe, an optimisation when due, then the maps.
             if (h.keyframe) {
                 const mapping::KeyframeResult k = mapper.add_keyframe(*h.keyframe, r->session);
@@ -153,7 +159,7 @@ int run(const Args& a) {
         }
     }
     for (const auto& r : robots) {
-        for (const common::LocalMapData& m : r->handover.finish(*r->odometry))
+        for (const common::LocalMapData& m : r->handover->finish(*r->odometry))
             mapper.add_local_map(m, r->session);
     }
     const mapping::OptimisationSummary final_opt = mapper.optimise();
@@ -306,6 +312,11 @@ int main(int argc, char** argv) {
     app.add_option("--max-frames", a.max_frames, "only the first N scans of each robot (0: all)");
     app.add_option("--radius", a.radius, "a revisit: within this distance [m]")
         ->capture_default_str();
+    app.add_option("--snapshot-every", a.snapshot_every,
+                   "snapshots of the active local maps every N keyframes (0: finished maps only, "
+                   "as robot.yaml sends them)")
+        ->capture_default_str()
+        ->check(CLI::NonNegativeNumber);
     app.add_option("--out", a.out, "write each robot's poses and the map here");
     if (const int code = common::cli::parse(app, argc, argv); code >= 0) return code;
     if (a.sessions.size() < 2) {
