@@ -80,6 +80,15 @@ MapperConfig segment_config() {
     return c;
 }
 
+// The local maps an edge of the weak kind (across a segment break) leads to.
+std::vector<std::uint64_t> break_targets(const Mapper& mapper) {
+    std::vector<std::uint64_t> to;
+    for (const PoseGraphEdge& e : mapper.graph().edges()) {
+        if (is_segment_break(e)) to.push_back(mapper.graph().find(e.to)->local_map_id);
+    }
+    return to;
+}
+
 // Keyframes 0 to count - 1; each local map arrives before its keyframes (a snapshot with its
 // segment); the graph is optimised when a loop is accepted, as the pipeline does.
 std::vector<KeyframeResult> replay(const LostAndBack& s, Mapper& mapper, std::size_t count = 16) {
@@ -212,13 +221,7 @@ TEST(MapperSegments, ASegmentLearntFromALateLocalMapRelinksTheEdges) {
         k.points.resize(100);
         ASSERT_TRUE(mapper.add_keyframe(k).added);
     }
-    auto breaks = [&] {
-        std::vector<std::uint64_t> to;  // local maps an edge of the weak kind leads to
-        for (const PoseGraphEdge& e : mapper.graph().edges()) {
-            if (is_segment_break(e)) to.push_back(mapper.graph().find(e.to)->local_map_id);
-        }
-        return to;
-    };
+    auto breaks = [&] { return break_targets(mapper); };
     EXPECT_TRUE(breaks().empty());
     EXPECT_EQ(mapper.segment_of(*mapper.node_of(3)), 0u);
     ASSERT_TRUE(mapper.add_local_map(s.maps[2]).added);  // segment 1 starts at map 2
@@ -252,11 +255,7 @@ TEST(MapperSegments, AKeyframeThatSaysItsSegmentMakesTheBreakAtOnce) {
         k.segment = s.maps[s.map_of[i]].segment;
         ASSERT_TRUE(mapper.add_keyframe(k).added);
     }
-    std::vector<std::uint64_t> to;
-    for (const PoseGraphEdge& e : mapper.graph().edges()) {
-        if (is_segment_break(e)) to.push_back(mapper.graph().find(e.to)->local_map_id);
-    }
-    EXPECT_EQ(to, std::vector<std::uint64_t>{2});
+    EXPECT_EQ(break_targets(mapper), std::vector<std::uint64_t>{2});
     const std::vector<SegmentStatus> st = mapper.segments();
     ASSERT_EQ(st.size(), 2u);
     EXPECT_EQ(st[1].first_local_map, 2u);
