@@ -21,30 +21,27 @@ double angle_deg(const Eigen::Isometry3d& T) {
     return Eigen::AngleAxisd(T.linear()).angle() / kDeg;
 }
 
-// One robot's drive over a synthetic scene: 16 keyframes 3 m apart along y = y0 from x0 (east,
-// or west when `west`), local maps 0-3 of 4 keyframes each (every robot numbers its own maps from
-// 0). Its odometry starts at the identity where it starts: its odometry frame is its first pose.
-struct Robot {
+// A drive along any route over the synthetic scene: keyframe i at truth[i], local maps of 4
+// keyframes each, its odometry frame its first pose.
+struct Route {
     common::PoseList truth, odom;
     std::vector<std::vector<Eigen::Vector3f>> points;
     std::vector<common::LocalMapData> maps;
     Eigen::Isometry3d T_odom_world = Eigen::Isometry3d::Identity();
     double stamp0 = 0.0;
 
-    Robot(const std::vector<Eigen::Vector3f>& scene, double x0, double y0, bool west, double t0)
-        : stamp0(t0) {
-        for (int i = 0; i < 16; ++i) {
-            truth.push_back(west ? test::xy_yaw(x0 - 3.0 * i, y0, 180.0)
-                                 : test::xy_yaw(x0 + 3.0 * i, y0, 0.0));
-            points.push_back(test::view(scene, truth.back(), 50.0));
+    Route(const std::vector<Eigen::Vector3f>& scene, const common::PoseList& poses, double t0)
+        : truth(poses), T_odom_world(poses.front().inverse()), stamp0(t0) {
+        for (const Eigen::Isometry3d& T : truth) {
+            points.push_back(test::view(scene, T, 50.0));
+            odom.push_back(T_odom_world * T);
         }
-        T_odom_world = truth.front().inverse();
-        for (const Eigen::Isometry3d& T : truth) odom.push_back(T_odom_world * T);
-        for (std::uint64_t m = 0; m < 4; ++m) {
+        for (std::uint64_t m = 0; 4 * m < truth.size(); ++m) {
+            const std::size_t end = std::min(truth.size(), std::size_t(4 * m + 4));
             std::vector<std::vector<Eigen::Vector3f>> scans(points.begin() + 4 * m,
-                                                            points.begin() + 4 * m + 4);
-            common::PoseList poses(odom.begin() + 4 * m, odom.begin() + 4 * m + 4);
-            maps.push_back(test::build_local_map(m, poses.front(), scans, poses));
+                                                            points.begin() + end);
+            common::PoseList p(odom.begin() + 4 * m, odom.begin() + end);
+            maps.push_back(test::build_local_map(m, p.front(), scans, p));
         }
     }
 
@@ -58,6 +55,21 @@ struct Robot {
         k.T_anchor_lidar = maps[i / 4].T_odom_anchor.inverse() * odom[i];
         k.points = points[i];
         return k;
+    }
+};
+
+// One robot's drive over a synthetic scene: 16 keyframes 3 m apart along y = y0 from x0 (east,
+// or west when `west`), local maps 0-3 of 4 keyframes each (every robot numbers its own maps from
+// 0). Its odometry starts at the identity where it starts: its odometry frame is its first pose.
+struct Robot : Route {
+    Robot(const std::vector<Eigen::Vector3f>& scene, double x0, double y0, bool west, double t0)
+        : Route(scene, straight(x0, y0, west), t0) {}
+    static common::PoseList straight(double x0, double y0, bool west) {
+        common::PoseList poses;
+        for (int i = 0; i < 16; ++i)
+            poses.push_back(west ? test::xy_yaw(x0 - 3.0 * i, y0, 180.0)
+                                 : test::xy_yaw(x0 + 3.0 * i, y0, 0.0));
+        return poses;
     }
 };
 
@@ -207,42 +219,6 @@ TEST(MapperMultiRobot, LoopsBetweenTwoRobotsAreHeldUntilEnoughAgree) {
     EXPECT_EQ(o.components, 2u);
     EXPECT_FALSE(mapper.session_status(s2).joined);
 }
-
-// A drive along any route over the synthetic scene: keyframe i at truth[i], local maps of 4
-// keyframes each, its odometry frame its first pose.
-struct Route {
-    common::PoseList truth, odom;
-    std::vector<std::vector<Eigen::Vector3f>> points;
-    std::vector<common::LocalMapData> maps;
-    double stamp0 = 0.0;
-
-    Route(const std::vector<Eigen::Vector3f>& scene, const common::PoseList& poses, double t0)
-        : truth(poses), stamp0(t0) {
-        for (const Eigen::Isometry3d& T : truth) {
-            points.push_back(test::view(scene, T, 50.0));
-            odom.push_back(truth.front().inverse() * T);
-        }
-        for (std::uint64_t m = 0; 4 * m < truth.size(); ++m) {
-            const std::size_t end = std::min(truth.size(), std::size_t(4 * m + 4));
-            std::vector<std::vector<Eigen::Vector3f>> scans(points.begin() + 4 * m,
-                                                            points.begin() + end);
-            common::PoseList p(odom.begin() + 4 * m, odom.begin() + end);
-            maps.push_back(test::build_local_map(m, p.front(), scans, p));
-        }
-    }
-
-    common::KeyframeData keyframe(std::size_t i) const {
-        common::KeyframeData k;
-        k.id = i;
-        k.scan_index = i;
-        k.local_map_id = i / 4;
-        k.stamp = stamp0 + double(i);
-        k.T_odom_lidar = odom[i];
-        k.T_anchor_lidar = maps[i / 4].T_odom_anchor.inverse() * odom[i];
-        k.points = points[i];
-        return k;
-    }
-};
 
 // Once two robots are placed together by loops, the graph says where the other's keyframes lie: a
 // robot passing the other's place on another path (4 m aside, the other way), where no descriptor

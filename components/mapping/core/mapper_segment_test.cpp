@@ -89,6 +89,17 @@ std::vector<std::uint64_t> break_targets(const Mapper& mapper) {
     return to;
 }
 
+// Every other keyframe (few points: no loops), before any local map arrives; each saying its
+// segment, as the odometry's do, or not.
+void add_keyframes_without_maps(const LostAndBack& s, Mapper& mapper, bool say_segment) {
+    for (std::size_t i = 0; i < 16; i += 2) {
+        common::KeyframeData k = s.keyframe(i);
+        k.points.resize(100);
+        if (say_segment) k.segment = s.maps[s.map_of[i]].segment;
+        ASSERT_TRUE(mapper.add_keyframe(k).added);
+    }
+}
+
 // Keyframes 0 to count - 1; each local map arrives before its keyframes (a snapshot with its
 // segment); the graph is optimised when a loop is accepted, as the pipeline does.
 std::vector<KeyframeResult> replay(const LostAndBack& s, Mapper& mapper, std::size_t count = 16) {
@@ -216,11 +227,7 @@ TEST(MapperSegments, AnOptimisationAppliedFromElsewhereJoinsTheSegmentAlike) {
 TEST(MapperSegments, ASegmentLearntFromALateLocalMapRelinksTheEdges) {
     const LostAndBack s(1);
     Mapper mapper(segment_config());
-    for (std::size_t i = 0; i < 16; i += 2) {
-        common::KeyframeData k = s.keyframe(i);
-        k.points.resize(100);
-        ASSERT_TRUE(mapper.add_keyframe(k).added);
-    }
+    add_keyframes_without_maps(s, mapper, false);
     auto breaks = [&] { return break_targets(mapper); };
     EXPECT_TRUE(breaks().empty());
     EXPECT_EQ(mapper.segment_of(*mapper.node_of(3)), 0u);
@@ -249,12 +256,7 @@ TEST(MapperSegments, ASegmentLearntFromALateLocalMapRelinksTheEdges) {
 TEST(MapperSegments, AKeyframeThatSaysItsSegmentMakesTheBreakAtOnce) {
     const LostAndBack s(1);
     Mapper mapper(segment_config());
-    for (std::size_t i = 0; i < 16; i += 2) {
-        common::KeyframeData k = s.keyframe(i);
-        k.points.resize(100);
-        k.segment = s.maps[s.map_of[i]].segment;
-        ASSERT_TRUE(mapper.add_keyframe(k).added);
-    }
+    add_keyframes_without_maps(s, mapper, true);
     EXPECT_EQ(break_targets(mapper), std::vector<std::uint64_t>{2});
     const std::vector<SegmentStatus> st = mapper.segments();
     ASSERT_EQ(st.size(), 2u);
