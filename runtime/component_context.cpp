@@ -1,5 +1,7 @@
 #include "runtime/component_context.hpp"
 
+#include <algorithm>
+
 #include "runtime/dds_error.hpp"
 #include "runtime/raw_cdr.hpp"
 #include "runtime/topic_names.hpp"
@@ -98,6 +100,17 @@ void ComponentContext::attach(const Subscription& s) {
         check_dds(dds_waitset_attach(waitset_, s.readcond, 0), "attaching a read condition");
 }
 
+bool ComponentContext::Subscription::duplicate(const dds_sample_info_t& info) {
+    auto [it, fresh] = last_source_time.try_emplace(info.publication_handle, info.source_timestamp);
+    if (fresh) return false;
+    if (it->second == info.source_timestamp) {
+        ++duplicates;
+        return true;
+    }
+    it->second = info.source_timestamp;
+    return false;
+}
+
 QosProfile ComponentContext::role_profile(const std::string& topic, TopicRole declared) {
     return domain_.profile(resolve(topic), declared);
 }
@@ -170,6 +183,24 @@ bool ComponentContext::sleep_until(std::chrono::steady_clock::time_point deadlin
     return !sleep_cv_.wait_until(lock, deadline, [this] { return stop_.load(); });
 }
 
+void ComponentContext::report_output(const std::string& what, const std::string& path, bool ok,
+                                     const std::string& detail) {
+    std::lock_guard<std::mutex> lock(outputs_mutex_);
+    for (auto& o : outputs_) {
+        if (o.what == what && o.path == path) {
+            o.ok = ok;
+            o.detail = detail;
+            return;
+        }
+    }
+    outputs_.push_back({what, path, ok, detail});
+}
+
+std::vector<ComponentContext::Output> ComponentContext::outputs() const {
+    std::lock_guard<std::mutex> lock(outputs_mutex_);
+    return outputs_;
+}
+
 bool ComponentContext::has_role_override(const std::string& topic) {
     const std::string abs = resolve(topic);
     return domain_.role(abs, TopicRole::kSensor) != TopicRole::kSensor ||
@@ -185,18 +216,34 @@ void ComponentContext::finished() {
 
 namespace {
 
-// Writes with `write` until it succeeds, retrying while a keep-all reader is full.
+// The source timestamp of the next sample of `h`: now, strictly after the writer's previous one.
+// A write retried after a timeout keeps its timestamp, so that a reader which already took the
+// sample (another reader was full) recognises the copy (ComponentRunner drops it).
+dds_time_t next_source_time(WriterHandle& h) {
+    dds_time_t last = h.last_source_time.load();
+    while (true) {
+        const dds_time_t t = std::max<dds_time_t>(dds_time(), last + 1);
+        if (h.last_source_time.compare_exchange_weak(last, t)) return t;
+    }
+}
+
+// Writes with `write(timestamp)` until it succeeds, retrying while a keep-all reader is full.
 template <class Write>
 bool write_with_backpressure(WriterHandle& h, Write&& write) {
+    const dds_time_t ts = next_source_time(h);
     while (true) {
-        const dds_return_t rc = write();
+        const dds_return_t rc = write(ts);
         if (rc == DDS_RETCODE_OK) {
             ++h.published;
             return true;
         }
         // Back-pressure: a keep-all reader's queue is full. Retry until it drains or we stop.
-        if (rc == DDS_RETCODE_TIMEOUT && h.profile.keep_all && !(h.stop && h.stop->load()))
+        // Readers that took the sample before the timeout drop the retry's copy (same writer,
+        // same source timestamp): each sample is delivered exactly once.
+        if (rc == DDS_RETCODE_TIMEOUT && h.profile.keep_all && !(h.stop && h.stop->load())) {
+            ++h.retried;
             continue;
+        }
         const std::uint64_t n = ++h.failed;
         if (n <= 3 || (n & (n - 1)) == 0)
             h.log.warn("publishing on " + h.topic + " failed (" + dds_strretcode(rc) + "), " +
@@ -208,11 +255,13 @@ bool write_with_backpressure(WriterHandle& h, Write&& write) {
 }  // namespace
 
 bool write_sample(WriterHandle& h, const void* sample) {
-    return write_with_backpressure(h, [&] { return dds_write(h.writer, sample); });
+    return write_with_backpressure(
+        h, [&](dds_time_t ts) { return dds_write_ts(h.writer, sample, ts); });
 }
 
 bool write_raw(RawWriterHandle& h, const std::uint8_t* cdr, std::size_t size) {
-    return write_with_backpressure(h, [&] { return write_cdr(h.writer, h.type, cdr, size); });
+    return write_with_backpressure(
+        h, [&](dds_time_t ts) { return write_cdr(h.writer, h.type, cdr, size, ts); });
 }
 
 }  // namespace ltm::runtime

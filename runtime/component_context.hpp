@@ -84,6 +84,19 @@ class ComponentContext {
     // True when the launch config's `topics:` section sets the role of this declared topic.
     bool has_role_override(const std::string& topic);
 
+    // What a component wrote for the user (a map, a recording, a mesh): the host lists every
+    // output when it stops and exits non-zero, naming it, when one could not be saved. Any
+    // thread. `detail`: one line (what it holds, or why it failed).
+    struct Output {
+        std::string what;  // "map", "maintained map", "recording", "mesh", ...
+        std::string path;
+        bool ok = true;
+        std::string detail;
+    };
+    void report_output(const std::string& what, const std::string& path, bool ok,
+                       const std::string& detail = "");
+    std::vector<Output> outputs() const;
+
     // The absolute ROS name a declared topic resolves to (remap and namespace applied).
     std::string resolve(const std::string& topic);
     // Throws ConfigError for a remap of a topic the component never declared.
@@ -97,6 +110,13 @@ class ComponentContext {
         std::function<void(const void*)> handler;  // typed samples
         RawHandler raw_handler;                    // or raw CDR
         std::vector<std::uint8_t> buffer;          // reused by raw takes
+        // Each writer's last source timestamp: a sample with the same writer and timestamp as
+        // the previous one is the copy of a write retried after back-pressure (write_sample)
+        // and is dropped, so that a handler sees every sample exactly once.
+        std::map<dds_instance_handle_t, dds_time_t> last_source_time;
+        std::uint64_t duplicates = 0;
+        // True for a sample already delivered (and remembers this one).
+        bool duplicate(const dds_sample_info_t& info);
     };
     struct Timer {
         double period_s = 0;
@@ -142,6 +162,8 @@ class ComponentContext {
     std::condition_variable sleep_cv_;
     bool source_ = false;
     std::atomic<bool> finished_{false};
+    mutable std::mutex outputs_mutex_;
+    std::vector<Output> outputs_;  // the last report of each (what, path)
 };
 
 }  // namespace ltm::runtime

@@ -84,6 +84,27 @@ bool ComponentRunner::idle() const {
     return true;
 }
 
+void ComponentRunner::begin(const char* activity) {
+    activity_ = activity;
+    busy_since_ = std::chrono::steady_clock::now().time_since_epoch().count();
+}
+
+bool ComponentRunner::making_progress(std::chrono::steady_clock::duration limit) const {
+    if (done_ || !started_) return true;
+    const std::int64_t since = busy_since_;
+    if (since == 0) return true;
+    return std::chrono::steady_clock::now().time_since_epoch().count() - since < limit.count();
+}
+
+std::string ComponentRunner::activity() const {
+    if (done_) return "done";
+    if (busy_since_ == 0) return "waiting for input";
+    const std::string a = activity_.load();
+    return a == "on_activate" || a == "on_deactivate" || a == "on_shutdown" || a == "a timer"
+               ? a
+               : "its handler of " + a;
+}
+
 void ComponentRunner::fail(const std::string& where, const std::string& what) {
     {
         std::lock_guard<std::mutex> lock(mutex_);
@@ -105,21 +126,27 @@ bool ComponentRunner::dispatch_one_round() {
                 dds_sample_info_t info;
                 if (take_cdr(s.reader, s.buffer, info) <= 0) continue;
                 any = true;
-                if (!info.valid_data) continue;
+                if (!info.valid_data || s.duplicate(info)) continue;
+                begin(s.topic.c_str());
                 s.raw_handler(s.buffer, info);
+                end();
             } else {
                 Loan loan{s.reader};
                 dds_sample_info_t info;
                 loan.n = dds_take(s.reader, loan.buf, &info, 1, 1);
                 if (loan.n <= 0) continue;
                 any = true;
-                if (!info.valid_data) continue;
+                if (!info.valid_data || s.duplicate(info)) continue;
+                begin(s.topic.c_str());
                 s.handler(loan.buf[0]);
+                end();
             }
         } catch (const std::exception& e) {
+            end();
             fail("its handler of " + s.topic, e.what());
             return any;
         } catch (...) {
+            end();
             fail("its handler of " + s.topic, "unknown exception");
             return any;
         }
@@ -131,12 +158,16 @@ bool ComponentRunner::dispatch_one_round() {
 void ComponentRunner::run() {
     using clock = std::chrono::steady_clock;
     auto lifecycle = [this](const char* stage, void (Component::*hook)()) {
+        begin(stage);
         try {
             (component_.get()->*hook)();
+            end();
             return true;
         } catch (const std::exception& e) {
+            end();
             fail(stage, e.what());
         } catch (...) {
+            end();
             fail(stage, "unknown exception");
         }
         return false;
@@ -161,11 +192,17 @@ void ComponentRunner::run() {
                 if (t.period_s == 0) {
                     if (ctx_->is_finished()) continue;
                     looping = true;
-                    if (!input) t.fn();
+                    if (!input) {
+                        begin("a timer");
+                        t.fn();
+                        end();
+                    }
                     continue;
                 }
                 if (now >= t.next) {
+                    begin("a timer");
                     t.fn();
+                    end();
                     const auto period = std::chrono::duration_cast<clock::duration>(
                         std::chrono::duration<double>(t.period_s));
                     t.next += period;
@@ -174,8 +211,10 @@ void ComponentRunner::run() {
                 }
                 next = std::min(next, t.next);
             } catch (const std::exception& e) {
+                end();
                 fail("a timer", e.what());
             } catch (...) {
+                end();
                 fail("a timer", "unknown exception");
             }
         }

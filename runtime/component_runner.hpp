@@ -10,6 +10,7 @@
 #include <mutex>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "runtime/component.hpp"
 
@@ -39,6 +40,13 @@ class ComponentRunner {
     // True when the thread is waiting for input and no input is queued.
     bool idle() const;
     std::uint64_t dispatched() const { return dispatched_; }
+    // True unless the thread has been inside one handler, timer or lifecycle step for longer
+    // than `limit` (the watchdog's test of progress; waiting for input is progress).
+    bool making_progress(std::chrono::steady_clock::duration limit) const;
+    // The outputs the component reported (ComponentContext::report_output).
+    std::vector<ComponentContext::Output> outputs() const { return ctx_->outputs(); }
+    // What it is doing now, for a stop that takes long: "on_shutdown", "a handler of TOPIC", ...
+    std::string activity() const;
 
   private:
     void run();
@@ -52,6 +60,12 @@ class ComponentRunner {
     std::thread thread_;
     std::atomic<bool> started_{false}, done_{false}, failed_{false}, waiting_{false};
     std::atomic<std::uint64_t> dispatched_{0};
+    // steady_clock ticks when the current step began (0: waiting); the step's name.
+    std::atomic<std::int64_t> busy_since_{0};
+    std::atomic<const char*> activity_{
+        "starting"};  // points at a literal or a topic string that lives on
+    void begin(const char* activity);
+    void end() { busy_since_ = 0; }
     mutable std::mutex mutex_;
     std::condition_variable done_cv_;
     std::string failure_;

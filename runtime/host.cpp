@@ -3,16 +3,58 @@
 #include <malloc.h>
 #include <signal.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 
 #include "runtime/logging.hpp"
+#include "runtime/systemd_notify.hpp"
 
 namespace ltm::runtime {
 namespace {
 
 Logger g_log("host");
+
+std::string seconds_text(double s) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, s < 10 ? "%.1f s" : "%.0f s", s);
+    return buf;
+}
+
+// Feeds systemd's watchdog every third of its interval while every component makes progress
+// (waiting for input counts; one handler, timer or stop step running for more than half the
+// interval does not): a component stuck in a loop gets the service restarted.
+class Watchdog {
+  public:
+    Watchdog(const SystemdNotifier& systemd,
+             const std::vector<std::unique_ptr<ComponentRunner>>& runners)
+        : systemd_(systemd), runners_(runners), interval_(systemd.watchdog_interval()) {}
+    void poll() {
+        if (interval_.count() <= 0) return;
+        const auto now = std::chrono::steady_clock::now();
+        if (now < next_) return;
+        next_ = now + interval_ / 3;
+        for (const auto& r : runners_) {
+            if (!r->making_progress(interval_ / 2)) {
+                if (stuck_ != r->name())
+                    g_log.error("watchdog: component '" + r->name() + "' makes no progress (in " +
+                                r->activity() + "); systemd's watchdog is no longer fed");
+                stuck_ = r->name();
+                return;
+            }
+        }
+        stuck_.clear();
+        systemd_.notify("WATCHDOG=1");
+    }
+
+  private:
+    const SystemdNotifier& systemd_;
+    const std::vector<std::unique_ptr<ComponentRunner>>& runners_;
+    std::chrono::microseconds interval_;
+    std::chrono::steady_clock::time_point next_{};
+    std::string stuck_;
+};
 
 }  // namespace
 
@@ -111,6 +153,9 @@ int Host::run() {
     g_log.info("running " + std::to_string(runners_.size()) + " components on DDS domain " +
                std::to_string(config_.domain_id) + " (configured in " +
                std::to_string(static_cast<int>(startup_ms_)) + " ms)");
+    const SystemdNotifier systemd;
+    systemd.notify("READY=1\nSTATUS=running " + std::to_string(runners_.size()) + " components");
+    Watchdog watchdog(systemd, runners_);
     bool has_sources = false;
     for (const auto& r : runners_) has_sources |= r->is_source();
 
@@ -127,10 +172,11 @@ int Host::run() {
         const int sig = sigtimedwait(&set, nullptr, &wait);
         if (sig == SIGINT || sig == SIGTERM) {
             g_log.info(std::string("received ") + (sig == SIGINT ? "SIGINT" : "SIGTERM") +
-                       ", shutting down");
+                       ", stopping (deadline " + seconds_text(config_.shutdown_timeout_s) + ")");
             signalled = true;
             break;
         }
+        watchdog.poll();
         if (stop_) break;
         if (handle_failures(exit_code)) break;
         if (has_sources && config_.exit_when_sources_done) {
@@ -160,39 +206,74 @@ int Host::run() {
             }
         }
     }
-
-    // A signal asks for a quick stop; a finished run may take longer for final saves.
-    const double budget =
-        (signalled || stop_) ? config_.shutdown_timeout_s : config_.finish_timeout_s;
-    const auto deadline = clock::now() + std::chrono::duration_cast<clock::duration>(
-                                             std::chrono::duration<double>(budget));
-    // Stop in launch-config order (sources first, sinks last): what a component publishes while
-    // it shuts down (its last local map, say) still reaches the components listed after it.
-    bool timed_out = false;
-    for (auto& r : runners_) {
-        r->request_stop();
-        if (!r->wait_done(deadline)) {
-            g_log.error("component '" + r->name() + "' did not stop within " +
-                        std::to_string(budget) + " s");
-            timed_out = true;
-            break;
-        }
-    }
+    systemd.notify("STOPPING=1");
+    const bool timed_out = stop_components((signalled || stop_) ? config_.shutdown_timeout_s
+                                                                : config_.finish_timeout_s);
+    for (auto& r : runners_)
+        if (r->failed() && exit_code == 0) exit_code = 1;
+    const bool all_saved = report_outputs();
     if (timed_out) {
-        // Give the others what is left of a short grace to flush their outputs.
-        for (auto& r : runners_) r->request_stop();
-        for (auto& r : runners_)
-            r->wait_done(std::max(deadline, clock::now()) + std::chrono::milliseconds(200));
-    }
-    if (timed_out) {
+        g_log.error("stopped with a component still running: what it had not saved is lost");
         // A stuck component thread cannot be joined; leave without running destructors.
         std::fflush(nullptr);
         std::_Exit(3);
     }
-    for (auto& r : runners_)
-        if (r->failed() && exit_code == 0) exit_code = 1;
-    g_log.info(exit_code == 0 ? "stopped cleanly" : "stopped after a component failure");
+    if (!all_saved && exit_code == 0) exit_code = 4;
+    if (exit_code == 0)
+        g_log.info("stopped cleanly");
+    else if (exit_code == 4)
+        g_log.error("stopped, but an output could not be saved (above)");
+    else
+        g_log.error("stopped after a component failure");
     return exit_code;
+}
+
+bool Host::stop_components(double budget) {
+    using clock = std::chrono::steady_clock;
+    const auto start = clock::now();
+    const auto deadline =
+        start + std::chrono::duration_cast<clock::duration>(std::chrono::duration<double>(budget));
+    // Stop in launch-config order (sources first, sinks last): what a component publishes while
+    // it shuts down (its last local map, say) still reaches the components listed after it.
+    // A long stop says every 5 s what it waits for.
+    for (auto& r : runners_) {
+        r->request_stop();
+        auto next_note = clock::now() + std::chrono::seconds(5);
+        while (!r->wait_done(std::min(next_note, deadline))) {
+            const double waited = std::chrono::duration<double>(clock::now() - start).count();
+            if (clock::now() >= deadline) {
+                g_log.error("component '" + r->name() + "' did not stop within the " +
+                            seconds_text(budget) + " deadline (still in " + r->activity() +
+                            "; shutdown_timeout_s sets the deadline)");
+                // Give the others what is left of a short grace to flush their outputs.
+                for (auto& o : runners_) o->request_stop();
+                for (auto& o : runners_)
+                    if (o != r) o->wait_done(clock::now() + std::chrono::milliseconds(200));
+                return true;
+            }
+            g_log.info("stopping: waiting for '" + r->name() + "' (" + r->activity() + "), " +
+                       seconds_text(waited) + " of " + seconds_text(budget));
+            next_note += std::chrono::seconds(5);
+        }
+    }
+    return false;
+}
+
+bool Host::report_outputs() const {
+    bool all_ok = true;
+    for (const auto& r : runners_) {
+        for (const auto& o : r->outputs()) {
+            const std::string line = o.what + " (" + r->name() + "): " + o.path +
+                                     (o.detail.empty() ? "" : " (" + o.detail + ")");
+            if (o.ok) {
+                g_log.info("saved " + line);
+            } else {
+                g_log.error("NOT saved: " + line);
+                all_ok = false;
+            }
+        }
+    }
+    return all_ok;
 }
 
 }  // namespace ltm::runtime

@@ -23,7 +23,11 @@ class Host {
     // every thread, see block_stop_signals), request_stop(), every source finished with all input
     // processed, the idle timeout, or a component failure under the `stop` policy. Then every
     // component is deactivated and shut down within the configured timeout.
-    // Returns the process exit code: 0, 1 (a component failed), 3 (shutdown timed out).
+    // Every output the components reported (a map, a recording, a mesh) is listed.
+    // Returns the process exit code: 0 ("stopped cleanly": everything stopped within the
+    // deadline and every output was saved), 1 (a component failed), 3 (a component did not stop
+    // within the deadline: the process exits without waiting for it), 4 (an output could not be
+    // saved; the log names it).
     int run();
     void request_stop() { stop_ = true; }
 
@@ -33,6 +37,11 @@ class Host {
   private:
     bool all_drained();
     bool handle_failures(int& exit_code);
+    // Stops every component in launch-config order within `budget` seconds; true when one did
+    // not stop in time.
+    bool stop_components(double budget);
+    // Logs each component's outputs; false when one could not be saved.
+    bool report_outputs() const;
 
     LaunchConfig config_;
     std::unique_ptr<Domain> domain_;

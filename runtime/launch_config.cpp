@@ -368,7 +368,7 @@ LaunchConfig load_launch_config(const std::string& path,
     cfg.max_restarts = scalar<int>(f, root, "max_restarts", "", 3);
     cfg.exit_when_sources_done = scalar<bool>(f, root, "exit_when_sources_done", "", true);
     cfg.idle_exit_s = scalar<double>(f, root, "idle_exit_s", "", 0.0);
-    cfg.shutdown_timeout_s = scalar<double>(f, root, "shutdown_timeout_s", "", 2.0);
+    cfg.shutdown_timeout_s = scalar<double>(f, root, "shutdown_timeout_s", "", 30.0);
     cfg.finish_timeout_s = scalar<double>(f, root, "finish_timeout_s", "", 60.0);
     const std::string policy = scalar<std::string>(f, root, "on_component_error", "", "stop");
     if (policy == "stop") {

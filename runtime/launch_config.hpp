@@ -66,8 +66,8 @@ struct LaunchConfig {
         true;  // stop once every source finished and all input is processed
     double idle_exit_s =
         0.0;  // hosts without sources: stop after this long without input (0: never)
-    double shutdown_timeout_s = 2.0;  // after SIGINT/SIGTERM
-    double finish_timeout_s = 60.0;   // after the sources finished or the idle exit (final saves)
+    double shutdown_timeout_s = 30.0;  // the stop deadline after SIGINT/SIGTERM (final saves)
+    double finish_timeout_s = 60.0;    // after the sources finished or the idle exit (final saves)
     std::vector<ComponentSpec> components;
 };
 

@@ -22,10 +22,13 @@ struct WriterHandle {
     Logger log{""};
     std::atomic<std::uint64_t> published{0};
     std::atomic<std::uint64_t> failed{0};
+    std::atomic<std::uint64_t> retried{0};        // writes repeated after a back-pressure timeout
+    std::atomic<dds_time_t> last_source_time{0};  // strictly increasing per writer
 };
 
 // Writes one sample; blocks (in slices of max_blocking_s) on a keep-all topic whose readers are
-// full.
+// full. Each sample gets a source timestamp strictly after the writer's previous one; a write
+// retried after a timeout keeps it, so readers recognise a second copy (exactly once).
 bool write_sample(WriterHandle& handle, const void* sample);
 
 // A writer of raw CDR bytes (replay).
@@ -60,6 +63,8 @@ class Publisher {
                    : 0;
     }
     std::uint64_t published() const { return h_ ? h_->published.load() : 0; }
+    // Writes repeated after a back-pressure timeout (each sample still delivered once).
+    std::uint64_t retried() const { return h_ ? h_->retried.load() : 0; }
 
   private:
     std::shared_ptr<WriterHandle> h_;

@@ -53,13 +53,17 @@ const ddsi_sertype* sertype_of(dds_entity_t participant, const dds_topic_descrip
 }
 
 dds_return_t write_cdr(dds_entity_t writer, const ddsi_sertype* type, const std::uint8_t* cdr,
-                       std::size_t size) {
+                       std::size_t size, dds_time_t source_time) {
     ddsrt_iovec_t iov;
     iov.iov_base = const_cast<std::uint8_t*>(cdr);
     iov.iov_len = size;
     ddsi_serdata* sd = ddsi_serdata_from_ser_iov(type, SDK_DATA, 1, &iov, size);
     if (!sd) return DDS_RETCODE_BAD_PARAMETER;
-    return dds_writecdr(writer, sd);  // takes over the reference
+    if (source_time == 0) return dds_writecdr(writer, sd);  // takes over the reference
+    // dds_forwardcdr keeps the serdata's timestamp (dds_writecdr sets it to now).
+    sd->statusinfo = 0;
+    sd->timestamp.v = source_time;
+    return dds_forwardcdr(writer, sd);
 }
 
 int take_cdr(dds_entity_t reader, std::vector<std::uint8_t>& out, dds_sample_info_t& info) {

@@ -16,9 +16,10 @@ namespace ltm::runtime {
 // taken back as serdata carries it. Never null for a valid descriptor (throws DdsError).
 const ddsi_sertype* sertype_of(dds_entity_t participant, const dds_topic_descriptor_t* desc);
 
-// Writes `size` bytes of serialized CDR through `writer`, whose topic has `type`.
+// Writes `size` bytes of serialized CDR through `writer`, whose topic has `type`, with source
+// timestamp `source_time` (now when 0).
 dds_return_t write_cdr(dds_entity_t writer, const ddsi_sertype* type, const std::uint8_t* cdr,
-                       std::size_t size);
+                       std::size_t size, dds_time_t source_time = 0);
 
 // Takes one sample from `reader` as CDR bytes into `out`; returns 1, 0 (none) or a DDS error.
 // `info.valid_data` is false for disposals (then `out` is empty).

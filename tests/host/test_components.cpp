@@ -79,10 +79,34 @@ class BadCloudSource : public runtime::Component {
     runtime::Publisher<msg::PointCloud2> out_;
 };
 
+// Writes `file` in on_shutdown (after `seconds` of work, a stop point every 10 ms) and reports it
+// as an output: saved, or not (a file in a folder that does not exist).
+class SlowSaver : public runtime::Component {
+  public:
+    explicit SlowSaver(runtime::ComponentContext& ctx) : ctx_(ctx) {
+        file_ = ctx.params().get<std::string>("file", "");
+        seconds_ = ctx.params().get<double>("seconds", 0.0);
+    }
+    void on_shutdown() override {
+        std::this_thread::sleep_for(std::chrono::duration<double>(seconds_));
+        std::ofstream out(file_);
+        out << "saved\n";
+        out.close();
+        ctx_.report_output("test file", file_, bool(out), out ? "1 line" : "cannot write");
+    }
+
+  private:
+    runtime::ComponentContext& ctx_;
+    std::string file_;
+    double seconds_ = 0;
+};
+
 }  // namespace
 }  // namespace ltm::tests
 
 LTM_REGISTER_COMPONENT(ltm::tests::Faulty, "test_faulty", "test: throws on its n-th input scan")
+LTM_REGISTER_COMPONENT(ltm::tests::SlowSaver, "test_slow_saver",
+                       "test: saves a file in on_shutdown after a while, reports it")
 LTM_REGISTER_COMPONENT(ltm::tests::Stuck, "test_stuck", "test: blocks in on_shutdown")
 LTM_REGISTER_COMPONENT(ltm::tests::BadCloudSource, "test_bad_cloud_source",
                        "test: publishes a float64 PointCloud2")

@@ -100,8 +100,23 @@ class MappingComponent : public runtime::Component {
         ctx_.log().info(std::to_string(mapper_->keyframes().size()) + " keyframes, " +
                         std::to_string(mapper_->local_map_count()) + " local maps, " +
                         std::to_string(mapper_->loops().size()) + " loops closed");
-        save(map_dir_, nullptr);
-        write_global_map(global_map_file_, nullptr);
+        // The host lists the outputs: what a saved one holds (the parenthesis of the log line),
+        // why one was not saved.
+        auto detail = [](const std::string& line) {
+            const auto open = line.find(" (");
+            return open == std::string::npos || line.back() != ')'
+                       ? line
+                       : line.substr(open + 2, line.size() - open - 3);
+        };
+        std::string map_line, global_line;
+        if (!map_dir_.empty()) {
+            const bool ok = save(map_dir_, &map_line);
+            ctx_.report_output("map", map_dir_, ok, detail(map_line));
+        }
+        if (!global_map_file_.empty()) {
+            const bool ok = write_global_map(global_map_file_, &global_line);
+            ctx_.report_output("global voxel map", global_map_file_, ok, ok ? "" : global_line);
+        }
     }
 
   private:

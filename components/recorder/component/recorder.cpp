@@ -73,6 +73,12 @@ class Recorder : public runtime::Component {
     void on_shutdown() override {
         const AsyncWriterStats st = writer_->close();
         report(true, &st);
+        ctx_.report_output(
+            "recording", file_, !st.failed,
+            st.failed ? st.error
+                      : std::to_string(st.writer.messages) + " messages" +
+                            (st.dropped() ? ", " + std::to_string(st.dropped()) + " dropped"
+                                          : std::string()));
         for (const auto& t : wanted_)
             if (!recording_.count(t))
                 ctx_.log().warn("topic " + t + " was never published; nothing recorded for it");

@@ -61,8 +61,14 @@ class TrajectoryWriter : public runtime::Component {
 
     void on_shutdown() override {
         for (auto& f : files_) {
-            f->flush();
-            ctx_.log().info("wrote " + std::to_string(f->size()) + " poses to " + f->path());
+            try {
+                f->flush();
+                ctx_.log().info("wrote " + std::to_string(f->size()) + " poses to " + f->path());
+                ctx_.report_output("trajectory", f->path(), true,
+                                   std::to_string(f->size()) + " poses");
+            } catch (const std::exception& e) {
+                ctx_.report_output("trajectory", f->path(), false, e.what());
+            }
         }
     }
 
