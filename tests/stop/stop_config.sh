@@ -34,6 +34,7 @@ OUT="${KEEP:-$(mktemp -d "${TMPDIR:-/tmp}/ltm_stop_${name}.XXXXXX")}"
 mkdir -p "$OUT"
 host_pid=""
 cleanup() {
+    trap '' INT TERM  # a second signal must not cut the cleanup short
     [ -n "$host_pid" ] && kill -KILL "$host_pid" 2>/dev/null
     [ -n "$KEEP" ] || rm -rf "$OUT"
 }

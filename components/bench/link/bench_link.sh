@@ -122,9 +122,30 @@ done
 NS_X="ltm_intruder_$TAG"; DEV_XR="ltmi${TAG}x"; DEV_XB="ltmj${TAG}x"; ADDR_X=10.77.0.200
 WORK="$(mktemp -d)"
 PIDS=()
+# Stops everything this run started and removes its namespaces and links, whatever happened
+# (its own failure, a signal: SIGINT from timeout comes twice, to the script and to its group).
 cleanup() {
-    local pid ns
+    # A second signal must not cut the cleanup short (it did under load: namespaces were left).
+    trap '' INT TERM
+    local pid ns left=() waited=0
+    # Every process of the run's namespaces too: one started just before the signal may not be
+    # in PIDS yet.
+    for ns in "${NS_R[@]}" "$NS_BASE" "$NS_X"; do
+        for pid in $(ip netns pids "$ns" 2>/dev/null); do PIDS+=("$pid"); done
+    done
     for pid in "${PIDS[@]}"; do kill -TERM "$pid" 2>/dev/null || true; done
+    # The hosts save and stop within their deadline (the base station's: 60 s); then SIGKILL.
+    while :; do
+        left=()
+        for pid in "${PIDS[@]}"; do kill -0 "$pid" 2>/dev/null && left+=("$pid"); done
+        [ ${#left[@]} -eq 0 ] && break
+        if [ "$waited" -ge 900 ]; then
+            echo "ltm bench link: ${#left[@]} process(es) did not stop within 90 s: killed" >&2
+            for pid in "${left[@]}"; do kill -KILL "$pid" 2>/dev/null || true; done
+            break
+        fi
+        sleep 0.1; waited=$((waited + 1))
+    done
     for pid in "${PIDS[@]}"; do wait "$pid" 2>/dev/null || true; done
     for ns in "${NS_R[@]}" "$NS_BASE" "$NS_X"; do ip netns del "$ns" 2>/dev/null || true; done
     for dev in "${DEV_R[@]}" "$DEV_XR"; do ip link del "$dev" 2>/dev/null || true; done  # when a move failed
@@ -278,6 +299,15 @@ if [ "$INTRUDER" = 1 ]; then
         --set recorder.all=true > "$RUN/intruder.log" 2>&1 &
     intruder_pid=$!; PIDS+=("$intruder_pid")
     mkdir -p "$RUN/intruder"
+    if [ "$SECURITY" = 0 ]; then
+        # Without security the intruder must be listening before the robots start: on a loaded
+        # machine its discovery outlasted a short run and it heard nothing (a false failure of
+        # the control case). It sees the base station's topics first (up to 60 s).
+        for _ in $(seq 1 600); do
+            grep -q "\[recorder\] recording" "$RUN/intruder.log" 2>/dev/null && break
+            sleep 0.1
+        done
+    fi
 fi
 sleep 1
 start=$(date +%s.%N)
