@@ -411,6 +411,10 @@ class Uplink : public runtime::Component {
         } else {
             ctx_.log().info(line);
         }
+        if (final)  // the journal is on disk as it goes: what the base station lacks is kept
+            ctx_.report_output("uplink backlog", journal_->dir(), true,
+                               std::to_string(journal_->last_seq() - window_.acked()) +
+                                   " packets not acknowledged, kept for the next run");
     }
 
     runtime::ComponentContext& ctx_;
