@@ -22,12 +22,6 @@
 #include <optional>
 #include <set>
 
-#include "common/convert/dds_string.hpp"
-#include "common/convert/local_map.hpp"
-#include "common/convert/odometry.hpp"
-#include "common/convert/path.hpp"
-#include "common/convert/status.hpp"
-#include "common/convert/transform.hpp"
 #include "common/core/io_error.hpp"
 #include "common/core/ply_io.hpp"
 #include "mapping/component/mapper_messages.hpp"
@@ -36,6 +30,12 @@
 #include "mapping/core/mapper.hpp"
 #include "mapping/params/mapper_params.hpp"
 #include "runtime/component.hpp"
+#include "runtime/convert/dds_string.hpp"
+#include "runtime/convert/local_map.hpp"
+#include "runtime/convert/odometry.hpp"
+#include "runtime/convert/path.hpp"
+#include "runtime/convert/status.hpp"
+#include "runtime/convert/transform.hpp"
 
 namespace ltm::mapping {
 namespace {

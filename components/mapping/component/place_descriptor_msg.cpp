@@ -1,6 +1,6 @@
 #include "mapping/component/place_descriptor_msg.hpp"
 
-#include "common/convert/dds_string.hpp"
+#include "runtime/convert/dds_string.hpp"
 
 namespace ltm::mapping {
 

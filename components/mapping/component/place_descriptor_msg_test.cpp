@@ -2,8 +2,8 @@
 
 #include <gtest/gtest.h>
 
-#include "common/convert/local_map.hpp"
 #include "mapping/core/test_data.hpp"
+#include "runtime/convert/local_map.hpp"
 #include "runtime/testing/dds_loopback.hpp"
 
 namespace ltm::mapping {

@@ -1,4 +1,4 @@
-#include "common/convert/dds_string.hpp"
+#include "runtime/convert/dds_string.hpp"
 
 namespace ltm::convert {
 

@@ -1,6 +1,6 @@
-#include "common/convert/status.hpp"
+#include "runtime/convert/status.hpp"
 
-#include "common/convert/dds_string.hpp"
+#include "runtime/convert/dds_string.hpp"
 
 namespace ltm::convert {
 

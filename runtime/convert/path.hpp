@@ -3,8 +3,8 @@
 // Every pose of a path carries the path's frame.
 #include <string>
 
-#include "common/convert/owned_message.hpp"
 #include "common/core/trajectory_io.hpp"
+#include "runtime/convert/owned_message.hpp"
 #include "runtime/messages.hpp"
 
 namespace ltm::convert {

@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <string>
 
-#include "common/convert/owned_message.hpp"
+#include "runtime/convert/owned_message.hpp"
 #include "runtime/messages.hpp"
 
 namespace ltm::convert {

@@ -1,6 +1,6 @@
 // LocalMapData -> ltm_msgs/LocalMap (LocalMapBuilder) -> LocalMapData (from_msg), in memory: every
 // field comes back, the odometry segment included.
-#include "common/convert/local_map.hpp"
+#include "runtime/convert/local_map.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,14 +1,14 @@
-// Every message builder of common/convert: build -> message (fields checked) -> back. The
+// Every message builder of runtime/convert: build -> message (fields checked) -> back. The
 // messages are owned: each is freed by its generated free function at the end of the test.
 #include <gtest/gtest.h>
 
-#include "common/convert/geometry.hpp"
-#include "common/convert/loop_closure.hpp"
-#include "common/convert/odometry.hpp"
-#include "common/convert/path.hpp"
-#include "common/convert/pose_graph.hpp"
-#include "common/convert/status.hpp"
-#include "common/convert/transform.hpp"
+#include "runtime/convert/geometry.hpp"
+#include "runtime/convert/loop_closure.hpp"
+#include "runtime/convert/odometry.hpp"
+#include "runtime/convert/path.hpp"
+#include "runtime/convert/pose_graph.hpp"
+#include "runtime/convert/status.hpp"
+#include "runtime/convert/transform.hpp"
 
 using namespace ltm;
 using namespace ltm::convert;

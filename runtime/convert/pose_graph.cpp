@@ -1,7 +1,7 @@
-#include "common/convert/pose_graph.hpp"
+#include "runtime/convert/pose_graph.hpp"
 
-#include "common/convert/dds_string.hpp"
-#include "common/convert/geometry.hpp"
+#include "runtime/convert/dds_string.hpp"
+#include "runtime/convert/geometry.hpp"
 
 namespace ltm::convert {
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "common/convert/owned_message.hpp"
+#include "runtime/convert/owned_message.hpp"
 #include "runtime/messages.hpp"
 
 namespace ltm::convert {

@@ -3,8 +3,8 @@
 #include <string>
 #include <vector>
 
-#include "common/convert/pointcloud2.hpp"
 #include "common/core/local_map_data.hpp"
+#include "runtime/convert/pointcloud2.hpp"
 #include "runtime/messages.hpp"
 
 namespace ltm::convert {

@@ -1,10 +1,10 @@
 // Owned strings and sequences are freed by the generated free functions (no leak, no double free:
 // run under valgrind or ASan to see it); borrowed ones are left alone; reading tolerates nulls.
-#include "common/convert/dds_string.hpp"
+#include "runtime/convert/dds_string.hpp"
 
 #include <gtest/gtest.h>
 
-#include "common/convert/owned_message.hpp"
+#include "runtime/convert/owned_message.hpp"
 
 using namespace ltm;
 using namespace ltm::convert;

@@ -3,7 +3,7 @@
 #include <cstdint>
 #include <string>
 
-#include "common/convert/owned_message.hpp"
+#include "runtime/convert/owned_message.hpp"
 #include "runtime/logging.hpp"
 #include "runtime/messages.hpp"
 

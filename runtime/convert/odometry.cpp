@@ -1,7 +1,7 @@
-#include "common/convert/odometry.hpp"
+#include "runtime/convert/odometry.hpp"
 
-#include "common/convert/dds_string.hpp"
-#include "common/convert/geometry.hpp"
+#include "runtime/convert/dds_string.hpp"
+#include "runtime/convert/geometry.hpp"
 
 namespace ltm::convert {
 

@@ -1,4 +1,4 @@
-#include "common/convert/geometry.hpp"
+#include "runtime/convert/geometry.hpp"
 
 #include <cmath>
 
