@@ -29,12 +29,12 @@
 #include "common/core/progress.hpp"
 #include "common/core/trajectory_io.hpp"
 #include "evaluation/core/ate.hpp"
+#include "map/core/map_store.hpp"
 #include "mapping/bench/graph_bench.hpp"
 #include "mapping/bench/km_memory.hpp"
 #include "mapping/bench/lap_growth.hpp"
 #include "mapping/bench/revisits.hpp"
 #include "mapping/bench/sim_source.hpp"
-#include "mapping/core/map_store.hpp"
 #include "mapping/core/mapper.hpp"
 #include "mapping/params/mapper_params.hpp"
 #include "odometry/core/odometry.hpp"
@@ -258,9 +258,8 @@ int run(const Args& a) {
     }
     mapping::bench::KmMemoryLog km_log;
     mapping::bench::LapGrowthLog lap_log;  // --laps N > 1: growth per lap
-    std::unique_ptr<mapping::MapWriter> lap_writer;
-    if (a.laps > 1 && !a.out.empty())
-        lap_writer = std::make_unique<mapping::MapWriter>(a.out + "/map");
+    std::unique_ptr<map::MapWriter> lap_writer;
+    if (a.laps > 1 && !a.out.empty()) lap_writer = std::make_unique<map::MapWriter>(a.out + "/map");
     std::size_t lap_optimisations = 0;
     // --laps: the last frame of each lap, and the reference to score each lap against.
     const common::PoseList sim_ref = sim_data ? sim_data->reference() : common::PoseList();
@@ -332,7 +331,7 @@ int run(const Args& a) {
             const mapping::KeyframeResult& kr = *f.keyframe;
             auto t0 = Clock::now();
             std::vector<mapping::LoopCandidate> c;
-            shadow.add(mapping::make_scan_context(k.points, mc.scan_context), 0, k.stamp, &c);
+            shadow.add(places::make_scan_context(k.points, mc.scan_context), 0, k.stamp, &c);
             const double detection = ms_since(t0);
             detect.add(detection);
             add.add(f.keyframe_ms);
@@ -408,8 +407,8 @@ int run(const Args& a) {
         if (i) path += (odom[i].translation() - odom[i - 1].translation()).norm();
     }
     std::size_t active = 0;
-    for (const mapping::PoseGraphEdge& e : mapper.graph().edges()) {
-        active += e.kind == mapping::EdgeKind::kLoop && e.active;
+    for (const map::PoseGraphEdge& e : mapper.graph().edges()) {
+        active += e.kind == map::EdgeKind::kLoop && e.active;
     }
     std::printf(
         "keyframes %zu (%zu stored), local maps %zu, graph %zu nodes %zu edges; path %.1f m\n",
@@ -464,8 +463,8 @@ int run(const Args& a) {
         std::size_t false_loops = 0;
         std::vector<std::size_t> queries;
         std::map<std::uint64_t, bool> kept;  // loop edges by query keyframe: still active
-        for (const mapping::PoseGraphEdge& e : mapper.graph().edges()) {
-            if (e.kind == mapping::EdgeKind::kLoop) kept[e.query_keyframe] = e.active;
+        for (const map::PoseGraphEdge& e : mapper.graph().edges()) {
+            if (e.kind == map::EdgeKind::kLoop) kept[e.query_keyframe] = e.active;
         }
         for (const mapping::LoopClosure& l : mapper.loops()) {
             if (l.query_scan >= ref.size() || l.match_scan >= ref.size()) continue;
@@ -526,14 +525,13 @@ int run(const Args& a) {
                   << common::format_kitti_pose(l.T_match_query) << "\n";
         }
         t0 = Clock::now();
-        const mapping::SaveStats s = lap_writer
-                                         ? lap_writer->save(mapper.snapshot())
-                                         : mapping::save_map(a.out + "/map", mapper.snapshot());
+        const map::SaveStats s = lap_writer ? lap_writer->save(mapper.snapshot())
+                                            : map::save_map(a.out + "/map", mapper.snapshot());
         std::printf("map: %s/map, %zu files, %.1f MiB (%.1f MiB/km), saved in %.0f ms\n",
                     a.out.c_str(), s.files_written, double(s.bytes_total) / 1048576.0,
                     path > 0 ? double(s.bytes_total) / 1048576.0 / (path / 1000.0) : 0.0,
                     ms_since(t0));
-        mapping::GlobalMapStats gs;
+        map::GlobalMapStats gs;
         common::write_ply(a.out + "/global_map.ply", mapper.global_map(&gs));
         std::printf("global map: %zu voxels fused from %zu -> %s/global_map.ply\n", gs.fused_voxels,
                     gs.input_voxels, a.out.c_str());

@@ -35,22 +35,22 @@ Eigen::Isometry3d noisy(const Eigen::Isometry3d& T, std::mt19937& rng, double st
 
 }  // namespace
 
-GraphBenchResult run_graph_bench(std::size_t anchors, const MapperConfig& config,
+GraphBenchResult run_graph_bench(std::size_t anchors, const mapping::MapperConfig& config,
                                  std::uint32_t seed) {
     GraphBenchResult out;
     std::mt19937 rng(seed);
-    PoseGraph graph(config.pose_graph);
+    mapping::PoseGraph graph(config.pose_graph);
     std::vector<Eigen::Isometry3d, Eigen::aligned_allocator<Eigen::Isometry3d>> truth;
     Eigen::Isometry3d odom = lap_pose(0);
     for (std::size_t i = 0; i < anchors; ++i) {
         truth.push_back(lap_pose(i));
-        PoseGraphNode n;
+        map::PoseGraphNode n;
         n.id = i;
         n.local_map_id = i;
         if (i > 0) {
             const Eigen::Isometry3d Z = noisy(truth[i - 1].inverse() * truth[i], rng, 0.05, 0.05);
             odom = odom * Z;
-            PoseGraphEdge e;
+            map::PoseGraphEdge e;
             e.from = i - 1;
             e.to = i;
             e.T_from_to = Z;
@@ -64,8 +64,8 @@ GraphBenchResult run_graph_bench(std::size_t anchors, const MapperConfig& config
         }
     }
     auto add_loop = [&](std::size_t q) {
-        PoseGraphEdge e;
-        e.kind = EdgeKind::kLoop;
+        map::PoseGraphEdge e;
+        e.kind = map::EdgeKind::kLoop;
         e.from = q % kLap;
         e.to = q;
         e.T_from_to = noisy(truth[e.from].inverse() * truth[q], rng, 0.05, 0.1);
@@ -86,7 +86,7 @@ GraphBenchResult run_graph_bench(std::size_t anchors, const MapperConfig& config
     out.error_before = worst();
     using Clock = std::chrono::steady_clock;
     auto t0 = Clock::now();
-    OptimisationSummary s = graph.optimise();
+    mapping::OptimisationSummary s = graph.optimise();
     out.first_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
     out.iterations = s.iterations;
     out.solves = s.solves;

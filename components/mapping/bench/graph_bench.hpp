@@ -18,7 +18,7 @@ struct GraphBenchResult {
     int iterations = 0, solves = 0;  // of the first optimisation
 };
 
-GraphBenchResult run_graph_bench(std::size_t anchors, const MapperConfig& config,
+GraphBenchResult run_graph_bench(std::size_t anchors, const mapping::MapperConfig& config,
                                  std::uint32_t seed = 1);
 
 }  // namespace ltm::mapping::bench
