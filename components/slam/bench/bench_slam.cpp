@@ -30,15 +30,15 @@
 #include "common/core/trajectory_io.hpp"
 #include "evaluation/core/ate.hpp"
 #include "map/core/map_store.hpp"
-#include "mapping/bench/graph_bench.hpp"
-#include "mapping/bench/km_memory.hpp"
-#include "mapping/bench/lap_growth.hpp"
 #include "mapping/bench/revisits.hpp"
 #include "mapping/bench/sim_source.hpp"
 #include "mapping/core/mapper.hpp"
 #include "mapping/params/mapper_params.hpp"
 #include "odometry/core/odometry.hpp"
 #include "odometry/params/odometry_params.hpp"
+#include "slam/bench/graph_bench.hpp"
+#include "slam/bench/km_memory.hpp"
+#include "slam/bench/lap_growth.hpp"
 #include "slam/core/slam_pipeline.hpp"
 #include "sources/core/scan_folder.hpp"
 
@@ -201,8 +201,8 @@ common::PoseList read_given_poses(const Args& a, std::size_t frames) {
 
 int graph_bench(std::size_t anchors) {
     const mapping::MapperConfig config;
-    mapping::bench::run_graph_bench(std::min<std::size_t>(anchors, 100), config, 7);  // warm up
-    const mapping::bench::GraphBenchResult r = mapping::bench::run_graph_bench(anchors, config);
+    slam::bench::run_graph_bench(std::min<std::size_t>(anchors, 100), config, 7);  // warm up
+    const slam::bench::GraphBenchResult r = slam::bench::run_graph_bench(anchors, config);
     std::printf("graph: %zu anchors, %zu edges (%zu loops)%s\n", r.nodes, r.edges, r.loops,
                 r.solved ? "" : " NOT SOLVED");
     std::printf(
@@ -256,15 +256,15 @@ int run(const Args& a) {
             "closure\n",
             a.poses.c_str());
     }
-    mapping::bench::KmMemoryLog km_log;
-    mapping::bench::LapGrowthLog lap_log;  // --laps N > 1: growth per lap
+    slam::bench::KmMemoryLog km_log;
+    slam::bench::LapGrowthLog lap_log;  // --laps N > 1: growth per lap
     std::unique_ptr<map::MapWriter> lap_writer;
     if (a.laps > 1 && !a.out.empty()) lap_writer = std::make_unique<map::MapWriter>(a.out + "/map");
     std::size_t lap_optimisations = 0;
     // --laps: the last frame of each lap, and the reference to score each lap against.
     const common::PoseList sim_ref = sim_data ? sim_data->reference() : common::PoseList();
     std::vector<std::size_t> lap_end =
-        a.laps > 1 ? mapping::bench::lap_ends(sim_ref, a.laps) : std::vector<std::size_t>();
+        a.laps > 1 ? slam::bench::lap_ends(sim_ref, a.laps) : std::vector<std::size_t>();
     double path_so_far = 0.0;  // [m] odometry path
 
     slam::SlamPipelineConfig pc;
@@ -289,7 +289,7 @@ int run(const Args& a) {
         }
     };
     // ATE and revisits over frames 0..last (the laps so far), as scored at the end.
-    auto lap_quality = [&](std::size_t last, mapping::bench::LapSample* s) {
+    auto lap_quality = [&](std::size_t last, slam::bench::LapSample* s) {
         if (sim_ref.size() <= last) return;
         common::PoseList est(last + 1), ref(sim_ref.begin(), sim_ref.begin() + last + 1);
         double path = 0.0;
@@ -361,7 +361,7 @@ int run(const Args& a) {
         }
         report_maps(f.handover.local_maps, f.local_maps);
         if (km_log.due(path_so_far)) {
-            mapping::bench::KmSample s;
+            slam::bench::KmSample s;
             s.km = path_so_far / 1000.0;
             s.frame = i;
             s.mapper_mib = double(mapper.memory_bytes()) / 1048576.0;
@@ -373,7 +373,7 @@ int run(const Args& a) {
         }
         if (lap_log.samples().size() < lap_end.size() &&
             (i == lap_end[lap_log.samples().size()] || i + 1 == frames)) {
-            mapping::bench::LapSample s;
+            slam::bench::LapSample s;
             s.lap = lap_log.samples().size() + 1;
             s.frame = i;
             s.mapper_mib = double(mapper.memory_bytes()) / 1048576.0;
@@ -385,7 +385,7 @@ int run(const Args& a) {
             s.edges = mapper.graph().edges().size();
             s.loops = mapper.loops().size();
             s.optimisations = lap_optimisations;
-            s.optimise_p95_ms = mapping::bench::p95(std::vector<double>(
+            s.optimise_p95_ms = slam::bench::p95(std::vector<double>(
                 optimise.v.end() - std::ptrdiff_t(lap_optimisations), optimise.v.end()));
             lap_optimisations = 0;
             lap_quality(i, &s);

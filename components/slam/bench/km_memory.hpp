@@ -9,7 +9,7 @@
 
 #include "common/core/process_memory.hpp"
 
-namespace ltm::mapping::bench {
+namespace ltm::slam::bench {
 
 struct KmSample {
     double km = 0.0;
@@ -40,4 +40,4 @@ class KmMemoryLog {
 // Least-squares slope of y over x; 0 with fewer than two distinct x.
 double fit_slope(const std::vector<double>& x, const std::vector<double>& y);
 
-}  // namespace ltm::mapping::bench
+}  // namespace ltm::slam::bench

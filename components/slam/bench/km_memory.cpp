@@ -1,11 +1,11 @@
-#include "mapping/bench/km_memory.hpp"
+#include "slam/bench/km_memory.hpp"
 
 #include <algorithm>
 #include <cstdlib>
 #include <fstream>
 #include <string>
 
-namespace ltm::mapping::bench {
+namespace ltm::slam::bench {
 
 double fit_slope(const std::vector<double>& x, const std::vector<double>& y) {
     const std::size_t n = std::min(x.size(), y.size());
@@ -64,4 +64,4 @@ void KmMemoryLog::report(std::FILE* out) const {
                  km.front(), km.back(), km.size(), fit_slope(km, mapper), fit_slope(km, resident));
 }
 
-}  // namespace ltm::mapping::bench
+}  // namespace ltm::slam::bench

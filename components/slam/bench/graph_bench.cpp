@@ -1,4 +1,4 @@
-#include "mapping/bench/graph_bench.hpp"
+#include "slam/bench/graph_bench.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -6,7 +6,7 @@
 
 #include "mapping/core/pose_graph.hpp"
 
-namespace ltm::mapping::bench {
+namespace ltm::slam::bench {
 namespace {
 
 constexpr double kDeg = M_PI / 180.0;
@@ -102,4 +102,4 @@ GraphBenchResult run_graph_bench(std::size_t anchors, const mapping::MapperConfi
     return out;
 }
 
-}  // namespace ltm::mapping::bench
+}  // namespace ltm::slam::bench

@@ -6,7 +6,7 @@
 
 #include "mapping/core/mapper_config.hpp"
 
-namespace ltm::mapping::bench {
+namespace ltm::slam::bench {
 
 struct GraphBenchResult {
     std::size_t nodes = 0, edges = 0, loops = 0;
@@ -21,4 +21,4 @@ struct GraphBenchResult {
 GraphBenchResult run_graph_bench(std::size_t anchors, const mapping::MapperConfig& config,
                                  std::uint32_t seed = 1);
 
-}  // namespace ltm::mapping::bench
+}  // namespace ltm::slam::bench

@@ -9,7 +9,7 @@
 
 #include "common/core/trajectory_io.hpp"
 
-namespace ltm::mapping::bench {
+namespace ltm::slam::bench {
 
 struct LapSample {
     std::size_t lap = 0, frame = 0;
@@ -45,4 +45,4 @@ class LapGrowthLog {
 // The p95 of `v` (0 when empty): the value at index floor(0.95 n) of the sorted values.
 double p95(std::vector<double> v);
 
-}  // namespace ltm::mapping::bench
+}  // namespace ltm::slam::bench

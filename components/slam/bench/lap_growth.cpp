@@ -1,9 +1,9 @@
-#include "mapping/bench/lap_growth.hpp"
+#include "slam/bench/lap_growth.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-namespace ltm::mapping::bench {
+namespace ltm::slam::bench {
 namespace {
 
 // "+3.1 %" of b over a; "-" without a base.
@@ -94,4 +94,4 @@ void LapGrowthLog::report(std::FILE* out) const {
                  worst);
 }
 
-}  // namespace ltm::mapping::bench
+}  // namespace ltm::slam::bench
