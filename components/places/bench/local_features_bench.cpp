@@ -331,7 +331,8 @@ int run_speed(const Options& o) {
     // Extraction: a full KITTI scan (the shared data when present, else the repository's
     // quarter-density fixture). Matching: up to 200 query samples of one simulated street scan
     // against up to 1000 samples of a map of the street (1.5 m lattices to get that many).
-    std::string scan_file = "/work/shared/data/kitti/sequences/00/velodyne/000000.bin";
+    std::string scan_file =
+        std::string(LTM_SOURCE_DIR) + "/../shared/data/kitti/sequences/00/velodyne/000000.bin";
     if (!std::filesystem::exists(scan_file)) {
         scan_file =
             std::string(LTM_SOURCE_DIR) + "/tests/fixtures/kitti00_mini/velodyne/000000.bin";
