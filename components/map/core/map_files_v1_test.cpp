@@ -246,7 +246,7 @@ TEST(MapFilesV1, LoadWithoutLocalisationDescriptors) {
 
 TEST(MapFilesV1, SavedAgainGiveTheSameBytes) {
     const LoadedMap loaded = load_map(kFixture.string());
-    const fs::path again = fs::path(LTM_BINARY_DIR) / "mapping_test_maps" / "map_v1_again";
+    const fs::path again = fs::path(LTM_BINARY_DIR) / "map_test_maps" / "map_v1_again";
     fs::remove_all(again);
     SaveOptions options;
     options.keyframes_per_file = 2;

@@ -102,7 +102,7 @@ TEST(MapFilesV2, LoadAsTheMapTheyWereWrittenFrom) {
 TEST(MapFilesV2, SavedAgainGiveTheSameBytes) {
     const fs::path fixture = kTestData / "map_v2";
     const LoadedMap loaded = load_map(fixture.string());
-    const fs::path again = fs::path(LTM_BINARY_DIR) / "mapping_test_maps" / "map_v2_again";
+    const fs::path again = fs::path(LTM_BINARY_DIR) / "map_test_maps" / "map_v2_again";
     fs::remove_all(again);
     SaveOptions options;
     options.keyframes_per_file = 2;

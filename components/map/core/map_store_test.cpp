@@ -21,7 +21,7 @@ namespace {
 namespace fs = std::filesystem;
 
 fs::path fresh_dir(const std::string& name) {
-    const fs::path p = fs::path(LTM_BINARY_DIR) / "mapping_test_maps" / name;
+    const fs::path p = fs::path(LTM_BINARY_DIR) / "map_test_maps" / name;
     fs::remove_all(p);
     return p;
 }
