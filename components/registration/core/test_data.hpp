@@ -1,6 +1,7 @@
 #pragma once
-// Test-only helpers of the mapping tests: real KITTI scans with their reference poses, synthetic
-// scenes, and local maps built from registered scans as the odometry builds them.
+// Test-only helpers (ltm_registration_test_data) of the verification, places, map, mapping and
+// localisation tests: real KITTI scans with their reference poses, synthetic scenes, and local
+// maps built from registered scans as the odometry builds them.
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <string>
