@@ -13,8 +13,8 @@
 
 #include "common/core/io_error.hpp"
 #include "fuzz_util.hpp"
-#include "mapping/core/map_codec.hpp"
-#include "mapping/core/map_store.hpp"
+#include "map/core/map_codec.hpp"
+#include "map/core/map_store.hpp"
 
 namespace fs = std::filesystem;
 
@@ -24,7 +24,7 @@ namespace {
 const std::string& map_dir() {
     static const std::string dir = [] {
         const std::string d = ltm::fuzz::scratch_dir() + "/map";
-        fs::copy(LTM_SOURCE_DIR "/components/mapping/core/testdata/map_v1", d,
+        fs::copy(LTM_SOURCE_DIR "/components/map/core/testdata/map_v1", d,
                  fs::copy_options::recursive | fs::copy_options::overwrite_existing);
         return d;
     }();
@@ -38,52 +38,51 @@ void same_again(const std::string& first, const std::string& second, const char*
 
 void local_map(const std::string& bytes) {
     const std::string once =
-        ltm::mapping::encode_local_map(ltm::mapping::decode_local_map(bytes, "lm.bin"));
-    same_again(once,
-               ltm::mapping::encode_local_map(ltm::mapping::decode_local_map(once, "again.bin")),
+        ltm::map::encode_local_map(ltm::map::decode_local_map(bytes, "lm.bin"));
+    same_again(once, ltm::map::encode_local_map(ltm::map::decode_local_map(once, "again.bin")),
                "local map");
 }
 
 void graph(const std::string& bytes) {
     std::uint64_t revision = 0;
-    std::vector<ltm::mapping::PoseGraphNode> nodes;
-    std::vector<ltm::mapping::PoseGraphEdge> edges;
-    ltm::mapping::decode_graph(bytes, "graph.bin", &revision, &nodes, &edges);
-    const std::string once = ltm::mapping::encode_graph(revision, nodes, edges);
+    std::vector<ltm::map::PoseGraphNode> nodes;
+    std::vector<ltm::map::PoseGraphEdge> edges;
+    ltm::map::decode_graph(bytes, "graph.bin", &revision, &nodes, &edges);
+    const std::string once = ltm::map::encode_graph(revision, nodes, edges);
     nodes.clear();
     edges.clear();
-    ltm::mapping::decode_graph(once, "again.bin", &revision, &nodes, &edges);
-    same_again(once, ltm::mapping::encode_graph(revision, nodes, edges), "graph");
+    ltm::map::decode_graph(once, "again.bin", &revision, &nodes, &edges);
+    same_again(once, ltm::map::encode_graph(revision, nodes, edges), "graph");
 }
 
 void keyframes(const std::string& bytes) {
     std::uint64_t first = 0;
     // With the file's own descriptor settings (format 1 or 2), then the round trip.
-    ltm::mapping::DescriptorSettings settings;
+    ltm::map::DescriptorSettings settings;
     const auto kfs =
-        ltm::mapping::decode_keyframes(bytes, "keyframes.bin", nullptr, &first, nullptr, &settings);
+        ltm::map::decode_keyframes(bytes, "keyframes.bin", nullptr, &first, nullptr, &settings);
     // Again checked against the fixture's descriptor settings (manifest.txt of map_v1).
-    ltm::mapping::DescriptorSettings fixture;
-    fixture.loop.kind = ltm::mapping::ScanContextKind::kMeanVariance;
+    ltm::map::DescriptorSettings fixture;
+    fixture.loop.kind = ltm::places::ScanContextKind::kMeanVariance;
     fixture.loop.rings = 6;
     fixture.loop.sectors = 12;
     fixture.loop.max_range = 60;
     fixture.loop.min_range = 0;
     fixture.loop.sensor_height = 1.73;
     try {
-        ltm::mapping::decode_keyframes(bytes, "keyframes.bin", &fixture, &first);
+        ltm::map::decode_keyframes(bytes, "keyframes.bin", &fixture, &first);
     } catch (const ltm::common::IoError& e) {
         ltm::fuzz::expect_one_line(e);
     }
-    const std::string once = ltm::mapping::encode_keyframes(settings, kfs, 0, kfs.size());
-    const auto again = ltm::mapping::decode_keyframes(once, "again.bin", &settings, &first);
-    same_again(once, ltm::mapping::encode_keyframes(settings, again, 0, again.size()), "keyframes");
+    const std::string once = ltm::map::encode_keyframes(settings, kfs, 0, kfs.size());
+    const auto again = ltm::map::decode_keyframes(once, "again.bin", &settings, &first);
+    same_again(once, ltm::map::encode_keyframes(settings, again, 0, again.size()), "keyframes");
 }
 
 void folder(const std::uint8_t* data, std::size_t size) {
     const std::string dir = map_dir();
     ltm::fuzz::write_input(data, size, "map/manifest.txt");
-    const ltm::mapping::LoadedMap loaded = ltm::mapping::load_map(dir);
+    const ltm::map::LoadedMap loaded = ltm::map::load_map(dir);
     for (const auto& r : loaded.refused)
         if (r.empty() || r.find_first_of("\n\r") != std::string::npos)
             ltm::fuzz::finding("a refusal that is not one line: '" + r + "'");

@@ -1,4 +1,4 @@
-// Fuzz target: sensor_msgs/PointCloud2 -> common::PointCloud (common/convert/pointcloud2), the
+// Fuzz target: sensor_msgs/PointCloud2 -> common::PointCloud (runtime/convert/pointcloud2), the
 // conversion every LiDAR message from the network goes through. The message is built from the
 // input (Cyclone has already checked the CDR framing; the fields' meaning is ours to check):
 //   u32 width, u32 height, u32 point_step, u32 row_step, u8 is_bigendian, u8 field count (% 9),
@@ -10,8 +10,8 @@
 #include <cstring>
 #include <vector>
 
-#include "common/convert/pointcloud2.hpp"
 #include "fuzz_util.hpp"
+#include "runtime/convert/pointcloud2.hpp"
 
 namespace {
 

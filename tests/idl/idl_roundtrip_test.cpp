@@ -6,16 +6,16 @@
 #include <string>
 #include <vector>
 
-#include "common/convert/dds_string.hpp"
-#include "common/convert/geometry.hpp"
-#include "common/convert/local_map.hpp"
-#include "common/convert/loop_closure.hpp"
-#include "common/convert/odometry.hpp"
-#include "common/convert/path.hpp"
-#include "common/convert/pointcloud2.hpp"
-#include "common/convert/pose_graph.hpp"
-#include "common/convert/status.hpp"
-#include "common/convert/transform.hpp"
+#include "runtime/convert/dds_string.hpp"
+#include "runtime/convert/geometry.hpp"
+#include "runtime/convert/local_map.hpp"
+#include "runtime/convert/loop_closure.hpp"
+#include "runtime/convert/odometry.hpp"
+#include "runtime/convert/path.hpp"
+#include "runtime/convert/pointcloud2.hpp"
+#include "runtime/convert/pose_graph.hpp"
+#include "runtime/convert/status.hpp"
+#include "runtime/convert/transform.hpp"
 #include "runtime/messages.hpp"
 #include "runtime/testing/dds_loopback.hpp"
 

@@ -9,7 +9,7 @@
 
 #include "host/process.hpp"
 #include "host/temp_dir_test.hpp"
-#include "mapping/core/map_store.hpp"
+#include "map/core/map_store.hpp"
 #include "slam/core/slam_pipeline.hpp"
 #include "sources/core/scan_folder.hpp"
 
@@ -78,7 +78,7 @@ components:
 )");
     Process host({kHost, cfg}, (dir_ / "host").string());
     ASSERT_EQ(host.wait(120), 0) << host.err();
-    const mapping::LoadedMap live = mapping::load_map((dir_ / "map").string());
+    const map::LoadedMap live = map::load_map((dir_ / "map").string());
     ASSERT_TRUE(live.refused.empty()) << live.refused.front();
 
     // Offline: the same scans, the same settings.
@@ -102,7 +102,7 @@ components:
     }
     pipeline.finish();
     EXPECT_GE(snapshots, 1u) << "the fixture's keyframes hand over snapshots";
-    const mapping::MapData offline = pipeline.mapper().snapshot();
+    const map::MapData offline = pipeline.mapper().snapshot();
 
     ASSERT_EQ(live.map.local_maps.size(), offline.local_maps.size());
     for (std::size_t k = 0; k < offline.local_maps.size(); ++k) {

@@ -13,7 +13,7 @@
 #include "common/core/trajectory_io.hpp"
 #include "host/process.hpp"
 #include "host/temp_dir_test.hpp"
-#include "mapping/core/map_store.hpp"
+#include "map/core/map_store.hpp"
 
 namespace fs = std::filesystem;
 using ltm::tests::Process;
@@ -194,9 +194,9 @@ TEST_F(LocalisationPipeline, SecondSessionIsLocalisedOnTheSavedMap) {
     EXPECT_EQ(probe.status.size(), truth1.size()) << "a status for every scan";
     // The map's frame, from its first keyframe whose scan has a true pose (the frame is the
     // graph's: on a loaded machine the mapper may have joined a local map late).
-    const mapping::LoadedMap loaded = mapping::load_map(map);
+    const map::LoadedMap loaded = map::load_map(map);
     std::map<std::uint64_t, Eigen::Isometry3d> anchors;
-    for (const mapping::PoseGraphNode& n : loaded.map.nodes) anchors[n.id] = n.T_world_anchor;
+    for (const map::PoseGraphNode& n : loaded.map.nodes) anchors[n.id] = n.T_world_anchor;
     Eigen::Isometry3d T_world_map = Eigen::Isometry3d::Identity();
     bool framed = false;
     for (const auto& k : loaded.map.keyframes) {

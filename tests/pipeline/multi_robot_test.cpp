@@ -11,7 +11,7 @@
 #include "common/core/trajectory_io.hpp"
 #include "host/process.hpp"
 #include "host/temp_dir_test.hpp"
-#include "mapping/core/map_store.hpp"
+#include "map/core/map_store.hpp"
 
 namespace fs = std::filesystem;
 using ltm::tests::Process;
@@ -48,14 +48,14 @@ class MultiRobotPipeline : public ltm::tests::TempDirTest {
 };
 
 // Connected parts of a graph (by its edges).
-std::size_t components(const mapping::MapData& map) {
+std::size_t components(const map::MapData& map) {
     std::map<std::uint64_t, std::uint64_t> parent;
-    for (const mapping::PoseGraphNode& n : map.nodes) parent[n.id] = n.id;
+    for (const map::PoseGraphNode& n : map.nodes) parent[n.id] = n.id;
     auto root = [&](std::uint64_t x) {
         while (parent[x] != x) x = parent[x];
         return x;
     };
-    for (const mapping::PoseGraphEdge& e : map.edges) {
+    for (const map::PoseGraphEdge& e : map.edges) {
         if (e.active) parent[root(e.from)] = root(e.to);
     }
     std::size_t n = 0;
@@ -81,18 +81,18 @@ components:
     Process host({kHost, cfg}, path("host"));
     ASSERT_EQ(host.wait(300), 0) << host.err();
 
-    const mapping::LoadedMap loaded = mapping::load_map(path("map"));
+    const map::LoadedMap loaded = map::load_map(path("map"));
     ASSERT_TRUE(loaded.refused.empty()) << loaded.refused[0];
-    const mapping::MapData& map = loaded.map;
+    const map::MapData& map = loaded.map;
     ASSERT_EQ(map.sessions.size(), 2u) << host.err();
     EXPECT_EQ(map.sessions[0].robot, "robot1");
     EXPECT_EQ(map.sessions[1].robot, "robot2");
     std::map<std::uint64_t, std::uint32_t> session_of;
-    for (const mapping::PoseGraphNode& n : map.nodes) session_of[n.id] = n.session;
+    for (const map::PoseGraphNode& n : map.nodes) session_of[n.id] = n.session;
     std::size_t cross = 0;
-    for (const mapping::PoseGraphEdge& e : map.edges) {
-        cross += e.kind == mapping::EdgeKind::kLoop && e.active &&
-                 session_of[e.from] != session_of[e.to];
+    for (const map::PoseGraphEdge& e : map.edges) {
+        cross +=
+            e.kind == map::EdgeKind::kLoop && e.active && session_of[e.from] != session_of[e.to];
     }
     EXPECT_GE(cross, 1u) << "no loop between the robots\n" << host.err();
     EXPECT_EQ(components(map), 1u) << "not one graph\n" << host.err();

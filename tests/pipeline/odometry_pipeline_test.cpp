@@ -8,7 +8,7 @@
 #include "common/core/trajectory_io.hpp"
 #include "host/process.hpp"
 #include "host/temp_dir_test.hpp"
-#include "mapping/core/map_store.hpp"
+#include "map/core/map_store.hpp"
 
 namespace fs = std::filesystem;
 using ltm::tests::Process;
@@ -242,9 +242,9 @@ components:
 }
 
 TEST_F(OdometryPipeline, MapOfOtherDescriptorsIsRefusedAtTheScanContextKey) {
-    mapping::MapData map;  // saved with 24 rings; the component keeps the default 20
+    map::MapData map;  // saved with 24 rings; the component keeps the default 20
     map.descriptor_config.rings = 24;
-    mapping::save_map((dir_ / "rings24").string(), map);
+    map::save_map((dir_ / "rings24").string(), map);
     const std::string cfg = write("rings.yaml", R"(domain_id: 196
 components:
   - name: mapping

@@ -9,9 +9,9 @@
 #include <random>
 #include <vector>
 
-#include "common/convert/geometry.hpp"
-#include "common/convert/pointcloud2.hpp"
 #include "runtime/component.hpp"
+#include "runtime/convert/geometry.hpp"
+#include "runtime/convert/pointcloud2.hpp"
 
 namespace ltm::bench {
 namespace {

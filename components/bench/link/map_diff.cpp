@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "common/cli/cli.hpp"
-#include "mapping/core/map_store.hpp"
+#include "map/core/map_store.hpp"
 
 namespace {
 
@@ -28,7 +28,7 @@ struct Loaded {
 };
 
 Loaded load(const std::string& dir) {
-    const ltm::mapping::LoadedMap m = ltm::mapping::load_map(dir);
+    const ltm::map::LoadedMap m = ltm::map::load_map(dir);
     for (const std::string& r : m.refused)
         std::fprintf(stderr, "%s: %s (left out)\n", dir.c_str(), r.c_str());
     Loaded out;
@@ -39,7 +39,7 @@ Loaded load(const std::string& dir) {
         out.anchors[k] = n.T_world_anchor;
     }
     for (const auto& e : m.map.edges)
-        if (e.kind == ltm::mapping::EdgeKind::kLoop && e.active)
+        if (e.kind == ltm::map::EdgeKind::kLoop && e.active)
             out.loops.insert({key_of[e.from], key_of[e.to]});
     out.keyframes = m.map.keyframes.size();
     return out;

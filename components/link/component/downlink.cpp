@@ -14,13 +14,13 @@
 #include <string>
 #include <vector>
 
-#include "common/convert/dds_string.hpp"
 #include "common/core/io_error.hpp"
 #include "link/component/link_clock.hpp"
 #include "link/core/link_journal.hpp"
 #include "link/core/payload_codec.hpp"
 #include "link/core/receive_window.hpp"
 #include "runtime/component.hpp"
+#include "runtime/convert/dds_string.hpp"
 
 namespace ltm::link {
 namespace {

@@ -17,7 +17,6 @@
 #include <string>
 #include <vector>
 
-#include "common/convert/dds_string.hpp"
 #include "common/core/io_error.hpp"
 #include "link/component/link_clock.hpp"
 #include "link/core/link_journal.hpp"
@@ -25,6 +24,7 @@
 #include "link/core/robot_ids.hpp"
 #include "link/core/send_window.hpp"
 #include "runtime/component.hpp"
+#include "runtime/convert/dds_string.hpp"
 
 namespace ltm::link {
 namespace {

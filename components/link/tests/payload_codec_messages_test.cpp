@@ -6,8 +6,8 @@
 #include <random>
 #include <vector>
 
-#include "common/convert/local_map.hpp"
 #include "link/core/payload_codec.hpp"
+#include "runtime/convert/local_map.hpp"
 #include "runtime/messages.hpp"
 #include "runtime/testing/dds_loopback.hpp"
 

@@ -27,7 +27,7 @@
 #include "common/core/trajectory_io.hpp"
 #include "localisation/component/localiser_params.hpp"
 #include "localisation/core/localiser.hpp"
-#include "mapping/core/map_store.hpp"
+#include "map/core/map_store.hpp"
 #include "odometry/core/odometry.hpp"
 #include "odometry/params/odometry_params.hpp"
 #include "registration/core/preprocess.hpp"
@@ -86,17 +86,17 @@ void write_line(std::ostream& os, std::size_t frame, double time_s, bool ok,
 // recall@1: the best candidate of the ring-key top-25 (full descriptor distance) is within
 // --revisit metres of it. Opposite-direction revisits count like the others.
 int run_recall(const Args& a) {
-    const mapping::LoadedMap loaded = mapping::load_map(a.map);
-    const mapping::MapData& m = loaded.map;
-    if (!mapping::has_localisation_descriptors(m.localisation_descriptor_config))
+    const map::LoadedMap loaded = map::load_map(a.map);
+    const map::MapData& m = loaded.map;
+    if (!map::has_localisation_descriptors(m.localisation_descriptor_config))
         throw common::IoError(a.map, "has no ScanContext++ descriptors (format 1)");
     std::unordered_map<std::uint64_t, Eigen::Isometry3d> anchors;
-    for (const mapping::PoseGraphNode& n : m.nodes) anchors[n.id] = n.T_world_anchor;
+    for (const map::PoseGraphNode& n : m.nodes) anchors[n.id] = n.T_world_anchor;
     struct Kf {
         Eigen::Vector3d p;
         Eigen::Vector3d heading;
         double stamp;
-        const mapping::StoredKeyframe* k;
+        const map::StoredKeyframe* k;
     };
     std::vector<Kf> kfs;
     for (const auto& k : m.keyframes) {
@@ -108,20 +108,20 @@ int run_recall(const Args& a) {
     struct Kind {
         const char* name;
         bool plus;
-        mapping::ScanContextConfig config;
-        mapping::RingKeyIndex index;
+        places::ScanContextConfig config;
+        places::RingKeyIndex index;
         std::size_t queries = 0, hits = 0, opposite = 0, opposite_hits = 0;
     };
     Kind kinds[2] = {
         {"Scan Context (max height, cosine)", false, m.descriptor_config,
-         mapping::RingKeyIndex(m.descriptor_config.rings)},
+         places::RingKeyIndex(m.descriptor_config.rings)},
         {"ScanContext++ (mean/std, 2-Wasserstein)", true, m.localisation_descriptor_config,
-         mapping::RingKeyIndex(m.localisation_descriptor_config.rings)}};
+         places::RingKeyIndex(m.localisation_descriptor_config.rings)}};
     for (Kind& kind : kinds) {
         for (std::size_t j = 0; j < kfs.size(); ++j) {
-            const mapping::ScanContext& d =
+            const places::ScanContext& d =
                 kind.plus ? kfs[j].k->localisation_descriptor : kfs[j].k->descriptor;
-            kind.index.add(mapping::ring_key(d), std::uint32_t(j));
+            kind.index.add(places::ring_key(d), std::uint32_t(j));
         }
     }
     for (std::size_t i = 0; i < kfs.size(); ++i) {
@@ -134,16 +134,15 @@ int run_recall(const Args& a) {
         }
         if (!revisit) continue;
         for (Kind& kind : kinds) {
-            const mapping::ScanContext& q =
+            const places::ScanContext& q =
                 kind.plus ? kfs[i].k->localisation_descriptor : kfs[i].k->descriptor;
             double best = 1e300;
             std::size_t best_j = kfs.size();
-            for (const mapping::RingKeyNeighbour& n :
-                 kind.index.nearest(mapping::ring_key(q), 60)) {
+            for (const places::RingKeyNeighbour& n : kind.index.nearest(places::ring_key(q), 60)) {
                 if (std::abs(kfs[n.item].stamp - kfs[i].stamp) <= a.exclude_seconds) continue;
-                const mapping::ScanContext& c =
+                const places::ScanContext& c =
                     kind.plus ? kfs[n.item].k->localisation_descriptor : kfs[n.item].k->descriptor;
-                const mapping::ScanContextMatch match = mapping::compare(q, c, kind.config);
+                const places::ScanContextMatch match = places::compare(q, c, kind.config);
                 if (match.valid && match.distance < best) {
                     best = match.distance;
                     best_j = n.item;

@@ -2,9 +2,11 @@
 # the scans of the verified and the unverified cross-session pairs (truth: session-1 pose of scan i
 # times the pair's ICP-refined T_A_B; a scan in both kinds counts as verified), and every scan
 # against T_s1_s2 * session-2 odometry. A right answer: within 0.5 m / 2 deg.
-#   hku_score.py ATTEMPTS.txt      (HKU_DATA: the data set's folder)
+#   hku_score.py ATTEMPTS.txt      (HKU_DATA: the data set's folder, default
+#                                   shared/data/hku-avia-2session next to the checkout)
 import math, os, sys
-H=os.environ.get('HKU_DATA','/work/shared/data/hku-avia-2session').rstrip('/')+'/'
+ROOT=os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)),'..','..','..'))
+H=os.environ.get('HKU_DATA',os.path.join(os.path.dirname(ROOT),'shared','data','hku-avia-2session')).rstrip('/')+'/'
 if len(sys.argv)!=2: sys.exit('usage: hku_score.py ATTEMPTS.txt')
 att_file=sys.argv[1]
 def m(v): return [[v[0],v[1],v[2],v[3]],[v[4],v[5],v[6],v[7]],[v[8],v[9],v[10],v[11]],[0,0,0,1]]

@@ -8,13 +8,13 @@
 #     for the scans of the cross-session pairs, against the pairs' ICP-refined poses
 #     (hku_score.py: verified pairs, and the others that view the same place).
 #   real_data.sh [--out-dir DIR]        ./ltm bench localise_real [--out-dir DIR]
-# Environment: LTM_BUILD_DIR (default ./build), LTM_SHARED_DATA (default /work/shared/data;
+# Environment: LTM_BUILD_DIR (default ./build), LTM_SHARED_DATA (default shared/data next to the checkout;
 # skipped with a message when absent).
 set -euo pipefail
 HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 ROOT="$(cd "$HERE/../../.." && pwd)"
 B="${LTM_BUILD_DIR:-$ROOT/build}/bin"
-DATA="${LTM_SHARED_DATA:-/work/shared/data}"
+DATA="${LTM_SHARED_DATA:-$(dirname "$ROOT")/shared/data}"
 OUT=""
 while [ $# -gt 0 ]; do
     case "$1" in

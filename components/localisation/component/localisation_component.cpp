@@ -31,18 +31,18 @@
 #include <optional>
 #include <thread>
 
-#include "common/convert/dds_string.hpp"
-#include "common/convert/geometry.hpp"
-#include "common/convert/odometry.hpp"
-#include "common/convert/pointcloud2.hpp"
-#include "common/convert/status.hpp"
-#include "common/convert/transform.hpp"
 #include "common/core/one_line.hpp"
 #include "localisation/component/localisation_messages.hpp"
 #include "localisation/component/localiser_params.hpp"
 #include "odometry/core/odometry_config.hpp"
 #include "registration/core/preprocess.hpp"
 #include "runtime/component.hpp"
+#include "runtime/convert/dds_string.hpp"
+#include "runtime/convert/geometry.hpp"
+#include "runtime/convert/odometry.hpp"
+#include "runtime/convert/pointcloud2.hpp"
+#include "runtime/convert/status.hpp"
+#include "runtime/convert/transform.hpp"
 
 namespace ltm::localisation {
 namespace {

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "common/convert/dds_string.hpp"
-#include "common/convert/geometry.hpp"
+#include "runtime/convert/dds_string.hpp"
+#include "runtime/convert/geometry.hpp"
 
 namespace ltm::localisation {
 

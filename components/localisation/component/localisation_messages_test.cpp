@@ -2,8 +2,8 @@
 
 #include <gtest/gtest.h>
 
-#include "common/convert/dds_string.hpp"
-#include "common/convert/geometry.hpp"
+#include "runtime/convert/dds_string.hpp"
+#include "runtime/convert/geometry.hpp"
 
 namespace ltm::localisation {
 namespace {

@@ -26,14 +26,14 @@ std::pair<double, double> pose_distance(const Eigen::Isometry3d& a, const Eigen:
 }
 
 // Of the points on structure within reach of a surface, the share that are inliers.
-double structure_ratio(const mapping::LoopVerification& v) {
+double structure_ratio(const registration::LoopVerification& v) {
     return v.structure_points ? double(v.structure_inliers) / double(v.structure_points) : 0.0;
 }
 
 // The answer a verification gives: its pose (grid frame = map frame), figures and confidence
 // (inlier fraction x structure inlier ratio; a rival lowers it further). A refused one claims
 // no pose and no confidence.
-GlobalLocalisation from_verification(const mapping::LoopVerification& v) {
+GlobalLocalisation from_verification(const registration::LoopVerification& v) {
     GlobalLocalisation out;
     out.localised = v.accepted;
     out.points = v.points;
@@ -62,7 +62,7 @@ std::optional<common::ConfigProblem> validate(const GlobalLocaliserConfig& confi
     visit_fields(c, "", k);
     k.include(validate(config.matching), "matching.");
     k.include(validate(config.ransac), "ransac.");
-    k.include(mapping::validate(config.verification), "verification.");
+    k.include(registration::validate(config.verification), "verification.");
     return k.problem();
 }
 
@@ -78,22 +78,22 @@ GlobalLocaliser::GlobalLocaliser(std::shared_ptr<const LocalisationMap> map,
 }
 
 std::vector<GlobalLocaliser::Place> GlobalLocaliser::rank_places(
-    const mapping::ScanContext& query, const std::optional<PoseHint>& hint) const {
+    const places::ScanContext& query, const std::optional<PoseHint>& hint) const {
     const LocalisationMap& map = *map_;
     std::vector<std::uint32_t> candidates;
     if (hint) {
         const double r = hint->radius > 0.0 ? hint->radius : config_.hint_radius;
         candidates = map.keyframes_near(hint->T_map_lidar.translation(), r);
     } else {
-        for (const mapping::RingKeyNeighbour& n :
+        for (const places::RingKeyNeighbour& n :
              map.nearest_keyframes(query, std::size_t(config_.candidates))) {
             candidates.push_back(n.item);
         }
     }
     std::vector<Place> scored;
     for (std::uint32_t k : candidates) {
-        const mapping::ScanContextMatch m =
-            mapping::compare(query, map.keyframes()[k].descriptor, map.descriptor_config());
+        const places::ScanContextMatch m =
+            places::compare(query, map.keyframes()[k].descriptor, map.descriptor_config());
         if (m.valid) scored.push_back({k, m.distance, m.yaw});
     }
     std::sort(scored.begin(), scored.end(),
@@ -118,7 +118,7 @@ std::vector<GlobalLocaliser::Place> GlobalLocaliser::rank_places(
 void GlobalLocaliser::feature_guesses(
     const std::vector<Eigen::Vector3f>& points, const std::vector<Place>& places,
     std::vector<Guess, Eigen::aligned_allocator<Guess>>* guesses) {
-    const LocalFeatures query = make_local_features(points, map_->feature_config());
+    const places::LocalFeatures query = places::make_local_features(points, map_->feature_config());
     if (query.size() < 3 || places.empty()) return;
     // The map's samples around every place, once (places overlap), matched in one pass.
     std::vector<std::uint32_t> indices;
@@ -130,7 +130,7 @@ void GlobalLocaliser::feature_guesses(
     std::sort(indices.begin(), indices.end());
     indices.erase(std::unique(indices.begin(), indices.end()), indices.end());
     if (indices.size() < 3) return;
-    LocalFeatures target;
+    places::LocalFeatures target;
     target.sample_spacing = map_->features().sample_spacing;
     target.positions.reserve(indices.size());
     target.descriptors.reserve(indices.size());
@@ -138,13 +138,14 @@ void GlobalLocaliser::feature_guesses(
         target.positions.push_back(map_->features().positions[k]);
         target.descriptors.push_back(map_->features().descriptors[k]);
     }
-    const std::vector<FeatureMatch> matches = match_local_features(query, target, config_.matching);
+    const std::vector<places::FeatureMatch> matches =
+        places::match_local_features(query, target, config_.matching);
     // RANSAC on the matches around each place (a wrong place's matches do not outvote it).
     const double r2 = config_.feature_region * config_.feature_region;
     for (std::size_t i = 0; i < places.size(); ++i) {
         const Eigen::Vector3d c = map_->keyframes()[places[i].keyframe].T_map_lidar.translation();
         std::vector<Eigen::Vector3d> source, dest;
-        for (const FeatureMatch& m : matches) {
+        for (const places::FeatureMatch& m : matches) {
             if ((target.positions[m.target] - c).head<2>().squaredNorm() > r2) continue;
             source.push_back(query.positions[m.query]);
             dest.push_back(m.target_position);  // refined off the lattice
@@ -166,8 +167,8 @@ void GlobalLocaliser::feature_guesses(
 GlobalLocalisation GlobalLocaliser::verify(const std::vector<Eigen::Vector3f>& points,
                                            const Eigen::Isometry3d& guess) {
     const auto start = std::chrono::steady_clock::now();
-    const mapping::LoopVerification v =
-        verifier_.verify(points, map_->target(), mapping::GuessList{guess});
+    const registration::LoopVerification v =
+        verifier_.verify(points, map_->target(), registration::GuessList{guess});
     GlobalLocalisation out = from_verification(v);
     out.verified = 1;
     out.reason = v.accepted ? "verified" : "not verified: " + v.reason;
@@ -195,8 +196,7 @@ GlobalLocalisation GlobalLocaliser::localise(const std::vector<Eigen::Vector3f>&
                      std::to_string(config_.verification.min_inliers) + ")";
         return finish(out);
     }
-    const mapping::ScanContext query =
-        mapping::make_scan_context(finite, map_->descriptor_config());
+    const places::ScanContext query = places::make_scan_context(finite, map_->descriptor_config());
     const std::vector<Place> places = rank_places(query, hint);
     out.places = int(places.size());
 
@@ -220,13 +220,13 @@ GlobalLocalisation GlobalLocaliser::localise(const std::vector<Eigen::Vector3f>&
     }
 
     struct Verified {
-        mapping::LoopVerification v;
+        registration::LoopVerification v;
         int guess;
     };
     std::vector<Verified> accepted;
     std::string best_refusal;
     std::size_t best_refused_inliers = 0;
-    const mapping::RegistrationTarget& target = map_->target();
+    const registration::RegistrationTarget& target = map_->target();
     // Probes: a short coarse registration of a few points from each initial pose, scored by the
     // share of those points on a map surface at its end.
     probe_points_.clear();
@@ -269,8 +269,8 @@ GlobalLocalisation GlobalLocaliser::localise(const std::vector<Eigen::Vector3f>&
                 known = true;
         }
         if (known) continue;
-        mapping::LoopVerification v =
-            verifier_.verify(finite, target, mapping::GuessList{guesses[g].T_map_lidar});
+        registration::LoopVerification v =
+            verifier_.verify(finite, target, registration::GuessList{guesses[g].T_map_lidar});
         ++out.verified;
         if (v.accepted) {
             accepted.push_back({std::move(v), int(g)});
@@ -286,7 +286,7 @@ GlobalLocalisation GlobalLocaliser::localise(const std::vector<Eigen::Vector3f>&
     }
     std::sort(accepted.begin(), accepted.end(),
               [](const Verified& a, const Verified& b) { return a.v.inliers > b.v.inliers; });
-    const mapping::LoopVerification& best = accepted.front().v;
+    const registration::LoopVerification& best = accepted.front().v;
     for (std::size_t i = 1; i < accepted.size(); ++i) {
         const auto [dt, dr] = pose_distance(best.T_anchor_lidar, accepted[i].v.T_anchor_lidar);
         if (dt < config_.distinct_translation && dr < config_.distinct_rotation) continue;
@@ -330,8 +330,8 @@ GlobalLocalisation GlobalLocaliser::localise(const std::vector<Eigen::Vector3f>&
         for (const double sign : {1.0, -1.0}) {
             Eigen::Isometry3d moved = best.T_anchor_lidar;
             moved.translation() += sign * config_.slide_distance * weakest;
-            const mapping::LoopVerification v =
-                verifier_.verify(finite, target, mapping::GuessList{moved});
+            const registration::LoopVerification v =
+                verifier_.verify(finite, target, registration::GuessList{moved});
             ++out.verified;
             if (!v.accepted) continue;
             const auto [dt, dr] = pose_distance(best.T_anchor_lidar, v.T_anchor_lidar);

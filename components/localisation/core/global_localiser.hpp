@@ -19,10 +19,10 @@
 #include <vector>
 
 #include "common/core/config_check.hpp"
-#include "localisation/core/local_feature_matching.hpp"
-#include "localisation/core/local_features.hpp"
 #include "localisation/core/localisation_map.hpp"
-#include "mapping/core/loop_verifier.hpp"
+#include "places/core/local_feature_matching.hpp"
+#include "places/core/local_features.hpp"
+#include "registration/core/loop_verifier.hpp"
 #include "registration/core/ransac_alignment.hpp"
 #include "registration/core/registration.hpp"
 
@@ -37,7 +37,7 @@ struct GlobalLocaliserConfig {
     bool local_features = true;    // also initial poses from local features + RANSAC
     double feature_region = 40.0;  // map samples within this of a place's keyframe [m]
     // (the features' own settings are the map's: LocalisationMapConfig::features)
-    LocalFeatureMatchConfig matching;
+    places::LocalFeatureMatchConfig matching;
     registration::RansacAlignmentConfig ransac = ransac_defaults();
     // Every initial pose is first probed: a short coarse registration of a few points, scored by
     // the share of them on a map surface; only the best `verify_best` are verified in full.
@@ -45,7 +45,7 @@ struct GlobalLocaliserConfig {
     int probe_iterations = 10;
     int verify_best = 3;
     double rival_probe_ratio = 0.7;  // ... and only those whose probe fits this well of the best
-    mapping::LoopVerifierConfig verification = verification_defaults();
+    registration::LoopVerifierConfig verification = verification_defaults();
     // A second verified pose more than this far from the best, with at least ambiguity_ratio of
     // its inliers: the site repeats itself, no answer [m], [deg].
     double distinct_translation = 1.0;
@@ -66,8 +66,8 @@ struct GlobalLocaliserConfig {
         c.min_sample_spread = 2.0;
         return c;
     }
-    static mapping::LoopVerifierConfig verification_defaults() {
-        mapping::LoopVerifierConfig c;
+    static registration::LoopVerifierConfig verification_defaults() {
+        registration::LoopVerifierConfig c;
         c.max_points = 4000;
         // Stricter than a loop (whose place the odometry already suggests): a repetitive site
         // (a substation's bays) fits a wrong place to 60 % inliers and 75 % on structure.
@@ -90,7 +90,7 @@ void visit_fields(GlobalLocaliserConfig& c, const std::string& prefix, Visitor&&
     v(prefix + "feature_region", c.feature_region, positive);
     visit_fields(c.matching, prefix + "matching.", v);
     registration::visit_fields(c.ransac, prefix + "ransac.", v);
-    mapping::visit_fields(c.verification, prefix + "verification.", v);
+    registration::visit_fields(c.verification, prefix + "verification.", v);
     v(prefix + "probe_points", c.probe_points, at_least(50));
     v(prefix + "probe_iterations", c.probe_iterations, at_least(1));
     v(prefix + "verify_best", c.verify_best, at_least(1));
@@ -161,7 +161,7 @@ class GlobalLocaliser {
         double distance;
         double yaw;
     };
-    std::vector<Place> rank_places(const mapping::ScanContext& query,
+    std::vector<Place> rank_places(const places::ScanContext& query,
                                    const std::optional<PoseHint>& hint) const;
     void feature_guesses(const std::vector<Eigen::Vector3f>& points,
                          const std::vector<Place>& places,
@@ -169,7 +169,7 @@ class GlobalLocaliser {
 
     std::shared_ptr<const LocalisationMap> map_;
     GlobalLocaliserConfig config_;
-    mapping::LoopVerifier verifier_;
+    registration::LoopVerifier verifier_;
     registration::Registration fine_;
     registration::Registration probe_;
     std::vector<Eigen::Vector3f> probe_points_;

@@ -5,7 +5,8 @@
 #include <unordered_map>
 
 #include "common/core/config_check.hpp"
-#include "mapping/core/map_store.hpp"
+#include "map/core/map_store.hpp"
+#include "map/core/merged_voxels.hpp"
 
 namespace ltm::localisation {
 
@@ -23,12 +24,6 @@ std::uint64_t column_key(double x, double y) {
 std::uint64_t lattice_key(double x, double y, double step) {
     const auto ix = std::int64_t(std::lround(x / step)), iy = std::int64_t(std::lround(y / step));
     return (std::uint64_t(ix + (1 << 30)) << 32) | std::uint64_t(iy + (1 << 30));
-}
-
-bool usable(const common::VoxelData& v, const LocalisationMapConfig& config) {
-    return v.point_count > 0 && v.planarity >= config.min_planarity &&
-           v.life.health >= config.min_health && std::abs(v.normal.squaredNorm() - 1.0f) < 1e-3f &&
-           v.centre.allFinite();
 }
 
 }  // namespace
@@ -57,20 +52,21 @@ struct LocalisationMap::Columns {
     }
 };
 
-LocalisationMap::LocalisationMap(const mapping::MapData& map, const LocalisationMapConfig& config)
+LocalisationMap::LocalisationMap(const map::MapData& map, const LocalisationMapConfig& config)
     : index_(1) {
     if (map.keyframes.empty()) {
         throw common::ConfigError("map", "has no keyframes: nothing to localise against");
     }
-    merge_voxels(map, config);
+    index_voxels(map, config);
     if (voxels_->voxels.empty()) {
         throw common::ConfigError("map", "has no usable voxels: nothing to register against");
     }
     const bool stored =
         map.localisation_descriptor_config.rings > 0 &&
-        map.localisation_descriptor_config.kind == mapping::ScanContextKind::kMeanVariance;
-    target_ = std::make_shared<const mapping::RegistrationTarget>(
-        mapping::make_registration_target(*voxels_, config.min_planarity, config.coarse_factor));
+        map.localisation_descriptor_config.kind == places::ScanContextKind::kMeanVariance;
+    target_ = std::make_shared<const registration::RegistrationTarget>(
+        registration::make_registration_target(*voxels_, config.min_planarity,
+                                               config.coarse_factor));
     descriptor_config_ = stored ? map.localisation_descriptor_config : config.descriptor;
     place_keyframes(map);
     feature_config_ = config.features;
@@ -92,13 +88,13 @@ void LocalisationMap::make_features(const LocalisationMapConfig& config) {
     const double spacing = config.features.sample_spacing;
     features_.sample_spacing = spacing;
     // Every lattice point of a tile (a thinned lattice would break the matches' refinement).
-    LocalFeatureConfig tile = config.features;
+    places::LocalFeatureConfig tile = config.features;
     tile.max_samples = std::max(tile.max_samples, int(std::pow(cell / spacing + 2.0, 2.0)) * 2);
     for (const auto& [key, c] : cells) {
         const Eigen::Vector3d centre(c.x(), c.y(), 0.0);
-        const LocalFeatures f =
-            make_local_features(centres_near(centre, half_diagonal + config.features.radius), tile,
-                                centre, half_diagonal);
+        const places::LocalFeatures f = places::make_local_features(
+            centres_near(centre, half_diagonal + config.features.radius), tile, centre,
+            half_diagonal);
         for (std::size_t i = 0; i < f.size(); ++i) {
             const Eigen::Vector3d& p = f.positions[i];
             if (std::abs(p.x() - c.x()) > 0.5 * cell || std::abs(p.y() - c.y()) > 0.5 * cell)
@@ -122,8 +118,9 @@ std::vector<std::uint32_t> LocalisationMap::feature_indices_near(const Eigen::Ve
     return out;
 }
 
-LocalFeatures LocalisationMap::features_near(const Eigen::Vector3d& p, double radius) const {
-    LocalFeatures out;
+places::LocalFeatures LocalisationMap::features_near(const Eigen::Vector3d& p,
+                                                     double radius) const {
+    places::LocalFeatures out;
     out.sample_spacing = features_.sample_spacing;
     const double r2 = radius * radius;
     for (std::size_t i = 0; i < features_.size(); ++i) {
@@ -134,72 +131,11 @@ LocalFeatures LocalisationMap::features_near(const Eigen::Vector3d& p, double ra
     return out;
 }
 
-void LocalisationMap::merge_voxels(const mapping::MapData& map,
-                                   const LocalisationMapConfig& config) {
-    std::unordered_map<std::uint64_t, Eigen::Isometry3d> anchors;
-    for (const mapping::PoseGraphNode& n : map.nodes) anchors[n.id] = n.T_world_anchor;
-    voxels_ = std::make_shared<common::LocalMapData>();
-    float voxel_size = 0.0f;
-    for (const mapping::StoredLocalMap& lm : map.local_maps) {
-        if (lm.data && anchors.count(lm.node)) {
-            voxel_size = std::max(voxel_size, lm.data->voxel_size);
-        }
-    }
-    if (!(voxel_size > 0.0f)) voxel_size = 1.0f;
-    voxels_->voxel_size = voxel_size;
-    voxels_->finished = true;
-    const float inv = 1.0f / voxel_size;
-    std::unordered_map<std::uint64_t, std::uint32_t> slot;  // packed cell -> voxel index
-    // Where local maps overlap, a cell takes the voxel of the local map anchored nearest to it
-    // (built while the sensor was closest): neighbouring cells then come from the same local map,
-    // whose surfaces agree with each other. Taking the voxel with the most points instead made a
-    // patchwork of local maps a few centimetres apart (a loop-closed map fitted its own scans
-    // with 85 % of the structure within 0.3 m, against 99 % for a map from the true poses).
-    std::vector<float> anchor_distance;  // per merged voxel
-    std::vector<std::uint32_t> sessions;
-    Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = -lo;
-    for (const mapping::StoredLocalMap& lm : map.local_maps) {
-        const auto a = anchors.find(lm.node);
-        if (!lm.data || a == anchors.end()) continue;
-        ++local_maps_;
-        if (std::find(sessions.begin(), sessions.end(), lm.session) == sessions.end()) {
-            sessions.push_back(lm.session);
-        }
-        const Eigen::Isometry3d T = a->second * lm.data->T_anchor_grid;
-        const Eigen::Matrix3f R = T.linear().cast<float>();
-        const Eigen::Vector3f t = T.translation().cast<float>();
-        const Eigen::Vector3f anchor = a->second.translation().cast<float>();
-        for (const common::VoxelData& v : lm.data->voxels) {
-            if (!usable(v, config)) continue;
-            common::VoxelData w = v;
-            w.centre = R * v.centre + t;
-            w.normal = (R * v.normal).normalized();
-            const Eigen::Vector3f cell = (w.centre * inv).array().floor();
-            if (!(cell.cwiseAbs().maxCoeff() < float((1 << 20) - 1))) continue;
-            w.index = cell.cast<int>();
-            w.life.seen.clear();
-            w.stability *= std::clamp(w.life.health, 0.0f, 1.0f);  // established voxels weigh more
-            const std::uint64_t key = (std::uint64_t(w.index.x() + (1 << 20)) << 42) |
-                                      (std::uint64_t(w.index.y() + (1 << 20)) << 21) |
-                                      std::uint64_t(w.index.z() + (1 << 20));
-            const float d = (w.centre - anchor).head<2>().norm();
-            const auto [it, fresh] = slot.emplace(key, std::uint32_t(voxels_->voxels.size()));
-            if (fresh) {
-                voxels_->voxels.push_back(std::move(w));
-                anchor_distance.push_back(d);
-                lo = lo.cwiseMin(voxels_->voxels.back().centre.cast<double>());
-                hi = hi.cwiseMax(voxels_->voxels.back().centre.cast<double>());
-            } else if (d < anchor_distance[it->second]) {
-                voxels_->voxels[it->second] = std::move(w);
-                anchor_distance[it->second] = d;
-            }
-        }
-    }
-    sessions_ = sessions.size();
-    if (!voxels_->voxels.empty()) {
-        voxels_->bbox_min = lo;
-        voxels_->bbox_max = hi;
-    }
+void LocalisationMap::index_voxels(const map::MapData& map, const LocalisationMapConfig& config) {
+    map::MergedVoxels merged = map::merge_voxels(map, {config.min_health, config.min_planarity});
+    voxels_ = std::move(merged.voxels);
+    local_maps_ = merged.local_maps;
+    sessions_ = merged.sessions;
     auto columns = std::make_shared<Columns>();
     for (std::uint32_t i = 0; i < voxels_->voxels.size(); ++i) {
         const Eigen::Vector3f& c = voxels_->voxels[i].centre;
@@ -208,10 +144,10 @@ void LocalisationMap::merge_voxels(const mapping::MapData& map,
     columns_ = std::move(columns);
 }
 
-void LocalisationMap::place_keyframes(const mapping::MapData& map) {
+void LocalisationMap::place_keyframes(const map::MapData& map) {
     std::unordered_map<std::uint64_t, Eigen::Isometry3d> anchors;
-    for (const mapping::PoseGraphNode& n : map.nodes) anchors[n.id] = n.T_world_anchor;
-    index_ = mapping::RingKeyIndex(descriptor_config_.rings);
+    for (const map::PoseGraphNode& n : map.nodes) anchors[n.id] = n.T_world_anchor;
+    index_ = places::RingKeyIndex(descriptor_config_.rings);
     std::vector<Eigen::Vector3f> local;
     for (const auto& stored : map.keyframes) {
         if (!stored) continue;
@@ -223,7 +159,7 @@ void LocalisationMap::place_keyframes(const mapping::MapData& map) {
         k.node = stored->node;
         k.stamp = stored->data.stamp;
         k.T_map_lidar = a->second * stored->data.T_anchor_lidar;
-        const mapping::ScanContext& d = stored->localisation_descriptor;
+        const places::ScanContext& d = stored->localisation_descriptor;
         if (!d.empty() && d.kind == descriptor_config_.kind &&
             d.rings == descriptor_config_.rings && d.sectors == descriptor_config_.sectors) {
             k.descriptor = d;
@@ -236,7 +172,7 @@ void LocalisationMap::place_keyframes(const mapping::MapData& map) {
             columns_->for_each_near(
                 voxels_->voxels, k.T_map_lidar.translation(), descriptor_config_.max_range,
                 [&](std::uint32_t i) { local.push_back(R * voxels_->voxels[i].centre + t); });
-            k.descriptor = mapping::make_scan_context(local, descriptor_config_);
+            k.descriptor = places::make_scan_context(local, descriptor_config_);
             descriptors_computed_ = true;
         }
         if (!keyframes_.empty()) {
@@ -245,7 +181,7 @@ void LocalisationMap::place_keyframes(const mapping::MapData& map) {
                     .head<2>()
                     .norm();
         }
-        index_.add(mapping::ring_key(k.descriptor), k.index);
+        index_.add(places::ring_key(k.descriptor), k.index);
         keyframes_.push_back(std::move(k));
     }
     if (keyframes_.empty()) {
@@ -255,10 +191,10 @@ void LocalisationMap::place_keyframes(const mapping::MapData& map) {
     }
 }
 
-std::vector<mapping::RingKeyNeighbour> LocalisationMap::nearest_keyframes(
-    const mapping::ScanContext& query, std::size_t k) const {
+std::vector<places::RingKeyNeighbour> LocalisationMap::nearest_keyframes(
+    const places::ScanContext& query, std::size_t k) const {
     if (query.empty() || query.rings != descriptor_config_.rings) return {};
-    return index_.nearest(mapping::ring_key(query), k);
+    return index_.nearest(places::ring_key(query), k);
 }
 
 std::vector<std::uint32_t> LocalisationMap::keyframes_near(const Eigen::Vector3d& p,
@@ -288,7 +224,7 @@ bool LocalisationMap::covers(const Eigen::Vector3d& p, double radius) const {
 std::shared_ptr<const LocalisationMap> load_localisation_map(const std::string& dir,
                                                              const LocalisationMapConfig& config,
                                                              std::vector<std::string>* refused) {
-    mapping::LoadedMap loaded = mapping::load_map(dir);
+    map::LoadedMap loaded = map::load_map(dir);
     if (refused) *refused = loaded.refused;
     try {
         return std::make_shared<const LocalisationMap>(loaded.map, config);

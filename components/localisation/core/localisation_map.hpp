@@ -4,10 +4,11 @@
 // voxels of every local map merged into one voxel map in the map frame (centre + normal per voxel,
 // the healthy ones only), which global localisation verifies against and tracking registers to.
 //
-// Local maps overlap: where several have a voxel in the same map-frame cell, the one with the
-// most points is kept. Maps of format 1 carry no ScanContext++ descriptors: they are computed on
-// load from the merged voxel centres within the descriptor's range of each keyframe (a rendered
-// view of the map, not the keyframe's own scan: retrieval is weaker on such maps).
+// Local maps overlap: where several have a voxel in the same map-frame cell, the one of the local
+// map anchored nearest to it is kept (map::merge_voxels). Maps of format 1 carry no ScanContext++
+// descriptors: they are computed on load from the merged voxel centres within the descriptor's
+// range of each keyframe (a rendered view of the map, not the keyframe's own scan: retrieval is
+// weaker on such maps).
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <memory>
@@ -16,11 +17,11 @@
 #include <vector>
 
 #include "common/core/local_map_data.hpp"
-#include "localisation/core/local_features.hpp"
-#include "mapping/core/map_data.hpp"
-#include "mapping/core/registration_target.hpp"
-#include "mapping/core/ring_key_index.hpp"
-#include "mapping/core/scan_context.hpp"
+#include "map/core/map_data.hpp"
+#include "places/core/local_features.hpp"
+#include "places/core/ring_key_index.hpp"
+#include "places/core/scan_context.hpp"
+#include "registration/core/registration_target.hpp"
 
 namespace ltm::localisation {
 
@@ -30,16 +31,16 @@ struct LocalisationMapConfig {
     int coarse_factor = 3;       // coarse registration grid [voxels] (0: none)
     // The ScanContext++ settings used for a map that has no stored descriptors (format 1); a map
     // with descriptors keeps its own (the query must be described the same way).
-    mapping::ScanContextConfig descriptor = default_descriptor();
+    places::ScanContextConfig descriptor = default_descriptor();
     // Local features (ground samples with a local ScanContext++ each) of the whole map, computed
     // once on load on a grid of feature_cell; a query's features use the same settings.
     bool local_features = true;
-    LocalFeatureConfig features;
+    places::LocalFeatureConfig features;
     double feature_cell = 24.0;  // [m]
 
-    static mapping::ScanContextConfig default_descriptor() {
-        mapping::ScanContextConfig c;
-        c.kind = mapping::ScanContextKind::kMeanVariance;
+    static places::ScanContextConfig default_descriptor() {
+        places::ScanContextConfig c;
+        c.kind = places::ScanContextKind::kMeanVariance;
         return c;
     }
 };
@@ -50,7 +51,7 @@ struct MapKeyframe {
     std::uint64_t node = 0;
     double stamp = 0.0;
     Eigen::Isometry3d T_map_lidar = Eigen::Isometry3d::Identity();
-    mapping::ScanContext descriptor;  // ScanContext++ (kMeanVariance)
+    places::ScanContext descriptor;  // ScanContext++ (kMeanVariance)
     EIGEN_MAKE_ALIGNED_OPERATOR_NEW
 };
 
@@ -58,16 +59,16 @@ class LocalisationMap {
   public:
     // Throws common::ConfigError when the map holds nothing to localise against (no keyframe or
     // no voxel), with one line saying so.
-    LocalisationMap(const mapping::MapData& map, const LocalisationMapConfig& config = {});
+    LocalisationMap(const map::MapData& map, const LocalisationMapConfig& config = {});
 
-    const mapping::ScanContextConfig& descriptor_config() const { return descriptor_config_; }
+    const places::ScanContextConfig& descriptor_config() const { return descriptor_config_; }
     bool descriptors_computed() const { return descriptors_computed_; }  // format-1 map
     const std::vector<MapKeyframe, Eigen::aligned_allocator<MapKeyframe>>& keyframes() const {
         return keyframes_;
     }
     // The ring-key neighbours of a query descriptor (nearest first), as keyframe indices.
-    std::vector<mapping::RingKeyNeighbour> nearest_keyframes(const mapping::ScanContext& query,
-                                                             std::size_t k) const;
+    std::vector<places::RingKeyNeighbour> nearest_keyframes(const places::ScanContext& query,
+                                                            std::size_t k) const;
     // Keyframes whose position is within `radius` of p (horizontal distance), any order.
     std::vector<std::uint32_t> keyframes_near(const Eigen::Vector3d& p, double radius) const;
 
@@ -75,14 +76,14 @@ class LocalisationMap {
     const common::LocalMapData& voxels() const { return *voxels_; }
     std::shared_ptr<const common::LocalMapData> voxels_ptr() const { return voxels_; }
     // The merged voxels as registration grids (fine and coarse), in the map frame.
-    const mapping::RegistrationTarget& target() const { return *target_; }
+    const registration::RegistrationTarget& target() const { return *target_; }
     // The voxel centres within `radius` (horizontal) of p, in the map frame.
     std::vector<Eigen::Vector3f> centres_near(const Eigen::Vector3d& p, double radius) const;
     // The map's local features within `radius` (horizontal) of p (empty without local features).
-    LocalFeatures features_near(const Eigen::Vector3d& p, double radius) const;
+    places::LocalFeatures features_near(const Eigen::Vector3d& p, double radius) const;
     std::vector<std::uint32_t> feature_indices_near(const Eigen::Vector3d& p, double radius) const;
-    const LocalFeatures& features() const { return features_; }
-    const LocalFeatureConfig& feature_config() const { return feature_config_; }
+    const places::LocalFeatures& features() const { return features_; }
+    const places::LocalFeatureConfig& feature_config() const { return feature_config_; }
     std::size_t feature_count() const { return features_.size(); }
 
     // Whether any map voxel is within `radius` (horizontal) of p.
@@ -96,25 +97,25 @@ class LocalisationMap {
 
   private:
     struct Columns;  // 2-D grid of voxel centres for range queries
-    void merge_voxels(const mapping::MapData& map, const LocalisationMapConfig& config);
-    void place_keyframes(const mapping::MapData& map);
+    void index_voxels(const map::MapData& map, const LocalisationMapConfig& config);
+    void place_keyframes(const map::MapData& map);
     void make_features(const LocalisationMapConfig& config);
 
-    mapping::ScanContextConfig descriptor_config_;
+    places::ScanContextConfig descriptor_config_;
     bool descriptors_computed_ = false;
     std::vector<MapKeyframe, Eigen::aligned_allocator<MapKeyframe>> keyframes_;
-    mapping::RingKeyIndex index_;
+    places::RingKeyIndex index_;
     std::shared_ptr<common::LocalMapData> voxels_;
     std::shared_ptr<const Columns> columns_;
-    std::shared_ptr<const mapping::RegistrationTarget> target_;
-    LocalFeatureConfig feature_config_;
-    LocalFeatures features_;  // every sample of the map, map frame
+    std::shared_ptr<const registration::RegistrationTarget> target_;
+    places::LocalFeatureConfig feature_config_;
+    places::LocalFeatures features_;  // every sample of the map, map frame
     std::size_t local_maps_ = 0, sessions_ = 0;
     double path_length_ = 0.0;
 };
 
-// Loads a map directory (mapping::load_map) for localisation. Throws common::IoError /
-// mapping::MapFormatError / common::ConfigError with one line when it cannot be used; files the
+// Loads a map directory (map::load_map) for localisation. Throws common::IoError /
+// map::MapFormatError / common::ConfigError with one line when it cannot be used; files the
 // loader refused (a damaged local map) are reported in *refused and the rest is used.
 std::shared_ptr<const LocalisationMap> load_localisation_map(
     const std::string& dir, const LocalisationMapConfig& config = {},

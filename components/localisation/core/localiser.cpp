@@ -4,8 +4,8 @@
 #include <cmath>
 #include <sstream>
 
-#include "mapping/core/mapper_config.hpp"
 #include "registration/core/imls.hpp"
+#include "registration/core/loop_verifier.hpp"
 #include "registration/core/se3.hpp"
 
 namespace ltm::localisation {
@@ -44,8 +44,8 @@ std::optional<common::ConfigProblem> validate(const LocaliserConfig& config) {
 LocaliserConfig localiser_preset(common::SensorPreset preset) {
     LocaliserConfig c;
     if (preset == common::SensorPreset::kNarrow) {
-        // As the mapper's loop verification for this sensor (mapping::mapper_preset).
-        const mapping::LoopVerifierConfig m = mapping::mapper_preset(preset).verification;
+        // As the mapper's loop verification for this sensor (registration::verification_preset).
+        const registration::LoopVerifierConfig m = registration::verification_preset(preset);
         c.global.verification.downsample = m.downsample;
         c.global.verification.min_inliers = m.min_inliers;
         c.global.verification.coarse_factor = m.coarse_factor;

@@ -14,13 +14,13 @@
 #include "common/core/io_error.hpp"
 #include "localisation/core/global_localiser.hpp"
 #include "localisation/core/localisation_map.hpp"
-#include "mapping/core/map_store.hpp"
-#include "mapping/core/test_data.hpp"
+#include "map/core/map_store.hpp"
+#include "registration/core/test_data.hpp"
 
 namespace ltm::localisation {
 namespace {
 
-namespace mt = mapping::test;
+namespace mt = registration::test;
 constexpr double kDeg = M_PI / 180.0;
 
 struct Errors {
@@ -31,20 +31,20 @@ Errors error_of(const Eigen::Isometry3d& est, const Eigen::Isometry3d& truth) {
     return {d.translation().norm(), Eigen::AngleAxisd(d.linear()).angle() / kDeg};
 }
 
-mapping::ScanContextConfig descriptor_config(double sensor_height) {
-    mapping::ScanContextConfig c;
-    c.kind = mapping::ScanContextKind::kMeanVariance;
+places::ScanContextConfig descriptor_config(double sensor_height) {
+    places::ScanContextConfig c;
+    c.kind = places::ScanContextKind::kMeanVariance;
     c.max_range = 60.0;
     c.sensor_height = sensor_height;
     return c;
 }
 
 // A map of one local map built from `scans` at `poses` (world = map frame), a keyframe a scan.
-mapping::MapData make_map(const std::vector<std::vector<Eigen::Vector3f>>& scans,
-                          const common::PoseList& poses, double voxel, double sensor_height) {
-    mapping::MapData m;
+map::MapData make_map(const std::vector<std::vector<Eigen::Vector3f>>& scans,
+                      const common::PoseList& poses, double voxel, double sensor_height) {
+    map::MapData m;
     m.localisation_descriptor_config = descriptor_config(sensor_height);
-    mapping::PoseGraphNode node;
+    map::PoseGraphNode node;
     node.id = 0;
     node.T_world_anchor = poses.front();
     node.T_odom_anchor = poses.front();
@@ -53,14 +53,14 @@ mapping::MapData make_map(const std::vector<std::vector<Eigen::Vector3f>>& scans
         mt::build_local_map(0, poses.front(), scans, poses, voxel, 80.0));
     m.local_maps.push_back({0, 0, data});
     for (std::size_t i = 0; i < scans.size(); ++i) {
-        auto k = std::make_shared<mapping::StoredKeyframe>();
+        auto k = std::make_shared<map::StoredKeyframe>();
         k->node = 0;
         k->data.id = i;
         k->data.stamp = 0.1 * double(i);
         k->data.T_odom_lidar = poses[i];
         k->data.T_anchor_lidar = poses.front().inverse() * poses[i];
         k->localisation_descriptor =
-            mapping::make_scan_context(scans[i], m.localisation_descriptor_config);
+            places::make_scan_context(scans[i], m.localisation_descriptor_config);
         m.keyframes.push_back(k);
     }
     return m;
@@ -101,7 +101,7 @@ TEST(LocalisationMap, MergesTheVoxelsAndPlacesEveryKeyframe) {
 }
 
 TEST(LocalisationMap, RefusesAMapWithNothingToLocaliseAgainst) {
-    mapping::MapData empty;
+    map::MapData empty;
     try {
         LocalisationMap m(empty);
         FAIL() << "an empty map was accepted";
@@ -115,12 +115,12 @@ TEST(LocalisationMap, FormatOneMapsGetTheirDescriptorsFromTheVoxels) {
     const SceneMap& s = scene_map();
     std::vector<std::vector<Eigen::Vector3f>> scans;
     for (const Eigen::Isometry3d& T : s.path) scans.push_back(mt::view(s.scene, T, 60.0));
-    mapping::MapData m = make_map(scans, s.path, 0.6, 0.0);
-    m.localisation_descriptor_config = mapping::no_localisation_descriptors();
-    std::vector<std::shared_ptr<const mapping::StoredKeyframe>> stripped;
+    map::MapData m = make_map(scans, s.path, 0.6, 0.0);
+    m.localisation_descriptor_config = map::no_localisation_descriptors();
+    std::vector<std::shared_ptr<const map::StoredKeyframe>> stripped;
     for (const auto& k : m.keyframes) {
-        auto c = std::make_shared<mapping::StoredKeyframe>(*k);
-        c->localisation_descriptor = mapping::ScanContext();
+        auto c = std::make_shared<map::StoredKeyframe>(*k);
+        c->localisation_descriptor = places::ScanContext();
         stripped.push_back(c);
     }
     m.keyframes = stripped;

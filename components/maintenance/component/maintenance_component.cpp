@@ -29,10 +29,6 @@
 #include <mutex>
 #include <thread>
 
-#include "common/convert/dds_string.hpp"
-#include "common/convert/geometry.hpp"
-#include "common/convert/pointcloud2.hpp"
-#include "common/convert/status.hpp"
 #include "common/core/io_error.hpp"
 #include "common/core/one_line.hpp"
 #include "maintenance/component/maintenance_params.hpp"
@@ -41,6 +37,10 @@
 #include "maintenance/core/change_report.hpp"
 #include "maintenance/core/long_term_map.hpp"
 #include "runtime/component.hpp"
+#include "runtime/convert/dds_string.hpp"
+#include "runtime/convert/geometry.hpp"
+#include "runtime/convert/pointcloud2.hpp"
+#include "runtime/convert/status.hpp"
 
 namespace ltm::maintenance {
 namespace {

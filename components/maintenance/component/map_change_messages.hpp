@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <string>
 
-#include "common/convert/owned_message.hpp"
 #include "maintenance/core/change_set.hpp"
+#include "runtime/convert/owned_message.hpp"
 #include "runtime/messages.hpp"
 
 namespace ltm::maintenance {

@@ -6,9 +6,9 @@
 
 #include <stdexcept>
 
-#include "common/convert/dds_string.hpp"
-#include "common/convert/geometry.hpp"
 #include "maintenance/core/change_set_expect.hpp"
+#include "runtime/convert/dds_string.hpp"
+#include "runtime/convert/geometry.hpp"
 #include "runtime/testing/dds_loopback.hpp"
 
 namespace ltm::maintenance {

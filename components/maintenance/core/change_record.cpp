@@ -16,7 +16,7 @@ constexpr char kMagic[8] = {'L', 'T', 'M', '-', 'C', 'H', 'N', 'G'};
 // The smallest change section: length, body without voxels (93 bytes), CRC.
 constexpr std::uint64_t kMinChangeBytes = 4 + 93 + 4;
 
-// The record is described once, for both directions (as mapping/core/map_codec.cpp): ByteWriter
+// The record is described once, for both directions (as map/core/map_codec.cpp): ByteWriter
 // runs it over a const ChangeSet and writes, ByteReader over a fresh one, reads and checks.
 
 template <class IO, class T>

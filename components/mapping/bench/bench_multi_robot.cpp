@@ -24,9 +24,9 @@
 #include "common/core/sensor_preset.hpp"
 #include "common/core/trajectory_io.hpp"
 #include "evaluation/core/ate.hpp"
+#include "map/core/map_store.hpp"
 #include "mapping/bench/cross_revisits.hpp"
 #include "mapping/bench/sim_source.hpp"
-#include "mapping/core/map_store.hpp"
 #include "mapping/core/mapper.hpp"
 #include "mapping/params/mapper_params.hpp"
 #include "odometry/core/map_handover.hpp"
@@ -139,7 +139,7 @@ int run(const Args& a) {
                 if (!k.added) std::fprintf(stderr, "%s: %s\n", r->name.c_str(), k.message.c_str());
                 if (verbose) {
                     for (const mapping::LoopRejection& j : k.rejected) {
-                        const mapping::StoredKeyframe& m = *mapper.keyframes()[j.match_keyframe];
+                        const map::StoredKeyframe& m = *mapper.keyframes()[j.match_keyframe];
                         std::printf(
                             "  %s scan %zu: refused scan %lu of session %u (distance "
                             "%.3f): %s\n",
@@ -167,10 +167,10 @@ int run(const Args& a) {
     const double seconds = std::chrono::duration<double>(Clock::now() - t_start).count();
 
     if (verbose) {  // the loop edges between the robots' sessions after the last optimisation
-        for (const mapping::PoseGraphEdge& e : mapper.graph().edges()) {
-            const mapping::PoseGraphNode* from = mapper.graph().find(e.from);
-            const mapping::PoseGraphNode* to = mapper.graph().find(e.to);
-            if (e.kind != mapping::EdgeKind::kLoop || from->session == to->session) continue;
+        for (const map::PoseGraphEdge& e : mapper.graph().edges()) {
+            const map::PoseGraphNode* from = mapper.graph().find(e.from);
+            const map::PoseGraphNode* to = mapper.graph().find(e.to);
+            if (e.kind != map::EdgeKind::kLoop || from->session == to->session) continue;
             std::printf(
                 "  loop edge session %u segment %u -> session %u segment %u (keyframe %lu): "
                 "%s, error %.3f m\n",
@@ -286,7 +286,7 @@ int run(const Args& a) {
             common::write_kitti_poses(a.out + "/" + robots[k]->name + "_reference.txt",
                                       robots[k]->reference);
         }
-        const mapping::SaveStats s = mapping::save_map(a.out + "/map", mapper.snapshot());
+        const map::SaveStats s = map::save_map(a.out + "/map", mapper.snapshot());
         std::printf("map: %s/map, %zu files, %.1f MiB\n", a.out.c_str(), s.files_written,
                     double(s.bytes_total) / 1048576.0);
     }

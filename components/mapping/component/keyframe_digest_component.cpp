@@ -6,12 +6,12 @@
 // and any `scan_context.*`, `localisation_descriptor.*`, `verification.*` it sets; the others are
 // accepted and not used): a mapping whose descriptors are made otherwise says so and makes them
 // again from the points it gets. robot.yaml puts it between the odometry and the uplink.
-#include "common/convert/dds_string.hpp"
-#include "common/convert/local_map.hpp"
 #include "mapping/component/place_descriptor_msg.hpp"
 #include "mapping/core/keyframe_digest.hpp"
 #include "mapping/params/mapper_params.hpp"
 #include "runtime/component.hpp"
+#include "runtime/convert/dds_string.hpp"
+#include "runtime/convert/local_map.hpp"
 
 namespace ltm::mapping {
 namespace {

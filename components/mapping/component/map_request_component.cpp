@@ -10,10 +10,10 @@
 #include <chrono>
 #include <stdexcept>
 
-#include "common/convert/dds_string.hpp"
-#include "common/convert/owned_message.hpp"
-#include "common/convert/status.hpp"
 #include "runtime/component.hpp"
+#include "runtime/convert/dds_string.hpp"
+#include "runtime/convert/owned_message.hpp"
+#include "runtime/convert/status.hpp"
 
 namespace ltm::mapping {
 namespace {

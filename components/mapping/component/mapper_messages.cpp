@@ -16,8 +16,8 @@ convert::PoseGraphData graph_data(const Mapper& mapper, const std::string& frame
     }
     for (const auto& e : g.edges()) {
         if (!e.active) continue;
-        const auto kind = e.kind == EdgeKind::kOdometry ? convert::GraphEdgeKind::kOdometry
-                                                        : convert::GraphEdgeKind::kLoop;
+        const auto kind = e.kind == map::EdgeKind::kOdometry ? convert::GraphEdgeKind::kOdometry
+                                                             : convert::GraphEdgeKind::kLoop;
         out.edges.push_back({map_of[e.from], map_of[e.to], kind, e.T_from_to, e.information});
     }
     return out;

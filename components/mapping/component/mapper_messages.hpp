@@ -1,12 +1,12 @@
 #pragma once
-// The mapper's state as message data (common/convert builds the messages): the pose graph by
+// The mapper's state as message data (runtime/convert builds the messages): the pose graph by
 // local map ids, a loop closure, and this session's corrected keyframe path.
 #include <string>
 
-#include "common/convert/loop_closure.hpp"
-#include "common/convert/pose_graph.hpp"
 #include "common/core/trajectory_io.hpp"
 #include "mapping/core/mapper.hpp"
+#include "runtime/convert/loop_closure.hpp"
+#include "runtime/convert/pose_graph.hpp"
 
 namespace ltm::mapping {
 

@@ -22,20 +22,20 @@
 #include <optional>
 #include <set>
 
-#include "common/convert/dds_string.hpp"
-#include "common/convert/local_map.hpp"
-#include "common/convert/odometry.hpp"
-#include "common/convert/path.hpp"
-#include "common/convert/status.hpp"
-#include "common/convert/transform.hpp"
 #include "common/core/io_error.hpp"
 #include "common/core/ply_io.hpp"
+#include "map/core/map_store.hpp"
 #include "mapping/component/mapper_messages.hpp"
 #include "mapping/component/place_descriptor_msg.hpp"
-#include "mapping/core/map_store.hpp"
 #include "mapping/core/mapper.hpp"
 #include "mapping/params/mapper_params.hpp"
 #include "runtime/component.hpp"
+#include "runtime/convert/dds_string.hpp"
+#include "runtime/convert/local_map.hpp"
+#include "runtime/convert/odometry.hpp"
+#include "runtime/convert/path.hpp"
+#include "runtime/convert/status.hpp"
+#include "runtime/convert/transform.hpp"
 
 namespace ltm::mapping {
 namespace {
@@ -60,7 +60,7 @@ class MappingComponent : public runtime::Component {
         const MapperConfig config = load_mapper_config(p, "", "hdl64");
         create_mapper(p, config, load_dir, freeze_loaded);
         check_robots(p, robots);
-        if (!map_dir_.empty()) writer_ = std::make_unique<MapWriter>(map_dir_);
+        if (!map_dir_.empty()) writer_ = std::make_unique<map::MapWriter>(map_dir_);
         // Saving as it goes keeps the save at shutdown small (only what changed is rewritten),
         // and a crash loses at most one period.
         if (writer_ && save_period > 0) ctx.add_timer(save_period, [this] { save(); });
@@ -174,7 +174,7 @@ class MappingComponent : public runtime::Component {
                 mapper_ = std::make_unique<Mapper>(config);
                 return;
             }
-            LoadedMap loaded = load_map(load_dir);
+            map::LoadedMap loaded = map::load_map(load_dir);
             // A damaged file is left alone: saving into the same directory would replace it.
             std::error_code ec;
             if (!loaded.refused.empty() && !map_dir_.empty() &&
@@ -190,7 +190,7 @@ class MappingComponent : public runtime::Component {
                             std::to_string(mapper_->local_map_count()) + " local maps, " +
                             std::to_string(mapper_->keyframes().size()) +
                             " keyframes) in session " + std::to_string(mapper_->session()));
-        } catch (const MapFormatError& e) {
+        } catch (const map::MapFormatError& e) {
             p.fail("load_map_dir", e.what());
         } catch (const common::IoError& e) {
             p.fail("load_map_dir", e.what());
@@ -213,12 +213,12 @@ class MappingComponent : public runtime::Component {
     bool save(const std::string& dir, std::string* outcome) {
         if (dir.empty()) return true;
         try {
-            SaveStats st;
+            map::SaveStats st;
             if (writer_ && dir == map_dir_) {
                 st = writer_->save(mapper_->snapshot());
                 saved_state_ = state();
             } else {
-                st = save_map(dir, mapper_->snapshot());
+                st = map::save_map(dir, mapper_->snapshot());
             }
             return report(true,
                           "map saved to " + dir + " (" + std::to_string(st.files_written) +
@@ -304,7 +304,8 @@ class MappingComponent : public runtime::Component {
     // A keyframe's descriptor made on the robot (keyframe_digest); made here again from its points
     // (said once a robot) when it is damaged or made with other settings than the mapping's.
     MadeDescriptor descriptor(const Robot& robot, const msg::PlaceDescriptor& m,
-                              const ScanContextConfig& mine, const std::string& key, bool* told) {
+                              const places::ScanContextConfig& mine, const std::string& key,
+                              bool* told) {
         std::string problem;
         MadeDescriptor d = from_msg(m, &problem);
         if (problem.empty() && !d.descriptor.empty() && !usable(d, mine))
@@ -442,7 +443,7 @@ class MappingComponent : public runtime::Component {
     std::string map_dir_, global_map_file_, frame_id_;
     std::size_t loops_since_optimise_ = 0;
     std::vector<std::unique_ptr<Robot>> robots_;  // callbacks hold their robot's address
-    std::unique_ptr<MapWriter> writer_;
+    std::unique_ptr<map::MapWriter> writer_;
     std::uint64_t saved_state_ = 0;
     static constexpr std::size_t kMaxWaiting = 1000;  // 100 s at 10 Hz
     runtime::Publisher<msg::PoseGraph> graph_out_;

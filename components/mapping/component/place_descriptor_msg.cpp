@@ -1,6 +1,6 @@
 #include "mapping/component/place_descriptor_msg.hpp"
 
-#include "common/convert/dds_string.hpp"
+#include "runtime/convert/dds_string.hpp"
 
 namespace ltm::mapping {
 
@@ -11,18 +11,18 @@ MadeDescriptor from_msg(const msg::PlaceDescriptor& m, std::string* problem) {
     };
     if (problem) problem->clear();
     if (m.rings == 0) return {};
-    if (m.kind > std::uint8_t(ScanContextKind::kMeanVariance))
+    if (m.kind > std::uint8_t(places::ScanContextKind::kMeanVariance))
         return fail("unknown descriptor kind " + std::to_string(int(m.kind)));
     MadeDescriptor d;
-    ScanContextConfig& c = d.made_with;
-    c.kind = ScanContextKind(m.kind);
+    places::ScanContextConfig& c = d.made_with;
+    c.kind = places::ScanContextKind(m.kind);
     c.rings = m.rings;
     c.sectors = m.sectors;
     c.max_range = m.max_range;
     c.min_range = m.min_range;
     c.sensor_height = m.sensor_height;
     const std::size_t bins = std::size_t(m.rings) * m.sectors;
-    const bool spread = c.kind == ScanContextKind::kMeanVariance;
+    const bool spread = c.kind == places::ScanContextKind::kMeanVariance;
     const auto values = convert::view(m.values), spreads = convert::view(m.spreads);
     const auto occupied = convert::view(m.occupied);
     if (values.size() != bins || occupied.size() != bins || spreads.size() != (spread ? bins : 0))
@@ -40,7 +40,7 @@ MadeDescriptor from_msg(const msg::PlaceDescriptor& m, std::string* problem) {
 void borrow_into(const MadeDescriptor& d, msg::PlaceDescriptor* out) {
     *out = msg::PlaceDescriptor{};
     if (d.descriptor.empty()) return;
-    const ScanContextConfig& c = d.made_with;
+    const places::ScanContextConfig& c = d.made_with;
     out->kind = std::uint8_t(c.kind);
     out->rings = std::uint16_t(c.rings);
     out->sectors = std::uint16_t(c.sectors);

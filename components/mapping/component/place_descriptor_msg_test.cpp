@@ -2,8 +2,8 @@
 
 #include <gtest/gtest.h>
 
-#include "common/convert/local_map.hpp"
-#include "mapping/core/test_data.hpp"
+#include "registration/core/test_data.hpp"
+#include "runtime/convert/local_map.hpp"
 #include "runtime/testing/dds_loopback.hpp"
 
 namespace ltm::mapping {
@@ -19,8 +19,8 @@ TEST(PlaceDescriptorMsg, ADigestedKeyframeCrossesDdsUnchanged) {
     k.local_map_id = 3;
     k.segment = 2;
     k.stamp = 12.5;
-    const std::vector<Eigen::Vector3f> whole =
-        test::view(test::synthetic_scene(5), Eigen::Isometry3d::Identity(), 50.0);
+    const std::vector<Eigen::Vector3f> whole = registration::test::view(
+        registration::test::synthetic_scene(5), Eigen::Isometry3d::Identity(), 50.0);
     KeyframeDescriptors d;
     digester.digest(whole, &d, &k.points);
     convert::KeyframeBuilder builder;
@@ -54,9 +54,10 @@ TEST(PlaceDescriptorMsg, NoneOrADamagedOneIsEmptyWithAReason) {
     EXPECT_TRUE(from_msg(none, &problem).descriptor.empty());
     EXPECT_EQ(problem, "");  // none is not a problem
     const MadeDescriptor made{
-        make_scan_context(test::view(test::synthetic_scene(6), Eigen::Isometry3d::Identity(), 50.0),
-                          ScanContextConfig()),
-        ScanContextConfig()};
+        places::make_scan_context(registration::test::view(registration::test::synthetic_scene(6),
+                                                           Eigen::Isometry3d::Identity(), 50.0),
+                                  places::ScanContextConfig()),
+        places::ScanContextConfig()};
     msg::PlaceDescriptor m;
     borrow_into(made, &m);
     EXPECT_FALSE(from_msg(m, &problem).descriptor.empty());

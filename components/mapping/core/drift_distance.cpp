@@ -9,12 +9,12 @@
 namespace ltm::mapping {
 
 double drift_distance(const PoseGraph& graph, std::uint64_t from, std::uint64_t to,
-                      const std::function<double(const PoseGraphEdge&)>& odometry_length) {
+                      const std::function<double(const map::PoseGraphEdge&)>& odometry_length) {
     if (from == to) return 0.0;
     std::unordered_map<std::uint64_t, std::vector<std::pair<std::uint64_t, double>>> adjacent;
-    for (const PoseGraphEdge& e : graph.edges()) {
+    for (const map::PoseGraphEdge& e : graph.edges()) {
         if (!e.active) continue;
-        const double w = e.kind == EdgeKind::kLoop ? 0.0 : std::max(0.0, odometry_length(e));
+        const double w = e.kind == map::EdgeKind::kLoop ? 0.0 : std::max(0.0, odometry_length(e));
         if (!(w < std::numeric_limits<double>::infinity())) continue;  // bounds nothing
         adjacent[e.from].push_back({e.to, w});
         adjacent[e.to].push_back({e.from, w});

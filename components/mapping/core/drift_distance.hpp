@@ -15,6 +15,6 @@ namespace ltm::mapping {
 // edges that the last optimisation disabled are not used. +infinity when the nodes are not
 // connected but through such edges.
 double drift_distance(const PoseGraph& graph, std::uint64_t from, std::uint64_t to,
-                      const std::function<double(const PoseGraphEdge&)>& odometry_length);
+                      const std::function<double(const map::PoseGraphEdge&)>& odometry_length);
 
 }  // namespace ltm::mapping

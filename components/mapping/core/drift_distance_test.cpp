@@ -13,13 +13,13 @@ namespace {
 PoseGraph chain(int n) {
     PoseGraph g;
     for (int i = 0; i < n; ++i) {
-        PoseGraphNode node;
+        map::PoseGraphNode node;
         node.id = std::uint64_t(i);
         node.local_map_id = std::uint64_t(i);
         node.T_world_anchor.translation().x() = 10.0 * i;
         EXPECT_TRUE(g.add_node(node));
         if (i > 0) {
-            PoseGraphEdge e;
+            map::PoseGraphEdge e;
             e.from = std::uint64_t(i - 1);
             e.to = std::uint64_t(i);
             e.T_from_to.translation().x() = 10.0;
@@ -29,13 +29,13 @@ PoseGraph chain(int n) {
     return g;
 }
 
-double length(const PoseGraphEdge& e) { return e.T_from_to.translation().norm(); }
+double length(const map::PoseGraphEdge& e) { return e.T_from_to.translation().norm(); }
 
-PoseGraphEdge loop(std::uint64_t from, std::uint64_t to) {
-    PoseGraphEdge e;
+map::PoseGraphEdge loop(std::uint64_t from, std::uint64_t to) {
+    map::PoseGraphEdge e;
     e.from = from;
     e.to = to;
-    e.kind = EdgeKind::kLoop;
+    e.kind = map::EdgeKind::kLoop;
     return e;
 }
 
@@ -52,11 +52,11 @@ TEST(DriftDistance, OdometryPathThenShortcutsThroughLoops) {
 
 TEST(DriftDistance, DisabledLoopsAreNotUsedAndDisconnectedIsInfinite) {
     PoseGraph g = chain(10);
-    PoseGraphEdge disabled = loop(0, 9);
+    map::PoseGraphEdge disabled = loop(0, 9);
     disabled.active = false;
     ASSERT_TRUE(g.add_edge(disabled));
     EXPECT_DOUBLE_EQ(drift_distance(g, 0, 9, length), 90.0);
-    PoseGraphNode lonely;
+    map::PoseGraphNode lonely;
     lonely.id = 100;
     ASSERT_TRUE(g.add_node(lonely));
     EXPECT_TRUE(std::isinf(drift_distance(g, 0, 100, length)));
@@ -65,7 +65,7 @@ TEST(DriftDistance, DisabledLoopsAreNotUsedAndDisconnectedIsInfinite) {
 TEST(DriftDistance, AnEdgeOfInfiniteLengthIsNoPathButALoopAroundItIs) {
     PoseGraph g = chain(10);
     // The odometry lost track between 4 and 5: that edge bounds nothing.
-    auto broken = [](const PoseGraphEdge& e) {
+    auto broken = [](const map::PoseGraphEdge& e) {
         return e.from == 4 ? std::numeric_limits<double>::infinity() : length(e);
     };
     EXPECT_TRUE(std::isinf(drift_distance(g, 2, 7, broken)));
@@ -87,8 +87,8 @@ TEST(DriftDistance, MatchesABruteForceOracleOnRandomGraphs) {
         // Floyd-Warshall over the same weights.
         std::vector<std::vector<double>> d(n, std::vector<double>(n, INFINITY));
         for (int i = 0; i < n; ++i) d[i][i] = 0.0;
-        for (const PoseGraphEdge& e : g.edges()) {
-            const double w = e.kind == EdgeKind::kLoop ? 0.0 : length(e);
+        for (const map::PoseGraphEdge& e : g.edges()) {
+            const double w = e.kind == map::EdgeKind::kLoop ? 0.0 : length(e);
             d[e.from][e.to] = std::min(d[e.from][e.to], w);
             d[e.to][e.from] = std::min(d[e.to][e.from], w);
         }

@@ -12,15 +12,15 @@
 #include <vector>
 
 #include "mapping/core/mapper_config.hpp"
-#include "mapping/core/scan_context.hpp"
+#include "places/core/scan_context.hpp"
 #include "registration/core/preprocess.hpp"
 
 namespace ltm::mapping {
 
 // A descriptor and the settings that made it (empty: none).
 struct MadeDescriptor {
-    ScanContext descriptor;
-    ScanContextConfig made_with;
+    places::ScanContext descriptor;
+    places::ScanContextConfig made_with;
 };
 
 // What a keyframe may bring besides its points.
@@ -32,11 +32,12 @@ struct KeyframeDescriptors {
 // The same descriptor from the same points: kind, rings, sectors, ranges and sensor height (as the
 // 32-bit floats a message carries them in) agree. The comparison settings (empty_bin_cost,
 // shift_search_radius) do not make the descriptor.
-bool made_alike(const ScanContextConfig& a, const ScanContextConfig& b);
+bool made_alike(const places::ScanContextConfig& a, const places::ScanContextConfig& b);
 
 // `given` when it is not empty, was made as `config` makes it and has the shape it says; else
 // nullptr.
-const ScanContext* usable(const MadeDescriptor& given, const ScanContextConfig& config);
+const places::ScanContext* usable(const MadeDescriptor& given,
+                                  const places::ScanContextConfig& config);
 
 class KeyframeDigester {
   public:

@@ -4,7 +4,7 @@
 
 #include "common/core/config_check.hpp"
 #include "mapping/core/mapper.hpp"
-#include "mapping/core/test_data.hpp"
+#include "registration/core/test_data.hpp"
 
 namespace ltm::mapping {
 namespace {
@@ -13,7 +13,8 @@ namespace {
 // 1.5 m to the side, turned round, while the odometry drifts (keyframes 6-11, local maps 3-5):
 // the second pass closes loops to the first.
 struct TwoPasses {
-    std::vector<Eigen::Vector3f> scene = test::with_dense_ground(test::synthetic_scene(17));
+    std::vector<Eigen::Vector3f> scene =
+        registration::test::with_dense_ground(registration::test::synthetic_scene(17));
     common::PoseList truth, odom;
     std::vector<common::LocalMapData> maps;
     std::vector<common::KeyframeData> keyframes;
@@ -21,17 +22,17 @@ struct TwoPasses {
     TwoPasses() {
         std::vector<std::vector<Eigen::Vector3f>> points;
         for (int i = 0; i < 12; ++i) {
-            truth.push_back(i < 6 ? test::xy_yaw(4.0 * i, 0.0, 0.0)
-                                  : test::xy_yaw(20.0 - 4.0 * (i - 6), 1.5, 180.0));
+            truth.push_back(i < 6 ? registration::test::xy_yaw(4.0 * i, 0.0, 0.0)
+                                  : registration::test::xy_yaw(20.0 - 4.0 * (i - 6), 1.5, 180.0));
             const double f = i < 6 ? 0.0 : double(i - 5) / 6.0;  // drift on the way back
-            odom.push_back(test::xy_yaw(0.4 * f, -0.3 * f, 1.5 * f) * truth.back());
-            points.push_back(test::view(scene, truth.back(), 50.0));
+            odom.push_back(registration::test::xy_yaw(0.4 * f, -0.3 * f, 1.5 * f) * truth.back());
+            points.push_back(registration::test::view(scene, truth.back(), 50.0));
         }
         for (std::uint64_t m = 0; m < 6; ++m) {
             const std::vector<std::vector<Eigen::Vector3f>> scans = {points[2 * m],
                                                                      points[2 * m + 1]};
-            maps.push_back(
-                test::build_local_map(m, odom[2 * m], scans, {odom[2 * m], odom[2 * m + 1]}));
+            maps.push_back(registration::test::build_local_map(m, odom[2 * m], scans,
+                                                               {odom[2 * m], odom[2 * m + 1]}));
         }
         for (std::size_t i = 0; i < 12; ++i) {
             common::KeyframeData k;
@@ -97,7 +98,7 @@ TEST(KeyframeDigest, AMapperGivenDigestedKeyframesMakesTheSameMap) {
     }
     for (std::uint32_t k = 0; k < whole.keyframes().size(); ++k) {
         EXPECT_TRUE(digested.keyframe_pose(k).isApprox(whole.keyframe_pose(k), 1e-12)) << k;
-        const StoredKeyframe &a = *whole.keyframes()[k], &b = *digested.keyframes()[k];
+        const map::StoredKeyframe &a = *whole.keyframes()[k], &b = *digested.keyframes()[k];
         EXPECT_EQ(b.descriptor.value, a.descriptor.value);
         EXPECT_EQ(b.localisation_descriptor.value, a.localisation_descriptor.value);
         EXPECT_EQ(b.localisation_descriptor.spread, a.localisation_descriptor.spread);
@@ -120,16 +121,17 @@ TEST(KeyframeDigest, DescriptorsMadeOtherwiseAreMadeAgainFromThePoints) {
     common::KeyframeData k = s.keyframes[0];
     k.points = sampled;
     ASSERT_TRUE(mapper.add_keyframe(k, mapper.session(), given).added);
-    const StoredKeyframe& stored = *mapper.keyframes()[0];
-    EXPECT_EQ(stored.descriptor.value, make_scan_context(sampled, config.scan_context).value);
+    const map::StoredKeyframe& stored = *mapper.keyframes()[0];
+    EXPECT_EQ(stored.descriptor.value,
+              places::make_scan_context(sampled, config.scan_context).value);
     EXPECT_EQ(stored.localisation_descriptor.rings, config.localisation_descriptor.rings);
 }
 
 TEST(KeyframeDigest, OnlyADescriptorOfTheStatedShapeIsUsable) {
-    const ScanContextConfig c = MapperConfig().localisation_descriptor;  // ScanContext++
-    const std::vector<Eigen::Vector3f> points =
-        test::view(test::synthetic_scene(3), Eigen::Isometry3d::Identity(), 40.0);
-    const MadeDescriptor good{make_scan_context(points, c), c};
+    const places::ScanContextConfig c = MapperConfig().localisation_descriptor;  // ScanContext++
+    const std::vector<Eigen::Vector3f> points = registration::test::view(
+        registration::test::synthetic_scene(3), Eigen::Isometry3d::Identity(), 40.0);
+    const MadeDescriptor good{places::make_scan_context(points, c), c};
     EXPECT_EQ(usable(good, c), &good.descriptor);
     EXPECT_FALSE(usable(MadeDescriptor{}, c));  // none given
     MadeDescriptor bad = good;
@@ -142,7 +144,7 @@ TEST(KeyframeDigest, OnlyADescriptorOfTheStatedShapeIsUsable) {
     bad.made_with.max_range += 1.0;
     EXPECT_FALSE(usable(bad, c));
     // The comparison settings do not make the descriptor.
-    ScanContextConfig other = c;
+    places::ScanContextConfig other = c;
     other.empty_bin_cost = 9.0;
     other.shift_search_radius = 3;
     EXPECT_TRUE(usable(good, other));

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <map>
 
-#include "mapping/core/test_data.hpp"
+#include "registration/core/test_data.hpp"
 
 namespace ltm::mapping {
 namespace {
@@ -40,16 +40,17 @@ common::VoxelData voxel(const Eigen::Vector3i& index, const Eigen::Vector3f& cen
 // first already has one (the same surfaces land in the same cells), and every voxel of the second
 // is found in the merged map where the first's frame puts it.
 TEST(LocalMapMerge, AMapMergedWithItselfShiftedByAKnownTransformLandsOnItsOwnCells) {
-    const std::vector<Eigen::Vector3f> scene = test::with_dense_ground(test::synthetic_scene(5));
-    const Eigen::Isometry3d at_a = test::xy_yaw(0, 0, 0);
-    const common::LocalMapData a =
-        test::build_local_map(0, at_a, {test::view(scene, at_a, 30.0)}, {at_a}, 1.0, 30.0);
+    const std::vector<Eigen::Vector3f> scene =
+        registration::test::with_dense_ground(registration::test::synthetic_scene(5));
+    const Eigen::Isometry3d at_a = registration::test::xy_yaw(0, 0, 0);
+    const common::LocalMapData a = registration::test::build_local_map(
+        0, at_a, {registration::test::view(scene, at_a, 30.0)}, {at_a}, 1.0, 30.0);
     // The second map: the same view in another odometry frame, anchored 7 m on and turned.
-    const Eigen::Isometry3d T_shift = test::xy_yaw(7.0, -2.0, 30.0);
-    const Eigen::Isometry3d T_odom2_world = test::xy_yaw(-40.0, 12.0, -70.0);
-    const common::LocalMapData b =
-        test::build_local_map(1, T_odom2_world * T_shift, {test::view(scene, at_a, 30.0)},
-                              {T_odom2_world * at_a}, 1.0, 30.0);
+    const Eigen::Isometry3d T_shift = registration::test::xy_yaw(7.0, -2.0, 30.0);
+    const Eigen::Isometry3d T_odom2_world = registration::test::xy_yaw(-40.0, 12.0, -70.0);
+    const common::LocalMapData b = registration::test::build_local_map(
+        1, T_odom2_world * T_shift, {registration::test::view(scene, at_a, 30.0)},
+        {T_odom2_world * at_a}, 1.0, 30.0);
     const common::LocalMapData m = merge_local_maps(a, b, T_shift, 1024);
 
     EXPECT_EQ(m.id, a.id);

@@ -14,7 +14,8 @@ std::optional<common::ConfigProblem> validate(const LoopDetectorConfig& config) 
 
 namespace {
 
-const LoopDetectorConfig& checked(const ScanContextConfig& sc, const LoopDetectorConfig& c) {
+const LoopDetectorConfig& checked(const places::ScanContextConfig& sc,
+                                  const LoopDetectorConfig& c) {
     common::throw_if(validate(sc), "scan_context");
     common::throw_if(validate(c), "loop_detection");
     return c;
@@ -22,12 +23,13 @@ const LoopDetectorConfig& checked(const ScanContextConfig& sc, const LoopDetecto
 
 }  // namespace
 
-LoopDetector::LoopDetector(const ScanContextConfig& sc_config, const LoopDetectorConfig& config)
+LoopDetector::LoopDetector(const places::ScanContextConfig& sc_config,
+                           const LoopDetectorConfig& config)
     : sc_config_(sc_config),
       config_(checked(sc_config, config)),
       index_(sc_config.rings, std::size_t(config.rebuild_every)) {}
 
-bool LoopDetector::fits(const ScanContext& sc) const {
+bool LoopDetector::fits(const places::ScanContext& sc) const {
     return sc.kind == sc_config_.kind && sc.rings == sc_config_.rings &&
            sc.sectors == sc_config_.sectors &&
            sc.value.size() == std::size_t(sc.rings) * sc.sectors;
@@ -45,36 +47,37 @@ void LoopDetector::release(std::uint32_t session, double stamp) {
             stamp - p.stamp < config_.exclude_recent_seconds) {
             break;
         }
-        index_.add(ring_key(descriptors_[p.item]), p.item);
+        index_.add(places::ring_key(descriptors_[p.item]), p.item);
         pending.pop_front();
     }
 }
 
-void LoopDetector::query_pending(const ScanContext& descriptor, std::uint32_t session,
+void LoopDetector::query_pending(const places::ScanContext& descriptor, std::uint32_t session,
                                  std::vector<LoopCandidate>* out) const {
     // The nearest ring keys first, as the index does, then the full comparison.
-    const Eigen::VectorXf key = ring_key(descriptor);
+    const Eigen::VectorXf key = places::ring_key(descriptor);
     std::vector<std::pair<float, std::uint32_t>> near;
     for (const auto& [other, pending] : pending_) {
         if (other == session) continue;
         for (const Pending& p : pending)
-            near.emplace_back((ring_key(descriptors_[p.item]) - key).norm(), p.item);
+            near.emplace_back((places::ring_key(descriptors_[p.item]) - key).norm(), p.item);
     }
     const std::size_t n = std::min(near.size(), std::size_t(config_.candidates));
     std::partial_sort(near.begin(), near.begin() + std::ptrdiff_t(n), near.end());
     for (std::size_t i = 0; i < n; ++i) {
-        const ScanContextMatch m = compare(descriptor, descriptors_[near[i].second], sc_config_);
+        const places::ScanContextMatch m =
+            compare(descriptor, descriptors_[near[i].second], sc_config_);
         if (!m.valid || !(m.distance <= config_.max_distance)) continue;
         out->push_back({near[i].second, m.distance, m.yaw, m.shift});
     }
 }
 
-std::vector<LoopCandidate> LoopDetector::query(const ScanContext& descriptor) const {
+std::vector<LoopCandidate> LoopDetector::query(const places::ScanContext& descriptor) const {
     std::vector<LoopCandidate> out;
     if (!fits(descriptor) || index_.size() == 0) return out;
-    for (const RingKeyNeighbour& n :
-         index_.nearest(ring_key(descriptor), std::size_t(config_.candidates))) {
-        const ScanContextMatch m = compare(descriptor, descriptors_[n.item], sc_config_);
+    for (const places::RingKeyNeighbour& n :
+         index_.nearest(places::ring_key(descriptor), std::size_t(config_.candidates))) {
+        const places::ScanContextMatch m = compare(descriptor, descriptors_[n.item], sc_config_);
         if (!m.valid || !(m.distance <= config_.max_distance)) continue;
         out.push_back({n.item, m.distance, m.yaw, m.shift});
     }
@@ -85,13 +88,13 @@ std::vector<LoopCandidate> LoopDetector::query(const ScanContext& descriptor) co
     return out;
 }
 
-bool LoopDetector::add(const ScanContext& descriptor, std::uint32_t session, double stamp,
+bool LoopDetector::add(const places::ScanContext& descriptor, std::uint32_t session, double stamp,
                        std::vector<LoopCandidate>* candidates) {
     return search(descriptor, session, stamp, candidates) && keep(descriptor, session, stamp);
 }
 
-bool LoopDetector::search(const ScanContext& descriptor, std::uint32_t session, double stamp,
-                          std::vector<LoopCandidate>* candidates) {
+bool LoopDetector::search(const places::ScanContext& descriptor, std::uint32_t session,
+                          double stamp, std::vector<LoopCandidate>* candidates) {
     if (candidates) candidates->clear();
     if (!fits(descriptor)) return false;
     release(session, stamp);  // before the new keyframe joins: it never finds itself
@@ -110,17 +113,18 @@ bool LoopDetector::search(const ScanContext& descriptor, std::uint32_t session, 
     return true;
 }
 
-bool LoopDetector::keep(const ScanContext& descriptor, std::uint32_t session, double stamp) {
+bool LoopDetector::keep(const places::ScanContext& descriptor, std::uint32_t session,
+                        double stamp) {
     if (!fits(descriptor)) return false;
     descriptors_.push_back(descriptor);
     pending_[session].push_back({std::uint32_t(descriptors_.size() - 1), kept_[session]++, stamp});
     return true;
 }
 
-bool LoopDetector::add_searchable(const ScanContext& descriptor) {
+bool LoopDetector::add_searchable(const places::ScanContext& descriptor) {
     if (!fits(descriptor)) return false;
     descriptors_.push_back(descriptor);
-    index_.add(ring_key(descriptor), std::uint32_t(descriptors_.size() - 1));
+    index_.add(places::ring_key(descriptor), std::uint32_t(descriptors_.size() - 1));
     return true;
 }
 

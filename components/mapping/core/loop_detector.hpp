@@ -14,8 +14,8 @@
 #include <string>
 #include <vector>
 
-#include "mapping/core/ring_key_index.hpp"
-#include "mapping/core/scan_context.hpp"
+#include "places/core/ring_key_index.hpp"
+#include "places/core/scan_context.hpp"
 
 namespace ltm::mapping {
 
@@ -57,28 +57,28 @@ struct LoopCandidate {
 class LoopDetector {
   public:
     // Throws common::ConfigError (naming the key) on an invalid configuration.
-    LoopDetector(const ScanContextConfig& sc_config, const LoopDetectorConfig& config);
+    LoopDetector(const places::ScanContextConfig& sc_config, const LoopDetectorConfig& config);
 
-    const ScanContextConfig& scan_context_config() const { return sc_config_; }
+    const places::ScanContextConfig& scan_context_config() const { return sc_config_; }
     // Descriptors kept, and descriptor i (index = order of add()).
     std::size_t size() const { return descriptors_.size(); }
-    const ScanContext& descriptor(std::uint32_t i) const { return descriptors_[i]; }
+    const places::ScanContext& descriptor(std::uint32_t i) const { return descriptors_[i]; }
     std::size_t searchable() const { return index_.size(); }
 
     // The candidates for a new keyframe of `session` taken at `stamp` (best first), then the
     // keyframe's descriptor is kept under index size(). The descriptor must have the configured
     // kind and shape (false: nothing kept, no candidates).
-    bool add(const ScanContext& descriptor, std::uint32_t session, double stamp,
+    bool add(const places::ScanContext& descriptor, std::uint32_t session, double stamp,
              std::vector<LoopCandidate>* candidates);
     // add() in two halves, for a caller that decides after the search whether to keep the
     // keyframe: the candidates (as add() finds them; nothing kept), then keep() it or not.
-    bool search(const ScanContext& descriptor, std::uint32_t session, double stamp,
+    bool search(const places::ScanContext& descriptor, std::uint32_t session, double stamp,
                 std::vector<LoopCandidate>* candidates);
-    bool keep(const ScanContext& descriptor, std::uint32_t session, double stamp);
+    bool keep(const places::ScanContext& descriptor, std::uint32_t session, double stamp);
     // A keyframe of an earlier session (a loaded map): searchable at once.
-    bool add_searchable(const ScanContext& descriptor);
+    bool add_searchable(const places::ScanContext& descriptor);
     // Candidates among all searchable keyframes for a descriptor not kept (re-localisation).
-    std::vector<LoopCandidate> query(const ScanContext& descriptor) const;
+    std::vector<LoopCandidate> query(const places::ScanContext& descriptor) const;
 
   private:
     struct Pending {
@@ -86,17 +86,17 @@ class LoopDetector {
         std::uint64_t ordinal;  // the keyframes of its session kept before it
         double stamp;
     };
-    bool fits(const ScanContext& sc) const;
+    bool fits(const places::ScanContext& sc) const;
     // Into the index: the keyframes of `session` no longer recent for it.
     void release(std::uint32_t session, double stamp);
     // Candidates among the recent keyframes of the sessions other than `session`.
-    void query_pending(const ScanContext& descriptor, std::uint32_t session,
+    void query_pending(const places::ScanContext& descriptor, std::uint32_t session,
                        std::vector<LoopCandidate>* out) const;
 
-    ScanContextConfig sc_config_;
+    places::ScanContextConfig sc_config_;
     LoopDetectorConfig config_;
-    std::vector<ScanContext> descriptors_;
-    RingKeyIndex index_;
+    std::vector<places::ScanContext> descriptors_;
+    places::RingKeyIndex index_;
     // Per session: recent keyframes, not yet in the index (oldest first), and how many it kept.
     std::map<std::uint32_t, std::deque<Pending>> pending_;
     std::map<std::uint32_t, std::uint64_t> kept_;

@@ -30,8 +30,8 @@ bool rigid(const Eigen::Isometry3d& T, Eigen::Isometry3d* out) {
 }
 
 // The loaded map's descriptors (a) must be made as the config's (b) are.
-void require_same_descriptors(const ScanContextConfig& a, const ScanContextConfig& b,
-                              const std::string& key) {
+void require_same_descriptors(const places::ScanContextConfig& a,
+                              const places::ScanContextConfig& b, const std::string& key) {
     if (a.kind != b.kind || a.rings != b.rings || a.sectors != b.sectors ||
         std::abs(a.max_range - b.max_range) > 1e-9 || std::abs(a.min_range - b.min_range) > 1e-9 ||
         std::abs(a.sensor_height - b.sensor_height) > 1e-9) {
@@ -53,18 +53,18 @@ Mapper::Mapper(const MapperConfig& config)
     live_[session_];
 }
 
-Mapper::Mapper(const MapperConfig& config, const MapData& loaded, bool freeze_loaded)
+Mapper::Mapper(const MapperConfig& config, const map::MapData& loaded, bool freeze_loaded)
     : Mapper(config) {
     require_same_descriptors(loaded.descriptor_config, config_.scan_context,
                              "mapping.scan_context");
     // A format-1 map has no localisation descriptors: its keyframes keep none, new ones get them.
-    if (has_localisation_descriptors(loaded.localisation_descriptor_config)) {
+    if (map::has_localisation_descriptors(loaded.localisation_descriptor_config)) {
         require_same_descriptors(loaded.localisation_descriptor_config,
                                  config_.localisation_descriptor,
                                  "mapping.localisation_descriptor");
     }
     std::uint32_t last_session = 0;
-    for (PoseGraphNode n : loaded.nodes) {
+    for (map::PoseGraphNode n : loaded.nodes) {
         n.fixed = n.fixed || freeze_loaded;
         if (!graph_.add_node(n))
             throw common::IoError("loaded map",
@@ -73,10 +73,10 @@ Mapper::Mapper(const MapperConfig& config, const MapData& loaded, bool freeze_lo
         next_node_ = std::max(next_node_, n.id + 1);
         last_session = std::max(last_session, n.session);
     }
-    for (const PoseGraphEdge& e : loaded.edges) graph_.add_edge(e);
+    for (const map::PoseGraphEdge& e : loaded.edges) graph_.add_edge(e);
     std::map<std::pair<std::uint64_t, std::uint64_t>, bool> breaks;  // odometry edges (from, to)
-    for (const PoseGraphEdge& e : graph_.edges()) {
-        if (e.kind == EdgeKind::kOdometry) breaks[{e.from, e.to}] = is_segment_break(e);
+    for (const map::PoseGraphEdge& e : graph_.edges()) {
+        if (e.kind == map::EdgeKind::kOdometry) breaks[{e.from, e.to}] = is_segment_break(e);
     }
     for (const auto& [session, chain] : chains_) {
         // The file keeps no segment numbers: the breaks in the odometry chain give them back.
@@ -92,11 +92,11 @@ Mapper::Mapper(const MapperConfig& config, const MapData& loaded, bool freeze_lo
             set_path(session, local_map_id);
         }
     }
-    for (const std::shared_ptr<const StoredKeyframe>& k : loaded.keyframes) {
+    for (const std::shared_ptr<const map::StoredKeyframe>& k : loaded.keyframes) {
         if (!k || !detector_.add_searchable(k->descriptor)) continue;
         keyframes_.push_back(k);
     }
-    for (const StoredLocalMap& m : loaded.local_maps) {
+    for (const map::StoredLocalMap& m : loaded.local_maps) {
         if (m.data && graph_.find(m.node)) maps_[m.node] = MapEntry{m, next_serial_++};
     }
     session_ = loaded.nodes.empty() ? 0 : last_session + 1;
@@ -105,15 +105,15 @@ Mapper::Mapper(const MapperConfig& config, const MapData& loaded, bool freeze_lo
     if (past_sessions_.empty() && !loaded.nodes.empty()) {
         // A map of format 1 or 2 records no sessions: what its graph and keyframes say (no
         // merging existed then, so nothing was updated).
-        std::map<std::uint32_t, SessionRecord> known;
-        for (const PoseGraphNode& n : loaded.nodes) {
+        std::map<std::uint32_t, map::SessionRecord> known;
+        for (const map::PoseGraphNode& n : loaded.nodes) {
             known[n.session].id = n.session;
             ++known[n.session].local_maps_added;
         }
         std::map<std::uint32_t, bool> stamped;
-        for (const std::shared_ptr<const StoredKeyframe>& k : loaded.keyframes) {
+        for (const std::shared_ptr<const map::StoredKeyframe>& k : loaded.keyframes) {
             if (!k || !known.count(k->session)) continue;
-            SessionRecord& r = known[k->session];
+            map::SessionRecord& r = known[k->session];
             r.first_stamp =
                 stamped[k->session] ? std::min(r.first_stamp, k->data.stamp) : k->data.stamp;
             r.last_stamp =
@@ -157,7 +157,7 @@ std::vector<std::uint32_t> Mapper::open_sessions() const {
 std::string Mapper::robot(std::uint32_t session) const {
     const auto it = live_.find(session);
     if (it != live_.end()) return it->second.robot;
-    for (const SessionRecord& r : past_sessions_) {
+    for (const map::SessionRecord& r : past_sessions_) {
         if (r.id == session) return r.robot;
     }
     return "";
@@ -286,12 +286,13 @@ KeyframeResult Mapper::add_keyframe(const common::KeyframeData& input, std::uint
     // A keyframe of a local map folded already: its pose in the node it went into.
     if (const Folded* f = folded(session, keyframe.local_map_id))
         keyframe.T_anchor_lidar = f->T_node_anchor * keyframe.T_anchor_lidar;
-    auto stored = std::make_shared<StoredKeyframe>();
+    auto stored = std::make_shared<map::StoredKeyframe>();
     stored->session = session;
     stored->node = node;
-    const ScanContext* loop_descriptor = usable(given.loop, config_.scan_context);
-    stored->descriptor =
-        loop_descriptor ? *loop_descriptor : make_scan_context(input.points, config_.scan_context);
+    const places::ScanContext* loop_descriptor = usable(given.loop, config_.scan_context);
+    stored->descriptor = loop_descriptor
+                             ? *loop_descriptor
+                             : places::make_scan_context(input.points, config_.scan_context);
     std::vector<LoopCandidate> candidates;
     if (!(config_.loop_closure
               ? detector_.search(stored->descriptor, session, keyframe.stamp, &candidates)
@@ -328,10 +329,11 @@ KeyframeResult Mapper::add_keyframe(const common::KeyframeData& input, std::uint
         }
     }
     if (standing) return r;
-    const ScanContext* localisation = usable(given.localisation, config_.localisation_descriptor);
+    const places::ScanContext* localisation =
+        usable(given.localisation, config_.localisation_descriptor);
     stored->localisation_descriptor =
         localisation ? *localisation
-                     : make_scan_context(input.points, config_.localisation_descriptor);
+                     : places::make_scan_context(input.points, config_.localisation_descriptor);
     stored->data.id = keyframe.id;
     stored->data.scan_index = keyframe.scan_index;
     stored->data.local_map_id = keyframe.local_map_id;
@@ -358,16 +360,16 @@ bool Mapper::apply(const PoseGraph& optimised, const OptimisationSummary& summar
     if (!summary.solved) return false;
     due_loops_ = 0;
     // Nodes folded since the snapshot are gone: set_pose leaves them out.
-    for (const PoseGraphNode& n : optimised.nodes()) graph_.set_pose(n.id, n.T_world_anchor);
+    for (const map::PoseGraphNode& n : optimised.nodes()) graph_.set_pose(n.id, n.T_world_anchor);
     // Loop flags: edges are matched by their ends, kind and keyframes.
     using Key = std::tuple<std::uint64_t, std::uint64_t, int, std::uint64_t, std::uint64_t>;
-    std::map<Key, const PoseGraphEdge*> solved;
-    for (const PoseGraphEdge& e : optimised.edges()) {
+    std::map<Key, const map::PoseGraphEdge*> solved;
+    for (const map::PoseGraphEdge& e : optimised.edges()) {
         solved[Key(e.from, e.to, int(e.kind), e.query_keyframe, e.match_keyframe)] = &e;
     }
     PoseGraph updated(graph_.config());
-    for (const PoseGraphNode& n : graph_.nodes()) updated.add_node(n);
-    for (PoseGraphEdge e : graph_.edges()) {
+    for (const map::PoseGraphNode& n : graph_.nodes()) updated.add_node(n);
+    for (map::PoseGraphEdge e : graph_.edges()) {
         const auto it =
             solved.find(Key(e.from, e.to, int(e.kind), e.query_keyframe, e.match_keyframe));
         if (it != solved.end()) {
@@ -383,7 +385,7 @@ bool Mapper::apply(const PoseGraph& optimised, const OptimisationSummary& summar
     for (const auto& [session, chain] : chains_) {
         for (const auto& [local_map_id, id] : chain) {
             if (optimised.find(id) || folded(session, local_map_id)) continue;
-            const PoseGraphNode* n = graph_.find(id);
+            const map::PoseGraphNode* n = graph_.find(id);
             graph_.set_pose(id, predicted_world(session, local_map_id, n->T_odom_anchor));
         }
     }

@@ -54,12 +54,12 @@
 #include "common/core/io_error.hpp"
 #include "common/core/local_map_data.hpp"
 #include "common/core/ply_io.hpp"
+#include "map/core/map_data.hpp"
 #include "mapping/core/keyframe_digest.hpp"
 #include "mapping/core/loop_detector.hpp"
-#include "mapping/core/loop_verifier.hpp"
-#include "mapping/core/map_data.hpp"
 #include "mapping/core/mapper_config.hpp"
 #include "mapping/core/pose_graph.hpp"
+#include "registration/core/loop_verifier.hpp"
 
 namespace ltm::mapping {
 
@@ -80,7 +80,7 @@ struct LoopClosure {
     double inlier_fraction = 0.0, inlier_rms = 0.0;
     double correction_translation = 0.0;  // verification result vs the guess it started from [m]
     double disagreement = 0.0;            // with the graph's estimate at the time [m]
-    std::size_t structure_points = 0, structure_inliers = 0;  // see LoopVerification
+    std::size_t structure_points = 0, structure_inliers = 0;  // see registration::LoopVerification
     bool from_graph_guess = false;  // verified from the graph's estimate, not the descriptor's
     // Between places already joined by loops, agreeing with the graph to within
     // long_term.agree_translation / agree_rotation: added without making an optimisation due.
@@ -156,7 +156,7 @@ class Mapper {
     // made as config.scan_context's, config.localisation_descriptor's are (a map without
     // localisation descriptors, format 1, is accepted: its keyframes keep none, the new ones get
     // them), and common::IoError when its graph holds an invalid or repeated node.
-    Mapper(const MapperConfig& config, const MapData& loaded, bool freeze_loaded = true);
+    Mapper(const MapperConfig& config, const map::MapData& loaded, bool freeze_loaded = true);
 
     const MapperConfig& config() const { return config_; }
     // The default session (the one the calls without a session mean).
@@ -203,7 +203,7 @@ class Mapper {
 
     const PoseGraph& graph() const { return graph_; }
     const std::vector<LoopClosure>& loops() const { return loops_; }
-    const std::vector<std::shared_ptr<const StoredKeyframe>>& keyframes() const {
+    const std::vector<std::shared_ptr<const map::StoredKeyframe>>& keyframes() const {
         return keyframes_;
     }
     // The graph node of a local map of the current session.
@@ -230,17 +230,17 @@ class Mapper {
     // An open session's segments, in order (none for a session that is not open).
     std::vector<SegmentStatus> segments(std::uint32_t session) const;
 
-    common::PlyCloud global_map(GlobalMapStats* stats = nullptr) const;
+    common::PlyCloud global_map(map::GlobalMapStats* stats = nullptr) const;
     // Everything a saved map holds (local maps and keyframes shared, not copied).
-    MapData snapshot() const;
+    map::MapData snapshot() const;
     std::size_t local_map_count() const { return maps_.size(); }
     // The sessions that built the map, the open ones last (each when it added anything), by id.
-    std::vector<SessionRecord> sessions() const;
+    std::vector<map::SessionRecord> sessions() const;
     std::size_t memory_bytes() const;
 
   private:
     struct MapEntry {
-        StoredLocalMap stored;
+        map::StoredLocalMap stored;
         std::uint64_t serial = 0;  // changes with every stored snapshot (verification cache key)
     };
     // A local map of an open session folded into an earlier map (its node).
@@ -268,7 +268,7 @@ class Mapper {
         std::string robot;
         int cooldown = 0;
         std::map<std::uint64_t, Folded> folded;  // local map id -> where it went
-        SessionRecord record;                    // stamps
+        map::SessionRecord record;               // stamps
         std::size_t keyframes_seen = 0;          // stored or not
     };
     struct NodeSegment {
@@ -312,7 +312,7 @@ class Mapper {
     // node `node` at T_anchor_lidar, with its descriptor, to the descriptor's candidates.
     void add_place_candidates(std::uint32_t session, std::uint64_t node,
                               const Eigen::Isometry3d& T_anchor_lidar,
-                              const ScanContext& descriptor,
+                              const places::ScanContext& descriptor,
                               std::vector<LoopCandidate>* candidates) const;
     void verify(std::uint32_t session, const common::KeyframeData& keyframe,
                 const std::vector<Eigen::Vector3f>& points, std::uint64_t node,
@@ -321,11 +321,11 @@ class Mapper {
     // held until session_join.loops agree): true when it is to be added now, with the held loops
     // that agree with it (their edges added here, their closures appended to `joined`).
     bool confirm_join(const SegmentKey& match_root, const SegmentKey& query_root,
-                      const PoseGraphEdge& edge, const LoopClosure& loop,
+                      const map::PoseGraphEdge& edge, const LoopClosure& loop,
                       std::vector<LoopClosure>* joined);
     // A loop edge between two parts no loop had placed together (sessions): the part without a
     // fixed node, the later one, set rigidly where the edge puts it (the optimisation's start).
-    void align_parts(const PoseGraphEdge& loop);
+    void align_parts(const map::PoseGraphEdge& loop);
     // The map's first session: the lowest with nodes (a loaded map's first, or the default).
     std::uint32_t reference_session() const;
 
@@ -336,7 +336,7 @@ class Mapper {
     std::uint64_t next_serial_ = 1;
     PoseGraph graph_;
     LoopDetector detector_;
-    LoopVerifier verifier_;
+    registration::LoopVerifier verifier_;
     // Per session: local map id -> node, in id order (the odometry chain).
     std::map<std::uint32_t, std::map<std::uint64_t, std::uint64_t>> chains_;
     std::unordered_map<std::uint64_t, MapEntry> maps_;           // by node
@@ -344,13 +344,13 @@ class Mapper {
     std::unordered_map<std::uint64_t, NodeSegment> segment_of_;  // by node
     // Segments placed together by active loops, as of the last optimisation: key -> its root.
     std::map<SegmentKey, SegmentKey> placed_;
-    std::vector<std::shared_ptr<const StoredKeyframe>> keyframes_;
+    std::vector<std::shared_ptr<const map::StoredKeyframe>> keyframes_;
     std::vector<LoopClosure> loops_;
     std::map<std::uint32_t, Live> live_;  // the open sessions (the default one always)
     // Loops between two open sessions' parts, held until enough agree (SessionJoinConfig).
     struct HeldJoin {
         SegmentKey match_root, query_root;
-        PoseGraphEdge edge;
+        map::PoseGraphEdge edge;
         LoopClosure loop;
         EIGEN_MAKE_ALIGNED_OPERATOR_NEW
     };
@@ -358,7 +358,7 @@ class Mapper {
     std::size_t due_loops_ = 0;  // loops that made an optimisation due, since one
     // Odometry edges (from, to) made through a folded map: their nodes' paths are of other laps.
     std::set<std::pair<std::uint64_t, std::uint64_t>> relayed_edges_;
-    std::vector<SessionRecord> past_sessions_;  // of the loaded map
+    std::vector<map::SessionRecord> past_sessions_;  // of the loaded map
 };
 
 }  // namespace ltm::mapping

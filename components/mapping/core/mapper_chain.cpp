@@ -23,7 +23,7 @@ std::uint64_t Mapper::ensure_node(std::uint32_t session, std::uint64_t local_map
         if (segment && !folded(session, local_map_id)) set_segment(session, local_map_id, *segment);
         return *existing;
     }
-    PoseGraphNode n;
+    map::PoseGraphNode n;
     n.id = next_node_++;
     n.session = session;
     n.local_map_id = local_map_id;
@@ -35,8 +35,8 @@ std::uint64_t Mapper::ensure_node(std::uint32_t session, std::uint64_t local_map
     if (!chains_.count(session) && session == reference_session() && !graph_.nodes().empty()) {
         PoseGraph reordered(graph_.config());
         reordered.add_node(n);
-        for (const PoseGraphNode& other : graph_.nodes()) reordered.add_node(other);
-        for (const PoseGraphEdge& e : graph_.edges()) reordered.add_edge(e);
+        for (const map::PoseGraphNode& other : graph_.nodes()) reordered.add_node(other);
+        for (const map::PoseGraphEdge& e : graph_.edges()) reordered.add_edge(e);
         graph_ = std::move(reordered);
     } else {
         graph_.add_node(n);
@@ -60,7 +60,7 @@ std::uint64_t Mapper::ensure_node(std::uint32_t session, std::uint64_t local_map
 void Mapper::set_path(std::uint32_t session, std::uint64_t local_map_id) {
     const std::map<std::uint64_t, std::uint64_t>& chain = chains_[session];
     const auto it = chain.find(local_map_id);
-    const PoseGraphNode* node = graph_.find(it->second);
+    const map::PoseGraphNode* node = graph_.find(it->second);
     double path = 0.0;
     if (it != chain.begin()) {
         const ChainAnchor prev = chain_anchor(session, std::prev(it)->first, std::prev(it)->second);
@@ -81,16 +81,16 @@ void Mapper::link_odometry(std::uint32_t session, std::uint64_t local_map_id) {
         next = chain_anchor(session, std::next(it)->first, std::next(it)->second);
     // Not between maps folded into earlier ones: that edge is an earlier lap's or session's.
     if (prev && next && !prev->folded && !next->folded)
-        graph_.remove_edges(prev->node, next->node, EdgeKind::kOdometry);
+        graph_.remove_edges(prev->node, next->node, map::EdgeKind::kOdometry);
     auto link = [&](const ChainAnchor& a, const ChainAnchor& b) {
         if (a.node == b.node) return;
         // Between two places already joined by an odometry edge (maps folded into earlier ones):
         // the place pair is measured; the graph does not grow with the laps.
         if ((a.folded || b.folded) && has_odometry_edge(a.node, b.node)) return;
-        PoseGraphEdge e;
+        map::PoseGraphEdge e;
         e.from = a.node;
         e.to = b.node;
-        e.kind = EdgeKind::kOdometry;
+        e.kind = map::EdgeKind::kOdometry;
         e.T_from_to = a.T_node_anchor * a.T_odom_anchor.inverse() * b.T_odom_anchor *
                       b.T_node_anchor.inverse();
         // Into the first map of a new segment: the odometry's best estimate, not a measurement.
@@ -109,9 +109,9 @@ void Mapper::unlink_odometry(std::uint32_t session, std::uint64_t local_map_id) 
     const auto it = chain.find(local_map_id);
     if (folded(session, local_map_id)) return;
     if (it != chain.begin())
-        graph_.remove_edges(std::prev(it)->second, it->second, EdgeKind::kOdometry);
+        graph_.remove_edges(std::prev(it)->second, it->second, map::EdgeKind::kOdometry);
     if (std::next(it) != chain.end())
-        graph_.remove_edges(it->second, std::next(it)->second, EdgeKind::kOdometry);
+        graph_.remove_edges(it->second, std::next(it)->second, map::EdgeKind::kOdometry);
 }
 
 }  // namespace ltm::mapping

@@ -18,16 +18,13 @@ Matrix6d diagonal_information(double sigma_t, double sigma_r_rad) {
 
 MapperConfig mapper_preset(common::SensorPreset preset) {
     MapperConfig c;
+    c.verification = registration::verification_preset(preset);
     if (preset == common::SensorPreset::kNarrow) {
         c.scan_context.max_range = 40.0;
         c.scan_context.sensor_height = 1.0;
         c.loop_detection.exclude_recent_seconds = 15.0;
         c.loop_detection.exclude_recent_keyframes = 20;
         c.loop_detection.max_distance = 0.4;
-        c.verification.downsample = 0.3;
-        c.verification.min_inliers = 200;
-        c.verification.coarse_factor = 4;
-        c.verification.max_correction_translation = 4.0;
         c.loop_cooldown_keyframes = 4;
     } else {
         c.scan_context.sensor_height = 1.73;  // KITTI's HDL-64E
@@ -43,7 +40,7 @@ std::optional<common::ConfigProblem> validate(const MapperConfig& config) {
     common::ConfigChecker k;
     k.include(validate(config.scan_context), "scan_context.");
     k.include(validate(config.localisation_descriptor), "localisation_descriptor.");
-    if (config.localisation_descriptor.kind != ScanContextKind::kMeanVariance) {
+    if (config.localisation_descriptor.kind != places::ScanContextKind::kMeanVariance) {
         k.include(common::ConfigProblem{"kind", "must be mean_variance (ScanContext++)"},
                   "localisation_descriptor.");
     }
@@ -68,8 +65,8 @@ Matrix6d loop_information(const LoopEdgeConfig& c) {
 
 Matrix6d segment_break_information() { return diagonal_information(100.0, M_PI); }
 
-bool is_segment_break(const PoseGraphEdge& edge) {
-    return edge.kind == EdgeKind::kOdometry && edge.information == segment_break_information();
+bool is_segment_break(const map::PoseGraphEdge& edge) {
+    return edge.kind == map::EdgeKind::kOdometry && edge.information == segment_break_information();
 }
 
 }  // namespace ltm::mapping

@@ -6,11 +6,11 @@
 
 #include "common/core/config_check.hpp"
 #include "common/core/sensor_preset.hpp"
-#include "mapping/core/global_map.hpp"
+#include "map/core/global_map.hpp"
 #include "mapping/core/loop_detector.hpp"
-#include "mapping/core/loop_verifier.hpp"
 #include "mapping/core/pose_graph.hpp"
-#include "mapping/core/scan_context.hpp"
+#include "places/core/scan_context.hpp"
+#include "registration/core/loop_verifier.hpp"
 
 namespace ltm::mapping {
 
@@ -95,24 +95,24 @@ struct PlaceCandidateConfig {
 
 // The keyframes' localisation descriptor (ScanContext++, kind kMeanVariance), saved in the map
 // for global localisation; its range and sensor height follow scan_context's in mapper_preset().
-inline ScanContextConfig default_localisation_descriptor() {
-    ScanContextConfig c;
-    c.kind = ScanContextKind::kMeanVariance;
+inline places::ScanContextConfig default_localisation_descriptor() {
+    places::ScanContextConfig c;
+    c.kind = places::ScanContextKind::kMeanVariance;
     c.rings = 20;
     c.sectors = 60;
     return c;
 }
 
 struct MapperConfig {
-    ScanContextConfig scan_context;  // loop closure
-    ScanContextConfig localisation_descriptor = default_localisation_descriptor();
+    places::ScanContextConfig scan_context;  // loop closure
+    places::ScanContextConfig localisation_descriptor = default_localisation_descriptor();
     LoopDetectorConfig loop_detection;
-    LoopVerifierConfig verification;
+    registration::LoopVerifierConfig verification;
     PoseGraphConfig pose_graph;
     OdometryEdgeConfig odometry_edge;
     LoopEdgeConfig loop_edge;
     LoopConsistencyConfig loop_consistency;
-    GlobalMapConfig global_map;
+    map::GlobalMapConfig global_map;
     LongTermConfig long_term;
     SessionJoinConfig session_join;
     PlaceCandidateConfig place_candidates;
@@ -214,6 +214,6 @@ Matrix6d loop_information(const LoopEdgeConfig& config);
 // map format.
 Matrix6d segment_break_information();
 // An odometry edge with exactly segment_break_information().
-bool is_segment_break(const PoseGraphEdge& edge);
+bool is_segment_break(const map::PoseGraphEdge& edge);
 
 }  // namespace ltm::mapping

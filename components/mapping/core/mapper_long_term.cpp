@@ -22,7 +22,7 @@ Mapper::ChainAnchor Mapper::chain_anchor(std::uint32_t session, std::uint64_t lo
                                          std::uint64_t node) const {
     ChainAnchor a;
     a.node = node;
-    const PoseGraphNode* n = graph_.find(node);
+    const map::PoseGraphNode* n = graph_.find(node);
     if (const Folded* f = folded(session, local_map_id)) {
         a.folded = true;
         a.T_node_anchor = f->T_node_anchor;
@@ -41,8 +41,8 @@ Mapper::ChainAnchor Mapper::chain_anchor(std::uint32_t session, std::uint64_t lo
 }
 
 bool Mapper::has_odometry_edge(std::uint64_t a, std::uint64_t b) const {
-    for (const PoseGraphEdge& e : graph_.edges()) {
-        if (e.kind == EdgeKind::kOdometry &&
+    for (const map::PoseGraphEdge& e : graph_.edges()) {
+        if (e.kind == map::EdgeKind::kOdometry &&
             ((e.from == a && e.to == b) || (e.from == b && e.to == a)))
             return true;
     }
@@ -50,8 +50,9 @@ bool Mapper::has_odometry_edge(std::uint64_t a, std::uint64_t b) const {
 }
 
 bool Mapper::tied_by_loop(std::uint64_t node) const {
-    for (const PoseGraphEdge& e : graph_.edges()) {
-        if (e.kind == EdgeKind::kLoop && e.active && (e.from == node || e.to == node)) return true;
+    for (const map::PoseGraphEdge& e : graph_.edges()) {
+        if (e.kind == map::EdgeKind::kLoop && e.active && (e.from == node || e.to == node))
+            return true;
     }
     return false;
 }
@@ -79,7 +80,7 @@ std::optional<std::uint32_t> Mapper::stand_in(std::uint32_t session, std::uint64
     std::optional<std::uint32_t> best;
     double best_d = lt.keyframe_distance;
     for (std::uint32_t i = 0; i < keyframes_.size(); ++i) {
-        const StoredKeyframe& k = *keyframes_[i];
+        const map::StoredKeyframe& k = *keyframes_[i];
         // An earlier lap's or session's keyframe, not one of this stretch of the drive (what the
         // loop detection calls recent).
         if (k.node == node) continue;
@@ -87,7 +88,7 @@ std::optional<std::uint32_t> Mapper::stand_in(std::uint32_t session, std::uint64
             (keyframes_.size() - i < std::size_t(recent.exclude_recent_keyframes) ||
              !(stamp - k.data.stamp >= recent.exclude_recent_seconds)))
             continue;
-        const PoseGraphNode* n = graph_.find(k.node);
+        const map::PoseGraphNode* n = graph_.find(k.node);
         if (!n) continue;
         const Eigen::Isometry3d T_k = n->T_world_anchor * k.data.T_anchor_lidar;
         const double d = (T_k.translation() - T_world.translation()).norm();
@@ -102,7 +103,7 @@ std::optional<std::uint32_t> Mapper::stand_in(std::uint32_t session, std::uint64
 
 std::optional<std::uint64_t> Mapper::try_fold(std::uint64_t n) {
     const LongTermConfig& lt = config_.long_term;
-    const PoseGraphNode* node = graph_.find(n);
+    const map::PoseGraphNode* node = graph_.find(n);
     const auto entry = maps_.find(n);
     if (!lt.merge || !node || !is_open(node->session) || node->fixed || entry == maps_.end())
         return std::nullopt;
@@ -115,7 +116,7 @@ std::optional<std::uint64_t> Mapper::try_fold(std::uint64_t n) {
     std::optional<std::uint64_t> best;
     double best_d = lt.merge_distance;
     for (const auto& [id, e] : maps_) {
-        const PoseGraphNode* other = graph_.find(id);
+        const map::PoseGraphNode* other = graph_.find(id);
         if (id == n || !other || e.stored.data->voxel_size != data.voxel_size) continue;
         // Not a map still being built by an open session, this one or another robot's (its next
         // snapshot would replace the merge); an earlier session's map gets no newer snapshot,
@@ -142,8 +143,8 @@ std::optional<std::uint64_t> Mapper::try_fold(std::uint64_t n) {
 }
 
 void Mapper::fold(std::uint64_t n, std::uint64_t into) {
-    const PoseGraphNode folded_node = *graph_.find(n);
-    const PoseGraphNode& target = *graph_.find(into);
+    const map::PoseGraphNode folded_node = *graph_.find(n);
+    const map::PoseGraphNode& target = *graph_.find(into);
     const Eigen::Isometry3d T_into_n = target.T_world_anchor.inverse() * folded_node.T_world_anchor;
     const Eigen::Isometry3d T_n_into = T_into_n.inverse();
 
@@ -159,16 +160,16 @@ void Mapper::fold(std::uint64_t n, std::uint64_t into) {
     // between the two disappears (the merge holds it); an odometry edge between two places
     // already joined by one, or a loop edge beyond max_loops_per_anchor_pair, is left out.
     PoseGraph updated(graph_.config());
-    for (const PoseGraphNode& x : graph_.nodes()) {
+    for (const map::PoseGraphNode& x : graph_.nodes()) {
         if (x.id != n) updated.add_node(x);
     }
-    std::vector<PoseGraphEdge> moved;
-    for (const PoseGraphEdge& x : graph_.edges()) {
+    std::vector<map::PoseGraphEdge> moved;
+    for (const map::PoseGraphEdge& x : graph_.edges()) {
         if (x.from != n && x.to != n) {
             updated.add_edge(x);
             continue;
         }
-        PoseGraphEdge y = x;
+        map::PoseGraphEdge y = x;
         if (y.from == n) {
             y.from = into;
             y.T_from_to = T_into_n * y.T_from_to;
@@ -183,26 +184,27 @@ void Mapper::fold(std::uint64_t n, std::uint64_t into) {
     for (const auto& [a, b] : relayed_edges_) {
         if (a != n && b != n) relayed.insert({a, b});
     }
-    for (const PoseGraphEdge& y : moved) {
+    for (const map::PoseGraphEdge& y : moved) {
         int same = 0;
-        for (const PoseGraphEdge& z : updated.edges()) {
-            same += z.kind == y.kind && (y.kind == EdgeKind::kOdometry || z.active) &&
+        for (const map::PoseGraphEdge& z : updated.edges()) {
+            same += z.kind == y.kind && (y.kind == map::EdgeKind::kOdometry || z.active) &&
                     ((z.from == y.from && z.to == y.to) || (z.from == y.to && z.to == y.from));
         }
-        const int limit = y.kind == EdgeKind::kOdometry ? 1
+        const int limit = y.kind == map::EdgeKind::kOdometry ? 1
                           : config_.max_loops_per_anchor_pair > 0
                               ? config_.max_loops_per_anchor_pair
                               : std::numeric_limits<int>::max();
         if (same >= limit) continue;
-        if (updated.add_edge(y) && y.kind == EdgeKind::kOdometry) relayed.insert({y.from, y.to});
+        if (updated.add_edge(y) && y.kind == map::EdgeKind::kOdometry)
+            relayed.insert({y.from, y.to});
     }
     graph_ = std::move(updated);
     relayed_edges_ = std::move(relayed);
 
     // Keyframes of the folded map: in the node it went into.
-    for (std::shared_ptr<const StoredKeyframe>& k : keyframes_) {
+    for (std::shared_ptr<const map::StoredKeyframe>& k : keyframes_) {
         if (k->node != n) continue;
-        auto copy = std::make_shared<StoredKeyframe>(*k);
+        auto copy = std::make_shared<map::StoredKeyframe>(*k);
         copy->node = into;
         copy->data.T_anchor_lidar = T_into_n * k->data.T_anchor_lidar;
         k = std::move(copy);
@@ -232,10 +234,10 @@ void Mapper::fold(std::uint64_t n, std::uint64_t into) {
     path_at_.erase(n);
 }
 
-std::vector<SessionRecord> Mapper::sessions() const {
-    std::vector<SessionRecord> out = past_sessions_;
+std::vector<map::SessionRecord> Mapper::sessions() const {
+    std::vector<map::SessionRecord> out = past_sessions_;
     for (const auto& [session, live] : live_) {
-        SessionRecord r = live.record;
+        map::SessionRecord r = live.record;
         r.id = session;
         r.robot = live.robot;
         std::set<std::uint64_t> updated;
@@ -244,7 +246,7 @@ std::vector<SessionRecord> Mapper::sessions() const {
             for (const auto& [local_map_id, node] : chain->second) {
                 if (const Folded* f = folded(session, local_map_id)) {
                     // A map folded into another map of this session counts as added.
-                    const PoseGraphNode* into = graph_.find(f->node);
+                    const map::PoseGraphNode* into = graph_.find(f->node);
                     if (into && into->session != session) updated.insert(f->node);
                 } else if (maps_.count(node)) {
                     ++r.local_maps_added;

@@ -7,7 +7,7 @@
 #include <set>
 
 #include "mapping/core/mapper.hpp"
-#include "mapping/core/test_data.hpp"
+#include "registration/core/test_data.hpp"
 
 namespace ltm::mapping {
 namespace {
@@ -29,16 +29,17 @@ struct Drive {
           const Eigen::Isometry3d& jump = Eigen::Isometry3d::Identity(), std::uint64_t map0 = 0)
         : scene(s), t0(start), first_map(map0) {
         for (std::size_t i = 0; i < 16; ++i) {
-            truth.push_back(test::xy_yaw(x0 + 3.0 * double(i), y0, 0.0));
+            truth.push_back(registration::test::xy_yaw(x0 + 3.0 * double(i), y0, 0.0));
             odom.push_back((i >= jump_at ? jump : Eigen::Isometry3d::Identity()) * T_odom_world *
                            truth.back());
-            points.push_back(test::view(scene, truth.back(), 50.0));
+            points.push_back(registration::test::view(scene, truth.back(), 50.0));
         }
         for (std::uint64_t m = 0; m < 4; ++m) {
             std::vector<std::vector<Eigen::Vector3f>> scans(points.begin() + 4 * m,
                                                             points.begin() + 4 * m + 4);
             common::PoseList poses(odom.begin() + 4 * m, odom.begin() + 4 * m + 4);
-            maps.push_back(test::build_local_map(first_map + m, poses.front(), scans, poses));
+            maps.push_back(
+                registration::test::build_local_map(first_map + m, poses.front(), scans, poses));
             // Stamped in this drive's time.
             for (double& t : maps.back().observation_times) t += start;
             for (common::VoxelData& v : maps.back().voxels) {
@@ -91,20 +92,22 @@ std::vector<KeyframeResult> replay(const Drive& d, Mapper& mapper,
 }
 
 TEST(MapperLongTerm, ASecondSessionOverAMappedSiteAddsNoLocalMapWhereItDrivesOverMappedPlaces) {
-    const std::vector<Eigen::Vector3f> scene = test::with_dense_ground(test::synthetic_scene(71));
+    const std::vector<Eigen::Vector3f> scene =
+        registration::test::with_dense_ground(registration::test::synthetic_scene(71));
     const MapperConfig config = test_config();
     Mapper first(config);
     replay(Drive(scene, 0.0, 0.0, Eigen::Isometry3d::Identity(), 0.0), first);
     ASSERT_TRUE(first.optimise().solved);
     ASSERT_EQ(first.local_map_count(), 4u);
-    const MapData map = first.snapshot();
+    const map::MapData map = first.snapshot();
     std::size_t voxels_before = 0;
-    for (const StoredLocalMap& m : map.local_maps) voxels_before += m.data->voxels.size();
+    for (const map::StoredLocalMap& m : map.local_maps) voxels_before += m.data->voxels.size();
 
     // A day later, the same road 0.5 m further on and 0.3 m aside, in another odometry frame;
     // from keyframe 8 on, the odometry is off by 0.4 m more.
-    const Eigen::Isometry3d T_odom_world = test::xy_yaw(-20.0, 7.0, 35.0);
-    const Drive again(scene, 0.5, 0.3, T_odom_world, 86400.0, 8, test::xy_yaw(0.4, -0.2, 0.5));
+    const Eigen::Isometry3d T_odom_world = registration::test::xy_yaw(-20.0, 7.0, 35.0);
+    const Drive again(scene, 0.5, 0.3, T_odom_world, 86400.0, 8,
+                      registration::test::xy_yaw(0.4, -0.2, 0.5));
     Mapper next(config, map);
     ASSERT_EQ(next.session(), 1u);
     std::vector<LocalMapResult> results;
@@ -116,21 +119,21 @@ TEST(MapperLongTerm, ASecondSessionOverAMappedSiteAddsNoLocalMapWhereItDrivesOve
     for (const LocalMapResult& r : results) {
         EXPECT_TRUE(r.merged) << "node " << r.node;
         into.insert(r.node);
-        const PoseGraphNode* n = next.graph().find(r.node);
+        const map::PoseGraphNode* n = next.graph().find(r.node);
         ASSERT_NE(n, nullptr);
         EXPECT_EQ(n->session, 0u);
     }
     EXPECT_EQ(next.local_map_count(), 4u);
     EXPECT_EQ(next.graph().nodes().size(), 4u);
-    for (const PoseGraphEdge& e : next.graph().edges()) {
+    for (const map::PoseGraphEdge& e : next.graph().edges()) {
         EXPECT_NE(next.graph().find(e.from), nullptr);
         EXPECT_NE(next.graph().find(e.to), nullptr);
     }
     // The updated maps hold the new observations and a higher revision; the voxels barely grow
     // (the same surfaces), the stamps of both sessions are in them.
-    const MapData after = next.snapshot();
+    const map::MapData after = next.snapshot();
     std::size_t voxels_after = 0;
-    for (const StoredLocalMap& m : after.local_maps) {
+    for (const map::StoredLocalMap& m : after.local_maps) {
         voxels_after += m.data->voxels.size();
         if (into.count(m.node)) {
             EXPECT_GT(m.data->revision, 1u);
@@ -155,7 +158,7 @@ TEST(MapperLongTerm, ASecondSessionOverAMappedSiteAddsNoLocalMapWhereItDrivesOve
             << "keyframe " << i;
     }
     // The sessions that built the map.
-    const std::vector<SessionRecord> sessions = next.sessions();
+    const std::vector<map::SessionRecord> sessions = next.sessions();
     ASSERT_EQ(sessions.size(), 2u);
     EXPECT_EQ(sessions[0].id, 0u);
     EXPECT_EQ(sessions[0].local_maps_added, 4u);
@@ -169,12 +172,13 @@ TEST(MapperLongTerm, ASecondSessionOverAMappedSiteAddsNoLocalMapWhereItDrivesOve
 // Laps of one session: the second lap over the road folds its maps into the first lap's, and the
 // chain of odometry edges goes on through the maps they went into.
 TEST(MapperLongTerm, ASecondLapOfOneSessionUpdatesTheFirstLapsMaps) {
-    const std::vector<Eigen::Vector3f> scene = test::with_dense_ground(test::synthetic_scene(71));
+    const std::vector<Eigen::Vector3f> scene =
+        registration::test::with_dense_ground(registration::test::synthetic_scene(71));
     Mapper mapper(test_config());
     replay(Drive(scene, 0.0, 0.0, Eigen::Isometry3d::Identity(), 0.0), mapper);
     // Back at the start 100 s later (the way back is not mapped here), 0.3 m aside, the odometry
     // 0.3 m and 1 deg off by then.
-    const Drive lap2(scene, 0.5, 0.3, test::xy_yaw(0.3, -0.2, 1.0), 100.0, 1000,
+    const Drive lap2(scene, 0.5, 0.3, registration::test::xy_yaw(0.3, -0.2, 1.0), 100.0, 1000,
                      Eigen::Isometry3d::Identity(), 4);
     std::vector<LocalMapResult> results;
     replay(lap2, mapper, &results);
@@ -188,7 +192,8 @@ TEST(MapperLongTerm, ASecondLapOfOneSessionUpdatesTheFirstLapsMaps) {
     // The first lap's three odometry edges and the one back from its last map to its first (the
     // way back, a new pair of places); no second copy of the first lap's.
     std::size_t odometry = 0;
-    for (const PoseGraphEdge& e : mapper.graph().edges()) odometry += e.kind == EdgeKind::kOdometry;
+    for (const map::PoseGraphEdge& e : mapper.graph().edges())
+        odometry += e.kind == map::EdgeKind::kOdometry;
     EXPECT_EQ(odometry, 4u);
     for (std::size_t i = 0; i < 16; ++i) {
         const std::optional<Eigen::Isometry3d> T = mapper.T_world_lidar(4 + i / 4, lap2.odom[i]);
@@ -196,22 +201,23 @@ TEST(MapperLongTerm, ASecondLapOfOneSessionUpdatesTheFirstLapsMaps) {
         EXPECT_LT((T->translation() - lap2.truth[i].translation()).norm(), 0.15)
             << "keyframe " << i;
     }
-    const std::vector<SessionRecord> sessions = mapper.sessions();
+    const std::vector<map::SessionRecord> sessions = mapper.sessions();
     ASSERT_EQ(sessions.size(), 1u);
     EXPECT_EQ(sessions[0].local_maps_added, 4u);
     EXPECT_EQ(sessions[0].local_maps_updated, 0u);  // its own maps: added, not updated
 }
 
 TEST(MapperLongTerm, ALoopThatAgreesWithTheGraphMakesNoOptimisationDue) {
-    const std::vector<Eigen::Vector3f> scene = test::with_dense_ground(test::synthetic_scene(71));
+    const std::vector<Eigen::Vector3f> scene =
+        registration::test::with_dense_ground(registration::test::synthetic_scene(71));
     const MapperConfig config = test_config();
     Mapper first(config);
     replay(Drive(scene, 0.0, 0.0, Eigen::Isometry3d::Identity(), 0.0), first);
     ASSERT_TRUE(first.optimise().solved);
     Mapper next(config, first.snapshot());
     // Off by 0.4 m more from keyframe 8 on: a loop there disagrees with the graph.
-    const Drive again(scene, 0.5, 0.3, test::xy_yaw(-20.0, 7.0, 35.0), 86400.0, 8,
-                      test::xy_yaw(0.4, -0.2, 0.5));
+    const Drive again(scene, 0.5, 0.3, registration::test::xy_yaw(-20.0, 7.0, 35.0), 86400.0, 8,
+                      registration::test::xy_yaw(0.4, -0.2, 0.5));
     const std::vector<KeyframeResult> kf = replay(again, next);
     std::size_t agreeing = 0, first_loop = 16, jump_loop = 16;
     for (std::size_t i = 0; i < kf.size(); ++i) {

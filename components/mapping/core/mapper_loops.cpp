@@ -28,10 +28,10 @@ Eigen::Isometry3d yawed(const Eigen::Isometry3d& T, double yaw) {
 
 void Mapper::add_place_candidates(std::uint32_t session, std::uint64_t node,
                                   const Eigen::Isometry3d& T_anchor_lidar,
-                                  const ScanContext& descriptor,
+                                  const places::ScanContext& descriptor,
                                   std::vector<LoopCandidate>* candidates) const {
     const double radius = config_.place_candidates.radius;
-    const PoseGraphNode* own = graph_.find(node);
+    const map::PoseGraphNode* own = graph_.find(node);
     if (!config_.loop_closure || !config_.verify_from_graph || !(radius > 0.0) || !own ||
         live_.size() < 2)
         return;  // off, or no other robot's session open
@@ -55,8 +55,8 @@ void Mapper::add_place_candidates(std::uint32_t session, std::uint64_t node,
     double best = radius * radius;
     std::optional<std::uint32_t> nearest;
     for (std::uint32_t i = 0; i < keyframes_.size(); ++i) {
-        const StoredKeyframe& k = *keyframes_[i];
-        const PoseGraphNode* n = graph_.find(k.node);
+        const map::StoredKeyframe& k = *keyframes_[i];
+        const map::PoseGraphNode* n = graph_.find(k.node);
         if (!n) continue;
         const double d2 =
             ((n->T_world_anchor * k.data.T_anchor_lidar).translation() - at).squaredNorm();
@@ -66,7 +66,7 @@ void Mapper::add_place_candidates(std::uint32_t session, std::uint64_t node,
         }
     }
     if (!nearest) return;
-    const ScanContextMatch m =
+    const places::ScanContextMatch m =
         compare(descriptor, keyframes_[*nearest]->descriptor, config_.scan_context);
     LoopCandidate c;
     c.match = *nearest;
@@ -82,7 +82,7 @@ void Mapper::verify(std::uint32_t session, const common::KeyframeData& keyframe,
                     const std::vector<LoopCandidate>& candidates, KeyframeResult* r) {
     for (const LoopCandidate& c : candidates) {
         if (r->loops.size() >= std::size_t(config_.max_loops_per_keyframe)) break;
-        const StoredKeyframe& match = *keyframes_[c.match];
+        const map::StoredKeyframe& match = *keyframes_[c.match];
         LoopRejection rejection{c.match, c.distance, ""};
         const auto entry = maps_.find(match.node);
         if (match.node == node) {
@@ -111,7 +111,7 @@ void Mapper::verify(std::uint32_t session, const common::KeyframeData& keyframe,
         const SegmentKey match_key = segment_key(match.node), query_key = segment_key(node);
         const bool together = placed_root(match_key) == placed_root(query_key);
         const bool placed = together && (same_session || is_open(match.session));
-        GuessList guesses;
+        registration::GuessList guesses;
         const bool graph_guess = placed && config_.verify_from_graph;
         if (graph_guess) guesses.push_back(predicted * keyframe.T_anchor_lidar);
         // A candidate by place: the graph's estimate only (the descriptors did not match).
@@ -121,17 +121,17 @@ void Mapper::verify(std::uint32_t session, const common::KeyframeData& keyframe,
             r->rejected.push_back(rejection);
             continue;
         }
-        const LoopVerification v =
+        const registration::LoopVerification v =
             verifier_.verify(points, entry->second.serial, *entry->second.stored.data, guesses);
         if (!v.accepted) {
             rejection.reason = v.reason;
             r->rejected.push_back(rejection);
             continue;
         }
-        PoseGraphEdge e;
+        map::PoseGraphEdge e;
         e.from = match.node;
         e.to = node;
-        e.kind = EdgeKind::kLoop;
+        e.kind = map::EdgeKind::kLoop;
         e.T_from_to = v.T_anchor_lidar * keyframe.T_anchor_lidar.inverse();
         const Eigen::Isometry3d D = predicted.inverse() * e.T_from_to;
         const double disagreement = D.translation().norm();
@@ -141,7 +141,7 @@ void Mapper::verify(std::uint32_t session, const common::KeyframeData& keyframe,
         // break is unbounded drift.
         const double path =
             placed ? drift_distance(graph_, e.from, e.to,
-                                    [this](const PoseGraphEdge& o) {
+                                    [this](const map::PoseGraphEdge& o) {
                                         if (is_segment_break(o))
                                             return std::numeric_limits<double>::infinity();
                                         // An edge made through a folded map joins nodes of
@@ -221,14 +221,14 @@ void Mapper::verify(std::uint32_t session, const common::KeyframeData& keyframe,
 }
 
 bool Mapper::confirm_join(const SegmentKey& match_root, const SegmentKey& query_root,
-                          const PoseGraphEdge& edge, const LoopClosure& loop,
+                          const map::PoseGraphEdge& edge, const LoopClosure& loop,
                           std::vector<LoopClosure>* joined) {
     const SessionJoinConfig& sj = config_.session_join;
     if (sj.loops <= 1) return true;
     // Where the `to` side's part lies in the `from` side's, by a loop: the correction of the
     // `to` part, C = T_from * Z * T_to^-1 (world poses as of now); between the same two parts
     // either way round.
-    auto correction = [this](const PoseGraphEdge& x) {
+    auto correction = [this](const map::PoseGraphEdge& x) {
         return graph_.find(x.from)->T_world_anchor * x.T_from_to *
                graph_.find(x.to)->T_world_anchor.inverse();
     };
@@ -266,7 +266,7 @@ bool Mapper::confirm_join(const SegmentKey& match_root, const SegmentKey& query_
         return false;
     }
     for (const std::size_t i : agreeing) {
-        const PoseGraphEdge& h = held_joins_[i].edge;
+        const map::PoseGraphEdge& h = held_joins_[i].edge;
         if (config_.max_loops_per_anchor_pair > 0 &&
             loops_between(h.from, h.to) >= config_.max_loops_per_anchor_pair)
             continue;
@@ -283,13 +283,13 @@ bool Mapper::confirm_join(const SegmentKey& match_root, const SegmentKey& query_
     return true;
 }
 
-void Mapper::align_parts(const PoseGraphEdge& loop) {
+void Mapper::align_parts(const map::PoseGraphEdge& loop) {
     const SegmentKey from_root = placed_root(segment_key(loop.from));
     const SegmentKey to_root = placed_root(segment_key(loop.to));
     if (from_root == to_root) return;
     std::vector<std::uint64_t> from_part, to_part;
     bool from_fixed = false, to_fixed = false;
-    for (const PoseGraphNode& n : graph_.nodes()) {
+    for (const map::PoseGraphNode& n : graph_.nodes()) {
         const SegmentKey r = placed_root(segment_key(n.id));
         if (r == from_root) {
             from_part.push_back(n.id);
@@ -313,8 +313,8 @@ void Mapper::align_parts(const PoseGraphEdge& loop) {
 
 int Mapper::loops_between(std::uint64_t a, std::uint64_t b) const {
     int n = 0;
-    for (const PoseGraphEdge& e : graph_.edges()) {
-        if (e.kind == EdgeKind::kLoop && e.active &&
+    for (const map::PoseGraphEdge& e : graph_.edges()) {
+        if (e.kind == map::EdgeKind::kLoop && e.active &&
             ((e.from == a && e.to == b) || (e.from == b && e.to == a)))
             ++n;
     }

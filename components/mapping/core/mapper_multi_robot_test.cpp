@@ -8,9 +8,9 @@
 #include <filesystem>
 #include <set>
 
-#include "mapping/core/map_store.hpp"
+#include "map/core/map_store.hpp"
 #include "mapping/core/mapper.hpp"
-#include "mapping/core/test_data.hpp"
+#include "registration/core/test_data.hpp"
 
 namespace ltm::mapping {
 namespace {
@@ -33,7 +33,7 @@ struct Route {
     Route(const std::vector<Eigen::Vector3f>& scene, const common::PoseList& poses, double t0)
         : truth(poses), T_odom_world(poses.front().inverse()), stamp0(t0) {
         for (const Eigen::Isometry3d& T : truth) {
-            points.push_back(test::view(scene, T, 50.0));
+            points.push_back(registration::test::view(scene, T, 50.0));
             odom.push_back(T_odom_world * T);
         }
         for (std::uint64_t m = 0; 4 * m < truth.size(); ++m) {
@@ -41,7 +41,7 @@ struct Route {
             std::vector<std::vector<Eigen::Vector3f>> scans(points.begin() + 4 * m,
                                                             points.begin() + end);
             common::PoseList p(odom.begin() + 4 * m, odom.begin() + end);
-            maps.push_back(test::build_local_map(m, p.front(), scans, p));
+            maps.push_back(registration::test::build_local_map(m, p.front(), scans, p));
         }
     }
 
@@ -67,8 +67,8 @@ struct Robot : Route {
     static common::PoseList straight(double x0, double y0, bool west) {
         common::PoseList poses;
         for (int i = 0; i < 16; ++i)
-            poses.push_back(west ? test::xy_yaw(x0 - 3.0 * i, y0, 180.0)
-                                 : test::xy_yaw(x0 + 3.0 * i, y0, 0.0));
+            poses.push_back(west ? registration::test::xy_yaw(x0 - 3.0 * i, y0, 180.0)
+                                 : registration::test::xy_yaw(x0 + 3.0 * i, y0, 0.0));
         return poses;
     }
 };
@@ -107,7 +107,8 @@ void interleave(const Robot& r1, const Robot& r2, std::uint32_t s1, std::uint32_
 // x = 45, its odometry frame 45 m and 180 deg from robot 1's (which is the world here). They meet
 // half-way: from then on each one drives where the other has just been.
 TEST(MapperMultiRobot, TwoRobotsInterleavedJoinIntoOneGraphEachOnTheTruth) {
-    const std::vector<Eigen::Vector3f> scene = test::with_dense_ground(test::synthetic_scene(61));
+    const std::vector<Eigen::Vector3f> scene =
+        registration::test::with_dense_ground(registration::test::synthetic_scene(61));
     const Robot r1(scene, 0.0, 0.0, false, 100.0), r2(scene, 45.0, 2.0, true, 100.5);
     Mapper mapper(robots_config());
     const std::uint32_t s1 = mapper.open_session("robot1");
@@ -167,15 +168,15 @@ TEST(MapperMultiRobot, TwoRobotsInterleavedJoinIntoOneGraphEachOnTheTruth) {
     EXPECT_TRUE(mapper.T_world_odom(2)->isApprox(*mapper.T_world_odom(2, s1), 1e-12));
 
     // The saved map records each session with its robot; a map continued from it knows them.
-    const std::vector<SessionRecord> records = mapper.sessions();
+    const std::vector<map::SessionRecord> records = mapper.sessions();
     ASSERT_EQ(records.size(), 2u);
     EXPECT_EQ(records[0].robot, "robot1");
     EXPECT_EQ(records[1].robot, "robot2");
     EXPECT_EQ(records[1].local_maps_added + records[1].local_maps_updated, 4u);
     const std::string dir = std::string(LTM_BINARY_DIR) + "/mapping_test_maps/two_robots";
     std::filesystem::remove_all(dir);
-    save_map(dir, mapper.snapshot());
-    const LoadedMap loaded = load_map(dir);
+    map::save_map(dir, mapper.snapshot());
+    const map::LoadedMap loaded = map::load_map(dir);
     ASSERT_TRUE(loaded.refused.empty()) << loaded.refused[0];
     ASSERT_EQ(loaded.map.sessions.size(), 2u);
     EXPECT_EQ(loaded.map.sessions[1].robot, "robot2");
@@ -190,7 +191,8 @@ TEST(MapperMultiRobot, TwoRobotsInterleavedJoinIntoOneGraphEachOnTheTruth) {
 // fool a verification once): asked for more agreeing loops than the drive gives, the robots stay
 // apart, every loop between them held and said so.
 TEST(MapperMultiRobot, LoopsBetweenTwoRobotsAreHeldUntilEnoughAgree) {
-    const std::vector<Eigen::Vector3f> scene = test::with_dense_ground(test::synthetic_scene(61));
+    const std::vector<Eigen::Vector3f> scene =
+        registration::test::with_dense_ground(registration::test::synthetic_scene(61));
     const Robot r1(scene, 0.0, 0.0, false, 100.0), r2(scene, 45.0, 2.0, true, 100.5);
     MapperConfig c = robots_config();
     c.session_join.loops = 100;
@@ -228,11 +230,14 @@ TEST(MapperMultiRobot, LoopsBetweenTwoRobotsAreHeldUntilEnoughAgree) {
 // The descriptors match identical views only here, so whatever closes the way back is a
 // candidate by place.
 TEST(MapperMultiRobot, ARobotPassingAnotherRobotsPlacesOnAnotherPathClosesLoopsByPlace) {
-    const std::vector<Eigen::Vector3f> scene = test::with_dense_ground(test::synthetic_scene(61));
+    const std::vector<Eigen::Vector3f> scene =
+        registration::test::with_dense_ground(registration::test::synthetic_scene(61));
     common::PoseList out_back, ahead;
-    for (int i = 0; i < 16; ++i) out_back.push_back(test::xy_yaw(3.0 * i, 0.0, 0.0));
-    for (int i = 0; i < 16; ++i) out_back.push_back(test::xy_yaw(45.0 - 3.0 * i, 4.0, 180.0));
-    for (int i = 0; i < 16; ++i) ahead.push_back(test::xy_yaw(-9.0 + 3.0 * i, 0.0, 0.0));
+    for (int i = 0; i < 16; ++i) out_back.push_back(registration::test::xy_yaw(3.0 * i, 0.0, 0.0));
+    for (int i = 0; i < 16; ++i)
+        out_back.push_back(registration::test::xy_yaw(45.0 - 3.0 * i, 4.0, 180.0));
+    for (int i = 0; i < 16; ++i)
+        ahead.push_back(registration::test::xy_yaw(-9.0 + 3.0 * i, 0.0, 0.0));
     const Route r1(scene, out_back, 100.0), r2(scene, ahead, 100.5);
     MapperConfig c = robots_config();
     c.loop_detection.max_distance = 1e-3;  // identical views only
@@ -278,8 +283,10 @@ TEST(MapperMultiRobot, ARobotPassingAnotherRobotsPlacesOnAnotherPathClosesLoopsB
 // Robot 2 maps another site (another scene) at the same time: no loop ties it to robot 1, it
 // stays its own part of the graph at its own odometry's estimate, and says so.
 TEST(MapperMultiRobot, ARobotThatNeverMeetsTheOtherStaysUnjoinedAndSaysSo) {
-    const Robot r1(test::with_dense_ground(test::synthetic_scene(61)), 0.0, 0.0, false, 100.0);
-    const Robot r2(test::with_dense_ground(test::synthetic_scene(7)), 45.0, 2.0, true, 100.5);
+    const Robot r1(registration::test::with_dense_ground(registration::test::synthetic_scene(61)),
+                   0.0, 0.0, false, 100.0);
+    const Robot r2(registration::test::with_dense_ground(registration::test::synthetic_scene(7)),
+                   45.0, 2.0, true, 100.5);
     Mapper mapper(robots_config());
     const std::uint32_t s1 = mapper.open_session("robot1");
     const std::uint32_t s2 = mapper.open_session("robot2");

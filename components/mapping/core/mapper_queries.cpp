@@ -2,7 +2,7 @@
 // snapshot a save takes, memory (mapper.hpp; split from mapper.cpp, which adds and optimises).
 #include <cmath>
 
-#include "mapping/core/global_map.hpp"
+#include "map/core/global_map.hpp"
 #include "mapping/core/mapper.hpp"
 
 namespace ltm::mapping {
@@ -33,26 +33,26 @@ std::optional<Eigen::Isometry3d> Mapper::T_world_lidar(std::uint64_t local_map_i
 }
 
 Eigen::Isometry3d Mapper::keyframe_pose(std::uint32_t index) const {
-    const StoredKeyframe& k = *keyframes_.at(index);
+    const map::StoredKeyframe& k = *keyframes_.at(index);
     return graph_.find(k.node)->T_world_anchor * k.data.T_anchor_lidar;
 }
 
-common::PlyCloud Mapper::global_map(GlobalMapStats* stats) const {
+common::PlyCloud Mapper::global_map(map::GlobalMapStats* stats) const {
     std::map<std::uint64_t, const MapEntry*> ordered;
     for (const auto& [node, entry] : maps_) ordered[node] = &entry;
-    std::vector<PlacedLocalMap> placed;
+    std::vector<map::PlacedLocalMap> placed;
     placed.reserve(ordered.size());
     for (const auto& [node, entry] : ordered) {
-        PlacedLocalMap p;
+        map::PlacedLocalMap p;
         p.map = entry->stored.data.get();
         p.T_world_anchor = graph_.find(node)->T_world_anchor;
         placed.push_back(p);
     }
-    return build_global_map(placed, config_.global_map, stats);
+    return map::build_global_map(placed, config_.global_map, stats);
 }
 
-MapData Mapper::snapshot() const {
-    MapData m;
+map::MapData Mapper::snapshot() const {
+    map::MapData m;
     m.revision = revision_;
     m.descriptor_config = config_.scan_context;
     m.localisation_descriptor_config = config_.localisation_descriptor;
@@ -67,8 +67,8 @@ MapData Mapper::snapshot() const {
 }
 
 std::size_t Mapper::memory_bytes() const {
-    std::size_t n = graph_.nodes().capacity() * sizeof(PoseGraphNode) +
-                    graph_.edges().capacity() * sizeof(PoseGraphEdge);
+    std::size_t n = graph_.nodes().capacity() * sizeof(map::PoseGraphNode) +
+                    graph_.edges().capacity() * sizeof(map::PoseGraphEdge);
     for (const auto& [node, entry] : maps_) {
         const common::LocalMapData& d = *entry.stored.data;
         n += sizeof(common::LocalMapData) + d.voxels.capacity() * sizeof(common::VoxelData) +
@@ -79,11 +79,11 @@ std::size_t Mapper::memory_bytes() const {
     for (const auto& [session, live] : live_)
         n += live.folded.size() * (sizeof(Folded) + 48);  // map node overhead
     for (const auto& [session, chain] : chains_) n += chain.size() * 48;
-    auto descriptor_bytes = [](const ScanContext& d) {
+    auto descriptor_bytes = [](const places::ScanContext& d) {
         return (d.value.capacity() + d.spread.capacity()) * sizeof(float) + d.occupied.capacity();
     };
     for (const auto& k : keyframes_) {
-        n += sizeof(StoredKeyframe) + descriptor_bytes(k->descriptor) +
+        n += sizeof(map::StoredKeyframe) + descriptor_bytes(k->descriptor) +
              descriptor_bytes(k->localisation_descriptor) +
              k->data.points.capacity() * sizeof(Eigen::Vector3f);
     }

@@ -5,9 +5,9 @@
 #include <cmath>
 #include <filesystem>
 
-#include "mapping/core/map_store.hpp"
+#include "map/core/map_store.hpp"
 #include "mapping/core/mapper.hpp"
-#include "mapping/core/test_data.hpp"
+#include "registration/core/test_data.hpp"
 
 namespace ltm::mapping {
 namespace {
@@ -24,8 +24,10 @@ double angle_deg(const Eigen::Isometry3d& T) {
 // `break_error` off (5 m, 40 deg) and tracked well from there: the second pass is off by that
 // error, rigidly.
 struct LostAndBack {
-    std::vector<Eigen::Vector3f> scene = test::with_dense_ground(test::synthetic_scene(61));
-    Eigen::Isometry3d break_error = test::xy_yaw(3.0, 4.0, 40.0);    // at local map 2's anchor
+    std::vector<Eigen::Vector3f> scene =
+        registration::test::with_dense_ground(registration::test::synthetic_scene(61));
+    Eigen::Isometry3d break_error =
+        registration::test::xy_yaw(3.0, 4.0, 40.0);                  // at local map 2's anchor
     Eigen::Isometry3d T_odom_world = Eigen::Isometry3d::Identity();  // of the second pass
     common::PoseList truth, odom;
     std::vector<std::uint64_t> map_of;
@@ -34,10 +36,10 @@ struct LostAndBack {
 
     explicit LostAndBack(std::uint32_t second_segment) {
         for (int i = 0; i < 16; ++i) {
-            truth.push_back(i < 8 ? test::xy_yaw(3.0 * i, 0.0, 0.0)
-                                  : test::xy_yaw(24.0 - 3.0 * (i - 8), 2.0, 180.0));
+            truth.push_back(i < 8 ? registration::test::xy_yaw(3.0 * i, 0.0, 0.0)
+                                  : registration::test::xy_yaw(24.0 - 3.0 * (i - 8), 2.0, 180.0));
             map_of.push_back(std::uint64_t(i / 4));
-            points.push_back(test::view(scene, truth.back(), 50.0));
+            points.push_back(registration::test::view(scene, truth.back(), 50.0));
         }
         T_odom_world = truth[8] * break_error * truth[8].inverse();
         for (int i = 0; i < 16; ++i) odom.push_back(i < 8 ? truth[i] : T_odom_world * truth[i]);
@@ -48,7 +50,7 @@ struct LostAndBack {
                 scans.push_back(points[i]);
                 poses.push_back(odom[i]);
             }
-            maps.push_back(test::build_local_map(m, poses.front(), scans, poses));
+            maps.push_back(registration::test::build_local_map(m, poses.front(), scans, poses));
             maps.back().segment = m < 2 ? 0 : second_segment;
         }
     }
@@ -83,7 +85,7 @@ MapperConfig segment_config() {
 // The local maps an edge of the weak kind (across a segment break) leads to.
 std::vector<std::uint64_t> break_targets(const Mapper& mapper) {
     std::vector<std::uint64_t> to;
-    for (const PoseGraphEdge& e : mapper.graph().edges()) {
+    for (const map::PoseGraphEdge& e : mapper.graph().edges()) {
         if (is_segment_break(e)) to.push_back(mapper.graph().find(e.to)->local_map_id);
     }
     return to;
@@ -131,7 +133,7 @@ TEST(MapperSegments, ALoopAcrossTheBreakIsAcceptedAndPutsTheNewSegmentInPlace) {
     EXPECT_TRUE(mapper.T_world_odom(2)->isApprox(Eigen::Isometry3d::Identity(), 1e-9));
     // Its edge from map 1 is the weak one, the others odometry.
     int breaks = 0;
-    for (const PoseGraphEdge& e : mapper.graph().edges()) breaks += is_segment_break(e);
+    for (const map::PoseGraphEdge& e : mapper.graph().edges()) breaks += is_segment_break(e);
     EXPECT_EQ(breaks, 1);
 
     const std::vector<KeyframeResult> results = replay(s, mapper);
@@ -270,37 +272,37 @@ TEST(MapperSegments, AKeyframeThatSaysItsSegmentMakesTheBreakAtOnce) {
 // optimised without holding it.
 TEST(MapperSegments, AnUnjoinedSegmentFollowsTheCorrectionsOfTheMapsBeforeIt) {
     const MapperConfig c;
-    MapData loaded;
+    map::MapData loaded;
     loaded.descriptor_config = c.scan_context;
     for (std::uint64_t i = 0; i < 5; ++i) {
-        PoseGraphNode n;
+        map::PoseGraphNode n;
         n.id = i;
         n.local_map_id = i;
-        n.T_odom_anchor = n.T_world_anchor = test::xy_yaw(10.0 * double(i), 0.0, 0.0);
+        n.T_odom_anchor = n.T_world_anchor = registration::test::xy_yaw(10.0 * double(i), 0.0, 0.0);
         loaded.nodes.push_back(n);
     }
     for (std::uint64_t i = 0; i + 1 < 5; ++i) {
-        PoseGraphEdge e;
+        map::PoseGraphEdge e;
         e.from = i;
         e.to = i + 1;
-        e.T_from_to = test::xy_yaw(10.0, 0.0, 0.0);
+        e.T_from_to = registration::test::xy_yaw(10.0, 0.0, 0.0);
         // Segment 1 starts at node 3.
         e.information =
             i == 2 ? segment_break_information() : odometry_information(c.odometry_edge, 10.0);
         loaded.edges.push_back(e);
     }
     // A loop in segment 0 that bends node 2 by 1 m and 3 deg.
-    PoseGraphEdge loop;
+    map::PoseGraphEdge loop;
     loop.from = 0;
     loop.to = 2;
-    loop.kind = EdgeKind::kLoop;
-    loop.T_from_to = test::xy_yaw(20.0, 1.0, 3.0);
+    loop.kind = map::EdgeKind::kLoop;
+    loop.T_from_to = registration::test::xy_yaw(20.0, 1.0, 3.0);
     loop.information = loop_information(c.loop_edge);
     loaded.edges.push_back(loop);
     const std::string dir = std::string(LTM_BINARY_DIR) + "/mapping_test_maps/segment_break";
     std::filesystem::remove_all(dir);
-    save_map(dir, loaded);
-    const LoadedMap file = load_map(dir);
+    map::save_map(dir, loaded);
+    const map::LoadedMap file = map::load_map(dir);
     ASSERT_TRUE(file.refused.empty()) << file.refused[0];
     Mapper mapper(c, file.map, false);
     EXPECT_EQ(mapper.segment_of(2), 0u);
@@ -311,7 +313,8 @@ TEST(MapperSegments, AnUnjoinedSegmentFollowsTheCorrectionsOfTheMapsBeforeIt) {
     const Eigen::Isometry3d T2 = mapper.graph().find(2)->T_world_anchor;
     EXPECT_GT((T2.translation() - Eigen::Vector3d(20, 0, 0)).norm(), 0.1);  // node 2 moved
     for (std::uint64_t i = 3; i < 5; ++i) {
-        const Eigen::Isometry3d expected = T2 * test::xy_yaw(10.0 * double(i - 2), 0.0, 0.0);
+        const Eigen::Isometry3d expected =
+            T2 * registration::test::xy_yaw(10.0 * double(i - 2), 0.0, 0.0);
         const Eigen::Isometry3d err = expected.inverse() * mapper.graph().find(i)->T_world_anchor;
         EXPECT_LT(err.translation().norm(), 1e-6) << "node " << i;
         EXPECT_LT(angle_deg(err), 1e-6) << "node " << i;

@@ -44,7 +44,7 @@ bool Mapper::segment_known(std::uint64_t node) const {
 }
 
 Mapper::SegmentKey Mapper::segment_key(std::uint64_t node) const {
-    const PoseGraphNode* n = graph_.find(node);
+    const map::PoseGraphNode* n = graph_.find(node);
     return {n ? n->session : 0, segment_of(node)};
 }
 
@@ -65,8 +65,8 @@ void Mapper::update_placement() {
     // An odometry edge between two segments that is not a break joins them too: one made through
     // a local map folded into another session's (the chain goes on from that map), where the loop
     // that tied them has gone with the fold.
-    for (const PoseGraphEdge& e : graph_.edges()) {
-        const bool joins = e.kind == EdgeKind::kLoop ? e.active : !is_segment_break(e);
+    for (const map::PoseGraphEdge& e : graph_.edges()) {
+        const bool joins = e.kind == map::EdgeKind::kLoop ? e.active : !is_segment_break(e);
         if (!joins) continue;
         const SegmentKey a = root(segment_key(e.from)), b = root(segment_key(e.to));
         if (a == b) continue;
@@ -97,7 +97,7 @@ void Mapper::place_unjoined_segments() {
                                             node.T_odom_anchor * node.T_world_anchor.inverse();
                 std::vector<std::uint64_t> part;
                 bool fixed = false;
-                for (const PoseGraphNode& n : graph_.nodes()) {
+                for (const map::PoseGraphNode& n : graph_.nodes()) {
                     if (placed_root(segment_key(n.id)) != key) continue;
                     part.push_back(n.id);
                     fixed = fixed || n.fixed;
@@ -139,8 +139,8 @@ std::vector<SegmentStatus> Mapper::segments(std::uint32_t session) const {
         } else if (st.joined) {
             // The earliest active loop between this segment and another one.
             bool found = false;
-            for (const PoseGraphEdge& e : graph_.edges()) {
-                if (e.kind != EdgeKind::kLoop || !e.active) continue;
+            for (const map::PoseGraphEdge& e : graph_.edges()) {
+                if (e.kind != map::EdgeKind::kLoop || !e.active) continue;
                 const SegmentKey a = segment_key(e.from), b = segment_key(e.to);
                 if (a == b || (a != SegmentKey(session, s) && b != SegmentKey(session, s)))
                     continue;
@@ -163,7 +163,7 @@ std::vector<SegmentStatus> Mapper::segments(std::uint32_t session) const {
 
 std::size_t Mapper::placed_parts() const {
     std::set<SegmentKey> roots;
-    for (const PoseGraphNode& n : graph_.nodes()) roots.insert(placed_root(segment_key(n.id)));
+    for (const map::PoseGraphNode& n : graph_.nodes()) roots.insert(placed_root(segment_key(n.id)));
     return roots.size();
 }
 
@@ -192,8 +192,8 @@ SessionStatus Mapper::session_status(std::uint32_t session) const {
         st.joined = true;
         // The earliest active loop between this session and another one.
         bool found = false;
-        for (const PoseGraphEdge& e : graph_.edges()) {
-            if (e.kind != EdgeKind::kLoop || !e.active) continue;
+        for (const map::PoseGraphEdge& e : graph_.edges()) {
+            if (e.kind != map::EdgeKind::kLoop || !e.active) continue;
             const std::uint32_t a = segment_key(e.from).first, b = segment_key(e.to).first;
             if (a == b || (a != session && b != session)) continue;
             const std::uint32_t k = std::uint32_t(e.query_keyframe);

@@ -7,8 +7,8 @@
 #include <filesystem>
 #include <map>
 
-#include "mapping/core/map_store.hpp"
-#include "mapping/core/test_data.hpp"
+#include "map/core/map_store.hpp"
+#include "registration/core/test_data.hpp"
 
 namespace ltm::mapping {
 namespace {
@@ -23,16 +23,17 @@ double angle_deg(const Eigen::Isometry3d& T) {
 // sensor turned round (the other half of the points; four local maps of 4 keyframes) while the
 // odometry drifts, map by map, up to `drift` at the end.
 struct ForwardReverse {
-    test::KittiSnippet kitti;
-    Eigen::Isometry3d drift = test::xy_yaw(1.2, -0.8, 4.0);
-    Eigen::Isometry3d turn = test::xy_yaw(0, 0, 180.0);
+    registration::test::KittiSnippet kitti;
+    Eigen::Isometry3d drift = registration::test::xy_yaw(1.2, -0.8, 4.0);
+    Eigen::Isometry3d turn = registration::test::xy_yaw(0, 0, 180.0);
     // Per keyframe: true world pose, odometry pose, local map id, points.
     common::PoseList truth, odom;
     std::vector<std::uint64_t> map_of;
     std::vector<std::vector<Eigen::Vector3f>> points;
     std::vector<common::LocalMapData> maps;
 
-    explicit ForwardReverse(const std::string& dir) : kitti(test::load_kitti(dir, 16)) {
+    explicit ForwardReverse(const std::string& dir)
+        : kitti(registration::test::load_kitti(dir, 16)) {
         for (int pass = 0; pass < 2; ++pass) {
             for (int j = 0; j < 16; ++j) {
                 const int f = pass == 0 ? j : 15 - j;
@@ -43,8 +44,9 @@ struct ForwardReverse {
                 odom.push_back(pass == 0 ? T : drift_of(map) * T);
                 map_of.push_back(map);
                 const std::vector<Eigen::Vector3f> half =
-                    test::every_nth(kitti.scans[f].points, 2, pass);
-                points.push_back(pass == 0 ? half : test::transformed(half, turn.inverse()));
+                    registration::test::every_nth(kitti.scans[f].points, 2, pass);
+                points.push_back(pass == 0 ? half
+                                           : registration::test::transformed(half, turn.inverse()));
             }
         }
         for (std::uint64_t m = 0; m < 6; ++m) {
@@ -55,7 +57,7 @@ struct ForwardReverse {
                 scans.push_back(points[i]);
                 poses.push_back(odom[i]);
             }
-            maps.push_back(test::build_local_map(m, poses.front(), scans, poses));
+            maps.push_back(registration::test::build_local_map(m, poses.front(), scans, poses));
         }
     }
 
@@ -65,7 +67,7 @@ struct ForwardReverse {
         const double f = double(map - 1) / 4.0;
         const Eigen::Vector3d t = drift.translation() * f;
         const double yaw = Eigen::AngleAxisd(drift.linear()).angle() / kDeg * f;
-        return test::xy_yaw(t.x(), t.y(), yaw);
+        return registration::test::xy_yaw(t.x(), t.y(), yaw);
     }
 
     common::KeyframeData keyframe(std::size_t i) const {
@@ -109,7 +111,7 @@ std::vector<KeyframeResult> replay(const ForwardReverse& s, Mapper& mapper) {
 }
 
 TEST(Mapper, ClosesLoopsOnARealKittiSnippetReplayedInReverse) {
-    const std::string dir = test::shared_kitti00();
+    const std::string dir = registration::test::shared_kitti00();
     if (dir.empty()) GTEST_SKIP() << "KITTI 00 frames 0-15 not found under ../shared/data/kitti";
     const ForwardReverse s(dir);
     Mapper mapper(kitti_config());
@@ -155,14 +157,14 @@ TEST(Mapper, ClosesLoopsOnARealKittiSnippetReplayedInReverse) {
     EXPECT_LT(c.translation().norm(), 0.1);
     EXPECT_LT(angle_deg(c), 0.5);
     // The global map: the six local maps fused.
-    GlobalMapStats stats;
+    map::GlobalMapStats stats;
     const common::PlyCloud cloud = mapper.global_map(&stats);
     EXPECT_GT(cloud.points.size(), 1000u);
     EXPECT_LT(stats.fused_voxels, stats.input_voxels);
 }
 
 TEST(Mapper, OptimisingASnapshotElsewhereGivesTheSameResult) {
-    const std::string dir = test::shared_kitti00();
+    const std::string dir = registration::test::shared_kitti00();
     if (dir.empty()) GTEST_SKIP() << "KITTI 00 frames 0-15 not found under ../shared/data/kitti";
     const ForwardReverse s(dir);
     Mapper a(kitti_config()), b(kitti_config());
@@ -177,7 +179,7 @@ TEST(Mapper, OptimisingASnapshotElsewhereGivesTheSameResult) {
     extra.T_anchor_lidar = Eigen::Isometry3d::Identity();
     ASSERT_TRUE(b.add_keyframe(extra).added);
     ASSERT_TRUE(b.apply(snapshot, r));
-    for (const PoseGraphNode& n : a.graph().nodes()) {
+    for (const map::PoseGraphNode& n : a.graph().nodes()) {
         const Eigen::Isometry3d d =
             n.T_world_anchor.inverse() * b.graph().find(n.id)->T_world_anchor;
         EXPECT_LT(d.translation().norm(), 1e-9);
@@ -188,7 +190,7 @@ TEST(Mapper, OptimisingASnapshotElsewhereGivesTheSameResult) {
 }
 
 TEST(Mapper, SavedMapReloadsAndANewSessionClosesALoopAgainstIt) {
-    const std::string dir = test::shared_kitti00();
+    const std::string dir = registration::test::shared_kitti00();
     if (dir.empty()) GTEST_SKIP() << "KITTI 00 frames 0-15 not found under ../shared/data/kitti";
     const ForwardReverse s(dir);
     Mapper mapper(kitti_config());
@@ -196,8 +198,8 @@ TEST(Mapper, SavedMapReloadsAndANewSessionClosesALoopAgainstIt) {
     mapper.optimise();
     const std::string path = std::string(LTM_BINARY_DIR) + "/mapping_test_maps/mapper_session";
     std::filesystem::remove_all(path);
-    save_map(path, mapper.snapshot());
-    const LoadedMap loaded = load_map(path);
+    map::save_map(path, mapper.snapshot());
+    const map::LoadedMap loaded = map::load_map(path);
     ASSERT_TRUE(loaded.refused.empty()) << loaded.refused[0];
     EXPECT_EQ(loaded.map.local_maps.size(), 6u);
     EXPECT_EQ(loaded.map.keyframes.size(), 32u);
@@ -205,13 +207,13 @@ TEST(Mapper, SavedMapReloadsAndANewSessionClosesALoopAgainstIt) {
     // A later run, its own odometry frame: frame 6 seen while turned by 90 degrees.
     Mapper next(kitti_config(), loaded.map);
     EXPECT_EQ(next.session(), 1u);
-    const Eigen::Isometry3d turn = test::xy_yaw(0, 0, 90.0);
+    const Eigen::Isometry3d turn = registration::test::xy_yaw(0, 0, 90.0);
     common::KeyframeData k;
     k.id = 0;
     k.local_map_id = 0;
     k.T_odom_lidar = Eigen::Isometry3d::Identity();
     k.T_anchor_lidar = Eigen::Isometry3d::Identity();
-    k.points = test::transformed(s.kitti.scans[6].points, turn.inverse());
+    k.points = registration::test::transformed(s.kitti.scans[6].points, turn.inverse());
     const KeyframeResult r = next.add_keyframe(k);
     ASSERT_EQ(r.loops.size(), 1u) << (r.rejected.empty() ? "no candidate" : r.rejected[0].reason);
     EXPECT_EQ(r.loops[0].match_session, 0u);
@@ -226,9 +228,12 @@ TEST(Mapper, SavedMapReloadsAndANewSessionClosesALoopAgainstIt) {
 // matched keyframe's place) is 6 m from the truth, beyond the verifier's reach; the graph's
 // estimate (odometry 0.3 m off) is within it.
 TEST(Mapper, ARevisitBesideTheFirstPassIsVerifiedFromTheGraphsEstimate) {
-    const std::vector<Eigen::Vector3f> scene = test::with_dense_ground(test::synthetic_scene(44));
-    const Eigen::Isometry3d first = test::xy_yaw(0, 0, 0), again = test::xy_yaw(1.0, 6.0, 180.0);
-    const Eigen::Isometry3d drift = test::xy_yaw(0.3, -0.2, 1.0);  // odometry error at `again`
+    const std::vector<Eigen::Vector3f> scene =
+        registration::test::with_dense_ground(registration::test::synthetic_scene(44));
+    const Eigen::Isometry3d first = registration::test::xy_yaw(0, 0, 0),
+                            again = registration::test::xy_yaw(1.0, 6.0, 180.0);
+    const Eigen::Isometry3d drift =
+        registration::test::xy_yaw(0.3, -0.2, 1.0);  // odometry error at `again`
     MapperConfig config;
     config.loop_detection.exclude_recent_keyframes = 0;
     config.loop_detection.exclude_recent_seconds = 0.0;
@@ -245,7 +250,7 @@ TEST(Mapper, ARevisitBesideTheFirstPassIsVerifiedFromTheGraphsEstimate) {
         k.stamp = double(id);
         k.T_odom_lidar = T_odom;
         k.T_anchor_lidar = Eigen::Isometry3d::Identity();
-        k.points = test::view(scene, T_true, 50.0);
+        k.points = registration::test::view(scene, T_true, 50.0);
         return k;
     };
     for (const bool from_graph : {false, true}) {
@@ -254,7 +259,9 @@ TEST(Mapper, ARevisitBesideTheFirstPassIsVerifiedFromTheGraphsEstimate) {
         const common::KeyframeData k0 = keyframe(0, first, first);
         ASSERT_TRUE(mapper.add_keyframe(k0).added);
         ASSERT_TRUE(
-            mapper.add_local_map(test::build_local_map(0, first, {k0.points}, {first})).added);
+            mapper
+                .add_local_map(registration::test::build_local_map(0, first, {k0.points}, {first}))
+                .added);
         const KeyframeResult r = mapper.add_keyframe(keyframe(1, again, drift * again));
         ASSERT_TRUE(r.added) << r.message;
         ASSERT_GE(r.candidates, 1u);
@@ -304,7 +311,7 @@ TEST(Mapper, BadInputIsRefusedWithAReason) {
 }
 
 common::KeyframeData scene_keyframe(std::uint64_t id, const Eigen::Isometry3d& T) {
-    static const std::vector<Eigen::Vector3f> scene = test::synthetic_scene(4, 30.0);
+    static const std::vector<Eigen::Vector3f> scene = registration::test::synthetic_scene(4, 30.0);
     common::KeyframeData k;
     k.id = id;
     k.scan_index = id;
@@ -312,34 +319,35 @@ common::KeyframeData scene_keyframe(std::uint64_t id, const Eigen::Isometry3d& T
     k.stamp = double(id);
     k.T_odom_lidar = T;
     k.T_anchor_lidar = Eigen::Isometry3d::Identity();
-    k.points = test::view(scene, T, 30.0);
+    k.points = registration::test::view(scene, T, 30.0);
     return k;
 }
 
 TEST(Mapper, KeyframesCarryALocalisationDescriptorIntoTheSnapshot) {
     MapperConfig config = mapper_preset(common::SensorPreset::kNarrow);
-    EXPECT_EQ(config.localisation_descriptor.kind, ScanContextKind::kMeanVariance);
+    EXPECT_EQ(config.localisation_descriptor.kind, places::ScanContextKind::kMeanVariance);
     EXPECT_EQ(config.localisation_descriptor.rings, 20);
     EXPECT_EQ(config.localisation_descriptor.sectors, 60);
     EXPECT_EQ(config.localisation_descriptor.max_range, 40.0);  // the preset's scan_context's
     EXPECT_EQ(config.localisation_descriptor.sensor_height, 1.0);
     Mapper mapper(config);
     const std::size_t before = mapper.memory_bytes();
-    const common::KeyframeData k = scene_keyframe(0, test::xy_yaw(1, 2, 30));
+    const common::KeyframeData k = scene_keyframe(0, registration::test::xy_yaw(1, 2, 30));
     ASSERT_TRUE(mapper.add_keyframe(k).added);
-    const MapData m = mapper.snapshot();
+    const map::MapData m = mapper.snapshot();
     EXPECT_EQ(m.localisation_descriptor_config.rings, 20);
     EXPECT_EQ(m.localisation_descriptor_config.max_range, 40.0);
-    const ScanContext expected = make_scan_context(k.points, config.localisation_descriptor);
-    const ScanContext& got = m.keyframes[0]->localisation_descriptor;
-    EXPECT_EQ(got.kind, ScanContextKind::kMeanVariance);
+    const places::ScanContext expected =
+        places::make_scan_context(k.points, config.localisation_descriptor);
+    const places::ScanContext& got = m.keyframes[0]->localisation_descriptor;
+    EXPECT_EQ(got.kind, places::ScanContextKind::kMeanVariance);
     EXPECT_EQ(got.value, expected.value);
     EXPECT_EQ(got.spread, expected.spread);
     EXPECT_EQ(got.occupied, expected.occupied);
     EXPECT_GT(std::count(got.occupied.begin(), got.occupied.end(), 1), 50);
     // The loop descriptor is unchanged.
     EXPECT_EQ(m.keyframes[0]->descriptor.value,
-              make_scan_context(k.points, config.scan_context).value);
+              places::make_scan_context(k.points, config.scan_context).value);
     // Both descriptors are counted: 1200 bins of mean, spread and occupancy (9 bytes), 1200 of
     // max height and occupancy (5 bytes).
     EXPECT_GE(mapper.memory_bytes() - before, 1200u * 9 + 1200u * 5);
@@ -352,9 +360,11 @@ TEST(Mapper, WithoutLoopClosureAKeyframeIsOnlyStored) {
         config.loop_detection.exclude_recent_seconds = 0.0;
         config.loop_closure = loop_closure;
         Mapper mapper(config);
-        ASSERT_TRUE(mapper.add_keyframe(scene_keyframe(0, test::xy_yaw(0, 0, 0))).added);
+        ASSERT_TRUE(
+            mapper.add_keyframe(scene_keyframe(0, registration::test::xy_yaw(0, 0, 0))).added);
         // The same place again, in another local map: a loop candidate when loops are closed.
-        const KeyframeResult r = mapper.add_keyframe(scene_keyframe(1, test::xy_yaw(0.2, 0, 5)));
+        const KeyframeResult r =
+            mapper.add_keyframe(scene_keyframe(1, registration::test::xy_yaw(0.2, 0, 5)));
         ASSERT_TRUE(r.added) << r.message;
         if (loop_closure) {
             EXPECT_GE(r.candidates, 1u);
@@ -371,24 +381,24 @@ TEST(Mapper, WithoutLoopClosureAKeyframeIsOnlyStored) {
 TEST(Mapper, AFormat1MapIsContinuedWithLocalisationDescriptorsOnTheNewKeyframes) {
     const MapperConfig config;
     Mapper first(config);
-    ASSERT_TRUE(first.add_keyframe(scene_keyframe(0, test::xy_yaw(0, 0, 0))).added);
-    MapData v1 = first.snapshot();  // as a format-1 map loads: no localisation descriptors
-    v1.localisation_descriptor_config = no_localisation_descriptors();
-    auto old = std::make_shared<StoredKeyframe>(*v1.keyframes[0]);
-    old->localisation_descriptor = ScanContext();
+    ASSERT_TRUE(first.add_keyframe(scene_keyframe(0, registration::test::xy_yaw(0, 0, 0))).added);
+    map::MapData v1 = first.snapshot();  // as a format-1 map loads: no localisation descriptors
+    v1.localisation_descriptor_config = map::no_localisation_descriptors();
+    auto old = std::make_shared<map::StoredKeyframe>(*v1.keyframes[0]);
+    old->localisation_descriptor = places::ScanContext();
     v1.keyframes[0] = old;
     Mapper next(config, v1);
-    ASSERT_TRUE(next.add_keyframe(scene_keyframe(0, test::xy_yaw(5, 0, 10))).added);
-    const MapData m = next.snapshot();
+    ASSERT_TRUE(next.add_keyframe(scene_keyframe(0, registration::test::xy_yaw(5, 0, 10))).added);
+    const map::MapData m = next.snapshot();
     ASSERT_EQ(m.keyframes.size(), 2u);
     EXPECT_TRUE(m.keyframes[0]->localisation_descriptor.empty());
     EXPECT_FALSE(m.keyframes[1]->localisation_descriptor.empty());
-    EXPECT_TRUE(has_localisation_descriptors(m.localisation_descriptor_config));
+    EXPECT_TRUE(map::has_localisation_descriptors(m.localisation_descriptor_config));
     // Saved in format 2 (the old keyframe's descriptor empty) and loaded again.
     const std::string path = std::string(LTM_BINARY_DIR) + "/mapping_test_maps/continued_v1";
     std::filesystem::remove_all(path);
-    save_map(path, m);
-    const LoadedMap loaded = load_map(path);
+    map::save_map(path, m);
+    const map::LoadedMap loaded = map::load_map(path);
     ASSERT_TRUE(loaded.refused.empty()) << loaded.refused[0];
     ASSERT_EQ(loaded.map.keyframes.size(), 2u);
     EXPECT_TRUE(loaded.map.keyframes[0]->localisation_descriptor.empty());
@@ -410,7 +420,7 @@ TEST(Mapper, AFormat1MapIsContinuedWithLocalisationDescriptorsOnTheNewKeyframes)
     other.localisation_descriptor.max_range = 50.0;
     EXPECT_THROW(Mapper(other, loaded.map), common::ConfigError);
     other = config;
-    other.localisation_descriptor.kind = ScanContextKind::kMaxHeight;
+    other.localisation_descriptor.kind = places::ScanContextKind::kMaxHeight;
     try {
         Mapper m3(other);
         ADD_FAILURE() << "a Scan Context localisation descriptor accepted";
@@ -421,7 +431,7 @@ TEST(Mapper, AFormat1MapIsContinuedWithLocalisationDescriptorsOnTheNewKeyframes)
 }
 
 TEST(Mapper, LoadedMapThatDoesNotFitIsRefusedNamingTheKey) {
-    MapData loaded;
+    map::MapData loaded;
     loaded.descriptor_config.rings = 24;  // the config keeps 20
     try {
         Mapper m(MapperConfig(), loaded);
@@ -432,7 +442,7 @@ TEST(Mapper, LoadedMapThatDoesNotFitIsRefusedNamingTheKey) {
             << e.problem();
     }
     loaded.descriptor_config = MapperConfig().scan_context;
-    PoseGraphNode node;
+    map::PoseGraphNode node;
     node.id = 3;
     loaded.nodes = {node, node};  // repeated
     try {

@@ -66,16 +66,6 @@ std::size_t root(std::vector<std::size_t>& parent, std::size_t i) {
 
 }  // namespace
 
-const char* to_string(EdgeKind kind) {
-    switch (kind) {
-        case EdgeKind::kOdometry:
-            return "odometry";
-        case EdgeKind::kLoop:
-            return "loop";
-    }
-    return "unknown";
-}
-
 std::optional<common::ConfigProblem> validate(const PoseGraphConfig& config) {
     PoseGraphConfig c = config;  // visit_fields takes a mutable config (loaders write through it)
     common::ConfigChecker k;
@@ -87,12 +77,12 @@ PoseGraph::PoseGraph(const PoseGraphConfig& config) : config_(config) {
     common::throw_if(validate(config), "pose_graph");
 }
 
-const PoseGraphNode* PoseGraph::find(std::uint64_t id) const {
+const map::PoseGraphNode* PoseGraph::find(std::uint64_t id) const {
     const auto it = index_.find(id);
     return it == index_.end() ? nullptr : &nodes_[it->second];
 }
 
-bool PoseGraph::add_node(const PoseGraphNode& node) {
+bool PoseGraph::add_node(const map::PoseGraphNode& node) {
     if (index_.count(node.id) || !finite_pose(node.T_odom_anchor) ||
         !finite_pose(node.T_world_anchor)) {
         return false;
@@ -102,7 +92,7 @@ bool PoseGraph::add_node(const PoseGraphNode& node) {
     return true;
 }
 
-bool PoseGraph::add_edge(const PoseGraphEdge& edge) {
+bool PoseGraph::add_edge(const map::PoseGraphEdge& edge) {
     if (edge.from == edge.to || !index_.count(edge.from) || !index_.count(edge.to) ||
         !finite_pose(edge.T_from_to) || !edge.information.allFinite()) {
         return false;
@@ -111,10 +101,10 @@ bool PoseGraph::add_edge(const PoseGraphEdge& edge) {
     return true;
 }
 
-bool PoseGraph::remove_edges(std::uint64_t from, std::uint64_t to, EdgeKind kind) {
+bool PoseGraph::remove_edges(std::uint64_t from, std::uint64_t to, map::EdgeKind kind) {
     const std::size_t before = edges_.size();
     edges_.erase(std::remove_if(edges_.begin(), edges_.end(),
-                                [&](const PoseGraphEdge& e) {
+                                [&](const map::PoseGraphEdge& e) {
                                     return e.from == from && e.to == to && e.kind == kind;
                                 }),
                  edges_.end());
@@ -136,7 +126,7 @@ bool PoseGraph::set_fixed(std::uint64_t id, bool fixed) {
 }
 
 void PoseGraph::update_errors() {
-    for (PoseGraphEdge& e : edges_) {
+    for (map::PoseGraphEdge& e : edges_) {
         const Eigen::Isometry3d& A = nodes_[index_.at(e.from)].T_world_anchor;
         const Eigen::Isometry3d& B = nodes_[index_.at(e.to)].T_world_anchor;
         const Eigen::Isometry3d E = e.T_from_to.inverse() * (A.inverse() * B);
@@ -167,12 +157,12 @@ OptimisationSummary PoseGraph::solve_once(const std::vector<char>& hold) {
     po.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
     po.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
     ceres::Problem problem(po);
-    for (const PoseGraphEdge& e : edges_) {
+    for (const map::PoseGraphEdge& e : edges_) {
         if (!e.active) continue;
         const std::size_t a = index_.at(e.from), b = index_.at(e.to);
         auto* cost = new ceres::AutoDiffCostFunction<RelativePoseError, 6, 3, 4, 3, 4>(
             new RelativePoseError(e.T_from_to, sqrt_information(e.information)));
-        ceres::LossFunction* l = e.kind == EdgeKind::kLoop ? loss.get() : nullptr;
+        ceres::LossFunction* l = e.kind == map::EdgeKind::kLoop ? loss.get() : nullptr;
         problem.AddResidualBlock(cost, l, &t[3 * a], &q[4 * a], &t[3 * b], &q[4 * b]);
         ++s.edges;
     }
@@ -217,16 +207,16 @@ OptimisationSummary PoseGraph::solve_once(const std::vector<char>& hold) {
 
 OptimisationSummary PoseGraph::optimise() {
     // Every loop edge is examined afresh.
-    for (PoseGraphEdge& e : edges_) {
-        if (e.kind == EdgeKind::kLoop) e.active = true;
+    for (map::PoseGraphEdge& e : edges_) {
+        if (e.kind == map::EdgeKind::kLoop) e.active = true;
     }
-    const std::vector<PoseGraphNode> before = nodes_;
+    const std::vector<map::PoseGraphNode> before = nodes_;
     OptimisationSummary total;
     for (int round = 0;; ++round) {
         // Gauge: in every connected part, the fixed nodes, or else its first node, are held.
         std::vector<std::size_t> parent(nodes_.size());
         std::iota(parent.begin(), parent.end(), std::size_t(0));
-        for (const PoseGraphEdge& e : edges_) {
+        for (const map::PoseGraphEdge& e : edges_) {
             if (!e.active) continue;
             parent[root(parent, index_.at(e.from))] = root(parent, index_.at(e.to));
         }
@@ -255,8 +245,8 @@ OptimisationSummary PoseGraph::optimise() {
         }
         update_errors();
         bool rejected = false;
-        for (PoseGraphEdge& e : edges_) {
-            if (e.kind != EdgeKind::kLoop || !e.active) continue;
+        for (map::PoseGraphEdge& e : edges_) {
+            if (e.kind != map::EdgeKind::kLoop || !e.active) continue;
             if (e.error_translation > config_.outlier_translation ||
                 e.error_rotation > config_.outlier_rotation * kDegToRad) {
                 e.active = false;
@@ -265,8 +255,8 @@ OptimisationSummary PoseGraph::optimise() {
         }
         if (!rejected || round >= config_.max_outlier_rounds) break;
     }
-    for (const PoseGraphEdge& e : edges_) {
-        if (e.kind != EdgeKind::kLoop) continue;
+    for (const map::PoseGraphEdge& e : edges_) {
+        if (e.kind != map::EdgeKind::kLoop) continue;
         ++(e.active ? total.loops_active : total.loops_rejected);
     }
     return total;

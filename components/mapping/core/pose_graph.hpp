@@ -17,36 +17,11 @@
 #include <vector>
 
 #include "common/core/config_check.hpp"
+#include "map/core/map_graph.hpp"
 
 namespace ltm::mapping {
 
-using Matrix6d = Eigen::Matrix<double, 6, 6>;
-
-enum class EdgeKind : std::uint8_t { kOdometry = 0, kLoop = 1 };
-const char* to_string(EdgeKind kind);
-
-struct PoseGraphNode {
-    std::uint64_t id = 0;
-    std::uint32_t session = 0;
-    std::uint64_t local_map_id = 0;  // the odometry's id of the local map (within its session)
-    Eigen::Isometry3d T_odom_anchor = Eigen::Isometry3d::Identity();   // odometry's estimate
-    Eigen::Isometry3d T_world_anchor = Eigen::Isometry3d::Identity();  // optimised estimate
-    bool fixed = false;  // held constant by the optimisation
-    EIGEN_MAKE_ALIGNED_OPERATOR_NEW
-};
-
-struct PoseGraphEdge {
-    std::uint64_t from = 0, to = 0;  // node ids; the measurement is T_from_to
-    EdgeKind kind = EdgeKind::kOdometry;
-    Eigen::Isometry3d T_from_to = Eigen::Isometry3d::Identity();
-    Matrix6d information = Matrix6d::Identity();  // of e = [dt; dr]
-    bool active = true;              // loop edges: false after the last optimisation rejected it
-    double error_translation = 0.0;  // |t(E)| after the last optimisation [m]
-    double error_rotation = 0.0;     // angle of E after the last optimisation [rad]
-    // Loop edges: the keyframes that produced it (the caller's keyframe indices).
-    std::uint64_t query_keyframe = 0, match_keyframe = 0;
-    EIGEN_MAKE_ALIGNED_OPERATOR_NEW
-};
+using Matrix6d = map::Matrix6d;
 
 struct PoseGraphConfig {
     std::string loop_loss = "cauchy";  // robust loss of loop edges: "cauchy", "huber" or "none"
@@ -91,17 +66,17 @@ class PoseGraph {
     explicit PoseGraph(const PoseGraphConfig& config);
 
     const PoseGraphConfig& config() const { return config_; }
-    const std::vector<PoseGraphNode>& nodes() const { return nodes_; }
-    const std::vector<PoseGraphEdge>& edges() const { return edges_; }
+    const std::vector<map::PoseGraphNode>& nodes() const { return nodes_; }
+    const std::vector<map::PoseGraphEdge>& edges() const { return edges_; }
     // Null when there is no such node.
-    const PoseGraphNode* find(std::uint64_t id) const;
+    const map::PoseGraphNode* find(std::uint64_t id) const;
 
     // False (nothing added) when the id exists or a pose is not finite.
-    bool add_node(const PoseGraphNode& node);
+    bool add_node(const map::PoseGraphNode& node);
     // False when a node is missing, the nodes are the same, or a value is not finite.
-    bool add_edge(const PoseGraphEdge& edge);
+    bool add_edge(const map::PoseGraphEdge& edge);
     // Removes the edges (from, to) of this kind; false when there is none.
-    bool remove_edges(std::uint64_t from, std::uint64_t to, EdgeKind kind);
+    bool remove_edges(std::uint64_t from, std::uint64_t to, map::EdgeKind kind);
     bool set_pose(std::uint64_t id, const Eigen::Isometry3d& T_world_anchor);
     bool set_fixed(std::uint64_t id, bool fixed);
 
@@ -114,8 +89,8 @@ class PoseGraph {
     void update_errors();
 
     PoseGraphConfig config_;
-    std::vector<PoseGraphNode> nodes_;
-    std::vector<PoseGraphEdge> edges_;
+    std::vector<map::PoseGraphNode> nodes_;
+    std::vector<map::PoseGraphEdge> edges_;
     std::unordered_map<std::uint64_t, std::size_t> index_;  // node id -> nodes_ index
 };
 

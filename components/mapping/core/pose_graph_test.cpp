@@ -60,18 +60,18 @@ Scenario make_scenario(const PoseGraphConfig& config, bool with_false_loop) {
             const Eigen::Isometry3d Z =
                 noisy(s.truth[i - 1].inverse() * s.truth[i], rng, 0.05, 0.4);
             odom = odom * Z;
-            PoseGraphNode n;
+            map::PoseGraphNode n;
             n.id = 100 + i;
             n.T_odom_anchor = n.T_world_anchor = odom;
             EXPECT_TRUE(s.graph.add_node(n));
-            PoseGraphEdge e;
+            map::PoseGraphEdge e;
             e.from = 100 + i - 1;
             e.to = 100 + i;
             e.T_from_to = Z;
             e.information = information(0.05, 0.4);
             EXPECT_TRUE(s.graph.add_edge(e));
         } else {
-            PoseGraphNode n;
+            map::PoseGraphNode n;
             n.id = 100;
             n.T_odom_anchor = n.T_world_anchor = odom;
             EXPECT_TRUE(s.graph.add_node(n));
@@ -80,8 +80,8 @@ Scenario make_scenario(const PoseGraphConfig& config, bool with_false_loop) {
     // True loops: the last anchors see the first ones again.
     for (const auto& [a, b] :
          std::vector<std::pair<int, int>>{{0, 39}, {1, 39}, {0, 38}, {2, 38}}) {
-        PoseGraphEdge e;
-        e.kind = EdgeKind::kLoop;
+        map::PoseGraphEdge e;
+        e.kind = map::EdgeKind::kLoop;
         e.from = 100 + a;
         e.to = 100 + b;
         e.T_from_to = noisy(s.truth[a].inverse() * s.truth[b], rng, 0.02, 0.1);
@@ -90,8 +90,8 @@ Scenario make_scenario(const PoseGraphConfig& config, bool with_false_loop) {
     }
     if (with_false_loop) {
         // Anchor 25 "recognised" as anchor 5 (the other side of the block): a wrong place.
-        PoseGraphEdge e;
-        e.kind = EdgeKind::kLoop;
+        map::PoseGraphEdge e;
+        e.kind = map::EdgeKind::kLoop;
         e.from = 105;
         e.to = 125;
         e.T_from_to = pose(3.0, 1.0, 0.0, 175.0);
@@ -105,7 +105,7 @@ Scenario make_scenario(const PoseGraphConfig& config, bool with_false_loop) {
 double max_position_error(const Scenario& s) {
     double worst = 0.0;
     for (std::size_t i = 0; i < s.truth.size(); ++i) {
-        const PoseGraphNode* n = s.graph.find(100 + i);
+        const map::PoseGraphNode* n = s.graph.find(100 + i);
         worst =
             std::max(worst, (n->T_world_anchor.translation() - s.truth[i].translation()).norm());
     }
@@ -114,7 +114,7 @@ double max_position_error(const Scenario& s) {
 
 double max_difference(const Scenario& a, const Scenario& b) {
     double worst = 0.0;
-    for (const PoseGraphNode& n : a.graph.nodes()) {
+    for (const map::PoseGraphNode& n : a.graph.nodes()) {
         const Eigen::Isometry3d d = n.T_world_anchor.inverse() * b.graph.find(n.id)->T_world_anchor;
         worst =
             std::max({worst, d.translation().norm(), Eigen::AngleAxisd(d.linear()).angle() * 10.0});
@@ -140,8 +140,8 @@ TEST(PoseGraph, RecoversKnownAnchorsAndRejectsAFalseLoop) {
     EXPECT_EQ(r.loops_active, 4u);
     EXPECT_EQ(r.components, 1u);
     EXPECT_GE(r.solves, 2);
-    for (const PoseGraphEdge& e : s.graph.edges()) {
-        if (e.kind != EdgeKind::kLoop) continue;
+    for (const map::PoseGraphEdge& e : s.graph.edges()) {
+        if (e.kind != map::EdgeKind::kLoop) continue;
         EXPECT_EQ(e.active, e.query_keyframe != 7) << e.from << " -> " << e.to;
         if (e.active) {
             EXPECT_LT(e.error_translation, 0.2);
@@ -171,17 +171,17 @@ TEST(PoseGraph, ExactEdgesGiveTheExactPoses) {
     const std::vector<Eigen::Isometry3d, Eigen::aligned_allocator<Eigen::Isometry3d>> truth = {
         pose(0, 0, 0, 0), pose(5, 1, 0.2, 30, 3), pose(9, 6, 0.1, 80, -2), pose(4, 9, 0, 170)};
     for (std::size_t i = 0; i < truth.size(); ++i) {
-        PoseGraphNode n;
+        map::PoseGraphNode n;
         n.id = i;
         n.T_world_anchor = i == 0 ? truth[0] : pose(1.0 * i, 0, 0, 0);  // a poor start
         ASSERT_TRUE(g.add_node(n));
     }
     for (std::size_t i = 0; i < truth.size(); ++i) {
         for (std::size_t j = i + 1; j < truth.size(); ++j) {
-            PoseGraphEdge e;
+            map::PoseGraphEdge e;
             e.from = i;
             e.to = j;
-            e.kind = j == i + 1 ? EdgeKind::kOdometry : EdgeKind::kLoop;
+            e.kind = j == i + 1 ? map::EdgeKind::kOdometry : map::EdgeKind::kLoop;
             e.T_from_to = truth[i].inverse() * truth[j];
             ASSERT_TRUE(g.add_edge(e));
         }
@@ -200,12 +200,12 @@ TEST(PoseGraph, ExactEdgesGiveTheExactPoses) {
 TEST(PoseGraph, EachDisconnectedPartKeepsItsGauge) {
     PoseGraph g{PoseGraphConfig()};
     for (std::uint64_t id : {1, 2, 10, 11}) {
-        PoseGraphNode n;
+        map::PoseGraphNode n;
         n.id = id;
         n.T_world_anchor = pose(double(id), 0, 0, 0);
         ASSERT_TRUE(g.add_node(n));
     }
-    PoseGraphEdge e;
+    map::PoseGraphEdge e;
     e.from = 1;
     e.to = 2;
     e.T_from_to = pose(2, 0, 0, 0);
@@ -225,14 +225,14 @@ TEST(PoseGraph, EachDisconnectedPartKeepsItsGauge) {
 
 TEST(PoseGraph, RefusesBadNodesAndEdges) {
     PoseGraph g{PoseGraphConfig()};
-    PoseGraphNode n;
+    map::PoseGraphNode n;
     n.id = 1;
     ASSERT_TRUE(g.add_node(n));
     EXPECT_FALSE(g.add_node(n));  // same id
     n.id = 2;
     n.T_world_anchor.translation().x() = std::nan("");
     EXPECT_FALSE(g.add_node(n));
-    PoseGraphEdge e;
+    map::PoseGraphEdge e;
     e.from = 1;
     e.to = 3;
     EXPECT_FALSE(g.add_edge(e));  // no node 3

@@ -5,12 +5,12 @@ namespace {
 
 constexpr const char* kKindKey = "scan_context.kind";
 
-ScanContextKind parse_kind(runtime::Parameters& params, const std::string& key,
-                           ScanContextKind fallback) {
+places::ScanContextKind parse_kind(runtime::Parameters& params, const std::string& key,
+                                   places::ScanContextKind fallback) {
     const std::string name = params.get<std::string>(
-        key, fallback == ScanContextKind::kMeanVariance ? "mean_variance" : "max_height");
-    if (name == "max_height") return ScanContextKind::kMaxHeight;
-    if (name == "mean_variance") return ScanContextKind::kMeanVariance;
+        key, fallback == places::ScanContextKind::kMeanVariance ? "mean_variance" : "max_height");
+    if (name == "max_height") return places::ScanContextKind::kMaxHeight;
+    if (name == "mean_variance") return places::ScanContextKind::kMeanVariance;
     params.fail(key, "expected max_height (Scan Context) or mean_variance (ScanContext++), got '" +
                          name + "'");
 }

@@ -35,7 +35,7 @@ TEST(MapperParams, PresetThenOverrides) {
     const MapperConfig c = load_mapper_config(p);
     EXPECT_NO_THROW(p.check_all_used());
     const MapperConfig narrow = mapper_preset(common::SensorPreset::kNarrow);
-    EXPECT_EQ(c.scan_context.kind, ScanContextKind::kMeanVariance);
+    EXPECT_EQ(c.scan_context.kind, places::ScanContextKind::kMeanVariance);
     EXPECT_EQ(c.scan_context.rings, 24);
     EXPECT_EQ(c.verification.fine.max_iterations, 70);
     EXPECT_EQ(c.verification.yaw_offsets, (std::vector<double>{-10, 0, 10}));
@@ -44,7 +44,7 @@ TEST(MapperParams, PresetThenOverrides) {
     EXPECT_EQ(c.localisation_descriptor.sectors, 90);
     EXPECT_EQ(c.localisation_descriptor.min_range, 1.5);
     // The localisation descriptor: ScanContext++ over the preset's descriptor range.
-    EXPECT_EQ(c.localisation_descriptor.kind, ScanContextKind::kMeanVariance);
+    EXPECT_EQ(c.localisation_descriptor.kind, places::ScanContextKind::kMeanVariance);
     EXPECT_EQ(c.localisation_descriptor.rings, 20);
     EXPECT_DOUBLE_EQ(c.localisation_descriptor.max_range, narrow.scan_context.max_range);
     EXPECT_DOUBLE_EQ(c.localisation_descriptor.sensor_height, narrow.scan_context.sensor_height);
@@ -57,7 +57,7 @@ TEST(MapperParams, PresetThenOverrides) {
     const MapperConfig d = load_mapper_config(empty);
     EXPECT_DOUBLE_EQ(d.scan_context.sensor_height,
                      mapper_preset(common::SensorPreset::kHdl64).scan_context.sensor_height);
-    EXPECT_EQ(d.scan_context.kind, ScanContextKind::kMaxHeight);
+    EXPECT_EQ(d.scan_context.kind, places::ScanContextKind::kMaxHeight);
 }
 
 void merge(YAML::Node dst, const YAML::Node& src) {

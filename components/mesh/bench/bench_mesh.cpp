@@ -29,7 +29,7 @@
 #include "common/core/process_memory.hpp"
 #include "common/core/progress.hpp"
 #include "common/core/trajectory_io.hpp"
-#include "mapping/core/map_store.hpp"
+#include "map/core/map_store.hpp"
 #include "mesh/core/mesh_atlas.hpp"
 #include "mesh/core/mesh_chunk.hpp"
 #include "mesh/core/triangle_mesh.hpp"
@@ -98,14 +98,14 @@ std::pair<std::size_t, std::size_t> frame_range(const std::string& frames, std::
 // component does with the map it is given, and the time to mesh a whole site).
 int run_map(const Args& a, const mesh::MeshConfig& mc) {
     auto t0 = Clock::now();
-    const mapping::LoadedMap loaded = mapping::load_map(a.map);
+    const map::LoadedMap loaded = map::load_map(a.map);
     const double load_ms = ms_since(t0);
     for (const std::string& r : loaded.refused) std::fprintf(stderr, "refused: %s\n", r.c_str());
     std::map<std::uint64_t, Eigen::Isometry3d> graph;
-    for (const mapping::PoseGraphNode& n : loaded.map.nodes) graph[n.id] = n.T_world_anchor;
+    for (const map::PoseGraphNode& n : loaded.map.nodes) graph[n.id] = n.T_world_anchor;
     mesh::MeshAtlas atlas(mc);
     t0 = Clock::now();
-    for (const mapping::StoredLocalMap& m : loaded.map.local_maps) {
+    for (const map::StoredLocalMap& m : loaded.map.local_maps) {
         common::LocalMapData data = *m.data;
         data.id = m.node;  // local map ids repeat across sessions; graph nodes do not
         atlas.add(mesh::prepare_chunk(data, mc));
@@ -134,7 +134,7 @@ int run_map(const Args& a, const mesh::MeshConfig& mc) {
     // (what the mesh goes through when the graph is optimised; nothing re-integrated).
     std::map<std::uint64_t, Eigen::Isometry3d> odometry_graph;
     double moved = 0.0;
-    for (const mapping::PoseGraphNode& n : loaded.map.nodes) {
+    for (const map::PoseGraphNode& n : loaded.map.nodes) {
         odometry_graph[n.id] = n.T_odom_anchor;
         moved = std::max(moved,
                          (n.T_odom_anchor.translation() - n.T_world_anchor.translation()).norm());

@@ -21,7 +21,7 @@
 #   --out-dir DIR   meshes, held-out points, logs and table.txt (default: a new folder under /tmp)
 #   --only REGEX    only the cases whose name matches
 # Environment: LTM_BUILD_DIR (ltm's build, default ./build), LTM_SHARED_DATA (default
-# /work/shared/data), VDBFUSION_SOURCE, VDBFUSION_BUILD, VDBFUSION_GIT for peers/vdbfusion.sh
+# shared/data next to the checkout), VDBFUSION_SOURCE, VDBFUSION_BUILD, VDBFUSION_GIT for peers/vdbfusion.sh
 # (which builds VDBFusion outside the repository).
 # VDBFusion: its examples/python/config/kitti.yaml (voxel 0.1 m, truncation 0.3 m, min weight 5,
 # range 2.5..120 m, no space carving, no hole filling) with correct_scan off: it reads exactly the
@@ -36,7 +36,7 @@ set -euo pipefail
 HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 ROOT="$(cd "$HERE/../../.." && pwd)"
 BUILD_DIR="${LTM_BUILD_DIR:-$ROOT/build}"
-DATA="${LTM_SHARED_DATA:-/work/shared/data}"
+DATA="${LTM_SHARED_DATA:-$(dirname "$ROOT")/shared/data}"
 OUT=""
 ONLY=""
 SIM_FRAMES=600

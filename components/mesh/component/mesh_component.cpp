@@ -25,15 +25,15 @@
 #include <optional>
 #include <thread>
 
-#include "common/convert/dds_string.hpp"
-#include "common/convert/geometry.hpp"
-#include "common/convert/status.hpp"
 #include "common/core/one_line.hpp"
 #include "common/core/ply_io.hpp"
 #include "mesh/component/mesh_messages.hpp"
 #include "mesh/component/mesh_params.hpp"
 #include "mesh/core/mesh_atlas.hpp"
 #include "runtime/component.hpp"
+#include "runtime/convert/dds_string.hpp"
+#include "runtime/convert/geometry.hpp"
+#include "runtime/convert/status.hpp"
 
 namespace ltm::mesh {
 namespace {

@@ -4,10 +4,10 @@
 #include <cstring>
 #include <stdexcept>
 
-#include "common/convert/dds_string.hpp"
-#include "common/convert/geometry.hpp"
-#include "common/convert/local_map.hpp"
-#include "common/convert/pose_graph.hpp"
+#include "runtime/convert/dds_string.hpp"
+#include "runtime/convert/geometry.hpp"
+#include "runtime/convert/local_map.hpp"
+#include "runtime/convert/pose_graph.hpp"
 
 namespace ltm::mesh {
 namespace {

@@ -2,16 +2,16 @@
 // The mesh component's messages: a chunk of the dense map (the triangles one local map owns, in
 // its anchor frame, with where the pose graph puts that anchor) <-> ltm_msgs/Mesh, and the checks
 // that keep a bad LocalMap or PoseGraph message away from the mesh core (the conversions
-// themselves are common/convert's).
+// themselves are runtime/convert's).
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <map>
 #include <string>
 
-#include "common/convert/owned_message.hpp"
 #include "common/core/local_map_data.hpp"
 #include "common/core/ply_io.hpp"
 #include "mesh/core/mesh_atlas.hpp"
+#include "runtime/convert/owned_message.hpp"
 #include "runtime/messages.hpp"
 
 namespace ltm::mesh {

@@ -7,10 +7,10 @@
 #include <cmath>
 #include <limits>
 
-#include "common/convert/dds_string.hpp"
-#include "common/convert/local_map.hpp"
-#include "common/convert/pose_graph.hpp"
 #include "mesh/core/test_surfaces.hpp"
+#include "runtime/convert/dds_string.hpp"
+#include "runtime/convert/local_map.hpp"
+#include "runtime/convert/pose_graph.hpp"
 #include "runtime/testing/dds_loopback.hpp"
 
 namespace ltm::mesh {

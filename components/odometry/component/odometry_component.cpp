@@ -5,15 +5,15 @@
 // odometry's (preset and keys, see odometry/params) plus the frames and the snapshot period.
 #include <memory>
 
-#include "common/convert/geometry.hpp"
-#include "common/convert/local_map.hpp"
-#include "common/convert/odometry.hpp"
-#include "common/convert/pointcloud2.hpp"
-#include "common/convert/status.hpp"
 #include "odometry/core/map_handover.hpp"
 #include "odometry/core/odometry.hpp"
 #include "odometry/params/odometry_params.hpp"
 #include "runtime/component.hpp"
+#include "runtime/convert/geometry.hpp"
+#include "runtime/convert/local_map.hpp"
+#include "runtime/convert/odometry.hpp"
+#include "runtime/convert/pointcloud2.hpp"
+#include "runtime/convert/status.hpp"
 
 namespace ltm::odometry {
 namespace {

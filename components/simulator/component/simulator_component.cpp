@@ -6,10 +6,10 @@
 #include <future>
 #include <memory>
 
-#include "common/convert/path.hpp"
-#include "common/convert/pointcloud2.hpp"
 #include "common/core/progress.hpp"
 #include "runtime/component.hpp"
+#include "runtime/convert/path.hpp"
+#include "runtime/convert/pointcloud2.hpp"
 #include "simulator/core/scenario_yaml.hpp"
 #include "simulator/core/simulator.hpp"
 

@@ -4,16 +4,16 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "common/convert/dds_string.hpp"
-#include "common/convert/geometry.hpp"
-#include "common/convert/local_map.hpp"
-#include "common/convert/pointcloud2.hpp"
 #include "common/core/io_error.hpp"
 #include "common/core/kitti_io.hpp"
 #include "common/core/ply_io.hpp"
 #include "mesh/component/mesh_messages.hpp"
 #include "mesh/core/triangle_mesh.hpp"
 #include "runtime/component.hpp"
+#include "runtime/convert/dds_string.hpp"
+#include "runtime/convert/geometry.hpp"
+#include "runtime/convert/local_map.hpp"
+#include "runtime/convert/pointcloud2.hpp"
 
 namespace ltm::sinks {
 namespace {

@@ -4,10 +4,10 @@
 //          | path (nav_msgs/Path: the whole file is rewritten with every message)
 #include <memory>
 
-#include "common/convert/geometry.hpp"
-#include "common/convert/path.hpp"
 #include "common/core/io_error.hpp"
 #include "runtime/component.hpp"
+#include "runtime/convert/geometry.hpp"
+#include "runtime/convert/path.hpp"
 #include "sinks/core/trajectory_file.hpp"
 
 namespace ltm::sinks {

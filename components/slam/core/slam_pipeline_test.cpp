@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <map>
 
-#include "mapping/core/map_store.hpp"
+#include "map/core/map_store.hpp"
 #include "registration/core/test_scenes.hpp"
 
 namespace ltm::slam {
@@ -57,7 +57,7 @@ TEST(SlamPipeline, HandsEveryMapAndKeyframeToTheMapperWithObservationTimes) {
     EXPECT_EQ(pipeline.handover().keyframes(), keyframes);
     EXPECT_GT(maps, 0u);
     // Every stored local map carries the stamps of the scans that updated it, in order.
-    const mapping::MapData saved = pipeline.mapper().snapshot();
+    const map::MapData saved = pipeline.mapper().snapshot();
     ASSERT_GE(saved.local_maps.size(), 3u);
     for (const auto& m : saved.local_maps) {
         ASSERT_TRUE(m.data);
@@ -100,9 +100,9 @@ TEST(SlamPipeline, AMapFromGivenPosesKeepsThem) {
     const mapping::Mapper& mapper = pipeline.mapper();
     EXPECT_TRUE(mapper.loops().empty());
     ASSERT_GE(mapper.keyframes().size(), 12u);
-    auto expect_at_given_poses = [&](const mapping::MapData& map, const char* what) {
-        std::map<std::uint64_t, const mapping::PoseGraphNode*> nodes;
-        for (const mapping::PoseGraphNode& n : map.nodes) nodes[n.id] = &n;
+    auto expect_at_given_poses = [&](const map::MapData& map, const char* what) {
+        std::map<std::uint64_t, const map::PoseGraphNode*> nodes;
+        for (const map::PoseGraphNode& n : map.nodes) nodes[n.id] = &n;
         for (const auto& k : map.keyframes) {
             const Eigen::Isometry3d T = nodes.at(k->node)->T_world_anchor * k->data.T_anchor_lidar;
             const Eigen::Isometry3d G = given(int(k->data.scan_index));
@@ -111,19 +111,19 @@ TEST(SlamPipeline, AMapFromGivenPosesKeepsThem) {
             EXPECT_FALSE(k->localisation_descriptor.empty());
         }
     };
-    const mapping::MapData snapshot = mapper.snapshot();
+    const map::MapData snapshot = mapper.snapshot();
     expect_at_given_poses(snapshot, "in the mapper");
     EXPECT_GE(snapshot.local_maps.size(), 3u);
     for (const auto& m : snapshot.local_maps) EXPECT_GT(m.data->voxels.size(), 100u);
     // Saved (format 2) and loaded again.
     const std::string dir = std::string(LTM_BINARY_DIR) + "/slam_test_maps/given_poses";
     std::filesystem::remove_all(dir);
-    mapping::save_map(dir, snapshot);
-    const mapping::LoadedMap loaded = mapping::load_map(dir);
+    map::save_map(dir, snapshot);
+    const map::LoadedMap loaded = map::load_map(dir);
     ASSERT_TRUE(loaded.refused.empty()) << loaded.refused.front();
     EXPECT_EQ(loaded.map.keyframes.size(), snapshot.keyframes.size());
     EXPECT_EQ(loaded.map.local_maps.size(), snapshot.local_maps.size());
-    EXPECT_TRUE(mapping::has_localisation_descriptors(loaded.map.localisation_descriptor_config));
+    EXPECT_TRUE(map::has_localisation_descriptors(loaded.map.localisation_descriptor_config));
     expect_at_given_poses(loaded.map, "loaded");
 }
 

@@ -2,8 +2,8 @@
 
 #include <thread>
 
-#include "common/convert/path.hpp"
 #include "common/core/io_error.hpp"
+#include "runtime/convert/path.hpp"
 
 namespace ltm::sources {
 

@@ -7,9 +7,9 @@
 #include <chrono>
 #include <memory>
 
-#include "common/convert/pointcloud2.hpp"
 #include "common/core/progress.hpp"
 #include "runtime/component.hpp"
+#include "runtime/convert/pointcloud2.hpp"
 #include "sources/core/scan_folder.hpp"
 
 namespace ltm::sources {

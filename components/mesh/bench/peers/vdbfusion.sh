@@ -14,16 +14,17 @@
 #   VDBFusion source  --source, VDBFUSION_SOURCE     default /tmp/peer/vdbfusion-src
 #   build folder      --build-dir, VDBFUSION_BUILD   default /tmp/ltm-peers/vdbfusion-build
 # A missing source folder is unpacked from a bare git mirror when there is one (VDBFUSION_GIT,
-# default /work/.mirror/PRBonn+vdbfusion/repo, its HEAD); otherwise put a checkout there
-# (git clone https://github.com/PRBonn/vdbfusion DIR) or give --source.
+# default .mirror/PRBonn+vdbfusion/repo next to the checkout, its HEAD); otherwise put a
+# checkout there (git clone https://github.com/PRBonn/vdbfusion DIR) or give --source.
 # Debian packages the build needs: cmake ninja-build g++ libeigen3-dev libopenvdb-dev libtbb-dev
 # (ltm's own mesh needs the same); missing ones are installed with apt-get (as root or with sudo).
 set -euo pipefail
 
 HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+OUT="$(dirname "$(cd "$HERE/../../../.." && pwd)")"  # the folder that holds the checkout
 SOURCE="${VDBFUSION_SOURCE:-/tmp/peer/vdbfusion-src}"
 BUILD="${VDBFUSION_BUILD:-/tmp/ltm-peers/vdbfusion-build}"
-GIT_DIR_MIRROR="${VDBFUSION_GIT:-/work/.mirror/PRBonn+vdbfusion/repo}"
+GIT_DIR_MIRROR="${VDBFUSION_GIT:-$OUT/.mirror/PRBonn+vdbfusion/repo}"
 PACKAGES=(cmake ninja-build g++ libeigen3-dev libopenvdb-dev libtbb-dev)
 
 say() { printf 'vdbfusion.sh: %s\n' "$*" >&2; }

@@ -22,7 +22,7 @@
 #   --kiss-kitti-correction  give KISS-ICP's runner the KITTI vertical-angle correction its KITTI
 #                      loader applies (off: both systems read exactly the same points)
 # Environment: LTM_BUILD_DIR (ltm's build, default ./build), LTM_SHARED_DATA (default
-# /work/shared/data; the shared cases are skipped when it is absent), and KISS_ICP_SOURCE,
+# shared/data next to the checkout; the shared cases are skipped when it is absent), and KISS_ICP_SOURCE,
 # SOPHUS_SOURCE, KISS_ICP_BUILD for kiss_icp.sh (which builds KISS-ICP outside the repository).
 # Columns: ATE = RMSE of the SE(3)-aligned absolute trajectory error [m]; ltm trk/lost = scans
 # ltm registered / not (its "tracking:" line; from its frame states when it has none:
@@ -34,7 +34,7 @@ set -euo pipefail
 HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 ROOT="$(cd "$HERE/../../../.." && pwd)"
 BUILD_DIR="${LTM_BUILD_DIR:-$ROOT/build}"
-DATA="${LTM_SHARED_DATA:-/work/shared/data}"
+DATA="${LTM_SHARED_DATA:-$(dirname "$ROOT")/shared/data}"
 OUT=""
 MAX_FRAMES=0
 ONLY=""

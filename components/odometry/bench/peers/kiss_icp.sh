@@ -9,24 +9,26 @@
 #   kiss_icp.sh [--source DIR] [--sophus DIR] [--build-dir DIR] SCAN_DIR [RUNNER ARGS]
 #                                  (kiss_icp.sh --help-runner: the runner's own options)
 #
-# Where things are (options win over the environment, which wins over the defaults):
-#   KISS-ICP source   --source, KISS_ICP_SOURCE   default /work/peers/kiss-icp-src
-#   Sophus source     --sophus, SOPHUS_SOURCE     default /work/peers/sophus-src
-#   build folder      --build-dir, KISS_ICP_BUILD default /work/peers/kiss-icp-build
+# Where things are (options win over the environment, which wins over the defaults; OUT is the
+# folder that holds the ltm checkout):
+#   KISS-ICP source   --source, KISS_ICP_SOURCE   default OUT/peers/kiss-icp-src
+#   Sophus source     --sophus, SOPHUS_SOURCE     default OUT/peers/sophus-src
+#   build folder      --build-dir, KISS_ICP_BUILD default OUT/peers/kiss-icp-build
 # A missing source folder is unpacked from a bare git mirror when there is one (KISS_ICP_GIT,
-# default /work/.mirror/PRBonn+kiss-icp/repo, its HEAD; SOPHUS_GIT, default
-# /work/.mirror/strasdat+Sophus/repo, tag 1.24.6, the version KISS-ICP pins); otherwise put a
+# default OUT/.mirror/PRBonn+kiss-icp/repo, its HEAD; SOPHUS_GIT, default
+# OUT/.mirror/strasdat+Sophus/repo, tag 1.24.6, the version KISS-ICP pins); otherwise put a
 # checkout there. Sophus is only needed when no Sophus is installed (Debian 12 has no package).
 # Debian packages the build needs (not dependencies of ltm): cmake ninja-build g++ libeigen3-dev
 # libtbb-dev robin-map-dev; missing ones are installed with apt-get (as root or through sudo).
 set -euo pipefail
 
 HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
-SOURCE="${KISS_ICP_SOURCE:-/work/peers/kiss-icp-src}"
-SOPHUS="${SOPHUS_SOURCE:-/work/peers/sophus-src}"
-BUILD="${KISS_ICP_BUILD:-/work/peers/kiss-icp-build}"
-KISS_GIT="${KISS_ICP_GIT:-/work/.mirror/PRBonn+kiss-icp/repo}"
-SOPHUS_GIT_DIR="${SOPHUS_GIT:-/work/.mirror/strasdat+Sophus/repo}"
+OUT="$(dirname "$(cd "$HERE/../../../.." && pwd)")"  # the folder that holds the checkout
+SOURCE="${KISS_ICP_SOURCE:-$OUT/peers/kiss-icp-src}"
+SOPHUS="${SOPHUS_SOURCE:-$OUT/peers/sophus-src}"
+BUILD="${KISS_ICP_BUILD:-$OUT/peers/kiss-icp-build}"
+KISS_GIT="${KISS_ICP_GIT:-$OUT/.mirror/PRBonn+kiss-icp/repo}"
+SOPHUS_GIT_DIR="${SOPHUS_GIT:-$OUT/.mirror/strasdat+Sophus/repo}"
 SOPHUS_TAG=1.24.6
 PACKAGES=(cmake ninja-build g++ libeigen3-dev libtbb-dev robin-map-dev)
 

@@ -1,0 +1,263 @@
+#include "map/core/map_store.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <functional>
+#include <iomanip>
+#include <sstream>
+#include <unordered_set>
+
+#include "common/core/file_io.hpp"
+#include "common/core/io_error.hpp"
+#include "map/core/map_codec.hpp"
+#include "map/core/map_manifest.hpp"
+
+namespace ltm::map {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr std::uint64_t kFirstHeaderField = 16;  // magic, version, section length
+
+// FNV-1a 64 of a whole file: names files and checks them against the manifest. (A CRC-32 of a
+// file made of CRC-protected sections would not do: a section's bytes and its own CRC change
+// together in a way that leaves the CRC of the whole unchanged.)
+std::uint64_t fnv1a64(const std::string& bytes) {
+    std::uint64_t h = 0xcbf29ce484222325ull;
+    for (const char c : bytes) {
+        h ^= std::uint8_t(c);
+        h *= 0x100000001b3ull;
+    }
+    return h;
+}
+
+std::string hex64(std::uint64_t v) {
+    char buf[17];
+    std::snprintf(buf, sizeof(buf), "%016llx", static_cast<unsigned long long>(v));
+    return buf;
+}
+
+std::string padded(std::uint64_t v, int width) {
+    std::ostringstream s;
+    s << std::setw(width) << std::setfill('0') << v;
+    return s.str();
+}
+
+// The file's bytes, checked against the manifest after decoding (which locates damage better).
+void check_entry(const ManifestEntry& e, const std::string& bytes) {
+    if (bytes.size() != e.size) {
+        throw MapFormatError(e.file, "size: " + std::to_string(bytes.size()) +
+                                         " bytes, the manifest says " + std::to_string(e.size) +
+                                         " (truncated or replaced)");
+    }
+    const std::uint64_t hash = fnv1a64(bytes);
+    if (hash != e.hash) {
+        throw MapFormatError(e.file, "file checksum: FNV-1a " + hex64(hash) +
+                                         " differs from the manifest's " + hex64(e.hash));
+    }
+}
+
+// A file of another format than the manifest's (a file copied from another map).
+void check_version(const ManifestEntry& e, std::uint32_t version, std::uint32_t manifest) {
+    if (version != manifest) {
+        throw MapFormatError(e.file, "format version", 8,
+                             "version " + std::to_string(version) + ", the manifest says " +
+                                 std::to_string(manifest));
+    }
+}
+
+}  // namespace
+
+MapWriter::MapWriter(std::string dir, SaveOptions options)
+    : dir_(std::move(dir)), options_(options) {
+    if (options_.keyframes_per_file == 0) options_.keyframes_per_file = 1;
+}
+
+SaveStats MapWriter::save(const MapData& map) {
+    SaveStats stats;
+    std::error_code ec;
+    fs::create_directories(fs::path(dir_) / "local_maps", ec);
+    if (ec) throw common::IoError(dir_, "cannot create the map directory: " + ec.message());
+
+    const std::uint32_t version =
+        map_format_for(map.localisation_descriptor_config, !map.sessions.empty());
+    const DescriptorSettings settings{map.descriptor_config, map.localisation_descriptor_config};
+    Manifest manifest;
+    manifest.revision = map.revision;
+    if (version >= 3) manifest.sessions = map.sessions;
+    manifest.descriptor = map.descriptor_config;
+    manifest.localisation_descriptor = map.localisation_descriptor_config;
+    // Cache keys name the format too: a file of another format is not kept.
+    const std::string v = "v" + std::to_string(version) + ":";
+    std::unordered_map<std::string, Written> cache;
+    // Writes (or keeps) one file; `key` names it in the cache.
+    auto emit = [&](const std::string& key, const std::string& kind, const std::string& prefix,
+                    std::shared_ptr<const void> first, std::shared_ptr<const void> last,
+                    const std::function<std::string()>& encode) -> ManifestEntry {
+        ManifestEntry e;
+        e.kind = kind;
+        const auto hit = cache_.find(key);
+        if (first && hit != cache_.end() && hit->second.first.lock() == first &&
+            hit->second.last.lock() == last &&
+            fs::file_size(fs::path(dir_) / hit->second.file, ec) == hit->second.size && !ec) {
+            e.file = hit->second.file;
+            e.size = hit->second.size;
+            e.hash = hit->second.hash;
+            ++stats.files_kept;
+        } else {
+            const std::string bytes = encode();
+            e.hash = fnv1a64(bytes);
+            e.size = bytes.size();
+            e.file = prefix + hex64(e.hash) + ".bin";
+            const fs::path path = fs::path(dir_) / e.file;
+            if (fs::exists(path, ec) && fs::file_size(path, ec) == e.size) {
+                ++stats.files_kept;  // the same content is already there (named by its CRC)
+            } else {
+                common::write_file_atomic(path.string(), bytes);
+                ++stats.files_written;
+                stats.bytes_written += bytes.size();
+            }
+        }
+        stats.bytes_total += e.size;
+        if (first) cache[key] = Written{first, last, e.file, e.size, e.hash};
+        return e;
+    };
+
+    manifest.files.push_back(emit("graph", "graph", "graph_", nullptr, nullptr, [&] {
+        return encode_graph(map.revision, map.nodes, map.edges, version);
+    }));
+    const std::size_t per = options_.keyframes_per_file;
+    for (std::size_t a = 0; a < map.keyframes.size(); a += per) {
+        const std::size_t n = std::min(per, map.keyframes.size() - a);
+        ManifestEntry e =
+            emit(v + "kf:" + std::to_string(a) + ":" + std::to_string(n), "keyframes",
+                 "keyframes_" + padded(a, 8) + "_", map.keyframes[a], map.keyframes[a + n - 1],
+                 [&] { return encode_keyframes(settings, map.keyframes, a, n, version); });
+        e.first = a;
+        e.count = n;
+        manifest.files.push_back(e);
+    }
+    for (const StoredLocalMap& m : map.local_maps) {
+        if (!m.data) continue;
+        ManifestEntry e = emit(v + "lm:" + std::to_string(m.node), "local_map",
+                               "local_maps/lm_" + padded(m.node, 8) + "_", m.data, m.data,
+                               [&] { return encode_local_map(m, version); });
+        e.node = m.node;
+        manifest.files.push_back(e);
+    }
+    const std::string text = write_manifest(manifest);
+    common::write_file_atomic((fs::path(dir_) / kManifestFile).string(), text);
+    ++stats.files_written;
+    stats.bytes_written += text.size();
+    cache_.swap(cache);
+
+    // Files of earlier saves that the new manifest does not name.
+    std::unordered_set<std::string> keep;
+    for (const ManifestEntry& e : manifest.files) keep.insert(e.file);
+    for (const char* sub : {"", "local_maps"}) {
+        const fs::path folder = fs::path(dir_) / sub;
+        for (const fs::directory_entry& entry : fs::directory_iterator(folder, ec)) {
+            if (!entry.is_regular_file()) continue;
+            const std::string name = entry.path().filename().string();
+            const std::string rel = std::string(sub).empty() ? name : std::string(sub) + "/" + name;
+            const bool ours = name.rfind("graph_", 0) == 0 || name.rfind("keyframes_", 0) == 0 ||
+                              name.rfind("lm_", 0) == 0;
+            const bool bin = name.size() > 4 && (name.compare(name.size() - 4, 4, ".bin") == 0 ||
+                                                 name.compare(name.size() - 4, 4, ".tmp") == 0);
+            if (ours && bin && !keep.count(rel)) {
+                fs::remove(entry.path(), ec);
+                if (!ec) ++stats.files_removed;
+            }
+        }
+    }
+    return stats;
+}
+
+SaveStats save_map(const std::string& dir, const MapData& map, const SaveOptions& options) {
+    return MapWriter(dir, options).save(map);
+}
+
+LoadedMap load_map(const std::string& dir) {
+    LoadedMap out;
+    const fs::path root(dir);
+    if (!fs::is_directory(root)) throw MapFormatError(dir, "not a directory");
+    const Manifest manifest =
+        parse_manifest(common::read_file((root / kManifestFile).string(), kManifestFile));
+    MapData& map = out.map;
+    map.descriptor_config = manifest.descriptor;
+    map.localisation_descriptor_config = manifest.localisation_descriptor;
+    map.sessions = manifest.sessions;
+    const DescriptorSettings expected{manifest.descriptor, manifest.localisation_descriptor};
+
+    // The graph first: without it nothing can be placed.
+    for (const ManifestEntry& e : manifest.files) {
+        if (e.kind != "graph") continue;
+        const std::string bytes = common::read_file((root / e.file).string(), e.file);
+        std::uint64_t revision = 0;
+        std::uint32_t version = 0;
+        decode_graph(bytes, e.file, &revision, &map.nodes, &map.edges, &version);
+        check_entry(e, bytes);
+        check_version(e, version, manifest.version);
+        if (revision != manifest.revision) {
+            throw MapFormatError(e.file, "header.revision", kFirstHeaderField,
+                                 "revision " + std::to_string(revision) + ", the manifest says " +
+                                     std::to_string(manifest.revision));
+        }
+        map.revision = revision;
+    }
+    std::unordered_set<std::uint64_t> nodes;
+    for (const PoseGraphNode& n : map.nodes) nodes.insert(n.id);
+
+    for (const ManifestEntry& e : manifest.files) {
+        if (e.kind == "graph") continue;
+        try {
+            const std::string bytes = common::read_file((root / e.file).string(), e.file);
+            if (e.kind == "keyframes") {
+                std::uint64_t first = 0;
+                std::uint32_t version = 0;
+                auto keyframes = decode_keyframes(bytes, e.file, &expected, &first, &version);
+                check_entry(e, bytes);
+                check_version(e, version, manifest.version);
+                if (first != e.first || keyframes.size() != e.count) {
+                    throw MapFormatError(e.file, "header.first", kFirstHeaderField,
+                                         "holds keyframes " + std::to_string(first) + "+" +
+                                             std::to_string(keyframes.size()) +
+                                             ", the manifest says " + std::to_string(e.first) +
+                                             "+" + std::to_string(e.count));
+                }
+                for (std::size_t i = 0; i < keyframes.size(); ++i) {
+                    if (!nodes.count(keyframes[i]->node)) {
+                        throw MapFormatError(e.file, "keyframes[" + std::to_string(first + i) +
+                                                         "].node: node " +
+                                                         std::to_string(keyframes[i]->node) +
+                                                         " is not in the graph");
+                    }
+                }
+                map.keyframes.insert(map.keyframes.end(), keyframes.begin(), keyframes.end());
+            } else {
+                std::uint32_t version = 0;
+                StoredLocalMap m = decode_local_map(bytes, e.file, &version);
+                check_entry(e, bytes);
+                check_version(e, version, manifest.version);
+                if (m.node != e.node) {
+                    throw MapFormatError(e.file, "header.node", kFirstHeaderField,
+                                         "node " + std::to_string(m.node) + ", the manifest says " +
+                                             std::to_string(e.node));
+                }
+                if (!nodes.count(m.node)) {
+                    throw MapFormatError(e.file, "header.node", kFirstHeaderField,
+                                         "node " + std::to_string(m.node) + " is not in the graph");
+                }
+                map.local_maps.push_back(std::move(m));
+            }
+        } catch (const common::IoError& error) {  // unreadable or damaged (MapFormatError)
+            out.refused.push_back(error.what());
+        }
+    }
+    std::sort(map.local_maps.begin(), map.local_maps.end(),
+              [](const StoredLocalMap& a, const StoredLocalMap& b) { return a.node < b.node; });
+    return out;
+}
+
+}  // namespace ltm::map

@@ -1,0 +1,74 @@
+#pragma once
+// A map directory (format 3, 2 or 1: map_data.hpp):
+//   manifest.txt                       what the map is made of: every file with its size and
+//                                      FNV-1a 64 hash, the revision and the descriptor settings
+//                                      and the sessions that built the map (map_manifest.hpp)
+//   graph_<hash>.bin                   the pose graph
+//   keyframes_<first>_<hash>.bin       keyframes with their descriptors, in chunks
+//   local_maps/lm_<node>_<hash>.bin    one file a local map (voxels with their life records)
+// Inside each binary file, every section carries its own CRC-32 (map_codec.hpp).
+// Files are named by their content, written atomically (temporary file, fsync, rename), and the
+// manifest goes last: a crash during a save leaves the previous map intact. Files the new
+// manifest does not name are removed afterwards. Unchanged local maps are not written again.
+//
+// Loading validates everything; formats 1 to 3 load (every file of the format the manifest
+// names), any other version fails with one line naming the file, the version and the supported
+// ones. A damaged manifest or graph fails the load (nothing could be placed); a damaged local-map
+// or keyframe file is refused, named with the field and the byte offset of the damage, and the
+// rest of the map loads.
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "map/core/map_data.hpp"
+
+namespace ltm::map {
+
+struct SaveOptions {
+    std::size_t keyframes_per_file = 1024;
+};
+
+struct SaveStats {
+    std::size_t files_written = 0, files_kept = 0, files_removed = 0;
+    std::uint64_t bytes_written = 0;
+    std::uint64_t bytes_total = 0;  // of every file the manifest names
+};
+
+// Saves maps into one directory; remembers what it wrote so that unchanged local maps and full
+// keyframe chunks are neither encoded nor written again.
+class MapWriter {
+  public:
+    explicit MapWriter(std::string dir, SaveOptions options = {});
+    // Throws common::IoError (naming the file) when a file cannot be written.
+    SaveStats save(const MapData& map);
+    const std::string& dir() const { return dir_; }
+
+  private:
+    struct Written {
+        std::weak_ptr<const void> first, last;  // the objects the file was made from
+        std::string file;
+        std::uint64_t size = 0;
+        std::uint64_t hash = 0;
+    };
+    std::string dir_;
+    SaveOptions options_;
+    std::unordered_map<std::string, Written> cache_;
+};
+
+// One-off save.
+SaveStats save_map(const std::string& dir, const MapData& map, const SaveOptions& options = {});
+
+struct LoadedMap {
+    MapData map;
+    // One line a refused file: "local_maps/lm_...bin: voxels[17].normal at byte 1290: ...".
+    std::vector<std::string> refused;
+};
+
+// Throws MapFormatError when the manifest or the graph is damaged or of an unknown format version,
+// common::IoError when one of them cannot be read. A format-1 map loads with empty localisation
+// descriptors and localisation_descriptor_config == no_localisation_descriptors().
+LoadedMap load_map(const std::string& dir);
+
+}  // namespace ltm::map

@@ -1,0 +1,32 @@
+#pragma once
+// The voxels of every local map of a map merged into one voxel map in the map frame (what
+// localisation tracks against and global localisation verifies against): each local map's voxels
+// are carried by their anchor's optimised pose (T_world_anchor * T_anchor_grid) onto one lattice
+// of the largest local-map voxel size. Where local maps overlap, a cell keeps the voxel of the
+// local map anchored nearest to it (built while the sensor was closest), so neighbouring cells
+// come from the same local map, whose surfaces agree with each other.
+#include <cstddef>
+#include <memory>
+
+#include "common/core/local_map_data.hpp"
+#include "map/core/map_data.hpp"
+
+namespace ltm::map {
+
+struct MergedVoxelsFilter {
+    double min_health = 0.0;     // voxels below this health are left out [0..1]
+    double min_planarity = 0.4;  // voxels below this planarity are left out (no usable plane)
+};
+
+struct MergedVoxels {
+    // Map frame (grid frame = map frame, T_anchor_grid = I), finished; the life records keep no
+    // observation indices and a voxel's stability is weighted by its health.
+    std::shared_ptr<common::LocalMapData> voxels;
+    std::size_t local_maps = 0;  // local maps merged (those placed in the graph)
+    std::size_t sessions = 0;    // sessions they came from
+};
+
+// A voxel is kept when it has points, a unit normal, a finite centre and passes the filter.
+MergedVoxels merge_voxels(const MapData& map, const MergedVoxelsFilter& filter);
+
+}  // namespace ltm::map

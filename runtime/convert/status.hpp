@@ -1,0 +1,41 @@
+#pragma once
+// ltm_msgs/Status: a component's status line (skipped or rejected frames, answers to requests).
+#include <cstdint>
+#include <string>
+
+#include "runtime/convert/owned_message.hpp"
+#include "runtime/logging.hpp"
+#include "runtime/messages.hpp"
+
+namespace ltm::convert {
+
+enum class StatusLevel : std::uint8_t {
+    kOk = ltm_msgs_msg_Status_Constants_OK,
+    kWarn = ltm_msgs_msg_Status_Constants_WARN,
+    kError = ltm_msgs_msg_Status_Constants_ERROR,
+};
+
+struct StatusData {
+    msg::Time stamp{};     // zero when the line belongs to no sample
+    std::string frame_id;  // the component's frame
+    std::string component;
+    StatusLevel level = StatusLevel::kOk;
+    std::string code;  // short machine-readable key, e.g. "bad_cloud"
+    std::string message;
+};
+
+Owned<msg::Status> to_msg(const StatusData& status);
+
+// Logs a status line at its level: info, warn or error.
+inline void log_status(const runtime::Logger& log, StatusLevel level, const std::string& text) {
+    if (level == StatusLevel::kOk) {
+        log.info(text);
+    } else if (level == StatusLevel::kError) {
+        log.error(text);
+    } else {
+        log.warn(text);
+    }
+}
+StatusData from_msg(const msg::Status& message);
+
+}  // namespace ltm::convert
