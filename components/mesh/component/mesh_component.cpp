@@ -17,13 +17,10 @@
 // oldest is dropped (skip_while_busy, live) or the component's thread waits (offline). At shutdown
 // the worker finishes what waits, then the mesh file is written.
 #include <chrono>
-#include <condition_variable>
 #include <cstdio>
-#include <deque>
 #include <filesystem>
 #include <mutex>
 #include <optional>
-#include <thread>
 
 #include "common/convert/dds_string.hpp"
 #include "common/convert/geometry.hpp"
@@ -34,6 +31,7 @@
 #include "mesh/component/mesh_params.hpp"
 #include "mesh/core/mesh_atlas.hpp"
 #include "runtime/component.hpp"
+#include "runtime/worker.hpp"
 
 namespace ltm::mesh {
 namespace {
@@ -42,6 +40,7 @@ namespace fs = std::filesystem;
 using convert::StatusLevel;
 using runtime::TopicRole;
 using Clock = std::chrono::steady_clock;
+using runtime::StopToken;
 
 double ms_since(Clock::time_point t0) {
     return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
@@ -64,10 +63,22 @@ struct Request {
     std::string file;  // "": the component's mesh_file
 };
 
+using Worker = runtime::Worker<MapInput, GraphInput>;
+
 class MeshComponent : public runtime::Component {
   public:
     explicit MeshComponent(runtime::ComponentContext& ctx)
-        : ctx_(ctx), config_(load_mesh_params(ctx.params())), atlas_(config_.mesh) {
+        : ctx_(ctx),
+          config_(load_mesh_params(ctx.params())),
+          atlas_(config_.mesh),
+          worker_(
+              {ctx.name(), "work", std::size_t(config_.max_queue),
+               config_.skip_while_busy ? runtime::BusyPolicy::kDropOldest
+                                       : runtime::BusyPolicy::kBlock},
+              [this](Worker::Step& step, const StopToken& stop) { work(step, stop); },
+              [this](const std::string& what) {
+                  event(StatusLevel::kError, "mesh_failed", common::one_line(what), stamp_);
+              }) {
         frame_id_ = config_.frame_id;
         ctx.subscribe<msg::LocalMap>("local_map", TopicRole::kMap,
                                      [this](const msg::LocalMap& m) { on_local_map(m); });
@@ -81,22 +92,20 @@ class MeshComponent : public runtime::Component {
         status_out_ = ctx.advertise<msg::Status>("status", TopicRole::kState);
     }
 
-    ~MeshComponent() override { stop_worker(); }
+    ~MeshComponent() override { worker_.stop(); }
 
-    void on_activate() override {
-        worker_ = std::thread([this] { run_worker(); });
-    }
+    void on_activate() override { worker_.start(); }
 
     void on_shutdown() override {
-        stop_worker();
+        worker_.stop();  // finishes the requests, maps and graph that wait
         const AtlasTotals t = atlas_.totals();
         char text[300];
         std::snprintf(text, sizeof text,
                       "%zu local maps: %zu taken, %zu snapshots skipped, %zu refused, %zu dropped "
                       "while busy; %zu chunks, %zu triangles owned; %zu meshings: grid %.0f ms, "
                       "marching cubes %.0f ms; updates %.0f ms",
-                      maps_, added_, snapshots_, refused_, dropped_, t.chunks, t.kept_triangles,
-                      t.meshings, t.fill_ms, t.mesh_ms, update_ms_);
+                      maps_, added_, snapshots_, refused_, std::size_t(worker_.skipped()), t.chunks,
+                      t.kept_triangles, t.meshings, t.fill_ms, t.mesh_ms, update_ms_);
         ctx_.log().info(text);
         if (!config_.mesh_file.empty()) write_mesh(config_.mesh_file, nullptr);
     }
@@ -119,21 +128,12 @@ class MeshComponent : public runtime::Component {
             event(StatusLevel::kError, "bad_local_map", common::one_line(e.what()), m.header.stamp);
             return;
         }
-        std::unique_lock<std::mutex> lock(mutex_);
         // A newer revision of a map still waiting takes its place.
-        for (MapInput& q : queue_) {
-            if (q.map.id != in.map.id) continue;
-            if (in.map.revision > q.map.revision) q = std::move(in);
-            return;
-        }
-        if (!config_.skip_while_busy)
-            cv_.wait(lock, [&] { return queue_.size() < std::size_t(config_.max_queue) || stop_; });
-        if (queue_.size() >= std::size_t(config_.max_queue)) {
-            queue_.pop_front();
-            ++dropped_;
-        }
-        queue_.push_back(std::move(in));
-        cv_.notify_all();
+        worker_.push_merge(std::move(in), [](MapInput& waiting, MapInput& map) {
+            if (waiting.map.id != map.map.id) return false;
+            if (map.map.revision > waiting.map.revision) waiting = std::move(map);
+            return true;
+        });
     }
 
     void on_graph(const msg::PoseGraph& m) {
@@ -148,58 +148,33 @@ class MeshComponent : public runtime::Component {
         g.revision = m.revision;
         g.frame_id = convert::to_string(m.header.frame_id);
         g.stamp = m.header.stamp;
-        std::lock_guard<std::mutex> lock(mutex_);
-        graph_ = std::move(g);  // only the newest matters
-        cv_.notify_all();
+        worker_.set_latest(std::move(g));  // only the newest matters
     }
 
     void on_request(const msg::MapRequest& m) {
         if (m.command != ltm_msgs_msg_MapRequest_Constants_WRITE_MESH) return;  // the mapping's
-        std::lock_guard<std::mutex> lock(mutex_);
-        requests_.push_back({m.id, convert::to_string(m.global_map_file)});
-        cv_.notify_all();
+        // Requests go before the maps that wait.
+        worker_.post([this, r = Request{m.id, convert::to_string(m.global_map_file)}](
+                         const StopToken&) { answer(r); });
     }
 
     // --- the worker thread: the atlas ---
 
-    void run_worker() {
-        for (;;) {
-            std::optional<Request> request;
-            std::optional<GraphInput> graph;
-            std::optional<MapInput> map;
-            {
-                std::unique_lock<std::mutex> lock(mutex_);
-                cv_.wait(lock, [&] {
-                    return !requests_.empty() || graph_.has_value() || !queue_.empty() || stop_;
-                });
-                if (!requests_.empty()) {
-                    request = std::move(requests_.front());
-                    requests_.pop_front();
-                } else {
-                    if (!queue_.empty()) {
-                        map = std::move(queue_.front());
-                        queue_.pop_front();
-                    }
-                    graph.swap(graph_);
-                    if (!map && !graph) break;  // stopped, and everything taken
-                }
+    // The next map (if any) and the newest graph (if a new one came). The update runs to its end
+    // even when a stop abandons the queue (not the default: it finishes): the global mesh written
+    // at shutdown is what the last update left.
+    void work(Worker::Step& step, const StopToken&) {
+        const bool meshed = step.item && add_map(*step.item);
+        const std::optional<GraphInput>& graph = step.latest;
+        if (graph) {
+            atlas_.set_graph(graph->anchors);
+            if (!graph->frame_id.empty()) {
+                std::lock_guard<std::mutex> lock(frame_mutex_);
+                frame_id_ = graph->frame_id;
             }
-            cv_.notify_all();  // room in the queue
-            if (request) {
-                answer(*request);
-                continue;
-            }
-            const bool meshed = map && add_map(*map);
-            if (graph) {
-                atlas_.set_graph(graph->anchors);
-                if (!graph->frame_id.empty()) {
-                    std::lock_guard<std::mutex> lock(frame_mutex_);
-                    frame_id_ = graph->frame_id;
-                }
-                stamp_ = graph->stamp;
-            }
-            if (meshed || graph) publish_changes();
+            stamp_ = graph->stamp;
         }
+        if (meshed || graph) publish_changes();
     }
 
     // The map's chunk, prepared (voxels, cells); update() meshes the places it owns.
@@ -312,32 +287,13 @@ class MeshComponent : public runtime::Component {
         return frame_id_;
     }
 
-    void stop_worker() {
-        {
-            std::lock_guard<std::mutex> lock(mutex_);
-            stop_ = true;
-        }
-        cv_.notify_all();
-        if (worker_.joinable()) worker_.join();
-    }
-
     runtime::ComponentContext& ctx_;
     const MeshComponentConfig config_;
-
-    // Shared with the worker (under mutex_).
-    std::mutex mutex_;
-    std::condition_variable cv_;
-    std::deque<MapInput> queue_;
-    std::optional<GraphInput> graph_;
-    std::deque<Request> requests_;
-    bool stop_ = false;
-    std::size_t dropped_ = 0;
 
     // The component's thread.
     std::size_t maps_ = 0, snapshots_ = 0, refused_ = 0;
 
     // The worker's (read by on_shutdown after the join).
-    std::thread worker_;
     MeshAtlas atlas_;
     std::mutex frame_mutex_;
     std::string frame_id_;
@@ -349,6 +305,7 @@ class MeshComponent : public runtime::Component {
 
     runtime::Publisher<msg::Mesh> mesh_out_;
     runtime::Publisher<msg::Status> status_out_;
+    Worker worker_;  // last: stopped before the members it uses go
 };
 
 }  // namespace
