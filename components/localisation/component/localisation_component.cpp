@@ -46,6 +46,7 @@
 namespace ltm::localisation {
 namespace {
 
+using common::StatusCode;
 using convert::StatusLevel;
 using runtime::PathCheck;
 using runtime::StopToken;
@@ -94,7 +95,8 @@ class LocalisationComponent : public runtime::Component {
                 skip_while_busy_ ? runtime::BusyPolicy::kDropOldest : runtime::BusyPolicy::kBlock},
             [this](Worker::Step& step, const StopToken&) { work(step); },
             [this](const std::string& what) {
-                event(StatusLevel::kError, "localisation_failed", common::one_line(what), 0.0);
+                event(StatusLevel::kError, StatusCode::kLocalisationFailed, common::one_line(what),
+                      0.0);
             });
 
         ctx.subscribe<msg::PointCloud2>("points", TopicRole::kSensor,
@@ -184,12 +186,12 @@ class LocalisationComponent : public runtime::Component {
         scan.index = index;
         const std::string err = convert::from_pointcloud2(m, scan.cloud);
         if (!err.empty()) {
-            event(StatusLevel::kError, "bad_cloud", "scan " + std::to_string(index) + ": " + err,
-                  scan.cloud.stamp);
+            event(StatusLevel::kError, StatusCode::kBadCloud,
+                  "scan " + std::to_string(index) + ": " + err, scan.cloud.stamp);
             return;
         }
         if (!(scan.cloud.stamp > newest_scan_)) {  // a repeated or reordered scan
-            event(StatusLevel::kWarn, "rejected_stamp",
+            event(StatusLevel::kWarn, StatusCode::kRejected,
                   "scan " + std::to_string(index) + ": its stamp is not after the previous scan's",
                   scan.cloud.stamp);
             return;
@@ -224,9 +226,11 @@ class LocalisationComponent : public runtime::Component {
         });
     }
 
+    // The odometry segment of a scan: the one its newest restart up to the scan started.
     std::uint32_t segment_at(double stamp) const {
         std::uint32_t segment = 0;
-        for (double r : restarts_) segment += r <= stamp + kSameStamp;
+        for (const auto& [restart, number] : restarts_)
+            if (restart <= stamp + kSameStamp) segment = std::max(segment, number);
         return segment;
     }
 
@@ -235,10 +239,9 @@ class LocalisationComponent : public runtime::Component {
         const convert::StatusData s = convert::from_msg(m);
         if (s.component == ctx_.name()) return;
         const double stamp = convert::to_seconds(s.stamp);
-        if (s.code == "restarted") {
-            restarts_.push_back(stamp);
-        } else if (s.code == "lost" || s.code == "bad_cloud" || s.code.rfind("skipped", 0) == 0 ||
-                   s.code.rfind("rejected", 0) == 0) {
+        if (s.code == StatusCode::kRestarted) {
+            restarts_.emplace_back(stamp, s.segment);
+        } else if (common::says_no_pose(s.code)) {  // lost, skipped, rejected, bad cloud
             pairer_->add_no_pose(stamp);
             pair();
         }
@@ -248,21 +251,21 @@ class LocalisationComponent : public runtime::Component {
         const double stamp = convert::to_seconds(m.header.stamp);
         const std::string frame = convert::to_string(m.header.frame_id);
         if (map_state_ == kFailed) {
-            event(StatusLevel::kError, "initialpose_refused", "initial pose ignored: " + no_map_,
-                  stamp);
+            event(StatusLevel::kError, StatusCode::kInitialPoseRefused,
+                  "initial pose ignored: " + no_map_, stamp);
             return;
         }
         if (!frame.empty() && frame != frame_id_) {
             event(
-                StatusLevel::kWarn, "initialpose_refused",
+                StatusLevel::kWarn, StatusCode::kInitialPoseRefused,
                 "initial pose in frame '" + frame + "' ignored: it must be in '" + frame_id_ + "'",
                 stamp);
             return;
         }
         const PoseHint hint = hint_from_msg(m, hint_radius_);
         if (!hint.T_map_lidar.matrix().allFinite()) {
-            event(StatusLevel::kWarn, "initialpose_refused", "initial pose ignored: not finite",
-                  stamp);
+            event(StatusLevel::kWarn, StatusCode::kInitialPoseRefused,
+                  "initial pose ignored: not finite", stamp);
             return;
         }
         worker_->set_latest(hint);  // with the next scan, or alone
@@ -273,7 +276,7 @@ class LocalisationComponent : public runtime::Component {
                       "initial pose accepted: (%.2f, %.2f) m, yaw %.1f deg; global localisation "
                       "searches within %.1f m of it",
                       t.x(), t.y(), std::atan2(x.y(), x.x()) * 180.0 / M_PI, hint.radius);
-        event(StatusLevel::kOk, "initialpose", text, stamp);
+        event(StatusLevel::kOk, StatusCode::kInitialPose, text, stamp);
     }
 
     // Hands a scan to the worker (see the file comment for the policy): live, it replaces the one
@@ -303,7 +306,7 @@ class LocalisationComponent : public runtime::Component {
             if (scan) process(*scan);
         } catch (const std::exception& e) {
             // The localiser does not throw on data; whatever did is said, not fatal.
-            event(StatusLevel::kError, "localisation_failed", common::one_line(e.what()),
+            event(StatusLevel::kError, StatusCode::kLocalisationFailed, common::one_line(e.what()),
                   scan ? scan->cloud.stamp : 0.0);
         }
     }
@@ -312,7 +315,7 @@ class LocalisationComponent : public runtime::Component {
     // whoever listens now.
     void publish_no_map(double stamp) {
         if (no_map_scans_++ % kNoMapRepeat == 0)
-            publish_event(StatusLevel::kError, "no_map", no_map_, stamp);
+            publish_event(StatusLevel::kError, StatusCode::kNoMap, no_map_, stamp);
         status_out_.publish(*status_msg(stamp, no_map_, counters(), frame_id_));
     }
 
@@ -351,14 +354,14 @@ class LocalisationComponent : public runtime::Component {
             char where[120];
             std::snprintf(where, sizeof where, " (at %.2f %.2f %.2f, confidence %.2f)", t.x(),
                           t.y(), t.z(), u.confidence);
-            event(StatusLevel::kOk, "relocalised", what + where, u.stamp);
+            event(StatusLevel::kOk, StatusCode::kRelocalised, what + where, u.stamp);
         } else if (changed && u.state == LocalisationState::kLost) {
-            event(StatusLevel::kWarn, "lost", what, u.stamp);
+            event(StatusLevel::kWarn, StatusCode::kLost, what, u.stamp);
         } else if (changed && u.state == LocalisationState::kOffMap) {
-            event(StatusLevel::kWarn, "off_map", what, u.stamp);
+            event(StatusLevel::kWarn, StatusCode::kOffMap, what, u.stamp);
         } else if (changed && u.state == LocalisationState::kTracking &&
                    last_state_ == LocalisationState::kOffMap) {
-            event(StatusLevel::kOk, "on_map", what, u.stamp);
+            event(StatusLevel::kOk, StatusCode::kOnMap, what, u.stamp);
         }
     }
 
@@ -368,13 +371,12 @@ class LocalisationComponent : public runtime::Component {
     }
 
     // Thread-safe: the publisher and the logger are.
-    void event(StatusLevel level, const std::string& code, const std::string& text, double stamp) {
+    void event(StatusLevel level, StatusCode code, const std::string& text, double stamp) {
         convert::log_status(ctx_.log(), level, text);
         publish_event(level, code, text, stamp);
     }
 
-    void publish_event(StatusLevel level, const std::string& code, const std::string& text,
-                       double stamp) {
+    void publish_event(StatusLevel level, StatusCode code, const std::string& text, double stamp) {
         events_out_.publish(*convert::to_msg(convert::StatusData{convert::to_time(stamp), frame_id_,
                                                                  ctx_.name(), level, code, text}));
     }
@@ -394,7 +396,7 @@ class LocalisationComponent : public runtime::Component {
 
     // The component's thread.
     std::optional<runtime::StampPairer<Scan, convert::OdometryData>> pairer_;
-    std::vector<double> restarts_;  // stamps of the odometry's restarts
+    std::vector<std::pair<double, std::uint32_t>> restarts_;  // the odometry's: stamp, segment
     double newest_scan_ = -1e300;
     std::string odom_frame_seen_;
     std::uint64_t scans_ = 0;

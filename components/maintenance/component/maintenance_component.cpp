@@ -43,6 +43,7 @@ namespace ltm::maintenance {
 namespace {
 
 namespace fs = std::filesystem;
+using common::StatusCode;
 using convert::StatusLevel;
 using runtime::TopicRole;
 
@@ -73,7 +74,8 @@ class MaintenanceComponent : public runtime::Component {
                                        : runtime::BusyPolicy::kBlock},
               [this](Worker::Step& step, const StopToken& stop) { work(*step.item, stop); },
               [this](const std::string& what) {
-                  event(StatusLevel::kError, "maintenance_failed", common::one_line(what), stamp_);
+                  event(StatusLevel::kError, StatusCode::kMaintenanceFailed, common::one_line(what),
+                        stamp_);
               }) {
         auto& p = ctx.params();
         load_map(p);
@@ -161,7 +163,7 @@ class MaintenanceComponent : public runtime::Component {
         common::PointCloud cloud;
         const std::string err = convert::from_pointcloud2(m, cloud);
         if (!err.empty()) {
-            event(StatusLevel::kError, "bad_cloud", "scan ignored: " + err, cloud.stamp);
+            event(StatusLevel::kError, StatusCode::kBadCloud, "scan ignored: " + err, cloud.stamp);
             return;
         }
         pairer_.add_scan(cloud.stamp, std::move(cloud.points));  // full: drops the oldest
@@ -211,7 +213,8 @@ class MaintenanceComponent : public runtime::Component {
                 finish_pass(map_->maintain(), stamp_);
             }
         } catch (const std::exception& e) {
-            event(StatusLevel::kError, "maintenance_failed", common::one_line(e.what()), stamp_);
+            event(StatusLevel::kError, StatusCode::kMaintenanceFailed, common::one_line(e.what()),
+                  stamp_);
         }
     }
 
@@ -232,7 +235,8 @@ class MaintenanceComponent : public runtime::Component {
                                 std::to_string(map_->sessions().size()));
             }
         } catch (const std::exception& e) {
-            event(StatusLevel::kError, "maintenance_failed", common::one_line(e.what()), stamp);
+            event(StatusLevel::kError, StatusCode::kMaintenanceFailed, common::one_line(e.what()),
+                  stamp);
         }
     }
 
@@ -246,7 +250,7 @@ class MaintenanceComponent : public runtime::Component {
                       pass, c.count(ChangeReason::kMoving), c.count(ChangeReason::kVanished),
                       c.count(ChangeReason::kNew), c.voxels_removed, st.voxels,
                       st.memory_bytes / 1048576.0, c.time_ms);
-        event(StatusLevel::kOk, "maintained", text, stamp);
+        event(StatusLevel::kOk, StatusCode::kMaintained, text, stamp);
         if (!c.changes.empty()) changes_out_.publish(*to_msg(c, pass, stamp, frame_id()));
         if (config_.output_dir.empty()) return;
         all_.append(c);
@@ -260,7 +264,7 @@ class MaintenanceComponent : public runtime::Component {
             summary_.flush();
             write_change_ply((dir / "changes_removed_added.ply").string(), all_);
         } catch (const std::exception& e) {
-            event(StatusLevel::kError, "write_failed", common::one_line(e.what()), stamp);
+            event(StatusLevel::kError, StatusCode::kWriteFailed, common::one_line(e.what()), stamp);
         }
     }
 
@@ -270,7 +274,7 @@ class MaintenanceComponent : public runtime::Component {
     }
 
     // Thread-safe: the publisher and the logger are.
-    void event(StatusLevel level, const std::string& code, const std::string& text, double stamp) {
+    void event(StatusLevel level, StatusCode code, const std::string& text, double stamp) {
         convert::log_status(ctx_.log(), level, text);
         events_out_.publish(*convert::to_msg(convert::StatusData{
             convert::to_time(stamp), frame_id(), ctx_.name(), level, code, text}));

@@ -6,9 +6,9 @@
 //
 // The global mesh (PLY, map frame) is written at shutdown to `mesh_file` and on request: a
 // `map_request` with command WRITE_MESH (`./ltm map mesh`), to the request's global_map_file or
-// else `mesh_file`; the answer on `status` is "map_request_done" or "map_request_failed" with a
-// message starting "request <id>: ", as the mapping component answers. Other commands are the
-// mapping component's and are left alone.
+// else `mesh_file`; the answer on `status` has code kMapRequestDone or kMapRequestFailed and the
+// request's id (request_id; its message starts "request <id>: "), as the mapping component's.
+// Other commands are the mapping component's and are left alone.
 //
 // Threads: the component's thread takes the inputs; the atlas lives on a worker thread, which
 // takes the maps in order, applies the newest graph, updates the ownership, meshes the places a
@@ -37,6 +37,7 @@ namespace ltm::mesh {
 namespace {
 
 namespace fs = std::filesystem;
+using common::StatusCode;
 using convert::StatusLevel;
 using runtime::TopicRole;
 using Clock = std::chrono::steady_clock;
@@ -77,7 +78,8 @@ class MeshComponent : public runtime::Component {
                                        : runtime::BusyPolicy::kBlock},
               [this](Worker::Step& step, const StopToken& stop) { work(step, stop); },
               [this](const std::string& what) {
-                  event(StatusLevel::kError, "mesh_failed", common::one_line(what), stamp_);
+                  event(StatusLevel::kError, StatusCode::kMeshFailed, common::one_line(what),
+                        stamp_);
               }) {
         frame_id_ = config_.frame_id;
         ctx.subscribe<msg::LocalMap>("local_map", TopicRole::kMap,
@@ -125,7 +127,8 @@ class MeshComponent : public runtime::Component {
             in.map = local_map_from_msg(m);
         } catch (const std::invalid_argument& e) {
             ++refused_;
-            event(StatusLevel::kError, "bad_local_map", common::one_line(e.what()), m.header.stamp);
+            event(StatusLevel::kError, StatusCode::kBadLocalMap, common::one_line(e.what()),
+                  m.header.stamp);
             return;
         }
         // A newer revision of a map still waiting takes its place.
@@ -141,7 +144,7 @@ class MeshComponent : public runtime::Component {
         try {
             g.anchors = anchors_from_msg(m);
         } catch (const std::invalid_argument& e) {
-            event(StatusLevel::kError, "bad_pose_graph", common::one_line(e.what()),
+            event(StatusLevel::kError, StatusCode::kBadPoseGraph, common::one_line(e.what()),
                   m.header.stamp);
             return;
         }
@@ -191,7 +194,7 @@ class MeshComponent : public runtime::Component {
             stamp_ = in.stamp;
             return atlas_.add(std::move(chunk));
         } catch (const std::exception& e) {
-            event(StatusLevel::kError, "mesh_failed",
+            event(StatusLevel::kError, StatusCode::kMeshFailed,
                   "local map " + std::to_string(m.id) + ": " + common::one_line(e.what()),
                   in.stamp);
             return false;
@@ -207,7 +210,7 @@ class MeshComponent : public runtime::Component {
         try {
             changed = atlas_.update();
         } catch (const std::exception& e) {
-            event(StatusLevel::kError, "mesh_failed", common::one_line(e.what()), stamp_);
+            event(StatusLevel::kError, StatusCode::kMeshFailed, common::one_line(e.what()), stamp_);
             return;
         }
         const double update_ms = ms_since(t0);
@@ -222,10 +225,10 @@ class MeshComponent : public runtime::Component {
                       t.chunks, t.kept_triangles, t.meshings - before.meshings,
                       t.fill_ms - before.fill_ms, t.mesh_ms - before.mesh_ms, changed.size(),
                       update_ms);
-        event(StatusLevel::kOk, "mesh_updated", text, stamp_);
+        event(StatusLevel::kOk, StatusCode::kMeshUpdated, text, stamp_);
         if (kept_for_late_readers_ > 0 && t.chunks > kept_for_late_readers_ && !warned_depth_) {
             warned_depth_ = true;
-            event(StatusLevel::kWarn, "mesh_depth",
+            event(StatusLevel::kWarn, StatusCode::kMeshDepth,
                   "more chunks than `" + mesh_out_.topic() + "` keeps for late readers (" +
                       std::to_string(kept_for_late_readers_) +
                       " messages): they get the chunks that changed last (qos: map: depth)",
@@ -243,8 +246,8 @@ class MeshComponent : public runtime::Component {
             ok = write_mesh(file, &outcome);
         }
         event(ok ? StatusLevel::kOk : StatusLevel::kError,
-              ok ? "map_request_done" : "map_request_failed",
-              "request " + std::to_string(r.id) + ": " + outcome, stamp_);
+              ok ? StatusCode::kMapRequestDone : StatusCode::kMapRequestFailed,
+              "request " + std::to_string(r.id) + ": " + outcome, stamp_, r.id);
     }
 
     // The global mesh as PLY (its folder created); says how it went on `status` (or in
@@ -269,17 +272,17 @@ class MeshComponent : public runtime::Component {
             *outcome = line;
         } else {
             event(ok ? StatusLevel::kOk : StatusLevel::kError,
-                  ok ? "mesh_written" : "mesh_not_written", line, stamp_);
+                  ok ? StatusCode::kMeshWritten : StatusCode::kMeshNotWritten, line, stamp_);
         }
         return ok;
     }
 
     // Thread-safe: the publisher and the logger are.
-    void event(StatusLevel level, const std::string& code, const std::string& text,
-               const msg::Time& stamp) {
+    void event(StatusLevel level, StatusCode code, const std::string& text, const msg::Time& stamp,
+               std::uint32_t request_id = 0) {
         convert::log_status(ctx_.log(), level, text);
         status_out_.publish(*convert::to_msg(
-            convert::StatusData{stamp, frame_id(), ctx_.name(), level, code, text}));
+            convert::StatusData{stamp, frame_id(), ctx_.name(), level, code, text, 0, request_id}));
     }
 
     std::string frame_id() {
