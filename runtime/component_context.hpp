@@ -35,6 +35,9 @@ class ComponentContext {
     // The host's namespace ("" or "/robot").
     std::string ns() const;
     Parameters& params() { return params_; }
+    // The host's launch config: what the other components of this process are set to (read, e.g.,
+    // to take the odometry's effective settings rather than its preset's).
+    const LaunchConfig& launch_config() const { return config_; }
     const Logger& log() const { return log_; }
 
     // An input: `handler` runs on this component's thread for every sample taken.

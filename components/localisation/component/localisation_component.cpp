@@ -38,6 +38,7 @@
 #include "localisation/component/localisation_messages.hpp"
 #include "localisation/component/localiser_params.hpp"
 #include "odometry/core/odometry_config.hpp"
+#include "odometry/params/odometry_params.hpp"
 #include "registration/core/preprocess.hpp"
 #include "runtime/component.hpp"
 #include "runtime/stamp_pairer.hpp"
@@ -55,6 +56,31 @@ using runtime::TopicRole;
 constexpr double kSameStamp = 1e-4;          // a scan and its odometry pose [s]
 constexpr std::size_t kMaxOdometry = 200;    // odometry poses kept for pairing
 constexpr std::uint64_t kNoMapRepeat = 100;  // the no-map line again on `status` every N scans
+
+// The odometry's settings as this host's odometry component runs them (its preset and every key it
+// is given: an `odometry.voxel_size` override reaches the localisation's preprocessing too), else
+// the localisation preset's (no odometry component here, or more than one). Says which in the log.
+odometry::OdometryConfig odometry_in_use(runtime::ComponentContext& ctx,
+                                         common::SensorPreset preset) {
+    const runtime::LaunchConfig& launch = ctx.launch_config();
+    std::vector<const runtime::ComponentSpec*> found;
+    for (const runtime::ComponentSpec& c : launch.components)
+        if (c.type == "odometry") found.push_back(&c);
+    odometry::OdometryConfig oc = odometry::preset_config(preset);
+    std::string from = std::string("preset ") + common::to_string(preset) + " (" +
+                       (found.empty() ? "no" : std::to_string(found.size())) +
+                       " odometry components in this host)";
+    if (found.size() == 1) {
+        runtime::Parameters params(found[0]->params, launch.file, found[0]->name);
+        oc = odometry::load_odometry_config(params);  // as the odometry component reads them
+        from = "odometry component '" + found[0]->name + "'";
+    }
+    char text[200];
+    std::snprintf(text, sizeof text, "scans preprocessed as by the %s: voxel_size %.3g m",
+                  from.c_str(), oc.voxel_size);
+    ctx.log().info(text);
+    return oc;
+}
 
 // A scan on its way to the worker, with the odometry's pose and twist when they came in time.
 struct Scan {
@@ -80,7 +106,7 @@ class LocalisationComponent : public runtime::Component {
         if (!(hint_radius_.min_radius > 0)) p.fail("initial_pose.min_radius", "must be > 0");
         preset_ = load_sensor_preset(p);
         config_ = load_localiser_config(p, preset_);
-        const odometry::OdometryConfig oc = odometry::preset_config(preset_);
+        const odometry::OdometryConfig oc = odometry_in_use(ctx, preset_);
         preprocessor_.emplace(oc.preprocess, oc.voxel_size);
         map_dir_ = p.path("map", "", PathCheck::kNone);
         if (map_dir_.empty())
