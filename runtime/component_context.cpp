@@ -170,7 +170,18 @@ void ComponentContext::add_timer(double period_s, std::function<void()> fn) {
     timers_.push_back(std::move(t));
 }
 
-void ComponentContext::request_stop() {
+std::chrono::steady_clock::time_point ComponentContext::work_deadline() const {
+    using clock = std::chrono::steady_clock;
+    const std::int64_t deadline = stop_deadline_;
+    if (deadline == std::numeric_limits<std::int64_t>::max()) return clock::time_point::max();
+    const auto now = clock::now();
+    const clock::time_point end{clock::duration(deadline)};
+    return end <= now ? now : now + (end - now) / 2;
+}
+
+void ComponentContext::request_stop(std::chrono::steady_clock::time_point deadline) {
+    if (deadline != std::chrono::steady_clock::time_point::max())
+        stop_deadline_ = deadline.time_since_epoch().count();
     {
         std::lock_guard<std::mutex> lock(sleep_mutex_);
         stop_ = true;

@@ -8,6 +8,7 @@
 #include <condition_variable>
 #include <deque>
 #include <functional>
+#include <limits>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -35,6 +36,9 @@ class ComponentContext {
     // The host's namespace ("" or "/robot").
     std::string ns() const;
     Parameters& params() { return params_; }
+    // The host's launch config: what the other components of this process are set to (read, e.g.,
+    // to take the odometry's effective settings rather than its preset's).
+    const LaunchConfig& launch_config() const { return config_; }
     const Logger& log() const { return log_; }
 
     // An input: `handler` runs on this component's thread for every sample taken.
@@ -79,6 +83,10 @@ class ComponentContext {
     bool is_source() const { return source_; }
     bool is_finished() const { return finished_; }
     bool stop_requested() const { return stop_.load(); }
+    // Until when a component's background work may go on once a stop is requested: half the
+    // time left to the host's stop deadline (the other half is for its final saves); far in the
+    // future before a stop. Workers stop with it: Worker::stop(ctx.work_deadline()).
+    std::chrono::steady_clock::time_point work_deadline() const;
     // Sleeps until `deadline` or a stop request; false when stopped. For pacing a source.
     bool sleep_until(std::chrono::steady_clock::time_point deadline);
     // True when the launch config's `topics:` section sets the role of this declared topic.
@@ -127,7 +135,8 @@ class ComponentContext {
     std::deque<Subscription>& subscriptions() { return subscriptions_; }
     void attach_waitset(dds_entity_t waitset);
     std::vector<Timer>& timers() { return timers_; }
-    void request_stop();
+    void request_stop(std::chrono::steady_clock::time_point deadline =
+                          std::chrono::steady_clock::time_point::max());
     const std::vector<std::shared_ptr<WriterHandle>>& writers() const { return writers_; }
 
   private:
@@ -158,6 +167,7 @@ class ComponentContext {
     std::vector<Timer> timers_;
     std::vector<std::shared_ptr<WriterHandle>> writers_;
     std::atomic<bool> stop_{false};
+    std::atomic<std::int64_t> stop_deadline_{std::numeric_limits<std::int64_t>::max()};
     std::mutex sleep_mutex_;
     std::condition_variable sleep_cv_;
     bool source_ = false;

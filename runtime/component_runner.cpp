@@ -57,8 +57,8 @@ void ComponentRunner::start() {
     thread_ = std::thread([this] { run(); });
 }
 
-void ComponentRunner::request_stop() {
-    ctx_->request_stop();
+void ComponentRunner::request_stop(std::chrono::steady_clock::time_point deadline) {
+    ctx_->request_stop(deadline);
     dds_set_guardcondition(guard_, true);
 }
 

@@ -26,8 +26,11 @@ class ComponentRunner {
     ComponentRunner(const ComponentRunner&) = delete;
     ComponentRunner& operator=(const ComponentRunner&) = delete;
 
-    void start();         // activate: the thread starts and calls on_activate
-    void request_stop();  // deactivate + shutdown follow on the component's thread
+    void start();  // activate: the thread starts and calls on_activate
+    // Deactivate + shutdown follow on the component's thread; `deadline`: the host's stop
+    // deadline (ComponentContext::work_deadline derives the components' from it).
+    void request_stop(std::chrono::steady_clock::time_point deadline =
+                          std::chrono::steady_clock::time_point::max());
     // Waits until the thread has run on_shutdown and ended; false when the deadline passed.
     bool wait_done(std::chrono::steady_clock::time_point deadline);
 

@@ -237,7 +237,7 @@ bool Host::stop_components(double budget) {
     // it shuts down (its last local map, say) still reaches the components listed after it.
     // A long stop says every 5 s what it waits for.
     for (auto& r : runners_) {
-        r->request_stop();
+        r->request_stop(deadline);
         auto next_note = clock::now() + std::chrono::seconds(5);
         while (!r->wait_done(std::min(next_note, deadline))) {
             const double waited = std::chrono::duration<double>(clock::now() - start).count();
@@ -246,7 +246,7 @@ bool Host::stop_components(double budget) {
                             seconds_text(budget) + " deadline (still in " + r->activity() +
                             "; shutdown_timeout_s sets the deadline)");
                 // Give the others what is left of a short grace to flush their outputs.
-                for (auto& o : runners_) o->request_stop();
+                for (auto& o : runners_) o->request_stop(deadline);
                 for (auto& o : runners_)
                     if (o != r) o->wait_done(clock::now() + std::chrono::milliseconds(200));
                 return true;

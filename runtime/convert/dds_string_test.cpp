@@ -12,9 +12,9 @@ using namespace ltm::convert;
 TEST(DdsString, DupCopiesAndTheGeneratedFreeReleasesIt) {
     msg::Status s{};
     std::string text = "bad_cloud";
-    s.code = dup_string(text);
+    s.key = dup_string(text);
     text[0] = 'X';  // the copy is independent
-    EXPECT_STREQ(s.code, "bad_cloud");
+    EXPECT_STREQ(s.key, "bad_cloud");
     s.message = dup_string("");
     EXPECT_STREQ(s.message, "");
     // Frees both (valgrind: no leak); Cyclone 0.10 leaves the string pointers dangling, which is
@@ -29,8 +29,8 @@ TEST(DdsString, SetStringReplacesAndFreesTheOldOne) {
     set_string(s.component, s.component);  // from its own characters
     EXPECT_EQ(std::string(s.component), std::string(300, 'a'));
     std::string with_nul("ab\0cd", 5);
-    set_string(s.code, with_nul);  // a C string ends at its first NUL
-    EXPECT_STREQ(s.code, "ab");
+    set_string(s.key, with_nul);  // a C string ends at its first NUL
+    EXPECT_STREQ(s.key, "ab");
     ltm_msgs_msg_dds__Status__free(&s, DDS_FREE_CONTENTS);
 }
 

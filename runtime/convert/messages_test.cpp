@@ -2,6 +2,8 @@
 // messages are owned: each is freed by its generated free function at the end of the test.
 #include <gtest/gtest.h>
 
+#include <set>
+
 #include "runtime/convert/geometry.hpp"
 #include "runtime/convert/loop_closure.hpp"
 #include "runtime/convert/odometry.hpp"
@@ -44,13 +46,17 @@ TEST(StatusMessage, BuildAndBack) {
     in.frame_id = "odom";
     in.component = "robot/odometry";
     in.level = StatusLevel::kWarn;
-    in.code = "degenerate";
-    in.message = "scan 12: 1 degenerate direction(s)";
+    in.code = common::StatusCode::kRestarted;
+    in.message = "scan 12: lost for 5 scans; a new segment";
+    in.segment = 3;
+    in.request_id = 7;
     const Owned<msg::Status> m = to_msg(in);
     EXPECT_EQ(m->level, ltm_msgs_msg_Status_Constants_WARN);
     EXPECT_STREQ(m->header.frame_id, "odom");
     EXPECT_STREQ(m->component, "robot/odometry");
-    EXPECT_STREQ(m->code, "degenerate");
+    EXPECT_EQ(m->code, ltm_msgs_msg_Status_Constants_CODE_RESTARTED);
+    EXPECT_STREQ(m->key, "restarted");
+    EXPECT_EQ(m->segment, 3u);
     const StatusData out = from_msg(*m);
     expect_time(out.stamp, in.stamp);
     EXPECT_EQ(out.frame_id, in.frame_id);
@@ -58,6 +64,24 @@ TEST(StatusMessage, BuildAndBack) {
     EXPECT_EQ(out.level, in.level);
     EXPECT_EQ(out.code, in.code);
     EXPECT_EQ(out.message, in.message);
+    EXPECT_EQ(out.segment, 3u);
+    EXPECT_EQ(out.request_id, 7u);
+}
+
+// Every code has its own text key, and the key reads back as the code.
+TEST(StatusMessage, EveryCodeHasAKeyThatParsesBack) {
+    std::set<std::string> keys;
+    for (int v = 0; v <= common::kLastStatusCode; ++v) {
+        const common::StatusCode c = common::status_code_from_wire(std::uint8_t(v));
+        EXPECT_EQ(int(c), v);
+        const std::string key = common::to_string(c);
+        EXPECT_TRUE(keys.insert(key).second) << key;
+        EXPECT_EQ(common::parse_status_code(key), c);
+    }
+    EXPECT_FALSE(common::parse_status_code("no_such_code").has_value());
+    // A newer sender's code this build does not know.
+    EXPECT_EQ(common::status_code_from_wire(common::kLastStatusCode + 1),
+              common::StatusCode::kUnknown);
 }
 
 TEST(StatusMessage, ZeroedMessageReadsAsEmpty) {
@@ -65,6 +89,7 @@ TEST(StatusMessage, ZeroedMessageReadsAsEmpty) {
     const StatusData s = from_msg(zero);
     EXPECT_EQ(s.component, "");
     EXPECT_EQ(s.level, StatusLevel::kOk);
+    EXPECT_EQ(s.code, common::StatusCode::kUnknown);
     EXPECT_EQ(s.message, "");
 }
 

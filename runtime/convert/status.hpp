@@ -1,8 +1,10 @@
 #pragma once
 // ltm_msgs/Status: a component's status line (skipped or rejected frames, answers to requests).
+// The line's code is data (common::StatusCode); the message's `key` is its text, set here.
 #include <cstdint>
 #include <string>
 
+#include "common/core/status_code.hpp"
 #include "runtime/convert/owned_message.hpp"
 #include "runtime/logging.hpp"
 #include "runtime/messages.hpp"
@@ -20,8 +22,10 @@ struct StatusData {
     std::string frame_id;  // the component's frame
     std::string component;
     StatusLevel level = StatusLevel::kOk;
-    std::string code;  // short machine-readable key, e.g. "bad_cloud"
+    common::StatusCode code = common::StatusCode::kUnknown;
     std::string message;
+    std::uint32_t segment = 0;     // kRestarted: the new odometry segment
+    std::uint32_t request_id = 0;  // kMapRequestDone / kMapRequestFailed: the request answered
 };
 
 Owned<msg::Status> to_msg(const StatusData& status);

@@ -32,7 +32,7 @@ class MapChangesProbe : public runtime::Component {
         ctx.subscribe<msg::MapChangeSet>("map_changes", TopicRole::kMap,
                                          [this](const msg::MapChangeSet& m) { on_changes(m); });
         ctx.subscribe<msg::Status>("status", TopicRole::kState, [this](const msg::Status& m) {
-            out_ << "event " << text(m.component) << ' ' << int(m.level) << ' ' << text(m.code)
+            out_ << "event " << text(m.component) << ' ' << int(m.level) << ' ' << text(m.key)
                  << ' ' << text(m.message) << '\n';
         });
     }

@@ -44,7 +44,7 @@ class LocalisationProbe : public runtime::Component {
                      << ' ' << q.x << ' ' << q.y << ' ' << q.z << ' ' << q.w << '\n';
             });
         ctx.subscribe<msg::Status>("status", TopicRole::kState, [this](const msg::Status& m) {
-            out_ << "event " << text(m.component) << ' ' << int(m.level) << ' ' << text(m.code)
+            out_ << "event " << text(m.component) << ' ' << int(m.level) << ' ' << text(m.key)
                  << ' ' << text(m.message) << '\n';
         });
         initial_pose_out_ =

@@ -327,12 +327,18 @@ TEST_F(Dds, KeyframeGraphLoopStatusChangesMesh) {
     msg::Status st{};
     st.header.frame_id = c(frame);
     st.component = c(comp);
-    st.code = c(code);
+    st.code = ltm_msgs_msg_Status_Constants_CODE_SKIPPED;
+    st.key = c(code);
     st.message = c(text);
     st.level = ltm_msgs_msg_Status_Constants_WARN;
+    st.segment = 5;
+    st.request_id = 0xfffffffeu;
     roundtrip<msg::Status>(st, [&](const msg::Status& r) {
-        EXPECT_EQ(std::string(r.code), "skip");
+        EXPECT_EQ(r.code, ltm_msgs_msg_Status_Constants_CODE_SKIPPED);
+        EXPECT_EQ(std::string(r.key), "skip");
         EXPECT_EQ(r.level, 1);
+        EXPECT_EQ(r.segment, 5u);
+        EXPECT_EQ(r.request_id, 0xfffffffeu);
     });
 
     std::string dir = "/tmp/map", ply = "";
@@ -378,15 +384,20 @@ TEST_F(Dds, BuiltMessagesThroughDds) {
                            "odom",
                            "robot/odometry",
                            convert::StatusLevel::kError,
-                           "bad_cloud",
-                           "scan 3: short data"};
+                           common::StatusCode::kRestarted,
+                           "scan 3: lost for 1 s",
+                           4,
+                           9};
     roundtrip<msg::Status>(*convert::to_msg(st), [&](const msg::Status& r) {
         const convert::StatusData o = convert::from_msg(r);
         EXPECT_EQ(o.stamp.nanosec, stamp.nanosec);
         EXPECT_EQ(o.component, st.component);
         EXPECT_EQ(o.level, st.level);
         EXPECT_EQ(o.code, st.code);
+        EXPECT_STREQ(r.key, "restarted");
         EXPECT_EQ(o.message, st.message);
+        EXPECT_EQ(o.segment, 4u);
+        EXPECT_EQ(o.request_id, 9u);
     });
     convert::TransformData tf{stamp, "map", "odom", some_pose(2)};
     roundtrip<msg::TransformStamped>(*convert::to_msg(tf), [&](const msg::TransformStamped& r) {

@@ -148,7 +148,8 @@ class LocalisationPipeline : public ltm::tests::TempDirTest {
                                  std::to_string(count) + R"(}
   - name: odometry
     type: odometry
-    params: {preset: vlp16}
+    params: {)" + odometry_params_ +
+                                 R"(}
   - name: localisation
     type: localisation
     params: {map: )" + map + R"(, preset: vlp16, skip_while_busy: )" +
@@ -165,6 +166,8 @@ class LocalisationPipeline : public ltm::tests::TempDirTest {
     remap: {pose: ground_truth}
 )");
     }
+
+    std::string odometry_params_ = "preset: vlp16";  // the odometry component's, in localise()
 
     static fs::path suite_dir_;
     static int map_status_;
@@ -322,4 +325,18 @@ TEST_F(LocalisationPipeline, InitialPoseIsAcceptedAndOneInAnotherFrameRefused) {
     EXPECT_EQ(accepted, 1u) << host.err();
     EXPECT_EQ(with.status.size(), without.status.size());
     EXPECT_EQ(globals(with), 2u) << host.err();  // the start, and the scan after the hint
+}
+
+// The localisation preprocesses scans as the odometry component of its host does: an
+// odometry.voxel_size override reaches it (not the preset's voxel size), and the log says so.
+TEST_F(LocalisationPipeline, OdometryVoxelSizeOverrideReachesTheLocalisation) {
+    const std::string map = map_dir();
+    ASSERT_FALSE(HasFailure());
+    odometry_params_ = "preset: vlp16, voxel_size: 0.45";
+    Process host({kTestHost, localise(207, map, "", 5)}, path("host"));
+    ASSERT_EQ(host.wait(300), 0) << host.err();
+    EXPECT_NE(host.err().find("scans preprocessed as by the odometry component 'odometry': "
+                              "voxel_size 0.45 m"),
+              std::string::npos)
+        << host.err();
 }

@@ -217,8 +217,11 @@ for i in "${!NS_R[@]}"; do
         || die "the simulator failed on session $i of $SCENARIO: $(tail -n 1 "$WORK/sim$i.log")"
 done
 model=$(awk '/^ *model:/ {print $2; exit}' "${DATA[0]}/scenario.yaml")
+# The simulator's models and ltm's presets (common/core/sensor_preset.cpp: simulator_model).
 case "$model" in
-    hdl64e) preset=hdl64 ;; vlp32c) preset=vlp32 ;; vlp16) preset=vlp16 ;; *) preset=narrow ;;
+    hdl64e) preset=hdl64 ;; vlp32c) preset=vlp32 ;; vlp16) preset=vlp16 ;; os1_64) preset=os1-64 ;;
+    livox_avia | solid_state) preset=narrow ;;
+    *) die "no sensor preset for the simulator's model '$model' (common/core/sensor_preset.cpp)" ;;
 esac
 scans=$(wc -l < "${DATA[0]}/times.txt")
 

@@ -24,17 +24,15 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
-#include <condition_variable>
 #include <cstdio>
-#include <deque>
 #include <mutex>
 #include <optional>
-#include <thread>
 
 #include "common/core/one_line.hpp"
 #include "localisation/component/localisation_messages.hpp"
 #include "localisation/component/localiser_params.hpp"
 #include "odometry/core/odometry_config.hpp"
+#include "odometry/params/odometry_params.hpp"
 #include "registration/core/preprocess.hpp"
 #include "runtime/component.hpp"
 #include "runtime/convert/dds_string.hpp"
@@ -43,28 +41,56 @@
 #include "runtime/convert/pointcloud2.hpp"
 #include "runtime/convert/status.hpp"
 #include "runtime/convert/transform.hpp"
+#include "runtime/stamp_pairer.hpp"
+#include "runtime/worker.hpp"
 
 namespace ltm::localisation {
 namespace {
 
+using common::StatusCode;
 using convert::StatusLevel;
 using runtime::PathCheck;
+using runtime::StopToken;
 using runtime::TopicRole;
 
 constexpr double kSameStamp = 1e-4;          // a scan and its odometry pose [s]
 constexpr std::size_t kMaxOdometry = 200;    // odometry poses kept for pairing
 constexpr std::uint64_t kNoMapRepeat = 100;  // the no-map line again on `status` every N scans
 
-// A scan on its way to the worker, with the odometry's pose and twist when they came in time.
-using Clock = std::chrono::steady_clock;
+// The odometry's settings as this host's odometry component runs them (its preset and every key it
+// is given: an `odometry.voxel_size` override reaches the localisation's preprocessing too), else
+// the localisation preset's (no odometry component here, or more than one). Says which in the log.
+odometry::OdometryConfig odometry_in_use(runtime::ComponentContext& ctx,
+                                         common::SensorPreset preset) {
+    const runtime::LaunchConfig& launch = ctx.launch_config();
+    std::vector<const runtime::ComponentSpec*> found;
+    for (const runtime::ComponentSpec& c : launch.components)
+        if (c.type == "odometry") found.push_back(&c);
+    odometry::OdometryConfig oc = odometry::preset_config(preset);
+    std::string from = std::string("preset ") + common::to_string(preset) + " (" +
+                       (found.empty() ? "no" : std::to_string(found.size())) +
+                       " odometry components in this host)";
+    if (found.size() == 1) {
+        runtime::Parameters params(found[0]->params, launch.file, found[0]->name);
+        oc = odometry::load_odometry_config(params);  // as the odometry component reads them
+        from = "odometry component '" + found[0]->name + "'";
+    }
+    char text[200];
+    std::snprintf(text, sizeof text, "scans preprocessed as by the %s: voxel_size %.3g m",
+                  from.c_str(), oc.voxel_size);
+    ctx.log().info(text);
+    return oc;
+}
 
+// A scan on its way to the worker, with the odometry's pose and twist when they came in time.
 struct Scan {
     std::uint64_t index = 0;
-    Clock::time_point arrived;
     common::PointCloud cloud;
     std::optional<OdometryInput> odometry;
     registration::Vector6d velocity = registration::Vector6d::Zero();  // [v; w], LiDAR frame
 };
+
+using Worker = runtime::Worker<Scan, PoseHint>;
 
 class LocalisationComponent : public runtime::Component {
   public:
@@ -80,12 +106,24 @@ class LocalisationComponent : public runtime::Component {
         if (!(hint_radius_.min_radius > 0)) p.fail("initial_pose.min_radius", "must be > 0");
         preset_ = load_sensor_preset(p);
         config_ = load_localiser_config(p, preset_);
-        const odometry::OdometryConfig oc = odometry::preset_config(preset_);
+        const odometry::OdometryConfig oc = odometry_in_use(ctx, preset_);
         preprocessor_.emplace(oc.preprocess, oc.voxel_size);
         map_dir_ = p.path("map", "", PathCheck::kNone);
         if (map_dir_.empty())
             p.fail("map", "required: the saved map directory to localise on (map_dir of mapping)");
         if (!skip_while_busy_) load_map();
+        pairer_.emplace(runtime::StampPairerOptions{kSameStamp, kMaxOdometry, 0, kMaxOdometry,
+                                                    odometry_wait_s_});
+        // Live: a scan that comes while the worker is busy replaces the one waiting for it.
+        worker_.emplace(
+            runtime::WorkerOptions{
+                ctx.name(), "work", 1,
+                skip_while_busy_ ? runtime::BusyPolicy::kDropOldest : runtime::BusyPolicy::kBlock},
+            [this](Worker::Step& step, const StopToken&) { work(step); },
+            [this](const std::string& what) {
+                event(StatusLevel::kError, StatusCode::kLocalisationFailed, common::one_line(what),
+                      0.0);
+            });
 
         ctx.subscribe<msg::PointCloud2>("points", TopicRole::kSensor,
                                         [this](const msg::PointCloud2& m) { on_points(m); });
@@ -107,20 +145,29 @@ class LocalisationComponent : public runtime::Component {
             ctx.add_timer(std::max(0.02, odometry_wait_s_ / 4), [this] { pair(); });
     }
 
-    ~LocalisationComponent() override { stop_worker(); }
+    ~LocalisationComponent() override {
+        if (worker_) worker_->stop();
+    }
 
     void on_activate() override {
-        worker_ = std::thread([this] { run_worker(); });
+        // Live, the map is the worker's first job.
+        worker_->start([this](const StopToken&) {
+            if (map_state_ == kLoading) load_map();
+        });
     }
 
     void on_shutdown() override {
         // Scans still waiting for their odometry go without it.
-        while (worker_.joinable() && !waiting_.empty()) submit(pop_waiting());
-        stop_worker();
+        if (worker_->started())
+            pairer_->release_all([this](double, Scan&& s, std::optional<convert::OdometryData>&&) {
+                submit(std::move(s));
+            });
+        worker_->stop(ctx_.work_deadline());
+        const StatusCounters c = counters();
         ctx_.log().info(std::to_string(scans_) + " scans: " + std::to_string(processed_) +
                         " localised (" + std::to_string(valid_) + " with a valid pose), " +
-                        std::to_string(counters_.relocalisations) + " relocalisations, " +
-                        std::to_string(counters_.skipped_scans) + " skipped while busy");
+                        std::to_string(c.relocalisations) + " relocalisations, " +
+                        std::to_string(c.skipped_scans) + " skipped while busy");
     }
 
   private:
@@ -165,19 +212,19 @@ class LocalisationComponent : public runtime::Component {
         scan.index = index;
         const std::string err = convert::from_pointcloud2(m, scan.cloud);
         if (!err.empty()) {
-            event(StatusLevel::kError, "bad_cloud", "scan " + std::to_string(index) + ": " + err,
-                  scan.cloud.stamp);
+            event(StatusLevel::kError, StatusCode::kBadCloud,
+                  "scan " + std::to_string(index) + ": " + err, scan.cloud.stamp);
             return;
         }
         if (!(scan.cloud.stamp > newest_scan_)) {  // a repeated or reordered scan
-            event(StatusLevel::kWarn, "rejected_stamp",
+            event(StatusLevel::kWarn, StatusCode::kRejected,
                   "scan " + std::to_string(index) + ": its stamp is not after the previous scan's",
                   scan.cloud.stamp);
             return;
         }
         newest_scan_ = scan.cloud.stamp;
-        scan.arrived = Clock::now();
-        waiting_.push_back(std::move(scan));
+        const double stamp = scan.cloud.stamp;
+        pairer_->add_scan(stamp, std::move(scan));
         pair();
     }
 
@@ -189,48 +236,27 @@ class LocalisationComponent : public runtime::Component {
             odom_frame_ = o.frame_id;
         }
         const double stamp = convert::to_seconds(o.stamp);
-        newest_odometry_ = std::max(newest_odometry_, stamp);
-        if (odometry_.size() == kMaxOdometry) odometry_.pop_front();
-        odometry_.push_back({stamp, std::move(o)});
+        pairer_->add_pose(stamp, std::move(o));
         pair();
     }
 
-    // Hands on every waiting scan whose odometry came, or will not come (see the file comment).
+    // Hands on every waiting scan whose odometry came (with its pose and twist), or will not come
+    // (see the file comment).
     void pair() {
-        const auto now = Clock::now();
-        while (!waiting_.empty()) {
-            Scan& s = waiting_.front();
-            const double stamp = s.cloud.stamp;
-            if (attach_odometry(s) || newest_odometry_ > stamp + kSameStamp || no_pose_for(stamp) ||
-                now - s.arrived >= std::chrono::duration<double>(odometry_wait_s_)) {
-                submit(pop_waiting());
-                continue;
+        pairer_->release([this](double stamp, Scan&& s, std::optional<convert::OdometryData>&& o) {
+            if (o) {
+                s.odometry = OdometryInput{o->T_parent_child, segment_at(stamp)};
+                s.velocity << o->linear_velocity, o->angular_velocity;
             }
-            break;
-        }
+            submit(std::move(s));
+        });
     }
 
-    Scan pop_waiting() {
-        Scan s = std::move(waiting_.front());
-        waiting_.pop_front();
-        return s;
-    }
-
-    bool attach_odometry(Scan& s) {
-        for (auto it = odometry_.begin(); it != odometry_.end(); ++it) {
-            if (std::abs(it->first - s.cloud.stamp) >= kSameStamp) continue;
-            const convert::OdometryData& o = it->second;
-            s.odometry = OdometryInput{o.T_parent_child, segment_at(s.cloud.stamp)};
-            s.velocity << o.linear_velocity, o.angular_velocity;
-            odometry_.erase(odometry_.begin(), it + 1);  // older poses are of no use any more
-            return true;
-        }
-        return false;
-    }
-
+    // The odometry segment of a scan: the one its newest restart up to the scan started.
     std::uint32_t segment_at(double stamp) const {
         std::uint32_t segment = 0;
-        for (double r : restarts_) segment += r <= stamp + kSameStamp;
+        for (const auto& [restart, number] : restarts_)
+            if (restart <= stamp + kSameStamp) segment = std::max(segment, number);
         return segment;
     }
 
@@ -239,48 +265,36 @@ class LocalisationComponent : public runtime::Component {
         const convert::StatusData s = convert::from_msg(m);
         if (s.component == ctx_.name()) return;
         const double stamp = convert::to_seconds(s.stamp);
-        if (s.code == "restarted") {
-            restarts_.push_back(stamp);
-        } else if (s.code == "lost" || s.code == "bad_cloud" || s.code.rfind("skipped", 0) == 0 ||
-                   s.code.rfind("rejected", 0) == 0) {
-            if (no_pose_.size() == kMaxOdometry) no_pose_.pop_front();
-            no_pose_.push_back(stamp);
+        if (s.code == StatusCode::kRestarted) {
+            restarts_.emplace_back(stamp, s.segment);
+        } else if (common::says_no_pose(s.code)) {  // lost, skipped, rejected, bad cloud
+            pairer_->add_no_pose(stamp);
             pair();
         }
-    }
-
-    bool no_pose_for(double stamp) const {
-        for (double t : no_pose_)
-            if (std::abs(t - stamp) < kSameStamp) return true;
-        return false;
     }
 
     void on_initial_pose(const msg::PoseWithCovarianceStamped& m) {
         const double stamp = convert::to_seconds(m.header.stamp);
         const std::string frame = convert::to_string(m.header.frame_id);
         if (map_state_ == kFailed) {
-            event(StatusLevel::kError, "initialpose_refused", "initial pose ignored: " + no_map_,
-                  stamp);
+            event(StatusLevel::kError, StatusCode::kInitialPoseRefused,
+                  "initial pose ignored: " + no_map_, stamp);
             return;
         }
         if (!frame.empty() && frame != frame_id_) {
             event(
-                StatusLevel::kWarn, "initialpose_refused",
+                StatusLevel::kWarn, StatusCode::kInitialPoseRefused,
                 "initial pose in frame '" + frame + "' ignored: it must be in '" + frame_id_ + "'",
                 stamp);
             return;
         }
         const PoseHint hint = hint_from_msg(m, hint_radius_);
         if (!hint.T_map_lidar.matrix().allFinite()) {
-            event(StatusLevel::kWarn, "initialpose_refused", "initial pose ignored: not finite",
-                  stamp);
+            event(StatusLevel::kWarn, StatusCode::kInitialPoseRefused,
+                  "initial pose ignored: not finite", stamp);
             return;
         }
-        {
-            std::lock_guard<std::mutex> lock(mutex_);
-            hint_ = hint;
-        }
-        cv_.notify_all();
+        worker_->set_latest(hint);  // with the next scan, or alone
         const Eigen::Vector3d t = hint.T_map_lidar.translation();
         const Eigen::Vector3d x = hint.T_map_lidar.linear().col(0);
         char text[200];
@@ -288,57 +302,38 @@ class LocalisationComponent : public runtime::Component {
                       "initial pose accepted: (%.2f, %.2f) m, yaw %.1f deg; global localisation "
                       "searches within %.1f m of it",
                       t.x(), t.y(), std::atan2(x.y(), x.x()) * 180.0 / M_PI, hint.radius);
-        event(StatusLevel::kOk, "initialpose", text, stamp);
+        event(StatusLevel::kOk, StatusCode::kInitialPose, text, stamp);
     }
 
-    // Hands a scan to the worker (see the file comment for the policy).
+    // Hands a scan to the worker (see the file comment for the policy): live, it replaces the one
+    // waiting; offline, the component's thread waits until it is localised.
     void submit(Scan&& scan) {
-        std::unique_lock<std::mutex> lock(mutex_);
-        if (skip_while_busy_) {
-            counters_.skipped_scans += queue_.size();
-            queue_.clear();
-        }
-        queue_.push_back(std::move(scan));
-        cv_.notify_all();
-        if (!skip_while_busy_) cv_.wait(lock, [&] { return (queue_.empty() && !busy_) || stop_; });
+        worker_->push(std::move(scan));
+        if (!skip_while_busy_) worker_->wait_idle();
     }
 
     StatusCounters counters() {
-        std::lock_guard<std::mutex> lock(mutex_);
-        return counters_;
+        StatusCounters c;
+        {
+            std::lock_guard<std::mutex> lock(mutex_);
+            c = counters_;
+        }
+        c.skipped_scans = std::uint32_t(worker_->skipped());
+        return c;
     }
 
     // --- the worker thread: the localiser and the outputs ---
 
-    void run_worker() {
-        if (map_state_ == kLoading) load_map();
-        for (;;) {
-            std::optional<Scan> scan;
-            std::optional<PoseHint> hint;
-            {
-                std::unique_lock<std::mutex> lock(mutex_);
-                cv_.wait(lock, [&] { return !queue_.empty() || hint_ || stop_; });
-                if (queue_.empty() && !hint_ && stop_) return;
-                if (!queue_.empty()) {
-                    scan = std::move(queue_.front());
-                    queue_.pop_front();
-                }
-                std::swap(hint, hint_);
-                busy_ = true;
-            }
-            try {
-                if (hint && localiser_) localiser_->set_initial_pose(*hint);
-                if (scan) process(*scan);
-            } catch (const std::exception& e) {
-                // The localiser does not throw on data; whatever did is said, not fatal.
-                event(StatusLevel::kError, "localisation_failed", common::one_line(e.what()),
-                      scan ? scan->cloud.stamp : 0.0);
-            }
-            {
-                std::lock_guard<std::mutex> lock(mutex_);
-                busy_ = false;
-            }
-            cv_.notify_all();  // done: an offline submit() waits for this
+    // The newest initial pose (if one came), then the next scan (if one waits).
+    void work(Worker::Step& step) {
+        const std::optional<Scan>& scan = step.item;
+        try {
+            if (step.latest && localiser_) localiser_->set_initial_pose(*step.latest);
+            if (scan) process(*scan);
+        } catch (const std::exception& e) {
+            // The localiser does not throw on data; whatever did is said, not fatal.
+            event(StatusLevel::kError, StatusCode::kLocalisationFailed, common::one_line(e.what()),
+                  scan ? scan->cloud.stamp : 0.0);
         }
     }
 
@@ -346,7 +341,7 @@ class LocalisationComponent : public runtime::Component {
     // whoever listens now.
     void publish_no_map(double stamp) {
         if (no_map_scans_++ % kNoMapRepeat == 0)
-            publish_event(StatusLevel::kError, "no_map", no_map_, stamp);
+            publish_event(StatusLevel::kError, StatusCode::kNoMap, no_map_, stamp);
         status_out_.publish(*status_msg(stamp, no_map_, counters(), frame_id_));
     }
 
@@ -359,12 +354,11 @@ class LocalisationComponent : public runtime::Component {
         const LocalisationUpdate u =
             localiser_->process(scan.cloud.stamp, preprocessed_.map_points, scan.odometry);
         ++processed_;
-        StatusCounters c;
         {
             std::lock_guard<std::mutex> lock(mutex_);
             counters_.relocalisations += u.state == LocalisationState::kRelocalised && u.global_ran;
-            c = counters_;
         }
+        const StatusCounters c = counters();
         status_out_.publish(*status_msg(u, c, frame_id_));
         if (u.pose_valid) {
             ++valid_;
@@ -386,14 +380,14 @@ class LocalisationComponent : public runtime::Component {
             char where[120];
             std::snprintf(where, sizeof where, " (at %.2f %.2f %.2f, confidence %.2f)", t.x(),
                           t.y(), t.z(), u.confidence);
-            event(StatusLevel::kOk, "relocalised", what + where, u.stamp);
+            event(StatusLevel::kOk, StatusCode::kRelocalised, what + where, u.stamp);
         } else if (changed && u.state == LocalisationState::kLost) {
-            event(StatusLevel::kWarn, "lost", what, u.stamp);
+            event(StatusLevel::kWarn, StatusCode::kLost, what, u.stamp);
         } else if (changed && u.state == LocalisationState::kOffMap) {
-            event(StatusLevel::kWarn, "off_map", what, u.stamp);
+            event(StatusLevel::kWarn, StatusCode::kOffMap, what, u.stamp);
         } else if (changed && u.state == LocalisationState::kTracking &&
                    last_state_ == LocalisationState::kOffMap) {
-            event(StatusLevel::kOk, "on_map", what, u.stamp);
+            event(StatusLevel::kOk, StatusCode::kOnMap, what, u.stamp);
         }
     }
 
@@ -403,24 +397,14 @@ class LocalisationComponent : public runtime::Component {
     }
 
     // Thread-safe: the publisher and the logger are.
-    void event(StatusLevel level, const std::string& code, const std::string& text, double stamp) {
+    void event(StatusLevel level, StatusCode code, const std::string& text, double stamp) {
         convert::log_status(ctx_.log(), level, text);
         publish_event(level, code, text, stamp);
     }
 
-    void publish_event(StatusLevel level, const std::string& code, const std::string& text,
-                       double stamp) {
+    void publish_event(StatusLevel level, StatusCode code, const std::string& text, double stamp) {
         events_out_.publish(*convert::to_msg(convert::StatusData{convert::to_time(stamp), frame_id_,
                                                                  ctx_.name(), level, code, text}));
-    }
-
-    void stop_worker() {
-        {
-            std::lock_guard<std::mutex> lock(mutex_);
-            stop_ = true;
-        }
-        cv_.notify_all();
-        if (worker_.joinable()) worker_.join();
     }
 
     runtime::ComponentContext& ctx_;
@@ -437,25 +421,18 @@ class LocalisationComponent : public runtime::Component {
     std::atomic<std::uint64_t> no_map_scans_{0};
 
     // The component's thread.
-    std::deque<Scan> waiting_;
-    std::deque<std::pair<double, convert::OdometryData>> odometry_;
-    std::vector<double> restarts_;  // stamps of the odometry's restarts
-    std::deque<double> no_pose_;    // stamps of scans the odometry has no pose for
-    double newest_scan_ = -1e300, newest_odometry_ = -1e300;
+    std::optional<runtime::StampPairer<Scan, convert::OdometryData>> pairer_;
+    std::vector<std::pair<double, std::uint32_t>> restarts_;  // the odometry's: stamp, segment
+    double newest_scan_ = -1e300;
     std::string odom_frame_seen_;
     std::uint64_t scans_ = 0;
 
     // Shared with the worker (under mutex_).
     std::mutex mutex_;
-    std::condition_variable cv_;
-    std::deque<Scan> queue_;
-    std::optional<PoseHint> hint_;
-    bool stop_ = false, busy_ = false;
-    StatusCounters counters_;
+    StatusCounters counters_;  // but skipped_scans: the worker's count
     std::string odom_frame_ = "odom";
 
     // The worker's.
-    std::thread worker_;
     std::unique_ptr<Localiser> localiser_;
     std::optional<registration::Preprocessor> preprocessor_;
     registration::PreprocessedScan preprocessed_;
@@ -466,6 +443,7 @@ class LocalisationComponent : public runtime::Component {
     runtime::Publisher<msg::PoseWithCovarianceStamped> pose_out_;
     runtime::Publisher<msg::TransformStamped> correction_out_;
     runtime::Publisher<msg::Status> events_out_;
+    std::optional<Worker> worker_;  // last: stopped before the members it uses go
 };
 
 }  // namespace

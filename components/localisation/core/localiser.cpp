@@ -42,23 +42,22 @@ std::optional<common::ConfigProblem> validate(const LocaliserConfig& config) {
 }
 
 LocaliserConfig localiser_preset(common::SensorPreset preset) {
+    const common::SensorPresetRow& row = common::sensor_preset_row(preset);
     LocaliserConfig c;
-    if (preset == common::SensorPreset::kNarrow) {
-        // As the mapper's loop verification for this sensor (registration::verification_preset).
-        const registration::LoopVerifierConfig m = registration::verification_preset(preset);
-        c.global.verification.downsample = m.downsample;
-        c.global.verification.min_inliers = m.min_inliers;
-        c.global.verification.coarse_factor = m.coarse_factor;
-        c.off_map_margin = 5.0;
-    }
+    // The verification of a place as the mapper's loops for this sensor (the rest of it stricter:
+    // GlobalLocaliserConfig::verification_defaults).
+    c.global.verification.downsample = row.places.verify_downsample;
+    c.global.verification.min_inliers = row.places.verify_min_inliers;
+    c.global.verification.coarse_factor = row.places.verify_coarse_factor;
+    c.off_map_margin = row.localisation.off_map_margin;
     return c;
 }
 
 LocalisationMapConfig localisation_map_preset(common::SensorPreset preset) {
+    const common::SensorPresetRow& row = common::sensor_preset_row(preset);
     LocalisationMapConfig c;
-    const LocaliserConfig l = localiser_preset(preset);
-    c.coarse_factor = l.global.verification.coarse_factor;
-    if (preset == common::SensorPreset::kNarrow) c.features.max_range = 30.0;
+    c.coarse_factor = row.places.verify_coarse_factor;
+    c.features.max_range = row.localisation.feature_max_range;
     return c;
 }
 

@@ -81,8 +81,9 @@ void visit_fields(LocaliserConfig& c, Visitor&& v) {
 
 std::optional<common::ConfigProblem> validate(const LocaliserConfig& config);
 
-// The settings for one of the odometry's sensor presets: global verification as the mapper's loop
-// verification for that sensor (a narrow field of view has fewer points), the rest the defaults.
+// The settings for a sensor preset (its row of common/core/sensor_preset.hpp): global verification
+// as the mapper's loop verification for that sensor (a narrow field of view has fewer points), the
+// off-map margin; the rest the defaults.
 LocaliserConfig localiser_preset(common::SensorPreset preset);
 // The map's settings for a sensor preset (the query's local features are made with them).
 LocalisationMapConfig localisation_map_preset(common::SensorPreset preset);

@@ -18,16 +18,11 @@
 // writes there its change record (changes_NNNN.ltmc, maintenance/core/change_record.hpp), appends
 // its summary to changes.txt and rewrites changes_removed_added.ply (every change of the run:
 // removed voxels red, added green).
-#include <algorithm>
-#include <cmath>
-#include <condition_variable>
 #include <cstdio>
-#include <deque>
 #include <filesystem>
 #include <fstream>
 #include <memory>
 #include <mutex>
-#include <thread>
 
 #include "common/core/io_error.hpp"
 #include "common/core/one_line.hpp"
@@ -41,13 +36,18 @@
 #include "runtime/convert/geometry.hpp"
 #include "runtime/convert/pointcloud2.hpp"
 #include "runtime/convert/status.hpp"
+#include "runtime/stamp_pairer.hpp"
+#include "runtime/worker.hpp"
 
 namespace ltm::maintenance {
 namespace {
 
 namespace fs = std::filesystem;
+using common::StatusCode;
 using convert::StatusLevel;
 using runtime::TopicRole;
+
+using runtime::StopToken;
 
 constexpr double kSameStamp = 1e-4;      // a scan and its pose [s]
 constexpr std::size_t kMaxPoses = 400;   // poses kept for pairing
@@ -59,11 +59,25 @@ struct Scan {
     Eigen::Isometry3d T_world_sensor = Eigen::Isometry3d::Identity();
 };
 
+using Points = std::vector<Eigen::Vector3f>;
+using Worker = runtime::Worker<Scan>;
+
 class MaintenanceComponent : public runtime::Component {
   public:
-    explicit MaintenanceComponent(runtime::ComponentContext& ctx) : ctx_(ctx) {
+    explicit MaintenanceComponent(runtime::ComponentContext& ctx)
+        : ctx_(ctx),
+          config_(load_maintenance_params(ctx.params())),
+          pairer_({kSameStamp, kMaxPoses, kMaxWaiting}),
+          worker_(
+              {ctx.name(), "work", std::size_t(config_.max_queue),
+               config_.skip_while_busy ? runtime::BusyPolicy::kDropOldest
+                                       : runtime::BusyPolicy::kBlock},
+              [this](Worker::Step& step, const StopToken& stop) { work(*step.item, stop); },
+              [this](const std::string& what) {
+                  event(StatusLevel::kError, StatusCode::kMaintenanceFailed, common::one_line(what),
+                        stamp_);
+              }) {
         auto& p = ctx.params();
-        config_ = load_maintenance_params(p);
         load_map(p);
         if (!config_.output_dir.empty()) {
             std::error_code ec;
@@ -104,20 +118,20 @@ class MaintenanceComponent : public runtime::Component {
         events_out_ = ctx.advertise<msg::Status>("status", TopicRole::kState);
     }
 
-    ~MaintenanceComponent() override { stop_worker(); }
+    ~MaintenanceComponent() override { worker_.stop(); }
 
-    void on_activate() override {
-        worker_ = std::thread([this] { run_worker(); });
-    }
+    void on_activate() override { worker_.start(); }
 
     void on_shutdown() override {
-        no_pose_ += waiting_.size();  // their poses will not come now
-        waiting_.clear();
-        stop_worker();
+        // Scans still waiting for their poses: those will not come now.
+        pairer_.release_all(
+            [this](double, Points&&, std::optional<Eigen::Isometry3d>&&) { ++no_pose_; });
+        worker_.stop(ctx_.work_deadline());  // finishes the scans it has, within the deadline
+        end_session();
         ctx_.log().info(std::to_string(scans_) + " scans: " + std::to_string(used_) +
-                        " maintained, " + std::to_string(no_pose_) + " without a pose, " +
-                        std::to_string(dropped_) + " dropped while busy; " +
-                        std::to_string(passes_) + " passes");
+                        " maintained, " + std::to_string(no_pose_ + pairer_.dropped()) +
+                        " without a pose, " + std::to_string(worker_.skipped()) +
+                        " dropped while busy; " + std::to_string(passes_) + " passes");
     }
 
   private:
@@ -149,17 +163,10 @@ class MaintenanceComponent : public runtime::Component {
         common::PointCloud cloud;
         const std::string err = convert::from_pointcloud2(m, cloud);
         if (!err.empty()) {
-            event(StatusLevel::kError, "bad_cloud", "scan ignored: " + err, cloud.stamp);
+            event(StatusLevel::kError, StatusCode::kBadCloud, "scan ignored: " + err, cloud.stamp);
             return;
         }
-        Scan s;
-        s.stamp = cloud.stamp;
-        s.points = std::move(cloud.points);
-        if (waiting_.size() == kMaxWaiting) {  // poses stopped coming
-            waiting_.pop_front();
-            ++no_pose_;
-        }
-        waiting_.push_back(std::move(s));
+        pairer_.add_scan(cloud.stamp, std::move(cloud.points));  // full: drops the oldest
         pair();
     }
 
@@ -170,80 +177,51 @@ class MaintenanceComponent : public runtime::Component {
             std::lock_guard<std::mutex> lock(mutex_);
             frame_id_ = frame;
         }
-        newest_pose_ = std::max(newest_pose_, stamp);
-        if (poses_.size() == kMaxPoses) poses_.pop_front();
-        poses_.emplace_back(stamp, T);
+        pairer_.add_pose(stamp, T);
         pair();
     }
 
     // Hands on every waiting scan whose pose came, and drops those whose pose will not come.
     void pair() {
-        while (!waiting_.empty()) {
-            Scan& s = waiting_.front();
-            bool found = false;
-            for (auto it = poses_.begin(); it != poses_.end(); ++it) {
-                if (std::abs(it->first - s.stamp) >= kSameStamp) continue;
-                s.T_world_sensor = it->second;
-                poses_.erase(poses_.begin(), it + 1);
-                found = true;
-                break;
-            }
-            if (found) {
-                submit(std::move(s));
-            } else if (newest_pose_ > s.stamp + kSameStamp) {
-                ++no_pose_;
-            } else {
-                break;
-            }
-            waiting_.pop_front();
-        }
-    }
-
-    void submit(Scan&& scan) {
-        std::unique_lock<std::mutex> lock(mutex_);
-        if (!config_.skip_while_busy)
-            cv_.wait(lock, [&] { return queue_.size() < std::size_t(config_.max_queue) || stop_; });
-        if (queue_.size() >= std::size_t(config_.max_queue)) {
-            queue_.pop_front();
-            ++dropped_;
-        }
-        queue_.push_back(std::move(scan));
-        cv_.notify_all();
+        pairer_.release(
+            [this](double stamp, Points&& points, std::optional<Eigen::Isometry3d>&& T) {
+                if (!T) {
+                    ++no_pose_;
+                    return;
+                }
+                worker_.push(Scan{stamp, std::move(points), *T});  // offline: waits for room
+            });
     }
 
     // --- the worker thread: the long-term map, the passes and their outputs ---
 
-    void run_worker() {
-        bool started = false;
-        double last_pass = 0.0, stamp = 0.0;
-        for (;;) {
-            Scan scan;
-            {
-                std::unique_lock<std::mutex> lock(mutex_);
-                cv_.wait(lock, [&] { return !queue_.empty() || stop_; });
-                if (queue_.empty()) break;  // stopped, and every scan taken
-                scan = std::move(queue_.front());
-                queue_.pop_front();
+    // One scan into the long-term map, and a pass when one is due. A stop that abandons the
+    // queue (not the default: it finishes) leaves the pass to the end of the session.
+    void work(Scan& scan, const StopToken& stop) {
+        stamp_ = scan.stamp;
+        try {
+            if (!started_) {
+                map_->begin_session(session_, stamp_);
+                started_ = true;
+                last_pass_ = stamp_;
             }
-            cv_.notify_all();  // room in the queue
-            stamp = scan.stamp;
-            try {
-                if (!started) {
-                    map_->begin_session(session_, stamp);
-                    started = true;
-                    last_pass = stamp;
-                }
-                map_->add_scan(scan.points, scan.T_world_sensor, stamp);
-                ++used_;
-                if (config_.maintain_every_s > 0 && stamp - last_pass >= config_.maintain_every_s) {
-                    last_pass = stamp;
-                    finish_pass(map_->maintain(), stamp);
-                }
-            } catch (const std::exception& e) {
-                event(StatusLevel::kError, "maintenance_failed", common::one_line(e.what()), stamp);
+            map_->add_scan(scan.points, scan.T_world_sensor, stamp_);
+            ++used_;
+            if (config_.maintain_every_s > 0 && stamp_ - last_pass_ >= config_.maintain_every_s &&
+                !stop.stop_requested()) {
+                last_pass_ = stamp_;
+                finish_pass(map_->maintain(), stamp_);
             }
+        } catch (const std::exception& e) {
+            event(StatusLevel::kError, StatusCode::kMaintenanceFailed, common::one_line(e.what()),
+                  stamp_);
         }
-        if (!started) return;
+    }
+
+    // The session's last pass and the map saved (after the worker stopped).
+    void end_session() {
+        if (!started_) return;
+        const double stamp = stamp_;
         try {
             finish_pass(map_->end_session(), stamp);
             if (!config_.map_file.empty()) {
@@ -251,13 +229,18 @@ class MaintenanceComponent : public runtime::Component {
                 if (!parent.empty()) fs::create_directories(parent);  // throws: one line below
                 map_->save(config_.map_file);
                 const LongTermMapStats st = map_->stats();
-                ctx_.log().info("map saved to " + config_.map_file + ": " +
-                                std::to_string(st.voxels) + " voxels, session " +
-                                std::to_string(session_) + " of " +
-                                std::to_string(map_->sessions().size()));
+                const std::string what = std::to_string(st.voxels) + " voxels, session " +
+                                         std::to_string(session_) + " of " +
+                                         std::to_string(map_->sessions().size());
+                ctx_.log().info("map saved to " + config_.map_file + ": " + what);
+                ctx_.report_output("maintained map", config_.map_file, true, what);
             }
         } catch (const std::exception& e) {
-            event(StatusLevel::kError, "maintenance_failed", common::one_line(e.what()), stamp);
+            event(StatusLevel::kError, StatusCode::kMaintenanceFailed, common::one_line(e.what()),
+                  stamp);
+            if (!config_.map_file.empty())
+                ctx_.report_output("maintained map", config_.map_file, false,
+                                   common::one_line(e.what()));
         }
     }
 
@@ -271,7 +254,7 @@ class MaintenanceComponent : public runtime::Component {
                       pass, c.count(ChangeReason::kMoving), c.count(ChangeReason::kVanished),
                       c.count(ChangeReason::kNew), c.voxels_removed, st.voxels,
                       st.memory_bytes / 1048576.0, c.time_ms);
-        event(StatusLevel::kOk, "maintained", text, stamp);
+        event(StatusLevel::kOk, StatusCode::kMaintained, text, stamp);
         if (!c.changes.empty()) changes_out_.publish(*to_msg(c, pass, stamp, frame_id()));
         if (config_.output_dir.empty()) return;
         all_.append(c);
@@ -285,7 +268,7 @@ class MaintenanceComponent : public runtime::Component {
             summary_.flush();
             write_change_ply((dir / "changes_removed_added.ply").string(), all_);
         } catch (const std::exception& e) {
-            event(StatusLevel::kError, "write_failed", common::one_line(e.what()), stamp);
+            event(StatusLevel::kError, StatusCode::kWriteFailed, common::one_line(e.what()), stamp);
         }
     }
 
@@ -295,42 +278,28 @@ class MaintenanceComponent : public runtime::Component {
     }
 
     // Thread-safe: the publisher and the logger are.
-    void event(StatusLevel level, const std::string& code, const std::string& text, double stamp) {
+    void event(StatusLevel level, StatusCode code, const std::string& text, double stamp) {
         convert::log_status(ctx_.log(), level, text);
         events_out_.publish(*convert::to_msg(convert::StatusData{
             convert::to_time(stamp), frame_id(), ctx_.name(), level, code, text}));
-    }
-
-    void stop_worker() {
-        {
-            std::lock_guard<std::mutex> lock(mutex_);
-            stop_ = true;
-        }
-        cv_.notify_all();
-        if (worker_.joinable()) worker_.join();
     }
 
     runtime::ComponentContext& ctx_;
     MaintenanceComponentConfig config_;
 
     // The component's thread.
-    std::deque<Scan> waiting_;
-    std::deque<std::pair<double, Eigen::Isometry3d>> poses_;
-    double newest_pose_ = -1e300;
+    runtime::StampPairer<Points, Eigen::Isometry3d> pairer_;
     std::uint64_t scans_ = 0, no_pose_ = 0;
 
     // Shared with the worker (under mutex_).
     std::mutex mutex_;
-    std::condition_variable cv_;
-    std::deque<Scan> queue_;
-    bool stop_ = false;
-    std::uint64_t dropped_ = 0;
     std::string frame_id_ = "map";
 
     // The worker's (read by on_shutdown after the join).
-    std::thread worker_;
     std::unique_ptr<LongTermMap> map_;
     std::uint32_t session_ = 0;
+    bool started_ = false;
+    double last_pass_ = 0.0, stamp_ = 0.0;
     std::uint64_t used_ = 0;
     std::uint32_t passes_ = 0;
     ChangeSet all_;  // every change of the run (the PLY)
@@ -338,6 +307,7 @@ class MaintenanceComponent : public runtime::Component {
 
     runtime::Publisher<msg::MapChangeSet> changes_out_;
     runtime::Publisher<msg::Status> events_out_;
+    Worker worker_;  // last: stopped before the members it uses go
 };
 
 }  // namespace

@@ -92,14 +92,17 @@ class MapRequestComponent : public runtime::Component {
     }
 
     void on_status(const msg::Status& m) {
-        const std::string prefix = "request " + std::to_string(id_) + ": ";
         const convert::StatusData s = convert::from_msg(m);
-        const std::string& message = s.message;
-        if (done_ || message.rfind(prefix, 0) != 0) return;
+        if (done_ || s.request_id != id_) return;
+        const bool failed = s.code == common::StatusCode::kMapRequestFailed;
+        if (!failed && s.code != common::StatusCode::kMapRequestDone) return;  // not an answer
         done_ = true;
-        if (s.level == convert::StatusLevel::kError)
-            throw std::runtime_error(message.substr(prefix.size()));
-        ctx_.log().info(message.substr(prefix.size()));
+        // The answer's text without its "request <id>: " (said in our own log line).
+        const std::string prefix = "request " + std::to_string(id_) + ": ";
+        const std::string text =
+            s.message.rfind(prefix, 0) == 0 ? s.message.substr(prefix.size()) : s.message;
+        if (failed) throw std::runtime_error(text);
+        ctx_.log().info(text);
         ctx_.finished();
     }
 

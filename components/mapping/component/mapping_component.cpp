@@ -40,6 +40,7 @@
 namespace ltm::mapping {
 namespace {
 
+using common::StatusCode;
 using convert::StatusLevel;
 using runtime::PathCheck;
 using runtime::TopicRole;
@@ -275,8 +276,8 @@ class MappingComponent : public runtime::Component {
             ok = map_ok && ply_ok;
         }
         status(ok ? StatusLevel::kOk : StatusLevel::kError,
-               ok ? "map_request_done" : "map_request_failed",
-               "request " + std::to_string(m.id) + ": " + outcome);
+               ok ? StatusCode::kMapRequestDone : StatusCode::kMapRequestFailed,
+               "request " + std::to_string(m.id) + ": " + outcome, m.id);
     }
 
     void on_keyframe(Robot& robot, const msg::Keyframe& m) {
@@ -370,7 +371,7 @@ class MappingComponent : public runtime::Component {
         loops_since_optimise_ = 0;
         if (!s.solved) {
             ctx_.log().warn("pose graph not solved: " + s.message);
-            status(StatusLevel::kWarn, "not_solved", s.message);
+            status(StatusLevel::kWarn, StatusCode::kNotSolved, s.message);
             return;
         }
         publish_graph();
@@ -389,7 +390,8 @@ class MappingComponent : public runtime::Component {
                 const auto it = r.segment_joined.find(s.segment);
                 if (it != r.segment_joined.end() && it->second == s.joined) continue;
                 r.segment_joined[s.segment] = s.joined;
-                report_joined(s.joined, "segment", prefix(r) + s.message);
+                report_joined(s.joined ? StatusCode::kSegmentJoined : StatusCode::kSegmentNotJoined,
+                              prefix(r) + s.message);
             }
             if (r.name.empty()) continue;
             const SessionStatus st = mapper_->session_status(r.session);
@@ -397,24 +399,27 @@ class MappingComponent : public runtime::Component {
                 st.message.find("has no local map") != std::string::npos)
                 continue;
             r.session_joined = st.joined;
-            report_joined(st.joined, "session", st.message);
+            report_joined(st.joined ? StatusCode::kSessionJoined : StatusCode::kSessionNotJoined,
+                          st.message);
         }
     }
 
-    // "segment_joined" / "segment_not_joined" (kind "segment"), "session_..." likewise.
-    void report_joined(bool joined, const std::string& kind, const std::string& message) {
+    // A segment or session joined (ok, logged as info) or not (warn).
+    void report_joined(StatusCode code, const std::string& message) {
+        const bool joined =
+            code == StatusCode::kSegmentJoined || code == StatusCode::kSessionJoined;
         if (joined) {
             ctx_.log().info(message);
-            status(StatusLevel::kOk, kind + "_joined", message);
         } else {
             ctx_.log().warn(message);
-            status(StatusLevel::kWarn, kind + "_not_joined", message);
         }
+        status(joined ? StatusLevel::kOk : StatusLevel::kWarn, code, message);
     }
 
-    void status(StatusLevel level, const std::string& code, const std::string& message) {
+    void status(StatusLevel level, StatusCode code, const std::string& message,
+                std::uint32_t request_id = 0) {
         status_out_.publish(*convert::to_msg(
-            convert::StatusData{{}, frame_id_, ctx_.name(), level, code, message}));
+            convert::StatusData{{}, frame_id_, ctx_.name(), level, code, message, 0, request_id}));
     }
 
     void publish_loop(const LoopClosure& loop, const msg::Time& stamp) {

@@ -17,18 +17,19 @@ Matrix6d diagonal_information(double sigma_t, double sigma_r_rad) {
 }  // namespace
 
 MapperConfig mapper_preset(common::SensorPreset preset) {
+    const common::SensorPresetRow& row = common::sensor_preset_row(preset);
+    const common::SensorPresetRow::Places& r = row.places;
     MapperConfig c;
-    c.verification = registration::verification_preset(preset);
-    if (preset == common::SensorPreset::kNarrow) {
-        c.scan_context.max_range = 40.0;
-        c.scan_context.sensor_height = 1.0;
-        c.loop_detection.exclude_recent_seconds = 15.0;
-        c.loop_detection.exclude_recent_keyframes = 20;
-        c.loop_detection.max_distance = 0.4;
-        c.loop_cooldown_keyframes = 4;
-    } else {
-        c.scan_context.sensor_height = 1.73;  // KITTI's HDL-64E
-    }
+    c.scan_context.max_range = r.descriptor_max_range;
+    c.scan_context.sensor_height = row.sensor_height;
+    c.loop_detection.exclude_recent_seconds = r.loop_exclude_recent_s;
+    c.loop_detection.exclude_recent_keyframes = r.loop_exclude_recent_keyframes;
+    c.loop_detection.max_distance = r.loop_max_distance;
+    c.verification.downsample = r.verify_downsample;
+    c.verification.min_inliers = r.verify_min_inliers;
+    c.verification.coarse_factor = r.verify_coarse_factor;
+    c.verification.max_correction_translation = r.loop_max_correction_translation;
+    c.loop_cooldown_keyframes = r.loop_cooldown_keyframes;
     // Both descriptors see the same part of the scan.
     c.localisation_descriptor.max_range = c.scan_context.max_range;
     c.localisation_descriptor.min_range = c.scan_context.min_range;

@@ -136,9 +136,9 @@ struct MapperConfig {
     bool loop_closure = true;
 };
 
-// The defaults for one of the odometry's sensor presets: `narrow` (Livox-like, ~70 deg field of
-// view, ranges under 40 m, keyframes every 0.5 m) changes the descriptor range and the loop search;
-// the spinning LiDARs keep the defaults with KITTI's sensor height.
+// The defaults for a sensor preset: its row of common/core/sensor_preset.hpp gives the descriptor
+// range and sensor height (as mounted), the loop search and the verification (`narrow`: a shorter
+// range, a nearer and stricter search, fewer inliers); the rest the defaults.
 MapperConfig mapper_preset(common::SensorPreset preset);
 
 // Calls v(key, field, rule) for the mapper's own fields (edges, loop consistency, loop policy), by

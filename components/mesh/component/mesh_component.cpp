@@ -6,9 +6,9 @@
 //
 // The global mesh (PLY, map frame) is written at shutdown to `mesh_file` and on request: a
 // `map_request` with command WRITE_MESH (`./ltm map mesh`), to the request's global_map_file or
-// else `mesh_file`; the answer on `status` is "map_request_done" or "map_request_failed" with a
-// message starting "request <id>: ", as the mapping component answers. Other commands are the
-// mapping component's and are left alone.
+// else `mesh_file`; the answer on `status` has code kMapRequestDone or kMapRequestFailed and the
+// request's id (request_id; its message starts "request <id>: "), as the mapping component's.
+// Other commands are the mapping component's and are left alone.
 //
 // Threads: the component's thread takes the inputs; the atlas lives on a worker thread, which
 // takes the maps in order, applies the newest graph, updates the ownership, meshes the places a
@@ -17,13 +17,10 @@
 // oldest is dropped (skip_while_busy, live) or the component's thread waits (offline). At shutdown
 // the worker finishes what waits, then the mesh file is written.
 #include <chrono>
-#include <condition_variable>
 #include <cstdio>
-#include <deque>
 #include <filesystem>
 #include <mutex>
 #include <optional>
-#include <thread>
 
 #include "common/core/one_line.hpp"
 #include "common/core/ply_io.hpp"
@@ -34,14 +31,17 @@
 #include "runtime/convert/dds_string.hpp"
 #include "runtime/convert/geometry.hpp"
 #include "runtime/convert/status.hpp"
+#include "runtime/worker.hpp"
 
 namespace ltm::mesh {
 namespace {
 
 namespace fs = std::filesystem;
+using common::StatusCode;
 using convert::StatusLevel;
 using runtime::TopicRole;
 using Clock = std::chrono::steady_clock;
+using runtime::StopToken;
 
 double ms_since(Clock::time_point t0) {
     return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
@@ -64,10 +64,23 @@ struct Request {
     std::string file;  // "": the component's mesh_file
 };
 
+using Worker = runtime::Worker<MapInput, GraphInput>;
+
 class MeshComponent : public runtime::Component {
   public:
     explicit MeshComponent(runtime::ComponentContext& ctx)
-        : ctx_(ctx), config_(load_mesh_params(ctx.params())), atlas_(config_.mesh) {
+        : ctx_(ctx),
+          config_(load_mesh_params(ctx.params())),
+          atlas_(config_.mesh),
+          worker_(
+              {ctx.name(), "work", std::size_t(config_.max_queue),
+               config_.skip_while_busy ? runtime::BusyPolicy::kDropOldest
+                                       : runtime::BusyPolicy::kBlock},
+              [this](Worker::Step& step, const StopToken& stop) { work(step, stop); },
+              [this](const std::string& what) {
+                  event(StatusLevel::kError, StatusCode::kMeshFailed, common::one_line(what),
+                        stamp_);
+              }) {
         frame_id_ = config_.frame_id;
         ctx.subscribe<msg::LocalMap>("local_map", TopicRole::kMap,
                                      [this](const msg::LocalMap& m) { on_local_map(m); });
@@ -81,24 +94,29 @@ class MeshComponent : public runtime::Component {
         status_out_ = ctx.advertise<msg::Status>("status", TopicRole::kState);
     }
 
-    ~MeshComponent() override { stop_worker(); }
+    ~MeshComponent() override { worker_.stop(); }
 
-    void on_activate() override {
-        worker_ = std::thread([this] { run_worker(); });
-    }
+    void on_activate() override { worker_.start(); }
 
     void on_shutdown() override {
-        stop_worker();
+        // Finishes the requests, maps and graph that wait, within the stop deadline.
+        worker_.stop(ctx_.work_deadline());
         const AtlasTotals t = atlas_.totals();
         char text[300];
         std::snprintf(text, sizeof text,
                       "%zu local maps: %zu taken, %zu snapshots skipped, %zu refused, %zu dropped "
                       "while busy; %zu chunks, %zu triangles owned; %zu meshings: grid %.0f ms, "
                       "marching cubes %.0f ms; updates %.0f ms",
-                      maps_, added_, snapshots_, refused_, dropped_, t.chunks, t.kept_triangles,
-                      t.meshings, t.fill_ms, t.mesh_ms, update_ms_);
+                      maps_, added_, snapshots_, refused_, std::size_t(worker_.skipped()), t.chunks,
+                      t.kept_triangles, t.meshings, t.fill_ms, t.mesh_ms, update_ms_);
         ctx_.log().info(text);
-        if (!config_.mesh_file.empty()) write_mesh(config_.mesh_file, nullptr);
+        if (!config_.mesh_file.empty()) {
+            std::string line;
+            const bool ok = write_mesh(config_.mesh_file, nullptr, &line);
+            const auto colon = line.find(": ");  // "mesh written to FILE: N vertices, ..."
+            ctx_.report_output("mesh", config_.mesh_file, ok,
+                               colon == std::string::npos ? line : line.substr(colon + 2));
+        }
     }
 
   private:
@@ -116,24 +134,16 @@ class MeshComponent : public runtime::Component {
             in.map = local_map_from_msg(m);
         } catch (const std::invalid_argument& e) {
             ++refused_;
-            event(StatusLevel::kError, "bad_local_map", common::one_line(e.what()), m.header.stamp);
+            event(StatusLevel::kError, StatusCode::kBadLocalMap, common::one_line(e.what()),
+                  m.header.stamp);
             return;
         }
-        std::unique_lock<std::mutex> lock(mutex_);
         // A newer revision of a map still waiting takes its place.
-        for (MapInput& q : queue_) {
-            if (q.map.id != in.map.id) continue;
-            if (in.map.revision > q.map.revision) q = std::move(in);
-            return;
-        }
-        if (!config_.skip_while_busy)
-            cv_.wait(lock, [&] { return queue_.size() < std::size_t(config_.max_queue) || stop_; });
-        if (queue_.size() >= std::size_t(config_.max_queue)) {
-            queue_.pop_front();
-            ++dropped_;
-        }
-        queue_.push_back(std::move(in));
-        cv_.notify_all();
+        worker_.push_merge(std::move(in), [](MapInput& waiting, MapInput& map) {
+            if (waiting.map.id != map.map.id) return false;
+            if (map.map.revision > waiting.map.revision) waiting = std::move(map);
+            return true;
+        });
     }
 
     void on_graph(const msg::PoseGraph& m) {
@@ -141,65 +151,40 @@ class MeshComponent : public runtime::Component {
         try {
             g.anchors = anchors_from_msg(m);
         } catch (const std::invalid_argument& e) {
-            event(StatusLevel::kError, "bad_pose_graph", common::one_line(e.what()),
+            event(StatusLevel::kError, StatusCode::kBadPoseGraph, common::one_line(e.what()),
                   m.header.stamp);
             return;
         }
         g.revision = m.revision;
         g.frame_id = convert::to_string(m.header.frame_id);
         g.stamp = m.header.stamp;
-        std::lock_guard<std::mutex> lock(mutex_);
-        graph_ = std::move(g);  // only the newest matters
-        cv_.notify_all();
+        worker_.set_latest(std::move(g));  // only the newest matters
     }
 
     void on_request(const msg::MapRequest& m) {
         if (m.command != ltm_msgs_msg_MapRequest_Constants_WRITE_MESH) return;  // the mapping's
-        std::lock_guard<std::mutex> lock(mutex_);
-        requests_.push_back({m.id, convert::to_string(m.global_map_file)});
-        cv_.notify_all();
+        // Requests go before the maps that wait.
+        worker_.post([this, r = Request{m.id, convert::to_string(m.global_map_file)}](
+                         const StopToken&) { answer(r); });
     }
 
     // --- the worker thread: the atlas ---
 
-    void run_worker() {
-        for (;;) {
-            std::optional<Request> request;
-            std::optional<GraphInput> graph;
-            std::optional<MapInput> map;
-            {
-                std::unique_lock<std::mutex> lock(mutex_);
-                cv_.wait(lock, [&] {
-                    return !requests_.empty() || graph_.has_value() || !queue_.empty() || stop_;
-                });
-                if (!requests_.empty()) {
-                    request = std::move(requests_.front());
-                    requests_.pop_front();
-                } else {
-                    if (!queue_.empty()) {
-                        map = std::move(queue_.front());
-                        queue_.pop_front();
-                    }
-                    graph.swap(graph_);
-                    if (!map && !graph) break;  // stopped, and everything taken
-                }
+    // The next map (if any) and the newest graph (if a new one came). The update runs to its end
+    // even when a stop abandons the queue (not the default: it finishes): the global mesh written
+    // at shutdown is what the last update left.
+    void work(Worker::Step& step, const StopToken&) {
+        const bool meshed = step.item && add_map(*step.item);
+        const std::optional<GraphInput>& graph = step.latest;
+        if (graph) {
+            atlas_.set_graph(graph->anchors);
+            if (!graph->frame_id.empty()) {
+                std::lock_guard<std::mutex> lock(frame_mutex_);
+                frame_id_ = graph->frame_id;
             }
-            cv_.notify_all();  // room in the queue
-            if (request) {
-                answer(*request);
-                continue;
-            }
-            const bool meshed = map && add_map(*map);
-            if (graph) {
-                atlas_.set_graph(graph->anchors);
-                if (!graph->frame_id.empty()) {
-                    std::lock_guard<std::mutex> lock(frame_mutex_);
-                    frame_id_ = graph->frame_id;
-                }
-                stamp_ = graph->stamp;
-            }
-            if (meshed || graph) publish_changes();
+            stamp_ = graph->stamp;
         }
+        if (meshed || graph) publish_changes();
     }
 
     // The map's chunk, prepared (voxels, cells); update() meshes the places it owns.
@@ -216,7 +201,7 @@ class MeshComponent : public runtime::Component {
             stamp_ = in.stamp;
             return atlas_.add(std::move(chunk));
         } catch (const std::exception& e) {
-            event(StatusLevel::kError, "mesh_failed",
+            event(StatusLevel::kError, StatusCode::kMeshFailed,
                   "local map " + std::to_string(m.id) + ": " + common::one_line(e.what()),
                   in.stamp);
             return false;
@@ -232,7 +217,7 @@ class MeshComponent : public runtime::Component {
         try {
             changed = atlas_.update();
         } catch (const std::exception& e) {
-            event(StatusLevel::kError, "mesh_failed", common::one_line(e.what()), stamp_);
+            event(StatusLevel::kError, StatusCode::kMeshFailed, common::one_line(e.what()), stamp_);
             return;
         }
         const double update_ms = ms_since(t0);
@@ -247,10 +232,10 @@ class MeshComponent : public runtime::Component {
                       t.chunks, t.kept_triangles, t.meshings - before.meshings,
                       t.fill_ms - before.fill_ms, t.mesh_ms - before.mesh_ms, changed.size(),
                       update_ms);
-        event(StatusLevel::kOk, "mesh_updated", text, stamp_);
+        event(StatusLevel::kOk, StatusCode::kMeshUpdated, text, stamp_);
         if (kept_for_late_readers_ > 0 && t.chunks > kept_for_late_readers_ && !warned_depth_) {
             warned_depth_ = true;
-            event(StatusLevel::kWarn, "mesh_depth",
+            event(StatusLevel::kWarn, StatusCode::kMeshDepth,
                   "more chunks than `" + mesh_out_.topic() + "` keeps for late readers (" +
                       std::to_string(kept_for_late_readers_) +
                       " messages): they get the chunks that changed last (qos: map: depth)",
@@ -268,13 +253,13 @@ class MeshComponent : public runtime::Component {
             ok = write_mesh(file, &outcome);
         }
         event(ok ? StatusLevel::kOk : StatusLevel::kError,
-              ok ? "map_request_done" : "map_request_failed",
-              "request " + std::to_string(r.id) + ": " + outcome, stamp_);
+              ok ? StatusCode::kMapRequestDone : StatusCode::kMapRequestFailed,
+              "request " + std::to_string(r.id) + ": " + outcome, stamp_, r.id);
     }
 
     // The global mesh as PLY (its folder created); says how it went on `status` (or in
     // `outcome`, for a request's answer).
-    bool write_mesh(const std::string& file, std::string* outcome) {
+    bool write_mesh(const std::string& file, std::string* outcome, std::string* text = nullptr) {
         std::string line;
         bool ok = false;
         try {
@@ -289,22 +274,23 @@ class MeshComponent : public runtime::Component {
         } catch (const std::exception& e) {
             line = "mesh not written to " + file + ": " + common::one_line(e.what());
         }
+        if (text) *text = line;
         if (outcome) {
             convert::log_status(ctx_.log(), ok ? StatusLevel::kOk : StatusLevel::kError, line);
             *outcome = line;
         } else {
             event(ok ? StatusLevel::kOk : StatusLevel::kError,
-                  ok ? "mesh_written" : "mesh_not_written", line, stamp_);
+                  ok ? StatusCode::kMeshWritten : StatusCode::kMeshNotWritten, line, stamp_);
         }
         return ok;
     }
 
     // Thread-safe: the publisher and the logger are.
-    void event(StatusLevel level, const std::string& code, const std::string& text,
-               const msg::Time& stamp) {
+    void event(StatusLevel level, StatusCode code, const std::string& text, const msg::Time& stamp,
+               std::uint32_t request_id = 0) {
         convert::log_status(ctx_.log(), level, text);
         status_out_.publish(*convert::to_msg(
-            convert::StatusData{stamp, frame_id(), ctx_.name(), level, code, text}));
+            convert::StatusData{stamp, frame_id(), ctx_.name(), level, code, text, 0, request_id}));
     }
 
     std::string frame_id() {
@@ -312,32 +298,13 @@ class MeshComponent : public runtime::Component {
         return frame_id_;
     }
 
-    void stop_worker() {
-        {
-            std::lock_guard<std::mutex> lock(mutex_);
-            stop_ = true;
-        }
-        cv_.notify_all();
-        if (worker_.joinable()) worker_.join();
-    }
-
     runtime::ComponentContext& ctx_;
     const MeshComponentConfig config_;
-
-    // Shared with the worker (under mutex_).
-    std::mutex mutex_;
-    std::condition_variable cv_;
-    std::deque<MapInput> queue_;
-    std::optional<GraphInput> graph_;
-    std::deque<Request> requests_;
-    bool stop_ = false;
-    std::size_t dropped_ = 0;
 
     // The component's thread.
     std::size_t maps_ = 0, snapshots_ = 0, refused_ = 0;
 
     // The worker's (read by on_shutdown after the join).
-    std::thread worker_;
     MeshAtlas atlas_;
     std::mutex frame_mutex_;
     std::string frame_id_;
@@ -349,6 +316,7 @@ class MeshComponent : public runtime::Component {
 
     runtime::Publisher<msg::Mesh> mesh_out_;
     runtime::Publisher<msg::Status> status_out_;
+    Worker worker_;  // last: stopped before the members it uses go
 };
 
 }  // namespace

@@ -18,8 +18,30 @@
 namespace ltm::odometry {
 namespace {
 
+using common::StatusCode;
 using convert::StatusLevel;
 using runtime::TopicRole;
+
+// What the localisation (and whoever listens) reads of a scan's outcome.
+StatusCode status_code(FrameStatus status) {
+    switch (status) {
+        case FrameStatus::kInitialised:
+            return StatusCode::kInitialised;
+        case FrameStatus::kTracked:
+            return StatusCode::kTracked;
+        case FrameStatus::kRecovered:
+            return StatusCode::kRecovered;
+        case FrameStatus::kRestarted:
+            return StatusCode::kRestarted;
+        case FrameStatus::kLost:
+            return StatusCode::kLost;
+        case FrameStatus::kSkippedTooFewPoints:
+            return StatusCode::kSkipped;
+        case FrameStatus::kRejectedStamp:
+            return StatusCode::kRejected;
+    }
+    return StatusCode::kUnknown;
+}
 
 class OdometryComponent : public runtime::Component {
   public:
@@ -55,8 +77,8 @@ class OdometryComponent : public runtime::Component {
         const std::uint64_t index = frames_++;
         const std::string err = convert::from_pointcloud2(m, cloud_);
         if (!err.empty()) {
-            status(StatusLevel::kError, "bad_cloud", "scan " + std::to_string(index) + ": " + err,
-                   cloud_.stamp);
+            status(StatusLevel::kError, StatusCode::kBadCloud,
+                   "scan " + std::to_string(index) + ": " + err, cloud_.stamp);
             return;
         }
         const FrameResult r = odometry_->register_frame(cloud_);
@@ -68,11 +90,11 @@ class OdometryComponent : public runtime::Component {
         // pose): a warning; recovered: back on track, said once.
         if (!r.message.empty()) {
             status(r.status == FrameStatus::kRecovered ? StatusLevel::kOk : StatusLevel::kWarn,
-                   to_string(r.status), "scan " + std::to_string(index) + ": " + r.message,
-                   r.stamp);
+                   status_code(r.status), "scan " + std::to_string(index) + ": " + r.message,
+                   r.stamp, r.status == FrameStatus::kRestarted ? r.segment : 0);
         }
         if (r.degenerate())
-            status(StatusLevel::kWarn, "degenerate",
+            status(StatusLevel::kWarn, StatusCode::kDegenerate,
                    "scan " + std::to_string(index) + ": " +
                        std::to_string(r.degenerate_directions.size()) + " degenerate direction(s)",
                    r.stamp);
@@ -109,14 +131,15 @@ class OdometryComponent : public runtime::Component {
         maps_published_ += m.finished;
     }
 
-    void status(StatusLevel level, const std::string& code, const std::string& text, double stamp) {
+    void status(StatusLevel level, StatusCode code, const std::string& text, double stamp,
+                std::uint32_t segment = 0) {
         if (level == StatusLevel::kOk) {
             ctx_.log().info(text);
         } else if (++warnings_ <= 10 || (warnings_ & (warnings_ - 1)) == 0) {
             ctx_.log().warn(text);
         }
         status_out_.publish(*convert::to_msg(convert::StatusData{
-            convert::to_time(stamp), odom_frame_, ctx_.name(), level, code, text}));
+            convert::to_time(stamp), odom_frame_, ctx_.name(), level, code, text, segment}));
     }
 
     runtime::ComponentContext& ctx_;

@@ -3,51 +3,18 @@
 namespace ltm::odometry {
 
 OdometryConfig preset_config(SensorPreset preset) {
-    OdometryConfig c;  // the defaults are the HDL-64E preset (tuned on the KITTI snippets)
-    switch (preset) {
-        case SensorPreset::kHdl64:
-            break;
-        case SensorPreset::kVlp32:
-            // Half the rings of an HDL-64E: the same geometry a little sparser.
-            c.preprocess.min_range = 1.5;
-            c.preprocess.max_range = 70.0;
-            c.local_map.half_extent = 45.0;
-            break;
-        case SensorPreset::kVlp16:
-            // 16 rings 2 deg apart: finer voxels, and registration on a finer grid to keep
-            // enough points.
-            c.voxel_size = 0.5;
-            c.preprocess.min_range = 1.0;
-            c.preprocess.max_range = 60.0;
-            c.preprocess.registration_sample_fraction = 1.0;
-            c.local_map.half_extent = 40.0;
-            c.local_map.switch_distance = 15.0;
-            break;
-        case SensorPreset::kNarrow:
-            // Livox Avia type: ~70 deg field of view, a few thousand points a scan, ranges mostly
-            // under 40 m. Every point registers; the coarse grid (2 m) gives the basin that fast
-            // turns of a narrow view need.
-            c.voxel_size = 0.5;
-            c.coarse_voxel_factor = 4;
-            c.preprocess.min_range = 0.5;
-            c.preprocess.max_range = 50.0;
-            c.preprocess.map_sample_fraction = 0.2;
-            c.preprocess.registration_sample_fraction = 0.2;
-            c.local_map.half_extent = 40.0;
-            c.local_map.switch_distance = 15.0;
-            c.keyframe.distance = 0.5;
-            c.min_scan_points = 50;
-            break;
-        case SensorPreset::kOs1_64:
-            // Ouster OS1-64: 64 beams evenly over 45 deg (denser near the ground than an HDL-64E
-            // is far out), 0.3-120 m; mostly used on slower platforms and closer to structure.
-            c.voxel_size = 0.5;
-            c.preprocess.min_range = 1.0;
-            c.preprocess.max_range = 80.0;
-            c.local_map.half_extent = 45.0;
-            c.local_map.switch_distance = 18.0;
-            break;
-    }
+    const common::SensorPresetRow::Odometry& r = common::sensor_preset_row(preset).odometry;
+    OdometryConfig c;
+    c.voxel_size = r.voxel_size;
+    c.coarse_voxel_factor = r.coarse_voxel_factor;
+    c.preprocess.min_range = r.min_range;
+    c.preprocess.max_range = r.max_range;
+    c.preprocess.map_sample_fraction = r.map_sample_fraction;
+    c.preprocess.registration_sample_fraction = r.registration_sample_fraction;
+    c.local_map.half_extent = r.local_map_half_extent;
+    c.local_map.switch_distance = r.local_map_switch_distance;
+    c.keyframe.distance = r.keyframe_distance;
+    c.min_scan_points = r.min_scan_points;
     return c;
 }
 

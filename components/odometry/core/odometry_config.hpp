@@ -89,7 +89,8 @@ struct OdometryConfig {
     int threads = 1;            // worker threads for parallel loops (1: serial)
 };
 
-// The odometry's settings for a sensor preset (common/core/sensor_preset.hpp).
+// The odometry's settings for a sensor preset: its row of common/core/sensor_preset.hpp (voxel
+// size, ranges, sample grids, local-map extent, keyframe distance), the rest the defaults.
 using common::SensorPreset;
 OdometryConfig preset_config(SensorPreset preset);
 

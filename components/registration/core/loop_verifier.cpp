@@ -32,17 +32,6 @@ std::optional<common::ConfigProblem> validate(const LoopVerifierConfig& config) 
     return k.problem();
 }
 
-LoopVerifierConfig verification_preset(common::SensorPreset preset) {
-    LoopVerifierConfig c;
-    if (preset == common::SensorPreset::kNarrow) {
-        c.downsample = 0.3;
-        c.min_inliers = 200;
-        c.coarse_factor = 4;
-        c.max_correction_translation = 4.0;
-    }
-    return c;
-}
-
 LoopVerifier::LoopVerifier(const LoopVerifierConfig& config) : config_(checked(config)) {}
 
 std::shared_ptr<RegistrationTarget> LoopVerifier::target(std::uint64_t key,

@@ -15,7 +15,6 @@
 
 #include "common/core/config_check.hpp"
 #include "common/core/local_map_data.hpp"
-#include "common/core/sensor_preset.hpp"
 #include "registration/core/preprocess.hpp"
 #include "registration/core/registration_config.hpp"
 #include "registration/core/registration_target.hpp"
@@ -95,11 +94,6 @@ void visit_fields(LoopVerifierConfig& c, const std::string& prefix, Visitor&& v)
 
 // The first field that breaks its rule (key relative: "min_inliers"); nullopt when valid.
 std::optional<common::ConfigProblem> validate(const LoopVerifierConfig& config);
-
-// The verification settings for a sensor (the mapper's loop verification and global
-// localisation start from them): a narrow sensor sees less, so fewer, denser points and a shorter
-// reach.
-LoopVerifierConfig verification_preset(common::SensorPreset preset);
 
 struct LoopVerification {
     bool accepted = false;

@@ -1,0 +1,76 @@
+// The sensor preset table: every preset has a row, every row every value, in range.
+#include "common/core/sensor_preset.hpp"
+
+#include <gtest/gtest.h>
+
+#include <set>
+#include <stdexcept>
+#include <string>
+
+namespace ltm::common {
+namespace {
+
+TEST(SensorPresetTable, EveryPresetHasEveryValue) {
+    std::set<std::string> names, models;
+    for (SensorPreset p : kSensorPresets) {
+        const SensorPresetRow& r = sensor_preset_row(p);
+        SCOPED_TRACE(r.name);
+        ASSERT_NE(r.name, nullptr);
+        EXPECT_TRUE(names.insert(r.name).second) << "two presets named " << r.name;
+        EXPECT_EQ(parse_sensor_preset(r.name), p);
+        EXPECT_STREQ(to_string(p), r.name);
+        ASSERT_NE(r.sensor, nullptr);
+        EXPECT_GT(std::string(r.sensor).size(), 0u);
+        ASSERT_NE(r.simulator_model, nullptr);
+        EXPECT_TRUE(models.insert(r.simulator_model).second);
+        // The sensor and its mount.
+        EXPECT_GE(r.rings, 0);
+        EXPECT_GT(r.vertical_fov_deg, 0.0);
+        EXPECT_LE(r.vertical_fov_deg, 180.0);
+        EXPECT_GT(r.horizontal_fov_deg, 0.0);
+        EXPECT_LE(r.horizontal_fov_deg, 360.0);
+        EXPECT_GT(r.sensor_height, 0.2);
+        EXPECT_LT(r.sensor_height, 5.0);
+        // The odometry.
+        const auto& o = r.odometry;
+        EXPECT_GT(o.voxel_size, 0.0);
+        EXPECT_GE(o.coarse_voxel_factor, 1);
+        EXPECT_GE(o.min_range, 0.0);
+        EXPECT_GT(o.max_range, o.min_range);
+        EXPECT_GT(o.map_sample_fraction, 0.0);
+        EXPECT_GT(o.registration_sample_fraction, 0.0);
+        EXPECT_GT(o.local_map_half_extent, o.local_map_switch_distance);
+        EXPECT_GT(o.local_map_switch_distance, 0.0);
+        EXPECT_GT(o.keyframe_distance, 0.0);
+        EXPECT_GT(o.min_scan_points, 0);
+        // Places.
+        const auto& pl = r.places;
+        EXPECT_GT(pl.descriptor_max_range, 0.0);
+        EXPECT_GE(pl.loop_exclude_recent_s, 0.0);
+        EXPECT_GE(pl.loop_exclude_recent_keyframes, 0);
+        EXPECT_GT(pl.loop_max_distance, 0.0);
+        EXPECT_GE(pl.loop_cooldown_keyframes, 0);
+        EXPECT_GE(pl.verify_downsample, 0.0);
+        EXPECT_GE(pl.verify_min_inliers, 1);
+        EXPECT_GE(pl.verify_coarse_factor, 2);
+        EXPECT_GT(pl.loop_max_correction_translation, 0.0);
+        // The localisation.
+        EXPECT_GT(r.localisation.off_map_margin, 0.0);
+        EXPECT_GT(r.localisation.feature_max_range, 0.0);
+    }
+    EXPECT_EQ(names.size(), sensor_preset_names().size());
+}
+
+TEST(SensorPresetTable, UnknownNamesAreRefusedWithTheKnownOnes) {
+    try {
+        parse_sensor_preset("hdl32");
+        FAIL() << "no exception";
+    } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("hdl64, vlp32, vlp16, narrow, os1-64"),
+                  std::string::npos)
+            << e.what();
+    }
+}
+
+}  // namespace
+}  // namespace ltm::common
