@@ -155,6 +155,14 @@ trap cleanup EXIT
 trap 'exit 130' INT
 trap 'exit 143' TERM
 
+# Namespaces of an earlier run that could not clean up (SIGKILL, e.g. a test runner's timeout):
+# their veth ends, bridge and nftables table go with them. A run's pid is in its names.
+for ns in $(ip netns list 2>/dev/null | awk '{print $1}' | grep -E '^ltm_(robot[0-9]*|base|intruder)_[0-9]+$'); do
+    pid="${ns##*_}"
+    if ! kill -0 "$pid" 2>/dev/null; then
+        ip netns del "$ns" 2>/dev/null && echo "   removed namespace $ns of an earlier run (pid $pid is gone)"
+    fi
+done
 ip netns add "$NS_BASE" 2>/dev/null || die "cannot create a network namespace (ip netns add failed): not available here"
 ip -n "$NS_BASE" link set lo up
 ip -n "$NS_BASE" link add "$BRIDGE" type bridge || die "cannot create a bridge"
