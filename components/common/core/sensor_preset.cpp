@@ -25,20 +25,21 @@ constexpr SensorPresetRow kHdl64{
     {8.0, 40.0}};
 
 // Velodyne VLP-32C (+15 to -25 deg): half the rings of an HDL-64E, the same geometry a little
-// sparser. Mounted at 1 m on a robot (site_loop, site_sessions).
+// sparser. The mapper's height: KITTI's
+// (until the mount is fixed).
 constexpr SensorPresetRow kVlp32{
     "vlp32", "Velodyne VLP-32C", "vlp32c",
-    32, 40.0, 360.0, 1.0,
+    32, 40.0, 360.0, 1.73,
     {0.6, 3, 1.5, 70.0, 0.3, 1.5, 45.0, 20.0, 1.0, 100},
     {80.0, 30.0, 50, 0.35, 2, 1.0, 400, 3, 8.0},
     {8.0, 40.0}};
 
 // Velodyne VLP-16 (+15 to -15 deg): 16 rings 2 deg apart: finer voxels, and registration on a
-// finer grid to keep enough points. Mounted at 0.9 m on a small robot (tiny_loop; turn_on_spot's
-// is 0.6 m).
+// finer grid to keep enough points. The mapper's height: KITTI's
+// (until the mount is fixed).
 constexpr SensorPresetRow kVlp16{
     "vlp16", "Velodyne VLP-16", "vlp16",
-    16, 30.0, 360.0, 0.9,
+    16, 30.0, 360.0, 1.73,
     {0.5, 3, 1.0, 60.0, 0.3, 1.0, 40.0, 15.0, 1.0, 100},
     {80.0, 30.0, 50, 0.35, 2, 1.0, 400, 3, 8.0},
     {8.0, 40.0}};
@@ -56,10 +57,10 @@ constexpr SensorPresetRow kNarrow{
 
 // Ouster OS1-64 (+22.5 to -22.5 deg): 64 beams evenly over 45 deg (denser near the ground than an
 // HDL-64E is far out), 0.3-120 m; mostly used on slower platforms and closer to structure.
-// Mounted at 1 m, the simulator's mount (no scenario of its own).
+// The mapper's height: KITTI's (until the mount is fixed).
 constexpr SensorPresetRow kOs1_64{
     "os1-64", "Ouster OS1-64", "os1_64",
-    64, 45.0, 360.0, 1.0,
+    64, 45.0, 360.0, 1.73,
     {0.5, 3, 1.0, 80.0, 0.3, 1.5, 45.0, 18.0, 1.0, 100},
     {80.0, 30.0, 50, 0.35, 2, 1.0, 400, 3, 8.0},
     {8.0, 40.0}};
