@@ -111,6 +111,17 @@ bool ComponentContext::Subscription::duplicate(const dds_sample_info_t& info) {
     return false;
 }
 
+std::uint32_t ComponentContext::matched_publishers(const std::string& topic) {
+    const std::string abs = resolve(topic);
+    std::uint32_t n = 0;
+    for (const auto& s : subscriptions_) {
+        dds_subscription_matched_status_t st{};
+        if (s.topic == abs && dds_get_subscription_matched_status(s.reader, &st) == DDS_RETCODE_OK)
+            n += st.current_count;
+    }
+    return n;
+}
+
 QosProfile ComponentContext::role_profile(const std::string& topic, TopicRole declared) {
     return domain_.profile(resolve(topic), declared);
 }

@@ -49,6 +49,9 @@ class ComponentContext {
             topic, role, MessageTraits<T>::descriptor(),
             [h = std::move(handler)](const void* sample) { h(*static_cast<const T*>(sample)); });
     }
+    // Writers currently matched with this component's reader(s) of `topic` (a declared name):
+    // is its producer running?
+    std::uint32_t matched_publishers(const std::string& topic);
     // An output.
     template <class T>
     Publisher<T> advertise(const std::string& topic, TopicRole role) {

@@ -79,6 +79,8 @@ class StampPairer {
         }
     }
 
+    // The wall time a scan waits at most from now on (StampPairerOptions::wait_s).
+    void set_wait_s(double wait_s) { options_.wait_s = wait_s; }
     std::size_t waiting() const { return waiting_.size(); }
     std::uint64_t dropped() const { return dropped_; }
 

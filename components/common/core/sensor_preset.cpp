@@ -7,7 +7,7 @@ namespace {
 
 // One row per preset (the columns in the order of SensorPresetRow):
 //   name, sensor, simulator model,
-//   rings, vertical fov [deg], horizontal fov [deg], sensor height [m] (as mounted),
+//   rings, vertical fov [deg], horizontal fov [deg], descriptor height [m] (see the header),
 //   odometry {voxel, coarse factor, min range, max range, map sample fraction, registration sample
 //             fraction, local-map half extent, switch distance, keyframe distance, min points},
 //   places {descriptor range, loop exclude recent [s], ... [keyframes], loop max distance, loop
@@ -25,8 +25,7 @@ constexpr SensorPresetRow kHdl64{
     {8.0, 40.0}};
 
 // Velodyne VLP-32C (+15 to -25 deg): half the rings of an HDL-64E, the same geometry a little
-// sparser. The mapper's height: KITTI's
-// (until the mount is fixed).
+// sparser.
 constexpr SensorPresetRow kVlp32{
     "vlp32", "Velodyne VLP-32C", "vlp32c",
     32, 40.0, 360.0, 1.73,
@@ -35,8 +34,7 @@ constexpr SensorPresetRow kVlp32{
     {8.0, 40.0}};
 
 // Velodyne VLP-16 (+15 to -15 deg): 16 rings 2 deg apart: finer voxels, and registration on a
-// finer grid to keep enough points. The mapper's height: KITTI's
-// (until the mount is fixed).
+// finer grid to keep enough points.
 constexpr SensorPresetRow kVlp16{
     "vlp16", "Velodyne VLP-16", "vlp16",
     16, 30.0, 360.0, 1.73,
@@ -57,7 +55,6 @@ constexpr SensorPresetRow kNarrow{
 
 // Ouster OS1-64 (+22.5 to -22.5 deg): 64 beams evenly over 45 deg (denser near the ground than an
 // HDL-64E is far out), 0.3-120 m; mostly used on slower platforms and closer to structure.
-// The mapper's height: KITTI's (until the mount is fixed).
 constexpr SensorPresetRow kOs1_64{
     "os1-64", "Ouster OS1-64", "os1_64",
     64, 45.0, 360.0, 1.73,

@@ -29,8 +29,8 @@ TEST(SensorPresetTable, EveryPresetHasEveryValue) {
         EXPECT_LE(r.vertical_fov_deg, 180.0);
         EXPECT_GT(r.horizontal_fov_deg, 0.0);
         EXPECT_LE(r.horizontal_fov_deg, 360.0);
-        EXPECT_GT(r.sensor_height, 0.2);
-        EXPECT_LT(r.sensor_height, 5.0);
+        EXPECT_GT(r.descriptor_height, 0.2);
+        EXPECT_LT(r.descriptor_height, 5.0);
         // The odometry.
         const auto& o = r.odometry;
         EXPECT_GT(o.voxel_size, 0.0);

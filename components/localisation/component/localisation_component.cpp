@@ -7,14 +7,14 @@
 //
 // Threads: the component's thread takes every input as it comes and pairs each scan with the
 // odometry pose of the same stamp: a scan waits until that pose comes, or the odometry says it has
-// none for it (a newer pose, or a status line of that scan saying lost or skipped), or at most
-// odometry_wait_s of wall time (no odometry running). The localiser runs on a worker thread of its
-// own, one scan at a time, because a global localisation takes a while (~0.5 s) and the inputs must
-// not pile up behind it meanwhile. With skip_while_busy (default: a live sensor) a scan that
-// arrives while the worker is busy replaces the one waiting for it (the newest scan is processed
-// next, the skipped ones are counted); without it (offline runs) the component's thread waits
-// until each scan is done: back-pressure on the sensor, nothing skipped, and the host sees the
-// component busy until its last scan is localised.
+// none for it (a newer pose, or a status line of that scan saying lost or skipped); while no
+// odometry runs (none matched), at most odometry_wait_s of wall time. The localiser runs on a
+// worker thread of its own, one scan at a time, because a global localisation takes a while (~0.5
+// s) and the inputs must not pile up behind it meanwhile. With skip_while_busy (default: a live
+// sensor) a scan that arrives while the worker is busy replaces the one waiting for it (the newest
+// scan is processed next, the skipped ones are counted); without it (offline runs) the component's
+// thread waits until each scan is done: back-pressure on the sensor, nothing skipped, and the host
+// sees the component busy until its last scan is localised.
 //
 // A large map takes seconds to load. Offline (skip_while_busy false) it is loaded when the
 // component is configured: the host starts nothing before it is ready. Live, the worker loads it
@@ -25,6 +25,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <mutex>
 #include <optional>
 
@@ -243,6 +244,13 @@ class LocalisationComponent : public runtime::Component {
     // Hands on every waiting scan whose odometry came (with its pose and twist), or will not come
     // (see the file comment).
     void pair() {
+        // While an odometry runs (its writer matched), its pose of each scan, a newer one or its
+        // "no pose" status will come: wait for it, however late (a loaded machine's odometry was
+        // more than odometry_wait_s behind and scans went on without their poses: tracking from
+        // a guess, wrong fixes). Without one, odometry_wait_s of wall time.
+        pairer_->set_wait_s(ctx_.matched_publishers("odometry") > 0
+                                ? std::numeric_limits<double>::infinity()
+                                : odometry_wait_s_);
         pairer_->release([this](double stamp, Scan&& s, std::optional<convert::OdometryData>&& o) {
             if (o) {
                 s.odometry = OdometryInput{o->T_parent_child, segment_at(stamp)};

@@ -21,7 +21,7 @@ MapperConfig mapper_preset(common::SensorPreset preset) {
     const common::SensorPresetRow::Places& r = row.places;
     MapperConfig c;
     c.scan_context.max_range = r.descriptor_max_range;
-    c.scan_context.sensor_height = row.sensor_height;
+    c.scan_context.sensor_height = row.descriptor_height;
     c.loop_detection.exclude_recent_seconds = r.loop_exclude_recent_s;
     c.loop_detection.exclude_recent_keyframes = r.loop_exclude_recent_keyframes;
     c.loop_detection.max_distance = r.loop_max_distance;
