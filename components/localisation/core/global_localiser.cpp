@@ -54,6 +54,43 @@ registration::RegistrationConfig probe_config(registration::RegistrationConfig c
     return c;
 }
 
+// The answer with the wall time since `start`.
+GlobalLocalisation finished(GlobalLocalisation& out, std::chrono::steady_clock::time_point start) {
+    out.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return out;
+}
+
+std::vector<Eigen::Vector3f> finite_points(const std::vector<Eigen::Vector3f>& points) {
+    std::vector<Eigen::Vector3f> finite;
+    finite.reserve(points.size());
+    for (const Eigen::Vector3f& p : points) {
+        if (p.allFinite()) finite.push_back(p);
+    }
+    return finite;
+}
+
+std::string too_few_points(std::size_t points, int min_inliers) {
+    return "the scan has " + std::to_string(points) +
+           " usable points, fewer than verification.min_inliers (" + std::to_string(min_inliers) +
+           ")";
+}
+
+std::string ambiguous_places(double second_inliers_ratio) {
+    std::ostringstream why;
+    why.precision(2);
+    why << "not localised: ambiguous, two places fit (the second with "
+        << second_inliers_ratio * 100.0 << " % of the best's inliers)";
+    return why.str();
+}
+
+std::string ambiguous_along_slide(double slide_distance, double second_inliers_ratio) {
+    std::ostringstream why;
+    why.precision(3);
+    why << "not localised: ambiguous along the scan's weakest direction (a pose " << slide_distance
+        << " m away fits with " << second_inliers_ratio * 100.0 << " % of the answer's inliers)";
+    return why.str();
+}
+
 }  // namespace
 
 std::optional<common::ConfigProblem> validate(const GlobalLocaliserConfig& config) {
@@ -115,9 +152,8 @@ std::vector<GlobalLocaliser::Place> GlobalLocaliser::rank_places(
     return places;
 }
 
-void GlobalLocaliser::feature_guesses(
-    const std::vector<Eigen::Vector3f>& points, const std::vector<Place>& places,
-    std::vector<Guess, Eigen::aligned_allocator<Guess>>* guesses) {
+void GlobalLocaliser::feature_guesses(const std::vector<Eigen::Vector3f>& points,
+                                      const std::vector<Place>& places, Guesses* guesses) {
     const places::LocalFeatures query = places::make_local_features(points, map_->feature_config());
     if (query.size() < 3 || places.empty()) return;
     // The map's samples around every place, once (places overlap), matched in one pass.
@@ -180,27 +216,53 @@ GlobalLocalisation GlobalLocaliser::localise(const std::vector<Eigen::Vector3f>&
                                              const std::optional<PoseHint>& hint) {
     const auto start = std::chrono::steady_clock::now();
     GlobalLocalisation out;
-    auto finish = [&](GlobalLocalisation& o) -> GlobalLocalisation& {
-        o.time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        return o;
-    };
-    std::vector<Eigen::Vector3f> finite;
-    finite.reserve(points.size());
-    for (const Eigen::Vector3f& p : points) {
-        if (p.allFinite()) finite.push_back(p);
-    }
+    const std::vector<Eigen::Vector3f> finite = finite_points(points);
     out.points = finite.size();
     if (finite.size() < std::size_t(config_.verification.min_inliers)) {
-        out.reason = "the scan has " + std::to_string(finite.size()) +
-                     " usable points, fewer than verification.min_inliers (" +
-                     std::to_string(config_.verification.min_inliers) + ")";
-        return finish(out);
+        out.reason = too_few_points(finite.size(), config_.verification.min_inliers);
+        return finished(out, start);
     }
     const places::ScanContext query = places::make_scan_context(finite, map_->descriptor_config());
     const std::vector<Place> places = rank_places(query, hint);
     out.places = int(places.size());
+    Guesses guesses = initial_guesses(finite, places, hint);
+    out.guesses = int(guesses.size());
+    if (guesses.empty()) {
+        out.reason = "no place of the map resembles the scan";
+        return finished(out, start);
+    }
+    const std::vector<std::size_t> order = probe(finite, &guesses);
+    const std::vector<Verified> accepted = verify_guesses(finite, guesses, order, &out);
+    if (accepted.empty()) return finished(out, start);
+    const registration::LoopVerification& best = accepted.front().v;
+    const Guess& from = guesses[std::size_t(accepted.front().guess)];
+    out.second_inliers_ratio = rival_ratio(accepted);
+    take_answer(best, from, places, &out);
+    if (out.second_inliers_ratio >= config_.ambiguity_ratio) {
+        out.reason = ambiguous_places(out.second_inliers_ratio);
+        return finished(out, start);
+    }
+    const registration::RegistrationResult r =
+        fine_.align(finite, map_->target().fine, out.T_map_lidar);
+    if (r.ok() && r.T_map_lidar.matrix().allFinite()) out.covariance = r.covariance;
+    if (config_.slide_distance > 0.0 && r.ok()) {
+        out.second_inliers_ratio =
+            std::max(out.second_inliers_ratio, slide_rival(finite, best, r, &out.verified));
+        if (out.second_inliers_ratio >= config_.ambiguity_ratio) {
+            out.reason = ambiguous_along_slide(config_.slide_distance, out.second_inliers_ratio);
+            return finished(out, start);
+        }
+    }
+    out.confidence *= 1.0 - out.second_inliers_ratio;
+    out.reason = describe(from, places, best, out);
+    out.localised = true;
+    return finished(out, start);
+}
 
-    std::vector<Guess, Eigen::aligned_allocator<Guess>> guesses;
+GlobalLocaliser::Guesses GlobalLocaliser::initial_guesses(
+    const std::vector<Eigen::Vector3f>& finite, const std::vector<Place>& places,
+    const std::optional<PoseHint>& hint) {
+    Guesses guesses;
     if (hint) {
         for (double off : config_.hint_yaw_offsets) {
             guesses.push_back({yawed(hint->T_map_lidar, off * kDegToRad), -1, false});
@@ -213,20 +275,11 @@ GlobalLocalisation GlobalLocaliser::localise(const std::vector<Eigen::Vector3f>&
         }
     }
     if (config_.local_features) feature_guesses(finite, places, &guesses);
-    out.guesses = int(guesses.size());
-    if (guesses.empty()) {
-        out.reason = "no place of the map resembles the scan";
-        return finish(out);
-    }
+    return guesses;
+}
 
-    struct Verified {
-        registration::LoopVerification v;
-        int guess;
-    };
-    std::vector<Verified> accepted;
-    std::string best_refusal;
-    std::size_t best_refused_inliers = 0;
-    const registration::RegistrationTarget& target = map_->target();
+std::vector<std::size_t> GlobalLocaliser::probe(const std::vector<Eigen::Vector3f>& finite,
+                                                Guesses* guesses) {
     // Probes: a short coarse registration of a few points from each initial pose, scored by the
     // share of those points on a map surface at its end.
     probe_points_.clear();
@@ -234,24 +287,16 @@ GlobalLocalisation GlobalLocaliser::localise(const std::vector<Eigen::Vector3f>&
     for (double i = 0.0; i < double(finite.size()); i += step) {
         probe_points_.push_back(finite[std::size_t(i)]);
     }
+    const registration::RegistrationTarget& target = map_->target();
     const registration::VoxelGrid& coarse = target.coarse ? *target.coarse : target.fine;
-    const registration::ImlsParams imls = fine_.imls_params();
     std::vector<std::pair<double, std::size_t>> order;
-    for (std::size_t g = 0; g < guesses.size(); ++g) {
+    for (std::size_t g = 0; g < guesses->size(); ++g) {
         const registration::RegistrationResult r =
-            probe_.align(probe_points_, coarse, guesses[g].T_map_lidar);
+            probe_.align(probe_points_, coarse, (*guesses)[g].T_map_lidar);
         if (!r.ok() || !r.T_map_lidar.matrix().allFinite()) continue;
-        const Eigen::Matrix3f R = r.T_map_lidar.linear().cast<float>();
-        const Eigen::Vector3f t = r.T_map_lidar.translation().cast<float>();
-        std::size_t on = 0;
-        registration::ImlsResult res;
-        for (const Eigen::Vector3f& p : probe_points_) {
-            if (registration::imls_distance(target.fine, R * p + t, imls, &res) &&
-                std::abs(res.distance) <= config_.verification.inlier_distance)
-                ++on;
-        }
-        guesses[g].T_map_lidar = r.T_map_lidar;
-        order.push_back({double(on) / double(probe_points_.size()), g});
+        const double share = probe_share_on_surface(r.T_map_lidar);
+        (*guesses)[g].T_map_lidar = r.T_map_lidar;
+        order.push_back({share, g});
     }
     std::sort(order.begin(), order.end(), std::greater<>());
     if (order.size() > std::size_t(config_.verify_best))
@@ -260,7 +305,32 @@ GlobalLocalisation GlobalLocaliser::localise(const std::vector<Eigen::Vector3f>&
     // (a rival fits about as well): not verified.
     while (order.size() > 1 && order.back().first < config_.rival_probe_ratio * order.front().first)
         order.pop_back();
-    for (const auto& [score, g] : order) {
+    std::vector<std::size_t> best;
+    for (const auto& [share, g] : order) best.push_back(g);
+    return best;
+}
+
+double GlobalLocaliser::probe_share_on_surface(const Eigen::Isometry3d& T_map_lidar) const {
+    const registration::ImlsParams imls = fine_.imls_params();
+    const Eigen::Matrix3f R = T_map_lidar.linear().cast<float>();
+    const Eigen::Vector3f t = T_map_lidar.translation().cast<float>();
+    std::size_t on = 0;
+    registration::ImlsResult res;
+    for (const Eigen::Vector3f& p : probe_points_) {
+        if (registration::imls_distance(map_->target().fine, R * p + t, imls, &res) &&
+            std::abs(res.distance) <= config_.verification.inlier_distance)
+            ++on;
+    }
+    return double(on) / double(probe_points_.size());
+}
+
+std::vector<GlobalLocaliser::Verified> GlobalLocaliser::verify_guesses(
+    const std::vector<Eigen::Vector3f>& finite, const Guesses& guesses,
+    const std::vector<std::size_t>& order, GlobalLocalisation* out) {
+    std::vector<Verified> accepted;
+    std::string best_refusal;
+    std::size_t best_refused_inliers = 0;
+    for (std::size_t g : order) {
         // A guess that lands where an accepted answer already is adds nothing.
         bool known = false;
         for (const Verified& a : accepted) {
@@ -269,9 +339,9 @@ GlobalLocalisation GlobalLocaliser::localise(const std::vector<Eigen::Vector3f>&
                 known = true;
         }
         if (known) continue;
-        registration::LoopVerification v =
-            verifier_.verify(finite, target, registration::GuessList{guesses[g].T_map_lidar});
-        ++out.verified;
+        registration::LoopVerification v = verifier_.verify(
+            finite, map_->target(), registration::GuessList{guesses[g].T_map_lidar});
+        ++out->verified;
         if (v.accepted) {
             accepted.push_back({std::move(v), int(g)});
         } else if (best_refusal.empty() || v.inliers > best_refused_inliers) {
@@ -280,76 +350,71 @@ GlobalLocalisation GlobalLocaliser::localise(const std::vector<Eigen::Vector3f>&
         }
     }
     if (accepted.empty()) {
-        out.reason = "not localised: no initial pose verified (" + std::to_string(out.verified) +
-                     " tried; best: " + best_refusal + ")";
-        return finish(out);
+        out->reason = "not localised: no initial pose verified (" + std::to_string(out->verified) +
+                      " tried; best: " + best_refusal + ")";
     }
     std::sort(accepted.begin(), accepted.end(),
               [](const Verified& a, const Verified& b) { return a.v.inliers > b.v.inliers; });
+    return accepted;
+}
+
+double GlobalLocaliser::rival_ratio(const std::vector<Verified>& accepted) const {
     const registration::LoopVerification& best = accepted.front().v;
+    double ratio = 0.0;
     for (std::size_t i = 1; i < accepted.size(); ++i) {
         const auto [dt, dr] = pose_distance(best.T_anchor_lidar, accepted[i].v.T_anchor_lidar);
         if (dt < config_.distinct_translation && dr < config_.distinct_rotation) continue;
-        out.second_inliers_ratio = std::max(out.second_inliers_ratio,
-                                            double(accepted[i].v.inliers) / double(best.inliers));
+        ratio = std::max(ratio, double(accepted[i].v.inliers) / double(best.inliers));
     }
-    const Guess& from = guesses[std::size_t(accepted.front().guess)];
-    {
-        const GlobalLocalisation verified = from_verification(best);
-        out.T_map_lidar = verified.T_map_lidar;
-        out.points = verified.points;
-        out.inliers = verified.inliers;
-        out.inlier_fraction = verified.inlier_fraction;
-        out.inlier_rms = verified.inlier_rms;
-        out.degenerate_directions = verified.degenerate_directions;
-        out.confidence = verified.confidence;
-    }
-    out.from_features = from.from_features;
+    return ratio;
+}
+
+void GlobalLocaliser::take_answer(const registration::LoopVerification& best, const Guess& from,
+                                  const std::vector<Place>& places, GlobalLocalisation* out) const {
+    const GlobalLocalisation verified = from_verification(best);
+    out->T_map_lidar = verified.T_map_lidar;
+    out->points = verified.points;
+    out->inliers = verified.inliers;
+    out->inlier_fraction = verified.inlier_fraction;
+    out->inlier_rms = verified.inlier_rms;
+    out->degenerate_directions = verified.degenerate_directions;
+    out->confidence = verified.confidence;
+    out->from_features = from.from_features;
     if (from.place >= 0) {
-        out.keyframe = places[std::size_t(from.place)].keyframe;
-        out.descriptor_distance = places[std::size_t(from.place)].distance;
+        out->keyframe = places[std::size_t(from.place)].keyframe;
+        out->descriptor_distance = places[std::size_t(from.place)].distance;
     }
-    if (out.second_inliers_ratio >= config_.ambiguity_ratio) {
-        std::ostringstream why;
-        why.precision(2);
-        why << "not localised: ambiguous, two places fit (the second with "
-            << out.second_inliers_ratio * 100.0 << " % of the best's inliers)";
-        out.reason = why.str();
-        return finish(out);
+}
+
+// Slide test: along the direction the scan pins down worst (a corridor, a narrow view along a row
+// of similar things), the answer is moved by slide_distance either way and verified again;
+// another verified pose there that fits about as well is a rival the places did not offer
+// (hku-avia: three answers 1.5-3 m along the path passed every other check).
+double GlobalLocaliser::slide_rival(const std::vector<Eigen::Vector3f>& finite,
+                                    const registration::LoopVerification& best,
+                                    const registration::RegistrationResult& fine, int* verified) {
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(
+        fine.hessian.topLeftCorner<3, 3>().cast<double>());
+    const Eigen::Vector3d weakest = eig.eigenvectors().col(0);
+    double ratio = 0.0;
+    for (const double sign : {1.0, -1.0}) {
+        Eigen::Isometry3d moved = best.T_anchor_lidar;
+        moved.translation() += sign * config_.slide_distance * weakest;
+        const registration::LoopVerification v =
+            verifier_.verify(finite, map_->target(), registration::GuessList{moved});
+        ++*verified;
+        if (!v.accepted) continue;
+        const auto [dt, dr] = pose_distance(best.T_anchor_lidar, v.T_anchor_lidar);
+        if (dt < config_.distinct_translation && dr < config_.distinct_rotation) continue;
+        ratio = std::max(ratio, double(v.inliers) / double(best.inliers));
     }
-    const registration::RegistrationResult r = fine_.align(finite, target.fine, out.T_map_lidar);
-    if (r.ok() && r.T_map_lidar.matrix().allFinite()) out.covariance = r.covariance;
-    // Slide test: along the direction the scan pins down worst (a corridor, a narrow view along a
-    // row of similar things), the answer is moved by slide_distance either way and verified
-    // again; another verified pose there that fits about as well is a rival the places did not
-    // offer (hku-avia: three answers 1.5-3 m along the path passed every other check).
-    if (config_.slide_distance > 0.0 && r.ok()) {
-        const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(
-            r.hessian.topLeftCorner<3, 3>().cast<double>());
-        const Eigen::Vector3d weakest = eig.eigenvectors().col(0);
-        for (const double sign : {1.0, -1.0}) {
-            Eigen::Isometry3d moved = best.T_anchor_lidar;
-            moved.translation() += sign * config_.slide_distance * weakest;
-            const registration::LoopVerification v =
-                verifier_.verify(finite, target, registration::GuessList{moved});
-            ++out.verified;
-            if (!v.accepted) continue;
-            const auto [dt, dr] = pose_distance(best.T_anchor_lidar, v.T_anchor_lidar);
-            if (dt < config_.distinct_translation && dr < config_.distinct_rotation) continue;
-            out.second_inliers_ratio =
-                std::max(out.second_inliers_ratio, double(v.inliers) / double(best.inliers));
-        }
-        if (out.second_inliers_ratio >= config_.ambiguity_ratio) {
-            std::ostringstream why;
-            why.precision(3);
-            why << "not localised: ambiguous along the scan's weakest direction (a pose "
-                << config_.slide_distance << " m away fits with "
-                << out.second_inliers_ratio * 100.0 << " % of the answer's inliers)";
-            out.reason = why.str();
-            return finish(out);
-        }
-    }
-    out.confidence *= 1.0 - out.second_inliers_ratio;
+    return ratio;
+}
+
+// How the answer was found, and its figures (one line).
+std::string GlobalLocaliser::describe(const Guess& from, const std::vector<Place>& places,
+                                      const registration::LoopVerification& best,
+                                      const GlobalLocalisation& out) {
     std::ostringstream how;
     if (from.place >= 0) {
         how << "place " << from.place + 1 << " of " << places.size() << " (keyframe "
@@ -362,9 +427,7 @@ GlobalLocalisation GlobalLocaliser::localise(const std::vector<Eigen::Vector3f>&
     how << "; inliers " << best.inliers << " of " << best.points << ", structure "
         << structure_ratio(best) << ", rival " << out.second_inliers_ratio << ", verified "
         << out.verified;
-    out.reason = how.str();
-    out.localised = true;
-    return finish(out);
+    return how.str();
 }
 
 }  // namespace ltm::localisation

@@ -161,11 +161,36 @@ class GlobalLocaliser {
         double distance;
         double yaw;
     };
+    using Guesses = std::vector<Guess, Eigen::aligned_allocator<Guess>>;
+    struct Verified {
+        registration::LoopVerification v;
+        int guess;
+    };
+    // The steps of localise(), in order.
     std::vector<Place> rank_places(const places::ScanContext& query,
                                    const std::optional<PoseHint>& hint) const;
+    Guesses initial_guesses(const std::vector<Eigen::Vector3f>& finite,
+                            const std::vector<Place>& places, const std::optional<PoseHint>& hint);
     void feature_guesses(const std::vector<Eigen::Vector3f>& points,
-                         const std::vector<Place>& places,
-                         std::vector<Guess, Eigen::aligned_allocator<Guess>>* guesses);
+                         const std::vector<Place>& places, Guesses* guesses);
+    // Probes every guess (moving it to the probe's end); the guesses to verify, best first.
+    std::vector<std::size_t> probe(const std::vector<Eigen::Vector3f>& finite, Guesses* guesses);
+    double probe_share_on_surface(const Eigen::Isometry3d& T_map_lidar) const;
+    // The accepted ones, most inliers first; none: out->reason says why. Counts out->verified.
+    std::vector<Verified> verify_guesses(const std::vector<Eigen::Vector3f>& finite,
+                                         const Guesses& guesses,
+                                         const std::vector<std::size_t>& order,
+                                         GlobalLocalisation* out);
+    // The best distinct rival's inliers over the best's (0: none).
+    double rival_ratio(const std::vector<Verified>& accepted) const;
+    void take_answer(const registration::LoopVerification& best, const Guess& from,
+                     const std::vector<Place>& places, GlobalLocalisation* out) const;
+    double slide_rival(const std::vector<Eigen::Vector3f>& finite,
+                       const registration::LoopVerification& best,
+                       const registration::RegistrationResult& fine, int* verified);
+    static std::string describe(const Guess& from, const std::vector<Place>& places,
+                                const registration::LoopVerification& best,
+                                const GlobalLocalisation& out);
 
     std::shared_ptr<const LocalisationMap> map_;
     GlobalLocaliserConfig config_;
