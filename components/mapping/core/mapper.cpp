@@ -49,7 +49,8 @@ Mapper::Mapper(const MapperConfig& config)
     : config_(checked(config)),
       graph_(config.pose_graph),
       detector_(config.scan_context, config.loop_detection),
-      verifier_(config.verification) {
+      verifier_(config.verification),
+      joins_(config.session_join) {
     live_[session_];
 }
 

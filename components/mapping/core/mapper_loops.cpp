@@ -198,15 +198,25 @@ void Mapper::verify(std::uint32_t session, const common::KeyframeData& keyframe,
                    disagreement <= config_.long_term.agree_translation &&
                    disagreement_deg <= config_.long_term.agree_rotation;
         // Two robots' parts not placed together: held until enough loops agree.
-        std::vector<LoopClosure> joined;
+        std::vector<SessionJoins::Join> agreed;
         if (!same_session && !together && is_open(match.session) &&
-            !confirm_join(placed_root(match_key), placed_root(query_key), e, l, &joined)) {
+            !joins_.confirm(
+                placed_root(match_key), placed_root(query_key), e, l, graph_,
+                [this](std::uint64_t n) { return segment_known(n); }, &agreed)) {
             rejection.reason = "held: the first loop between session " +
                                std::to_string(match.session) + "'s and session " +
                                std::to_string(session) +
                                "'s parts waits for another that agrees (session_join.loops)";
             r->rejected.push_back(rejection);
             continue;
+        }
+        // The held loops that agree with it go first (within max_loops_per_anchor_pair).
+        std::vector<LoopClosure> joined;
+        for (const SessionJoins::Join& j : agreed) {
+            if (config_.max_loops_per_anchor_pair > 0 &&
+                loops_between(j.edge.from, j.edge.to) >= config_.max_loops_per_anchor_pair)
+                continue;
+            if (graph_.add_edge(j.edge)) joined.push_back(j.loop);
         }
         if (!graph_.add_edge(e)) continue;
         // The first loop between two sessions' parts: the later part set where it says.
@@ -218,69 +228,6 @@ void Mapper::verify(std::uint32_t session, const common::KeyframeData& keyframe,
         r->loops.push_back(l);
         loops_.push_back(l);
     }
-}
-
-bool Mapper::confirm_join(const SegmentKey& match_root, const SegmentKey& query_root,
-                          const map::PoseGraphEdge& edge, const LoopClosure& loop,
-                          std::vector<LoopClosure>* joined) {
-    const SessionJoinConfig& sj = config_.session_join;
-    if (sj.loops <= 1) return true;
-    // Where the `to` side's part lies in the `from` side's, by a loop: the correction of the
-    // `to` part, C = T_from * Z * T_to^-1 (world poses as of now); between the same two parts
-    // either way round.
-    auto correction = [this](const map::PoseGraphEdge& x) {
-        return graph_.find(x.from)->T_world_anchor * x.T_from_to *
-               graph_.find(x.to)->T_world_anchor.inverse();
-    };
-    std::vector<std::size_t> agreeing;
-    for (std::size_t i = 0; i < held_joins_.size(); ++i) {
-        const HeldJoin& h = held_joins_[i];
-        if (!graph_.find(h.edge.from) || !graph_.find(h.edge.to)) continue;  // folded since
-        if (!segment_known(h.edge.from) || !segment_known(h.edge.to)) continue;
-        const bool same_way = h.match_root == match_root && h.query_root == query_root;
-        const bool other_way = h.match_root == query_root && h.query_root == match_root;
-        if (!same_way && !other_way) continue;
-        // The held loop's correction, for this loop's `to` part; what it predicts for this edge.
-        const Eigen::Isometry3d C =
-            same_way ? correction(h.edge) : Eigen::Isometry3d(correction(h.edge).inverse());
-        const Eigen::Isometry3d predicted = graph_.find(edge.from)->T_world_anchor.inverse() * C *
-                                            graph_.find(edge.to)->T_world_anchor;
-        const Eigen::Isometry3d D = predicted.inverse() * edge.T_from_to;
-        if (D.translation().norm() <= sj.agree_translation &&
-            Eigen::AngleAxisd(D.linear()).angle() * 180.0 / M_PI <= sj.agree_rotation)
-            agreeing.push_back(i);
-    }
-    // ... from at least two keyframes (the candidates of one keyframe share its odometry, right
-    // or wrong), and only where both nodes' segments are known: the odometry hands a new local
-    // map's first keyframes over before the map that says it starts a new segment (a robot
-    // lifted and set down, say), and until then the node belongs to the segment before it.
-    std::set<std::pair<std::uint32_t, std::uint32_t>> keyframes = {
-        {loop.query_session, loop.query_keyframe}};
-    for (const std::size_t i : agreeing)
-        keyframes.insert({held_joins_[i].loop.query_session, held_joins_[i].loop.query_keyframe});
-    if (agreeing.size() + 1 < std::size_t(sj.loops) || keyframes.size() < 2 ||
-        !segment_known(edge.from) || !segment_known(edge.to)) {
-        held_joins_.push_back(HeldJoin{match_root, query_root, edge, loop});
-        constexpr std::size_t kMaxHeld = 256;
-        if (held_joins_.size() > kMaxHeld) held_joins_.erase(held_joins_.begin());
-        return false;
-    }
-    for (const std::size_t i : agreeing) {
-        const map::PoseGraphEdge& h = held_joins_[i].edge;
-        if (config_.max_loops_per_anchor_pair > 0 &&
-            loops_between(h.from, h.to) >= config_.max_loops_per_anchor_pair)
-            continue;
-        if (graph_.add_edge(h)) joined->push_back(held_joins_[i].loop);
-    }
-    // Those two parts are joined now: what else was held between them is dropped.
-    std::vector<HeldJoin> kept;
-    for (HeldJoin& h : held_joins_) {
-        const bool pair = (h.match_root == match_root && h.query_root == query_root) ||
-                          (h.match_root == query_root && h.query_root == match_root);
-        if (!pair) kept.push_back(std::move(h));
-    }
-    held_joins_ = std::move(kept);
-    return true;
 }
 
 void Mapper::align_parts(const map::PoseGraphEdge& loop) {

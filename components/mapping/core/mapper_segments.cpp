@@ -43,12 +43,12 @@ bool Mapper::segment_known(std::uint64_t node) const {
     return it == segment_of_.end() || it->second.told;
 }
 
-Mapper::SegmentKey Mapper::segment_key(std::uint64_t node) const {
+SegmentKey Mapper::segment_key(std::uint64_t node) const {
     const map::PoseGraphNode* n = graph_.find(node);
     return {n ? n->session : 0, segment_of(node)};
 }
 
-Mapper::SegmentKey Mapper::placed_root(const SegmentKey& key) const {
+SegmentKey Mapper::placed_root(const SegmentKey& key) const {
     const auto it = placed_.find(key);
     return it == placed_.end() ? key : it->second;
 }
