@@ -88,7 +88,7 @@ Mapper::Mapper(const MapperConfig& config, const map::MapData& loaded, bool free
                 const auto b = breaks.find({prev, id});
                 if (b != breaks.end() && b->second) ++segment;
             }
-            segment_of_[id] = NodeSegment{segment, true};
+            segments_.set(id, segment, true);
             prev = id;
             set_path(session, local_map_id);
         }
@@ -126,7 +126,7 @@ Mapper::Mapper(const MapperConfig& config, const map::MapData& loaded, bool free
     session_ = std::max(session_, past_sessions_.empty() ? 0u : past_sessions_.back().id + 1);
     live_.clear();
     live_[session_];
-    update_placement();
+    segments_.update_placement(graph_);
 }
 
 std::uint32_t Mapper::open_session(const std::string& name) {
@@ -351,7 +351,7 @@ OptimisationSummary Mapper::optimise() {
     if (s.solved) {
         due_loops_ = 0;
         ++revision_;
-        update_placement();
+        segments_.update_placement(graph_);
         place_unjoined_segments();
     }
     return s;
@@ -381,7 +381,7 @@ bool Mapper::apply(const PoseGraph& optimised, const OptimisationSummary& summar
         updated.add_edge(e);
     }
     graph_ = std::move(updated);
-    update_placement();
+    segments_.update_placement(graph_);
     // Nodes added since the snapshot follow their predecessor's correction.
     for (const auto& [session, chain] : chains_) {
         for (const auto& [local_map_id, id] : chain) {

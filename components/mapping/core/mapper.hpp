@@ -60,6 +60,7 @@
 #include "mapping/core/mapper_config.hpp"
 #include "mapping/core/mapper_results.hpp"
 #include "mapping/core/pose_graph.hpp"
+#include "mapping/core/segments.hpp"
 #include "mapping/core/session_joins.hpp"
 #include "registration/core/loop_verifier.hpp"
 
@@ -190,10 +191,6 @@ class Mapper {
         map::SessionRecord record;               // stamps
         std::size_t keyframes_seen = 0;          // stored or not
     };
-    struct NodeSegment {
-        std::uint32_t segment = 0;
-        bool told = false;  // by the node's local map (else taken from the map before it)
-    };
     int loops_between(std::uint64_t a, std::uint64_t b) const;  // active loop edges, either way
     const Folded* folded(std::uint32_t session, std::uint64_t local_map_id) const;
     ChainAnchor chain_anchor(std::uint32_t session, std::uint64_t local_map_id,
@@ -214,12 +211,6 @@ class Mapper {
     void link_odometry(std::uint32_t session, std::uint64_t local_map_id);
     void unlink_odometry(std::uint32_t session, std::uint64_t local_map_id);
     void set_segment(std::uint32_t session, std::uint64_t local_map_id, std::uint32_t segment);
-    SegmentKey segment_key(std::uint64_t node) const;
-    // The node's segment is known (its local map said it, or it came with a loaded map).
-    bool segment_known(std::uint64_t node) const;
-    SegmentKey placed_root(const SegmentKey& key) const;
-    // Joined segments from the active loop edges, after an optimisation.
-    void update_placement();
     // After an optimisation: segments that no loop joins to anything before them follow the map
     // before them.
     void place_unjoined_segments();
@@ -251,11 +242,9 @@ class Mapper {
     registration::LoopVerifier verifier_;
     // Per session: local map id -> node, in id order (the odometry chain).
     std::map<std::uint32_t, std::map<std::uint64_t, std::uint64_t>> chains_;
-    std::unordered_map<std::uint64_t, MapEntry> maps_;           // by node
-    std::unordered_map<std::uint64_t, double> path_at_;          // odometry path to each node [m]
-    std::unordered_map<std::uint64_t, NodeSegment> segment_of_;  // by node
-    // Segments placed together by active loops, as of the last optimisation: key -> its root.
-    std::map<SegmentKey, SegmentKey> placed_;
+    std::unordered_map<std::uint64_t, MapEntry> maps_;   // by node
+    std::unordered_map<std::uint64_t, double> path_at_;  // odometry path to each node [m]
+    Segments segments_;  // of the nodes, and the parts loops placed together
     std::vector<std::shared_ptr<const map::StoredKeyframe>> keyframes_;
     std::vector<LoopClosure> loops_;
     std::map<std::uint32_t, Live> live_;  // the open sessions (the default one always)

@@ -44,13 +44,13 @@ std::uint64_t Mapper::ensure_node(std::uint32_t session, std::uint64_t local_map
     std::map<std::uint64_t, std::uint64_t>& chain = chains_[session];
     const auto it = chain.emplace(local_map_id, n.id).first;
     if (segment) {
-        segment_of_[n.id] = NodeSegment{*segment, true};
+        segments_.set(n.id, *segment, true);
     } else {
         // Until its local map says: the segment of the map before it (the odometry hands a
         // keyframe over before the first snapshot of its local map).
         const auto prev = it == chain.begin() ? std::next(it) : std::prev(it);
         const std::uint32_t s = prev == chain.end() ? 0 : segment_of(prev->second);
-        segment_of_[n.id] = NodeSegment{s, false};
+        segments_.set(n.id, s, false);
     }
     link_odometry(session, local_map_id);
     set_path(session, local_map_id);

@@ -110,7 +110,7 @@ std::optional<std::uint64_t> Mapper::try_fold(std::uint64_t n) {
     const std::uint32_t session = node->session;
     // Tied to the map by a verified loop, and the graph settled (no optimisation due).
     if (due_loops_ > 0 || !tied_by_loop(n)) return std::nullopt;
-    const SegmentKey root = placed_root(segment_key(n));
+    const SegmentKey root = segments_.root(graph_, n);
     const common::LocalMapData& data = *entry->second.stored.data;
     const double path = path_at_.count(n) ? path_at_.at(n) : 0.0;
     std::optional<std::uint64_t> best;
@@ -129,7 +129,7 @@ std::optional<std::uint64_t> Mapper::try_fold(std::uint64_t n) {
             if (p == path_at_.end() || path - p->second < 4.0 * lt.merge_distance) continue;
         }
         // Placed together by loops: never across parts no loop has joined.
-        if (placed_root(segment_key(id)) != root) continue;
+        if (segments_.root(graph_, id) != root) continue;
         const double d =
             (other->T_world_anchor.translation() - node->T_world_anchor.translation()).norm();
         if (d <= best_d) {
@@ -230,7 +230,7 @@ void Mapper::fold(std::uint64_t n, std::uint64_t into) {
     live_.at(folded_node.session).folded[folded_node.local_map_id] = f;
     chains_[folded_node.session][folded_node.local_map_id] = into;
     maps_.erase(n);
-    segment_of_.erase(n);
+    segments_.forget(n);
     path_at_.erase(n);
 }
 

@@ -35,7 +35,7 @@ void Mapper::add_place_candidates(std::uint32_t session, std::uint64_t node,
     if (!config_.loop_closure || !config_.verify_from_graph || !(radius > 0.0) || !own ||
         live_.size() < 2)
         return;  // off, or no other robot's session open
-    const SegmentKey root = placed_root(segment_key(node));
+    const SegmentKey root = segments_.root(graph_, node);
     const Eigen::Vector3d at = (own->T_world_anchor * T_anchor_lidar).translation();
     std::set<std::uint64_t> listed;  // the descriptor's candidates' local maps: verified anyway
     for (const LoopCandidate& c : *candidates) listed.insert(keyframes_[c.match]->node);
@@ -45,10 +45,10 @@ void Mapper::add_place_candidates(std::uint32_t session, std::uint64_t node,
     auto usable = [&](std::uint64_t n) {
         const auto [it, fresh] = eligible.try_emplace(n, false);
         if (!fresh) return it->second;
-        const SegmentKey key = segment_key(n);
+        const SegmentKey key = segments_.key(graph_, n);
         const int pair_limit = config_.max_loops_per_anchor_pair;
         it->second = n != node && !listed.count(n) && key.first != session && is_open(key.first) &&
-                     placed_root(key) == root && maps_.count(n) > 0 &&
+                     segments_.root(key) == root && maps_.count(n) > 0 &&
                      (pair_limit == 0 || loops_between(n, node) < pair_limit);
         return it->second;
     };
@@ -108,8 +108,9 @@ void Mapper::verify(std::uint32_t session, const common::KeyframeData& keyframe,
         const Eigen::Isometry3d predicted =
             graph_.find(match.node)->T_world_anchor.inverse() * graph_.find(node)->T_world_anchor;
         const bool same_session = match.session == session;
-        const SegmentKey match_key = segment_key(match.node), query_key = segment_key(node);
-        const bool together = placed_root(match_key) == placed_root(query_key);
+        const SegmentKey match_key = segments_.key(graph_, match.node),
+                         query_key = segments_.key(graph_, node);
+        const bool together = segments_.root(match_key) == segments_.root(query_key);
         const bool placed = together && (same_session || is_open(match.session));
         registration::GuessList guesses;
         const bool graph_guess = placed && config_.verify_from_graph;
@@ -194,15 +195,14 @@ void Mapper::verify(std::uint32_t session, const common::KeyframeData& keyframe,
         l.from_graph_guess = graph_guess && v.guess == 0;
         // Places joined already (by loops, as of the last optimisation) and a loop that only
         // confirms the graph: no optimisation due for it.
-        l.agrees = placed_root(match_key) == placed_root(query_key) &&
+        l.agrees = segments_.root(match_key) == segments_.root(query_key) &&
                    disagreement <= config_.long_term.agree_translation &&
                    disagreement_deg <= config_.long_term.agree_rotation;
         // Two robots' parts not placed together: held until enough loops agree.
         std::vector<SessionJoins::Join> agreed;
         if (!same_session && !together && is_open(match.session) &&
-            !joins_.confirm(
-                placed_root(match_key), placed_root(query_key), e, l, graph_,
-                [this](std::uint64_t n) { return segment_known(n); }, &agreed)) {
+            !joins_.confirm(segments_.root(match_key), segments_.root(query_key), e, l, graph_,
+                            segments_, &agreed)) {
             rejection.reason = "held: the first loop between session " +
                                std::to_string(match.session) + "'s and session " +
                                std::to_string(session) +
@@ -231,13 +231,13 @@ void Mapper::verify(std::uint32_t session, const common::KeyframeData& keyframe,
 }
 
 void Mapper::align_parts(const map::PoseGraphEdge& loop) {
-    const SegmentKey from_root = placed_root(segment_key(loop.from));
-    const SegmentKey to_root = placed_root(segment_key(loop.to));
+    const SegmentKey from_root = segments_.root(graph_, loop.from);
+    const SegmentKey to_root = segments_.root(graph_, loop.to);
     if (from_root == to_root) return;
     std::vector<std::uint64_t> from_part, to_part;
     bool from_fixed = false, to_fixed = false;
     for (const map::PoseGraphNode& n : graph_.nodes()) {
-        const SegmentKey r = placed_root(segment_key(n.id));
+        const SegmentKey r = segments_.root(graph_, n.id);
         if (r == from_root) {
             from_part.push_back(n.id);
             from_fixed = from_fixed || n.fixed;

@@ -7,8 +7,7 @@ namespace ltm::mapping {
 
 bool SessionJoins::confirm(const SegmentKey& match_root, const SegmentKey& query_root,
                            const map::PoseGraphEdge& edge, const LoopClosure& loop,
-                           const PoseGraph& graph,
-                           const std::function<bool(std::uint64_t)>& segment_known,
+                           const PoseGraph& graph, const Segments& segments,
                            std::vector<Join>* agreed) {
     const SessionJoinConfig& sj = config_;
     if (sj.loops <= 1) return true;
@@ -24,7 +23,7 @@ bool SessionJoins::confirm(const SegmentKey& match_root, const SegmentKey& query
         const Held& h = held_[i];
         const map::PoseGraphEdge& held_edge = h.join.edge;
         if (!graph.find(held_edge.from) || !graph.find(held_edge.to)) continue;  // folded since
-        if (!segment_known(held_edge.from) || !segment_known(held_edge.to)) continue;
+        if (!segments.known(held_edge.from) || !segments.known(held_edge.to)) continue;
         const bool same_way = h.match_root == match_root && h.query_root == query_root;
         const bool other_way = h.match_root == query_root && h.query_root == match_root;
         if (!same_way && !other_way) continue;
@@ -47,7 +46,7 @@ bool SessionJoins::confirm(const SegmentKey& match_root, const SegmentKey& query
     for (const std::size_t i : agreeing)
         keyframes.insert({held_[i].join.loop.query_session, held_[i].join.loop.query_keyframe});
     if (agreeing.size() + 1 < std::size_t(sj.loops) || keyframes.size() < 2 ||
-        !segment_known(edge.from) || !segment_known(edge.to)) {
+        !segments.known(edge.from) || !segments.known(edge.to)) {
         held_.push_back(Held{match_root, query_root, Join{edge, loop}});
         constexpr std::size_t kMaxHeld = 256;
         if (held_.size() > kMaxHeld) held_.erase(held_.begin());

@@ -4,7 +4,6 @@
 // session_join.loops of them agree. Owns the held loops; reads the graph it is given.
 #include <Eigen/Geometry>
 #include <cstdint>
-#include <functional>
 #include <utility>
 #include <vector>
 
@@ -12,11 +11,9 @@
 #include "mapping/core/mapper_config.hpp"
 #include "mapping/core/mapper_results.hpp"
 #include "mapping/core/pose_graph.hpp"
+#include "mapping/core/segments.hpp"
 
 namespace ltm::mapping {
-
-// A part of the map placed together by loops, named by its root: (session, segment).
-using SegmentKey = std::pair<std::uint32_t, std::uint32_t>;
 
 class SessionJoins {
   public:
@@ -32,11 +29,10 @@ class SessionJoins {
     // A loop between the parts `match_root` and `query_root` (no loop placed them together): true
     // when it is to be added now, with the held loops that agree with it appended to `agreed` (to
     // be added before it, in order; what else was held between the two parts is dropped); false
-    // when it is held. `segment_known` says whether a node's segment is known.
+    // when it is held.
     bool confirm(const SegmentKey& match_root, const SegmentKey& query_root,
                  const map::PoseGraphEdge& edge, const LoopClosure& loop, const PoseGraph& graph,
-                 const std::function<bool(std::uint64_t)>& segment_known,
-                 std::vector<Join>* agreed);
+                 const Segments& segments, std::vector<Join>* agreed);
 
   private:
     struct Held {
