@@ -217,7 +217,7 @@ LocalMapResult Mapper::add_local_map(std::shared_ptr<const common::LocalMapData>
         r.message = "local map " + std::to_string(map->id) + ": voxel size must be > 0";
         return r;
     }
-    if (const Folded* f = folded(session, map->id)) {
+    if (const Folded* f = folding_.find(session, map->id)) {
         r.node = f->node;
         r.merged = true;
         r.message = "local map " + std::to_string(map->id) +
@@ -285,7 +285,7 @@ KeyframeResult Mapper::add_keyframe(const common::KeyframeData& input, std::uint
     const std::uint64_t node =
         ensure_node(session, keyframe.local_map_id, T_odom_anchor, input.segment);
     // A keyframe of a local map folded already: its pose in the node it went into.
-    if (const Folded* f = folded(session, keyframe.local_map_id))
+    if (const Folded* f = folding_.find(session, keyframe.local_map_id))
         keyframe.T_anchor_lidar = f->T_node_anchor * keyframe.T_anchor_lidar;
     auto stored = std::make_shared<map::StoredKeyframe>();
     stored->session = session;
@@ -385,7 +385,7 @@ bool Mapper::apply(const PoseGraph& optimised, const OptimisationSummary& summar
     // Nodes added since the snapshot follow their predecessor's correction.
     for (const auto& [session, chain] : chains_) {
         for (const auto& [local_map_id, id] : chain) {
-            if (optimised.find(id) || folded(session, local_map_id)) continue;
+            if (optimised.find(id) || folding_.find(session, local_map_id)) continue;
             const map::PoseGraphNode* n = graph_.find(id);
             graph_.set_pose(id, predicted_world(session, local_map_id, n->T_odom_anchor));
         }

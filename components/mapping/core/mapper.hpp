@@ -56,6 +56,7 @@
 #include "common/core/ply_io.hpp"
 #include "map/core/map_data.hpp"
 #include "mapping/core/keyframe_digest.hpp"
+#include "mapping/core/long_term_folding.hpp"
 #include "mapping/core/loop_detector.hpp"
 #include "mapping/core/mapper_config.hpp"
 #include "mapping/core/mapper_results.hpp"
@@ -163,15 +164,7 @@ class Mapper {
         map::StoredLocalMap stored;
         std::uint64_t serial = 0;  // changes with every stored snapshot (verification cache key)
     };
-    // A local map of an open session folded into an earlier map (its node).
-    struct Folded {
-        std::uint64_t node = 0;
-        Eigen::Isometry3d T_node_anchor = Eigen::Isometry3d::Identity();  // its anchor there
-        Eigen::Isometry3d T_odom_anchor = Eigen::Isometry3d::Identity();
-        std::uint32_t segment = 0;
-        double path = 0.0;  // odometry path to its anchor [m]
-        EIGEN_MAKE_ALIGNED_OPERATOR_NEW
-    };
+    using Folded = LongTermFolding::Folded;
     // A local map of a chain, folded or not: its anchor as the graph places it.
     struct ChainAnchor {
         std::uint64_t node = 0;
@@ -187,12 +180,10 @@ class Mapper {
     struct Live {
         std::string robot;
         int cooldown = 0;
-        std::map<std::uint64_t, Folded> folded;  // local map id -> where it went
-        map::SessionRecord record;               // stamps
-        std::size_t keyframes_seen = 0;          // stored or not
+        map::SessionRecord record;       // stamps
+        std::size_t keyframes_seen = 0;  // stored or not
     };
     int loops_between(std::uint64_t a, std::uint64_t b) const;  // active loop edges, either way
-    const Folded* folded(std::uint32_t session, std::uint64_t local_map_id) const;
     ChainAnchor chain_anchor(std::uint32_t session, std::uint64_t local_map_id,
                              std::uint64_t node) const;
     // Folds the finished local map of node `n` into an earlier map of the same place when the
@@ -250,8 +241,7 @@ class Mapper {
     std::map<std::uint32_t, Live> live_;  // the open sessions (the default one always)
     SessionJoins joins_;         // loops between open sessions' parts, held until enough agree
     std::size_t due_loops_ = 0;  // loops that made an optimisation due, since one
-    // Odometry edges (from, to) made through a folded map: their nodes' paths are of other laps.
-    std::set<std::pair<std::uint64_t, std::uint64_t>> relayed_edges_;
+    LongTermFolding folding_;    // where the folded local maps went
     std::vector<map::SessionRecord> past_sessions_;  // of the loaded map
 };
 

@@ -20,7 +20,8 @@ std::uint64_t Mapper::ensure_node(std::uint32_t session, std::uint64_t local_map
                                   const Eigen::Isometry3d& T_odom_anchor,
                                   std::optional<std::uint32_t> segment) {
     if (const std::optional<std::uint64_t> existing = node_of(local_map_id, session)) {
-        if (segment && !folded(session, local_map_id)) set_segment(session, local_map_id, *segment);
+        if (segment && !folding_.find(session, local_map_id))
+            set_segment(session, local_map_id, *segment);
         return *existing;
     }
     map::PoseGraphNode n;
@@ -98,7 +99,7 @@ void Mapper::link_odometry(std::uint32_t session, std::uint64_t local_map_id) {
             a.segment == b.segment
                 ? odometry_information(config_.odometry_edge, e.T_from_to.translation().norm())
                 : segment_break_information();
-        if (graph_.add_edge(e) && (a.folded || b.folded)) relayed_edges_.insert({e.from, e.to});
+        if (graph_.add_edge(e) && (a.folded || b.folded)) folding_.relay(e.from, e.to);
     };
     if (prev) link(*prev, node);
     if (next) link(node, *next);
@@ -107,7 +108,7 @@ void Mapper::link_odometry(std::uint32_t session, std::uint64_t local_map_id) {
 void Mapper::unlink_odometry(std::uint32_t session, std::uint64_t local_map_id) {
     const std::map<std::uint64_t, std::uint64_t>& chain = chains_[session];
     const auto it = chain.find(local_map_id);
-    if (folded(session, local_map_id)) return;
+    if (folding_.find(session, local_map_id)) return;
     if (it != chain.begin())
         graph_.remove_edges(std::prev(it)->second, it->second, map::EdgeKind::kOdometry);
     if (std::next(it) != chain.end())

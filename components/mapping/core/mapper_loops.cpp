@@ -147,7 +147,7 @@ void Mapper::verify(std::uint32_t session, const common::KeyframeData& keyframe,
                                             return std::numeric_limits<double>::infinity();
                                         // An edge made through a folded map joins nodes of
                                         // other laps: its own length, not their paths.
-                                        if (relayed_edges_.count({o.from, o.to}))
+                                        if (folding_.relayed(o.from, o.to))
                                             return o.T_from_to.translation().norm();
                                         return std::abs(path_at_[o.to] - path_at_[o.from]);
                                     })

@@ -76,8 +76,7 @@ std::size_t Mapper::memory_bytes() const {
         for (const common::VoxelData& v : d.voxels)
             n += v.life.seen.capacity() * sizeof(std::uint16_t);
     }
-    for (const auto& [session, live] : live_)
-        n += live.folded.size() * (sizeof(Folded) + 48);  // map node overhead
+    n += folding_.memory_bytes();
     for (const auto& [session, chain] : chains_) n += chain.size() * 48;
     auto descriptor_bytes = [](const places::ScanContext& d) {
         return (d.value.capacity() + d.spread.capacity()) * sizeof(float) + d.occupied.capacity();

@@ -21,7 +21,7 @@ void Mapper::set_segment(std::uint32_t session, std::uint64_t local_map_id, std:
     // The maps after it that only took their segment from it take the new one too.
     std::vector<std::uint64_t> relink = {local_map_id};
     for (auto next = std::next(it); next != chain.end(); ++next) {
-        if (folded(session, next->first)) break;  // finished, so told
+        if (folding_.find(session, next->first)) break;  // finished, so told
         if (!segments_.follow(next->second, segment)) break;
         relink.push_back(next->first);
     }
@@ -79,7 +79,7 @@ std::vector<SegmentStatus> Mapper::segments(std::uint32_t session) const {
         return r.first < session || r == first;
     };
     for (const auto& [local_map_id, node] : chain->second) {
-        const Folded* f = folded(session, local_map_id);
+        const Folded* f = folding_.find(session, local_map_id);
         const std::uint32_t s = f ? f->segment : segment_of(node);
         if (!out.empty() && out.back().segment == s) continue;
         SegmentStatus st;
