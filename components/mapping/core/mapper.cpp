@@ -70,7 +70,7 @@ Mapper::Mapper(const MapperConfig& config, const map::MapData& loaded, bool free
         if (!graph_.add_node(n))
             throw common::IoError("loaded map",
                                   "node " + std::to_string(n.id) + " is invalid or repeated");
-        chains_[n.session][n.local_map_id] = n.id;
+        chains_.set(n.session, n.local_map_id, n.id);
         next_node_ = std::max(next_node_, n.id + 1);
         last_session = std::max(last_session, n.session);
     }
@@ -79,7 +79,7 @@ Mapper::Mapper(const MapperConfig& config, const map::MapData& loaded, bool free
     for (const map::PoseGraphEdge& e : graph_.edges()) {
         if (e.kind == map::EdgeKind::kOdometry) breaks[{e.from, e.to}] = is_segment_break(e);
     }
-    for (const auto& [session, chain] : chains_) {
+    for (const auto& [session, chain] : chains_.all()) {
         // The file keeps no segment numbers: the breaks in the odometry chain give them back.
         std::uint32_t segment = 0;
         std::uint64_t prev = 0;
@@ -90,7 +90,7 @@ Mapper::Mapper(const MapperConfig& config, const map::MapData& loaded, bool free
             }
             segments_.set(id, segment, true);
             prev = id;
-            set_path(session, local_map_id);
+            chains_.set_path(view(), session, local_map_id);
         }
     }
     for (const std::shared_ptr<const map::StoredKeyframe>& k : loaded.keyframes) {
@@ -139,12 +139,12 @@ std::uint32_t Mapper::open_session(const std::string& name) {
         if (live.robot == robot && !robot.empty()) return id;
     }
     Live& first = live_.at(session_);
-    if (first.robot.empty() && first.keyframes_seen == 0 && !chains_.count(session_)) {
+    if (first.robot.empty() && first.keyframes_seen == 0 && !chains_.has(session_)) {
         first.robot = robot;
         return session_;
     }
     std::uint32_t id = live_.rbegin()->first;
-    if (!chains_.empty()) id = std::max(id, chains_.rbegin()->first);
+    if (!chains_.all().empty()) id = std::max(id, chains_.all().rbegin()->first);
     live_[id + 1].robot = robot;
     return id + 1;
 }
@@ -170,11 +170,7 @@ std::optional<std::uint64_t> Mapper::node_of(std::uint64_t local_map_id) const {
 
 std::optional<std::uint64_t> Mapper::node_of(std::uint64_t local_map_id,
                                              std::uint32_t session) const {
-    const auto chain = chains_.find(session);
-    if (chain == chains_.end()) return std::nullopt;
-    const auto it = chain->second.find(local_map_id);
-    if (it == chain->second.end()) return std::nullopt;
-    return it->second;
+    return chains_.node_of(session, local_map_id);
 }
 
 LocalMapResult Mapper::add_local_map(const common::LocalMapData& map) {
@@ -383,11 +379,12 @@ bool Mapper::apply(const PoseGraph& optimised, const OptimisationSummary& summar
     graph_ = std::move(updated);
     segments_.update_placement(graph_);
     // Nodes added since the snapshot follow their predecessor's correction.
-    for (const auto& [session, chain] : chains_) {
+    for (const auto& [session, chain] : chains_.all()) {
         for (const auto& [local_map_id, id] : chain) {
             if (optimised.find(id) || folding_.find(session, local_map_id)) continue;
             const map::PoseGraphNode* n = graph_.find(id);
-            graph_.set_pose(id, predicted_world(session, local_map_id, n->T_odom_anchor));
+            graph_.set_pose(
+                id, chains_.predicted_world(view(), session, local_map_id, n->T_odom_anchor));
         }
     }
     place_unjoined_segments();

@@ -38,6 +38,11 @@
 // then on, loops between open sessions placed together start from the graph's estimate and are
 // bounded by the odometry between them, as within one session.
 //
+// Parts, each owning its state (the Mapper holds the graph, local maps, keyframes and loops, and
+// hands them to the parts' calls): OdometryChains (each session's chain of local maps as nodes,
+// odometry edges, paths), Segments (each node's odometry segment, the parts loops placed together),
+// LongTermFolding (where folded local maps went), SessionJoins (loops held between sessions).
+//
 // Frames: every odometry pose belongs to the local map it was registered in; its world pose is
 // T_world_anchor * T_odom_anchor^-1 * T_odom_lidar. Voxels never move inside their local map.
 #include <Eigen/Geometry>
@@ -60,6 +65,7 @@
 #include "mapping/core/loop_detector.hpp"
 #include "mapping/core/mapper_config.hpp"
 #include "mapping/core/mapper_results.hpp"
+#include "mapping/core/odometry_chains.hpp"
 #include "mapping/core/pose_graph.hpp"
 #include "mapping/core/segments.hpp"
 #include "mapping/core/session_joins.hpp"
@@ -165,17 +171,6 @@ class Mapper {
         std::uint64_t serial = 0;  // changes with every stored snapshot (verification cache key)
     };
     using Folded = LongTermFolding::Folded;
-    // A local map of a chain, folded or not: its anchor as the graph places it.
-    struct ChainAnchor {
-        std::uint64_t node = 0;
-        bool folded = false;
-        Eigen::Isometry3d T_node_anchor = Eigen::Isometry3d::Identity();
-        Eigen::Isometry3d T_odom_anchor = Eigen::Isometry3d::Identity();
-        Eigen::Isometry3d T_world_anchor = Eigen::Isometry3d::Identity();
-        std::uint32_t segment = 0;
-        double path = 0.0;
-        EIGEN_MAKE_ALIGNED_OPERATOR_NEW
-    };
     // What an open session holds of its own.
     struct Live {
         std::string robot;
@@ -184,8 +179,8 @@ class Mapper {
         std::size_t keyframes_seen = 0;  // stored or not
     };
     int loops_between(std::uint64_t a, std::uint64_t b) const;  // active loop edges, either way
-    ChainAnchor chain_anchor(std::uint32_t session, std::uint64_t local_map_id,
-                             std::uint64_t node) const;
+    using ChainAnchor = OdometryChains::Anchor;
+    OdometryChains::View view() const { return {graph_, segments_, folding_}; }
     // Folds the finished local map of node `n` into an earlier map of the same place when the
     // conditions hold (mapper_long_term.cpp); the node it went into, or nullopt.
     std::optional<std::uint64_t> try_fold(std::uint64_t n);
@@ -195,19 +190,13 @@ class Mapper {
                                           std::uint64_t node, const Eigen::Isometry3d& T_world,
                                           double stamp) const;
     bool tied_by_loop(std::uint64_t node) const;
-    bool has_odometry_edge(std::uint64_t a, std::uint64_t b) const;  // either way
     std::uint64_t ensure_node(std::uint32_t session, std::uint64_t local_map_id,
                               const Eigen::Isometry3d& T_odom_anchor,
                               std::optional<std::uint32_t> segment);
-    void link_odometry(std::uint32_t session, std::uint64_t local_map_id);
-    void unlink_odometry(std::uint32_t session, std::uint64_t local_map_id);
     void set_segment(std::uint32_t session, std::uint64_t local_map_id, std::uint32_t segment);
     // After an optimisation: segments that no loop joins to anything before them follow the map
     // before them.
     void place_unjoined_segments();
-    void set_path(std::uint32_t session, std::uint64_t local_map_id);
-    Eigen::Isometry3d predicted_world(std::uint32_t session, std::uint64_t local_map_id,
-                                      const Eigen::Isometry3d& T_odom_anchor) const;
     // Appends the loop candidate by place (PlaceCandidateConfig) for a keyframe of `session` in
     // node `node` at T_anchor_lidar, with its descriptor, to the descriptor's candidates.
     void add_place_candidates(std::uint32_t session, std::uint64_t node,
@@ -231,10 +220,8 @@ class Mapper {
     PoseGraph graph_;
     LoopDetector detector_;
     registration::LoopVerifier verifier_;
-    // Per session: local map id -> node, in id order (the odometry chain).
-    std::map<std::uint32_t, std::map<std::uint64_t, std::uint64_t>> chains_;
-    std::unordered_map<std::uint64_t, MapEntry> maps_;   // by node
-    std::unordered_map<std::uint64_t, double> path_at_;  // odometry path to each node [m]
+    OdometryChains chains_;  // per session: local map id -> node, and the paths
+    std::unordered_map<std::uint64_t, MapEntry> maps_;  // by node
     Segments segments_;  // of the nodes, and the parts loops placed together
     std::vector<std::shared_ptr<const map::StoredKeyframe>> keyframes_;
     std::vector<LoopClosure> loops_;

@@ -11,37 +11,6 @@
 
 namespace ltm::mapping {
 
-Mapper::ChainAnchor Mapper::chain_anchor(std::uint32_t session, std::uint64_t local_map_id,
-                                         std::uint64_t node) const {
-    ChainAnchor a;
-    a.node = node;
-    const map::PoseGraphNode* n = graph_.find(node);
-    if (const Folded* f = folding_.find(session, local_map_id)) {
-        a.folded = true;
-        a.T_node_anchor = f->T_node_anchor;
-        a.T_odom_anchor = f->T_odom_anchor;
-        a.T_world_anchor = n->T_world_anchor * f->T_node_anchor;
-        a.segment = f->segment;
-        a.path = f->path;
-        return a;
-    }
-    a.T_odom_anchor = n->T_odom_anchor;
-    a.T_world_anchor = n->T_world_anchor;
-    a.segment = segment_of(node);
-    const auto p = path_at_.find(node);
-    a.path = p == path_at_.end() ? 0.0 : p->second;
-    return a;
-}
-
-bool Mapper::has_odometry_edge(std::uint64_t a, std::uint64_t b) const {
-    for (const map::PoseGraphEdge& e : graph_.edges()) {
-        if (e.kind == map::EdgeKind::kOdometry &&
-            ((e.from == a && e.to == b) || (e.from == b && e.to == a)))
-            return true;
-    }
-    return false;
-}
-
 bool Mapper::tied_by_loop(std::uint64_t node) const {
     for (const map::PoseGraphEdge& e : graph_.edges()) {
         if (e.kind == map::EdgeKind::kLoop && e.active && (e.from == node || e.to == node))
@@ -60,7 +29,7 @@ std::optional<std::uint32_t> Mapper::stand_in(std::uint32_t session, std::uint64
     // map of odometry lies between): never on odometry drift alone.
     bool tied = tied_by_loop(node);
     if (!tied) {
-        const std::map<std::uint64_t, std::uint64_t>& chain = chains_.at(session);
+        const OdometryChains::Chain& chain = *chains_.chain(session);
         const auto it = chain.find(local_map_id);
         if (it != chain.end() && it != chain.begin()) {
             const auto prev = std::prev(it);
@@ -105,7 +74,7 @@ std::optional<std::uint64_t> Mapper::try_fold(std::uint64_t n) {
     if (due_loops_ > 0 || !tied_by_loop(n)) return std::nullopt;
     const SegmentKey root = segments_.root(graph_, n);
     const common::LocalMapData& data = *entry->second.stored.data;
-    const double path = path_at_.count(n) ? path_at_.at(n) : 0.0;
+    const double path = chains_.path(n);
     std::optional<std::uint64_t> best;
     double best_d = lt.merge_distance;
     for (const auto& [id, e] : maps_) {
@@ -118,8 +87,8 @@ std::optional<std::uint64_t> Mapper::try_fold(std::uint64_t n) {
         // An earlier lap: not a neighbour on this drive (anchors of consecutive maps can be
         // closer than merge_distance after a turn).
         if (other->session == session) {
-            const auto p = path_at_.find(id);
-            if (p == path_at_.end() || path - p->second < 4.0 * lt.merge_distance) continue;
+            if (!chains_.has_path(id) || path - chains_.path(id) < 4.0 * lt.merge_distance)
+                continue;
         }
         // Placed together by loops: never across parts no loop has joined.
         if (segments_.root(graph_, id) != root) continue;
@@ -177,12 +146,12 @@ void Mapper::fold(std::uint64_t n, std::uint64_t into) {
     f.T_node_anchor = T_into_n;
     f.T_odom_anchor = folded_node.T_odom_anchor;
     f.segment = segment_of(n);
-    f.path = path_at_.count(n) ? path_at_.at(n) : 0.0;
+    f.path = chains_.path(n);
     folding_.record(folded_node.session, folded_node.local_map_id, f);
-    chains_[folded_node.session][folded_node.local_map_id] = into;
+    chains_.set(folded_node.session, folded_node.local_map_id, into);
     maps_.erase(n);
     segments_.forget(n);
-    path_at_.erase(n);
+    chains_.forget_path(n);
 }
 
 std::vector<map::SessionRecord> Mapper::sessions() const {
@@ -192,9 +161,8 @@ std::vector<map::SessionRecord> Mapper::sessions() const {
         r.id = session;
         r.robot = live.robot;
         std::set<std::uint64_t> updated;
-        const auto chain = chains_.find(session);
-        if (chain != chains_.end()) {
-            for (const auto& [local_map_id, node] : chain->second) {
+        if (const OdometryChains::Chain* chain = chains_.chain(session)) {
+            for (const auto& [local_map_id, node] : *chain) {
                 if (const Folded* f = folding_.find(session, local_map_id)) {
                     // A map folded into another map of this session counts as added.
                     const map::PoseGraphNode* into = graph_.find(f->node);

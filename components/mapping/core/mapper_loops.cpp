@@ -149,7 +149,7 @@ void Mapper::verify(std::uint32_t session, const common::KeyframeData& keyframe,
                                         // other laps: its own length, not their paths.
                                         if (folding_.relayed(o.from, o.to))
                                             return o.T_from_to.translation().norm();
-                                        return std::abs(path_at_[o.to] - path_at_[o.from]);
+                                        return std::abs(chains_.path(o.to) - chains_.path(o.from));
                                     })
                    : std::numeric_limits<double>::infinity();
         if (std::isfinite(path)) {

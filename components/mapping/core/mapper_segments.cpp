@@ -15,7 +15,7 @@ namespace ltm::mapping {
 std::uint32_t Mapper::segment_of(std::uint64_t node) const { return segments_.of(node); }
 
 void Mapper::set_segment(std::uint32_t session, std::uint64_t local_map_id, std::uint32_t segment) {
-    const std::map<std::uint64_t, std::uint64_t>& chain = chains_[session];
+    const OdometryChains::Chain& chain = *chains_.chain(session);
     auto it = chain.find(local_map_id);
     if (!segments_.tell(it->second, segment)) return;
     // The maps after it that only took their segment from it take the new one too.
@@ -26,16 +26,16 @@ void Mapper::set_segment(std::uint32_t session, std::uint64_t local_map_id, std:
         relink.push_back(next->first);
     }
     for (const std::uint64_t id : relink) {
-        unlink_odometry(session, id);
-        link_odometry(session, id);
+        chains_.unlink(&graph_, folding_, session, id);
+        chains_.link(&graph_, segments_, &folding_, config_.odometry_edge, session, id);
     }
 }
 
 void Mapper::place_unjoined_segments() {
-    for (const auto& [session, chain] : chains_) {
+    for (const auto& [session, chain] : chains_.all()) {
         std::optional<ChainAnchor> prev;
         for (const auto& [local_map_id, id] : chain) {
-            const ChainAnchor node = chain_anchor(session, local_map_id, id);
+            const ChainAnchor node = chains_.anchor(view(), session, local_map_id, id);
             const SegmentKey key = segments_.key(graph_, id);
             // A folded map was tied by a loop: it starts no unjoined part.
             const bool starts_part = prev && !node.folded && prev->segment != node.segment &&
@@ -60,7 +60,7 @@ void Mapper::place_unjoined_segments() {
                         graph_.set_pose(p, C * graph_.find(p)->T_world_anchor);
                 }
             }
-            prev = chain_anchor(session, local_map_id, id);
+            prev = chains_.anchor(view(), session, local_map_id, id);
         }
     }
 }
@@ -69,8 +69,8 @@ std::vector<SegmentStatus> Mapper::segments() const { return segments(session_);
 
 std::vector<SegmentStatus> Mapper::segments(std::uint32_t session) const {
     std::vector<SegmentStatus> out;
-    const auto chain = chains_.find(session);
-    if (chain == chains_.end() || !is_open(session)) return out;
+    const OdometryChains::Chain* chain = chains_.chain(session);
+    if (!chain || !is_open(session)) return out;
     // What counts as the map: this session's segment 0 and whatever it is joined to, and every
     // earlier session.
     const SegmentKey first = segments_.root(SegmentKey(session, 0));
@@ -78,7 +78,7 @@ std::vector<SegmentStatus> Mapper::segments(std::uint32_t session) const {
         const SegmentKey r = segments_.root(k);
         return r.first < session || r == first;
     };
-    for (const auto& [local_map_id, node] : chain->second) {
+    for (const auto& [local_map_id, node] : *chain) {
         const Folded* f = folding_.find(session, local_map_id);
         const std::uint32_t s = f ? f->segment : segment_of(node);
         if (!out.empty() && out.back().segment == s) continue;
@@ -117,7 +117,7 @@ std::vector<SegmentStatus> Mapper::segments(std::uint32_t session) const {
 std::size_t Mapper::placed_parts() const { return segments_.placed_parts(graph_); }
 
 std::uint32_t Mapper::reference_session() const {
-    return chains_.empty() ? session_ : std::min(chains_.begin()->first, session_);
+    return chains_.all().empty() ? session_ : std::min(chains_.all().begin()->first, session_);
 }
 
 SessionStatus Mapper::session_status(std::uint32_t session) const {
@@ -151,7 +151,7 @@ SessionStatus Mapper::session_status(std::uint32_t session) const {
             found = true;
         }
         m << name.str() << " joined to the map by a loop at keyframe " << st.joined_at_keyframe;
-    } else if (!chains_.count(session)) {
+    } else if (!chains_.has(session)) {
         m << name.str() << " has no local map yet";
     } else {
         m << name.str()
