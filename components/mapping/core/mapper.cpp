@@ -49,7 +49,8 @@ Mapper::Mapper(const MapperConfig& config)
     : config_(checked(config)),
       graph_(config.pose_graph),
       detector_(config.scan_context, config.loop_detection),
-      verifier_(config.verification) {
+      verifier_(config.verification),
+      joins_(config.session_join) {
     live_[session_];
 }
 
@@ -69,7 +70,7 @@ Mapper::Mapper(const MapperConfig& config, const map::MapData& loaded, bool free
         if (!graph_.add_node(n))
             throw common::IoError("loaded map",
                                   "node " + std::to_string(n.id) + " is invalid or repeated");
-        chains_[n.session][n.local_map_id] = n.id;
+        chains_.set(n.session, n.local_map_id, n.id);
         next_node_ = std::max(next_node_, n.id + 1);
         last_session = std::max(last_session, n.session);
     }
@@ -78,7 +79,7 @@ Mapper::Mapper(const MapperConfig& config, const map::MapData& loaded, bool free
     for (const map::PoseGraphEdge& e : graph_.edges()) {
         if (e.kind == map::EdgeKind::kOdometry) breaks[{e.from, e.to}] = is_segment_break(e);
     }
-    for (const auto& [session, chain] : chains_) {
+    for (const auto& [session, chain] : chains_.all()) {
         // The file keeps no segment numbers: the breaks in the odometry chain give them back.
         std::uint32_t segment = 0;
         std::uint64_t prev = 0;
@@ -87,9 +88,9 @@ Mapper::Mapper(const MapperConfig& config, const map::MapData& loaded, bool free
                 const auto b = breaks.find({prev, id});
                 if (b != breaks.end() && b->second) ++segment;
             }
-            segment_of_[id] = NodeSegment{segment, true};
+            segments_.set(id, segment, true);
             prev = id;
-            set_path(session, local_map_id);
+            chains_.set_path(view(), session, local_map_id);
         }
     }
     for (const std::shared_ptr<const map::StoredKeyframe>& k : loaded.keyframes) {
@@ -125,7 +126,7 @@ Mapper::Mapper(const MapperConfig& config, const map::MapData& loaded, bool free
     session_ = std::max(session_, past_sessions_.empty() ? 0u : past_sessions_.back().id + 1);
     live_.clear();
     live_[session_];
-    update_placement();
+    segments_.update_placement(graph_);
 }
 
 std::uint32_t Mapper::open_session(const std::string& name) {
@@ -138,12 +139,12 @@ std::uint32_t Mapper::open_session(const std::string& name) {
         if (live.robot == robot && !robot.empty()) return id;
     }
     Live& first = live_.at(session_);
-    if (first.robot.empty() && first.keyframes_seen == 0 && !chains_.count(session_)) {
+    if (first.robot.empty() && first.keyframes_seen == 0 && !chains_.has(session_)) {
         first.robot = robot;
         return session_;
     }
     std::uint32_t id = live_.rbegin()->first;
-    if (!chains_.empty()) id = std::max(id, chains_.rbegin()->first);
+    if (!chains_.all().empty()) id = std::max(id, chains_.all().rbegin()->first);
     live_[id + 1].robot = robot;
     return id + 1;
 }
@@ -169,11 +170,7 @@ std::optional<std::uint64_t> Mapper::node_of(std::uint64_t local_map_id) const {
 
 std::optional<std::uint64_t> Mapper::node_of(std::uint64_t local_map_id,
                                              std::uint32_t session) const {
-    const auto chain = chains_.find(session);
-    if (chain == chains_.end()) return std::nullopt;
-    const auto it = chain->second.find(local_map_id);
-    if (it == chain->second.end()) return std::nullopt;
-    return it->second;
+    return chains_.node_of(session, local_map_id);
 }
 
 LocalMapResult Mapper::add_local_map(const common::LocalMapData& map) {
@@ -216,7 +213,7 @@ LocalMapResult Mapper::add_local_map(std::shared_ptr<const common::LocalMapData>
         r.message = "local map " + std::to_string(map->id) + ": voxel size must be > 0";
         return r;
     }
-    if (const Folded* f = folded(session, map->id)) {
+    if (const Folded* f = folding_.find(session, map->id)) {
         r.node = f->node;
         r.merged = true;
         r.message = "local map " + std::to_string(map->id) +
@@ -284,7 +281,7 @@ KeyframeResult Mapper::add_keyframe(const common::KeyframeData& input, std::uint
     const std::uint64_t node =
         ensure_node(session, keyframe.local_map_id, T_odom_anchor, input.segment);
     // A keyframe of a local map folded already: its pose in the node it went into.
-    if (const Folded* f = folded(session, keyframe.local_map_id))
+    if (const Folded* f = folding_.find(session, keyframe.local_map_id))
         keyframe.T_anchor_lidar = f->T_node_anchor * keyframe.T_anchor_lidar;
     auto stored = std::make_shared<map::StoredKeyframe>();
     stored->session = session;
@@ -350,7 +347,7 @@ OptimisationSummary Mapper::optimise() {
     if (s.solved) {
         due_loops_ = 0;
         ++revision_;
-        update_placement();
+        segments_.update_placement(graph_);
         place_unjoined_segments();
     }
     return s;
@@ -380,13 +377,14 @@ bool Mapper::apply(const PoseGraph& optimised, const OptimisationSummary& summar
         updated.add_edge(e);
     }
     graph_ = std::move(updated);
-    update_placement();
+    segments_.update_placement(graph_);
     // Nodes added since the snapshot follow their predecessor's correction.
-    for (const auto& [session, chain] : chains_) {
+    for (const auto& [session, chain] : chains_.all()) {
         for (const auto& [local_map_id, id] : chain) {
-            if (optimised.find(id) || folded(session, local_map_id)) continue;
+            if (optimised.find(id) || folding_.find(session, local_map_id)) continue;
             const map::PoseGraphNode* n = graph_.find(id);
-            graph_.set_pose(id, predicted_world(session, local_map_id, n->T_odom_anchor));
+            graph_.set_pose(
+                id, chains_.predicted_world(view(), session, local_map_id, n->T_odom_anchor));
         }
     }
     place_unjoined_segments();

@@ -38,6 +38,11 @@
 // then on, loops between open sessions placed together start from the graph's estimate and are
 // bounded by the odometry between them, as within one session.
 //
+// Parts, each owning its state (the Mapper holds the graph, local maps, keyframes and loops, and
+// hands them to the parts' calls): OdometryChains (each session's chain of local maps as nodes,
+// odometry edges, paths), Segments (each node's odometry segment, the parts loops placed together),
+// LongTermFolding (where folded local maps went), SessionJoins (loops held between sessions).
+//
 // Frames: every odometry pose belongs to the local map it was registered in; its world pose is
 // T_world_anchor * T_odom_anchor^-1 * T_odom_lidar. Voxels never move inside their local map.
 #include <Eigen/Geometry>
@@ -56,95 +61,17 @@
 #include "common/core/ply_io.hpp"
 #include "map/core/map_data.hpp"
 #include "mapping/core/keyframe_digest.hpp"
+#include "mapping/core/long_term_folding.hpp"
 #include "mapping/core/loop_detector.hpp"
 #include "mapping/core/mapper_config.hpp"
+#include "mapping/core/mapper_results.hpp"
+#include "mapping/core/odometry_chains.hpp"
 #include "mapping/core/pose_graph.hpp"
+#include "mapping/core/segments.hpp"
+#include "mapping/core/session_joins.hpp"
 #include "registration/core/loop_verifier.hpp"
 
 namespace ltm::mapping {
-
-struct LoopClosure {
-    std::uint32_t query_keyframe = 0, match_keyframe = 0;  // keyframe indices (order of arrival)
-    std::uint64_t query_scan = 0, match_scan = 0;          // KeyframeData::scan_index
-    std::uint32_t query_session = 0, match_session = 0;
-    std::uint32_t query_segment = 0, match_segment = 0;  // odometry segments of the two anchors
-    // Same session, across a segment break that no optimised loop had joined yet: verified from
-    // the descriptor's guess and accepted on the verification's quality alone.
-    bool across_break = false;
-    std::uint64_t from_node = 0, to_node = 0;  // the loop edge: match anchor -> query anchor
-    Eigen::Isometry3d T_from_to = Eigen::Isometry3d::Identity();
-    Eigen::Isometry3d T_match_query = Eigen::Isometry3d::Identity();  // LiDAR to LiDAR
-    double descriptor_distance = 0.0;
-    double descriptor_yaw = 0.0;  // [rad]
-    std::size_t inliers = 0;
-    double inlier_fraction = 0.0, inlier_rms = 0.0;
-    double correction_translation = 0.0;  // verification result vs the guess it started from [m]
-    double disagreement = 0.0;            // with the graph's estimate at the time [m]
-    std::size_t structure_points = 0, structure_inliers = 0;  // see registration::LoopVerification
-    bool from_graph_guess = false;  // verified from the graph's estimate, not the descriptor's
-    // Between places already joined by loops, agreeing with the graph to within
-    // long_term.agree_translation / agree_rotation: added without making an optimisation due.
-    bool agrees = false;
-    EIGEN_MAKE_ALIGNED_OPERATOR_NEW
-};
-
-struct LoopRejection {
-    std::uint32_t match_keyframe = 0;
-    double descriptor_distance = 0.0;
-    std::string reason;
-};
-
-struct KeyframeResult {
-    bool added = false;
-    std::string message;  // why it was not added (one line)
-    // Stored (a new keyframe index). False: at a mapped place, within long_term.keyframe_distance
-    // and keyframe_angle of stored keyframe `index`, which stands for it (its loops name it).
-    bool kept = false;
-    std::uint32_t index = 0;              // keyframe index when added
-    std::size_t candidates = 0;           // descriptor candidates under the threshold
-    bool verified = false;                // candidates were verified (not in the cool-down)
-    std::vector<LoopClosure> loops;       // accepted: their edges are in the graph
-    std::vector<LoopRejection> rejected;  // refused by the verification
-    // A loop that does not merely agree with the graph.
-    bool optimisation_due() const {
-        for (const LoopClosure& l : loops) {
-            if (!l.agrees) return true;
-        }
-        return false;
-    }
-};
-
-struct LocalMapResult {
-    bool added = false;   // stored (new, or a newer snapshot of a known map)
-    std::string message;  // why not (one line)
-    std::uint64_t node = 0;
-    // Folded into the existing local map of graph node `node` (an earlier lap's or session's).
-    bool merged = false;
-};
-
-// A session of the Mapper (robot), placed on the map by loops or not.
-struct SessionStatus {
-    std::uint32_t session = 0;
-    std::string robot;  // "" for the default session unless it was opened for a robot
-    // Placed with the map's first session by loops (as of the last optimisation); the map's first
-    // session always.
-    bool joined = false;
-    std::uint32_t joined_at_keyframe = 0;  // query keyframe of the earliest loop joining it
-    // "session 1 (robot2) joined to the map by a loop at keyframe 40", or what its poses are.
-    std::string message;
-};
-
-// An odometry segment of the current session.
-struct SegmentStatus {
-    std::uint32_t segment = 0;
-    std::uint64_t first_local_map = 0;  // the odometry's id of its first local map known here
-    // Placed by loops as of the last optimisation (segment 0 always): by a chain of active loop
-    // edges to segment 0 or to an earlier session's map.
-    bool joined = false;
-    std::uint32_t joined_at_keyframe = 0;  // query keyframe of the earliest loop joining it
-    // "segment 1 joined to the map by a loop at keyframe 40", or what its poses are until then.
-    std::string message;
-};
 
 class Mapper {
   public:
@@ -243,43 +170,17 @@ class Mapper {
         map::StoredLocalMap stored;
         std::uint64_t serial = 0;  // changes with every stored snapshot (verification cache key)
     };
-    // A local map of an open session folded into an earlier map (its node).
-    struct Folded {
-        std::uint64_t node = 0;
-        Eigen::Isometry3d T_node_anchor = Eigen::Isometry3d::Identity();  // its anchor there
-        Eigen::Isometry3d T_odom_anchor = Eigen::Isometry3d::Identity();
-        std::uint32_t segment = 0;
-        double path = 0.0;  // odometry path to its anchor [m]
-        EIGEN_MAKE_ALIGNED_OPERATOR_NEW
-    };
-    // A local map of a chain, folded or not: its anchor as the graph places it.
-    struct ChainAnchor {
-        std::uint64_t node = 0;
-        bool folded = false;
-        Eigen::Isometry3d T_node_anchor = Eigen::Isometry3d::Identity();
-        Eigen::Isometry3d T_odom_anchor = Eigen::Isometry3d::Identity();
-        Eigen::Isometry3d T_world_anchor = Eigen::Isometry3d::Identity();
-        std::uint32_t segment = 0;
-        double path = 0.0;
-        EIGEN_MAKE_ALIGNED_OPERATOR_NEW
-    };
+    using Folded = LongTermFolding::Folded;
     // What an open session holds of its own.
     struct Live {
         std::string robot;
         int cooldown = 0;
-        std::map<std::uint64_t, Folded> folded;  // local map id -> where it went
-        map::SessionRecord record;               // stamps
-        std::size_t keyframes_seen = 0;          // stored or not
+        map::SessionRecord record;       // stamps
+        std::size_t keyframes_seen = 0;  // stored or not
     };
-    struct NodeSegment {
-        std::uint32_t segment = 0;
-        bool told = false;  // by the node's local map (else taken from the map before it)
-    };
-    using SegmentKey = std::pair<std::uint32_t, std::uint32_t>;  // session, segment
-    int loops_between(std::uint64_t a, std::uint64_t b) const;   // active loop edges, either way
-    const Folded* folded(std::uint32_t session, std::uint64_t local_map_id) const;
-    ChainAnchor chain_anchor(std::uint32_t session, std::uint64_t local_map_id,
-                             std::uint64_t node) const;
+    int loops_between(std::uint64_t a, std::uint64_t b) const;  // active loop edges, either way
+    using ChainAnchor = OdometryChains::Anchor;
+    OdometryChains::View view() const { return {graph_, segments_, folding_}; }
     // Folds the finished local map of node `n` into an earlier map of the same place when the
     // conditions hold (mapper_long_term.cpp); the node it went into, or nullopt.
     std::optional<std::uint64_t> try_fold(std::uint64_t n);
@@ -289,25 +190,13 @@ class Mapper {
                                           std::uint64_t node, const Eigen::Isometry3d& T_world,
                                           double stamp) const;
     bool tied_by_loop(std::uint64_t node) const;
-    bool has_odometry_edge(std::uint64_t a, std::uint64_t b) const;  // either way
     std::uint64_t ensure_node(std::uint32_t session, std::uint64_t local_map_id,
                               const Eigen::Isometry3d& T_odom_anchor,
                               std::optional<std::uint32_t> segment);
-    void link_odometry(std::uint32_t session, std::uint64_t local_map_id);
-    void unlink_odometry(std::uint32_t session, std::uint64_t local_map_id);
     void set_segment(std::uint32_t session, std::uint64_t local_map_id, std::uint32_t segment);
-    SegmentKey segment_key(std::uint64_t node) const;
-    // The node's segment is known (its local map said it, or it came with a loaded map).
-    bool segment_known(std::uint64_t node) const;
-    SegmentKey placed_root(const SegmentKey& key) const;
-    // Joined segments from the active loop edges, after an optimisation.
-    void update_placement();
     // After an optimisation: segments that no loop joins to anything before them follow the map
     // before them.
     void place_unjoined_segments();
-    void set_path(std::uint32_t session, std::uint64_t local_map_id);
-    Eigen::Isometry3d predicted_world(std::uint32_t session, std::uint64_t local_map_id,
-                                      const Eigen::Isometry3d& T_odom_anchor) const;
     // Appends the loop candidate by place (PlaceCandidateConfig) for a keyframe of `session` in
     // node `node` at T_anchor_lidar, with its descriptor, to the descriptor's candidates.
     void add_place_candidates(std::uint32_t session, std::uint64_t node,
@@ -317,12 +206,6 @@ class Mapper {
     void verify(std::uint32_t session, const common::KeyframeData& keyframe,
                 const std::vector<Eigen::Vector3f>& points, std::uint64_t node,
                 const std::vector<LoopCandidate>& candidates, KeyframeResult* result);
-    // A loop between two open sessions' parts that no loop placed together (the first ones are
-    // held until session_join.loops agree): true when it is to be added now, with the held loops
-    // that agree with it (their edges added here, their closures appended to `joined`).
-    bool confirm_join(const SegmentKey& match_root, const SegmentKey& query_root,
-                      const map::PoseGraphEdge& edge, const LoopClosure& loop,
-                      std::vector<LoopClosure>* joined);
     // A loop edge between two parts no loop had placed together (sessions): the part without a
     // fixed node, the later one, set rigidly where the edge puts it (the optimisation's start).
     void align_parts(const map::PoseGraphEdge& loop);
@@ -337,27 +220,15 @@ class Mapper {
     PoseGraph graph_;
     LoopDetector detector_;
     registration::LoopVerifier verifier_;
-    // Per session: local map id -> node, in id order (the odometry chain).
-    std::map<std::uint32_t, std::map<std::uint64_t, std::uint64_t>> chains_;
-    std::unordered_map<std::uint64_t, MapEntry> maps_;           // by node
-    std::unordered_map<std::uint64_t, double> path_at_;          // odometry path to each node [m]
-    std::unordered_map<std::uint64_t, NodeSegment> segment_of_;  // by node
-    // Segments placed together by active loops, as of the last optimisation: key -> its root.
-    std::map<SegmentKey, SegmentKey> placed_;
+    OdometryChains chains_;  // per session: local map id -> node, and the paths
+    std::unordered_map<std::uint64_t, MapEntry> maps_;  // by node
+    Segments segments_;  // of the nodes, and the parts loops placed together
     std::vector<std::shared_ptr<const map::StoredKeyframe>> keyframes_;
     std::vector<LoopClosure> loops_;
     std::map<std::uint32_t, Live> live_;  // the open sessions (the default one always)
-    // Loops between two open sessions' parts, held until enough agree (SessionJoinConfig).
-    struct HeldJoin {
-        SegmentKey match_root, query_root;
-        map::PoseGraphEdge edge;
-        LoopClosure loop;
-        EIGEN_MAKE_ALIGNED_OPERATOR_NEW
-    };
-    std::vector<HeldJoin> held_joins_;
+    SessionJoins joins_;         // loops between open sessions' parts, held until enough agree
     std::size_t due_loops_ = 0;  // loops that made an optimisation due, since one
-    // Odometry edges (from, to) made through a folded map: their nodes' paths are of other laps.
-    std::set<std::pair<std::uint64_t, std::uint64_t>> relayed_edges_;
+    LongTermFolding folding_;    // where the folded local maps went
     std::vector<map::SessionRecord> past_sessions_;  // of the loaded map
 };
 

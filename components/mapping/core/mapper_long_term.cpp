@@ -11,44 +11,6 @@
 
 namespace ltm::mapping {
 
-const Mapper::Folded* Mapper::folded(std::uint32_t session, std::uint64_t local_map_id) const {
-    const auto live = live_.find(session);
-    if (live == live_.end()) return nullptr;
-    const auto it = live->second.folded.find(local_map_id);
-    return it == live->second.folded.end() ? nullptr : &it->second;
-}
-
-Mapper::ChainAnchor Mapper::chain_anchor(std::uint32_t session, std::uint64_t local_map_id,
-                                         std::uint64_t node) const {
-    ChainAnchor a;
-    a.node = node;
-    const map::PoseGraphNode* n = graph_.find(node);
-    if (const Folded* f = folded(session, local_map_id)) {
-        a.folded = true;
-        a.T_node_anchor = f->T_node_anchor;
-        a.T_odom_anchor = f->T_odom_anchor;
-        a.T_world_anchor = n->T_world_anchor * f->T_node_anchor;
-        a.segment = f->segment;
-        a.path = f->path;
-        return a;
-    }
-    a.T_odom_anchor = n->T_odom_anchor;
-    a.T_world_anchor = n->T_world_anchor;
-    a.segment = segment_of(node);
-    const auto p = path_at_.find(node);
-    a.path = p == path_at_.end() ? 0.0 : p->second;
-    return a;
-}
-
-bool Mapper::has_odometry_edge(std::uint64_t a, std::uint64_t b) const {
-    for (const map::PoseGraphEdge& e : graph_.edges()) {
-        if (e.kind == map::EdgeKind::kOdometry &&
-            ((e.from == a && e.to == b) || (e.from == b && e.to == a)))
-            return true;
-    }
-    return false;
-}
-
 bool Mapper::tied_by_loop(std::uint64_t node) const {
     for (const map::PoseGraphEdge& e : graph_.edges()) {
         if (e.kind == map::EdgeKind::kLoop && e.active && (e.from == node || e.to == node))
@@ -67,11 +29,11 @@ std::optional<std::uint32_t> Mapper::stand_in(std::uint32_t session, std::uint64
     // map of odometry lies between): never on odometry drift alone.
     bool tied = tied_by_loop(node);
     if (!tied) {
-        const std::map<std::uint64_t, std::uint64_t>& chain = chains_.at(session);
+        const OdometryChains::Chain& chain = *chains_.chain(session);
         const auto it = chain.find(local_map_id);
         if (it != chain.end() && it != chain.begin()) {
             const auto prev = std::prev(it);
-            tied = folded(session, prev->first) || tied_by_loop(prev->second);
+            tied = folding_.find(session, prev->first) || tied_by_loop(prev->second);
         }
     }
     if (!tied) return std::nullopt;
@@ -110,9 +72,9 @@ std::optional<std::uint64_t> Mapper::try_fold(std::uint64_t n) {
     const std::uint32_t session = node->session;
     // Tied to the map by a verified loop, and the graph settled (no optimisation due).
     if (due_loops_ > 0 || !tied_by_loop(n)) return std::nullopt;
-    const SegmentKey root = placed_root(segment_key(n));
+    const SegmentKey root = segments_.root(graph_, n);
     const common::LocalMapData& data = *entry->second.stored.data;
-    const double path = path_at_.count(n) ? path_at_.at(n) : 0.0;
+    const double path = chains_.path(n);
     std::optional<std::uint64_t> best;
     double best_d = lt.merge_distance;
     for (const auto& [id, e] : maps_) {
@@ -125,11 +87,11 @@ std::optional<std::uint64_t> Mapper::try_fold(std::uint64_t n) {
         // An earlier lap: not a neighbour on this drive (anchors of consecutive maps can be
         // closer than merge_distance after a turn).
         if (other->session == session) {
-            const auto p = path_at_.find(id);
-            if (p == path_at_.end() || path - p->second < 4.0 * lt.merge_distance) continue;
+            if (!chains_.has_path(id) || path - chains_.path(id) < 4.0 * lt.merge_distance)
+                continue;
         }
         // Placed together by loops: never across parts no loop has joined.
-        if (placed_root(segment_key(id)) != root) continue;
+        if (segments_.root(graph_, id) != root) continue;
         const double d =
             (other->T_world_anchor.translation() - node->T_world_anchor.translation()).norm();
         if (d <= best_d) {
@@ -156,50 +118,8 @@ void Mapper::fold(std::uint64_t n, std::uint64_t into) {
     e.stored.data = std::move(merged);
     e.serial = next_serial_++;
 
-    // The graph without the node: its edges name `into`, measured from its anchor. An edge
-    // between the two disappears (the merge holds it); an odometry edge between two places
-    // already joined by one, or a loop edge beyond max_loops_per_anchor_pair, is left out.
-    PoseGraph updated(graph_.config());
-    for (const map::PoseGraphNode& x : graph_.nodes()) {
-        if (x.id != n) updated.add_node(x);
-    }
-    std::vector<map::PoseGraphEdge> moved;
-    for (const map::PoseGraphEdge& x : graph_.edges()) {
-        if (x.from != n && x.to != n) {
-            updated.add_edge(x);
-            continue;
-        }
-        map::PoseGraphEdge y = x;
-        if (y.from == n) {
-            y.from = into;
-            y.T_from_to = T_into_n * y.T_from_to;
-        }
-        if (y.to == n) {
-            y.to = into;
-            y.T_from_to = y.T_from_to * T_n_into;
-        }
-        if (y.from != y.to) moved.push_back(y);
-    }
-    std::set<std::pair<std::uint64_t, std::uint64_t>> relayed;
-    for (const auto& [a, b] : relayed_edges_) {
-        if (a != n && b != n) relayed.insert({a, b});
-    }
-    for (const map::PoseGraphEdge& y : moved) {
-        int same = 0;
-        for (const map::PoseGraphEdge& z : updated.edges()) {
-            same += z.kind == y.kind && (y.kind == map::EdgeKind::kOdometry || z.active) &&
-                    ((z.from == y.from && z.to == y.to) || (z.from == y.to && z.to == y.from));
-        }
-        const int limit = y.kind == map::EdgeKind::kOdometry ? 1
-                          : config_.max_loops_per_anchor_pair > 0
-                              ? config_.max_loops_per_anchor_pair
-                              : std::numeric_limits<int>::max();
-        if (same >= limit) continue;
-        if (updated.add_edge(y) && y.kind == map::EdgeKind::kOdometry)
-            relayed.insert({y.from, y.to});
-    }
-    graph_ = std::move(updated);
-    relayed_edges_ = std::move(relayed);
+    // The graph without the node: its edges name `into`, measured from its anchor.
+    graph_ = folding_.without(graph_, n, into, T_into_n, config_.max_loops_per_anchor_pair);
 
     // Keyframes of the folded map: in the node it went into.
     for (std::shared_ptr<const map::StoredKeyframe>& k : keyframes_) {
@@ -226,12 +146,12 @@ void Mapper::fold(std::uint64_t n, std::uint64_t into) {
     f.T_node_anchor = T_into_n;
     f.T_odom_anchor = folded_node.T_odom_anchor;
     f.segment = segment_of(n);
-    f.path = path_at_.count(n) ? path_at_.at(n) : 0.0;
-    live_.at(folded_node.session).folded[folded_node.local_map_id] = f;
-    chains_[folded_node.session][folded_node.local_map_id] = into;
+    f.path = chains_.path(n);
+    folding_.record(folded_node.session, folded_node.local_map_id, f);
+    chains_.set(folded_node.session, folded_node.local_map_id, into);
     maps_.erase(n);
-    segment_of_.erase(n);
-    path_at_.erase(n);
+    segments_.forget(n);
+    chains_.forget_path(n);
 }
 
 std::vector<map::SessionRecord> Mapper::sessions() const {
@@ -241,10 +161,9 @@ std::vector<map::SessionRecord> Mapper::sessions() const {
         r.id = session;
         r.robot = live.robot;
         std::set<std::uint64_t> updated;
-        const auto chain = chains_.find(session);
-        if (chain != chains_.end()) {
-            for (const auto& [local_map_id, node] : chain->second) {
-                if (const Folded* f = folded(session, local_map_id)) {
+        if (const OdometryChains::Chain* chain = chains_.chain(session)) {
+            for (const auto& [local_map_id, node] : *chain) {
+                if (const Folded* f = folding_.find(session, local_map_id)) {
                     // A map folded into another map of this session counts as added.
                     const map::PoseGraphNode* into = graph_.find(f->node);
                     if (into && into->session != session) updated.insert(f->node);

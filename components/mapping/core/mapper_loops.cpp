@@ -35,7 +35,7 @@ void Mapper::add_place_candidates(std::uint32_t session, std::uint64_t node,
     if (!config_.loop_closure || !config_.verify_from_graph || !(radius > 0.0) || !own ||
         live_.size() < 2)
         return;  // off, or no other robot's session open
-    const SegmentKey root = placed_root(segment_key(node));
+    const SegmentKey root = segments_.root(graph_, node);
     const Eigen::Vector3d at = (own->T_world_anchor * T_anchor_lidar).translation();
     std::set<std::uint64_t> listed;  // the descriptor's candidates' local maps: verified anyway
     for (const LoopCandidate& c : *candidates) listed.insert(keyframes_[c.match]->node);
@@ -45,10 +45,10 @@ void Mapper::add_place_candidates(std::uint32_t session, std::uint64_t node,
     auto usable = [&](std::uint64_t n) {
         const auto [it, fresh] = eligible.try_emplace(n, false);
         if (!fresh) return it->second;
-        const SegmentKey key = segment_key(n);
+        const SegmentKey key = segments_.key(graph_, n);
         const int pair_limit = config_.max_loops_per_anchor_pair;
         it->second = n != node && !listed.count(n) && key.first != session && is_open(key.first) &&
-                     placed_root(key) == root && maps_.count(n) > 0 &&
+                     segments_.root(key) == root && maps_.count(n) > 0 &&
                      (pair_limit == 0 || loops_between(n, node) < pair_limit);
         return it->second;
     };
@@ -108,8 +108,9 @@ void Mapper::verify(std::uint32_t session, const common::KeyframeData& keyframe,
         const Eigen::Isometry3d predicted =
             graph_.find(match.node)->T_world_anchor.inverse() * graph_.find(node)->T_world_anchor;
         const bool same_session = match.session == session;
-        const SegmentKey match_key = segment_key(match.node), query_key = segment_key(node);
-        const bool together = placed_root(match_key) == placed_root(query_key);
+        const SegmentKey match_key = segments_.key(graph_, match.node),
+                         query_key = segments_.key(graph_, node);
+        const bool together = segments_.root(match_key) == segments_.root(query_key);
         const bool placed = together && (same_session || is_open(match.session));
         registration::GuessList guesses;
         const bool graph_guess = placed && config_.verify_from_graph;
@@ -146,9 +147,9 @@ void Mapper::verify(std::uint32_t session, const common::KeyframeData& keyframe,
                                             return std::numeric_limits<double>::infinity();
                                         // An edge made through a folded map joins nodes of
                                         // other laps: its own length, not their paths.
-                                        if (relayed_edges_.count({o.from, o.to}))
+                                        if (folding_.relayed(o.from, o.to))
                                             return o.T_from_to.translation().norm();
-                                        return std::abs(path_at_[o.to] - path_at_[o.from]);
+                                        return std::abs(chains_.path(o.to) - chains_.path(o.from));
                                     })
                    : std::numeric_limits<double>::infinity();
         if (std::isfinite(path)) {
@@ -194,19 +195,28 @@ void Mapper::verify(std::uint32_t session, const common::KeyframeData& keyframe,
         l.from_graph_guess = graph_guess && v.guess == 0;
         // Places joined already (by loops, as of the last optimisation) and a loop that only
         // confirms the graph: no optimisation due for it.
-        l.agrees = placed_root(match_key) == placed_root(query_key) &&
+        l.agrees = segments_.root(match_key) == segments_.root(query_key) &&
                    disagreement <= config_.long_term.agree_translation &&
                    disagreement_deg <= config_.long_term.agree_rotation;
         // Two robots' parts not placed together: held until enough loops agree.
-        std::vector<LoopClosure> joined;
+        std::vector<SessionJoins::Join> agreed;
         if (!same_session && !together && is_open(match.session) &&
-            !confirm_join(placed_root(match_key), placed_root(query_key), e, l, &joined)) {
+            !joins_.confirm(segments_.root(match_key), segments_.root(query_key), e, l, graph_,
+                            segments_, &agreed)) {
             rejection.reason = "held: the first loop between session " +
                                std::to_string(match.session) + "'s and session " +
                                std::to_string(session) +
                                "'s parts waits for another that agrees (session_join.loops)";
             r->rejected.push_back(rejection);
             continue;
+        }
+        // The held loops that agree with it go first (within max_loops_per_anchor_pair).
+        std::vector<LoopClosure> joined;
+        for (const SessionJoins::Join& j : agreed) {
+            if (config_.max_loops_per_anchor_pair > 0 &&
+                loops_between(j.edge.from, j.edge.to) >= config_.max_loops_per_anchor_pair)
+                continue;
+            if (graph_.add_edge(j.edge)) joined.push_back(j.loop);
         }
         if (!graph_.add_edge(e)) continue;
         // The first loop between two sessions' parts: the later part set where it says.
@@ -220,77 +230,14 @@ void Mapper::verify(std::uint32_t session, const common::KeyframeData& keyframe,
     }
 }
 
-bool Mapper::confirm_join(const SegmentKey& match_root, const SegmentKey& query_root,
-                          const map::PoseGraphEdge& edge, const LoopClosure& loop,
-                          std::vector<LoopClosure>* joined) {
-    const SessionJoinConfig& sj = config_.session_join;
-    if (sj.loops <= 1) return true;
-    // Where the `to` side's part lies in the `from` side's, by a loop: the correction of the
-    // `to` part, C = T_from * Z * T_to^-1 (world poses as of now); between the same two parts
-    // either way round.
-    auto correction = [this](const map::PoseGraphEdge& x) {
-        return graph_.find(x.from)->T_world_anchor * x.T_from_to *
-               graph_.find(x.to)->T_world_anchor.inverse();
-    };
-    std::vector<std::size_t> agreeing;
-    for (std::size_t i = 0; i < held_joins_.size(); ++i) {
-        const HeldJoin& h = held_joins_[i];
-        if (!graph_.find(h.edge.from) || !graph_.find(h.edge.to)) continue;  // folded since
-        if (!segment_known(h.edge.from) || !segment_known(h.edge.to)) continue;
-        const bool same_way = h.match_root == match_root && h.query_root == query_root;
-        const bool other_way = h.match_root == query_root && h.query_root == match_root;
-        if (!same_way && !other_way) continue;
-        // The held loop's correction, for this loop's `to` part; what it predicts for this edge.
-        const Eigen::Isometry3d C =
-            same_way ? correction(h.edge) : Eigen::Isometry3d(correction(h.edge).inverse());
-        const Eigen::Isometry3d predicted = graph_.find(edge.from)->T_world_anchor.inverse() * C *
-                                            graph_.find(edge.to)->T_world_anchor;
-        const Eigen::Isometry3d D = predicted.inverse() * edge.T_from_to;
-        if (D.translation().norm() <= sj.agree_translation &&
-            Eigen::AngleAxisd(D.linear()).angle() * 180.0 / M_PI <= sj.agree_rotation)
-            agreeing.push_back(i);
-    }
-    // ... from at least two keyframes (the candidates of one keyframe share its odometry, right
-    // or wrong), and only where both nodes' segments are known: the odometry hands a new local
-    // map's first keyframes over before the map that says it starts a new segment (a robot
-    // lifted and set down, say), and until then the node belongs to the segment before it.
-    std::set<std::pair<std::uint32_t, std::uint32_t>> keyframes = {
-        {loop.query_session, loop.query_keyframe}};
-    for (const std::size_t i : agreeing)
-        keyframes.insert({held_joins_[i].loop.query_session, held_joins_[i].loop.query_keyframe});
-    if (agreeing.size() + 1 < std::size_t(sj.loops) || keyframes.size() < 2 ||
-        !segment_known(edge.from) || !segment_known(edge.to)) {
-        held_joins_.push_back(HeldJoin{match_root, query_root, edge, loop});
-        constexpr std::size_t kMaxHeld = 256;
-        if (held_joins_.size() > kMaxHeld) held_joins_.erase(held_joins_.begin());
-        return false;
-    }
-    for (const std::size_t i : agreeing) {
-        const map::PoseGraphEdge& h = held_joins_[i].edge;
-        if (config_.max_loops_per_anchor_pair > 0 &&
-            loops_between(h.from, h.to) >= config_.max_loops_per_anchor_pair)
-            continue;
-        if (graph_.add_edge(h)) joined->push_back(held_joins_[i].loop);
-    }
-    // Those two parts are joined now: what else was held between them is dropped.
-    std::vector<HeldJoin> kept;
-    for (HeldJoin& h : held_joins_) {
-        const bool pair = (h.match_root == match_root && h.query_root == query_root) ||
-                          (h.match_root == query_root && h.query_root == match_root);
-        if (!pair) kept.push_back(std::move(h));
-    }
-    held_joins_ = std::move(kept);
-    return true;
-}
-
 void Mapper::align_parts(const map::PoseGraphEdge& loop) {
-    const SegmentKey from_root = placed_root(segment_key(loop.from));
-    const SegmentKey to_root = placed_root(segment_key(loop.to));
+    const SegmentKey from_root = segments_.root(graph_, loop.from);
+    const SegmentKey to_root = segments_.root(graph_, loop.to);
     if (from_root == to_root) return;
     std::vector<std::uint64_t> from_part, to_part;
     bool from_fixed = false, to_fixed = false;
     for (const map::PoseGraphNode& n : graph_.nodes()) {
-        const SegmentKey r = placed_root(segment_key(n.id));
+        const SegmentKey r = segments_.root(graph_, n.id);
         if (r == from_root) {
             from_part.push_back(n.id);
             from_fixed = from_fixed || n.fixed;

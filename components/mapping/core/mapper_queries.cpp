@@ -15,7 +15,7 @@ std::optional<Eigen::Isometry3d> Mapper::T_world_odom(std::uint64_t local_map_id
                                                       std::uint32_t session) const {
     const std::optional<std::uint64_t> id = node_of(local_map_id, session);
     if (!id) return std::nullopt;
-    const ChainAnchor a = chain_anchor(session, local_map_id, *id);
+    const ChainAnchor a = chains_.anchor(view(), session, local_map_id, *id);
     return a.T_world_anchor * a.T_odom_anchor.inverse();
 }
 
@@ -76,9 +76,8 @@ std::size_t Mapper::memory_bytes() const {
         for (const common::VoxelData& v : d.voxels)
             n += v.life.seen.capacity() * sizeof(std::uint16_t);
     }
-    for (const auto& [session, live] : live_)
-        n += live.folded.size() * (sizeof(Folded) + 48);  // map node overhead
-    for (const auto& [session, chain] : chains_) n += chain.size() * 48;
+    n += folding_.memory_bytes();
+    n += chains_.memory_bytes();
     auto descriptor_bytes = [](const places::ScanContext& d) {
         return (d.value.capacity() + d.spread.capacity()) * sizeof(float) + d.occupied.capacity();
     };

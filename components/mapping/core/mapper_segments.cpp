@@ -1,6 +1,7 @@
-// The Mapper's odometry segments (see mapper.hpp): which segment each graph node belongs to,
-// where a segment not yet joined by a loop is placed (at the odometry's estimate across its
-// break), and the status of every segment. Split from mapper.cpp: one concept a file.
+// The Mapper's odometry segments and sessions on the map (see mapper.hpp; the segments and their
+// placement are Segments'): a segment told late relinks the chain after it, a segment not yet
+// joined by a loop is placed at the odometry's estimate across its break, and the status of every
+// segment and session.
 #include <algorithm>
 #include <map>
 #include <set>
@@ -11,83 +12,35 @@
 
 namespace ltm::mapping {
 
-std::uint32_t Mapper::segment_of(std::uint64_t node) const {
-    const auto it = segment_of_.find(node);
-    return it == segment_of_.end() ? 0 : it->second.segment;
-}
+std::uint32_t Mapper::segment_of(std::uint64_t node) const { return segments_.of(node); }
 
 void Mapper::set_segment(std::uint32_t session, std::uint64_t local_map_id, std::uint32_t segment) {
-    const std::map<std::uint64_t, std::uint64_t>& chain = chains_[session];
+    const OdometryChains::Chain& chain = *chains_.chain(session);
     auto it = chain.find(local_map_id);
-    NodeSegment& own = segment_of_[it->second];
-    const bool changed = own.segment != segment;
-    own = NodeSegment{segment, true};
-    if (!changed) return;
+    if (!segments_.tell(it->second, segment)) return;
     // The maps after it that only took their segment from it take the new one too.
     std::vector<std::uint64_t> relink = {local_map_id};
     for (auto next = std::next(it); next != chain.end(); ++next) {
-        if (folded(session, next->first)) break;  // finished, so told
-        NodeSegment& n = segment_of_[next->second];
-        if (n.told) break;
-        n.segment = segment;
+        if (folding_.find(session, next->first)) break;  // finished, so told
+        if (!segments_.follow(next->second, segment)) break;
         relink.push_back(next->first);
     }
     for (const std::uint64_t id : relink) {
-        unlink_odometry(session, id);
-        link_odometry(session, id);
+        chains_.unlink(&graph_, folding_, session, id);
+        chains_.link(&graph_, segments_, &folding_, config_.odometry_edge, session, id);
     }
-}
-
-bool Mapper::segment_known(std::uint64_t node) const {
-    const auto it = segment_of_.find(node);
-    return it == segment_of_.end() || it->second.told;
-}
-
-Mapper::SegmentKey Mapper::segment_key(std::uint64_t node) const {
-    const map::PoseGraphNode* n = graph_.find(node);
-    return {n ? n->session : 0, segment_of(node)};
-}
-
-Mapper::SegmentKey Mapper::placed_root(const SegmentKey& key) const {
-    const auto it = placed_.find(key);
-    return it == placed_.end() ? key : it->second;
-}
-
-void Mapper::update_placement() {
-    // Union-find over (session, segment) by the active loop edges: the graph's estimate of the
-    // relative pose of two segments means something once an optimisation has placed them by loops.
-    std::map<SegmentKey, SegmentKey> parent;
-    auto root = [&](SegmentKey k) {
-        for (auto it = parent.find(k); it != parent.end() && it->second != k; it = parent.find(k))
-            k = it->second;
-        return k;
-    };
-    // An odometry edge between two segments that is not a break joins them too: one made through
-    // a local map folded into another session's (the chain goes on from that map), where the loop
-    // that tied them has gone with the fold.
-    for (const map::PoseGraphEdge& e : graph_.edges()) {
-        const bool joins = e.kind == map::EdgeKind::kLoop ? e.active : !is_segment_break(e);
-        if (!joins) continue;
-        const SegmentKey a = root(segment_key(e.from)), b = root(segment_key(e.to));
-        if (a == b) continue;
-        parent.emplace(a, a);
-        parent.emplace(b, b);
-        if (a != b) parent[std::max(a, b)] = std::min(a, b);
-    }
-    placed_.clear();
-    for (const auto& [key, up] : parent) placed_[key] = root(key);
 }
 
 void Mapper::place_unjoined_segments() {
-    for (const auto& [session, chain] : chains_) {
+    for (const auto& [session, chain] : chains_.all()) {
         std::optional<ChainAnchor> prev;
         for (const auto& [local_map_id, id] : chain) {
-            const ChainAnchor node = chain_anchor(session, local_map_id, id);
-            const SegmentKey key = segment_key(id);
+            const ChainAnchor node = chains_.anchor(view(), session, local_map_id, id);
+            const SegmentKey key = segments_.key(graph_, id);
             // A folded map was tied by a loop: it starts no unjoined part.
             const bool starts_part = prev && !node.folded && prev->segment != node.segment &&
-                                     placed_root(key) == key &&
-                                     placed_root(segment_key(prev->node)) != key;
+                                     segments_.root(key) == key &&
+                                     segments_.root(graph_, prev->node) != key;
             if (starts_part) {
                 // The first map of a segment that no loop joins to anything before it: its part
                 // is placed by the edge across the break alone, at the odometry's best estimate
@@ -98,7 +51,7 @@ void Mapper::place_unjoined_segments() {
                 std::vector<std::uint64_t> part;
                 bool fixed = false;
                 for (const map::PoseGraphNode& n : graph_.nodes()) {
-                    if (placed_root(segment_key(n.id)) != key) continue;
+                    if (segments_.root(graph_, n.id) != key) continue;
                     part.push_back(n.id);
                     fixed = fixed || n.fixed;
                 }
@@ -107,7 +60,7 @@ void Mapper::place_unjoined_segments() {
                         graph_.set_pose(p, C * graph_.find(p)->T_world_anchor);
                 }
             }
-            prev = chain_anchor(session, local_map_id, id);
+            prev = chains_.anchor(view(), session, local_map_id, id);
         }
     }
 }
@@ -116,17 +69,17 @@ std::vector<SegmentStatus> Mapper::segments() const { return segments(session_);
 
 std::vector<SegmentStatus> Mapper::segments(std::uint32_t session) const {
     std::vector<SegmentStatus> out;
-    const auto chain = chains_.find(session);
-    if (chain == chains_.end() || !is_open(session)) return out;
+    const OdometryChains::Chain* chain = chains_.chain(session);
+    if (!chain || !is_open(session)) return out;
     // What counts as the map: this session's segment 0 and whatever it is joined to, and every
     // earlier session.
-    const SegmentKey first = placed_root(SegmentKey(session, 0));
+    const SegmentKey first = segments_.root(SegmentKey(session, 0));
     auto on_map = [&](const SegmentKey& k) {
-        const SegmentKey r = placed_root(k);
+        const SegmentKey r = segments_.root(k);
         return r.first < session || r == first;
     };
-    for (const auto& [local_map_id, node] : chain->second) {
-        const Folded* f = folded(session, local_map_id);
+    for (const auto& [local_map_id, node] : *chain) {
+        const Folded* f = folding_.find(session, local_map_id);
         const std::uint32_t s = f ? f->segment : segment_of(node);
         if (!out.empty() && out.back().segment == s) continue;
         SegmentStatus st;
@@ -141,7 +94,7 @@ std::vector<SegmentStatus> Mapper::segments(std::uint32_t session) const {
             bool found = false;
             for (const map::PoseGraphEdge& e : graph_.edges()) {
                 if (e.kind != map::EdgeKind::kLoop || !e.active) continue;
-                const SegmentKey a = segment_key(e.from), b = segment_key(e.to);
+                const SegmentKey a = segments_.key(graph_, e.from), b = segments_.key(graph_, e.to);
                 if (a == b || (a != SegmentKey(session, s) && b != SegmentKey(session, s)))
                     continue;
                 const std::uint32_t k = std::uint32_t(e.query_keyframe);
@@ -161,14 +114,10 @@ std::vector<SegmentStatus> Mapper::segments(std::uint32_t session) const {
     return out;
 }
 
-std::size_t Mapper::placed_parts() const {
-    std::set<SegmentKey> roots;
-    for (const map::PoseGraphNode& n : graph_.nodes()) roots.insert(placed_root(segment_key(n.id)));
-    return roots.size();
-}
+std::size_t Mapper::placed_parts() const { return segments_.placed_parts(graph_); }
 
 std::uint32_t Mapper::reference_session() const {
-    return chains_.empty() ? session_ : std::min(chains_.begin()->first, session_);
+    return chains_.all().empty() ? session_ : std::min(chains_.all().begin()->first, session_);
 }
 
 SessionStatus Mapper::session_status(std::uint32_t session) const {
@@ -183,25 +132,26 @@ SessionStatus Mapper::session_status(std::uint32_t session) const {
         return st;
     }
     const std::uint32_t reference = reference_session();
-    const SegmentKey own = placed_root(SegmentKey(session, 0));
+    const SegmentKey own = segments_.root(SegmentKey(session, 0));
     std::ostringstream m;
     if (session == reference) {
         st.joined = true;
         m << name.str() << ": the map's first";
-    } else if (own == placed_root(SegmentKey(reference, 0))) {
+    } else if (own == segments_.root(SegmentKey(reference, 0))) {
         st.joined = true;
         // The earliest active loop between this session and another one.
         bool found = false;
         for (const map::PoseGraphEdge& e : graph_.edges()) {
             if (e.kind != map::EdgeKind::kLoop || !e.active) continue;
-            const std::uint32_t a = segment_key(e.from).first, b = segment_key(e.to).first;
+            const std::uint32_t a = segments_.key(graph_, e.from).first,
+                                b = segments_.key(graph_, e.to).first;
             if (a == b || (a != session && b != session)) continue;
             const std::uint32_t k = std::uint32_t(e.query_keyframe);
             if (!found || k < st.joined_at_keyframe) st.joined_at_keyframe = k;
             found = true;
         }
         m << name.str() << " joined to the map by a loop at keyframe " << st.joined_at_keyframe;
-    } else if (!chains_.count(session)) {
+    } else if (!chains_.has(session)) {
         m << name.str() << " has no local map yet";
     } else {
         m << name.str()
