@@ -14,7 +14,10 @@ skip() { echo "SKIPPED: $*"; exit 77; }
 command -v nft >/dev/null || skip "nft is not installed (./ltm setup installs nftables)"
 probe="ltm_link_probe_$$"
 ip netns add "$probe" 2>/dev/null || skip "network namespaces are not available here"
+# Entering one needs a mount namespace of its own (in a chroot whose / is no mount point it fails).
+err="$(ip netns exec "$probe" true 2>&1)"; rc=$?
 ip netns del "$probe"
+[ "$rc" = 0 ] || skip "network namespaces cannot be entered here (ip netns exec: ${err//$'\n'/ })"
 
 fails=0
 check() {  # check NAME FUNCTION

@@ -165,6 +165,8 @@ for ns in $(ip netns list 2>/dev/null | awk '{print $1}' | grep -E '^ltm_(robot[
 done
 ip netns add "$NS_BASE" 2>/dev/null || die "cannot create a network namespace (ip netns add failed): not available here"
 ip -n "$NS_BASE" link set lo up
+err="$(ip netns exec "$NS_BASE" true 2>&1)" ||
+    die "cannot enter a network namespace here (ip netns exec: ${err//$'\n'/ }): a chroot whose / is no mount point?"
 ip -n "$NS_BASE" link add "$BRIDGE" type bridge || die "cannot create a bridge"
 ip -n "$NS_BASE" addr add "$ADDR_BASE/24" dev "$BRIDGE"
 ip -n "$NS_BASE" link set "$BRIDGE" up
