@@ -103,10 +103,7 @@ void ComponentContext::attach(const Subscription& s) {
 bool ComponentContext::Subscription::duplicate(const dds_sample_info_t& info) {
     auto [it, fresh] = last_source_time.try_emplace(info.publication_handle, info.source_timestamp);
     if (fresh) return false;
-    if (it->second == info.source_timestamp) {
-        ++duplicates;
-        return true;
-    }
+    if (it->second == info.source_timestamp) return true;
     it->second = info.source_timestamp;
     return false;
 }

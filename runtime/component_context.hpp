@@ -125,7 +125,6 @@ class ComponentContext {
         // the previous one is the copy of a write retried after back-pressure (write_sample)
         // and is dropped, so that a handler sees every sample exactly once.
         std::map<dds_instance_handle_t, dds_time_t> last_source_time;
-        std::uint64_t duplicates = 0;
         // True for a sample already delivered (and remembers this one).
         bool duplicate(const dds_sample_info_t& info);
     };

@@ -84,8 +84,9 @@ bool ComponentRunner::idle() const {
     return true;
 }
 
-void ComponentRunner::begin(const char* activity) {
+void ComponentRunner::begin(const char* activity, bool handler) {
     activity_ = activity;
+    in_handler_ = handler;
     busy_since_ = std::chrono::steady_clock::now().time_since_epoch().count();
 }
 
@@ -100,9 +101,7 @@ std::string ComponentRunner::activity() const {
     if (done_) return "done";
     if (busy_since_ == 0) return "waiting for input";
     const std::string a = activity_.load();
-    return a == "on_activate" || a == "on_deactivate" || a == "on_shutdown" || a == "a timer"
-               ? a
-               : "its handler of " + a;
+    return in_handler_ ? "its handler of " + a : a;
 }
 
 void ComponentRunner::fail(const std::string& where, const std::string& what) {
@@ -127,7 +126,7 @@ bool ComponentRunner::dispatch_one_round() {
                 if (take_cdr(s.reader, s.buffer, info) <= 0) continue;
                 any = true;
                 if (!info.valid_data || s.duplicate(info)) continue;
-                begin(s.topic.c_str());
+                begin(s.topic.c_str(), true);
                 s.raw_handler(s.buffer, info);
                 end();
             } else {
@@ -137,7 +136,7 @@ bool ComponentRunner::dispatch_one_round() {
                 if (loan.n <= 0) continue;
                 any = true;
                 if (!info.valid_data || s.duplicate(info)) continue;
-                begin(s.topic.c_str());
+                begin(s.topic.c_str(), true);
                 s.handler(loan.buf[0]);
                 end();
             }

@@ -65,9 +65,10 @@ class ComponentRunner {
     std::atomic<std::uint64_t> dispatched_{0};
     // steady_clock ticks when the current step began (0: waiting); the step's name.
     std::atomic<std::int64_t> busy_since_{0};
-    std::atomic<const char*> activity_{
-        "starting"};  // points at a literal or a topic string that lives on
-    void begin(const char* activity);
+    // A literal, or the topic of the handler running (its string lives as long as the runner).
+    std::atomic<const char*> activity_{"starting"};
+    std::atomic<bool> in_handler_{false};
+    void begin(const char* activity, bool handler = false);
     void end() { busy_since_ = 0; }
     mutable std::mutex mutex_;
     std::condition_variable done_cv_;
