@@ -25,12 +25,15 @@
 #include "common/core/io_error.hpp"
 #include "common/core/ply_io.hpp"
 #include "map/core/map_store.hpp"
+#include "mapping/component/map_change_cells.hpp"
 #include "mapping/component/mapper_messages.hpp"
 #include "mapping/component/place_descriptor_msg.hpp"
+#include "mapping/core/map_fix_pairer.hpp"
 #include "mapping/core/mapper.hpp"
 #include "mapping/params/mapper_params.hpp"
 #include "runtime/component.hpp"
 #include "runtime/convert/dds_string.hpp"
+#include "runtime/convert/geometry.hpp"
 #include "runtime/convert/local_map.hpp"
 #include "runtime/convert/odometry.hpp"
 #include "runtime/convert/path.hpp"
@@ -58,6 +61,12 @@ class MappingComponent : public runtime::Component {
         if (save_period < 0)
             p.fail("save_period_s", "must be >= 0 (0: save only on request and at shutdown)");
         const std::vector<std::string> robots = p.get<std::vector<std::string>>("robots", {});
+        // Ties to a loaded map by the localisation on it (one robot), and what maintenance found.
+        fixes_ = p.get<bool>("localisation_fixes", true) && !load_dir.empty() && robots.empty();
+        const int fix_after = p.get<int>("localisation_fix_after", 3);
+        if (fix_after < 1) p.fail("localisation_fix_after", "must be >= 1 (scans tracked in a row)");
+        pairer_ = MapFixPairer(fix_after);
+        const bool apply_changes = p.get<bool>("apply_map_changes", true);
         const MapperConfig config = load_mapper_config(p, "", "hdl64");
         create_mapper(p, config, load_dir, freeze_loaded);
         check_robots(p, robots);
@@ -85,6 +94,17 @@ class MappingComponent : public runtime::Component {
                 ctx.advertise<msg::TransformStamped>(topic(*r, "map_to_odom"), TopicRole::kState);
             robots_.push_back(std::move(robot));
         }
+        if (fixes_) {
+            ctx.subscribe<msg::LocalisationStatus>(
+                "localisation_status", TopicRole::kState,
+                [this](const msg::LocalisationStatus& m) { on_localisation_status(m); });
+            ctx.subscribe<msg::PoseWithCovarianceStamped>(
+                "localisation_pose", TopicRole::kState,
+                [this](const msg::PoseWithCovarianceStamped& m) { on_localisation_pose(m); });
+        }
+        if (apply_changes)
+            ctx.subscribe<msg::MapChangeSet>("map_changes", TopicRole::kMap,
+                                             [this](const msg::MapChangeSet& m) { on_changes(m); });
         ctx.subscribe<msg::MapRequest>("map_request", TopicRole::kState,
                                        [this](const msg::MapRequest& m) { on_request(m); });
         graph_out_ = ctx.advertise<msg::PoseGraph>("pose_graph", TopicRole::kMap);
@@ -101,6 +121,13 @@ class MappingComponent : public runtime::Component {
         ctx_.log().info(std::to_string(mapper_->keyframes().size()) + " keyframes, " +
                         std::to_string(mapper_->local_map_count()) + " local maps, " +
                         std::to_string(mapper_->loops().size()) + " loops closed");
+        if (fixes_)
+            ctx_.log().info(std::to_string(mapper_->map_fixes()) +
+                            " keyframes tied to the loaded map by the localisation (" +
+                            std::to_string(fixes_refused_) + " fixes refused)");
+        if (mapper_->removed_voxels() > 0)
+            ctx_.log().info(std::to_string(mapper_->removed_voxels()) +
+                            " voxels cleared from the local maps by map maintenance");
         // The host lists the outputs: what a saved one holds (the parenthesis of the log line),
         // why one was not saved.
         auto detail = [](const std::string& line) {
@@ -287,7 +314,8 @@ class MappingComponent : public runtime::Component {
         given.localisation =
             descriptor(robot, m.localisation_descriptor, mapper_->config().localisation_descriptor,
                        "localisation_descriptor", &robot.told_localisation);
-        const KeyframeResult r = mapper_->add_keyframe(convert::from_msg(m), robot.session, given);
+        const common::KeyframeData keyframe = convert::from_msg(m);
+        const KeyframeResult r = mapper_->add_keyframe(keyframe, robot.session, given);
         if (!r.added) {
             ctx_.log().warn(prefix(robot) + "keyframe " + std::to_string(m.id) +
                             " not added: " + r.message);
@@ -299,7 +327,63 @@ class MappingComponent : public runtime::Component {
         for (const LoopClosure& loop : r.loops) publish_loop(loop, m.header.stamp);
         loops_since_optimise_ += r.loops.size();
         if (r.optimisation_due()) optimise();
+        if (fixes_)
+            apply_fix(pairer_.keyframe(keyframe.stamp,
+                                       {keyframe.local_map_id, keyframe.T_anchor_lidar, r.index}));
         publish_correction(robot, m.header.stamp);
+    }
+
+    // The localisation's state and pose of a scan (on the map this mapper continues).
+    void on_localisation_status(const msg::LocalisationStatus& m) {
+        apply_fix(pairer_.state(convert::to_seconds(m.header.stamp),
+                                m.state == ltm_msgs_msg_LocalisationStatus_Constants_TRACKING));
+    }
+    void on_localisation_pose(const msg::PoseWithCovarianceStamped& m) {
+        apply_fix(pairer_.pose(convert::to_seconds(m.header.stamp),
+                               convert::to_isometry(m.pose.pose)));
+    }
+
+    void apply_fix(const std::optional<PairedFix>& f) {
+        if (!f || robots_.empty()) return;
+        Robot& robot = *robots_.front();
+        const MapFixResult r = mapper_->add_map_fix(robot.session, f->keyframe.local_map_id,
+                                                    f->keyframe.T_anchor_lidar, f->T_world_lidar,
+                                                    f->keyframe.index);
+        if (!r.added) {
+            if (r.message.rfind("fix refused", 0) == 0) {
+                ++fixes_refused_;
+                ctx_.log().debug(r.message);
+            }
+            return;
+        }
+        if (r.placed_part) {
+            ctx_.log().info("placed on the loaded map by the localisation: " + r.message);
+            status(StatusLevel::kOk, StatusCode::kSessionJoined,
+                   "placed on the loaded map by the localisation: " + r.message);
+        }
+        if (r.optimisation_due) optimise();
+    }
+
+    // What map maintenance removed leaves the local maps (localisation and loop verification use
+    // them, and tomorrow's map is saved from them); new objects found there stay.
+    void on_changes(const msg::MapChangeSet& m) {
+        const ChangeCells c = change_cells(m);
+        if (!c.frame_id.empty() && c.frame_id != frame_id_) {
+            if (!warned_change_frame_)
+                ctx_.log().warn("map_changes in frame '" + c.frame_id + "', not the map's '" +
+                                frame_id_ + "': left out");
+            warned_change_frame_ = true;
+            return;
+        }
+        if (c.malformed > 0)
+            ctx_.log().warn(std::to_string(c.malformed) + " malformed change(s) in map_changes "
+                            "pass " + std::to_string(m.pass) + ": left out");
+        mapper_->keep_cells(c.added, c.cell_size);
+        if (c.removed.empty()) return;
+        const std::size_t cleared = mapper_->remove_cells(c.removed, c.cell_size);
+        ctx_.log().info("map maintenance pass " + std::to_string(m.pass) + ": " +
+                        std::to_string(c.removed_segments) + " segment(s) gone, " +
+                        std::to_string(cleared) + " voxels cleared from the local maps");
     }
 
     // A keyframe's descriptor made on the robot (keyframe_digest); made here again from its points
@@ -450,6 +534,10 @@ class MappingComponent : public runtime::Component {
     std::vector<std::unique_ptr<Robot>> robots_;  // callbacks hold their robot's address
     std::unique_ptr<map::MapWriter> writer_;
     std::uint64_t saved_state_ = 0;
+    bool fixes_ = false;
+    MapFixPairer pairer_;
+    std::size_t fixes_refused_ = 0;
+    bool warned_change_frame_ = false;
     static constexpr std::size_t kMaxWaiting = 1000;  // 100 s at 10 Hz
     runtime::Publisher<msg::PoseGraph> graph_out_;
     runtime::Publisher<msg::LoopClosure> loop_out_;

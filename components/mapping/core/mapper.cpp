@@ -228,6 +228,15 @@ LocalMapResult Mapper::add_local_map(std::shared_ptr<const common::LocalMapData>
                     std::to_string(it->second.stored.data->revision);
         return r;
     }
+    // What maintenance found gone stays gone in newer snapshots (on placed parts only: an
+    // unplaced part's world poses are not where the cells are).
+    if (!removed_.empty() && on_reference_part(r.node)) {
+        std::size_t removed = 0;
+        if (auto cleared = without_removed(*map, graph_.find(r.node)->T_world_anchor, &removed)) {
+            map = std::move(cleared);
+            removed_voxels_ += removed;
+        }
+    }
     MapEntry& e = maps_[r.node];
     e.stored.node = r.node;
     e.stored.session = session;

@@ -67,6 +67,7 @@
 #include "mapping/core/mapper_results.hpp"
 #include "mapping/core/odometry_chains.hpp"
 #include "mapping/core/pose_graph.hpp"
+#include "mapping/core/removed_cells.hpp"
 #include "mapping/core/segments.hpp"
 #include "mapping/core/session_joins.hpp"
 #include "registration/core/loop_verifier.hpp"
@@ -157,6 +158,25 @@ class Mapper {
     // An open session's segments, in order (none for a session that is not open).
     std::vector<SegmentStatus> segments(std::uint32_t session) const;
 
+    // A localisation fix (MapFixConfig): keyframe `keyframe_index` of `session`, at T_anchor_lidar
+    // in local map `local_map_id`, lies at T_world_lidar in the loaded map's frame, as a
+    // localisation registered to that map found. An edge from the nearest loaded keyframe's node;
+    // the first fix of a part (the session, or a segment after a break) places it. Never throws.
+    MapFixResult add_map_fix(std::uint32_t session, std::uint64_t local_map_id,
+                             const Eigen::Isometry3d& T_anchor_lidar,
+                             const Eigen::Isometry3d& T_world_lidar, std::uint32_t keyframe_index);
+    std::size_t map_fixes() const { return map_fixes_; }
+
+    // What map maintenance found gone (mapper_map_edits.cpp): the cells of edge `cell_size` (world
+    // frame) holding `centres` are cleared of voxels in every local map (a voxel goes when its
+    // centre lies in such a cell or within half a cell of one), now and in the local maps that
+    // arrive later in this Mapper's life (snapshots of a map still being built hold them again).
+    // The local maps' voxels removed.
+    std::size_t remove_cells(const std::vector<Eigen::Vector3f>& centres, float cell_size);
+    // New objects found there: their cells are no longer cleared in maps that arrive later.
+    void keep_cells(const std::vector<Eigen::Vector3f>& centres, float cell_size);
+    std::size_t removed_voxels() const { return removed_voxels_; }
+
     common::PlyCloud global_map(map::GlobalMapStats* stats = nullptr) const;
     // Everything a saved map holds (local maps and keyframes shared, not copied).
     map::MapData snapshot() const;
@@ -209,6 +229,19 @@ class Mapper {
     // A loop edge between two parts no loop had placed together (sessions): the part without a
     // fixed node, the later one, set rigidly where the edge puts it (the optimisation's start).
     void align_parts(const map::PoseGraphEdge& loop);
+    // The odometry along which the graph's estimate between two nodes can have drifted, from
+    // the nearest places already joined by loops (infinite across a segment break).
+    double drift_path(std::uint64_t from, std::uint64_t to) const;
+    // Why a measured relative pose between two placed nodes disagrees with the graph by more than
+    // the loop consistency bounds allow after that drift; "" when it does not.
+    std::string inconsistency(std::uint64_t from, std::uint64_t to, double disagreement,
+                              double disagreement_deg) const;
+    // A local map with the removed cells' voxels left out (nullptr: none of its voxels there).
+    std::shared_ptr<const common::LocalMapData> without_removed(const common::LocalMapData& map,
+                                                                const Eigen::Isometry3d& T_world_anchor,
+                                                                std::size_t* removed) const;
+    // True when the node's part is placed with the map's first session's (by loops or fixes).
+    bool on_reference_part(std::uint64_t node) const;
     // The map's first session: the lowest with nodes (a loaded map's first, or the default).
     std::uint32_t reference_session() const;
 
@@ -230,6 +263,10 @@ class Mapper {
     std::size_t due_loops_ = 0;  // loops that made an optimisation due, since one
     LongTermFolding folding_;    // where the folded local maps went
     std::vector<map::SessionRecord> past_sessions_;  // of the loaded map
+    std::unordered_map<std::uint64_t, int> fixes_per_node_;
+    std::size_t map_fixes_ = 0;
+    RemovedCells removed_;  // what maintenance found gone
+    std::size_t removed_voxels_ = 0;
 };
 
 }  // namespace ltm::mapping

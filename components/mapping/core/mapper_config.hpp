@@ -93,6 +93,19 @@ struct PlaceCandidateConfig {
     double radius = 8.0;  // [m]
 };
 
+// Ties from localisation (Mapper::add_map_fix): a session continuing a loaded map is placed on it
+// by the localisation's pose of its keyframes (registered to that map's voxels), not only by loops.
+// A fix is an edge from the nearest loaded keyframe's node to the keyframe's local map node, with
+// the loop edge's information; the first one places the session's part (or an odometry segment
+// after a break) where it says, later ones must agree with the graph within the loop consistency
+// bounds (drift since the places already joined). A local map is rigid: a few fixes a map suffice.
+struct MapFixConfig {
+    bool enabled = true;
+    int per_local_map = 2;  // fixes kept a local map
+    // The nearest loaded keyframe within this distance of the fix gives the edge's other end.
+    double radius = 30.0;  // [m]
+};
+
 // The keyframes' localisation descriptor (ScanContext++, kind kMeanVariance), saved in the map
 // for global localisation; its range and sensor height follow scan_context's in mapper_preset().
 inline places::ScanContextConfig default_localisation_descriptor() {
@@ -116,6 +129,7 @@ struct MapperConfig {
     LongTermConfig long_term;
     SessionJoinConfig session_join;
     PlaceCandidateConfig place_candidates;
+    MapFixConfig map_fix;
     int max_loops_per_keyframe = 1;  // verified loops kept a keyframe (best candidates first)
     // After a keyframe closes a loop, this many following keyframes are not verified (their
     // descriptors are still kept): a revisit is closed every few keyframes, not at each one.
@@ -177,6 +191,9 @@ void visit_own_fields(MapperConfig& c, Visitor&& v) {
     v("session_join.agree_translation", j.agree_translation, positive);
     v("session_join.agree_rotation", j.agree_rotation, positive);
     v("place_candidates.radius", c.place_candidates.radius, non_negative);
+    v("map_fix.enabled", c.map_fix.enabled, unchecked);
+    v("map_fix.per_local_map", c.map_fix.per_local_map, at_least(1));
+    v("map_fix.radius", c.map_fix.radius, positive);
 }
 
 // Every field but the Scan Context kinds (enums: loaders read scan_context.kind as a name; the

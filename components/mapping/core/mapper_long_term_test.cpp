@@ -6,7 +6,9 @@
 #include <cmath>
 #include <set>
 
+#include "mapping/core/map_fix_pairer.hpp"
 #include "mapping/core/mapper.hpp"
+#include "mapping/core/removed_cells.hpp"
 #include "registration/core/test_data.hpp"
 
 namespace ltm::mapping {
@@ -254,6 +256,163 @@ TEST(MapperLongTerm, ALoopThatAgreesWithTheGraphMakesNoOptimisationDue) {
             EXPECT_TRUE(r.optimisation_due());
         }
     }
+}
+
+// A second session tied to the loaded map by a localisation's poses alone (no loop closure): the
+// first fix places the session, its local maps fold into the map's, and a fix that contradicts
+// the graph is refused.
+TEST(MapperLongTerm, LocalisationFixesPlaceASessionOnTheLoadedMapWithoutLoops) {
+    const std::vector<Eigen::Vector3f> scene =
+        registration::test::with_dense_ground(registration::test::synthetic_scene(71));
+    MapperConfig config = test_config();
+    Mapper first(config);
+    replay(Drive(scene, 0.0, 0.0, Eigen::Isometry3d::Identity(), 0.0), first);
+    ASSERT_TRUE(first.optimise().solved);
+    config.loop_closure = false;
+    Mapper next(config, first.snapshot());
+    const Eigen::Isometry3d T_odom_world = registration::test::xy_yaw(-20.0, 7.0, 35.0);
+    const Drive again(scene, 0.5, 0.3, T_odom_world, 86400.0);
+    std::size_t placed = 0, fixes = 0, merged = 0;
+    for (std::size_t i = 0; i < 16; ++i) {
+        const common::KeyframeData k = again.keyframe(i);
+        const KeyframeResult r = next.add_keyframe(k);
+        ASSERT_TRUE(r.added) << r.message;
+        EXPECT_TRUE(r.loops.empty());
+        const MapFixResult f =
+            next.add_map_fix(next.session(), k.local_map_id, k.T_anchor_lidar, again.truth[i], r.index);
+        fixes += f.added;
+        placed += f.placed_part;
+        if (f.optimisation_due) {
+            ASSERT_TRUE(next.optimise().solved);
+        }
+        if (i % 4 == 3) merged += next.add_local_map(again.maps[i / 4]).merged;
+    }
+    EXPECT_EQ(placed, 1u);
+    EXPECT_GE(fixes, 4u);  // at least one a local map (those folded take none)
+    EXPECT_EQ(next.map_fixes(), fixes);
+    EXPECT_GE(merged, 3u) << "the session's maps fold into the loaded map's";
+    for (std::size_t i = 0; i < 16; ++i) {
+        const std::optional<Eigen::Isometry3d> T = next.T_world_lidar(i / 4, again.odom[i]);
+        ASSERT_TRUE(T);
+        EXPECT_LT((T->translation() - again.truth[i].translation()).norm(), 0.05) << i;
+    }
+    // A fix 5 m off the graph's estimate, on a map not yet folded, is refused.
+    Mapper other(config, first.snapshot());
+    const Drive far(scene, 0.5, 0.3, T_odom_world, 86400.0);
+    for (std::size_t i = 0; i < 6; ++i) {
+        const common::KeyframeData k = far.keyframe(i);
+        const KeyframeResult r = other.add_keyframe(k);
+        Eigen::Isometry3d fix = far.truth[i];
+        if (i == 5) fix.translation().x() += 5.0;
+        const MapFixResult f =
+            other.add_map_fix(other.session(), k.local_map_id, k.T_anchor_lidar, fix, r.index);
+        if (f.optimisation_due) {
+            ASSERT_TRUE(other.optimise().solved);
+        }
+        if (i == 0) {
+            EXPECT_TRUE(f.added && f.placed_part) << f.message;
+        }
+        if (i == 5) {
+            EXPECT_FALSE(f.added);
+            EXPECT_NE(f.message.find("refused"), std::string::npos) << f.message;
+        }
+    }
+}
+
+// World centres of a mapper's voxels inside a box.
+std::vector<Eigen::Vector3f> voxels_in(const Mapper& m, const Eigen::AlignedBox3f& box) {
+    std::vector<Eigen::Vector3f> out;
+    for (const map::StoredLocalMap& lm : m.snapshot().local_maps) {
+        const Eigen::Isometry3f T =
+            (m.graph().find(lm.node)->T_world_anchor * lm.data->T_anchor_grid).cast<float>();
+        for (const common::VoxelData& v : lm.data->voxels) {
+            const Eigen::Vector3f p = T * v.centre;
+            if (box.contains(p)) out.push_back(p);
+        }
+    }
+    return out;
+}
+
+// What maintenance found gone leaves every local map, and local maps that arrive later, until a
+// new object is found there.
+TEST(MapperLongTerm, RemovedCellsLeaveTheLocalMapsNowAndLater) {
+    const std::vector<Eigen::Vector3f> scene =
+        registration::test::with_dense_ground(registration::test::synthetic_scene(71));
+    Mapper mapper(test_config());
+    const Drive d(scene, 0.0, 0.0, Eigen::Isometry3d::Identity(), 0.0);
+    replay(d, mapper);
+    const Eigen::AlignedBox3f box(Eigen::Vector3f(8.0f, -10.0f, 0.5f),
+                                  Eigen::Vector3f(30.0f, 10.0f, 5.0f));
+    const Eigen::AlignedBox3f far_box(Eigen::Vector3f(-100.0f, -100.0f, -100.0f),
+                                      Eigen::Vector3f(100.0f, 100.0f, 100.0f));
+    const std::vector<Eigen::Vector3f> gone = voxels_in(mapper, box);
+    ASSERT_GT(gone.size(), 20u);
+    const std::size_t all = voxels_in(mapper, far_box).size();
+    const std::uint64_t revision = mapper.revision();
+    const std::size_t cleared = mapper.remove_cells(gone, 0.25f);
+    EXPECT_GE(cleared, gone.size());
+    EXPECT_EQ(mapper.removed_voxels(), cleared);
+    EXPECT_GT(mapper.revision(), revision);  // the map changed: saved again
+    EXPECT_TRUE(voxels_in(mapper, box).empty());
+    // Only the cells' neighbourhood went (half a cell around each centre).
+    EXPECT_LT(all - voxels_in(mapper, far_box).size(), gone.size() * 2);
+    // A newer snapshot of a map holds the voxels again: cleared as it arrives.
+    common::LocalMapData again = d.maps[2];
+    again.revision += 1;
+    ASSERT_TRUE(mapper.add_local_map(again).added);
+    EXPECT_TRUE(voxels_in(mapper, box).empty());
+    // A new object there: later snapshots keep their voxels.
+    mapper.keep_cells(gone, 0.25f);
+    again.revision += 1;
+    ASSERT_TRUE(mapper.add_local_map(again).added);
+    EXPECT_FALSE(voxels_in(mapper, box).empty());
+}
+
+TEST(MapFixPairer, PairsAKeyframeWithATrackedPoseInAnyOrderAfterARunOfTracking) {
+    MapFixPairer pairer(3);
+    FixKeyframe kf;
+    kf.local_map_id = 7;
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.translation() = Eigen::Vector3d(1, 2, 3);
+    // Scans 0.1 .. 0.3 tracked; the keyframe at 0.2 comes before its state: not yet 3 in a row.
+    EXPECT_FALSE(pairer.state(0.1, true));
+    EXPECT_FALSE(pairer.pose(0.1, T));
+    EXPECT_FALSE(pairer.keyframe(0.2, kf));
+    EXPECT_FALSE(pairer.pose(0.2, T));
+    EXPECT_FALSE(pairer.state(0.2, true));  // run of 2: no fix
+    // The third tracked scan: keyframe first, then pose, then state.
+    EXPECT_FALSE(pairer.keyframe(0.3, kf));
+    EXPECT_FALSE(pairer.pose(0.3, T));
+    const std::optional<PairedFix> f = pairer.state(0.3, true);
+    ASSERT_TRUE(f);
+    EXPECT_EQ(f->keyframe.local_map_id, 7u);
+    EXPECT_TRUE(f->T_world_lidar.isApprox(T));
+    // Not tracking (lost, off the map): no fix, and the run starts again.
+    EXPECT_FALSE(pairer.state(0.4, false));
+    EXPECT_FALSE(pairer.keyframe(0.4, kf));
+    EXPECT_FALSE(pairer.pose(0.4, T));
+    EXPECT_FALSE(pairer.state(0.5, true));
+    EXPECT_FALSE(pairer.pose(0.5, T));
+    EXPECT_FALSE(pairer.keyframe(0.5, kf));
+}
+
+TEST(RemovedCells, CoversTheCellAndHalfACellAround) {
+    RemovedCells cells;
+    EXPECT_FALSE(cells.covers(Eigen::Vector3f(0.1f, 0.1f, 0.1f)));
+    EXPECT_EQ(cells.add({Eigen::Vector3f(0.1f, 0.1f, 0.1f),
+                         Eigen::Vector3f(std::nanf(""), 0.0f, 0.0f)},
+                        0.25f),
+              1u);
+    EXPECT_TRUE(cells.covers(Eigen::Vector3f(0.2f, 0.05f, 0.0f)));
+    EXPECT_TRUE(cells.covers(Eigen::Vector3f(0.3f, 0.1f, 0.1f)));   // 0.05 beyond the cell
+    EXPECT_FALSE(cells.covers(Eigen::Vector3f(0.45f, 0.1f, 0.1f)));  // 0.2 beyond
+    EXPECT_FALSE(cells.covers(Eigen::Vector3f(-0.2f, 0.1f, 0.1f)));
+    cells.erase({Eigen::Vector3f(0.2f, 0.2f, 0.2f)});
+    EXPECT_TRUE(cells.empty());
+    RemovedCells small(1);
+    small.add({Eigen::Vector3f(0, 0, 0), Eigen::Vector3f(5, 5, 5)}, 0.25f);
+    EXPECT_TRUE(small.full());
+    EXPECT_EQ(small.size(), 1u);
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include <optional>
 #include <set>
 #include <sstream>
+#include <string>
 #include <tuple>
 #include <unordered_map>
 
@@ -140,28 +141,9 @@ void Mapper::verify(std::uint32_t session, const common::KeyframeData& keyframe,
         // The odometry along which the graph's estimate can have drifted: from the nearest
         // places already joined by loops (a lap of a route is not 1 km of drift); a segment
         // break is unbounded drift.
-        const double path =
-            placed ? drift_distance(graph_, e.from, e.to,
-                                    [this](const map::PoseGraphEdge& o) {
-                                        if (is_segment_break(o))
-                                            return std::numeric_limits<double>::infinity();
-                                        // An edge made through a folded map joins nodes of
-                                        // other laps: its own length, not their paths.
-                                        if (folding_.relayed(o.from, o.to))
-                                            return o.T_from_to.translation().norm();
-                                        return std::abs(chains_.path(o.to) - chains_.path(o.from));
-                                    })
-                   : std::numeric_limits<double>::infinity();
-        if (std::isfinite(path)) {
-            const LoopConsistencyConfig& lc = config_.loop_consistency;
-            const double max_t = lc.translation + lc.translation_per_m * path;
-            const double max_r = lc.rotation + lc.rotation_per_m * path;
-            if (disagreement > max_t || disagreement_deg > max_r) {
-                std::ostringstream why;
-                why << "disagrees with the graph by " << disagreement << " m / " << disagreement_deg
-                    << " deg (limits " << max_t << " m / " << max_r << " deg after " << path
-                    << " m of odometry from places already joined)";
-                rejection.reason = why.str();
+        if (placed) {
+            rejection.reason = inconsistency(e.from, e.to, disagreement, disagreement_deg);
+            if (!rejection.reason.empty()) {
                 r->rejected.push_back(rejection);
                 continue;
             }
@@ -228,6 +210,31 @@ void Mapper::verify(std::uint32_t session, const common::KeyframeData& keyframe,
         r->loops.push_back(l);
         loops_.push_back(l);
     }
+}
+
+double Mapper::drift_path(std::uint64_t from, std::uint64_t to) const {
+    return drift_distance(graph_, from, to, [this](const map::PoseGraphEdge& o) {
+        if (is_segment_break(o)) return std::numeric_limits<double>::infinity();
+        // An edge made through a folded map joins nodes of other laps: its own length, not
+        // their paths.
+        if (folding_.relayed(o.from, o.to)) return o.T_from_to.translation().norm();
+        return std::abs(chains_.path(o.to) - chains_.path(o.from));
+    });
+}
+
+std::string Mapper::inconsistency(std::uint64_t from, std::uint64_t to, double disagreement,
+                                  double disagreement_deg) const {
+    const double path = drift_path(from, to);
+    if (!std::isfinite(path)) return "";
+    const LoopConsistencyConfig& lc = config_.loop_consistency;
+    const double max_t = lc.translation + lc.translation_per_m * path;
+    const double max_r = lc.rotation + lc.rotation_per_m * path;
+    if (disagreement <= max_t && disagreement_deg <= max_r) return "";
+    std::ostringstream why;
+    why << "disagrees with the graph by " << disagreement << " m / " << disagreement_deg
+        << " deg (limits " << max_t << " m / " << max_r << " deg after " << path
+        << " m of odometry from places already joined)";
+    return why.str();
 }
 
 void Mapper::align_parts(const map::PoseGraphEdge& loop) {

@@ -1,0 +1,190 @@
+// The Mapper's ties to a loaded map and its edits by map maintenance (see mapper.hpp):
+// localisation fixes as edges from the loaded map (add_map_fix), and the cells maintenance found
+// emptied cleared from the local maps (remove_cells, keep_cells). One concept: what the map
+// learns from the rest of the robot, beside its own odometry and loops.
+#include <Eigen/Geometry>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "mapping/core/mapper.hpp"
+
+namespace ltm::mapping {
+namespace {
+
+double angle_deg(const Eigen::Matrix3d& R) { return Eigen::AngleAxisd(R).angle() * 180.0 / M_PI; }
+
+}  // namespace
+
+MapFixResult Mapper::add_map_fix(std::uint32_t session, std::uint64_t local_map_id,
+                                 const Eigen::Isometry3d& T_anchor_lidar,
+                                 const Eigen::Isometry3d& T_world_lidar,
+                                 std::uint32_t keyframe_index) {
+    MapFixResult r;
+    if (!config_.map_fix.enabled) {
+        r.message = "map fixes are off (map_fix.enabled)";
+        return r;
+    }
+    if (!is_open(session)) {
+        r.message = "session " + std::to_string(session) + " is not open";
+        return r;
+    }
+    if (!T_world_lidar.matrix().allFinite() || !T_anchor_lidar.matrix().allFinite()) {
+        r.message = "the fix is not a finite pose";
+        return r;
+    }
+    if (folding_.find(session, local_map_id)) {
+        r.message = "local map " + std::to_string(local_map_id) + " was folded into the map";
+        return r;
+    }
+    const std::optional<std::uint64_t> node = node_of(local_map_id, session);
+    const map::PoseGraphNode* n = node ? graph_.find(*node) : nullptr;
+    if (!n || n->fixed || n->session != session) {
+        r.message = "local map " + std::to_string(local_map_id) + " has no node of its own yet";
+        return r;
+    }
+    if (fixes_per_node_[*node] >= config_.map_fix.per_local_map) {
+        r.message = "local map " + std::to_string(local_map_id) + " has its fixes already";
+        return r;
+    }
+    // The nearest keyframe of a loaded (not open) session: the edge's other end.
+    std::optional<std::uint32_t> nearest;
+    double best = config_.map_fix.radius * config_.map_fix.radius;
+    for (std::uint32_t i = 0; i < keyframes_.size(); ++i) {
+        const map::StoredKeyframe& k = *keyframes_[i];
+        if (is_open(k.session)) continue;
+        const map::PoseGraphNode* kn = graph_.find(k.node);
+        if (!kn) continue;
+        const double d2 = ((kn->T_world_anchor * k.data.T_anchor_lidar).translation() -
+                           T_world_lidar.translation())
+                              .squaredNorm();
+        if (d2 <= best) {
+            best = d2;
+            nearest = i;
+        }
+    }
+    if (!nearest) {
+        r.message = "no keyframe of the loaded map within map_fix.radius of the fix";
+        return r;
+    }
+    const map::StoredKeyframe& match = *keyframes_[*nearest];
+    map::PoseGraphEdge e;
+    e.from = match.node;
+    e.to = *node;
+    e.kind = map::EdgeKind::kLoop;
+    const Eigen::Isometry3d T_world_anchor = T_world_lidar * T_anchor_lidar.inverse();
+    e.T_from_to = graph_.find(e.from)->T_world_anchor.inverse() * T_world_anchor;
+    e.information = loop_information(config_.loop_edge);
+    e.query_keyframe = keyframe_index;
+    e.match_keyframe = *nearest;
+    const Eigen::Isometry3d predicted =
+        graph_.find(e.from)->T_world_anchor.inverse() * n->T_world_anchor;
+    const Eigen::Isometry3d D = predicted.inverse() * e.T_from_to;
+    r.disagreement = D.translation().norm();
+    const double disagreement_deg = angle_deg(D.linear());
+    const bool placed = segments_.root(graph_, e.from) == segments_.root(graph_, e.to);
+    if (placed) {
+        const std::string why = inconsistency(e.from, e.to, r.disagreement, disagreement_deg);
+        if (!why.empty()) {
+            r.message = "fix refused: " + why;
+            return r;
+        }
+    }
+    if (!graph_.add_edge(e)) {
+        r.message = "the edge could not be added";
+        return r;
+    }
+    if (!placed) align_parts(e);
+    r.added = true;
+    r.placed_part = !placed;
+    r.from_node = e.from;
+    r.to_node = e.to;
+    r.optimisation_due = !placed || r.disagreement > config_.long_term.agree_translation ||
+                         disagreement_deg > config_.long_term.agree_rotation;
+    due_loops_ += r.optimisation_due ? 1 : 0;
+    ++fixes_per_node_[*node];
+    ++map_fixes_;
+    std::ostringstream m;
+    m << "local map " << local_map_id << " tied to the map at keyframe " << keyframe_index
+      << (placed ? "" : " (its part placed by it)") << ", " << r.disagreement
+      << " m from the graph's estimate";
+    r.message = m.str();
+    return r;
+}
+
+std::shared_ptr<const common::LocalMapData> Mapper::without_removed(
+    const common::LocalMapData& map, const Eigen::Isometry3d& T_world_anchor,
+    std::size_t* removed) const {
+    *removed = 0;
+    if (removed_.empty()) return nullptr;
+    const Eigen::Isometry3f T = (T_world_anchor * map.T_anchor_grid).cast<float>();
+    std::vector<char> drop(map.voxels.size(), 0);
+    for (std::size_t i = 0; i < map.voxels.size(); ++i) {
+        if (removed_.covers(T * map.voxels[i].centre)) {
+            drop[i] = 1;
+            ++*removed;
+        }
+    }
+    if (*removed == 0) return nullptr;
+    auto out = std::make_shared<common::LocalMapData>();
+    out->id = map.id;
+    out->revision = map.revision;
+    out->finished = map.finished;
+    out->segment = map.segment;
+    out->T_odom_anchor = map.T_odom_anchor;
+    out->T_anchor_grid = map.T_anchor_grid;
+    out->bbox_min = map.bbox_min;
+    out->bbox_max = map.bbox_max;
+    out->voxel_size = map.voxel_size;
+    out->observation_times = map.observation_times;
+    out->voxels.reserve(map.voxels.size() - *removed);
+    for (std::size_t i = 0; i < map.voxels.size(); ++i) {
+        if (!drop[i]) out->voxels.push_back(map.voxels[i]);
+    }
+    return out;
+}
+
+bool Mapper::on_reference_part(std::uint64_t node) const {
+    return segments_.root(graph_, node) == segments_.root(SegmentKey(reference_session(), 0));
+}
+
+std::size_t Mapper::remove_cells(const std::vector<Eigen::Vector3f>& centres, float cell_size) {
+    if (removed_.add(centres, cell_size) == 0) return 0;
+    Eigen::AlignedBox3f box;
+    for (const Eigen::Vector3f& c : centres) {
+        if (c.allFinite()) box.extend(c);
+    }
+    box.min().array() -= cell_size;
+    box.max().array() += cell_size;
+    std::size_t total = 0;
+    for (auto& [id, entry] : maps_) {
+        const map::PoseGraphNode* n = graph_.find(id);
+        if (!n || !on_reference_part(id)) continue;  // unplaced parts: not where the cells are
+        const common::LocalMapData& m = *entry.stored.data;
+        // The map's box in the world frame: skip maps nowhere near the cells.
+        const Eigen::Isometry3d T = n->T_world_anchor * m.T_anchor_grid;
+        Eigen::AlignedBox3f world;
+        for (int i = 0; i < 8; ++i) {
+            const Eigen::Vector3d corner((i & 1) ? m.bbox_max.x() : m.bbox_min.x(),
+                                         (i & 2) ? m.bbox_max.y() : m.bbox_min.y(),
+                                         (i & 4) ? m.bbox_max.z() : m.bbox_min.z());
+            world.extend((T * corner).cast<float>());
+        }
+        if (!world.intersects(box)) continue;
+        std::size_t removed = 0;
+        if (auto out = without_removed(m, n->T_world_anchor, &removed)) {
+            entry.stored.data = std::move(out);
+            entry.serial = next_serial_++;
+            total += removed;
+        }
+    }
+    if (total > 0) ++revision_;
+    removed_voxels_ += total;
+    return total;
+}
+
+void Mapper::keep_cells(const std::vector<Eigen::Vector3f>& centres, float /*cell_size*/) {
+    removed_.erase(centres);
+}
+
+}  // namespace ltm::mapping

@@ -1,0 +1,42 @@
+#pragma once
+// Cells of the map frame that map maintenance found emptied (the voxels of objects that vanished
+// or moved, components/maintenance): the Mapper clears the local maps' voxels there, now and in
+// local maps that arrive later (a snapshot of a map still being built holds them again). A hash set
+// of cells of one edge length (the first one given); bounded: beyond `capacity` cells new ones are
+// not recorded (the maps present are still cleared) and full() says so.
+#include <Eigen/Core>
+#include <cstdint>
+#include <unordered_set>
+#include <vector>
+
+namespace ltm::mapping {
+
+class RemovedCells {
+  public:
+    explicit RemovedCells(std::size_t capacity = 2'000'000) : capacity_(capacity) {}
+
+    // Records the cells of edge `cell_size` (> 0) holding `centres`; the first call fixes the
+    // lattice, later centres are put on it. Non-finite centres are skipped. Cells recorded.
+    std::size_t add(const std::vector<Eigen::Vector3f>& centres, float cell_size);
+    // Forgets the cells holding `centres` (new objects stand there now).
+    void erase(const std::vector<Eigen::Vector3f>& centres);
+    // True when p lies in a recorded cell or within half a cell of one (the 2x2x2 cells nearest
+    // to p): a voxel's centre is the mean of its points, which can sit up to half a cell off.
+    bool covers(const Eigen::Vector3f& p) const;
+
+    bool empty() const { return cells_.empty(); }
+    std::size_t size() const { return cells_.size(); }
+    bool full() const { return full_; }
+    float cell_size() const { return size_; }
+
+  private:
+    static std::uint64_t key(const Eigen::Vector3i& c);
+    Eigen::Vector3i cell(const Eigen::Vector3f& p) const;
+
+    std::size_t capacity_;
+    float size_ = 0.0f;
+    bool full_ = false;
+    std::unordered_set<std::uint64_t> cells_;
+};
+
+}  // namespace ltm::mapping
