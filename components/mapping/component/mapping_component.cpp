@@ -69,6 +69,7 @@ class MappingComponent : public runtime::Component {
         const bool apply_changes = p.get<bool>("apply_map_changes", true);
         const MapperConfig config = load_mapper_config(p, "", "hdl64");
         create_mapper(p, config, load_dir, freeze_loaded);
+        mapper_->expect_map_fixes(fixes_);
         check_robots(p, robots);
         if (!map_dir_.empty()) writer_ = std::make_unique<map::MapWriter>(map_dir_);
         // Saving as it goes keeps the save at shutdown small (only what changed is rewritten),

@@ -166,6 +166,10 @@ class Mapper {
                              const Eigen::Isometry3d& T_anchor_lidar,
                              const Eigen::Isometry3d& T_world_lidar, std::uint32_t keyframe_index);
     std::size_t map_fixes() const { return map_fixes_; }
+    // A localisation on the loaded map sends fixes: it alone places a part on the loaded map (a
+    // loop from a part not placed yet to the loaded map is held), and loops from a placed part to
+    // the loaded map are checked against the graph like loops within a session.
+    void expect_map_fixes(bool on) { fixes_expected_ = on; }
 
     // What map maintenance found gone (mapper_map_edits.cpp): the cells of edge `cell_size` (world
     // frame) holding `centres` are cleared of voxels in every local map (a voxel goes when its
@@ -265,6 +269,7 @@ class Mapper {
     std::vector<map::SessionRecord> past_sessions_;  // of the loaded map
     std::unordered_map<std::uint64_t, int> fixes_per_node_;
     std::size_t map_fixes_ = 0;
+    bool fixes_expected_ = false;
     RemovedCells removed_;  // what maintenance found gone
     std::size_t removed_voxels_ = 0;
 };

@@ -112,7 +112,17 @@ void Mapper::verify(std::uint32_t session, const common::KeyframeData& keyframe,
         const SegmentKey match_key = segments_.key(graph_, match.node),
                          query_key = segments_.key(graph_, node);
         const bool together = segments_.root(match_key) == segments_.root(query_key);
-        const bool placed = together && (same_session || is_open(match.session));
+        // With a localisation on the loaded map (expect_map_fixes), it places a part on that map
+        // (a repetitive site can fool one loop verification from a descriptor's guess), and loops
+        // to the loaded map from a part it placed are judged against the graph like any other.
+        const bool loaded_match = !is_open(match.session);
+        if (fixes_expected_ && loaded_match && !together) {
+            rejection.reason = "held: the localisation places this part on the loaded map first";
+            r->rejected.push_back(rejection);
+            continue;
+        }
+        const bool placed =
+            together && (same_session || is_open(match.session) || fixes_expected_);
         registration::GuessList guesses;
         const bool graph_guess = placed && config_.verify_from_graph;
         if (graph_guess) guesses.push_back(predicted * keyframe.T_anchor_lidar);

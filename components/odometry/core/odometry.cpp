@@ -136,6 +136,17 @@ FrameResult Odometry::register_frame(const common::PointCloud& cloud) {
     if (maps_.empty()) {
         r.status = FrameStatus::kInitialised;
         r.covariance.setZero();  // the first pose defines the odometry frame
+    } else if (const double gap = cloud.stamp - last_stamp_;
+               has_stamp_ && config_.tracking.restart_gap > 0.0 &&
+               gap > config_.tracking.restart_gap) {
+        // No scan for a while: whatever happened meanwhile (the robot carried, a long stop of the
+        // sensor) the motion model cannot bridge, and a fit of this scan to the old map can be a
+        // look-alike place (a repetitive yard). A new segment, joined later by a loop or the
+        // localisation.
+        std::ostringstream s;
+        s << "a gap of " << gap << " s between scans (more than tracking.restart_gap "
+          << config_.tracking.restart_gap << " s: the robot may have been moved)";
+        restart_segment(s.str(), predicted, since_tracked, &r);
     } else {
         // From the prediction first. When that is refused or doubtful, a search from other
         // guesses (the last pose, the prediction turned about its z axis); the better fit wins.
@@ -171,23 +182,9 @@ FrameResult Odometry::register_frame(const common::PointCloud& cloud) {
             return r;
         }
         if (!why.empty()) {
-            // Lost too long: nothing of the old maps is trusted any more. They are ended (handed
-            // over intact), and this scan starts a new segment at the best estimate.
-            maps_.start_new_segment();
-            keyframes_.reset();
-            // The new map holds this one scan: the next scans fit it as the first scans of the run
-            // fit theirs, not as well as a grown map did. Judged by the grown map's figures, every
-            // scan after a kidnap was refused, and the odometry restarted every restart_after.
-            typical_rms_ = early_rms_;
-            typical_inliers_ = early_inliers_;
-            typical_overlap_ = early_overlap_;
             std::ostringstream s;
-            s << "lost for " << since_tracked << " s (" << why << "): new local map in segment "
-              << maps_.segment() << " at the predicted pose";
-            r.T_odom_lidar = predicted;
-            r = reject(r, FrameStatus::kRestarted, s.str());
-            r.lost_for = since_tracked;
-            r.segment = maps_.segment();
+            s << "lost for " << since_tracked << " s (" << why << ")";
+            restart_segment(s.str(), predicted, since_tracked, &r);
         } else {
             r.status = lost_ ? FrameStatus::kRecovered : FrameStatus::kTracked;
             if (lost_) {
@@ -214,6 +211,26 @@ FrameResult Odometry::register_frame(const common::PointCloud& cloud) {
     integrate(cloud.stamp, &r);
     r.update_ms = lap();
     return r;
+}
+
+void Odometry::restart_segment(const std::string& why, const Eigen::Isometry3d& predicted,
+                               double since_tracked, FrameResult* r) {
+    // Nothing of the old maps is trusted any more. They are ended (handed over intact), and this
+    // scan starts a new segment at the best estimate.
+    maps_.start_new_segment();
+    keyframes_.reset();
+    // The new map holds this one scan: the next scans fit it as the first scans of the run fit
+    // theirs, not as well as a grown map did. Judged by the grown map's figures, every scan after
+    // a kidnap was refused, and the odometry restarted every restart_after.
+    typical_rms_ = early_rms_;
+    typical_inliers_ = early_inliers_;
+    typical_overlap_ = early_overlap_;
+    std::ostringstream s;
+    s << why << ": new local map in segment " << maps_.segment() << " at the predicted pose";
+    r->T_odom_lidar = predicted;
+    *r = reject(*r, FrameStatus::kRestarted, s.str());
+    r->lost_for = since_tracked;
+    r->segment = maps_.segment();
 }
 
 bool Odometry::stamp_refused(const common::PointCloud& cloud, FrameResult* r) {

@@ -126,6 +126,9 @@ class Odometry {
 
   private:
     FrameResult reject(FrameResult result, FrameStatus status, std::string message);
+    // Ends the local maps and starts a new segment with this scan at `predicted` (kRestarted).
+    void restart_segment(const std::string& why, const Eigen::Isometry3d& predicted,
+                         double since_tracked, FrameResult* r);
     // Refuses a stamp that is not finite or not after the previous one (filling `r`).
     bool stamp_refused(const common::PointCloud& cloud, FrameResult* r);
     // The accepted pose r->T_odom_lidar: the scan into the local maps, keyframe selection.

@@ -56,6 +56,11 @@ struct TrackingConfig {
     // the odometry ends its local maps and starts a new one at its best estimate (a new segment,
     // joined to the map later by a loop or by localisation).
     double restart_after = 0.5;  // [s]
+    // No scan for longer than this (sensor time between two scans): a new segment at once, not a
+    // fit to the old map (the robot may have been carried; a look-alike place of a repetitive site
+    // fits as well as the right one). Longer than any gap a scan stream has in normal running
+    // (keyframe streams of a fast car: 1-1.5 s). 0: off.
+    double restart_gap = 2.0;  // [s]
 };
 
 // Local maps (Eq. 9): a box around an anchor; a new map starts when the sensor leaves the
@@ -123,6 +128,7 @@ void visit_fields(OdometryConfig& c, Visitor&& v) {
     v("tracking.yaw_search", t.yaw_search, in_range(0, 180));
     v("tracking.yaw_step", t.yaw_step, in_range(1, 90));
     v("tracking.restart_after", t.restart_after, non_negative);
+    v("tracking.restart_gap", t.restart_gap, non_negative);
     auto& m = c.local_map;
     v("local_map.half_extent", m.half_extent, positive);
     v("local_map.switch_distance", m.switch_distance, positive);

@@ -146,6 +146,31 @@ TEST_F(StreetOdometry, SkippedScanCarriesTheConstantVelocityPrediction) {
     EXPECT_TRUE(odo.pose().isApprox(expected, 1e-9));
 }
 
+// A gap in the scans longer than tracking.restart_gap: a new segment, not a fit to the old map
+// (the robot may have been carried to a look-alike place); shorter gaps are tracked across.
+TEST_F(StreetOdometry, ALongGapBetweenScansStartsANewSegment) {
+    Odometry odo(OdometryConfig{}, street_pose(0));
+    for (int i = 0; i < 4; ++i) ASSERT_TRUE(odo.register_frame(street_scan(scene(), i)).pose_valid());
+    common::PointCloud later = street_scan(scene(), 5);
+    later.stamp = 0.3 + 1.5;  // 1.5 s gap: within restart_gap (2 s)
+    FrameResult r = odo.register_frame(later);
+    EXPECT_NE(r.status, FrameStatus::kRestarted) << r.message;
+    EXPECT_EQ(r.segment, 0u);
+    common::PointCloud carried = street_scan(scene(), 8);
+    carried.stamp = later.stamp + 2.5;
+    r = odo.register_frame(carried);
+    EXPECT_EQ(r.status, FrameStatus::kRestarted);
+    EXPECT_EQ(r.segment, 1u);
+    EXPECT_NE(r.message.find("gap of 2.5 s"), std::string::npos) << r.message;
+    // Off: tracked across.
+    OdometryConfig off;
+    off.tracking.restart_gap = 0.0;
+    Odometry other(off, street_pose(0));
+    for (int i = 0; i < 4; ++i) ASSERT_TRUE(other.register_frame(street_scan(scene(), i)).pose_valid());
+    carried.stamp = 0.3 + 2.5;
+    EXPECT_EQ(other.register_frame(carried).segment, 0u);
+}
+
 TEST_F(StreetOdometry, StampsThatDoNotAdvanceAreRejected) {
     Odometry odo(OdometryConfig{}, street_pose(0));
     ASSERT_TRUE(odo.register_frame(street_scan(scene(), 0)).pose_valid());
