@@ -32,7 +32,7 @@ struct SaveOptions {
     // save would write that is there under the same content name and size is hard-linked from
     // it instead (no copy of unchanged local maps); writing is the fallback when linking fails
     // (another filesystem, no hard links). "": always write.
-    std::string link_from;
+    std::string link_from{};
 };
 
 struct SaveStats {
