@@ -153,6 +153,18 @@ std::string SiteStore::staging_maintained_map_file() const {
 }
 std::string SiteStore::lock_file() const { return (fs::path(dir_) / "lock").string(); }
 
+std::string SiteStore::staging_problem() const {
+    std::error_code ec;
+    if (!fs::is_directory(staging_dir(), ec)) return "no staging: the session saved nothing";
+    if (!fs::exists(fs::path(staging_map_dir()) / "manifest.txt", ec))
+        return "no map saved in the staging (next/map/manifest.txt missing)";
+    if (const std::string p = check_map_dir(staging_map_dir()); !p.empty())
+        return "the session's map is not whole: " + p;
+    if (const std::string p = check_maintained_map_file(staging_maintained_map_file()); !p.empty())
+        return "the session's maintained map is not whole: " + p;
+    return "";
+}
+
 bool SiteStore::remove_stale_staging() const {
     std::error_code ec;
     if (!fs::exists(staging_dir(), ec)) return false;
@@ -165,12 +177,8 @@ SiteVersion SiteStore::commit(VersionSummary summary, std::size_t keep) {
     pruned_.clear();
     const fs::path staging(staging_dir());
     std::error_code ec;
-    if (!fs::is_directory(staging, ec))
-        throw common::IoError(staging.string(), "no staging: the session saved nothing");
-    if (const std::string p = check_map_dir(staging_map_dir()); !p.empty())
-        throw common::IoError(staging.string(), "the session's map is not whole: " + p);
-    if (const std::string p = check_maintained_map_file(staging_maintained_map_file()); !p.empty())
-        throw common::IoError(staging.string(), "the session's maintained map is not whole: " + p);
+    if (const std::string p = staging_problem(); !p.empty())
+        throw common::IoError(staging.string(), p);
 
     const std::vector<SiteVersion> before = list(dir_);
     // No maintained map staged: the start version's stays with the map.

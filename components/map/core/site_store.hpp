@@ -56,6 +56,9 @@ class SiteStore {
     std::string staging_maintained_map_file() const;
     std::string lock_file() const;  // SITE/lock
 
+    // "" when the staging holds a whole map (and a whole maintained map, if any), else one line.
+    std::string staging_problem() const;
+
     // Removes a staging left by a session that did not commit (call with the site locked).
     // True when there was one.
     bool remove_stale_staging() const;
