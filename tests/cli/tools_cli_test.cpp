@@ -77,6 +77,9 @@ const std::vector<BadLine> kBadLines = {
      {"write-test-file", "f.mcap", "--messages", "x"},
      "ltm_mcap write-test-file: --messages: expected a non-negative integer, got 'x'"},
     {"ltm_mcap_bench", {"--bogus"}, "ltm_mcap_bench: --bogus: unknown option"},
+    {"ltm_site", {"versions", "site", "--bogus"}, "ltm_site versions: --bogus: unknown option"},
+    {"ltm_site", {"import", "site", "--keep", "0", "--map", "m"},
+     "ltm_site import: --keep: must be at least 1"},
     // It read its options in pairs and dropped a trailing one: this ran the 10 s benchmark.
     {"ltm_mcap_bench", {"--frames", "0", "--seconds"}, "ltm_mcap_bench: --seconds: needs a value"},
     {"ltm_mcap_bench",
@@ -142,6 +145,8 @@ TEST(ToolsCli, HelpListsEveryOption) {
          {{"write-test-file", "--help"},
           {"OUT", "--manifest", "--compression", "--chunk-size", "--messages"}}},
         {"ltm_mcap_bench", {{"--help"}, {"--frames", "--seconds", "--out", "--kitti"}}},
+        {"ltm_site", {{"--help"}, {"versions", "check", "import"}}},
+        {"ltm_site", {{"import", "--help"}, {"SITE", "--map", "--maintained", "--keep"}}},
         {"ltm_bench_dds", {{"--help"}, {"--points", "--count", "--rate"}}},
         {"ltm_host",
          {{"--help"},

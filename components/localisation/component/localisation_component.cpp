@@ -32,6 +32,7 @@
 #include "common/core/one_line.hpp"
 #include "localisation/component/localisation_messages.hpp"
 #include "localisation/component/localiser_params.hpp"
+#include "map/core/site_store.hpp"
 #include "odometry/core/odometry_config.hpp"
 #include "odometry/params/odometry_params.hpp"
 #include "registration/core/preprocess.hpp"
@@ -110,9 +111,10 @@ class LocalisationComponent : public runtime::Component {
         const odometry::OdometryConfig oc = odometry_in_use(ctx, preset_);
         preprocessor_.emplace(oc.preprocess, oc.voxel_size);
         map_dir_ = p.path("map", "", PathCheck::kNone);
-        if (map_dir_.empty())
+        resolve_site_map(p);
+        if (map_dir_.empty() && map_state_ != kFailed)
             p.fail("map", "required: the saved map directory to localise on (map_dir of mapping)");
-        if (!skip_while_busy_) load_map();
+        if (!skip_while_busy_ && map_state_ == kLoading) load_map();
         pairer_.emplace(runtime::StampPairerOptions{kSameStamp, kMaxOdometry, 0, kMaxOdometry,
                                                     odometry_wait_s_});
         // Live: a scan that comes while the worker is busy replaces the one waiting for it.
@@ -172,6 +174,35 @@ class LocalisationComponent : public runtime::Component {
     }
 
   private:
+    // With `site_dir` (map/core/site_store.hpp), the map is the start version's of the site
+    // (`site_version`, or the newest intact one); a site without a version yet (a new site):
+    // nothing to localise on in this session, said once. A named version that is unknown or
+    // damaged refuses the component in one line.
+    void resolve_site_map(runtime::Parameters& p) {
+        const std::string site = p.path("site_dir", "", PathCheck::kNone);
+        const std::string version = p.get<std::string>("site_version", "");
+        if (site.empty()) {
+            if (!version.empty()) p.fail("site_version", "needs site_dir");
+            return;
+        }
+        if (!map_dir_.empty()) p.fail("map", "give either map or site_dir, not both");
+        map::SiteSession session;
+        try {
+            session = map::resolve_site(site, version);
+        } catch (const common::IoError& e) {
+            p.fail(version.empty() ? "site_dir" : "site_version", e.what());
+        }
+        for (const std::string& note : session.notes) ctx_.log().warn(note);
+        if (session.start) {
+            map_dir_ = session.start->map_dir();
+            ctx_.log().info("site " + site + ": localising on " + session.describe());
+            return;
+        }
+        no_map_ = "new site: no map yet, nothing to localise on until the next session";
+        ctx_.log().info("site " + site + ": " + no_map_);
+        map_state_ = kFailed;
+    }
+
     // The worker's first job: the map, or why there is none (no_map_): the component then runs
     // and localises nothing.
     void load_map() {

@@ -14,10 +14,12 @@
 //
 // With `map_file`, the maintained map is loaded from it when it exists (this run is the next
 // session on it; a damaged file refuses the component with one line and stays as it is) and saved
-// to it at shutdown (its folder created then). With `output_dir` (created when missing) every pass
-// writes there its change record (changes_NNNN.ltmc, maintenance/core/change_record.hpp), appends
-// its summary to changes.txt and rewrites changes_removed_added.ply (every change of the run:
-// removed voxels red, added green).
+// to it at shutdown (its folder created then). With `site_dir` instead (a lifelong session,
+// map/core/site_store.hpp), it is loaded from the site's start version (`site_version`, or the
+// newest intact one) and saved into the site's staging, which the `site` component commits. With
+// `output_dir` (created when missing) every pass writes there its change record (changes_NNNN.ltmc,
+// maintenance/core/change_record.hpp), appends its summary to changes.txt and rewrites
+// changes_removed_added.ply (every change of the run: removed voxels red, added green).
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -31,6 +33,7 @@
 #include "maintenance/core/change_record.hpp"
 #include "maintenance/core/change_report.hpp"
 #include "maintenance/core/long_term_map.hpp"
+#include "map/core/site_store.hpp"
 #include "runtime/component.hpp"
 #include "runtime/convert/dds_string.hpp"
 #include "runtime/convert/geometry.hpp"
@@ -139,21 +142,45 @@ class MaintenanceComponent : public runtime::Component {
     // component: it would be overwritten at shutdown), else a new one; this run's session.
     void load_map(runtime::Parameters& p) {
         std::uint32_t session = 0;
-        if (!config_.map_file.empty() && fs::exists(config_.map_file)) {
+        resolve_files(p);
+        if (!load_file_.empty() && fs::exists(load_file_)) {
             try {
                 map_ = std::make_unique<LongTermMap>(
-                    LongTermMap::load(config_.map_file, config_.maintenance));
+                    LongTermMap::load(load_file_, config_.maintenance));
             } catch (const common::IoError& e) {
-                p.fail("map_file", e.what());
+                p.fail(config_.site_dir.empty() ? "map_file" : "site_dir", e.what());
             }
             if (!map_->sessions().empty()) session = map_->sessions().back() + 1;
             const LongTermMapStats st = map_->stats();
-            ctx_.log().info("map " + config_.map_file + ": " + std::to_string(st.voxels) +
-                            " voxels of " + std::to_string(map_->sessions().size()) + " sessions");
+            ctx_.log().info("map " + load_file_ + ": " + std::to_string(st.voxels) + " voxels of " +
+                            std::to_string(map_->sessions().size()) + " sessions");
         } else {
             map_ = std::make_unique<LongTermMap>(config_.maintenance);
         }
         session_ = config_.session >= 0 ? std::uint32_t(config_.session) : session;
+    }
+
+    // Where the maintained map comes from and goes: map_file both ways, or with site_dir the
+    // start version's file in and the site's staging out.
+    void resolve_files(runtime::Parameters& p) {
+        load_file_ = save_file_ = config_.map_file;
+        if (config_.site_dir.empty()) return;
+        map::SiteSession site;
+        try {
+            site = map::resolve_site(config_.site_dir, config_.site_version);
+        } catch (const common::IoError& e) {
+            p.fail(config_.site_version.empty() ? "site_dir" : "site_version", e.what());
+        }
+        for (const std::string& note : site.notes) ctx_.log().warn(note);
+        save_file_ = site.staging_maintained_map_file;
+        if (site.start && fs::exists(site.start->maintained_map_file())) {
+            load_file_ = site.start->maintained_map_file();
+        } else {
+            ctx_.log().info("site " + config_.site_dir + ": " +
+                            (site.start ? site.start->name + " has no maintained map"
+                                        : std::string("a new site")) +
+                            ": a new maintained map");
+        }
     }
 
     // --- the component's thread: inputs, pairing ---
@@ -219,28 +246,30 @@ class MaintenanceComponent : public runtime::Component {
     }
 
     // The session's last pass and the map saved (after the worker stopped).
+    // In a site's session without a scan, the map as loaded goes to the staging all the same:
+    // the site's next version keeps what earlier sessions learnt.
     void end_session() {
-        if (!started_) return;
+        const bool carry = !started_ && !config_.site_dir.empty();
+        if (!started_ && !carry) return;
         const double stamp = stamp_;
         try {
-            finish_pass(map_->end_session(), stamp);
-            if (!config_.map_file.empty()) {
-                const fs::path parent = fs::path(config_.map_file).parent_path();
+            if (started_) finish_pass(map_->end_session(), stamp);
+            if (!save_file_.empty()) {
+                const fs::path parent = fs::path(save_file_).parent_path();
                 if (!parent.empty()) fs::create_directories(parent);  // throws: one line below
-                map_->save(config_.map_file);
+                map_->save(save_file_);
                 const LongTermMapStats st = map_->stats();
                 const std::string what = std::to_string(st.voxels) + " voxels, session " +
                                          std::to_string(session_) + " of " +
                                          std::to_string(map_->sessions().size());
-                ctx_.log().info("map saved to " + config_.map_file + ": " + what);
-                ctx_.report_output("maintained map", config_.map_file, true, what);
+                ctx_.log().info("map saved to " + save_file_ + ": " + what);
+                ctx_.report_output("maintained map", save_file_, true, what);
             }
         } catch (const std::exception& e) {
             event(StatusLevel::kError, StatusCode::kMaintenanceFailed, common::one_line(e.what()),
                   stamp);
-            if (!config_.map_file.empty())
-                ctx_.report_output("maintained map", config_.map_file, false,
-                                   common::one_line(e.what()));
+            if (!save_file_.empty())
+                ctx_.report_output("maintained map", save_file_, false, common::one_line(e.what()));
         }
     }
 
@@ -296,6 +325,7 @@ class MaintenanceComponent : public runtime::Component {
     std::string frame_id_ = "map";
 
     // The worker's (read by on_shutdown after the join).
+    std::string load_file_, save_file_;  // the maintained map's ("": none)
     std::unique_ptr<LongTermMap> map_;
     std::uint32_t session_ = 0;
     bool started_ = false;

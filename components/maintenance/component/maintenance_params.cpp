@@ -19,6 +19,11 @@ MaintenanceComponentConfig load_maintenance_params(runtime::Parameters& p) {
     if (!(c.maintain_every_s >= 0.0))
         p.fail("maintain_every_s", "must be >= 0 (0: only at shutdown)");
     c.map_file = p.path("map_file", "", runtime::PathCheck::kNone);
+    c.site_dir = p.path("site_dir", "", runtime::PathCheck::kNone);
+    c.site_version = p.get<std::string>("site_version", "");
+    if (!c.site_dir.empty() && !c.map_file.empty())
+        p.fail("map_file", "give either map_file or site_dir, not both");
+    if (c.site_dir.empty() && !c.site_version.empty()) p.fail("site_version", "needs site_dir");
     c.session = p.get<int>("session", c.session);
     if (c.session < -1) p.fail("session", "must be >= 0 (or -1: after the map's last session)");
     c.max_queue = p.get<int>("max_queue", c.max_queue);

@@ -25,6 +25,12 @@ struct MaintenanceComponentConfig {
     // The maintained map (LongTermMap::save/load): loaded when the file exists (this run is
     // then another session on it), saved at shutdown. "": kept in memory only.
     std::string map_file;
+    // A site's folder (map/core/site_store.hpp) instead of map_file: the maintained map is loaded
+    // from the start version's (`site_version`, or the newest intact one; none: a new map) and
+    // saved into the site's staging (SITE/next/maintenance/long_term_map.bin), which the `site`
+    // component commits as the next version.
+    std::string site_dir;
+    std::string site_version;
     int session = -1;  // this run's session number on the map (-1: the loaded map's last + 1, or 0)
     int max_queue = 50;            // scans waiting for the worker
     bool skip_while_busy = false;  // a full queue drops its oldest scan (live) or waits (offline)

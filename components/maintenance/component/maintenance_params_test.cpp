@@ -70,6 +70,11 @@ TEST(MaintenanceParams, ABadParameterIsOneLineNamingFileLineAndKey) {
     EXPECT_NE(error_of("change: {gone_hit_fraction: 0.9, new_hit_fraction: 0.5}")
                   .find("maintenance.change.gone_hit_fraction: must be below"),
               std::string::npos);
+    // A site (site_dir) or a file (map_file), not both; a version needs a site.
+    EXPECT_EQ(error_of("map_file: /tmp/m.bin\nsite_dir: /tmp/site"),
+              "test.yaml:1: maintenance.map_file: give either map_file or site_dir, not both");
+    EXPECT_EQ(error_of("site_version: v0003"),
+              "test.yaml:1: maintenance.site_version: needs site_dir");
     for (const std::string bad :
          {"input: lidar", "max_queue: 0", "session: -2", "skip_while_busy: maybe", "slot: -1"}) {
         const std::string e = error_of(bad);

@@ -14,6 +14,7 @@
 //   end <number of file entries>
 // Hashes are FNV-1a 64 of the file, 16 lower-case hex digits. The layout is described once, in
 // map_manifest.cpp, and that description both writes and parses it.
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -44,6 +45,20 @@ struct Manifest {
     std::vector<SessionRecord> sessions;  // format 3 (written only with localisation descriptors)
     std::vector<ManifestEntry> files;     // exactly one graph
 };
+
+// FNV-1a 64 of a file's bytes (what the manifest names files by and checks them with); the
+// running form hashes a file read in pieces: start from kMapFileHashInit.
+inline constexpr std::uint64_t kMapFileHashInit = 0xcbf29ce484222325ull;
+inline std::uint64_t map_file_hash_update(std::uint64_t h, const char* bytes, std::size_t size) {
+    for (std::size_t i = 0; i < size; ++i) {
+        h ^= std::uint8_t(bytes[i]);
+        h *= 0x100000001b3ull;
+    }
+    return h;
+}
+inline std::uint64_t map_file_hash(const std::string& bytes) {
+    return map_file_hash_update(kMapFileHashInit, bytes.data(), bytes.size());
+}
 
 std::string write_manifest(const Manifest& manifest);
 // Throws MapFormatError naming the line and its byte offset ("manifest.txt: line 2 at byte 10:

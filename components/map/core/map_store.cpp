@@ -23,14 +23,7 @@ constexpr std::uint64_t kFirstHeaderField = 16;  // magic, version, section leng
 // FNV-1a 64 of a whole file: names files and checks them against the manifest. (A CRC-32 of a
 // file made of CRC-protected sections would not do: a section's bytes and its own CRC change
 // together in a way that leaves the CRC of the whole unchanged.)
-std::uint64_t fnv1a64(const std::string& bytes) {
-    std::uint64_t h = 0xcbf29ce484222325ull;
-    for (const char c : bytes) {
-        h ^= std::uint8_t(c);
-        h *= 0x100000001b3ull;
-    }
-    return h;
-}
+std::uint64_t fnv1a64(const std::string& bytes) { return map_file_hash(bytes); }
 
 std::string hex64(std::uint64_t v) {
     char buf[17];
@@ -92,6 +85,17 @@ SaveStats MapWriter::save(const MapData& map) {
     const std::string v = "v" + std::to_string(version) + ":";
     std::unordered_map<std::string, Written> cache;
     // Writes (or keeps) one file; `key` names it in the cache.
+    // The same content-named file of options_.link_from, hard-linked to `path`.
+    auto link_file = [&](const std::string& file, std::uint64_t size, const fs::path& path) {
+        if (options_.link_from.empty()) return false;
+        const fs::path from = fs::path(options_.link_from) / file;
+        std::error_code lec;
+        if (!fs::is_regular_file(from, lec) || fs::file_size(from, lec) != size || lec)
+            return false;
+        fs::remove(path, lec);  // a leftover of another size
+        fs::create_hard_link(from, path, lec);
+        return !lec;
+    };
     auto emit = [&](const std::string& key, const std::string& kind, const std::string& prefix,
                     std::shared_ptr<const void> first, std::shared_ptr<const void> last,
                     const std::function<std::string()>& encode) -> ManifestEntry {
@@ -113,6 +117,8 @@ SaveStats MapWriter::save(const MapData& map) {
             const fs::path path = fs::path(dir_) / e.file;
             if (fs::exists(path, ec) && fs::file_size(path, ec) == e.size) {
                 ++stats.files_kept;  // the same content is already there (named by its CRC)
+            } else if (link_file(e.file, e.size, path)) {
+                ++stats.files_linked;
             } else {
                 common::write_file_atomic(path.string(), bytes);
                 ++stats.files_written;

@@ -28,10 +28,16 @@ namespace ltm::map {
 
 struct SaveOptions {
     std::size_t keyframes_per_file = 1024;
+    // Another map directory (the version a session started from, site_store.hpp): a file this
+    // save would write that is there under the same content name and size is hard-linked from
+    // it instead (no copy of unchanged local maps); writing is the fallback when linking fails
+    // (another filesystem, no hard links). "": always write.
+    std::string link_from{};
 };
 
 struct SaveStats {
     std::size_t files_written = 0, files_kept = 0, files_removed = 0;
+    std::size_t files_linked = 0;  // hard-linked from SaveOptions::link_from (not written)
     std::uint64_t bytes_written = 0;
     std::uint64_t bytes_total = 0;  // of every file the manifest names
 };

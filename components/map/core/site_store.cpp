@@ -1,0 +1,252 @@
+#include "map/core/site_store.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <ctime>
+#include <filesystem>
+
+#include "common/core/file_io.hpp"
+#include "common/core/io_error.hpp"
+#include "map/core/site_check.hpp"
+
+namespace ltm::map {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr const char* kVersions = "versions";
+constexpr const char* kStaging = "next";
+constexpr const char* kMaintained = "maintenance/long_term_map.bin";
+constexpr const char* kRemoving = ".removing-";
+
+// The number of a version folder's name ("v0003" -> 3), 0 when it is not one.
+std::uint32_t number_of(const std::string& name) {
+    if (name.size() < 2 || name[0] != 'v' || name.size() > 10) return 0;
+    std::uint64_t n = 0;
+    for (std::size_t i = 1; i < name.size(); ++i) {
+        if (name[i] < '0' || name[i] > '9') return 0;
+        n = n * 10 + std::uint64_t(name[i] - '0');
+    }
+    return n > 0 && n <= 0xffffffffull ? std::uint32_t(n) : 0;
+}
+
+// A version named by the user: "v0003", "v3" or "3".
+std::uint32_t parse_user_name(const std::string& name) {
+    if (!name.empty() && name[0] != 'v') return number_of("v" + name);
+    return number_of(name);
+}
+
+// Every version folder, ascending, not checked.
+std::vector<SiteVersion> list(const std::string& site) {
+    std::vector<SiteVersion> out;
+    std::error_code ec;
+    const fs::path root = fs::path(site) / kVersions;
+    for (const fs::directory_entry& e : fs::directory_iterator(root, ec)) {
+        const std::string name = e.path().filename().string();
+        const std::uint32_t n = number_of(name);
+        if (n == 0 || !e.is_directory(ec)) continue;
+        SiteVersion v;
+        v.number = n;
+        v.name = name;
+        v.dir = (root / name).string();
+        out.push_back(v);
+    }
+    std::sort(out.begin(), out.end(),
+              [](const SiteVersion& a, const SiteVersion& b) { return a.number < b.number; });
+    return out;
+}
+
+void check(SiteVersion& v) {
+    v.problem = check_map_dir(v.map_dir());
+    if (v.problem.empty()) v.problem = check_maintained_map_file(v.maintained_map_file());
+    v.intact = v.problem.empty();
+}
+
+// fsync of a folder (its entries); best effort on a folder that does not exist.
+void sync_dir(const fs::path& dir) {
+    const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (fd < 0) return;
+    const int r = ::fsync(fd);
+    const int error = errno;
+    ::close(fd);
+    if (r != 0) throw common::IoError(dir.string(), std::string("fsync: ") + std::strerror(error));
+}
+
+void link_or_copy(const fs::path& from, const fs::path& to) {
+    std::error_code ec;
+    fs::create_directories(to.parent_path(), ec);
+    fs::create_hard_link(from, to, ec);
+    if (!ec) return;
+    fs::copy_file(from, to, fs::copy_options::overwrite_existing, ec);
+    if (ec) throw common::IoError(to.string(), "cannot carry the maintained map: " + ec.message());
+}
+
+std::string known(const std::vector<SiteVersion>& all) {
+    if (all.empty()) return "the site has no versions";
+    std::string s = "known: ";
+    for (std::size_t i = 0; i < all.size(); ++i) s += (i ? ", " : "") + all[i].name;
+    return s;
+}
+
+}  // namespace
+
+std::string version_name(std::uint32_t number) {
+    char buf[16];
+    std::snprintf(buf, sizeof buf, "v%04u", number);
+    return buf;
+}
+
+SiteStore::SiteStore(std::string site_dir) : dir_(std::move(site_dir)) {}
+
+std::vector<SiteVersion> SiteStore::versions() const {
+    std::vector<SiteVersion> all = list(dir_);
+    for (SiteVersion& v : all) check(v);
+    return all;
+}
+
+std::optional<SiteVersion> SiteStore::start_version(const std::string& name,
+                                                    std::vector<std::string>* notes) const {
+    std::vector<SiteVersion> all = list(dir_);
+    if (!name.empty()) {
+        const std::uint32_t n = parse_user_name(name);
+        if (n == 0)
+            throw common::IoError(dir_,
+                                  "version '" + name + "' is not a version name (v0003 or 3)");
+        for (SiteVersion& v : all) {
+            if (v.number != n) continue;
+            check(v);
+            if (!v.intact)
+                throw common::IoError(dir_, v.name + " is damaged (" + v.problem +
+                                                "): start on another version or none");
+            return v;
+        }
+        throw common::IoError(dir_, "no version " + version_name(n) + " (" + known(all) + ")");
+    }
+    std::vector<const SiteVersion*> damaged;  // newer than the one found
+    for (auto it = all.rbegin(); it != all.rend(); ++it) {
+        check(*it);
+        if (it->intact) {
+            if (notes)
+                for (const SiteVersion* d : damaged)
+                    notes->push_back(d->name + " is damaged (" + d->problem + "): starting on " +
+                                     it->name);
+            return *it;
+        }
+        damaged.push_back(&*it);
+    }
+    if (notes)
+        for (const SiteVersion* d : damaged)
+            notes->push_back(d->name + " is damaged (" + d->problem +
+                             "): no intact version, starting as a new site");
+    return std::nullopt;
+}
+
+std::string SiteStore::staging_dir() const { return (fs::path(dir_) / kStaging).string(); }
+std::string SiteStore::staging_map_dir() const { return staging_dir() + "/map"; }
+std::string SiteStore::staging_maintained_map_file() const {
+    return staging_dir() + "/" + kMaintained;
+}
+std::string SiteStore::lock_file() const { return (fs::path(dir_) / "lock").string(); }
+
+std::string SiteStore::staging_problem() const {
+    std::error_code ec;
+    if (!fs::is_directory(staging_dir(), ec)) return "no staging: the session saved nothing";
+    if (!fs::exists(fs::path(staging_map_dir()) / "manifest.txt", ec))
+        return "no map saved in the staging (next/map/manifest.txt missing)";
+    if (const std::string p = check_map_dir(staging_map_dir()); !p.empty())
+        return "the session's map is not whole: " + p;
+    if (const std::string p = check_maintained_map_file(staging_maintained_map_file()); !p.empty())
+        return "the session's maintained map is not whole: " + p;
+    return "";
+}
+
+bool SiteStore::remove_stale_staging() const {
+    std::error_code ec;
+    if (!fs::exists(staging_dir(), ec)) return false;
+    fs::remove_all(staging_dir(), ec);
+    if (ec) throw common::IoError(staging_dir(), "cannot remove a stale staging: " + ec.message());
+    return true;
+}
+
+SiteVersion SiteStore::commit(VersionSummary summary, std::size_t keep) {
+    pruned_.clear();
+    const fs::path staging(staging_dir());
+    std::error_code ec;
+    if (const std::string p = staging_problem(); !p.empty())
+        throw common::IoError(staging.string(), p);
+
+    const std::vector<SiteVersion> before = list(dir_);
+    // No maintained map staged: the start version's stays with the map.
+    if (!fs::exists(staging_maintained_map_file(), ec) && !summary.started_from.empty()) {
+        for (const SiteVersion& v : before)
+            if (v.name == summary.started_from && fs::exists(v.maintained_map_file(), ec))
+                link_or_copy(v.maintained_map_file(), staging_maintained_map_file());
+    }
+    summary.number = before.empty() ? 1 : before.back().number + 1;
+    if (summary.created == 0) summary.created = std::int64_t(std::time(nullptr));
+    common::write_file_atomic((staging / "version.txt").string(), write_version_text(summary));
+    for (const char* sub : {"map/local_maps", "map", "maintenance", ""}) sync_dir(staging / sub);
+
+    const fs::path versions = fs::path(dir_) / kVersions;
+    fs::create_directories(versions, ec);
+    if (ec) throw common::IoError(versions.string(), "cannot create: " + ec.message());
+    sync_dir(dir_);
+    SiteVersion made;
+    made.number = summary.number;
+    made.name = version_name(made.number);
+    made.dir = (versions / made.name).string();
+    if (::rename(staging.c_str(), made.dir.c_str()) != 0)
+        throw common::IoError(made.dir,
+                              std::string("cannot make the version: ") + std::strerror(errno));
+    sync_dir(versions);
+    made.intact = true;
+
+    // Pruning: the oldest beyond `keep`. Interrupted removals (".removing-v0001") first.
+    for (const fs::directory_entry& e : fs::directory_iterator(versions, ec))
+        if (e.path().filename().string().rfind(kRemoving, 0) == 0) fs::remove_all(e.path(), ec);
+    keep = std::max<std::size_t>(keep, 1);
+    std::vector<SiteVersion> all = list(dir_);
+    std::size_t count = all.size();
+    for (std::size_t i = 0; i < all.size() && count > keep; ++i) {
+        SiteVersion& v = all[i];
+        if (v.number == made.number) continue;
+        if (v.name == summary.started_from) {
+            bool other_intact = false;
+            for (std::size_t j = 0; j < all.size() && !other_intact; ++j) {
+                if (j == i || all[j].number >= made.number) continue;
+                check(all[j]);
+                other_intact = all[j].intact;
+            }
+            if (!other_intact) continue;
+        }
+        const fs::path doomed = versions / (std::string(kRemoving) + v.name);
+        if (::rename(v.dir.c_str(), doomed.c_str()) != 0) continue;
+        fs::remove_all(doomed, ec);
+        pruned_.push_back(v.name);
+        --count;
+    }
+    sync_dir(versions);
+    return made;
+}
+
+std::string SiteSession::describe() const {
+    return start ? start->name + " (" + start->dir + ")" : std::string("none (a new site)");
+}
+
+SiteSession resolve_site(const std::string& site_dir, const std::string& version_name) {
+    SiteSession s;
+    s.site_dir = site_dir;
+    const SiteStore store(site_dir);
+    s.start = store.start_version(version_name, &s.notes);
+    s.staging_dir = store.staging_dir();
+    s.staging_map_dir = store.staging_map_dir();
+    s.staging_maintained_map_file = store.staging_maintained_map_file();
+    return s;
+}
+
+}  // namespace ltm::map

@@ -1,0 +1,95 @@
+#pragma once
+// A site's folder: the versions of its map, one a session, and the staging of the running one.
+//   SITE/versions/v0001/map/                            a map directory (map_store.hpp)
+//   SITE/versions/v0001/maintenance/long_term_map.bin   the maintained map (maintenance core)
+//   SITE/versions/v0001/version.txt                     what the session changed (version_summary)
+//   SITE/next/                     the running session's staging: next/map/, next/maintenance/...
+//   SITE/lock                      held by the host running a session (site_lock.hpp)
+// A session starts from a version (named, or the newest intact one), saves into SITE/next (the
+// mapping with SaveOptions::link_from = the start version's map: unchanged files are hard links,
+// not copies) and at its end commit() makes the staging the next version by one rename. A crash
+// or a full disk before that rename leaves every version as it was; SITE/next is then stale and
+// the next session removes it.
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "map/core/version_summary.hpp"
+
+namespace ltm::map {
+
+struct SiteVersion {
+    std::uint32_t number = 0;  // 1, 2, ...
+    std::string name;          // "v0003"
+    std::string dir;           // SITE/versions/v0003
+    // The map's manifest and every file it names check out (sizes, hashes: no voxel decoded) and
+    // the maintained map's sections (when there is one): site_check.hpp.
+    bool intact = false;
+    std::string problem;  // one line when not intact
+    std::string map_dir() const { return dir + "/map"; }
+    std::string maintained_map_file() const { return dir + "/maintenance/long_term_map.bin"; }
+    std::string summary_file() const { return dir + "/version.txt"; }
+};
+
+// "v0003" of 3.
+std::string version_name(std::uint32_t number);
+
+class SiteStore {
+  public:
+    explicit SiteStore(std::string site_dir);  // does not create anything
+    const std::string& dir() const { return dir_; }
+
+    // Every version, ascending, each checked (reads every file once).
+    std::vector<SiteVersion> versions() const;
+    // The version a session starts from. `name` given ("v0003" or "3"): that version, or throws
+    // common::IoError with one line (unknown: lists the known ones; damaged: says what). Empty:
+    // the newest intact one; each newer damaged one skipped is described in *notes ("v0005 is
+    // damaged (...): starting on v0004"); nullopt when the site has no intact version (a new
+    // site).
+    std::optional<SiteVersion> start_version(const std::string& name,
+                                             std::vector<std::string>* notes = nullptr) const;
+
+    std::string staging_dir() const;  // SITE/next
+    std::string staging_map_dir() const;
+    std::string staging_maintained_map_file() const;
+    std::string lock_file() const;  // SITE/lock
+
+    // "" when the staging holds a whole map (and a whole maintained map, if any), else one line.
+    std::string staging_problem() const;
+
+    // Removes a staging left by a session that did not commit (call with the site locked).
+    // True when there was one.
+    bool remove_stale_staging() const;
+
+    // Makes the staged session the next version atomically (version.txt written into the
+    // staging, fsync, rename SITE/next -> SITE/versions/vNNNN, fsync of SITE/versions), then
+    // removes the oldest versions beyond `keep` (at least 1; never the one just made, never
+    // `summary.started_from` while it is the only intact version older than the new one).
+    // Staging without a maintained map takes the start version's (hard-linked: a session without
+    // maintenance keeps what earlier ones learnt). Throws common::IoError (one line) when the
+    // staging is missing or not intact; nothing changes then. Sets number and created.
+    SiteVersion commit(VersionSummary summary, std::size_t keep);
+    // The versions commit() removed (names), for the log.
+    const std::vector<std::string>& pruned() const { return pruned_; }
+
+  private:
+    std::string dir_;
+    std::vector<std::string> pruned_;
+};
+
+// What a component needs to take part in a session on a site: the start version (or none: a new
+// site), the notes on damaged versions skipped, and where to save. Throws common::IoError (one
+// line) for a named version that is unknown or damaged.
+struct SiteSession {
+    std::string site_dir;
+    std::optional<SiteVersion> start;
+    std::vector<std::string> notes;
+    std::string staging_dir, staging_map_dir, staging_maintained_map_file;
+    // "v0004 (SITE/versions/v0004)" or "none (a new site)".
+    std::string describe() const;
+};
+SiteSession resolve_site(const std::string& site_dir, const std::string& version_name);
+
+}  // namespace ltm::map

@@ -1,0 +1,152 @@
+// The site of a lifelong session as a component (issue 26, item 3): constructed LAST in the
+// launch config, so that the others (localisation, mapping, maintenance) have resolved the same
+// start version (map/core/site_store.hpp: resolve_site) and stopped LAST, so that they have
+// saved into the staging (SITE/next) when it commits.
+//   construction: takes SITE/lock (another live session: one-line error, the host refuses to
+//     start), checks that every component with a `site_dir` names this site and version, removes
+//     a staging a crashed session left, and says which version the session starts from (and
+//     which damaged ones it skipped);
+//   map_changes (ltm_msgs/MapChangeSet, the maintenance's): voxels removed and added, summed for
+//     the version's summary;
+//   shutdown: the staging checked (the map whole; the maintained map whole, and there when a
+//     maintenance component takes part), the summary measured from the start version's map and
+//     the staged one, the staging committed as the next version, the oldest beyond
+//     `keep_versions` removed, the lock released; the host lists the output ("site version").
+//     A staging that is not whole commits nothing: the output is NOT saved (exit 4) and the
+//     start version stays the newest.
+// Parameters: site_dir (required), keep_versions (10), site_version ("": the newest intact one).
+#include <filesystem>
+#include <memory>
+#include <optional>
+
+#include "common/core/io_error.hpp"
+#include "common/core/one_line.hpp"
+#include "map/core/site_lock.hpp"
+#include "map/core/site_store.hpp"
+#include "runtime/component.hpp"
+
+namespace ltm::map {
+namespace {
+
+namespace fs = std::filesystem;
+using runtime::PathCheck;
+using runtime::TopicRole;
+
+constexpr std::uint8_t kNew = 2;  // ltm_msgs/SegmentChange NEW
+
+std::string same_path(const std::string& p) {
+    std::error_code ec;
+    const fs::path c = fs::weakly_canonical(fs::absolute(p), ec);
+    return ec ? p : c.string();
+}
+
+class SiteComponent : public runtime::Component {
+  public:
+    explicit SiteComponent(runtime::ComponentContext& ctx)
+        : ctx_(ctx), store_(ctx.params().path("site_dir", "", PathCheck::kNone)) {
+        auto& p = ctx.params();
+        if (store_.dir().empty()) p.fail("site_dir", "required: the site's folder");
+        const int keep = p.get<int>("keep_versions", 10);
+        if (keep < 1) p.fail("keep_versions", "must be >= 1");
+        keep_ = std::size_t(keep);
+        version_ = p.get<std::string>("site_version", "");
+        check_others(p);
+        try {
+            lock_ = std::make_unique<SiteLock>(store_.lock_file());
+        } catch (const common::IoError& e) {
+            p.fail("site_dir", e.what());
+        }
+        try {
+            session_ = resolve_site(store_.dir(), version_);
+            if (store_.remove_stale_staging())
+                ctx.log().warn("removed " + store_.staging_dir() +
+                               ": the staging of a session that did not finish");
+        } catch (const common::IoError& e) {
+            p.fail(version_.empty() ? "site_dir" : "site_version", e.what());
+        }
+        for (const std::string& note : session_.notes) ctx.log().warn(note);
+        ctx.log().info("site " + store_.dir() + ": the session starts from " + session_.describe() +
+                       "; it will be saved as the next version (keeping " + std::to_string(keep_) +
+                       ")");
+        if (maintenance_) {
+            ctx.subscribe<msg::MapChangeSet>(
+                "map_changes", TopicRole::kMap, [this](const msg::MapChangeSet& m) {
+                    removed_ += m.voxels_removed;
+                    for (std::uint32_t i = 0; i < m.changes._length; ++i)
+                        if (m.changes._buffer[i].reason == kNew)
+                            added_ += m.changes._buffer[i].voxels._length / 3;
+                });
+        }
+    }
+
+    void on_shutdown() override {
+        if (!lock_) return;  // committed already (a second shutdown)
+        const std::string stays = session_.start
+                                      ? session_.start->name + " stays the newest version"
+                                      : std::string("the site still has no version");
+        std::string problem = store_.staging_problem();
+        if (problem.empty() && maintenance_ && !fs::exists(store_.staging_maintained_map_file()))
+            problem = "the maintenance saved no maintained map into the staging";
+        if (problem.empty()) {
+            try {
+                VersionSummary summary = measure_version(
+                    store_.staging_map_dir(), session_.start ? session_.start->map_dir() : "",
+                    session_.start ? session_.start->name : "");
+                if (maintenance_) {
+                    summary.voxels_removed = removed_;
+                    summary.voxels_added = added_;
+                }
+                const SiteVersion made = store_.commit(summary, keep_);
+                for (const std::string& name : store_.pruned())
+                    ctx_.log().info("removed " + name + " (more than keep_versions " +
+                                    std::to_string(keep_) + ")");
+                ctx_.report_output("site version", made.dir, true,
+                                   made.name + ": " + version_line(summary));
+            } catch (const std::exception& e) {
+                problem = common::one_line(e.what());
+            }
+        }
+        if (!problem.empty())
+            ctx_.report_output("site version", store_.staging_dir(), false,
+                               problem + "; nothing committed, " + stays);
+        lock_.reset();
+    }
+
+  private:
+    // Every other component given a site must name this one, and the same version: one session,
+    // one start. Notes whether a maintenance component takes part.
+    void check_others(runtime::Parameters& p) {
+        const runtime::LaunchConfig& launch = ctx_.launch_config();
+        for (const runtime::ComponentSpec& c : launch.components) {
+            if (c.name == ctx_.name() || !c.params || !c.params.IsMap() || !c.params["site_dir"])
+                continue;
+            runtime::Parameters other(c.params, launch.file, c.name);
+            const std::string dir = other.path("site_dir", "", PathCheck::kNone);
+            const std::string version = other.get<std::string>("site_version", "");
+            if (same_path(dir) != same_path(store_.dir()))
+                p.fail("site_dir", "component '" + c.name + "' has site_dir " + dir +
+                                       ": every component of a session must use one site");
+            if (version != version_)
+                p.fail("site_version", "component '" + c.name + "' has site_version '" + version +
+                                           "', this one '" + version_ +
+                                           "': every component must start from one version");
+            if (c.type == "maintenance") maintenance_ = true;
+        }
+    }
+
+    runtime::ComponentContext& ctx_;
+    SiteStore store_;
+    std::size_t keep_ = 10;
+    std::string version_;
+    bool maintenance_ = false;
+    std::unique_ptr<SiteLock> lock_;
+    SiteSession session_;
+    std::uint64_t removed_ = 0, added_ = 0;  // by the maintenance (map_changes)
+};
+
+}  // namespace
+}  // namespace ltm::map
+
+LTM_REGISTER_COMPONENT(ltm::map::SiteComponent, "site",
+                       "a site's map versions: the session's start version, its lock, and the "
+                       "staging committed as the next version at shutdown")

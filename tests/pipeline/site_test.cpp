@@ -1,0 +1,136 @@
+// The `site` component through the host (issue 26, item 3): a session commits what was staged as
+// the site's next version at SIGTERM; nothing staged is NOT saved (exit 4) and the previous
+// version stays the newest; a second live session on the site, and a named version that is
+// unknown, are refused in one line (exit 2); a staging a crashed session left is removed; the
+// localisation on a new site says there is no map yet. The map is staged by the test itself
+// (the mapping's part is the lead's); the host runs the real site component.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <filesystem>
+#include <thread>
+
+#include "host/process.hpp"
+#include "host/temp_dir_test.hpp"
+#include "map/core/map_store.hpp"
+#include "map/core/site_store.hpp"
+#include "map/core/site_test_maps.hpp"
+
+namespace fs = std::filesystem;
+using ltm::tests::Process;
+using namespace ltm;
+
+namespace {
+
+const std::string kHost = std::string(LTM_BINARY_DIR) + "/bin/ltm_host";
+
+class SitePipeline : public ltm::tests::TempDirTest {
+  protected:
+    SitePipeline() : TempDirTest("ltm_site_") {}
+
+    std::string config(int domain, const std::string& site, const std::string& extra = "") {
+        return write("site" + std::to_string(domain) + ".yaml",
+                     "domain_id: " + std::to_string(domain) +
+                         "\ndds: {interfaces: [lo], multicast: false, peers: [127.0.0.1]}\n"
+                         "components:\n" +
+                         extra + "  - name: site\n    type: site\n    params: {site_dir: " + site +
+                         ", keep_versions: 3}\n");
+    }
+
+    // A site with one version, made as a session would.
+    void make_first_version(const std::string& site) {
+        map::SiteStore store(site);
+        map::save_map(store.staging_map_dir(), map::test::tiny_map(2));
+        map::test::write_maintained_map(store.staging_maintained_map_file(), 1);
+        store.commit(map::measure_version(store.staging_map_dir(), "", ""), 3);
+    }
+};
+
+// Waits (no timing assertion: a generous bound) until the host's log holds `text`.
+bool wait_for_log(const Process& p, const std::string& text) {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    while (std::chrono::steady_clock::now() < deadline) {
+        if (p.err().find(text) != std::string::npos) return true;
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+    return false;
+}
+
+}  // namespace
+
+TEST_F(SitePipeline, TheStagedSessionBecomesTheNextVersionAndASecondSessionIsRefused) {
+    const std::string site = path("site");
+    make_first_version(site);
+    fs::create_directories(fs::path(site) / "next/map");  // a crashed session's staging
+    Process host({kHost, config(231, site)}, path("host"));
+    ASSERT_TRUE(wait_for_log(host, "the session starts from v0001")) << host.err();
+    EXPECT_NE(host.err().find("the staging of a session that did not finish"), std::string::npos)
+        << host.err();
+
+    Process second({kHost, config(232, site)}, path("second"));
+    EXPECT_EQ(second.wait(60), 2) << second.err();
+    EXPECT_NE(second.err().find("the site is in use by pid"), std::string::npos) << second.err();
+
+    // What the mapping and the maintenance of this session would save.
+    map::SiteStore store(site);
+    map::SaveOptions options;
+    options.link_from = store.start_version("")->map_dir();
+    map::save_map(store.staging_map_dir(), map::test::tiny_map(3), options);
+    map::test::write_maintained_map(store.staging_maintained_map_file(), 2);
+    host.signal(SIGTERM);
+    ASSERT_EQ(host.wait(60), 0) << host.err();
+    EXPECT_NE(host.err().find("saved site version (site): " + site +
+                              "/versions/v0002 (v0002: 1 "
+                              "local maps added, 0 updated (3); 2 keyframes added"),
+              std::string::npos)
+        << host.err();
+    const auto versions = store.versions();
+    ASSERT_EQ(versions.size(), 2u);
+    EXPECT_TRUE(versions[1].intact) << versions[1].problem;
+    EXPECT_FALSE(fs::exists(store.staging_dir()));
+    EXPECT_EQ(map::load_map(versions[1].map_dir()).map.local_maps.size(), 3u);
+}
+
+TEST_F(SitePipeline, NothingStagedIsNotSavedAndThePreviousVersionStays) {
+    const std::string site = path("site");
+    make_first_version(site);
+    Process host({kHost, config(233, site)}, path("host"));
+    ASSERT_TRUE(wait_for_log(host, "the session starts from v0001")) << host.err();
+    host.signal(SIGTERM);
+    EXPECT_EQ(host.wait(60), 4) << host.err();
+    EXPECT_NE(host.err().find("NOT saved: site version (site)"), std::string::npos) << host.err();
+    EXPECT_NE(host.err().find("nothing committed, v0001 stays the newest version"),
+              std::string::npos)
+        << host.err();
+    EXPECT_EQ(map::SiteStore(site).versions().size(), 1u);
+}
+
+TEST_F(SitePipeline, AnUnknownNamedVersionIsRefusedInOneLine) {
+    const std::string site = path("site");
+    make_first_version(site);
+    const std::string cfg = write("named.yaml",
+                                  "domain_id: 234\ndds: {interfaces: [lo], multicast: false, "
+                                  "peers: [127.0.0.1]}\ncomponents:\n  - name: site\n    type: "
+                                  "site\n    params: {site_dir: " +
+                                      site + ", site_version: v0009}\n");
+    Process host({kHost, cfg}, path("host"));
+    EXPECT_EQ(host.wait(60), 2) << host.err();
+    EXPECT_NE(host.err().find("no version v0009 (known: v0001)"), std::string::npos) << host.err();
+}
+
+TEST_F(SitePipeline, LocalisationOnANewSiteSaysThereIsNoMapYet) {
+    const std::string site = path("site");
+    const std::string loc =
+        "  - name: localisation\n    type: localisation\n    params: "
+        "{site_dir: " +
+        site + "}\n";
+    Process host({kHost, config(235, site, loc)}, path("host"));
+    ASSERT_TRUE(wait_for_log(host, "the session starts from none (a new site)")) << host.err();
+    EXPECT_NE(host.err().find("new site: no map yet, nothing to localise on until the next "
+                              "session"),
+              std::string::npos)
+        << host.err();
+    host.signal(SIGTERM);
+    EXPECT_EQ(host.wait(60), 4) << host.err();  // nothing staged: no version
+    EXPECT_NE(host.err().find("the site still has no version"), std::string::npos) << host.err();
+}
