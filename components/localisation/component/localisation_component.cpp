@@ -143,6 +143,11 @@ class LocalisationComponent : public runtime::Component {
         pose_out_ = ctx.advertise<msg::PoseWithCovarianceStamped>("pose", TopicRole::kState);
         correction_out_ = ctx.advertise<msg::TransformStamped>("map_to_odom", TopicRole::kState);
         events_out_ = ctx.advertise<msg::Status>("status", TopicRole::kState);
+        // A lifelong session on a new site: the map is being made today, and the SLAM's pose
+        // (`slam_odometry`: the mapping's corrected_odometry, frame map) is the map pose.
+        if (on_site_)
+            ctx.subscribe<msg::Odometry>("slam_odometry", TopicRole::kState,
+                                         [this](const msg::Odometry& m) { on_slam_pose(m); });
         // Scans whose odometry is late: looked at a few times within odometry_wait_s.
         if (odometry_wait_s_ > 0)
             ctx.add_timer(std::max(0.02, odometry_wait_s_ / 4), [this] { pair(); });
@@ -185,6 +190,7 @@ class LocalisationComponent : public runtime::Component {
             if (!version.empty()) p.fail("site_version", "needs site_dir");
             return;
         }
+        on_site_ = true;
         if (!map_dir_.empty()) p.fail("map", "give either map or site_dir, not both");
         map::SiteSession session;
         try {
@@ -198,7 +204,9 @@ class LocalisationComponent : public runtime::Component {
             ctx_.log().info("site " + site + ": localising on " + session.describe());
             return;
         }
-        no_map_ = "new site: no map yet, nothing to localise on until the next session";
+        new_site_ = true;
+        no_map_ = "new site: no map yet, nothing to localise on until the next session (the "
+                  "SLAM's pose, slam_odometry, is the map pose meanwhile)";
         ctx_.log().info("site " + site + ": " + no_map_);
         map_state_ = kFailed;
     }
@@ -236,6 +244,7 @@ class LocalisationComponent : public runtime::Component {
 
     void on_points(const msg::PointCloud2& m) {
         const std::uint64_t index = scans_++;
+        if (new_site_) return;  // the SLAM's poses are published as they come (on_slam_pose)
         if (map_state_ == kFailed) {
             publish_no_map(convert::to_seconds(m.header.stamp));
             return;
@@ -376,6 +385,24 @@ class LocalisationComponent : public runtime::Component {
         }
     }
 
+    // A new site: the SLAM's pose of a scan is its map pose (state OFF_MAP: not registered to a
+    // saved map; the map is the one being made).
+    void on_slam_pose(const msg::Odometry& m) {
+        if (!new_site_) return;
+        const convert::OdometryData o = convert::from_msg(m);
+        if (!o.frame_id.empty() && o.frame_id != frame_id_) return;
+        LocalisationUpdate u;
+        u.stamp = convert::to_seconds(o.stamp);
+        u.state = LocalisationState::kOffMap;
+        u.pose_valid = true;
+        u.T_map_lidar = o.T_parent_child;
+        u.covariance = o.pose_covariance;
+        u.message = "new site: the pose of the map being made (SLAM)";
+        ++valid_;
+        status_out_.publish(*status_msg(u, counters(), frame_id_));
+        pose_out_.publish(*pose_msg(u, frame_id_));
+    }
+
     // Said once in the log (when loading failed), and on `status` every kNoMapRepeat scans for
     // whoever listens now.
     void publish_no_map(double stamp) {
@@ -456,6 +483,7 @@ class LocalisationComponent : public runtime::Component {
     std::string map_dir_;
     enum MapState : int { kLoading, kReady, kFailed };
     std::atomic<int> map_state_{kLoading};
+    bool on_site_ = false, new_site_ = false;  // site_dir given; and it has no version yet
     std::string no_map_;  // why there is no map (set before map_state_ turns kFailed)
     std::atomic<std::uint64_t> no_map_scans_{0};
 

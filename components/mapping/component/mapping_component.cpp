@@ -25,6 +25,7 @@
 #include "common/core/io_error.hpp"
 #include "common/core/ply_io.hpp"
 #include "map/core/map_store.hpp"
+#include "map/core/site_store.hpp"
 #include "mapping/component/map_change_cells.hpp"
 #include "mapping/component/mapper_messages.hpp"
 #include "mapping/component/place_descriptor_msg.hpp"
@@ -54,7 +55,8 @@ class MappingComponent : public runtime::Component {
         auto& p = ctx.params();
         map_dir_ = p.path("map_dir", "", PathCheck::kParentExists);
         global_map_file_ = p.path("global_map_file", "", PathCheck::kParentExists);
-        const std::string load_dir = p.path("load_map_dir", "", PathCheck::kDirExists);
+        std::string load_dir = p.path("load_map_dir", "", PathCheck::kDirExists);
+        resolve_site(p, &load_dir);
         const bool freeze_loaded = p.get<bool>("freeze_loaded", true);
         frame_id_ = p.get<std::string>("frame_id", "map");
         const double save_period = p.get<double>("save_period_s", 30.0);
@@ -62,7 +64,8 @@ class MappingComponent : public runtime::Component {
             p.fail("save_period_s", "must be >= 0 (0: save only on request and at shutdown)");
         const std::vector<std::string> robots = p.get<std::vector<std::string>>("robots", {});
         // Ties to a loaded map by the localisation on it (one robot), and what maintenance found.
-        fixes_ = p.get<bool>("localisation_fixes", true) && !load_dir.empty() && robots.empty();
+        const bool want_fixes = p.get<bool>("localisation_fixes", true) && robots.empty();
+        fixes_ = want_fixes && !load_dir.empty();
         const int fix_after = p.get<int>("localisation_fix_after", 3);
         if (fix_after < 1) p.fail("localisation_fix_after", "must be >= 1 (scans tracked in a row)");
         pairer_ = MapFixPairer(fix_after);
@@ -71,7 +74,11 @@ class MappingComponent : public runtime::Component {
         create_mapper(p, config, load_dir, freeze_loaded);
         mapper_->expect_map_fixes(fixes_);
         check_robots(p, robots);
-        if (!map_dir_.empty()) writer_ = std::make_unique<map::MapWriter>(map_dir_);
+        if (!map_dir_.empty()) {
+            map::SaveOptions options;
+            options.link_from = link_from_;  // unchanged files of the start version: hard links
+            writer_ = std::make_unique<map::MapWriter>(map_dir_, options);
+        }
         // Saving as it goes keeps the save at shutdown small (only what changed is rewritten),
         // and a crash loses at most one period.
         if (writer_ && save_period > 0) ctx.add_timer(save_period, [this] { save(); });
@@ -95,7 +102,7 @@ class MappingComponent : public runtime::Component {
                 ctx.advertise<msg::TransformStamped>(topic(*r, "map_to_odom"), TopicRole::kState);
             robots_.push_back(std::move(robot));
         }
-        if (fixes_) {
+        if (want_fixes) {  // the topics exist (remappable) on a new site too; unused there
             ctx.subscribe<msg::LocalisationStatus>(
                 "localisation_status", TopicRole::kState,
                 [this](const msg::LocalisationStatus& m) { on_localisation_status(m); });
@@ -149,6 +156,34 @@ class MappingComponent : public runtime::Component {
     }
 
   private:
+    // With `site_dir` (map/core/site_store.hpp): the map continued is the site's start version's
+    // (`site_version`, or the newest intact one; none on a new site) and it is saved into the
+    // site's staging, which the `site` component makes the next version at the end.
+    void resolve_site(runtime::Parameters& p, std::string* load_dir) {
+        const std::string site = p.path("site_dir", "", PathCheck::kNone);
+        const std::string version = p.get<std::string>("site_version", "");
+        if (site.empty()) {
+            if (!version.empty()) p.fail("site_version", "needs site_dir");
+            return;
+        }
+        if (!load_dir->empty()) p.fail("load_map_dir", "give either load_map_dir or site_dir");
+        if (!map_dir_.empty()) p.fail("map_dir", "give either map_dir or site_dir");
+        map::SiteSession session;
+        try {
+            session = map::resolve_site(site, version);
+        } catch (const common::IoError& e) {
+            p.fail(version.empty() ? "site_dir" : "site_version", e.what());
+        }
+        for (const std::string& note : session.notes) ctx_.log().warn(note);
+        map_dir_ = session.staging_map_dir;  // created by the first save
+        if (session.start) {
+            *load_dir = session.start->map_dir();
+            link_from_ = *load_dir;
+        }
+        ctx_.log().info("site " + site + ": continuing " + session.describe() +
+                        "; the session's map goes to " + map_dir_);
+    }
+
     // A robot's inputs, outputs and the state of its corrected odometry.
     struct Robot {
         std::string name;  // "" without `robots`: relative topic names
@@ -336,10 +371,12 @@ class MappingComponent : public runtime::Component {
 
     // The localisation's state and pose of a scan (on the map this mapper continues).
     void on_localisation_status(const msg::LocalisationStatus& m) {
+        if (!fixes_) return;
         apply_fix(pairer_.state(convert::to_seconds(m.header.stamp),
                                 m.state == ltm_msgs_msg_LocalisationStatus_Constants_TRACKING));
     }
     void on_localisation_pose(const msg::PoseWithCovarianceStamped& m) {
+        if (!fixes_) return;
         apply_fix(pairer_.pose(convert::to_seconds(m.header.stamp),
                                convert::to_isometry(m.pose.pose)));
     }
@@ -530,7 +567,7 @@ class MappingComponent : public runtime::Component {
 
     runtime::ComponentContext& ctx_;
     std::unique_ptr<Mapper> mapper_;
-    std::string map_dir_, global_map_file_, frame_id_;
+    std::string map_dir_, global_map_file_, frame_id_, link_from_;
     std::size_t loops_since_optimise_ = 0;
     std::vector<std::unique_ptr<Robot>> robots_;  // callbacks hold their robot's address
     std::unique_ptr<map::MapWriter> writer_;
