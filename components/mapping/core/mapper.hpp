@@ -173,7 +173,8 @@ class Mapper {
 
     // What map maintenance found gone (mapper_map_edits.cpp): the cells of edge `cell_size` (world
     // frame) holding `centres` are cleared of voxels in every local map (a voxel goes when its
-    // centre lies in such a cell or within half a cell of one), now and in the local maps that
+    // centre lies in such a cell, within half a cell of one, or within half its own edge of a
+    // cell centre), now and in the local maps that
     // arrive later in this Mapper's life (snapshots of a map still being built hold them again).
     // The local maps' voxels removed.
     std::size_t remove_cells(const std::vector<Eigen::Vector3f>& centres, float cell_size);

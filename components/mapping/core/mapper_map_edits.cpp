@@ -118,9 +118,11 @@ std::shared_ptr<const common::LocalMapData> Mapper::without_removed(
     *removed = 0;
     if (removed_.empty()) return nullptr;
     const Eigen::Isometry3f T = (T_world_anchor * map.T_anchor_grid).cast<float>();
+    // A voxel's points spread over its cube: its centre can lie between the surfaces it holds.
+    const float reach = 0.5f * map.voxel_size;
     std::vector<char> drop(map.voxels.size(), 0);
     for (std::size_t i = 0; i < map.voxels.size(); ++i) {
-        if (removed_.covers(T * map.voxels[i].centre)) {
+        if (removed_.covers(T * map.voxels[i].centre, reach)) {
             drop[i] = 1;
             ++*removed;
         }

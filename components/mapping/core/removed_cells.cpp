@@ -53,4 +53,21 @@ bool RemovedCells::covers(const Eigen::Vector3f& p) const {
     return false;
 }
 
+bool RemovedCells::covers(const Eigen::Vector3f& p, float radius) const {
+    if (covers(p)) return true;
+    if (!(radius > 0.0f) || cells_.empty() || !p.allFinite() || p.cwiseAbs().maxCoeff() > 2.0e5f)
+        return false;
+    const Eigen::Vector3i lo = ((p.array() - radius) / size_).floor().cast<int>();
+    const Eigen::Vector3i hi = ((p.array() + radius) / size_).floor().cast<int>();
+    const float r2 = radius * radius;
+    for (int x = lo.x(); x <= hi.x(); ++x)
+        for (int y = lo.y(); y <= hi.y(); ++y)
+            for (int z = lo.z(); z <= hi.z(); ++z) {
+                const Eigen::Vector3i c(x, y, z);
+                const Eigen::Vector3f centre = (c.cast<float>().array() + 0.5f) * size_;
+                if ((centre - p).squaredNorm() <= r2 && cells_.count(key(c))) return true;
+            }
+    return false;
+}
+
 }  // namespace ltm::mapping

@@ -23,6 +23,9 @@ class RemovedCells {
     // True when p lies in a recorded cell or within half a cell of one (the 2x2x2 cells nearest
     // to p): a voxel's centre is the mean of its points, which can sit up to half a cell off.
     bool covers(const Eigen::Vector3f& p) const;
+    // True when a recorded cell's centre lies within `radius` of p, or covers(p): a voxel larger
+    // than a cell is taken with a cell within its reach (radius: half the voxel's edge).
+    bool covers(const Eigen::Vector3f& p, float radius) const;
 
     bool empty() const { return cells_.empty(); }
     std::size_t size() const { return cells_.size(); }
