@@ -188,6 +188,16 @@ int run_lifelong(const LifelongOptions& o) {
             fig.wrong = o.poses.wrong;
             fig.changes = changes;
             write_text_file(o.out + "/day" + std::to_string(d) + ".svg", lifelong_day_svg(fig));
+            std::ostringstream scans;
+            scans << "# stamp true_x true_y error_m (-1: no map pose)\n";
+            for (std::size_t i = 0; i < truth.size(); ++i) {
+                char line[128];
+                std::snprintf(line, sizeof line, "%.3f %.2f %.2f %.3f\n", truth[i].stamp,
+                              truth[i].pose.translation().x(), truth[i].pose.translation().y(),
+                              s.error[i]);
+                scans << line;
+            }
+            write_text_file(o.out + "/day" + std::to_string(d) + "_scans.txt", scans.str());
         }
         // Every few scans is plenty for "more than 10 m from every earlier path".
         for (std::size_t i = 0; i < path.size(); i += 5) earlier.push_back(path[i]);
@@ -232,7 +242,7 @@ Run add_lifelong(CLI::App& parent) {
     app->add_option("--min-planarity", o->min_planarity,
                     "map voxels counted (localisation's filter) [0..1]");
     app->add_option("--min-health", o->min_health, "map voxels counted [0..1]");
-    app->add_option("--out", o->out, "write metrics.txt, metrics.json, table.txt, dayN.svg here");
+    app->add_option("--out", o->out, "write metrics.txt, metrics.json, table.txt, dayN.svg, dayN_scans.txt (each scan's error) here");
     return [o] { return run_lifelong(*o); };
 }
 
