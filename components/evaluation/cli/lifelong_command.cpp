@@ -242,7 +242,9 @@ Run add_lifelong(CLI::App& parent) {
     app->add_option("--min-planarity", o->min_planarity,
                     "map voxels counted (localisation's filter) [0..1]");
     app->add_option("--min-health", o->min_health, "map voxels counted [0..1]");
-    app->add_option("--out", o->out, "write metrics.txt, metrics.json, table.txt, dayN.svg, dayN_scans.txt (each scan's error) here");
+    app->add_option("--out", o->out,
+                    "write metrics.txt, metrics.json, table.txt, dayN.svg, dayN_scans.txt (each "
+                    "scan's error) here");
     return [o] { return run_lifelong(*o); };
 }
 

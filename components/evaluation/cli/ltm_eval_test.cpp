@@ -280,10 +280,10 @@ fs::path lifelong_run() {
         common::write_tum_trajectory((day / "truth/poses_tum.txt").string(), truth);
         common::write_tum_trajectory((day / "map_poses_tum.txt").string(), published);
         if (d == 0) common::write_tum_trajectory((day / "slam_tum.txt").string(), published);
-        std::ofstream(day / "truth/kidnaps.txt")
-            << "# frame stamp\n" << (d == 1 ? "0 86400\n" : "");
-        std::ofstream(day / "truth/objects.txt")
-            << "1 car 5 5 0 0 4.5 1.8 1.5 1\n" << (d == 0 ? "2 van 9 5 0 0 5 2 2 1\n" : "");
+        std::ofstream(day / "truth/kidnaps.txt") << "# frame stamp\n"
+                                                 << (d == 1 ? "0 86400\n" : "");
+        std::ofstream(day / "truth/objects.txt") << "1 car 5 5 0 0 4.5 1.8 1.5 1\n"
+                                                 << (d == 0 ? "2 van 9 5 0 0 5 2 2 1\n" : "");
     }
     return run;
 }
