@@ -98,9 +98,14 @@ int run_lifelong(const LifelongOptions& o) {
     std::ostringstream table;
     table << "day0 final SLAM keyframes vs truth (the one alignment): rmse "
           << fmt("%.3f", align.ate.rmse) << " m over " << align.matched << " keyframes\n";
-    table << "day scans  pose%   rmse    p95    max  >0.5m  kidnap->correct   new_m  "
-             "removed_gone  moved_gone  moved_new  added   static%  map_MB maint_MB peak_MB "
-             "cpu_ms\n";
+    char header[512];
+    std::snprintf(header, sizeof header,
+                  "%3s %5s %6s %6s %6s %6s %6s  %-16s %6s  %-13s %-11s %9s %7s %7s %7s %8s %7s "
+                  "%6s\n",
+                  "day", "scans", "pose%", "rmse", "p95", "max", ">0.5m", "kidnap->correct",
+                  "new_m", "removed_gone", "moved_gone", "moved_new", "added", "static%", "map_MB",
+                  "maint_MB", "peak_MB", "cpu_ms");
+    table << header;
     std::vector<Eigen::Vector3d> earlier;
     for (int d = 0; d < o.days; ++d) {
         const std::string dir = day_dir(o, d);

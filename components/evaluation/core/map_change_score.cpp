@@ -15,10 +15,14 @@ bool inside(const Eigen::Vector3d& p, const SiteObject& o, double margin) {
     return o.contains(p, margin);
 }
 
+// Voxels of the object itself: inside its box and above the ground under it.
 std::size_t count_inside(const std::vector<Eigen::Vector3d>& map, const SiteObject& o,
-                         double margin) {
-    return static_cast<std::size_t>(std::count_if(
-        map.begin(), map.end(), [&](const Eigen::Vector3d& p) { return inside(p, o, margin); }));
+                         const MapChangeConfig& config) {
+    const double floor = o.base_z + config.ground_clearance;
+    return static_cast<std::size_t>(
+        std::count_if(map.begin(), map.end(), [&](const Eigen::Vector3d& p) {
+            return p.z() >= floor && inside(p, o, config.box_margin);
+        }));
 }
 
 bool inside_any(const Eigen::Vector3d& p, const std::vector<SiteObject>& objects, double margin) {
@@ -36,22 +40,22 @@ MapChangeScore score_map_changes(const std::vector<Eigen::Vector3d>& first_map,
     const double m = config.box_margin;
     MapChangeScore s;
     for (const auto& o : changes.removed) {
-        s.removed_before += count_inside(first_map, o, m);
-        s.removed_kept += count_inside(later_map, o, m);
+        s.removed_before += count_inside(first_map, o, config);
+        s.removed_kept += count_inside(later_map, o, config);
     }
     for (const auto& o : changes.moved_from) {
-        s.moved_from_before += count_inside(first_map, o, m);
-        s.moved_from_kept += count_inside(later_map, o, m);
+        s.moved_from_before += count_inside(first_map, o, config);
+        s.moved_from_kept += count_inside(later_map, o, config);
     }
     s.moved_objects = changes.moved_to.size();
     for (const auto& o : changes.moved_to) {
-        const std::size_t n = count_inside(later_map, o, m);
+        const std::size_t n = count_inside(later_map, o, config);
         s.moved_to_voxels += n;
         if (n >= config.min_voxels) ++s.moved_to_present;
     }
     s.added_objects = changes.added.size();
     for (const auto& o : changes.added) {
-        const std::size_t n = count_inside(later_map, o, m);
+        const std::size_t n = count_inside(later_map, o, config);
         s.added_voxels += n;
         if (n >= config.min_voxels) ++s.added_present;
     }

@@ -18,7 +18,7 @@ SiteObject box(std::uint32_t id, double x, double y) {
 void fill(const SiteObject& o, std::vector<Eigen::Vector3d>& out) {
     for (double a = -1.75; a <= 1.75; a += 0.5)
         for (double b = -0.75; b <= 0.75; b += 0.5)
-            for (double z = 0.25; z <= 1.25; z += 0.5) out.emplace_back(o.x + a, o.y + b, z);
+            for (double z = 0.5; z <= 1.5; z += 0.5) out.emplace_back(o.x + a, o.y + b, z);
 }
 
 TEST(MapChangeScore, CountsWhatTheLaterMapKept) {
@@ -44,6 +44,12 @@ TEST(MapChangeScore, CountsWhatTheLaterMapKept) {
     fill(added, later);
     fill(stays, later);
 
+    // The ground under the added object is in both maps: it is no voxel of the object.
+    std::vector<Eigen::Vector3d> under_added;
+    for (double a = -1.5; a <= 1.5; a += 0.5) under_added.emplace_back(40 + a, 0.0, 0.1);
+    first.insert(first.end(), under_added.begin(), under_added.end());
+    later.insert(later.end(), under_added.begin(), under_added.end());
+
     ObjectChanges changes;
     changes.removed = {gone};
     changes.moved_from = {moved_old};
@@ -59,6 +65,7 @@ TEST(MapChangeScore, CountsWhatTheLaterMapKept) {
     EXPECT_EQ(s.moved_to_voxels, 96u);
     EXPECT_EQ(s.added_objects, 1u);
     EXPECT_EQ(s.added_present, 1u);
+    EXPECT_EQ(s.added_voxels, 96u);
     // Static: the ground only (the unstable object is excluded). Its lost voxels have a
     // neighbour 0.5 m away in the later map, so only a radius below that sees them as lost.
     EXPECT_EQ(s.static_before, ground.size());
@@ -76,6 +83,9 @@ TEST(MapChangeScore, EmptyMapsScoreZero) {
     EXPECT_EQ(s.added_objects, 1u);
     EXPECT_EQ(s.added_present, 0u);
     EXPECT_EQ(s.static_before, 0u);
+    // Ground alone in an added object's box does not make it present.
+    const std::vector<Eigen::Vector3d> ground{{39, 0, 0.0}, {40, 0, 0.1}, {41, 0, 0.2}};
+    EXPECT_EQ(score_map_changes(ground, ground, changes, {}).added_present, 0u);
 }
 
 }  // namespace
