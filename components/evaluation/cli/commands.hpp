@@ -16,5 +16,6 @@ Run add_dynamic(CLI::App& app);
 Run add_mesh(CLI::App& app);
 Run add_loops(CLI::App& app);
 Run add_reloc(CLI::App& app);
+Run add_lifelong(CLI::App& app);
 
 }  // namespace ltm::eval::cli

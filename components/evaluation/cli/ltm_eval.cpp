@@ -1,5 +1,5 @@
 // ltm_eval: evaluation of ltm runs (trajectories, dynamic removal, meshes, loops,
-// relocalisation) against ground truth. A thin front end over ltm_evaluation_core.
+// relocalisation, lifelong runs) against ground truth. A thin front end over ltm_evaluation_core.
 #include <iostream>
 #include <map>
 #include <string>
@@ -13,11 +13,9 @@ int main(int argc, char** argv) {
                  "ltm_eval"};
     cli::configure(app);
     app.require_subcommand(1);
-    const std::map<std::string, Run> runs = {{"traj", add_traj(app)},
-                                             {"dynamic", add_dynamic(app)},
-                                             {"mesh", add_mesh(app)},
-                                             {"loops", add_loops(app)},
-                                             {"reloc", add_reloc(app)}};
+    const std::map<std::string, Run> runs = {
+        {"traj", add_traj(app)},   {"dynamic", add_dynamic(app)}, {"mesh", add_mesh(app)},
+        {"loops", add_loops(app)}, {"reloc", add_reloc(app)},     {"lifelong", add_lifelong(app)}};
     if (const int code = cli::parse(app, argc, argv); code >= 0) return code;
     try {
         return runs.at(app.get_subcommands().front()->get_name())();

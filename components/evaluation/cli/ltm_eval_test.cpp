@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -249,6 +250,64 @@ TEST(LtmEvalCli, LoopsAndReloc) {
     ASSERT_EQ(reloc.code, 0) << reloc.output;
     EXPECT_NE(reloc.output.find("success_rate"), std::string::npos);
     EXPECT_NE(reloc.output.find(" 0.5\n"), std::string::npos) << reloc.output;
+}
+
+}  // namespace
+}  // namespace ltm::eval
+
+namespace ltm::eval {
+namespace {
+
+// A two-day lifelong run folder: day 0 drives x = 0..39 m (mapped, poses exact), day 1 drives
+// y = 30 (new ground) and is lost for its first 10 scans after a kidnapped start. No maps.
+fs::path lifelong_run() {
+    const fs::path run = fresh_dir("lifelong");
+    const Eigen::Isometry3d T_map_world(Eigen::Translation3d(3.0, -2.0, 0.5));
+    for (int d = 0; d < 2; ++d) {
+        const fs::path day = run / ("day" + std::to_string(d));
+        fs::create_directories(day / "truth");
+        common::Trajectory truth, published;
+        for (int i = 0; i < 40; ++i) {
+            common::StampedPose p;
+            p.stamp = 86400.0 * d + 0.1 * i;
+            p.pose.setIdentity();
+            p.pose.translation() = d == 0 ? Eigen::Vector3d(i, 0, 0) : Eigen::Vector3d(i, 30, 0);
+            truth.push_back(p);
+            if (d == 1 && i < 10) continue;
+            p.pose = T_map_world * p.pose;
+            published.push_back(p);
+        }
+        common::write_tum_trajectory((day / "truth/poses_tum.txt").string(), truth);
+        common::write_tum_trajectory((day / "map_poses_tum.txt").string(), published);
+        if (d == 0) common::write_tum_trajectory((day / "slam_tum.txt").string(), published);
+        std::ofstream(day / "truth/kidnaps.txt") << "# frame stamp\n"
+                                                 << (d == 1 ? "0 86400\n" : "");
+        std::ofstream(day / "truth/objects.txt") << "1 car 5 5 0 0 4.5 1.8 1.5 1\n"
+                                                 << (d == 0 ? "2 van 9 5 0 0 5 2 2 1\n" : "");
+    }
+    return run;
+}
+
+TEST(LtmEvalCli, LifelongScoresEachDayInOneAlignment) {
+    const fs::path dir = lifelong_run();
+    const fs::path out = dir / "score";
+    const CliRun r = run("lifelong --run " + dir.string() + " --days 2 --out " + out.string());
+    ASSERT_EQ(r.code, 0) << r.output;
+    // Day 0: every scan, exact; day 1: 30 of 40 scans, the kidnap right after 1.0 s, 40 m new.
+    EXPECT_NE(r.output.find("  0    40  100.0  0.000"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("  1    40   75.0  0.000"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("1.0s"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("no " + (dir / "day1/next_map").string()), std::string::npos);
+    const std::string json = read(out / "metrics.json");
+    EXPECT_NE(json.find("\"scans_with_map_pose\": 30"), std::string::npos) << json;
+    EXPECT_NE(json.find("\"new_ground_m\": 39"), std::string::npos) << json;
+    EXPECT_TRUE(fs::exists(out / "day1.svg"));
+
+    fs::remove(dir / "day1/truth/kidnaps.txt");
+    const CliRun bad = run("lifelong --run " + dir.string() + " --days 2");
+    EXPECT_EQ(bad.code, 1);
+    EXPECT_NE(bad.output.find("day1/truth/kidnaps.txt: missing"), std::string::npos) << bad.output;
+    EXPECT_EQ(std::count(bad.output.begin(), bad.output.end(), '\n'), 1) << bad.output;
 }
 
 }  // namespace

@@ -81,6 +81,9 @@ void add_sim_options(CLI::App& app, SimRunOptions& o) {
                    "z intensity t, t = per-point time of raw sweeps)")
         ->check(common::cli::one_of({"kitti", "pcd"}))
         ->default_str("kitti");
+    app.add_flag("--truth-only", o.truth_only,
+                 "only times, poses, objects, changes, actors and kidnaps (no scans, labels or "
+                 "truth mesh: fast)");
     app.add_flag("--quiet", o.quiet, "no summary and no progress");
     app.add_option("--out", o.out, "the output folder")->required();
 }
@@ -121,9 +124,13 @@ int run_sim(const SimRunOptions& o) {
         const bool pcd = o.format == "pcd";
         const fs::path scans = out / (pcd ? "Scans" : "velodyne");
         std::error_code ec;
-        fs::create_directories(scans, ec);
-        fs::create_directories(out / "labels", ec);
-        if (ec || !fs::is_directory(scans))
+        if (o.truth_only) {
+            fs::create_directories(out, ec);
+        } else {
+            fs::create_directories(scans, ec);
+            fs::create_directories(out / "labels", ec);
+        }
+        if (ec || !fs::is_directory(o.truth_only ? out : scans))
             throw common::IoError(o.out, "cannot create the output folder");
 
         common::Progress progress("ltm_sim", last - first, "scans");
@@ -134,8 +141,22 @@ int run_sim(const SimRunOptions& o) {
         std::vector<double> kidnap_stamps;
         SimScan scan;
         for (std::size_t i = first; i < last; ++i) {
-            sim.scan(i, scan);
             const std::size_t k = i - first;
+            if (o.truth_only) {
+                times.push_back(sim.stamp(i));
+                poses.push_back(sim.pose(i));
+                common::StampedPose sp;
+                sp.stamp = sim.stamp(i);
+                sp.pose = sim.pose(i);
+                tum.push_back(sp);
+                if (sim.after_kidnap(i)) {
+                    kidnap_frames.push_back(k);
+                    kidnap_stamps.push_back(sim.stamp(i));
+                }
+                if (!o.quiet) progress.update(k + 1);
+                continue;
+            }
+            sim.scan(i, scan);
             if (pcd) {
                 write_scan_pcd((scans / frame_name(k, ".pcd")).string(), scan.cloud);
             } else {
@@ -159,7 +180,7 @@ int run_sim(const SimRunOptions& o) {
         common::write_kitti_poses((out / "poses.txt").string(), poses);
         common::write_tum_trajectory((out / "poses_tum.txt").string(), tum);
         write_identity_calib((out / "calib.txt").string());
-        common::write_ply((out / "truth_mesh.ply").string(), sim.truth_mesh());
+        if (!o.truth_only) common::write_ply((out / "truth_mesh.ply").string(), sim.truth_mesh());
         write_objects((out / "objects.txt").string(), sim);
         write_changes((out / "changes.txt").string(), sim);
         write_actors((out / "actors.txt").string(), sim);

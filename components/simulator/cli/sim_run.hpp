@@ -27,10 +27,13 @@ struct SimRunOptions {
     std::string format = "kitti";
     std::string out;
     bool quiet = false;  // no summary and no progress
+    // Only the truth files (times, poses, objects, changes, actors, kidnaps): no scans, labels
+    // or truth mesh; what a benchmark needs to score a session the host ran.
+    bool truth_only = false;
 };
 
 // Declares ltm_sim's command line on `app`: the scenario, --seed, --session, --frames, --sensor,
-// --format, --quiet and --out, filling `options` when the app parses.
+// --format, --truth-only, --quiet and --out, filling `options` when the app parses.
 void add_sim_options(CLI::App& app, SimRunOptions& options);
 // The --seed N and --frames A:B options alone (other tools that run a scenario use them).
 void add_seed_option(CLI::App& app, SimRunOptions& options);

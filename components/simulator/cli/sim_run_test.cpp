@@ -114,6 +114,42 @@ TEST(SimRun, WritesAKittiFolderThatReadsBack) {
     EXPECT_EQ(first.rfind("0 ", 0), 0u);  // session 1 starts kidnapped
 }
 
+// --truth-only: the truth files of every scan, the same poses and kidnaps as rendering gives,
+// no scans, labels or mesh.
+TEST(SimRun, TruthOnlyWritesTheTruthFilesWithoutScans) {
+    const std::string out = LTM_BINARY_DIR "/tests/sim_run_test_truth";
+    const std::string full = LTM_BINARY_DIR "/tests/sim_run_test_truth_full";
+    std::filesystem::remove_all(out);
+    std::filesystem::remove_all(full);
+    SimRunOptions o, f;
+    std::string error;
+    ASSERT_EQ(parse_sim_args({kTiny, "--session", "1", "--truth-only", "--quiet", "--out", out}, o,
+                             error),
+              -1);
+    EXPECT_TRUE(o.truth_only);
+    ASSERT_EQ(run_sim(o), 0);
+    ASSERT_EQ(parse_sim_args({kTiny, "--session", "1", "--quiet", "--out", full}, f, error), -1);
+    ASSERT_EQ(run_sim(f), 0);
+    EXPECT_FALSE(std::filesystem::exists(out + "/velodyne"));
+    EXPECT_FALSE(std::filesystem::exists(out + "/labels"));
+    EXPECT_FALSE(std::filesystem::exists(out + "/truth_mesh.ply"));
+    const auto tum = common::read_tum_trajectory(out + "/poses_tum.txt");
+    const auto rendered = common::read_tum_trajectory(full + "/poses_tum.txt");
+    ASSERT_EQ(tum.size(), rendered.size());
+    ASSERT_GT(tum.size(), 20u);
+    for (std::size_t i = 0; i < tum.size(); ++i) {
+        EXPECT_DOUBLE_EQ(tum[i].stamp, rendered[i].stamp);
+        EXPECT_TRUE(tum[i].pose.isApprox(rendered[i].pose, 1e-9)) << i;
+    }
+    for (const char* name : {"/kidnaps.txt", "/objects.txt", "/changes.txt", "/actors.txt"}) {
+        std::ifstream a(out + name), b(full + name);
+        std::stringstream ta, tb;
+        ta << a.rdbuf();
+        tb << b.rdbuf();
+        EXPECT_EQ(ta.str(), tb.str()) << name;
+    }
+}
+
 // Raw sweeps as PCD keep their per-point time through the scan folder reader.
 TEST(SimRun, WritesPcdScansWithPerPointTime) {
     const std::string out = LTM_BINARY_DIR "/tests/sim_run_test_pcd";

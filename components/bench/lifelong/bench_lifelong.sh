@@ -1,0 +1,139 @@
+#!/usr/bin/env bash
+# ./ltm bench lifelong --scenario S --days N [--out D] [--config lifelong|legacy] [--resume]
+# A robot's week on one site: every day (session d of the scenario) runs through a launch config
+# and the host (./ltm run, the real components), under /usr/bin/time -v; then `ltm_eval lifelong`
+# scores each day against the simulator's truth (ltm_sim --truth-only of the same session) and
+# prints one row a day: scans with a map pose, rmse / p95 / max in ONE alignment fitted on day 0's
+# final SLAM keyframes, poses more than 0.5 m off, scan time from each kidnap to a correct pose,
+# metres of new ground, voxels of removed / moved / added objects in the map the next day
+# localises on, static voxels kept, map and maintained state on disk, peak memory, CPU per scan;
+# and a figure per day (D/score/dayN.svg).
+#   --config lifelong  launch_configs/robot_lifelong.yaml every day (LTM_SITE=D/site): the site's
+#                      newest version after day d (D/site/versions/vNNNN/map) is the next map
+#   --config legacy    what a user does today: day 0 robot_maintain.yaml (maps), later days
+#                      robot_localise_maintain.yaml on day 0's map, the maintained map carried
+#                      from day to day (each day starts from a copy of the day before's)
+set -uo pipefail
+ROOT="$(cd "$(dirname "$0")/../../.." && pwd)"
+BIN="$ROOT/build/bin"
+SCENARIO=""; DAYS=""; OUT=""; CONFIG=""; RESUME=0
+usage() {
+    echo "A robot's week on one site through the host, scored day by day against the truth"
+    printf 'Usage: ./ltm bench lifelong --scenario S --days N [OPTIONS]\n\nOptions:\n'
+    printf '  %-22s%s\n' "-h,--help" "Print this help message and exit" \
+        "--scenario S" "the site's scenario (session d = day d), e.g. components/simulator/scenarios/site_week.yaml" \
+        "--days N" "days to run (sessions 0..N-1)" \
+        "--out D" "the run's folder (default results/lifelong-<time>)" \
+        "--config C" "lifelong (default when launch_configs/robot_lifelong.yaml exists) or legacy" \
+        "--resume" "keep the days of D that ran to the end (D/dayN/exit_status 0)"
+}
+fail() { echo "ltm bench lifelong: $*" >&2; exit 2; }
+while [ $# -gt 0 ]; do
+    case "$1" in
+        -h|--help) usage; exit 0 ;;
+        --resume) RESUME=1; shift ;;
+        --scenario|--days|--out|--config)
+            [ $# -ge 2 ] || fail "$1: needs a value"
+            case "$1" in
+                --scenario) SCENARIO="$2" ;;
+                --days) DAYS="$2" ;;
+                --out) OUT="$2" ;;
+                --config) CONFIG="$2" ;;
+            esac
+            shift 2 ;;
+        *) fail "unknown argument '$1' (--help)" ;;
+    esac
+done
+[ -n "$SCENARIO" ] || fail "--scenario: required"
+[ -f "$SCENARIO" ] || fail "--scenario: no such file: $SCENARIO"
+SCENARIO="$(cd "$(dirname "$SCENARIO")" && pwd)/$(basename "$SCENARIO")"
+[[ "$DAYS" =~ ^[1-9][0-9]*$ ]] || fail "--days: a positive whole number, got '$DAYS'"
+LIFELONG_YAML="$ROOT/launch_configs/robot_lifelong.yaml"
+if [ -z "$CONFIG" ]; then
+    if [ -f "$LIFELONG_YAML" ]; then CONFIG=lifelong; else
+        CONFIG=legacy
+        echo "ltm bench lifelong: no launch_configs/robot_lifelong.yaml in this version: --config legacy"
+    fi
+fi
+case "$CONFIG" in
+    lifelong) [ -f "$LIFELONG_YAML" ] || fail "--config lifelong: no $LIFELONG_YAML in this version" ;;
+    legacy) ;;
+    *) fail "--config: lifelong or legacy, got '$CONFIG'" ;;
+esac
+[ -x /usr/bin/time ] || fail "/usr/bin/time is missing (Debian package 'time')"
+OUT="${OUT:-$ROOT/results/lifelong-$(date +%Y%m%d-%H%M%S)}"
+mkdir -p "$OUT" || fail "--out: cannot create $OUT"
+OUT="$(cd "$OUT" && pwd)"
+for exe in ltm_host ltm_sim ltm_eval; do
+    [ -x "$BIN/$exe" ] || fail "$BIN/$exe is not built (./ltm setup)"
+done
+SESSIONS=$(grep -cE '^  - name:' "$SCENARIO")
+[ "$DAYS" -le "$SESSIONS" ] || fail "--days $DAYS: $SCENARIO has $SESSIONS sessions"
+echo "ltm bench lifelong: $DAYS days of $(basename "$SCENARIO"), config $CONFIG, results in $OUT"
+
+# run_day D: the host for day D under /usr/bin/time -v; links what the scoring reads.
+run_day() {
+    local d="$1" dir="$OUT/day$1" launch rc newest
+    local -a env_vars
+    env_vars=(LTM_SCENARIO="$SCENARIO" LTM_OUT="$dir")
+    if [ "$CONFIG" = legacy ]; then
+        if [ "$d" = 0 ]; then
+            launch="$ROOT/launch_configs/robot_maintain.yaml"
+        else
+            launch="$ROOT/launch_configs/robot_localise_maintain.yaml"
+            mkdir -p "$dir/maintenance"
+            cp "$OUT/day$((d - 1))/maintenance/long_term_map.bin" "$dir/maintenance/long_term_map.bin" ||
+                return 1
+            env_vars+=(LTM_MAP="$OUT/day0/map"
+                       LTM_MAINTAINED_MAP="$dir/maintenance/long_term_map.bin")
+        fi
+    else
+        launch="$LIFELONG_YAML"
+        env_vars+=(LTM_SITE="$OUT/site")
+    fi
+    local start=$SECONDS
+    env "${env_vars[@]}" /usr/bin/time -v -o "$dir/time.txt" "$ROOT/ltm" run "$launch" \
+        --set sensor.session="$d" --out "$dir" > "$dir/host.log" 2>&1
+    rc=$?
+    echo "$rc" > "$dir/exit_status"
+    echo "  day $d: host exit $rc after $((SECONDS - start)) s ($(basename "$launch")); log $dir/host.log"
+    [ "$rc" = 0 ] || return 1
+    if [ "$CONFIG" = legacy ]; then
+        if [ "$d" = 0 ]; then
+            ln -sfn slam_online_tum.txt "$dir/map_poses_tum.txt"
+        else
+            ln -sfn localisation_tum.txt "$dir/map_poses_tum.txt"
+        fi
+        ln -sfn "$OUT/day0/map" "$dir/next_map"
+        ln -sfn "$dir/maintenance/long_term_map.bin" "$dir/maintained"
+    else
+        ln -sfn localisation_tum.txt "$dir/map_poses_tum.txt"
+        newest=$(ls -d "$OUT/site/versions/v"* 2>/dev/null | sort | tail -n 1)
+        [ -n "$newest" ] || { echo "  day $d: no version in $OUT/site/versions" >&2; return 1; }
+        # The site keeps a bounded number of versions: the day's map is copied for the scoring.
+        rm -rf "$dir/next_map"
+        cp -r "$newest/map" "$dir/next_map" || return 1
+        ln -sfn "$newest/maintenance" "$dir/maintained"
+        echo "$newest" > "$dir/version"
+    fi
+}
+
+ran=0
+for ((d = 0; d < DAYS; d++)); do
+    dir="$OUT/day$d"
+    if [ "$RESUME" = 1 ] && [ "$(cat "$dir/exit_status" 2>/dev/null)" = 0 ]; then
+        echo "  day $d: kept from an earlier run (--resume)"
+    else
+        rm -rf "$dir"
+        mkdir -p "$dir"
+        run_day "$d" || { echo "ltm bench lifelong: day $d failed: $dir/host.log" >&2; break; }
+    fi
+    "$BIN/ltm_sim" "$SCENARIO" --session "$d" --truth-only --quiet --out "$dir/truth" ||
+        { echo "ltm bench lifelong: ltm_sim --truth-only failed for day $d" >&2; break; }
+    ran=$((d + 1))
+done
+[ "$ran" -ge 1 ] || { echo "ltm bench lifelong: no day ran to the end" >&2; exit 1; }
+echo
+"$BIN/ltm_eval" lifelong --run "$OUT" --days "$ran" --out "$OUT/score" || exit 1
+echo "figures: $OUT/score/day0..$((ran - 1)).svg; numbers: $OUT/score/metrics.json"
+[ "$ran" = "$DAYS" ] || exit 1

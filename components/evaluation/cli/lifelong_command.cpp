@@ -1,0 +1,256 @@
+// ltm_eval lifelong: every day of a lifelong benchmark run scored against the simulator's truth,
+// one row a day (the layout of a run's folder: components/bench/lifelong/README.md).
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include "common/core/io_error.hpp"
+#include "common/core/trajectory_io.hpp"
+#include "evaluation/cli/commands.hpp"
+#include "evaluation/cli/lifelong_inputs.hpp"
+#include "evaluation/cli/report.hpp"
+#include "evaluation/core/ate.hpp"
+#include "evaluation/core/lifelong_figure.hpp"
+#include "evaluation/core/lifelong_poses.hpp"
+#include "evaluation/core/map_change_score.hpp"
+#include "evaluation/core/new_ground.hpp"
+
+namespace ltm::eval::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct LifelongOptions {
+    std::string run, out;
+    int days = 0;
+    DayPoseConfig poses;
+    NewGroundConfig ground;
+    MapChangeConfig changes;
+    double min_health = 0.0, min_planarity = 0.4;
+};
+
+std::string day_dir(const LifelongOptions& o, int d) {
+    return (fs::path(o.run) / ("day" + std::to_string(d))).string();
+}
+
+std::string need(const std::string& path) {
+    if (!fs::exists(path)) throw common::IoError(path, "missing (see ltm_eval lifelong --help)");
+    return path;
+}
+
+double percent(std::size_t part, std::size_t whole) {
+    return whole == 0 ? 0.0 : 100.0 * static_cast<double>(part) / static_cast<double>(whole);
+}
+
+std::string fmt(const char* f, double v) {
+    char text[48];
+    std::snprintf(text, sizeof text, f, v);
+    return text;
+}
+
+// "87.5% of 96": the share of `before` voxels the later map no longer has; "-" without any.
+std::string gone_text(std::size_t kept, std::size_t before) {
+    if (before == 0) return "-";
+    return fmt("%.1f%%", 100.0 - percent(kept, before)) + " of " + std::to_string(before);
+}
+
+std::string kidnap_text(const DayPoseScore& s) {
+    if (s.kidnaps.empty()) return "-";
+    std::string out;
+    for (const auto& k : s.kidnaps) {
+        if (!out.empty()) out += ",";
+        out += k.recovered ? fmt("%.1fs", k.time_s) : std::string("never");
+        if (k.wrong > 0) out += "(" + std::to_string(k.wrong) + "w)";
+    }
+    return out;
+}
+
+int run_lifelong(const LifelongOptions& o) {
+    // The one alignment: day 0's final SLAM keyframes against day 0's truth.
+    const common::Trajectory truth0 =
+        common::read_tum_trajectory(need(day_dir(o, 0) + "/truth/poses_tum.txt"));
+    const MapAlignment align = fit_map_alignment(
+        common::read_tum_trajectory(need(day_dir(o, 0) + "/slam_tum.txt")), truth0, o.poses.max_dt);
+    if (align.matched < 3)
+        throw common::IoError(day_dir(o, 0) + "/slam_tum.txt",
+                              "fewer than 3 keyframes match the truth by stamp");
+
+    std::vector<std::vector<SiteObject>> objects;
+    std::vector<SiteObject> unstable;
+    for (int d = 0; d < o.days; ++d) {
+        objects.push_back(read_site_objects(need(day_dir(o, d) + "/truth/objects.txt")));
+        for (const auto& ob : objects.back())
+            if (ob.changed) unstable.push_back(ob);
+    }
+    const std::string first_map_dir = day_dir(o, 0) + "/next_map";
+    const std::vector<Eigen::Vector3d> first_map =
+        fs::exists(first_map_dir)
+            ? map_voxel_centres(first_map_dir, align.T_world_map, o.min_health, o.min_planarity)
+            : std::vector<Eigen::Vector3d>{};
+
+    Report report("ltm_eval lifelong: " + o.run);
+    report.section("alignment");
+    report.add_count("day0_keyframes_matched", align.matched);
+    report.add("day0_keyframes_rmse", align.ate.rmse, "m");
+    std::ostringstream table;
+    table << "day0 final SLAM keyframes vs truth (the one alignment): rmse "
+          << fmt("%.3f", align.ate.rmse) << " m over " << align.matched << " keyframes\n";
+    char header[512];
+    std::snprintf(header, sizeof header,
+                  "%3s %5s %6s %6s %6s %6s %6s  %-16s %6s  %-13s %-11s %9s %7s %7s %7s %8s %7s "
+                  "%6s\n",
+                  "day", "scans", "pose%", "rmse", "p95", "max", ">0.5m", "kidnap->correct",
+                  "new_m", "removed_gone", "moved_gone", "moved_new", "added", "static%", "map_MB",
+                  "maint_MB", "peak_MB", "cpu_ms");
+    table << header;
+    std::vector<Eigen::Vector3d> earlier;
+    for (int d = 0; d < o.days; ++d) {
+        const std::string dir = day_dir(o, d);
+        const common::Trajectory truth =
+            d == 0 ? truth0 : common::read_tum_trajectory(need(dir + "/truth/poses_tum.txt"));
+        const DayPoseScore s = score_day_poses(
+            common::read_tum_trajectory(need(dir + "/map_poses_tum.txt")), truth, align.T_world_map,
+            read_kidnap_stamps(need(dir + "/truth/kidnaps.txt")), o.poses);
+        std::vector<Eigen::Vector3d> path;
+        for (const auto& t : truth) path.push_back(t.pose.translation());
+        const double new_m = new_ground_length(path, earlier, o.ground);
+
+        const ObjectChanges changes = diff_objects(objects[0], objects[static_cast<size_t>(d)]);
+        const std::string map_dir = dir + "/next_map";
+        const bool have_map = fs::exists(map_dir) && !first_map.empty();
+        MapChangeScore c;
+        if (have_map) {
+            const std::vector<Eigen::Vector3d> later =
+                d == 0
+                    ? first_map
+                    : map_voxel_centres(map_dir, align.T_world_map, o.min_health, o.min_planarity);
+            c = score_map_changes(first_map, later, changes, unstable, o.changes);
+        }
+        const ProcessUsage usage = read_time_report(dir + "/time.txt");
+        const double map_mb = static_cast<double>(bytes_on_disk(map_dir)) / (1 << 20);
+        const double maint_mb = static_cast<double>(bytes_on_disk(dir + "/maintained")) / (1 << 20);
+        const double cpu_ms = usage.valid && s.scans > 0 ? 1000.0 * usage.cpu_s / s.scans : 0.0;
+
+        char row[512];
+        std::snprintf(row, sizeof row,
+                      "%3d %5zu %6.1f %6.3f %6.3f %6.2f %6zu  %-16s %6.0f  %-13s %-11s %4zu/%-4zu "
+                      "%3zu/%-3zu %7.2f %7.1f %8.1f %7.0f %6.1f\n",
+                      d, s.scans, percent(s.with_pose, s.scans), s.rmse, s.p95, s.max, s.wrong,
+                      kidnap_text(s).c_str(), new_m,
+                      gone_text(c.removed_kept, c.removed_before).c_str(),
+                      gone_text(c.moved_from_kept, c.moved_from_before).c_str(), c.moved_to_present,
+                      c.moved_objects, c.added_present, c.added_objects,
+                      percent(c.static_kept, c.static_before), map_mb, maint_mb,
+                      usage.valid ? usage.max_rss_mb : 0.0, cpu_ms);
+        table << row;
+        if (!have_map) table << "    (no " << map_dir << ": map columns not scored)\n";
+
+        report.section("day" + std::to_string(d));
+        report.add_count("scans", s.scans);
+        report.add_count("scans_with_map_pose", s.with_pose);
+        report.add("map_pose_fraction", s.scans ? double(s.with_pose) / s.scans : 0.0);
+        report.add("rmse", s.rmse, "m");
+        report.add("p95", s.p95, "m");
+        report.add("max", s.max, "m");
+        report.add_count("poses_over_wrong", s.wrong);
+        for (std::size_t k = 0; k < s.kidnaps.size(); ++k) {
+            const std::string key = "kidnap" + std::to_string(k);
+            report.add(key + "_stamp", s.kidnaps[k].stamp, "s");
+            report.add(key + "_time_to_correct", s.kidnaps[k].recovered ? s.kidnaps[k].time_s : -1,
+                       "s");
+            report.add_count(key + "_wrong_before", s.kidnaps[k].wrong);
+        }
+        report.add("new_ground", new_m, "m");
+        report.add_count("removed_voxels_day0_map", c.removed_before);
+        report.add_count("removed_voxels_kept", c.removed_kept);
+        report.add_count("moved_old_voxels_day0_map", c.moved_from_before);
+        report.add_count("moved_old_voxels_kept", c.moved_from_kept);
+        report.add_count("moved_objects", c.moved_objects);
+        report.add_count("moved_new_place_present", c.moved_to_present);
+        report.add_count("moved_new_place_voxels", c.moved_to_voxels);
+        report.add_count("added_objects", c.added_objects);
+        report.add_count("added_present", c.added_present);
+        report.add_count("added_voxels", c.added_voxels);
+        report.add_count("static_voxels_day0_map", c.static_before);
+        report.add_count("static_voxels_kept", c.static_kept);
+        report.add("map_on_disk", map_mb, "MiB");
+        report.add("maintained_on_disk", maint_mb, "MiB");
+        if (usage.valid) {
+            report.add("peak_memory", usage.max_rss_mb, "MiB");
+            report.add("cpu_per_scan", cpu_ms, "ms");
+        }
+
+        if (!o.out.empty()) {
+            LifelongDayFigure fig;
+            fig.title = "day " + std::to_string(d) + ": map poses by error (one alignment, day 0)";
+            fig.earlier_paths = earlier;
+            for (const auto& t : truth) fig.truth.push_back(t.pose);
+            fig.aligned = s.aligned;
+            fig.error = s.error;
+            fig.wrong = o.poses.wrong;
+            fig.changes = changes;
+            write_text_file(o.out + "/day" + std::to_string(d) + ".svg", lifelong_day_svg(fig));
+            std::ostringstream scans;
+            scans << "# stamp true_x true_y error_m (-1: no map pose)\n";
+            for (std::size_t i = 0; i < truth.size(); ++i) {
+                char line[128];
+                std::snprintf(line, sizeof line, "%.3f %.2f %.2f %.3f\n", truth[i].stamp,
+                              truth[i].pose.translation().x(), truth[i].pose.translation().y(),
+                              s.error[i]);
+                scans << line;
+            }
+            write_text_file(o.out + "/day" + std::to_string(d) + "_scans.txt", scans.str());
+        }
+        // Every few scans is plenty for "more than 10 m from every earlier path".
+        for (std::size_t i = 0; i < path.size(); i += 5) earlier.push_back(path[i]);
+    }
+    table << "pose%: scans with a published map pose; kidnap->correct: scan time to the first "
+             "pose within "
+          << fmt("%.2g", o.poses.wrong)
+          << " m (Nw: wrong poses before it); removed_gone / moved_gone: voxels of removed "
+             "objects / moved objects' old places in day 0's map that the map after the day no "
+             "longer has; moved_new / added: objects with >= "
+          << o.changes.min_voxels << " voxels in the map after the day; static%: day 0's other "
+          << "voxels kept\n";
+    std::cout << table.str();
+    if (!o.out.empty()) {
+        report.write(o.out);
+        write_text_file(o.out + "/table.txt", table.str());
+    }
+    return 0;
+}
+
+}  // namespace
+
+Run add_lifelong(CLI::App& parent) {
+    CLI::App* app = parent.add_subcommand(
+        "lifelong",
+        "a lifelong run day by day: map poses, kidnaps, new ground, changes, resources");
+    auto o = std::make_shared<LifelongOptions>();
+    app->footer(
+        "RUN/dayN/ holds: map_poses_tum.txt (the map poses published online), truth/ (ltm_sim "
+        "--truth-only of the day's session), slam_tum.txt (day 0: the final SLAM keyframes, for "
+        "the one alignment), next_map (the map the next day localises on), maintained (the "
+        "maintained state), time.txt (/usr/bin/time -v of the host).");
+    app->add_option("--run", o->run, "the benchmark run's folder (day0, day1, ...)")->required();
+    app->add_option("--days", o->days, "days to score")
+        ->required()
+        ->check(common::cli::at_least(1));
+    app->add_option("--max-dt", o->poses.max_dt, "stamp pairing tolerance [s]");
+    app->add_option("--wrong", o->poses.wrong, "a pose farther than this is wrong [m]");
+    app->add_option("--new-ground-radius", o->ground.radius,
+                    "truth path farther than this from every earlier day's is new [m]");
+    app->add_option("--box-margin", o->changes.box_margin, "object boxes grown by this [m]");
+    app->add_option("--min-planarity", o->min_planarity,
+                    "map voxels counted (localisation's filter) [0..1]");
+    app->add_option("--min-health", o->min_health, "map voxels counted [0..1]");
+    app->add_option("--out", o->out,
+                    "write metrics.txt, metrics.json, table.txt, dayN.svg, dayN_scans.txt (each "
+                    "scan's error) here");
+    return [o] { return run_lifelong(*o); };
+}
+
+}  // namespace ltm::eval::cli
