@@ -92,7 +92,9 @@ run_day() {
         env_vars+=(LTM_SITE="$OUT/site")
     fi
     local start=$SECONDS
+    # A DDS domain of this run's own (LTM_BENCH_DOMAIN): two runs on one machine stay apart.
     env "${env_vars[@]}" /usr/bin/time -v -o "$dir/time.txt" "$ROOT/ltm" run "$launch" \
+        --set domain_id="${LTM_BENCH_DOMAIN:-$((100 + $$ % 100))}" \
         --set sensor.session="$d" --out "$dir" > "$dir/host.log" 2>&1
     rc=$?
     echo "$rc" > "$dir/exit_status"
