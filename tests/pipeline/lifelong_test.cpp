@@ -104,6 +104,9 @@ TEST_F(LifelongPipeline, ThreeDaysOnOneConfigGrowTheMapLearnItsChangesAndLocalis
     ASSERT_EQ(versions.size(), 3u);
     for (const map::SiteVersion& v : versions) EXPECT_TRUE(v.intact) << v.name << ": " << v.problem;
     const Eigen::Isometry3d T_world_map = map_to_world();
+    // Monday, a new site: the SLAM's pose of every scan was the map pose.
+    EXPECT_GE(by_stamp(path("day0/localisation_tum.txt")).size(),
+              by_stamp(path("day0/ground_truth_tum.txt")).size() * 9 / 10);
 
     // Tuesday's new ground (x > 30 m, where Monday never drove) has keyframes in Tuesday's version.
     auto keyframes_east = [&](const map::SiteVersion& v) {
