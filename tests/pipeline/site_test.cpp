@@ -62,12 +62,12 @@ TEST_F(SitePipeline, TheStagedSessionBecomesTheNextVersionAndASecondSessionIsRef
     const std::string site = path("site");
     make_first_version(site);
     fs::create_directories(fs::path(site) / "next/map");  // a crashed session's staging
-    Process host({kHost, config(231, site)}, path("host"));
+    Process host({kHost, config(171, site)}, path("host"));
     ASSERT_TRUE(wait_for_log(host, "the session starts from v0001")) << host.err();
     EXPECT_NE(host.err().find("the staging of a session that did not finish"), std::string::npos)
         << host.err();
 
-    Process second({kHost, config(232, site)}, path("second"));
+    Process second({kHost, config(172, site)}, path("second"));
     EXPECT_EQ(second.wait(60), 2) << second.err();
     EXPECT_NE(second.err().find("the site is in use by pid"), std::string::npos) << second.err();
 
@@ -94,7 +94,7 @@ TEST_F(SitePipeline, TheStagedSessionBecomesTheNextVersionAndASecondSessionIsRef
 TEST_F(SitePipeline, NothingStagedIsNotSavedAndThePreviousVersionStays) {
     const std::string site = path("site");
     make_first_version(site);
-    Process host({kHost, config(233, site)}, path("host"));
+    Process host({kHost, config(173, site)}, path("host"));
     ASSERT_TRUE(wait_for_log(host, "the session starts from v0001")) << host.err();
     host.signal(SIGTERM);
     EXPECT_EQ(host.wait(60), 4) << host.err();
@@ -109,7 +109,7 @@ TEST_F(SitePipeline, AnUnknownNamedVersionIsRefusedInOneLine) {
     const std::string site = path("site");
     make_first_version(site);
     const std::string cfg = write("named.yaml",
-                                  "domain_id: 234\ndds: {interfaces: [lo], multicast: false, "
+                                  "domain_id: 174\ndds: {interfaces: [lo], multicast: false, "
                                   "peers: [127.0.0.1]}\ncomponents:\n  - name: site\n    type: "
                                   "site\n    params: {site_dir: " +
                                       site + ", site_version: v0009}\n");
@@ -124,7 +124,7 @@ TEST_F(SitePipeline, LocalisationOnANewSiteSaysThereIsNoMapYet) {
         "  - name: localisation\n    type: localisation\n    params: "
         "{site_dir: " +
         site + "}\n";
-    Process host({kHost, config(235, site, loc)}, path("host"));
+    Process host({kHost, config(175, site, loc)}, path("host"));
     ASSERT_TRUE(wait_for_log(host, "the session starts from none (a new site)")) << host.err();
     EXPECT_NE(host.err().find("new site: no map yet, nothing to localise on until the next "
                               "session"),
