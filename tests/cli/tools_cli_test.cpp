@@ -78,8 +78,9 @@ const std::vector<BadLine> kBadLines = {
      "ltm_mcap write-test-file: --messages: expected a non-negative integer, got 'x'"},
     {"ltm_mcap_bench", {"--bogus"}, "ltm_mcap_bench: --bogus: unknown option"},
     {"ltm_site", {"versions", "site", "--bogus"}, "ltm_site versions: --bogus: unknown option"},
-    {"ltm_site", {"import", "site", "--keep", "0", "--map", "m"},
-     "ltm_site import: --keep: must be at least 1"},
+    {"ltm_site",
+     {"import", "site", "--keep", "0", "--map", "m"},
+     "ltm_site import: --keep: must be at least 1, not 0"},
     // It read its options in pairs and dropped a trailing one: this ran the 10 s benchmark.
     {"ltm_mcap_bench", {"--frames", "0", "--seconds"}, "ltm_mcap_bench: --seconds: needs a value"},
     {"ltm_mcap_bench",
