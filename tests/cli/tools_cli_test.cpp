@@ -81,6 +81,9 @@ const std::vector<BadLine> kBadLines = {
     {"ltm_site",
      {"import", "site", "--keep", "0", "--map", "m"},
      "ltm_site import: --keep: must be at least 1, not 0"},
+    {"ltm_site",
+     {"anchor", "site"},
+     "ltm_site anchor: give --points FILE or --transform X Y Z ROLL PITCH YAW"},
     // It read its options in pairs and dropped a trailing one: this ran the 10 s benchmark.
     {"ltm_mcap_bench", {"--frames", "0", "--seconds"}, "ltm_mcap_bench: --seconds: needs a value"},
     {"ltm_mcap_bench",
@@ -146,7 +149,7 @@ TEST(ToolsCli, HelpListsEveryOption) {
          {{"write-test-file", "--help"},
           {"OUT", "--manifest", "--compression", "--chunk-size", "--messages"}}},
         {"ltm_mcap_bench", {{"--help"}, {"--frames", "--seconds", "--out", "--kitti"}}},
-        {"ltm_site", {{"--help"}, {"versions", "check", "import"}}},
+        {"ltm_site", {{"--help"}, {"versions", "check", "import", "anchor"}}},
         {"ltm_site", {{"import", "--help"}, {"SITE", "--map", "--maintained", "--keep"}}},
         {"ltm_bench_dds", {{"--help"}, {"--points", "--count", "--rate"}}},
         {"ltm_host",

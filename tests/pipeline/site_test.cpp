@@ -2,17 +2,20 @@
 // the site's next version at SIGTERM; nothing staged is NOT saved (exit 4) and the previous
 // version stays the newest; a second live session on the site, and a named version that is
 // unknown, are refused in one line (exit 2); a staging a crashed session left is removed; the
-// localisation on a new site says there is no map yet. The map is staged by the test itself
+// localisation on a new site says there is no map yet, takes the site's anchor, and refuses a
+// damaged anchor in one line. The map is staged by the test itself
 // (the mapping's part is the lead's); the host runs the real site component.
 #include <gtest/gtest.h>
 
 #include <chrono>
 #include <filesystem>
+#include <fstream>
 #include <thread>
 
 #include "host/process.hpp"
 #include "host/temp_dir_test.hpp"
 #include "map/core/map_store.hpp"
+#include "map/core/site_anchor.hpp"
 #include "map/core/site_store.hpp"
 #include "map/core/site_test_maps.hpp"
 
@@ -120,6 +123,7 @@ TEST_F(SitePipeline, AnUnknownNamedVersionIsRefusedInOneLine) {
 
 TEST_F(SitePipeline, LocalisationOnANewSiteSaysThereIsNoMapYet) {
     const std::string site = path("site");
+    map::write_anchor(site, map::anchor_from_transform({100, 200, 10}, 0, 0, 90));
     const std::string loc =
         "  - name: localisation\n    type: localisation\n    params: "
         "{site_dir: " +
@@ -130,7 +134,15 @@ TEST_F(SitePipeline, LocalisationOnANewSiteSaysThereIsNoMapYet) {
                               "session"),
               std::string::npos)
         << host.err();
+    EXPECT_NE(host.err().find("anchored (" + site + "/anchor.yaml)"), std::string::npos)
+        << host.err();
     host.signal(SIGTERM);
     EXPECT_EQ(host.wait(60), 4) << host.err();  // nothing staged: no version
     EXPECT_NE(host.err().find("the site still has no version"), std::string::npos) << host.err();
+
+    // A damaged anchor refuses the localisation in one line.
+    std::ofstream(map::anchor_file(site), std::ios::app) << "scale: 2\n";
+    Process again({kHost, config(176, site, loc)}, path("again"));
+    EXPECT_EQ(again.wait(60), 2) << again.err();
+    EXPECT_NE(again.err().find("anchor.yaml: line 8 at byte"), std::string::npos) << again.err();
 }
