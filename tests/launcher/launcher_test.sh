@@ -120,7 +120,7 @@ readonly_never_sets_up() {
 bench_list_names_every_benchmark() {
     local list name
     list="$("$LTM" bench list)" || return 1
-    for name in dds odometry slam localise localise_real mcap sim sim_compare hard_cases stop; do
+    for name in dds odometry slam localise localise_real mcap sim sim_compare hard_cases stop site; do
         echo "$list" | grep -q "^  $name " || { echo "  '$name' missing from: $list"; return 1; }
     done
     local err rc

@@ -2,17 +2,20 @@
 // the site's next version at SIGTERM; nothing staged is NOT saved (exit 4) and the previous
 // version stays the newest; a second live session on the site, and a named version that is
 // unknown, are refused in one line (exit 2); a staging a crashed session left is removed; the
-// localisation on a new site says there is no map yet. The map is staged by the test itself
+// localisation on a new site says there is no map yet, takes the site's anchor, and refuses a
+// damaged anchor in one line. The map is staged by the test itself
 // (the mapping's part is the lead's); the host runs the real site component.
 #include <gtest/gtest.h>
 
 #include <chrono>
 #include <filesystem>
+#include <fstream>
 #include <thread>
 
 #include "host/process.hpp"
 #include "host/temp_dir_test.hpp"
 #include "map/core/map_store.hpp"
+#include "map/core/site_anchor.hpp"
 #include "map/core/site_store.hpp"
 #include "map/core/site_test_maps.hpp"
 
@@ -62,12 +65,12 @@ TEST_F(SitePipeline, TheStagedSessionBecomesTheNextVersionAndASecondSessionIsRef
     const std::string site = path("site");
     make_first_version(site);
     fs::create_directories(fs::path(site) / "next/map");  // a crashed session's staging
-    Process host({kHost, config(231, site)}, path("host"));
+    Process host({kHost, config(171, site)}, path("host"));
     ASSERT_TRUE(wait_for_log(host, "the session starts from v0001")) << host.err();
     EXPECT_NE(host.err().find("the staging of a session that did not finish"), std::string::npos)
         << host.err();
 
-    Process second({kHost, config(232, site)}, path("second"));
+    Process second({kHost, config(172, site)}, path("second"));
     EXPECT_EQ(second.wait(60), 2) << second.err();
     EXPECT_NE(second.err().find("the site is in use by pid"), std::string::npos) << second.err();
 
@@ -94,7 +97,7 @@ TEST_F(SitePipeline, TheStagedSessionBecomesTheNextVersionAndASecondSessionIsRef
 TEST_F(SitePipeline, NothingStagedIsNotSavedAndThePreviousVersionStays) {
     const std::string site = path("site");
     make_first_version(site);
-    Process host({kHost, config(233, site)}, path("host"));
+    Process host({kHost, config(173, site)}, path("host"));
     ASSERT_TRUE(wait_for_log(host, "the session starts from v0001")) << host.err();
     host.signal(SIGTERM);
     EXPECT_EQ(host.wait(60), 4) << host.err();
@@ -109,7 +112,7 @@ TEST_F(SitePipeline, AnUnknownNamedVersionIsRefusedInOneLine) {
     const std::string site = path("site");
     make_first_version(site);
     const std::string cfg = write("named.yaml",
-                                  "domain_id: 234\ndds: {interfaces: [lo], multicast: false, "
+                                  "domain_id: 174\ndds: {interfaces: [lo], multicast: false, "
                                   "peers: [127.0.0.1]}\ncomponents:\n  - name: site\n    type: "
                                   "site\n    params: {site_dir: " +
                                       site + ", site_version: v0009}\n");
@@ -120,17 +123,26 @@ TEST_F(SitePipeline, AnUnknownNamedVersionIsRefusedInOneLine) {
 
 TEST_F(SitePipeline, LocalisationOnANewSiteSaysThereIsNoMapYet) {
     const std::string site = path("site");
+    map::write_anchor(site, map::anchor_from_transform({100, 200, 10}, 0, 0, 90));
     const std::string loc =
         "  - name: localisation\n    type: localisation\n    params: "
         "{site_dir: " +
         site + "}\n";
-    Process host({kHost, config(235, site, loc)}, path("host"));
+    Process host({kHost, config(175, site, loc)}, path("host"));
     ASSERT_TRUE(wait_for_log(host, "the session starts from none (a new site)")) << host.err();
     EXPECT_NE(host.err().find("new site: no map yet, nothing to localise on until the next "
                               "session"),
               std::string::npos)
         << host.err();
+    EXPECT_NE(host.err().find("anchored (" + site + "/anchor.yaml)"), std::string::npos)
+        << host.err();
     host.signal(SIGTERM);
     EXPECT_EQ(host.wait(60), 4) << host.err();  // nothing staged: no version
     EXPECT_NE(host.err().find("the site still has no version"), std::string::npos) << host.err();
+
+    // A damaged anchor refuses the localisation in one line.
+    std::ofstream(map::anchor_file(site), std::ios::app) << "scale: 2\n";
+    Process again({kHost, config(176, site, loc)}, path("again"));
+    EXPECT_EQ(again.wait(60), 2) << again.err();
+    EXPECT_NE(again.err().find("anchor.yaml: line 8 at byte"), std::string::npos) << again.err();
 }

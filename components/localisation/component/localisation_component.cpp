@@ -3,7 +3,9 @@
 // (ltm_msgs/LocalisationStatus, every processed scan), `pose` (PoseWithCovarianceStamped in frame
 // `map`, while the pose is valid), `map_to_odom` (TransformStamped map -> the odometry's frame) and
 // the state changes (lost, relocalised, off the map) on the shared `status`. An initial pose on
-// `initialpose` (RViz's "2D Pose Estimate") narrows the next global localisation.
+// `initialpose` (RViz's "2D Pose Estimate") narrows the next global localisation. With `site_dir`
+// instead of `map`, the site's start version's map; when the site is anchored, every valid pose
+// also goes out in the site's frame on `site_pose`.
 //
 // Threads: the component's thread takes every input as it comes and pairs each scan with the
 // odometry pose of the same stamp: a scan waits until that pose comes, or the odometry says it has
@@ -32,6 +34,7 @@
 #include "common/core/one_line.hpp"
 #include "localisation/component/localisation_messages.hpp"
 #include "localisation/component/localiser_params.hpp"
+#include "map/core/site_anchor.hpp"
 #include "map/core/site_store.hpp"
 #include "odometry/core/odometry_config.hpp"
 #include "odometry/params/odometry_params.hpp"
@@ -181,8 +184,9 @@ class LocalisationComponent : public runtime::Component {
   private:
     // With `site_dir` (map/core/site_store.hpp), the map is the start version's of the site
     // (`site_version`, or the newest intact one); a site without a version yet (a new site):
-    // nothing to localise on in this session, said once. A named version that is unknown or
-    // damaged refuses the component in one line.
+    // nothing to localise on in this session, said once. A site with an anchor
+    // (map/core/site_anchor.hpp) also gets every valid pose in its frame `site` on `site_pose`. A
+    // named version that is unknown or damaged refuses the component in one line.
     void resolve_site_map(runtime::Parameters& p) {
         const std::string site = p.path("site_dir", "", PathCheck::kNone);
         const std::string version = p.get<std::string>("site_version", "");
@@ -199,6 +203,17 @@ class LocalisationComponent : public runtime::Component {
             p.fail(version.empty() ? "site_dir" : "site_version", e.what());
         }
         for (const std::string& note : session.notes) ctx_.log().warn(note);
+        try {
+            if (const auto anchor = map::read_anchor(site)) {
+                T_site_map_ = anchor->T_site_map;
+                site_pose_out_ =
+                    ctx_.advertise<msg::PoseWithCovarianceStamped>("site_pose", TopicRole::kState);
+                ctx_.log().info("site " + site + ": anchored (" + map::anchor_file(site) +
+                                "): the pose in frame `site` on site_pose too");
+            }
+        } catch (const common::IoError& e) {
+            p.fail("site_dir", e.what());
+        }
         if (session.start) {
             map_dir_ = session.start->map_dir();
             ctx_.log().info("site " + site + ": localising on " + session.describe());
@@ -401,6 +416,19 @@ class LocalisationComponent : public runtime::Component {
         ++valid_;
         status_out_.publish(*status_msg(u, counters(), frame_id_));
         pose_out_.publish(*pose_msg(u, frame_id_));
+        if (T_site_map_) publish_site_pose(u);
+    }
+
+    // The pose in the site's own frame (SITE/anchor.yaml): T_site_lidar = T_site_map T_map_lidar,
+    // the covariance's translation and rotation blocks turned into the site frame.
+    void publish_site_pose(const LocalisationUpdate& u) {
+        auto m = pose_msg(u, "site");
+        m->pose.pose = convert::to_pose(*T_site_map_ * u.T_map_lidar);
+        registration::Matrix6d R = registration::Matrix6d::Zero();
+        R.topLeftCorner<3, 3>() = T_site_map_->rotation();
+        R.bottomRightCorner<3, 3>() = T_site_map_->rotation();
+        convert::to_array36(R * u.covariance * R.transpose(), m->pose.covariance);
+        site_pose_out_.publish(*m);
     }
 
     // Said once in the log (when loading failed), and on `status` every kNoMapRepeat scans for
@@ -429,6 +457,7 @@ class LocalisationComponent : public runtime::Component {
         if (u.pose_valid) {
             ++valid_;
             pose_out_.publish(*pose_msg(u, frame_id_));
+            if (T_site_map_) publish_site_pose(u);
             if (scan.odometry)
                 correction_out_.publish(*convert::to_msg(convert::TransformData{
                     convert::to_time(u.stamp), frame_id_, odom_frame(), u.T_map_odom}));
@@ -508,6 +537,8 @@ class LocalisationComponent : public runtime::Component {
 
     runtime::Publisher<msg::LocalisationStatus> status_out_;
     runtime::Publisher<msg::PoseWithCovarianceStamped> pose_out_;
+    std::optional<Eigen::Isometry3d> T_site_map_;  // the site's anchor, when it has one
+    runtime::Publisher<msg::PoseWithCovarianceStamped> site_pose_out_;
     runtime::Publisher<msg::TransformStamped> correction_out_;
     runtime::Publisher<msg::Status> events_out_;
     std::optional<Worker> worker_;  // last: stopped before the members it uses go

@@ -9,7 +9,13 @@
 //                                 next version, as a session would: loaded and checked, saved
 //                                 into the staging with its files hard-linked where they can be,
 //                                 committed
+//   anchor SITE (--points FILE | --transform X Y Z ROLL PITCH YAW)
+//                                 SITE/anchor.yaml: the site's own frame against the map's,
+//                                 given (metres, degrees) or fitted to surveyed points (map xyz
+//                                 site xyz a line, at least 3: Umeyama without scale)
+#include <Eigen/Geometry>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -18,6 +24,7 @@
 #include "common/core/file_io.hpp"
 #include "common/core/io_error.hpp"
 #include "map/core/map_store.hpp"
+#include "map/core/site_anchor.hpp"
 #include "map/core/site_lock.hpp"
 #include "map/core/site_store.hpp"
 
@@ -103,6 +110,27 @@ int import_map(const std::string& dir, const std::string& map_dir, const std::st
     return 0;
 }
 
+int anchor(const std::string& dir, const std::string& points, const std::vector<double>& t) {
+    ltm::map::SiteAnchor a;
+    if (!points.empty()) {
+        std::vector<Eigen::Vector3d> map_xyz, site_xyz;
+        ltm::map::read_survey_points(points, &map_xyz, &site_xyz);
+        a = ltm::map::fit_anchor(map_xyz, site_xyz);
+    } else {
+        a = ltm::map::anchor_from_transform({t[0], t[1], t[2]}, t[3], t[4], t[5]);
+    }
+    ltm::map::write_anchor(dir, a);
+    const Eigen::Vector3d x = a.T_site_map.translation();
+    const double yaw = std::atan2(a.T_site_map(1, 0), a.T_site_map(0, 0)) * 180.0 / M_PI;
+    std::printf("%s: translation %.3f %.3f %.3f m, yaw %.3f deg",
+                ltm::map::anchor_file(dir).c_str(), x.x(), x.y(), x.z(), yaw);
+    if (a.source == "points")
+        std::printf("; fitted to %zu points: residuals rms %.4f m, max %.4f m", a.points, a.rms_m,
+                    a.max_m);
+    std::printf("\n");
+    return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -124,10 +152,28 @@ int main(int argc, char** argv) {
     import_cmd->add_option("--map", map_dir, "the saved map directory")->required();
     import_cmd->add_option("--maintained", maintained, "its maintained map (long_term_map.bin)");
     import_cmd->add_option("--keep", keep, "versions kept")->check(ltm::common::cli::at_least(1));
+    CLI::App* anchor_cmd = app.add_subcommand("anchor", "the site's own frame against the map's");
+    std::string points;
+    std::vector<double> transform;
+    anchor_cmd->add_option("SITE", site, "the site's folder")->required();
+    auto* points_opt = anchor_cmd->add_option(
+        "--points", points, "surveyed points: map x y z site x y z a line (at least 3)");
+    auto* transform_opt = anchor_cmd
+                              ->add_option("--transform", transform,
+                                           "p_site = T p_map: x y z [m] roll pitch yaw [deg]")
+                              ->expected(6);
+    points_opt->excludes(transform_opt);
     if (const int code = ltm::common::cli::parse(app, argc, argv); code >= 0) return code;
     try {
         if (versions->parsed()) return list_versions(site);
         if (import_cmd->parsed()) return import_map(site, map_dir, maintained, std::size_t(keep));
+        if (anchor_cmd->parsed()) {
+            if (points.empty() && transform.empty())
+                return ltm::common::cli::usage_error(
+                    app, ltm::common::cli::UsageError(
+                             "give --points FILE or --transform X Y Z ROLL PITCH YAW"));
+            return anchor(site, points, transform);
+        }
         return check(site, version);
     } catch (const std::exception& e) {  // one line: IoError, a filesystem error
         std::fprintf(stderr, "ltm_site: %s\n", e.what());
