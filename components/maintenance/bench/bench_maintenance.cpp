@@ -120,9 +120,9 @@ int run(const Args& a) {
                     "recent %u/%u\n  hits:",
                     p.x(), p.y(), p.z(), int(j.verdict), j.score, j.views, j.hits, j.recent_hits,
                     j.recent_views);
-                for (const auto& e : v.hits) std::printf(" %d:%d", e.slot, e.count);
+                for (const auto& e : v.hit_histogram()) std::printf(" %d:%d", e.slot, e.count);
                 std::printf("\n  free:");
-                for (const auto& e : v.free) std::printf(" %d:%d", e.slot, e.count);
+                for (const auto& e : v.free_histogram()) std::printf(" %d:%d", e.slot, e.count);
                 std::printf("\n");
             }
         }
