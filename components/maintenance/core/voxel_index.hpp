@@ -28,6 +28,7 @@ class VoxelIndex {
     }
 
     // Adds number i for key, which must not be in the index (find() first); key_of(i) == key.
+    // Numbers are 0..size()-1 in insertion order: a growing table re-places them through key_of.
     template <class KeyOf>
     void insert(registration::VoxelKey key, std::uint32_t i, const KeyOf& key_of) {
         if ((size_ + 1) * 5 > buckets_.size() * 4) rebuild(size_ + 1, key_of, size_);
@@ -35,7 +36,7 @@ class VoxelIndex {
         ++size_;
     }
 
-    // The index of voxels 0..n-1 (after they were erased or reordered).
+    // Room for n numbers at a load of 0.625, holding numbers 0..indexed-1 (insert() growing).
     template <class KeyOf>
     void rebuild(std::size_t n, const KeyOf& key_of, std::size_t indexed) {
         buckets_.assign(std::max<std::size_t>(16, n * 8 / 5), kNone);
@@ -44,6 +45,7 @@ class VoxelIndex {
         for (std::size_t i = 0; i < indexed; ++i, ++size_)
             place(key_of(std::uint32_t(i)), std::uint32_t(i));
     }
+    // The index of voxels 0..n-1 (after they were erased or reordered).
     template <class KeyOf>
     void rebuild(std::size_t n, const KeyOf& key_of) {
         rebuild(n, key_of, n);
