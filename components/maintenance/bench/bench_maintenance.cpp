@@ -44,6 +44,7 @@ struct Args {
     std::string calib, out, preset = "default";
     std::vector<float> inspect;  // x y z: print the histories of the voxels there
     std::size_t first = 0, count = 0, every = 1;
+    bool save = false;  // save the map after every session (OUT/long_term_map.bin)
 };
 
 maintenance::MaintenanceConfig make_config(const Args& a) {
@@ -119,9 +120,9 @@ int run(const Args& a) {
                     "recent %u/%u\n  hits:",
                     p.x(), p.y(), p.z(), int(j.verdict), j.score, j.views, j.hits, j.recent_hits,
                     j.recent_views);
-                for (const auto& e : v.hits) std::printf(" %d:%d", e.slot, e.count);
+                for (const auto& e : v.hit_histogram()) std::printf(" %d:%d", e.slot, e.count);
                 std::printf("\n  free:");
-                for (const auto& e : v.free) std::printf(" %d:%d", e.slot, e.count);
+                for (const auto& e : v.free_histogram()) std::printf(" %d:%d", e.slot, e.count);
                 std::printf("\n");
             }
         }
@@ -141,6 +142,18 @@ int run(const Args& a) {
             c.removed_voxels_by(maintenance::ChangeReason::kMoving),
             c.removed_voxels_by(maintenance::ChangeReason::kVanished),
             c.count(maintenance::ChangeReason::kNew), st.voxels, st.memory_bytes / 1048576.0);
+        std::printf("  state: %.1f B a voxel in memory",
+                    double(st.memory_bytes) / double(std::max<std::size_t>(1, st.voxels)));
+        if (a.save) {
+            const std::string file = (std::filesystem::path(a.out) / "long_term_map.bin").string();
+            const auto ts = Clock::now();
+            map.save(file);
+            const double save_s = std::chrono::duration<double>(Clock::now() - ts).count();
+            const auto bytes = std::filesystem::file_size(file);
+            std::printf(", saved %.1f MiB (%.1f B a voxel) in %.2f s", bytes / 1048576.0,
+                        double(bytes) / double(std::max<std::size_t>(1, st.voxels)), save_s);
+        }
+        std::printf("\n");
         maintenance::write_change_summary(changes, c, s);
         maintenance::write_change_ply(
             (std::filesystem::path(a.out) / ("changes_s" + std::to_string(s) + ".ply")).string(),
@@ -208,6 +221,9 @@ int main(int argc, char** argv) {
         ->check(common::cli::one_of({"default", "short"}));
     app.add_option("--set", a.set, "KEY=VALUE overriding a maintenance key (repeatable)");
     app.add_option("--out", a.out, "output folder")->required();
+    app.add_flag("--save", a.save,
+                 "save the maintained map after every session as OUT/long_term_map.bin and print "
+                 "its size");
     app.add_option("--inspect", a.inspect,
                    "X Y Z: before each session's maintenance, print the histories and verdicts of "
                    "the voxels within 0.4 m (why was it kept or removed?)")

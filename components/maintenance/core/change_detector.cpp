@@ -56,21 +56,22 @@ SlotHistogram one_sided(const SlotHistogram& views, std::uint32_t n, bool from_s
 
 VoxelJudgement judge_voxel(const ChangeConfig& config, double slot, const ObservedVoxel& voxel) {
     VoxelJudgement j;
-    const SlotHistogram views = merged(voxel.hits, voxel.free);
+    const SlotHistogram hits = voxel.hit_histogram();
+    const SlotHistogram views = merged(hits, voxel.free_histogram());
     j.views = histogram_total(views);
-    j.hits = histogram_total(voxel.hits);
+    j.hits = histogram_total(hits);
     if (j.views < std::uint32_t(config.min_views) || views.empty()) return j;
     j.last_view_slot = views.back().slot;
     const std::int32_t recent_from =
         views.back().slot - std::int32_t(std::ceil(config.recent_window / slot));
     for (const SlotCount& e : views)
         if (e.slot >= recent_from) j.recent_views += e.count;
-    for (const SlotCount& e : voxel.hits)
+    for (const SlotCount& e : hits)
         if (e.slot >= recent_from) j.recent_hits += e.count;
     const double free_fraction = 1.0 - double(j.hits) / double(j.views);
     if (j.hits > 0 && free_fraction >= config.min_free_fraction) {
         const double sigma = config.sigma / slot;
-        const double w = histogram_wasserstein1(voxel.hits, views, sigma);
+        const double w = histogram_wasserstein1(hits, views, sigma);
         const double w_max =
             std::max(histogram_wasserstein1(one_sided(views, j.hits, true), views, sigma),
                      histogram_wasserstein1(one_sided(views, j.hits, false), views, sigma));
@@ -89,11 +90,9 @@ VoxelJudgement judge_voxel(const ChangeConfig& config, double slot, const Observ
         j.verdict = Verdict::kNew;
     } else if ((changed && !(recent_known && recent_hit_fraction >= config.new_hit_fraction)) ||
                (gone_now && j.hits - j.recent_hits >= std::uint32_t(config.min_recent_views))) {
-        const double span =
-            voxel.hits.empty() ? 0.0 : (voxel.hits.back().slot - voxel.hits.front().slot) * slot;
+        const double span = voxel.history.hit_span() * slot;
         j.verdict = span <= config.moving_span ? Verdict::kMoving : Verdict::kVanished;
-    } else if (!voxel.hits.empty() &&
-               (voxel.hits.back().slot - voxel.hits.front().slot) * slot >= config.static_span) {
+    } else if (!hits.empty() && voxel.history.hit_span() * slot >= config.static_span) {
         j.verdict = Verdict::kStatic;
     }
     return j;
@@ -171,7 +170,7 @@ RegionJudgement judge_region(const MaintenanceConfig& config, const ObservationM
         t.vanished += j.verdict == Verdict::kVanished ? 1 : 0;
         t.fresh += j.verdict == Verdict::kNew ? 1 : 0;
         if ((j.verdict == Verdict::kMoving || j.verdict == Verdict::kVanished) &&
-            map.voxel(i).created < session_start)
+            map.voxel(i).created() < session_start)
             ++t.gone_before;
     }
     return out;
@@ -194,13 +193,13 @@ std::vector<bool> appeared_segments(const GroundConfig& ground, const Observatio
         on_mapped(segments + 1, 0);
     for (std::uint32_t i = 0; i < map.size(); ++i) {
         const ObservedVoxel& v = map.voxel(i);
-        if (v.created < session_start) mapped_before.insert(column(map.centre(i)));
+        if (v.created() < session_start) mapped_before.insert(column(map.centre(i)));
     }
     for (std::uint32_t i = 0; i < map.size(); ++i) {
         const ObservedVoxel& v = map.voxel(i);
         if (v.segment == 0) continue;
         ++made[v.segment];
-        if (v.created >= session_start) ++made_now[v.segment];
+        if (v.created() >= session_start) ++made_now[v.segment];
         if (mapped_before.count(column(map.centre(i)))) ++on_mapped[v.segment];
     }
     for (std::uint32_t s = 1; s <= segments; ++s)
@@ -214,13 +213,13 @@ void note(const ObservationMap& map, std::uint32_t i, SegmentChange& c) {
     const Eigen::Vector3f p = map.centre(i);
     if (c.voxels.empty()) {
         c.bbox_min = c.bbox_max = p;
-        c.first_seen = map.voxel(i).created;
-        c.last_seen = map.voxel(i).last_point;
+        c.first_seen = map.voxel(i).created();
+        c.last_seen = map.voxel(i).last_point();
     }
     c.bbox_min = c.bbox_min.cwiseMin(p);
     c.bbox_max = c.bbox_max.cwiseMax(p);
-    c.first_seen = std::min(c.first_seen, map.voxel(i).created);
-    c.last_seen = std::max(c.last_seen, map.voxel(i).last_point);
+    c.first_seen = std::min(c.first_seen, map.voxel(i).created());
+    c.last_seen = std::max(c.last_seen, map.voxel(i).last_point());
     c.voxels.push_back(p);
 }
 

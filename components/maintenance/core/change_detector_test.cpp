@@ -205,24 +205,23 @@ TEST(ChangeDetector, VoxelVerdicts) {
     ChangeConfig config;
     ObservedVoxel v;
     EXPECT_EQ(judge_voxel(config, 0.5, v).verdict, Verdict::kUnjudged);
-    for (int s = 0; s < 40; ++s) add_to_histogram(v.hits, s, 1, 64);
+    for (int s = 0; s < 40; ++s) v.history.add(s, true, VoxelHistory::kCapacity);
     EXPECT_EQ(judge_voxel(config, 0.5, v).verdict, Verdict::kStatic);
     ObservedVoxel gone;  // hit for 20 s, then seen through for 20 s
-    for (int s = 0; s < 40; ++s) add_to_histogram(gone.hits, s, 1, 64);
-    for (int s = 40; s < 80; ++s) add_to_histogram(gone.free, s, 1, 64);
+    for (int s = 0; s < 40; ++s) gone.history.add(s, true, VoxelHistory::kCapacity);
+    for (int s = 40; s < 80; ++s) gone.history.add(s, false, VoxelHistory::kCapacity);
     const VoxelJudgement g = judge_voxel(config, 0.5, gone);
     EXPECT_EQ(g.verdict, Verdict::kVanished);
     EXPECT_NEAR(g.score, 1.0, 0.05);
     ObservedVoxel fresh;  // seen through for 20 s, then hit
-    for (int s = 0; s < 40; ++s) add_to_histogram(fresh.free, s, 1, 64);
-    for (int s = 40; s < 80; ++s) add_to_histogram(fresh.hits, s, 1, 64);
+    for (int s = 0; s < 40; ++s) fresh.history.add(s, false, VoxelHistory::kCapacity);
+    for (int s = 40; s < 80; ++s) fresh.history.add(s, true, VoxelHistory::kCapacity);
     EXPECT_EQ(judge_voxel(config, 0.5, fresh).verdict, Verdict::kNew);
     ObservedVoxel passing;  // a short peak among views before and after
-    for (int s = 0; s < 80; ++s)
-        add_to_histogram(s >= 38 && s < 42 ? passing.hits : passing.free, s, 1, 64);
+    for (int s = 0; s < 80; ++s) passing.history.add(s, s >= 38 && s < 42, VoxelHistory::kCapacity);
     EXPECT_EQ(judge_voxel(config, 0.5, passing).verdict, Verdict::kMoving);
     ObservedVoxel sparse;  // a pole hit in every other view: random misses are no change
-    for (int s = 0; s < 80; ++s) add_to_histogram(s % 2 ? sparse.hits : sparse.free, s, 1, 64);
+    for (int s = 0; s < 80; ++s) sparse.history.add(s, s % 2 != 0, VoxelHistory::kCapacity);
     EXPECT_EQ(judge_voxel(config, 0.5, sparse).verdict, Verdict::kStatic);
 }
 

@@ -43,7 +43,7 @@ std::size_t mark_ground(const GroundConfig& config, ObservationMap& map) {
             if (normal.squaredNorm() > 0.5f) {
                 is_ground = std::abs(normal.z()) >= cos_tilt;
             } else {  // no plane (few points, or a wall's foot): flat points only
-                const registration::VoxelSums& s = map.voxel(i).sums;
+                const registration::VoxelSums s = map.voxel(i).sums(map.voxel_size());
                 const float mz = s.sum.z() / std::max(s.weight, 1.0f);
                 const float var_z = s.sum_sq(5) / std::max(s.weight, 1.0f) - mz * mz;
                 is_ground = var_z <= float(config.flatness * config.flatness);

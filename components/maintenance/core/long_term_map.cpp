@@ -25,7 +25,10 @@ LongTermMap::LongTermMap(const MaintenanceConfig& config) : config_(config) {
 
 void LongTermMap::begin_session(std::uint32_t session, double first_stamp) {
     flush_views();
-    if (in_session_ || now_ > 0.0) session_offset_ = now_ + config_.session_gap;
+    // On a tick of the voxels' clock: a voxel of this session is never "created before" it.
+    if (in_session_ || now_ > 0.0)
+        session_offset_ =
+            std::ceil((now_ + config_.session_gap) * kTicksPerSecond) / kTicksPerSecond;
     session_ = session;
     if (sessions_.empty() || sessions_.back() != session) sessions_.push_back(session);
     in_session_ = true;
@@ -69,7 +72,7 @@ void LongTermMap::add_scan(const std::vector<Eigen::Vector3f>& points,
         const Eigen::Vector2i r = region_of(q);
         by_region[{r.x(), r.y()}].push_back(q);
     }
-    for (auto& [key, pts] : by_region) region({key.first, key.second}).add_points(pts, t, session_);
+    for (auto& [key, pts] : by_region) region({key.first, key.second}).add_points(pts, t);
     // A view every view_spacing seconds.
     if (t - last_view_time_ >= config_.view_spacing) {
         last_view_time_ = t;

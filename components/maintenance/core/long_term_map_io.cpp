@@ -1,7 +1,11 @@
 // The maintained map's file: "LTMMAINT", format version, then CRC-checked sections: the header
 // (lattice, clock, sessions) and one section a region (its voxels with their histories).
+// Version 2 stores the compact voxel as it is in memory (43 bytes + 8 a history entry); version 1
+// files (float sums, separate histograms) are read and converted.
+#include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <map>
 
 #include "common/core/byte_io.hpp"
 #include "common/core/file_io.hpp"
@@ -13,39 +17,115 @@ namespace ltm::maintenance {
 namespace {
 
 constexpr char kMagic[8] = {'L', 'T', 'M', 'M', 'A', 'I', 'N', 'T'};
-constexpr std::uint32_t kVersion = 1;
+// 2: the compact voxel (fixed-point point sums, ticks, one view history of at most 6 entries).
+// 1: float sums, double times, separate hit and free histograms; still read, converted.
+constexpr std::uint32_t kVersion = 2, kVersion1 = 1;
 
 template <class IO>
-void histogram_io(IO& io, SlotHistogram& h, const char* name, std::size_t max_slots) {
-    auto n = static_cast<std::uint16_t>(h.size());
+void history_io(IO& io, VoxelHistory& history) {
+    VoxelHistory::Entries h;
+    if constexpr (!IO::kReading) h = history.entries();
+    auto span = static_cast<std::uint16_t>(history.hit_span());
+    io.value(h.first_hit, "history");
+    io.value(span, "history");
+    h.last_hit = std::int32_t(std::int64_t(h.first_hit) + span);
+    auto n = static_cast<std::uint8_t>(h.n);
     const std::uint64_t at = io.offset();
-    io.value(n, name);
-    io.check(n <= max_slots, name, at, [&] {
-        return std::to_string(n) + " slots, more than max_slots " + std::to_string(max_slots);
+    io.value(n, "history");
+    io.check(n <= VoxelHistory::kCapacity, "history", at, [&] {
+        return std::to_string(n) + " entries, more than " + std::to_string(VoxelHistory::kCapacity);
     });
-    if constexpr (IO::kReading) h.resize(n);
-    std::int32_t previous = 0;
-    for (std::size_t k = 0; k < n; ++k) {
-        const std::uint64_t at_slot = io.offset();
-        io.value(h[k].slot, name);
-        io.value(h[k].count, name);
-        io.check(k == 0 || h[k].slot > previous, name, at_slot, "slots not in increasing order");
-        previous = h[k].slot;
+    h.n = n;
+    for (int k = 0; k < h.n; ++k) {
+        VoxelHistory::Entry& e = h.e[std::size_t(k)];
+        auto hits = static_cast<std::uint16_t>(e.hits), free = static_cast<std::uint16_t>(e.free);
+        const std::uint64_t at_entry = io.offset();
+        io.value(e.slot, "history");
+        io.value(hits, "history");
+        io.value(free, "history");
+        e.hits = hits;
+        e.free = free;
+        io.check(
+            hits + free > 0 && hits <= VoxelHistory::kMaxCount && free <= VoxelHistory::kMaxCount,
+            "history", at_entry, "an entry with no views or more than 4095");
+        io.check(k == 0 || e.slot > h.e[std::size_t(k - 1)].slot, "history", at_entry,
+                 "entries not in increasing order");
+        io.check(std::abs(std::int64_t(e.slot) - h.first_hit) <= VoxelHistory::kMaxOffset,
+                 "history", at_entry, "an entry more than 2^23 slots from the first hit");
     }
+    if constexpr (IO::kReading) history.assign(h);
 }
 
 template <class IO>
-void voxel_io(IO& io, registration::VoxelKey& key, ObservedVoxel& v, std::size_t max_slots) {
-    io.value(key, "key");
-    io.value(v.sums.weight, "weight");
-    for (int k = 0; k < 3; ++k) io.value(v.sums.sum[k], "sum");
-    for (int k = 0; k < 6; ++k) io.value(v.sums.sum_sq[k], "sum_sq");
-    io.value(v.created, "created");
-    io.value(v.last_point, "last_point");
-    io.value(v.session, "session");
+void voxel_io(IO& io, ObservedVoxel& v) {
+    io.value(v.key_lo, "key");
+    io.value(v.key_hi, "key");
+    const std::uint64_t at = io.offset();
+    io.value(v.points.count, "points");
+    io.check(v.points.count <= PointSums::kMaxPoints, "points", at, "more than 64 points");
+    for (std::int16_t& x : v.points.sum) io.value(x, "sum");
+    for (std::int16_t& x : v.points.sum_sq) io.value(x, "sum_sq");
+    io.value(v.created_ticks, "created");
+    const std::uint64_t at_last = io.offset();
+    io.value(v.last_point_ticks, "last_point");
+    io.check(v.last_point_ticks >= v.created_ticks, "last_point", at_last, "before created");
     io.value(v.flags, "flags");
-    histogram_io(io, v.hits, "hits", max_slots);
-    histogram_io(io, v.free, "free", max_slots);
+    history_io(io, v.history);
+}
+
+// A voxel of a version-1 file, converted: the sums to fixed point, the times to ticks, the hit and
+// free histograms to one history (merged to its capacity as views would have been).
+void read_voxel_v1(common::ByteReader& io, float voxel_size, ObservedVoxel& v) {
+    registration::VoxelKey key = 0;
+    io.value(key, "key");
+    v.set_key(key);
+    registration::VoxelSums s;
+    io.value(s.weight, "weight");
+    for (int k = 0; k < 3; ++k) io.value(s.sum[k], "sum");
+    for (int k = 0; k < 6; ++k) io.value(s.sum_sq[k], "sum_sq");
+    const float unit = voxel_size / PointSums::kUnitsPerVoxel;
+    const auto fixed = [](double x) {
+        return std::int16_t(std::clamp(std::lround(std::isfinite(x) ? x : 0.0), -32767l, 32767l));
+    };
+    v.points.count =
+        std::uint8_t(std::clamp(std::lround(s.weight), 0l, long(PointSums::kMaxPoints)));
+    for (int k = 0; k < 3; ++k) v.points.sum[std::size_t(k)] = fixed(s.sum[k] / unit);
+    for (int k = 0; k < 6; ++k)
+        v.points.sum_sq[std::size_t(k)] =
+            fixed(s.sum_sq[k] / (PointSums::kSquareUnit * unit * unit));
+    const double created = io.get<double>("created"), last = io.get<double>("last_point");
+    v.created_ticks = to_ticks(created);
+    v.last_point_ticks = std::max(v.created_ticks, to_ticks(last));
+    io.get<std::uint32_t>("session");
+    io.value(v.flags, "flags");
+    std::map<std::int32_t, VoxelHistory::Entry> by_slot;
+    for (const bool hit : {true, false}) {
+        const char* name = hit ? "hits" : "free";
+        const std::uint64_t at = io.offset();
+        const auto n = io.get<std::uint16_t>(name);
+        io.check(std::uint64_t(n) * 6 <= io.remaining(), name, at,
+                 "more slots than the file holds");
+        for (std::size_t k = 0; k < n; ++k) {
+            const auto slot = io.get<std::int32_t>(name);
+            const auto count = io.get<std::uint16_t>(name);
+            VoxelHistory::Entry& e = by_slot[slot];
+            e.slot = slot;
+            (hit ? e.hits : e.free) = count;
+        }
+    }
+    VoxelHistory::Entries h;
+    bool hit = false;
+    for (const auto& [slot, e] : by_slot) {
+        if (e.hits + e.free == 0) continue;
+        if (e.hits > 0) {
+            h.first_hit = hit ? h.first_hit : slot;
+            h.last_hit = slot;
+            hit = true;
+        }
+        h.e[std::size_t(h.n++)] = e;
+        merge_closest(h, VoxelHistory::kCapacity);
+    }
+    v.history.assign(h);
 }
 
 }  // namespace
@@ -74,9 +154,8 @@ void LongTermMap::save(const std::string& path) const {
             s.value(std::int32_t(key.second));
             s.value(static_cast<std::uint32_t>(map.size()));
             for (std::uint32_t i = 0; i < map.size(); ++i) {
-                registration::VoxelKey k = map.key(i);
                 ObservedVoxel v = map.voxel(i);
-                voxel_io(s, k, v, std::size_t(config_.max_slots));
+                voxel_io(s, v);
             }
         });
     }
@@ -93,9 +172,9 @@ LongTermMap LongTermMap::load(const std::string& path, const MaintenanceConfig& 
         r.fail_at("magic", 0, "not a maintained map (no LTMMAINT signature)");
     const std::uint64_t at_version = r.offset();
     const auto version = r.get<std::uint32_t>("version");
-    r.check(version == kVersion, "version", at_version, [&] {
+    r.check(version == kVersion || version == kVersion1, "version", at_version, [&] {
         return "format version " + std::to_string(version) +
-               " is not supported (this build reads " + std::to_string(kVersion) + ")";
+               " is not supported (this build reads 1 and " + std::to_string(kVersion) + ")";
     });
     std::uint32_t regions = 0;
     r.section("header", [&](common::ByteReader& s) {
@@ -127,17 +206,22 @@ LongTermMap LongTermMap::load(const std::string& path, const MaintenanceConfig& 
             const auto y = s.get<std::int32_t>("region.y");
             const std::uint64_t at = s.offset();
             const auto n = s.get<std::uint32_t>("voxels");
-            constexpr std::uint64_t kMinVoxelBytes = 73;  // a voxel with empty histories
-            s.check(std::uint64_t(n) * kMinVoxelBytes <= s.remaining(), "voxels", at,
+            // A voxel with an empty history: 43 bytes (version 1: 73).
+            const std::uint64_t min_voxel_bytes = version == kVersion1 ? 73 : 43;
+            s.check(std::uint64_t(n) * min_voxel_bytes <= s.remaining(), "voxels", at,
                     "more voxels than the section holds");
             ObservationMap& map = m.region({x, y});
+            map.reserve(map.size() + n);
             for (std::uint32_t i = 0; i < n; ++i) {
                 s.item("voxels", i);
                 const std::uint64_t at_voxel = s.offset();
-                registration::VoxelKey key = 0;
                 ObservedVoxel v;
-                voxel_io(s, key, v, std::size_t(config.max_slots));
-                s.check(map.restore(key, std::move(v)), "key", at_voxel, "a repeated voxel");
+                if (version == kVersion1) {
+                    read_voxel_v1(s, float(config.voxel_size), v);
+                } else {
+                    voxel_io(s, v);
+                }
+                s.check(map.restore(v), "key", at_voxel, "a repeated voxel");
             }
         });
     }

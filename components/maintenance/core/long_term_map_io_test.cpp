@@ -5,6 +5,8 @@
 #include <fstream>
 #include <random>
 
+#include "common/core/byte_io.hpp"
+#include "common/core/file_io.hpp"
 #include "common/core/io_error.hpp"
 #include "maintenance/core/long_term_map.hpp"
 
@@ -52,10 +54,13 @@ TEST(LongTermMapFile, RoundTripKeepsEveryVoxelAndTheClock) {
         const ObservedVoxel* a = map.voxel_at(p);
         const ObservedVoxel* b = back.voxel_at(p);
         ASSERT_TRUE(a && b);
-        EXPECT_EQ(a->sums.weight, b->sums.weight);
-        EXPECT_EQ(a->created, b->created);
-        EXPECT_EQ(a->hits.size(), b->hits.size());
-        EXPECT_EQ(histogram_total(a->free), histogram_total(b->free));
+        EXPECT_EQ(a->points.count, b->points.count);
+        EXPECT_EQ(a->points.sum_sq, b->points.sum_sq);
+        EXPECT_EQ(a->created(), b->created());
+        EXPECT_EQ(a->last_point(), b->last_point());
+        EXPECT_EQ(a->flags, b->flags);
+        EXPECT_EQ(a->hit_histogram().size(), b->hit_histogram().size());
+        EXPECT_EQ(histogram_total(a->free_histogram()), histogram_total(b->free_histogram()));
     }
     // Saved again, byte for byte the same.
     const std::string again = temp_path("again.bin");
@@ -106,6 +111,106 @@ TEST(LongTermMapFile, DamageIsOneLineNeverACrash) {
     EXPECT_THROW(LongTermMap::load(temp_path("missing.bin"), map.config()), common::IoError);
     std::filesystem::remove(path);
     std::filesystem::remove(bad_path);
+}
+
+// A file of format version 1 (float sums, double times, separate hit and free histograms), as
+// the previous build wrote it: one region with two voxels.
+std::string version1_file(const MaintenanceConfig& c) {
+    common::ByteWriter w;
+    w.raw("LTMMAINT", 8);
+    w.value(std::uint32_t(1));
+    w.section("header", [&](auto& s) {
+        s.value(c.voxel_size);
+        s.value(c.region_size);
+        s.value(c.slot);
+        s.value(std::uint32_t(1));  // session
+        s.value(200.0);             // session offset
+        s.value(260.0);             // now
+        s.value(std::uint64_t(7));  // next change
+        s.value(std::uint32_t(2));
+        s.value(std::uint32_t(0));
+        s.value(std::uint32_t(1));
+        s.value(std::uint32_t(1));  // regions
+    });
+    w.section("region", [&](auto& s) {
+        s.value(std::int32_t(0));
+        s.value(std::int32_t(0));
+        s.value(std::uint32_t(2));
+        for (int v = 0; v < 2; ++v) {
+            s.value(registration::pack_key(10 + v, 20, 4));
+            s.value(4.0f);  // weight: four points at +-0.05 m in x around (0.01, 0, 0)
+            const float sum[3] = {0.04f, 0.0f, 0.0f};
+            for (float x : sum) s.value(x);
+            const float sum_sq[6] = {0.01f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f};
+            for (float x : sum_sq) s.value(x);
+            s.value(12.5 + v);  // created
+            s.value(250.25);    // last point
+            s.value(std::uint32_t(0));
+            s.value(std::uint8_t(v == 0 ? kGround : 0));
+            s.value(std::uint16_t(30));  // hits: 30 slots of 2
+            for (int k = 0; k < 30; ++k) {
+                s.value(std::int32_t(25 + 2 * k));
+                s.value(std::uint16_t(2));
+            }
+            s.value(std::uint16_t(2));  // free
+            s.value(std::int32_t(26));
+            s.value(std::uint16_t(1));
+            s.value(std::int32_t(500));
+            s.value(std::uint16_t(5));
+        }
+    });
+    return std::string(w.bytes().begin(), w.bytes().end());
+}
+
+TEST(LongTermMapFile, Version1FilesLoadConverted) {
+    MaintenanceConfig c;
+    const std::string path = temp_path("v1.bin");
+    const std::string bytes = version1_file(c);
+    common::write_file_atomic(path, bytes.data(), bytes.size());
+    const LongTermMap map = LongTermMap::load(path, c);
+    EXPECT_EQ(map.stats().voxels, 2u);
+    EXPECT_EQ(map.map_time(), 260.0);
+    EXPECT_EQ(map.sessions(), (std::vector<std::uint32_t>{0, 1}));
+    const float s = float(c.voxel_size);
+    const Eigen::Vector3f cell = (Eigen::Vector3f(10, 20, 4) + Eigen::Vector3f::Constant(0.5f)) * s;
+    const ObservedVoxel* v = map.voxel_at(cell);
+    ASSERT_NE(v, nullptr);
+    EXPECT_EQ(v->flags, kGround);
+    EXPECT_EQ(v->created(), 12.5);
+    EXPECT_EQ(v->last_point(), 250.25);
+    const registration::VoxelSums sums = v->sums(s);
+    EXPECT_EQ(sums.weight, 4.0f);
+    EXPECT_NEAR(sums.mean().x(), 0.01f, 1e-3f);
+    EXPECT_NEAR(sums.sum_sq(0), 0.01f, 1e-4f);
+    // 61 views: every one kept, on at most VoxelHistory::kCapacity entries.
+    EXPECT_EQ(histogram_total(v->hit_histogram()), 60u);
+    EXPECT_EQ(histogram_total(v->free_histogram()), 6u);
+    EXPECT_LE(v->history.entries().n, VoxelHistory::kCapacity);
+    EXPECT_EQ(v->free_histogram().back().slot, 500) << "the late free views keep their time";
+    // And saved again as version 2, it loads the same.
+    const std::string again = temp_path("v1_again.bin");
+    map.save(again);
+    const LongTermMap back = LongTermMap::load(again, c);
+    EXPECT_EQ(back.voxel_at(cell)->history.entries().n, v->history.entries().n);
+    std::filesystem::remove(path);
+    std::filesystem::remove(again);
+}
+
+TEST(LongTermMapFile, AnUnknownVersionIsOneLine) {
+    MaintenanceConfig c;
+    std::string bytes = version1_file(c);
+    bytes[8] = 9;  // version 9
+    const std::string path = temp_path("v9.bin");
+    common::write_file_atomic(path, bytes.data(), bytes.size());
+    try {
+        (void)LongTermMap::load(path, c);
+        FAIL() << "version 9 accepted";
+    } catch (const common::IoError& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("format version 9"), std::string::npos) << what;
+        EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+    }
+    std::filesystem::remove(path);
 }
 
 }  // namespace

@@ -66,7 +66,8 @@ struct MaintenanceConfig {
     double voxel_size = 0.25;   // [m] maintenance voxels (finer than the registration voxels)
     double region_size = 40.0;  // [m] the map is maintained in square regions of this size
     double slot = 0.5;          // [s] of map time: the histogram slot of a voxel's times
-    int max_slots = 24;         // slots a voxel keeps of each history (older ones merge)
+    int max_slots = 6;          // entries a voxel keeps of its view history (older ones merge);
+                                // at most VoxelHistory::kCapacity (6: the compact voxel state)
     double max_range = 50.0;    // [m] a view judges voxels within this range
     double free_margin = 0.3;   // [m] a return this much beyond a cube (plus half its diagonal)
     double free_margin_per_m = 0.01;  // [m/m] ... plus this per metre of range: seen through
@@ -85,7 +86,7 @@ void visit_fields(MaintenanceConfig& c, const std::string& prefix, Visitor&& v) 
     v(prefix + "voxel_size", c.voxel_size, in_range(0.02, 5.0));
     v(prefix + "region_size", c.region_size, above(1.0));
     v(prefix + "slot", c.slot, positive);
-    v(prefix + "max_slots", c.max_slots, in_range(2, 65535));
+    v(prefix + "max_slots", c.max_slots, in_range(2, 6));  // VoxelHistory::kCapacity
     v(prefix + "max_range", c.max_range, positive);
     v(prefix + "free_margin", c.free_margin, non_negative);
     v(prefix + "free_margin_per_m", c.free_margin_per_m, non_negative);

@@ -6,43 +6,55 @@
 
 namespace ltm::maintenance {
 
+static_assert(sizeof(ObservedVoxel) <= 84, "the per-voxel state grew: see README's figures");
+static_assert(VoxelHistory::kCapacity == 6, "maintenance_config.hpp: max_slots is in [2, 6]");
+
+std::uint32_t to_ticks(double map_time) {
+    const double t = std::floor(map_time * kTicksPerSecond);
+    if (!(t > 0.0)) return 0;
+    return t >= 4294967295.0 ? 0xffffffffu : std::uint32_t(t);
+}
+
 ObservationMap::ObservationMap(const MaintenanceConfig& config, const Eigen::Vector2i& region)
     : config_(config),
       region_(region),
       voxel_size_(float(config.voxel_size)),
       inv_voxel_size_(1.0f / float(config.voxel_size)) {}
 
-std::uint32_t ObservationMap::insert(registration::VoxelKey key, double map_time,
-                                     std::uint32_t session) {
-    const auto [i, inserted] = hash_.insert(key, std::uint32_t(keys_.size()));
-    if (inserted) {
-        keys_.push_back(key);
-        ObservedVoxel v;
-        v.created = map_time;
-        v.last_point = map_time;
-        v.session = session;
-        voxels_.push_back(std::move(v));
-        last_scan_.push_back(0);
-    }
+void ObservationMap::append(const ObservedVoxel& voxel) {
+    if (voxels_.size() == voxels_.capacity())
+        voxels_.reserve(voxels_.size() + voxels_.size() / 16 + 64);
+    voxels_.push_back(voxel);
+}
+
+void ObservationMap::reserve(std::size_t n) {
+    if (n > voxels_.capacity()) voxels_.reserve(n);
+}
+
+std::uint32_t ObservationMap::insert(registration::VoxelKey key, double map_time) {
+    const auto key_of = [this](std::uint32_t i) { return voxels_[i].key(); };
+    const std::uint32_t found = index_.find(key, key_of);
+    if (found != kNone) return found;
+    ObservedVoxel v;
+    v.set_key(key);
+    v.created_ticks = v.last_point_ticks = to_ticks(map_time);
+    const auto i = std::uint32_t(voxels_.size());
+    append(v);
+    index_.insert(key, i, key_of);
     return i;
 }
 
-void ObservationMap::add_points(const std::vector<Eigen::Vector3f>& points, double map_time,
-                                std::uint32_t session) {
-    ++pass_;
+void ObservationMap::add_points(const std::vector<Eigen::Vector3f>& points, double map_time) {
+    const std::uint32_t ticks = to_ticks(map_time);
     for (const Eigen::Vector3f& p : points) {
         Eigen::Vector3i c;
         if (!p.allFinite() || !registration::voxel_coords(p, inv_voxel_size_, &c)) continue;
-        const std::uint32_t i =
-            insert(registration::pack_key(c.x(), c.y(), c.z()), map_time, session);
+        const std::uint32_t i = insert(registration::pack_key(c.x(), c.y(), c.z()), map_time);
         ObservedVoxel& v = voxels_[i];
         const Eigen::Vector3f q =
             p - (c.cast<float>() + Eigen::Vector3f::Constant(0.5f)) * voxel_size_;
-        if (v.sums.weight < 64.0f) v.sums.add(q);  // enough for a centre and a normal
-        if (last_scan_[i] != pass_) {
-            last_scan_[i] = pass_;
-            v.last_point = std::max(v.last_point, map_time);
-        }
+        v.points.add(q, voxel_size_);  // up to PointSums::kMaxPoints: a centre and a normal
+        v.last_point_ticks = std::max(v.last_point_ticks, ticks);
     }
 }
 
@@ -53,7 +65,8 @@ JudgeCounts ObservationMap::judge(const View& view) {
     const float max_range_sq = float(config_.max_range * config_.max_range);
     const auto slot = std::int32_t(std::floor(view.map_time / config_.slot));
     const float half_diagonal = 0.87f * voxel_size_;
-    for (std::size_t i = 0; i < keys_.size(); ++i) {
+    const int max_entries = config_.max_slots;  // validated: at most VoxelHistory::kCapacity
+    for (std::size_t i = 0; i < voxels_.size(); ++i) {
         const Eigen::Vector3f c = cell_centre(std::uint32_t(i));
         if ((c - sensor).squaredNorm() > max_range_sq) continue;
         ++counts.voxels;
@@ -63,11 +76,11 @@ JudgeCounts ObservationMap::judge(const View& view) {
         ObservedVoxel& v = voxels_[i];
         switch (view.image.classify(p, voxel_size_, margin)) {
             case Visibility::kSurface:
-                add_to_histogram(v.hits, slot, 1, std::size_t(config_.max_slots));
+                v.history.add(slot, true, max_entries);
                 ++counts.hit;
                 break;
             case Visibility::kFree:
-                add_to_histogram(v.free, slot, 1, std::size_t(config_.max_slots));
+                v.history.add(slot, false, max_entries);
                 ++counts.free;
                 break;
             case Visibility::kOccluded:
@@ -84,64 +97,58 @@ JudgeCounts ObservationMap::judge(const View& view) {
 std::uint32_t ObservationMap::find(const Eigen::Vector3f& p) const {
     Eigen::Vector3i c;
     if (!p.allFinite() || !registration::voxel_coords(p, inv_voxel_size_, &c)) return kNone;
-    return hash_.find(registration::pack_key(c.x(), c.y(), c.z()));
+    return index_.find(registration::pack_key(c.x(), c.y(), c.z()),
+                       [this](std::uint32_t i) { return voxels_[i].key(); });
 }
 
 Eigen::Vector3f ObservationMap::cell_centre(std::uint32_t i) const {
-    return (registration::unpack_key(keys_[i]).cast<float>() + Eigen::Vector3f::Constant(0.5f)) *
+    return (registration::unpack_key(voxels_[i].key()).cast<float>() +
+            Eigen::Vector3f::Constant(0.5f)) *
            voxel_size_;
 }
 
 Eigen::Vector3f ObservationMap::centre(std::uint32_t i) const {
-    const registration::VoxelSums& s = voxels_[i].sums;
+    const registration::VoxelSums s = voxels_[i].sums(voxel_size_);
     return cell_centre(i) + (s.weight > 0.0f ? s.mean() : Eigen::Vector3f::Zero());
 }
 
 Eigen::Vector3f ObservationMap::normal(std::uint32_t i) const {
-    const registration::VoxelSums& s = voxels_[i].sums;
+    const registration::VoxelSums s = voxels_[i].sums(voxel_size_);
     if (s.weight < 3.0f) return Eigen::Vector3f::Zero();
     const Eigen::Matrix3d cov = s.covariance();
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(cov);
     const Eigen::Vector3d l = es.eigenvalues();
-    if (!(l(1) > 4.0 * std::max(l(0), 0.0))) return Eigen::Vector3f::Zero();  // no plane
+    // No plane: no spread in a second direction beyond the sums' rounding (one product unit; a
+    // line of points, one ring grazing the voxel, has none), or not 4x the smallest.
+    const double unit = double(voxel_size_) / PointSums::kUnitsPerVoxel;
+    const double rounding = PointSums::kSquareUnit * unit * unit;
+    if (!(l(1) > 4.0 * std::max(l(0), 0.0)) || !(l(1) > rounding)) return Eigen::Vector3f::Zero();
     return es.eigenvectors().col(0).cast<float>().normalized();
 }
 
-bool ObservationMap::restore(registration::VoxelKey key, ObservedVoxel voxel) {
-    const auto [i, inserted] = hash_.insert(key, std::uint32_t(keys_.size()));
-    if (!inserted) return false;
-    keys_.push_back(key);
-    voxels_.push_back(std::move(voxel));
-    last_scan_.push_back(0);
-    return i == keys_.size() - 1;
+bool ObservationMap::restore(const ObservedVoxel& voxel) {
+    const auto key_of = [this](std::uint32_t i) { return voxels_[i].key(); };
+    if (index_.find(voxel.key(), key_of) != kNone) return false;
+    const auto i = std::uint32_t(voxels_.size());
+    append(voxel);
+    index_.insert(voxel.key(), i, key_of);
+    return true;
 }
 
 void ObservationMap::erase(const std::vector<bool>& remove) {
     std::size_t out = 0;
-    for (std::size_t i = 0; i < keys_.size(); ++i) {
+    for (std::size_t i = 0; i < voxels_.size(); ++i) {
         if (i < remove.size() && remove[i]) continue;
-        if (out != i) {
-            keys_[out] = keys_[i];
-            voxels_[out] = std::move(voxels_[i]);
-            last_scan_[out] = last_scan_[i];
-        }
+        if (out != i) voxels_[out] = voxels_[i];
         ++out;
     }
-    keys_.resize(out);
     voxels_.resize(out);
-    last_scan_.resize(out);
-    hash_.clear();
-    hash_.reserve(out);
-    for (std::size_t i = 0; i < out; ++i) hash_.insert(keys_[i], std::uint32_t(i));
+    if (voxels_.capacity() > out + out / 16 + 64) voxels_.shrink_to_fit();
+    index_.rebuild(out, [this](std::uint32_t i) { return voxels_[i].key(); });
 }
 
 std::size_t ObservationMap::memory_bytes() const {
-    std::size_t n = hash_.memory_bytes() + keys_.capacity() * sizeof(registration::VoxelKey) +
-                    voxels_.capacity() * sizeof(ObservedVoxel) +
-                    last_scan_.capacity() * sizeof(std::uint64_t);
-    for (const ObservedVoxel& v : voxels_)
-        n += (v.hits.capacity() + v.free.capacity()) * sizeof(SlotCount);
-    return n;
+    return index_.memory_bytes() + voxels_.capacity() * sizeof(ObservedVoxel);
 }
 
 }  // namespace ltm::maintenance

@@ -1,9 +1,11 @@
 #pragma once
 // The voxels of one maintenance region with their observation history (METHOD.md section 5): per
-// voxel the running sums of its points (centre, normal), its creation and last-hit map time, and
-// two slot histograms: the times a view saw it (a return at it: "hit") and the times a view saw
+// voxel the sums of its points (centre, normal), its creation and last-hit map time, and its view
+// history: per time slot, the views that saw it (a return at it: "hit") and the views that saw
 // through it (a return beyond it: "free"). Together they are the voxel's time distributions of
 // Eq. 14: hits D_s, views in which it was actually in view D_M = hits + free.
+// Compact (84 bytes a voxel and a 4-byte index bucket at a load of 0.5 to 0.8): point sums in
+// fixed point (point_sums.hpp), times in ticks, the history in fixed entries (voxel_history.hpp).
 //
 // Points only create voxels and shape them; what a view says is recorded by judge(), once per view
 // and voxel, so every voxel's hits and free times come from the same views.
@@ -12,10 +14,12 @@
 #include <vector>
 
 #include "maintenance/core/maintenance_config.hpp"
+#include "maintenance/core/point_sums.hpp"
 #include "maintenance/core/range_image.hpp"
 #include "maintenance/core/time_distribution.hpp"
+#include "maintenance/core/voxel_history.hpp"
+#include "maintenance/core/voxel_index.hpp"
 #include "registration/core/voxel.hpp"
-#include "registration/core/voxel_hash.hpp"
 
 namespace ltm::maintenance {
 
@@ -31,14 +35,31 @@ struct View {
 
 enum VoxelFlags : std::uint8_t { kGround = 1, kNew = 2 };
 
+// Map times of a voxel are kept in ticks of 1/16 s (uint32: 8.5 years of map time); a session
+// starts on a tick (LongTermMap), so "created before this session" is exact.
+constexpr double kTicksPerSecond = 16.0;
+std::uint32_t to_ticks(double map_time);  // floor, clamped to the uint32 range
+inline double from_ticks(std::uint32_t ticks) { return double(ticks) / kTicksPerSecond; }
+
+// A voxel of the maintained map, 84 bytes (memory and README: components/maintenance/README.md).
 struct ObservedVoxel {
-    registration::VoxelSums sums;  // relative to the cell's centre
-    double created = 0.0;          // map time of the first point [s]
-    double last_point = 0.0;       // map time of the last point [s]
-    std::uint32_t session = 0;     // session of the first point
-    SlotHistogram hits, free;
+    registration::VoxelKey key() const { return (std::uint64_t(key_hi) << 32) | key_lo; }
+    void set_key(registration::VoxelKey k) {
+        key_lo = std::uint32_t(k);
+        key_hi = std::uint32_t(k >> 32);
+    }
+    double created() const { return from_ticks(created_ticks); }        // first point [s]
+    double last_point() const { return from_ticks(last_point_ticks); }  // last point [s]
+    registration::VoxelSums sums(float voxel_size) const { return points.sums(voxel_size); }
+    SlotHistogram hit_histogram() const { return history.hit_histogram(); }
+    SlotHistogram free_histogram() const { return history.free_histogram(); }
+
+    std::uint32_t key_lo = 0, key_hi = 0;
+    std::uint32_t created_ticks = 0, last_point_ticks = 0;  // map time of the first/last point
     std::uint32_t segment = 0;  // after maintenance: 0 ground or none, else the segment id
+    PointSums points;           // relative to the cell's centre
     std::uint8_t flags = 0;
+    VoxelHistory history;  // views that hit it and that saw through it
 };
 
 struct JudgeCounts {
@@ -51,12 +72,11 @@ class ObservationMap {
     ObservationMap(const MaintenanceConfig& config, const Eigen::Vector2i& region);
 
     const Eigen::Vector2i& region() const { return region_; }
-    std::size_t size() const { return keys_.size(); }
-    bool empty() const { return keys_.empty(); }
+    std::size_t size() const { return voxels_.size(); }
+    bool empty() const { return voxels_.empty(); }
 
     // Points (world frame) of a scan at `map_time`: their voxels are created or updated.
-    void add_points(const std::vector<Eigen::Vector3f>& points, double map_time,
-                    std::uint32_t session);
+    void add_points(const std::vector<Eigen::Vector3f>& points, double map_time);
 
     // What `view` says about every voxel within max_range of its sensor: a hit or a free time
     // in the voxel's histories (nothing when occluded or unseen).
@@ -64,9 +84,9 @@ class ObservationMap {
 
     // The voxel holding p (world frame), or kNone.
     std::uint32_t find(const Eigen::Vector3f& p) const;
-    static constexpr std::uint32_t kNone = registration::VoxelHash::kNone;
+    static constexpr std::uint32_t kNone = VoxelIndex::kNone;
 
-    registration::VoxelKey key(std::uint32_t i) const { return keys_[i]; }
+    registration::VoxelKey key(std::uint32_t i) const { return voxels_[i].key(); }
     Eigen::Vector3f cell_centre(std::uint32_t i) const;
     Eigen::Vector3f centre(std::uint32_t i) const;  // mean of its points
     // Unit normal of its points (smallest eigenvector), or zero when it has fewer than 3 points
@@ -76,24 +96,25 @@ class ObservationMap {
     ObservedVoxel& voxel(std::uint32_t i) { return voxels_[i]; }
     float voxel_size() const { return voxel_size_; }
 
-    // Puts a voxel back as it was saved (the map file reader); false when the key is taken.
-    bool restore(registration::VoxelKey key, ObservedVoxel voxel);
+    // Room for n voxels in all (the map file reader knows a region's count).
+    void reserve(std::size_t n);
+    // Puts a voxel back as it was saved (the map file reader); false when its key is taken.
+    bool restore(const ObservedVoxel& voxel);
 
-    // Drops the voxels with remove[i] true (the hash is rebuilt).
+    // Drops the voxels with remove[i] true (the index is rebuilt).
     void erase(const std::vector<bool>& remove);
+    // The voxels and their index (capacity included).
     std::size_t memory_bytes() const;
 
   private:
-    std::uint32_t insert(registration::VoxelKey key, double map_time, std::uint32_t session);
+    std::uint32_t insert(registration::VoxelKey key, double map_time);
+    void append(const ObservedVoxel& voxel);  // grows by 1/16 at a time, not 2x
 
     MaintenanceConfig config_;
     Eigen::Vector2i region_;
     float voxel_size_, inv_voxel_size_;
-    registration::VoxelHash hash_;
-    std::vector<registration::VoxelKey> keys_;
+    VoxelIndex index_;
     std::vector<ObservedVoxel> voxels_;
-    std::vector<std::uint64_t> last_scan_;  // internal: the add_points pass that touched it
-    std::uint64_t pass_ = 0;
 };
 
 }  // namespace ltm::maintenance
