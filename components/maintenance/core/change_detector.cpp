@@ -59,7 +59,11 @@ VoxelJudgement judge_voxel(const ChangeConfig& config, double slot, const Observ
     const SlotHistogram views = merged(voxel.hits, voxel.free);
     j.views = histogram_total(views);
     j.hits = histogram_total(voxel.hits);
-    if (j.views < std::uint32_t(config.min_views) || views.empty()) return j;
+    // Keys left unset here (a config not resolved by resolve_thresholds): a long session.
+    const auto min_views = std::uint32_t(config.min_views.value_or(kLongSession.min_views));
+    const double static_span = config.static_span.value_or(kLongSession.static_span);
+    const double free_dominant = config.free_dominant.value_or(kLongSession.free_dominant);
+    if (j.views < min_views || views.empty()) return j;
     j.last_view_slot = views.back().slot;
     const std::int32_t recent_from =
         views.back().slot - std::int32_t(std::ceil(config.recent_window / slot));
@@ -69,7 +73,7 @@ VoxelJudgement judge_voxel(const ChangeConfig& config, double slot, const Observ
         if (e.slot >= recent_from) j.recent_hits += e.count;
     const double free_fraction = 1.0 - double(j.hits) / double(j.views);
     if (j.hits > 0 && free_fraction >= config.min_free_fraction) {
-        const double sigma = config.sigma / slot;
+        const double sigma = config.sigma.value_or(kLongSession.sigma) / slot;
         const double w = histogram_wasserstein1(voxel.hits, views, sigma);
         const double w_max =
             std::max(histogram_wasserstein1(one_sided(views, j.hits, true), views, sigma),
@@ -81,7 +85,7 @@ VoxelJudgement judge_voxel(const ChangeConfig& config, double slot, const Observ
         j.recent_views > 0 ? double(j.recent_hits) / double(j.recent_views) : 0.0;
     const bool changed =
         j.score >= config.changed_score ||
-        (j.hits > 0 && free_fraction >= config.free_dominant && config.free_dominant < 1.0);
+        (j.hits > 0 && free_fraction >= free_dominant && free_dominant < 1.0);
     // Missing from the recent views although there before them (hit at least min_recent_views
     // times earlier): gone, whatever W1 says (a short later visit weighs little in it).
     const bool gone_now = recent_known && recent_hit_fraction <= config.gone_hit_fraction;
@@ -93,7 +97,7 @@ VoxelJudgement judge_voxel(const ChangeConfig& config, double slot, const Observ
             voxel.hits.empty() ? 0.0 : (voxel.hits.back().slot - voxel.hits.front().slot) * slot;
         j.verdict = span <= config.moving_span ? Verdict::kMoving : Verdict::kVanished;
     } else if (!voxel.hits.empty() &&
-               (voxel.hits.back().slot - voxel.hits.front().slot) * slot >= config.static_span) {
+               (voxel.hits.back().slot - voxel.hits.front().slot) * slot >= static_span) {
         j.verdict = Verdict::kStatic;
     }
     return j;
