@@ -56,6 +56,36 @@ maintenance::MaintenanceConfig make_config(const Args& a) {
     return c;
 }
 
+// After a pass: the voxels kept within 0.4 m of `at` and the segment each belongs to (its
+// voxels and their extent): a moving voxel kept with a large segment stayed with it.
+void print_segments_at(const maintenance::LongTermMap& map, const std::vector<float>& at_xyz) {
+    const Eigen::Vector3f at(at_xyz[0], at_xyz[1], at_xyz[2]);
+    const std::vector<Eigen::Vector3f> centres = map.voxel_centres();
+    for (const Eigen::Vector3f& p : centres) {
+        if ((p - at).norm() > 0.4f) continue;
+        const maintenance::ObservedVoxel& v = *map.voxel_at(p);
+        if (v.segment == 0) {
+            std::printf("kept %.2f %.2f %.2f: %s\n", p.x(), p.y(), p.z(),
+                        v.flags & maintenance::kGround ? "ground" : "no segment");
+            continue;
+        }
+        std::size_t n = 0;
+        Eigen::Vector3f lo = p, hi = p;
+        for (const Eigen::Vector3f& q : centres) {  // the same segment of the same region
+            if ((q - p).head<2>().cwiseAbs().maxCoeff() > map.config().region_size) continue;
+            const maintenance::ObservedVoxel& w = *map.voxel_at(q);
+            if (w.segment != v.segment || (w.flags & maintenance::kGround)) continue;
+            ++n;
+            lo = lo.cwiseMin(q);
+            hi = hi.cwiseMax(q);
+        }
+        std::printf("kept %.2f %.2f %.2f: segment %u, %zu voxels from (%.1f %.1f %.1f) to "
+                    "(%.1f %.1f %.1f)\n",
+                    p.x(), p.y(), p.z(), v.segment, n, lo.x(), lo.y(), lo.z(), hi.x(), hi.y(),
+                    hi.z());
+    }
+}
+
 int run(const Args& a) {
     const maintenance::MaintenanceConfig config = make_config(a);
     maintenance::LongTermMap map(config);
@@ -123,11 +153,13 @@ int run(const Args& a) {
         const maintenance::MaintenanceConfig used = map.decision_config();
         const maintenance::ChangeSet c = map.end_session();
         scans += f.size();
+        if (a.inspect.size() == 3) print_segments_at(map, a.inspect);
         std::printf(
             "session %zu thresholds (from its span and views unless --set): view_spacing %.3f s "
-            "(at the end), sigma %.3f s, static_span %.3f s, min_views %d, free_dominant %.2f\n",
+            "(at the end), sigma %.3f s, static_span %.3f s, min_views %d, changed_score %.2f, "
+            "free_dominant %.2f\n",
             s, *used.view_spacing, *used.change.sigma, *used.change.static_span,
-            *used.change.min_views, *used.change.free_dominant);
+            *used.change.min_views, *used.change.changed_score, *used.change.free_dominant);
         const maintenance::LongTermMapStats st = map.stats();
         std::printf(
             "session %zu: %zu scans in %.1f s (%.1f scans/s; views judged voxels for %.1f s), "

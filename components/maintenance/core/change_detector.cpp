@@ -63,6 +63,7 @@ VoxelJudgement judge_voxel(const ChangeConfig& config, double slot, const Observ
     const auto min_views = std::uint32_t(config.min_views.value_or(kLongSession.min_views));
     const double static_span = config.static_span.value_or(kLongSession.static_span);
     const double free_dominant = config.free_dominant.value_or(kLongSession.free_dominant);
+    const double changed_score = config.changed_score.value_or(kLongSession.changed_score);
     if (j.views < min_views || views.empty()) return j;
     j.last_view_slot = views.back().slot;
     const std::int32_t recent_from =
@@ -84,7 +85,7 @@ VoxelJudgement judge_voxel(const ChangeConfig& config, double slot, const Observ
     const double recent_hit_fraction =
         j.recent_views > 0 ? double(j.recent_hits) / double(j.recent_views) : 0.0;
     const bool changed =
-        j.score >= config.changed_score ||
+        j.score >= changed_score ||
         (j.hits > 0 && free_fraction >= free_dominant && free_dominant < 1.0);
     // Missing from the recent views although there before them (hit at least min_recent_views
     // times earlier): gone, whatever W1 says (a short later visit weighs little in it).

@@ -242,6 +242,7 @@ TEST(ChangeDetector, OneSecondWindowKeepsTheStaticSceneAndRemovesTheMover) {
     fixed.change.min_views = kLongSession.min_views;
     fixed.change.static_span = kLongSession.static_span;
     fixed.change.free_dominant = kLongSession.free_dominant;
+    fixed.change.changed_score = kLongSession.changed_score;
     const ShortWindow old = one_second_window(fixed);
     EXPECT_LT(old.stat_kept, old.stat * 99 / 100) << old.stat_kept << " of " << old.stat;
 }

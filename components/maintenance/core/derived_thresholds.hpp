@@ -8,10 +8,15 @@
 //   view_spacing  = min(0.2 s, T / 50)      at least ~50 views in any session, every scan of a
 //                                           short window (decided scan by scan, T so far)
 //   sigma         = min(1 s, T / 10)        the Eq. 14 kernel a tenth of what was watched
-//   static_span   = min(3 s, T / 2)         hits over half the window prove the voxel stays
+//   static_span   = min(3 s, T / 4)         hits over a quarter of the window prove the voxel
+//                                           stays (hit spans are whole slots: T / 2 on a 1.6 s
+//                                           window asked for three slots of 0.5 s)
 //   min_views     = clamp(N / 3, 2, 4)      a third of the session's views, at most 4
-//   free_dominant = 0.6 while T < 10 s, else 1 (off): over a few seconds the map-time slots
-//                   (`slot`) cannot order the views, so the share seen through decides
+//   free_dominant = 0.6 while T < 20 slots (10 s of 0.5 s), else 1 (off)
+//   changed_score = 0.2 while T < 20 slots, else 0.35
+//                   in a few seconds W1 rests on two or three slots (`slot`) and cannot order
+//                   the views: the share of views that saw through a voxel tells more, and a
+//                   one-sided history scores lower
 // On a session of a minute or more every one of them is its long-session value (kLongSession),
 // so long sessions decide as before; a key given explicitly is kept as given.
 #include <cstddef>

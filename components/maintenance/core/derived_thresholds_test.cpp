@@ -13,9 +13,10 @@ TEST(DerivedThresholds, AOneSecondWindowShrinksThem) {
     const MaintenanceConfig c = resolve_thresholds(MaintenanceConfig{}, SessionSeen{1.0, 10});
     EXPECT_DOUBLE_EQ(*c.view_spacing, 0.02);
     EXPECT_DOUBLE_EQ(*c.change.sigma, 0.1);
-    EXPECT_DOUBLE_EQ(*c.change.static_span, 0.5);
+    EXPECT_DOUBLE_EQ(*c.change.static_span, 0.25);
     EXPECT_EQ(*c.change.min_views, 3);
     EXPECT_DOUBLE_EQ(*c.change.free_dominant, 0.6);
+    EXPECT_DOUBLE_EQ(*c.change.changed_score, 0.2);
 }
 
 TEST(DerivedThresholds, ALongSessionGetsTheLongSessionValues) {
@@ -27,6 +28,7 @@ TEST(DerivedThresholds, ALongSessionGetsTheLongSessionValues) {
         EXPECT_DOUBLE_EQ(*c.change.static_span, kLongSession.static_span) << span;
         EXPECT_EQ(*c.change.min_views, kLongSession.min_views) << span;
         EXPECT_DOUBLE_EQ(*c.change.free_dominant, kLongSession.free_dominant) << span;
+        EXPECT_DOUBLE_EQ(*c.change.changed_score, kLongSession.changed_score) << span;
     }
 }
 
@@ -57,6 +59,7 @@ TEST(DerivedThresholds, ExplicitKeysWin) {
     given.change.static_span = 7.0;
     given.change.min_views = 9;
     given.change.free_dominant = 0.8;
+    given.change.changed_score = 0.5;
     for (const double span : {0.5, 1000.0}) {
         const MaintenanceConfig c = resolve_thresholds(given, SessionSeen{span, 5});
         EXPECT_DOUBLE_EQ(*c.view_spacing, 0.5);
@@ -65,6 +68,7 @@ TEST(DerivedThresholds, ExplicitKeysWin) {
         EXPECT_DOUBLE_EQ(*c.change.static_span, 7.0);
         EXPECT_EQ(*c.change.min_views, 9);
         EXPECT_DOUBLE_EQ(*c.change.free_dominant, 0.8);
+        EXPECT_DOUBLE_EQ(*c.change.changed_score, 0.5);
     }
 }
 

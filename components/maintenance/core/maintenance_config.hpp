@@ -5,11 +5,13 @@
 // ground robot or car; every key is checked by validate().
 //
 // The keys whose right value depends on how long the map has watched (view_spacing,
-// change.sigma, change.min_views, change.static_span, change.free_dominant) are optional. Unset
-// (the default), each follows what the map has seen: the span of map time and the number of
-// views of the current session (derived_thresholds.hpp states every rule); on a session of a
-// minute or more they are the long-session values below (kLongSession), on a one-second window
-// they shrink with it. A key given explicitly (YAML, --set, code) always wins.
+// change.sigma, change.min_views, change.static_span, change.changed_score,
+// change.free_dominant) are optional. Unset
+// (the default), each follows what the map has seen: the span of map time T and the number of
+// views N of the current session (derived_thresholds.hpp states every rule; each key's comment
+// below gives its own); on a session of a minute or more they are the long-session values
+// (kLongSession), on a one-second window they shrink with it. A key given explicitly (YAML,
+// --set, code) always wins, whatever the session.
 #include <optional>
 #include <string>
 
@@ -22,6 +24,7 @@ namespace ltm::maintenance {
 struct LongSessionValues {
     double view_spacing = 0.2;   // [s]
     double sigma = 1.0;          // [s]
+    double changed_score = 0.35;
     int min_views = 4;           // views
     double static_span = 3.0;    // [s]
     double free_dominant = 1.0;  // 1: off
@@ -57,9 +60,12 @@ struct SegmentationConfig {
 // per segment, the share of its judged voxels that changed. std::optional: unset follows the data
 // (see the top of this file; a config never resolved acts as a long session).
 struct ChangeConfig {
-    std::optional<double> sigma;  // [s] of map time: the kernel of Eq. 14
+    std::optional<double> sigma;   // [s] of map time: the kernel of Eq. 14 (unset: min(1, T/10))
     std::optional<int> min_views;  // views (hit or seen through) before a voxel is judged
-    double changed_score = 0.35;     // normalised W1 (0 = always seen, 1 = the most one-sided)
+                                   // (unset: N/3 in [2, 4])
+    // normalised W1 (0 = always seen, 1 = the most one-sided); unset: 0.2 while T < 20 slots,
+    // else 0.35
+    std::optional<double> changed_score;
     double min_free_fraction = 0.2;  // a voxel seen through in fewer of its views is unchanged
     double recent_window = 20.0;     // [s] of map time before a voxel's last view: "recent"
     int min_recent_views = 3;        // recent views needed to call a voxel vanished or new
@@ -67,12 +73,12 @@ struct ChangeConfig {
     double gone_hit_fraction = 0.1;  // hit in at most this share of recent views: gone
     double moving_span = 15.0;  // [s] all hits within this span and gone: moving, else vanished
     // [s] hits spanning less than this prove nothing: such a voxel (say, the last position of a
-    // car that no later view saw through) follows its segment's verdict.
+    // car that no later view saw through) follows its segment's verdict (unset: min(3, T/4)).
     std::optional<double> static_span;
     double segment_fraction = 0.5;  // share of a segment's judged voxels that changed: it did
     // A voxel seen through in at least this share of its views changed, whatever its W1 (an
     // actor that walks back and forth along one path is there now and then, never for long);
-    // 1 turns this off.
+    // 1 turns this off (unset: 0.6 while T < 20 slots, else 1).
     std::optional<double> free_dominant;
     // Changed voxels of unchanged segments are removed too when their score reaches this (a
     // fence segment taken down, still joined to the rest of the fence; site_sessions: its points
@@ -89,7 +95,8 @@ struct MaintenanceConfig {
     double max_range = 50.0;    // [m] a view judges voxels within this range
     double free_margin = 0.3;   // [m] a return this much beyond a cube (plus half its diagonal)
     double free_margin_per_m = 0.01;  // [m/m] ... plus this per metre of range: seen through
-    std::optional<double> view_spacing;  // [s] scans become views at most this often
+    // [s] scans become views at most this often (unset: min(0.2, T/50), T so far)
+    std::optional<double> view_spacing;
     double view_delay = 10.0;         // [s] a view judges the voxels that exist this long after it
     double session_gap = 60.0;        // [s] of map time between the end of a session and the next
     RangeImageConfig range_image;
