@@ -79,10 +79,10 @@ void print_segments_at(const maintenance::LongTermMap& map, const std::vector<fl
             lo = lo.cwiseMin(q);
             hi = hi.cwiseMax(q);
         }
-        std::printf("kept %.2f %.2f %.2f: segment %u, %zu voxels from (%.1f %.1f %.1f) to "
-                    "(%.1f %.1f %.1f)\n",
-                    p.x(), p.y(), p.z(), v.segment, n, lo.x(), lo.y(), lo.z(), hi.x(), hi.y(),
-                    hi.z());
+        std::printf(
+            "kept %.2f %.2f %.2f: segment %u, %zu voxels from (%.1f %.1f %.1f) to "
+            "(%.1f %.1f %.1f)\n",
+            p.x(), p.y(), p.z(), v.segment, n, lo.x(), lo.y(), lo.z(), hi.x(), hi.y(), hi.z());
     }
 }
 

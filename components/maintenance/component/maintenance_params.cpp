@@ -34,19 +34,17 @@ MaintenanceComponentConfig load_maintenance_params(runtime::Parameters& p) {
     c.max_queue = p.get<int>("max_queue", c.max_queue);
     if (c.max_queue < 1) p.fail("max_queue", "must be >= 1");
     c.skip_while_busy = p.get<bool>("skip_while_busy", c.skip_while_busy);
-    // The time-dependent keys are optional: read when given, else derived from the data.
-    const auto read = [&](const std::string& key, auto& field) {
+    visit_fields(c.maintenance, "", [&](const std::string& key, auto& field, const auto& /*rule*/) {
         using T = std::decay_t<decltype(field)>;
         if constexpr (is_optional<T>::value) {
-            // Read even when absent: the key is known (a misspelt one is named beside it).
+            // A time-dependent key: as given, else unset (derived from the data). Read even when
+            // absent, so that a misspelt key is named beside it.
             const auto value = p.get<typename T::value_type>(key, {});
             if (p.has(key)) field = value;
         } else {
             field = p.get(key, field);
         }
-    };
-    visit_fields(c.maintenance, "",
-                 [&](const std::string& key, auto& field, const auto& /*rule*/) { read(key, field); });
+    });
     if (const auto problem = validate(c.maintenance)) p.fail(problem->key, problem->problem);
     return c;
 }

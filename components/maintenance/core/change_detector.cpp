@@ -84,9 +84,8 @@ VoxelJudgement judge_voxel(const ChangeConfig& config, double slot, const Observ
     const bool recent_known = j.recent_views >= std::uint32_t(config.min_recent_views);
     const double recent_hit_fraction =
         j.recent_views > 0 ? double(j.recent_hits) / double(j.recent_views) : 0.0;
-    const bool changed =
-        j.score >= changed_score ||
-        (j.hits > 0 && free_fraction >= free_dominant && free_dominant < 1.0);
+    const bool changed = j.score >= changed_score ||
+                         (j.hits > 0 && free_fraction >= free_dominant && free_dominant < 1.0);
     // Missing from the recent views although there before them (hit at least min_recent_views
     // times earlier): gone, whatever W1 says (a short later visit weighs little in it).
     const bool gone_now = recent_known && recent_hit_fraction <= config.gone_hit_fraction;

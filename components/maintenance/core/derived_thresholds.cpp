@@ -29,8 +29,8 @@ MaintenanceConfig resolve_thresholds(const MaintenanceConfig& config, const Sess
     if (!k.sigma) k.sigma = std::min(kLongSession.sigma, T / 10.0);
     if (!k.static_span) k.static_span = std::min(kLongSession.static_span, T / 4.0);
     if (!k.min_views)
-        k.min_views = int(std::clamp<std::size_t>(seen.views / 3, 2,
-                                                  std::size_t(kLongSession.min_views)));
+        k.min_views =
+            int(std::clamp<std::size_t>(seen.views / 3, 2, std::size_t(kLongSession.min_views)));
     const bool short_session = T < kShortSessionSlots * config.slot;
     if (!k.free_dominant)
         k.free_dominant = short_session ? kShortFreeDominant : kLongSession.free_dominant;

@@ -22,12 +22,12 @@ namespace ltm::maintenance {
 // What the time-dependent keys are on a session of a minute or more (and in a config used without
 // resolve_thresholds()): the caps of the values derived from the data.
 struct LongSessionValues {
-    double view_spacing = 0.2;   // [s]
-    double sigma = 1.0;          // [s]
-    double changed_score = 0.35;
-    int min_views = 4;           // views
-    double static_span = 3.0;    // [s]
-    double free_dominant = 1.0;  // 1: off
+    double view_spacing = 0.2;    // [s]
+    double sigma = 1.0;           // [s]
+    double changed_score = 0.35;  // normalised W1
+    int min_views = 4;            // views
+    double static_span = 3.0;     // [s]
+    double free_dominant = 1.0;   // 1: off
 };
 inline constexpr LongSessionValues kLongSession{};
 
@@ -97,8 +97,8 @@ struct MaintenanceConfig {
     double free_margin_per_m = 0.01;  // [m/m] ... plus this per metre of range: seen through
     // [s] scans become views at most this often (unset: min(0.2, T/50), T so far)
     std::optional<double> view_spacing;
-    double view_delay = 10.0;         // [s] a view judges the voxels that exist this long after it
-    double session_gap = 60.0;        // [s] of map time between the end of a session and the next
+    double view_delay = 10.0;   // [s] a view judges the voxels that exist this long after it
+    double session_gap = 60.0;  // [s] of map time between the end of a session and the next
     RangeImageConfig range_image;
     GroundConfig ground;
     SegmentationConfig segmentation;
