@@ -17,8 +17,8 @@
 //                   in a few seconds W1 rests on two or three slots (`slot`) and cannot order
 //                   the views: the share of views that saw through a voxel tells more, and a
 //                   one-sided history scores lower
-// On a session of a minute or more every one of them is its long-session value (kLongSession),
-// so long sessions decide as before; a key given explicitly is kept as given.
+// From T = 12 s (and N = 12 views) on every one of them is its long-session value (kLongSession),
+// so sessions of minutes decide as before; a key given explicitly is kept as given.
 #include <cstddef>
 
 #include "maintenance/core/maintenance_config.hpp"

@@ -6,12 +6,11 @@
 //
 // The keys whose right value depends on how long the map has watched (view_spacing,
 // change.sigma, change.min_views, change.static_span, change.changed_score,
-// change.free_dominant) are optional. Unset
-// (the default), each follows what the map has seen: the span of map time T and the number of
-// views N of the current session (derived_thresholds.hpp states every rule; each key's comment
-// below gives its own); on a session of a minute or more they are the long-session values
-// (kLongSession), on a one-second window they shrink with it. A key given explicitly (YAML,
-// --set, code) always wins, whatever the session.
+// change.free_dominant) are optional. Unset (the default), each follows what the map has seen:
+// the span of map time T and the number of views N of the current session
+// (derived_thresholds.hpp states every rule; each key's comment below gives its own); from 12 s
+// of session on they are the long-session values (kLongSession), on a one-second window they
+// shrink with it. A key given explicitly (YAML, --set, code) always wins, whatever the session.
 #include <optional>
 #include <string>
 
@@ -19,7 +18,7 @@
 
 namespace ltm::maintenance {
 
-// What the time-dependent keys are on a session of a minute or more (and in a config used without
+// What the time-dependent keys are from 12 s of session on (and in a config used without
 // resolve_thresholds()): the caps of the values derived from the data.
 struct LongSessionValues {
     double view_spacing = 0.2;    // [s]
