@@ -2,6 +2,7 @@
 // `--set KEY=VALUE` for the benchmarks: overrides a config's keys through its visit_fields list,
 // so only keys the config declares are accepted and each value is parsed as its field's type.
 // Rules are checked afterwards by the config's validate() (the caller's constructor does it).
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -36,6 +37,14 @@ struct ConfigKeySetter {
         if (value != "true" && value != "false")
             throw ConfigError(key, "must be true or false (got " + value + ")");
         v = value == "true";
+    }
+    // A key that is unset unless given (its value then derived from the data).
+    template <class T, class Rule>
+    void operator()(const std::string& k, std::optional<T>& v, const Rule& rule) {
+        if (k != key) return;
+        T x{};
+        (*this)(k, x, rule);
+        v = x;
     }
     template <class T>
     void number(const std::string& k, T& v) {

@@ -47,19 +47,44 @@ struct Args {
     bool save = false;  // save the map after every session (OUT/long_term_map.bin)
 };
 
+// The defaults: the time-dependent thresholds follow each session's span and views
+// (maintenance/core/derived_thresholds.hpp), so a one-second window and a session of minutes
+// need no preset. `--preset short` (a window of a second or two) is kept as an alias of them for
+// the command lines written before.
 maintenance::MaintenanceConfig make_config(const Args& a) {
     maintenance::MaintenanceConfig c;
-    if (a.preset == "short") {  // a window of a second or two (KITTI snippets): every scan a
-        c.view_spacing = 0.0;   // view, all views judge every voxel, hits prove little
-        c.view_delay = 1e6;
-        c.change.static_span = 0.5;
-        c.change.recent_window = 1e6;
-        c.change.min_views = 3;
-        c.change.changed_score = 0.2;
-        c.change.free_dominant = 0.6;  // seen through in most of a second's views: it moved
-    }
     common::cli::apply_config_sets(c, a.set, "MaintenanceConfig", "change.sigma");
     return c;
+}
+
+// After a pass: the voxels kept within 0.4 m of `at` and the segment each belongs to (its
+// voxels and their extent): a moving voxel kept with a large segment stayed with it.
+void print_segments_at(const maintenance::LongTermMap& map, const std::vector<float>& at_xyz) {
+    const Eigen::Vector3f at(at_xyz[0], at_xyz[1], at_xyz[2]);
+    const std::vector<Eigen::Vector3f> centres = map.voxel_centres();
+    for (const Eigen::Vector3f& p : centres) {
+        if ((p - at).norm() > 0.4f) continue;
+        const maintenance::ObservedVoxel& v = *map.voxel_at(p);
+        if (v.segment == 0) {
+            std::printf("kept %.2f %.2f %.2f: %s\n", p.x(), p.y(), p.z(),
+                        v.flags & maintenance::kGround ? "ground" : "no segment");
+            continue;
+        }
+        std::size_t n = 0;
+        Eigen::Vector3f lo = p, hi = p;
+        for (const Eigen::Vector3f& q : centres) {  // the same segment of the same region
+            if ((q - p).head<2>().cwiseAbs().maxCoeff() > map.config().region_size) continue;
+            const maintenance::ObservedVoxel& w = *map.voxel_at(q);
+            if (w.segment != v.segment || (w.flags & maintenance::kGround)) continue;
+            ++n;
+            lo = lo.cwiseMin(q);
+            hi = hi.cwiseMax(q);
+        }
+        std::printf(
+            "kept %.2f %.2f %.2f: segment %u, %zu voxels from (%.1f %.1f %.1f) to "
+            "(%.1f %.1f %.1f)\n",
+            p.x(), p.y(), p.z(), v.segment, n, lo.x(), lo.y(), lo.z(), hi.x(), hi.y(), hi.z());
+    }
 }
 
 int run(const Args& a) {
@@ -114,7 +139,7 @@ int run(const Args& a) {
                 if ((p - at).norm() > 0.4f) continue;
                 const maintenance::ObservedVoxel& v = *map.voxel_at(p);
                 const maintenance::VoxelJudgement j =
-                    maintenance::judge_voxel(config.change, config.slot, v);
+                    maintenance::judge_voxel(map.decision_config().change, config.slot, v);
                 std::printf(
                     "voxel %.2f %.2f %.2f: verdict %d score %.2f views %u hits %u "
                     "recent %u/%u\n  hits:",
@@ -126,8 +151,16 @@ int run(const Args& a) {
                 std::printf("\n");
             }
         }
+        const maintenance::MaintenanceConfig used = map.decision_config();
         const maintenance::ChangeSet c = map.end_session();
         scans += f.size();
+        if (a.inspect.size() == 3) print_segments_at(map, a.inspect);
+        std::printf(
+            "session %zu thresholds (from its span and views unless --set): view_spacing %.3f s "
+            "(at the end), sigma %.3f s, static_span %.3f s, min_views %d, changed_score %.2f, "
+            "free_dominant %.2f\n",
+            s, *used.view_spacing, *used.change.sigma, *used.change.static_span,
+            *used.change.min_views, *used.change.changed_score, *used.change.free_dominant);
         const maintenance::LongTermMapStats st = map.stats();
         std::printf(
             "session %zu: %zu scans in %.1f s (%.1f scans/s; views judged voxels for %.1f s), "
@@ -217,7 +250,9 @@ int main(int argc, char** argv) {
                    "the PLY files hold the points of every Nth scan (score with ltm_eval dynamic "
                    "--every N)")
         ->check(common::cli::at_least(1));
-    app.add_option("--preset", a.preset, "default (sessions of minutes) or short (a few seconds)")
+    app.add_option("--preset", a.preset,
+                   "default; short is the same (kept for old command lines: the thresholds follow "
+                   "each session's span and views)")
         ->check(common::cli::one_of({"default", "short"}));
     app.add_option("--set", a.set, "KEY=VALUE overriding a maintenance key (repeatable)");
     app.add_option("--out", a.out, "output folder")->required();

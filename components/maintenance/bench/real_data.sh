@@ -1,10 +1,13 @@
 #!/usr/bin/env bash
 # Map maintenance on the shared real data (issue 13's KITTI targets): each SemanticKITTI snippet
 # (00, 04, 05, 07; one session of 10 labelled scans at its SemanticKITTI poses) through
-# ltm_bench_maintenance --preset short, scored by ltm_eval dynamic (50 m range, 0.05 m matching):
+# ltm_bench_maintenance with its defaults (no preset: the thresholds follow the window's span and
+# views), scored by ltm_eval dynamic (50 m range, 0.05 m matching):
 # SA, DA, AA, and DA over the objects that travel at least 1 m; then the score of a perfect
 # cleaned map (--write-static) for reference.
-#   real_data.sh [--out-dir DIR]        ./ltm bench maintenance_real [--out-dir DIR]
+#   real_data.sh [--out-dir DIR] [--set KEY=VALUE ...]
+#   ./ltm bench maintenance_real [--out-dir DIR] [--set KEY=VALUE ...]   (--set: a maintenance key
+#   for ltm_bench_maintenance, e.g. change.voxel_score=0.5)
 # Environment: LTM_BUILD_DIR (default ./build), LTM_SHARED_DATA (default shared/data next to the checkout;
 # skipped with a message when absent).
 set -euo pipefail
@@ -13,9 +16,11 @@ ROOT="$(cd "$HERE/../../.." && pwd)"
 B="${LTM_BUILD_DIR:-$ROOT/build}/bin"
 DATA="${LTM_SHARED_DATA:-$(dirname "$ROOT")/shared/data}"
 OUT=""
+SETS=()
 while [ $# -gt 0 ]; do
     case "$1" in
         --out-dir) OUT="$2"; shift 2 ;;
+        --set) SETS+=(--set "$2"); shift 2 ;;
         *) echo "real_data.sh: unknown argument '$1'" >&2; exit 2 ;;
     esac
 done
@@ -31,7 +36,7 @@ printf '%-4s %8s %8s %8s %10s   %s\n' seq SA DA AA "DA>=1m" "(perfect map: DA, D
 for s in 00 04 05 07; do
     [ -d "$K/$s/labels" ] || continue
     "$B/ltm_bench_maintenance" --sessions "$K/$s" --poses "$K/$s/poses_semantickitti.txt" \
-        --calib "$K/$s/calib.txt" --preset short --out "$OUT/kitti_$s" > "$OUT/kitti_$s.log" 2>&1
+        --calib "$K/$s/calib.txt" "${SETS[@]}" --out "$OUT/kitti_$s" > "$OUT/kitti_$s.log" 2>&1
     args=(--scans "$K/$s" --label-scheme semantickitti --poses "$K/$s/poses_semantickitti.txt"
           --poses-frame camera --calib "$K/$s/calib.txt" --max-range 50)
     "$B/ltm_eval" dynamic "${args[@]}" --map "$OUT/kitti_$s/cleaned_map.ply" \

@@ -1,6 +1,16 @@
 #include "maintenance/component/maintenance_params.hpp"
 
+#include <optional>
+#include <type_traits>
+
 namespace ltm::maintenance {
+
+namespace {
+template <class T>
+struct is_optional : std::false_type {};
+template <class T>
+struct is_optional<std::optional<T>> : std::true_type {};
+}  // namespace
 
 MaintenanceComponentConfig load_maintenance_params(runtime::Parameters& p) {
     MaintenanceComponentConfig c;
@@ -30,7 +40,15 @@ MaintenanceComponentConfig load_maintenance_params(runtime::Parameters& p) {
     if (c.max_queue < 1) p.fail("max_queue", "must be >= 1");
     c.skip_while_busy = p.get<bool>("skip_while_busy", c.skip_while_busy);
     visit_fields(c.maintenance, "", [&](const std::string& key, auto& field, const auto& /*rule*/) {
-        field = p.get(key, field);
+        using T = std::decay_t<decltype(field)>;
+        if constexpr (is_optional<T>::value) {
+            // A time-dependent key: as given, else unset (derived from the data). Read even when
+            // absent, so that a misspelt key is named beside it.
+            const auto value = p.get<typename T::value_type>(key, {});
+            if (p.has(key)) field = value;
+        } else {
+            field = p.get(key, field);
+        }
     });
     if (const auto problem = validate(c.maintenance)) p.fail(problem->key, problem->problem);
     return c;

@@ -36,13 +36,18 @@ TEST(MaintenanceParams, DefaultsThenOverrides) {
     EXPECT_EQ(c.max_queue, 9);
     EXPECT_TRUE(c.skip_while_busy);
     EXPECT_DOUBLE_EQ(c.maintenance.voxel_size, 0.3);
-    EXPECT_DOUBLE_EQ(c.maintenance.change.sigma, 2.5);
+    ASSERT_TRUE(c.maintenance.change.sigma.has_value());
+    EXPECT_DOUBLE_EQ(*c.maintenance.change.sigma, 2.5);
     EXPECT_TRUE(c.maintenance.change.voxel_level);
     EXPECT_DOUBLE_EQ(c.maintenance.ground.height, 0.4);
     // Untouched keys: the core's defaults.
     const MaintenanceConfig d;
     EXPECT_DOUBLE_EQ(c.maintenance.max_range, d.max_range);
     EXPECT_EQ(c.maintenance.change.min_views, d.change.min_views);
+    // The time-dependent keys not given stay unset: derived from the data.
+    EXPECT_FALSE(c.maintenance.change.min_views.has_value());
+    EXPECT_FALSE(c.maintenance.change.static_span.has_value());
+    EXPECT_FALSE(c.maintenance.view_spacing.has_value());
 
     runtime::Parameters none = params_of("{}");
     const MaintenanceComponentConfig n = load_maintenance_params(none);
@@ -75,6 +80,15 @@ TEST(MaintenanceParams, ABadParameterIsOneLineNamingFileLineAndKey) {
               "test.yaml:1: maintenance.map_file: give either map_file or site_dir, not both");
     EXPECT_EQ(error_of("site_version: v0003"),
               "test.yaml:1: maintenance.site_version: needs site_dir");
+    // An optional key is checked when given, and named among the known keys of a misspelt one.
+    EXPECT_EQ(error_of("change: {static_span: -1}")
+                  .rfind("test.yaml:1: maintenance.change.static_span: must be >= 0", 0),
+              0u)
+        << error_of("change: {static_span: -1}");
+    EXPECT_EQ(error_of("change: {min_views: many}"),
+              "test.yaml:1: maintenance.change.min_views: expected an integer, got 'many'");
+    EXPECT_NE(error_of("change: {static_spam: 2}").find("static_span"), std::string::npos)
+        << error_of("change: {static_spam: 2}");
     for (const std::string bad :
          {"input: lidar", "max_queue: 0", "session: -2", "skip_while_busy: maybe", "slot: -1"}) {
         const std::string e = error_of(bad);

@@ -60,7 +60,12 @@ VoxelJudgement judge_voxel(const ChangeConfig& config, double slot, const Observ
     const SlotHistogram views = merged(hits, voxel.free_histogram());
     j.views = histogram_total(views);
     j.hits = histogram_total(hits);
-    if (j.views < std::uint32_t(config.min_views) || views.empty()) return j;
+    // Keys left unset here (a config not resolved by resolve_thresholds): a long session.
+    const auto min_views = std::uint32_t(config.min_views.value_or(kLongSession.min_views));
+    const double static_span = config.static_span.value_or(kLongSession.static_span);
+    const double free_dominant = config.free_dominant.value_or(kLongSession.free_dominant);
+    const double changed_score = config.changed_score.value_or(kLongSession.changed_score);
+    if (j.views < min_views || views.empty()) return j;
     j.last_view_slot = views.back().slot;
     const std::int32_t recent_from =
         views.back().slot - std::int32_t(std::ceil(config.recent_window / slot));
@@ -70,7 +75,7 @@ VoxelJudgement judge_voxel(const ChangeConfig& config, double slot, const Observ
         if (e.slot >= recent_from) j.recent_hits += e.count;
     const double free_fraction = 1.0 - double(j.hits) / double(j.views);
     if (j.hits > 0 && free_fraction >= config.min_free_fraction) {
-        const double sigma = config.sigma / slot;
+        const double sigma = config.sigma.value_or(kLongSession.sigma) / slot;
         const double w = histogram_wasserstein1(hits, views, sigma);
         const double w_max =
             std::max(histogram_wasserstein1(one_sided(views, j.hits, true), views, sigma),
@@ -80,9 +85,8 @@ VoxelJudgement judge_voxel(const ChangeConfig& config, double slot, const Observ
     const bool recent_known = j.recent_views >= std::uint32_t(config.min_recent_views);
     const double recent_hit_fraction =
         j.recent_views > 0 ? double(j.recent_hits) / double(j.recent_views) : 0.0;
-    const bool changed =
-        j.score >= config.changed_score ||
-        (j.hits > 0 && free_fraction >= config.free_dominant && config.free_dominant < 1.0);
+    const bool changed = j.score >= changed_score ||
+                         (j.hits > 0 && free_fraction >= free_dominant && free_dominant < 1.0);
     // Missing from the recent views although there before them (hit at least min_recent_views
     // times earlier): gone, whatever W1 says (a short later visit weighs little in it).
     const bool gone_now = recent_known && recent_hit_fraction <= config.gone_hit_fraction;
@@ -92,7 +96,7 @@ VoxelJudgement judge_voxel(const ChangeConfig& config, double slot, const Observ
                (gone_now && j.hits - j.recent_hits >= std::uint32_t(config.min_recent_views))) {
         const double span = voxel.history.hit_span() * slot;
         j.verdict = span <= config.moving_span ? Verdict::kMoving : Verdict::kVanished;
-    } else if (!hits.empty() && voxel.history.hit_span() * slot >= config.static_span) {
+    } else if (!hits.empty() && voxel.history.hit_span() * slot >= static_span) {
         j.verdict = Verdict::kStatic;
     }
     return j;

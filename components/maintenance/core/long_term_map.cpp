@@ -5,13 +5,14 @@
 #include <cmath>
 
 #include "common/core/config_check.hpp"
+#include "maintenance/core/derived_thresholds.hpp"
 
 namespace ltm::maintenance {
 
 std::optional<common::ConfigProblem> validate(const MaintenanceConfig& config) {
     common::ConfigChecker k;
     MaintenanceConfig c = config;
-    visit_fields(c, "", k);
+    visit_fields(c, "", GivenFields<common::ConfigChecker>{k});
     k.require(c.range_image.min_range < c.range_image.max_range, "range_image.min_range",
               "must be below range_image.max_range");
     k.require(c.change.gone_hit_fraction < c.change.new_hit_fraction, "change.gone_hit_fraction",
@@ -35,6 +36,7 @@ void LongTermMap::begin_session(std::uint32_t session, double first_stamp) {
     session_start_stamp_ = std::isfinite(first_stamp) ? first_stamp : 0.0;
     now_ = session_offset_;
     last_view_time_ = -1e300;
+    session_views_ = 0;
 }
 
 double LongTermMap::map_time_of(double stamp) const {
@@ -73,9 +75,10 @@ void LongTermMap::add_scan(const std::vector<Eigen::Vector3f>& points,
         by_region[{r.x(), r.y()}].push_back(q);
     }
     for (auto& [key, pts] : by_region) region({key.first, key.second}).add_points(pts, t);
-    // A view every view_spacing seconds.
-    if (t - last_view_time_ >= config_.view_spacing) {
+    // A view every view_spacing seconds (unset: from the session's span so far).
+    if (t - last_view_time_ >= view_spacing_at(config_, t - session_offset_)) {
         last_view_time_ = t;
+        ++session_views_;
         View v;
         v.id = next_view_++;
         v.session = session_;
@@ -118,14 +121,19 @@ ChangeSet LongTermMap::maintain() {
     all.session = session_;
     all.map_time = now_;
     all.voxel_size = float(config_.voxel_size);
+    const MaintenanceConfig decision = decision_config();
     for (const std::pair<int, int>& key : dirty_) {  // the regions a view judged since the last
         const auto it = regions_.find(key);          // pass: nothing changed in the others
         if (it == regions_.end()) continue;
         all.append(
-            maintain_region(config_, *it->second, session_, now_, session_offset_, &next_change_));
+            maintain_region(decision, *it->second, session_, now_, session_offset_, &next_change_));
     }
     dirty_.clear();
     return all;
+}
+
+MaintenanceConfig LongTermMap::decision_config() const {
+    return resolve_thresholds(config_, SessionSeen{now_ - session_offset_, session_views_});
 }
 
 ChangeSet LongTermMap::end_session() {

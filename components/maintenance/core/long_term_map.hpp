@@ -1,8 +1,9 @@
 #pragma once
 // The maintained map (METHOD.md section 5): sessions of registered scans, on one map, in square
 // regions of the map frame. Each scan adds its points to the regions' voxels and, every
-// view_spacing seconds, becomes a view (its range image) that judges the voxels in its range
-// view_delay seconds later (so the voxels a moving object leaves behind it exist by then).
+// view_spacing seconds (derived_thresholds.hpp when unset), becomes a view (its range image)
+// that judges the voxels in its range view_delay seconds later (so the voxels a moving object
+// leaves behind it exist by then).
 // maintain() runs the change decisions region by region and erases what is gone.
 //
 // Map time: the stamps of a session, shifted so that each session starts session_gap seconds
@@ -35,6 +36,9 @@ class LongTermMap {
     explicit LongTermMap(const MaintenanceConfig& config);
 
     const MaintenanceConfig& config() const { return config_; }
+    // The configuration the next pass decides with: the keys left unset filled from what the
+    // current session has shown (derived_thresholds.hpp), the explicit ones as given.
+    MaintenanceConfig decision_config() const;
 
     // Starts a session whose first scan has `first_stamp`; the views of the previous one are
     // judged first.
@@ -88,7 +92,7 @@ class LongTermMap {
     double session_start_stamp_ = 0.0, session_offset_ = 0.0, now_ = 0.0;
     double last_view_time_ = -1e300;
     std::uint64_t next_view_ = 0, next_change_ = 1;
-    std::size_t views_ = 0;
+    std::size_t views_ = 0, session_views_ = 0;
     double judge_ms_ = 0.0;
     std::vector<std::uint32_t> sessions_;
 };

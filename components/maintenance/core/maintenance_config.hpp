@@ -3,12 +3,32 @@
 // view of the scene may judge (range image, margins), ground removal, segmentation, and the
 // change decisions (Eq. 14 and the "beyond the paper" notes). Defaults suit a spinning LiDAR on a
 // ground robot or car; every key is checked by validate().
+//
+// The keys whose right value depends on how long the map has watched (view_spacing,
+// change.sigma, change.min_views, change.static_span, change.changed_score,
+// change.free_dominant) are optional. Unset (the default), each follows what the map has seen:
+// the span of map time T and the number of views N of the current session
+// (derived_thresholds.hpp states every rule; each key's comment below gives its own); from 12 s
+// of session on they are the long-session values (kLongSession), on a one-second window they
+// shrink with it. A key given explicitly (YAML, --set, code) always wins, whatever the session.
 #include <optional>
 #include <string>
 
 #include "common/core/config_check.hpp"
 
 namespace ltm::maintenance {
+
+// What the time-dependent keys are from 12 s of session on (and in a config used without
+// resolve_thresholds()): the caps of the values derived from the data.
+struct LongSessionValues {
+    double view_spacing = 0.2;    // [s]
+    double sigma = 1.0;           // [s]
+    double changed_score = 0.35;  // normalised W1
+    int min_views = 4;            // views
+    double static_span = 3.0;     // [s]
+    double free_dominant = 1.0;   // 1: off
+};
+inline constexpr LongSessionValues kLongSession{};
 
 // The range image of a scan: what a view says about any small cube in its field of view.
 struct RangeImageConfig {
@@ -36,11 +56,15 @@ struct SegmentationConfig {
 };
 
 // The decisions (Eq. 14): per voxel, the normalised W1 between its hit times and its view times;
-// per segment, the share of its judged voxels that changed.
+// per segment, the share of its judged voxels that changed. std::optional: unset follows the data
+// (see the top of this file; a config never resolved acts as a long session).
 struct ChangeConfig {
-    double sigma = 1.0;              // [s] of map time: the kernel of Eq. 14
-    int min_views = 4;               // views (hit or seen through) before a voxel is judged
-    double changed_score = 0.35;     // normalised W1 (0 = always seen, 1 = the most one-sided)
+    std::optional<double> sigma;   // [s] of map time: the kernel of Eq. 14 (unset: min(1, T/10))
+    std::optional<int> min_views;  // views (hit or seen through) before a voxel is judged
+                                   // (unset: N/3 in [2, 4])
+    // normalised W1 (0 = always seen, 1 = the most one-sided); unset: 0.2 while T < 20 slots,
+    // else 0.35
+    std::optional<double> changed_score;
     double min_free_fraction = 0.2;  // a voxel seen through in fewer of its views is unchanged
     double recent_window = 20.0;     // [s] of map time before a voxel's last view: "recent"
     int min_recent_views = 3;        // recent views needed to call a voxel vanished or new
@@ -48,13 +72,13 @@ struct ChangeConfig {
     double gone_hit_fraction = 0.1;  // hit in at most this share of recent views: gone
     double moving_span = 15.0;  // [s] all hits within this span and gone: moving, else vanished
     // [s] hits spanning less than this prove nothing: such a voxel (say, the last position of a
-    // car that no later view saw through) follows its segment's verdict.
-    double static_span = 3.0;
+    // car that no later view saw through) follows its segment's verdict (unset: min(3, T/4)).
+    std::optional<double> static_span;
     double segment_fraction = 0.5;  // share of a segment's judged voxels that changed: it did
     // A voxel seen through in at least this share of its views changed, whatever its W1 (an
     // actor that walks back and forth along one path is there now and then, never for long);
-    // 1 turns this off.
-    double free_dominant = 1.0;
+    // 1 turns this off (unset: 0.6 while T < 20 slots, else 1).
+    std::optional<double> free_dominant;
     // Changed voxels of unchanged segments are removed too when their score reaches this (a
     // fence segment taken down, still joined to the rest of the fence; site_sessions: its points
     // removed 0.2 % -> 80 %, static kept 99.95 -> 99.94 %); 1 turns this off.
@@ -71,9 +95,10 @@ struct MaintenanceConfig {
     double max_range = 50.0;    // [m] a view judges voxels within this range
     double free_margin = 0.3;   // [m] a return this much beyond a cube (plus half its diagonal)
     double free_margin_per_m = 0.01;  // [m/m] ... plus this per metre of range: seen through
-    double view_spacing = 0.2;        // [s] scans become views at most this often
-    double view_delay = 10.0;         // [s] a view judges the voxels that exist this long after it
-    double session_gap = 60.0;        // [s] of map time between the end of a session and the next
+    // [s] scans become views at most this often (unset: min(0.2, T/50), T so far)
+    std::optional<double> view_spacing;
+    double view_delay = 10.0;   // [s] a view judges the voxels that exist this long after it
+    double session_gap = 60.0;  // [s] of map time between the end of a session and the next
     RangeImageConfig range_image;
     GroundConfig ground;
     SegmentationConfig segmentation;
@@ -122,6 +147,21 @@ void visit_fields(MaintenanceConfig& c, const std::string& prefix, Visitor&& v) 
     v(prefix + "change.voxel_score", c.change.voxel_score, unit);
     v(prefix + "change.voxel_level", c.change.voxel_level, unchecked);
 }
+
+// A visitor of visit_fields that passes the optional keys on only when they are given (checking
+// a config: an unset key has no value to check).
+template <class Visitor>
+struct GivenFields {
+    Visitor& visitor;
+    template <class T, class Rule>
+    void operator()(const std::string& key, T& field, const Rule& rule) {
+        visitor(key, field, rule);
+    }
+    template <class T, class Rule>
+    void operator()(const std::string& key, std::optional<T>& field, const Rule& rule) {
+        if (field) visitor(key, *field, rule);
+    }
+};
 
 // The first problem of a configuration (key relative to it), rules across fields included.
 std::optional<common::ConfigProblem> validate(const MaintenanceConfig& config);
