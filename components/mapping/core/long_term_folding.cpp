@@ -71,4 +71,18 @@ std::size_t LongTermFolding::memory_bytes() const {
     return n;
 }
 
+std::vector<std::pair<std::uint32_t, std::uint64_t>> LongTermFolding::retarget(
+    std::uint64_t n, std::uint64_t into, const Eigen::Isometry3d& T_into_n) {
+    std::vector<std::pair<std::uint32_t, std::uint64_t>> moved;
+    for (auto& [session, maps] : folded_) {
+        for (auto& [local_map_id, f] : maps) {
+            if (f.node != n) continue;
+            f.node = into;
+            f.T_node_anchor = T_into_n * f.T_node_anchor;
+            moved.emplace_back(session, local_map_id);
+        }
+    }
+    return moved;
+}
+
 }  // namespace ltm::mapping

@@ -149,6 +149,10 @@ void Mapper::fold(std::uint64_t n, std::uint64_t into) {
     f.path = chains_.path(n);
     folding_.record(folded_node.session, folded_node.local_map_id, f);
     chains_.set(folded_node.session, folded_node.local_map_id, into);
+    // Maps folded into n earlier (a map still being built when a later one was folded into it)
+    // follow it: no map, keyframe or chain may name a node that left the graph.
+    for (const auto& [session, local_map_id] : folding_.retarget(n, into, T_into_n))
+        chains_.set(session, local_map_id, into);
     maps_.erase(n);
     segments_.forget(n);
     chains_.forget_path(n);
