@@ -368,6 +368,27 @@ TEST(MapperLongTerm, RemovedCellsLeaveTheLocalMapsNowAndLater) {
     EXPECT_FALSE(voxels_in(mapper, box).empty());
 }
 
+// A map folded into a node that is itself folded later names the node it went into, with its
+// anchor composed: nothing may name a node that left the graph.
+TEST(LongTermFolding, MapsFoldedIntoAFoldedNodeFollowIt) {
+    LongTermFolding folding;
+    LongTermFolding::Folded f;
+    f.node = 5;
+    f.T_node_anchor = registration::test::xy_yaw(2.0, 0.0, 0.0);
+    folding.record(1, 12, f);
+    f.node = 6;
+    folding.record(1, 13, f);
+    const Eigen::Isometry3d T_into_n = registration::test::xy_yaw(0.0, 3.0, 90.0);
+    const auto moved = folding.retarget(5, 1, T_into_n);
+    ASSERT_EQ(moved.size(), 1u);
+    EXPECT_EQ(moved[0], std::make_pair(std::uint32_t(1), std::uint64_t(12)));
+    ASSERT_NE(folding.find(1, 12), nullptr);
+    EXPECT_EQ(folding.find(1, 12)->node, 1u);
+    EXPECT_TRUE(folding.find(1, 12)->T_node_anchor.isApprox(
+        T_into_n * registration::test::xy_yaw(2.0, 0.0, 0.0)));
+    EXPECT_EQ(folding.find(1, 13)->node, 6u);
+}
+
 TEST(MapFixPairer, PairsAKeyframeWithATrackedPoseInAnyOrderAfterARunOfTracking) {
     MapFixPairer pairer(3);
     FixKeyframe kf;
