@@ -15,7 +15,7 @@
 #                      from day to day (each day starts from a copy of the day before's)
 set -uo pipefail
 ROOT="$(cd "$(dirname "$0")/../../.." && pwd)"
-BIN="$ROOT/build/bin"
+BIN="${LTM_BUILD_DIR:-$ROOT/build}/bin"
 SCENARIO=""; DAYS=""; OUT=""; CONFIG=""; RESUME=0
 usage() {
     echo "A robot's week on one site through the host, scored day by day against the truth"
