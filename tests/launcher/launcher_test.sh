@@ -120,13 +120,28 @@ readonly_never_sets_up() {
 bench_list_names_every_benchmark() {
     local list name
     list="$("$LTM" bench list)" || return 1
-    for name in dds odometry slam localise localise_real mcap sim sim_compare hard_cases stop site; do
+    for name in dds odometry slam localise localise_real mcap sim sim_compare hard_cases stop site lifelong; do
         echo "$list" | grep -q "^  $name " || { echo "  '$name' missing from: $list"; return 1; }
     done
     local err rc
     err="$("$LTM" bench nosuch 2>&1)"
     rc=$?
     [ "$rc" = 1 ] && [[ "$err" == *"no benchmark 'nosuch'"* ]] || { echo "  rc=$rc: $err"; return 1; }
+}
+
+# The lifelong benchmark refuses a bad command line in one line (exit 2), before running anything.
+bench_lifelong_refuses_bad_arguments() {
+    local script="$ROOT/components/bench/lifelong/bench_lifelong.sh" err rc args
+    local scenario="$ROOT/components/simulator/scenarios/tiny_loop.yaml"
+    for args in "--days 2" "--scenario $TMP/none.yaml --days 2" "--scenario $scenario --days 0" \
+        "--scenario $scenario --days 3" "--scenario $scenario --days 1 --config nightly" "--frobnicate"; do
+        # shellcheck disable=SC2086
+        err="$(bash "$script" $args --out "$TMP/lifelong" 2>&1 >/dev/null)"
+        rc=$?
+        [ "$rc" = 2 ] && [ "$(echo "$err" | wc -l)" = 1 ] && [[ "$err" == "ltm bench lifelong: "* ]] ||
+            { echo "  $args: rc=$rc: $err"; return 1; }
+    done
+    [ ! -e "$TMP/lifelong/day0" ] || { echo "  a day ran"; return 1; }
 }
 
 # The KISS-ICP comparison (a script) without the shared data: skips, builds nothing, exits 0.
@@ -174,6 +189,7 @@ check "SIGINT to the launcher's pid (a background job) stops the host, file comp
 check "an option without its value is refused with one line, exit 2" option_without_value
 check "read-only commands never set up or install" readonly_never_sets_up
 check "bench list names every benchmark" bench_list_names_every_benchmark
+check "bench lifelong refuses bad arguments" bench_lifelong_refuses_bad_arguments
 check "bench hard_cases skips without the shared data" bench_hard_cases_skips_without_data
 check "bench localise_real skips without the shared data" bench_localise_real_skips_without_data
 check "the launch configs of record, replay and map are valid" tool_launch_configs_are_valid

@@ -100,11 +100,11 @@ int run_lifelong(const LifelongOptions& o) {
           << fmt("%.3f", align.ate.rmse) << " m over " << align.matched << " keyframes\n";
     char header[512];
     std::snprintf(header, sizeof header,
-                  "%3s %5s %6s %6s %6s %6s %6s  %-16s %6s  %-13s %-11s %9s %7s %7s %7s %8s %7s "
+                  "%3s %5s %6s %6s %6s %6s %6s  %-16s %9s  %-13s %-11s %9s %7s %7s %7s %8s %7s "
                   "%6s\n",
                   "day", "scans", "pose%", "rmse", "p95", "max", ">0.5m", "kidnap->correct",
-                  "new_m", "removed_gone", "moved_gone", "moved_new", "added", "static%", "map_MB",
-                  "maint_MB", "peak_MB", "cpu_ms");
+                  "new/mapped", "removed_gone", "moved_gone", "moved_new", "added", "static%",
+                  "map_MB", "maint_MB", "peak_MB", "cpu_ms");
     table << header;
     std::vector<Eigen::Vector3d> earlier;
     for (int d = 0; d < o.days; ++d) {
@@ -116,19 +116,19 @@ int run_lifelong(const LifelongOptions& o) {
             read_kidnap_stamps(need(dir + "/truth/kidnaps.txt")), o.poses);
         std::vector<Eigen::Vector3d> path;
         for (const auto& t : truth) path.push_back(t.pose.translation());
-        const double new_m = new_ground_length(path, earlier, o.ground);
 
         const ObjectChanges changes = diff_objects(objects[0], objects[static_cast<size_t>(d)]);
         const std::string map_dir = dir + "/next_map";
         const bool have_map = fs::exists(map_dir) && !first_map.empty();
         MapChangeScore c;
+        std::vector<Eigen::Vector3d> later;
         if (have_map) {
-            const std::vector<Eigen::Vector3d> later =
-                d == 0
-                    ? first_map
-                    : map_voxel_centres(map_dir, align.T_world_map, o.min_health, o.min_planarity);
+            later = d == 0 ? first_map
+                           : map_voxel_centres(map_dir, align.T_world_map, o.min_health,
+                                               o.min_planarity);
             c = score_map_changes(first_map, later, changes, unstable, o.changes);
         }
+        const NewGround ground = new_ground(path, earlier, later, o.ground);
         const ProcessUsage usage = read_time_report(dir + "/time.txt");
         const double map_mb = static_cast<double>(bytes_on_disk(map_dir)) / (1 << 20);
         const double maint_mb = static_cast<double>(bytes_on_disk(dir + "/maintained")) / (1 << 20);
@@ -136,10 +136,11 @@ int run_lifelong(const LifelongOptions& o) {
 
         char row[512];
         std::snprintf(row, sizeof row,
-                      "%3d %5zu %6.1f %6.3f %6.3f %6.2f %6zu  %-16s %6.0f  %-13s %-11s %4zu/%-4zu "
+                      "%3d %5zu %6.1f %6.3f %6.3f %6.2f %6zu  %-16s %9s  %-13s %-11s %4zu/%-4zu "
                       "%3zu/%-3zu %7.2f %7.1f %8.1f %7.0f %6.1f\n",
                       d, s.scans, percent(s.with_pose, s.scans), s.rmse, s.p95, s.max, s.wrong,
-                      kidnap_text(s).c_str(), new_m,
+                      kidnap_text(s).c_str(),
+                      (fmt("%.0f", ground.driven) + "/" + fmt("%.0f", ground.mapped)).c_str(),
                       gone_text(c.removed_kept, c.removed_before).c_str(),
                       gone_text(c.moved_from_kept, c.moved_from_before).c_str(), c.moved_to_present,
                       c.moved_objects, c.added_present, c.added_objects,
@@ -163,7 +164,8 @@ int run_lifelong(const LifelongOptions& o) {
                        "s");
             report.add_count(key + "_wrong_before", s.kidnaps[k].wrong);
         }
-        report.add("new_ground", new_m, "m");
+        report.add("new_ground", ground.driven, "m");
+        report.add("new_ground_mapped", ground.mapped, "m");
         report.add_count("removed_voxels_day0_map", c.removed_before);
         report.add_count("removed_voxels_kept", c.removed_kept);
         report.add_count("moved_old_voxels_day0_map", c.moved_from_before);
@@ -210,7 +212,11 @@ int run_lifelong(const LifelongOptions& o) {
     table << "pose%: scans with a published map pose; kidnap->correct: scan time to the first "
              "pose within "
           << fmt("%.2g", o.poses.wrong)
-          << " m (Nw: wrong poses before it); removed_gone / moved_gone: voxels of removed "
+          << " m (Nw: wrong poses before it); new/mapped: metres of new ground, and of it with "
+             "voxels "
+             "of the map after the day within "
+          << fmt("%.2g", o.ground.map_radius)
+          << " m; removed_gone / moved_gone: voxels of removed "
              "objects / moved objects' old places in day 0's map that the map after the day no "
              "longer has; moved_new / added: objects with >= "
           << o.changes.min_voxels << " voxels in the map after the day; static%: day 0's other "
@@ -243,6 +249,8 @@ Run add_lifelong(CLI::App& parent) {
     app->add_option("--wrong", o->poses.wrong, "a pose farther than this is wrong [m]");
     app->add_option("--new-ground-radius", o->ground.radius,
                     "truth path farther than this from every earlier day's is new [m]");
+    app->add_option("--mapped-radius", o->ground.map_radius,
+                    "new ground with a map voxel this near (3D) is mapped [m]");
     app->add_option("--box-margin", o->changes.box_margin, "object boxes grown by this [m]");
     app->add_option("--min-planarity", o->min_planarity,
                     "map voxels counted (localisation's filter) [0..1]");

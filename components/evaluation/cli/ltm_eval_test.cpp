@@ -110,9 +110,10 @@ TEST(LtmEvalCli, BadInputGivesOneLineAndAnExitCode) {
     EXPECT_EQ(missing.code, 1);
     EXPECT_NE(missing.output.find("/nonexistent/a.txt: cannot open"), std::string::npos);
     EXPECT_EQ(run("nosuchcommand").output,
-              "ltm_eval: nosuchcommand: unknown command (traj, dynamic, mesh, loops, reloc)\n");
+              "ltm_eval: nosuchcommand: unknown command (traj, dynamic, mesh, loops, reloc, "
+              "lifelong)\n");
     EXPECT_EQ(run("").output,
-              "ltm_eval: a command is required (traj, dynamic, mesh, loops, reloc)\n");
+              "ltm_eval: a command is required (traj, dynamic, mesh, loops, reloc, lifelong)\n");
     EXPECT_EQ(run("").code, 2);
     EXPECT_EQ(run("traj --estimate a --reference b --reference-frame camera").code, 1);
 }
@@ -120,7 +121,7 @@ TEST(LtmEvalCli, BadInputGivesOneLineAndAnExitCode) {
 TEST(LtmEvalCli, HelpListsTheCommandsAndTheirOptions) {
     const CliRun top = run("--help");
     EXPECT_EQ(top.code, 0);
-    for (const char* c : {"traj", "dynamic", "mesh", "loops", "reloc"})
+    for (const char* c : {"traj", "dynamic", "mesh", "loops", "reloc", "lifelong"})
         EXPECT_NE(top.output.find(c), std::string::npos) << c;
     const CliRun traj = run("traj --help");
     EXPECT_EQ(traj.code, 0);
@@ -132,6 +133,10 @@ TEST(LtmEvalCli, HelpListsTheCommandsAndTheirOptions) {
     for (const char* o : {"--changed-is-dynamic", "--min-travel", "--write-static"})
         EXPECT_NE(dynamic.output.find(o), std::string::npos) << o;
     EXPECT_NE(run("reloc -h").output.find("--max-rotation"), std::string::npos);
+    const CliRun lifelong = run("lifelong --help");
+    for (const char* o : {"--run", "--days", "--wrong", "--new-ground-radius", "--mapped-radius",
+                          "--box-margin", "--min-planarity", "--out"})
+        EXPECT_NE(lifelong.output.find(o), std::string::npos) << o;
 }
 
 TEST(LtmEvalCli, MeshOffsetByHand) {
