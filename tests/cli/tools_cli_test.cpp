@@ -143,7 +143,7 @@ TEST(ToolsCli, HelpListsEveryOption) {
          {{"--help"},
           {"DIR", "--reference", "--calib", "--out", "--preset", "--config", "--mapping-config",
            "--max-frames", "--snapshot-every", "--pairs", "--session", "--scenario", "--laps",
-           "--graph-bench", "--poses"}}},
+           "--true-poses", "--graph-bench", "--poses"}}},
         {"ltm_mcap", {{"--help"}, {"info", "verify", "recover", "manifest", "write-test-file"}}},
         {"ltm_mcap",
          {{"write-test-file", "--help"},

@@ -81,6 +81,8 @@ Layout build_layout(const WorldConfig& config, std::uint64_t seed, const LayoutI
         L.free_space.add_corridor(path, L.road_half, true);
         L.roads.add_corridor(path, L.road_half, true);
     }
+    // Kept clear, but not roads: the site's roads shape its bays and paving.
+    for (const auto& path : in.clearings) L.free_space.add_corridor(path, L.road_half, true);
     for (const auto& [path, half_width] : in.actor_paths)
         L.free_space.add_corridor(path, half_width, false);
 

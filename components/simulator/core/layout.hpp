@@ -15,7 +15,10 @@
 namespace ltm::sim {
 
 struct LayoutInputs {
-    std::vector<Points2> robot_paths;                     // route centre lines, all sessions
+    std::vector<Points2> robot_paths;  // route centre lines, all sessions
+    // Driven but shaping nothing: only kept clear of objects (a route's later laps and the legs
+    // between them, so that a route driven N times leaves the site as one lap does).
+    std::vector<Points2> clearings;
     std::vector<std::pair<Points2, double>> actor_paths;  // path and half width, all sessions
     std::vector<Eigen::Vector3d> ground;  // ground under recorded paths (anchors the terrain)
     double sensor_range = 120.0;          // [m] scenery farther from every route is left out

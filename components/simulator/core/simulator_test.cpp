@@ -276,6 +276,63 @@ TEST(Simulator, LapsRepeatTheRouteThroughDrivableTurns) {
     EXPECT_EQ(starts, 3u);
 }
 
+// The site is the same however often the route is driven: a 3-lap world holds the objects of
+// the 1-lap world where they were (only the legs between laps are cleared), so another
+// day's scans of the site match a many-lap map of it. (Shaped by all laps, the world was drawn
+// anew: every object after the route's equipment elsewhere.)
+TEST(Simulator, LapsLeaveTheSiteAsOneLapDoes) {
+    ScenarioConfig sc = small_world(5);
+    sc.world.margin = 40;
+    sc.world.tree_density = 8.0;
+    RouteConfig& route = sc.sessions[0].route;
+    route.waypoints = {{-10, 10, 0}, {0, 10, 0}, {0, 2, 0}, {20, 2, 0}, {20, 10, 0}, {30, 10, 0}};
+    route.speed = 4.0;
+    route.corner_radius = 2.0;
+    const Simulator one(sc);
+    route.laps = 3;
+    const Simulator three(sc);
+    const auto same = [](const ObjectInstance& a, const ObjectInstance& b) {
+        return a.kind == b.kind && a.x == b.x && a.y == b.y && a.yaw == b.yaw && a.size == b.size &&
+               a.seed == b.seed && a.base_z == b.base_z;
+    };
+    const auto in = [&](const ObjectInstance& o, const std::vector<ObjectInstance>& world) {
+        return std::any_of(world.begin(), world.end(),
+                           [&](const ObjectInstance& w) { return same(o, w); });
+    };
+    // Where only the 3-lap robot drives: the legs between laps and their turning loops.
+    RouteConfig single = route;
+    single.laps = 1;
+    const RobotPath one_path(single, "."), three_path(route, ".");
+    const Points2& lap = one_path.centerline().points();
+    Points2 loops;
+    for (const Eigen::Vector2d& p : three_path.centerline().points()) {
+        const bool on_lap = std::any_of(
+            lap.begin(), lap.end(), [&](const Eigen::Vector2d& q) { return (p - q).norm() < 1.0; });
+        if (!on_lap) loops.push_back(p);
+    }
+    ASSERT_FALSE(loops.empty());
+    const auto near_loops = [&](const ObjectInstance& o) {
+        return std::any_of(loops.begin(), loops.end(), [&](const Eigen::Vector2d& p) {
+            return (p - Eigen::Vector2d(o.x, o.y)).norm() < 15.0;
+        });
+    };
+    ASSERT_GT(one.objects().size(), 40u);
+    std::size_t kept = 0;
+    for (const ObjectInstance& o : one.objects()) {
+        const bool there = in(o, three.objects());
+        kept += there;
+        EXPECT_TRUE(there || near_loops(o))
+            << "a 1-lap object at " << o.x << ", " << o.y << " is not in the 3-lap world";
+    }
+    for (const ObjectInstance& o : three.objects()) {
+        EXPECT_TRUE(in(o, one.objects()) || near_loops(o))
+            << "a 3-lap object at " << o.x << ", " << o.y << " is not in the 1-lap world";
+    }
+    // What the legs between laps clear (and what that frees or blocks nearby) is all that changes.
+    EXPECT_GE(double(kept), 0.9 * double(one.objects().size()))
+        << kept << " of " << one.objects().size() << " objects kept";
+}
+
 // Turns on the spot: a full turn left in 4 s on the way east, then a quarter turn left in 1 s
 // at a corner, which stays sharp (corner_radius would otherwise round it).
 TEST(Simulator, TurnsOnTheSpotKeepTheRobotInPlace) {

@@ -8,7 +8,10 @@
 // run() reads as its steps: configs, source, SlamRun over the frames with the km and lap logs,
 // summary, reference, outputs.)
 // With --poses (a trajectory from elsewhere: survey, GNSS-INS, another SLAM), the map is built at
-// the given poses: no registration, no loop closure.
+// the given poses: no registration, no loop closure; --scenario --true-poses does the same at
+// the scenario's true poses. With a reference and --out, T_map_reference.txt is the ATE's
+// alignment inverted (the reference frame in the map's: how other scans of the site are scored
+// on this map).
 // Options: `ltm_bench_slam --help`.
 #include <algorithm>
 #include <chrono>
@@ -54,6 +57,7 @@ struct Args {
     std::string pairs, session;
     std::string scenario;  // --scenario: render the scans in-process
     std::size_t laps = 0;
+    bool true_poses = false;  // --scenario: the map at the true poses (as --poses)
     std::size_t max_frames = 0, graph_bench = 0, snapshot_every = 10;
 };
 
@@ -96,6 +100,10 @@ void add_options(CLI::App& app, Args& a) {
         app.add_option("--scenario", a.scenario, "render the scans of this scenario in-process");
     scenario->excludes(dir);
     app.add_option("--laps", a.laps, "drive the route N times (route.laps)")->needs(scenario);
+    app.add_flag("--true-poses", a.true_poses,
+                 "build the map at the scenario's true poses: no registration, no loop closure "
+                 "(as --poses)")
+        ->needs(scenario);
     app.add_option("--graph-bench", a.graph_bench,
                    "time the optimisation of a synthetic graph of N anchors");
 }
@@ -536,8 +544,17 @@ void report_reference(const Args& a, const ScanSource& source, std::size_t frame
     if (!a.calib.empty())
         ref = common::camera_to_lidar_poses(ref, common::read_kitti_calib_tr(a.calib));
     ref.resize(std::min(ref.size(), frames));
-    const eval::AteResult before = eval::compute_ate(run.odom, ref),
-                          after = eval::compute_ate(slam, ref);
+    const eval::AteResult before = eval::compute_ate(run.odom, ref);
+    const eval::AteDetail detail = eval::compute_ate_detail(slam, ref);
+    const eval::AteResult& after = detail.stats;
+    if (!a.out.empty()) {
+        // The reference's frame in the map's (the ATE's alignment, inverted): what scores other
+        // scans of the site (their reference) on this map (ltm_bench_localise
+        // --reference-transform).
+        std::filesystem::create_directories(a.out);
+        common::write_kitti_poses(a.out + "/T_map_reference.txt",
+                                  common::PoseList{detail.T_ref_est.inverse()});
+    }
     std::printf(
         "ATE (SE(3)-aligned, %zu poses): odometry rmse %.3f m (max %.3f), after loop closure "
         "rmse %.3f m (max %.3f) = %.3f %% of the path\n",
@@ -594,14 +611,20 @@ int run(const Args& a) {
     std::printf("%s: %zu %s scans, odometry voxel %.2f m\n",
                 (a.scenario.empty() ? a.dir : a.scenario).c_str(), frames, source.kind,
                 oc.voxel_size);
-    const bool given = !a.poses.empty();
-    const common::PoseList given_poses = given ? read_given_poses(a, frames) : common::PoseList();
+    const bool given = !a.poses.empty() || a.true_poses;
+    common::PoseList given_poses;
+    if (a.true_poses) {
+        given_poses = source.sim->reference();
+        given_poses.resize(frames);
+    } else if (given) {
+        given_poses = read_given_poses(a, frames);
+    }
     if (given) {
         mc.loop_closure = false;  // the poses are final
         std::printf(
             "map built from given poses (%s): scans placed at them, no registration, no loop "
             "closure\n",
-            a.poses.c_str());
+            a.true_poses ? "the scenario's true poses" : a.poses.c_str());
     }
     slam::bench::KmMemoryLog km_log;
     LapLog laps(a, source);
