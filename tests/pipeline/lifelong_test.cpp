@@ -115,8 +115,9 @@ TEST_F(LifelongPipeline, ThreeDaysOnOneConfigGrowTheMapLearnItsChangesAndLocalis
         for (const auto& k : m.map.keyframes) {
             for (const map::PoseGraphNode& n : m.map.nodes) {
                 if (n.id != k->node) continue;
-                east += (T_world_map * n.T_world_anchor * k->data.T_anchor_lidar).translation().x() >
-                        30.0;
+                east +=
+                    (T_world_map * n.T_world_anchor * k->data.T_anchor_lidar).translation().x() >
+                    30.0;
             }
         }
         return east;
@@ -139,16 +140,16 @@ TEST_F(LifelongPipeline, ThreeDaysOnOneConfigGrowTheMapLearnItsChangesAndLocalis
         for (const Eigen::Vector3d& p : voxels(v.map_dir(), T_world_map)) {
             const Eigen::Vector2d local = R * (p.head<2>() - Eigen::Vector2d(gone->x, gone->y));
             n += std::abs(local.x()) < 0.5 * gone->size.x() + 0.2 &&
-                 std::abs(local.y()) < 0.5 * gone->size.y() + 0.2 &&
-                 p.z() > gone->base_z + 0.4 && p.z() < gone->base_z + gone->size.z() + 0.3;
+                 std::abs(local.y()) < 0.5 * gone->size.y() + 0.2 && p.z() > gone->base_z + 0.4 &&
+                 p.z() < gone->base_z + gone->size.z() + 0.3;
         }
         return n;
     };
     const std::size_t before = on_it(versions[0]), after = on_it(versions[1]);
     EXPECT_GT(before, 3u) << "Monday's map has the vehicle";
     // (2026-11-27: 108 -> 23; what stays was not in view of Tuesday's route, so never judged.)
-    EXPECT_LE(after, before / 3) << "Tuesday's version still has " << after << " of its "
-                                  << before << " voxels";
+    EXPECT_LE(after, before / 3) << "Tuesday's version still has " << after << " of its " << before
+                                 << " voxels";
 
     // Wednesday, set down on Tuesday's new ground: localised from its first second of scans, on
     // the truth (Monday's alignment for every day).

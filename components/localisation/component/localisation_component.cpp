@@ -220,8 +220,9 @@ class LocalisationComponent : public runtime::Component {
             return;
         }
         new_site_ = true;
-        no_map_ = "new site: no map yet, nothing to localise on until the next session (the "
-                  "SLAM's pose, slam_odometry, is the map pose meanwhile)";
+        no_map_ =
+            "new site: no map yet, nothing to localise on until the next session (the "
+            "SLAM's pose, slam_odometry, is the map pose meanwhile)";
         ctx_.log().info("site " + site + ": " + no_map_);
         map_state_ = kFailed;
     }

@@ -67,7 +67,8 @@ class MappingComponent : public runtime::Component {
         const bool want_fixes = p.get<bool>("localisation_fixes", true) && robots.empty();
         fixes_ = want_fixes && !load_dir.empty();
         const int fix_after = p.get<int>("localisation_fix_after", 3);
-        if (fix_after < 1) p.fail("localisation_fix_after", "must be >= 1 (scans tracked in a row)");
+        if (fix_after < 1)
+            p.fail("localisation_fix_after", "must be >= 1 (scans tracked in a row)");
         pairer_ = MapFixPairer(fix_after);
         const bool apply_changes = p.get<bool>("apply_map_changes", true);
         const MapperConfig config = load_mapper_config(p, "", "hdl64");
@@ -377,16 +378,16 @@ class MappingComponent : public runtime::Component {
     }
     void on_localisation_pose(const msg::PoseWithCovarianceStamped& m) {
         if (!fixes_) return;
-        apply_fix(pairer_.pose(convert::to_seconds(m.header.stamp),
-                               convert::to_isometry(m.pose.pose)));
+        apply_fix(
+            pairer_.pose(convert::to_seconds(m.header.stamp), convert::to_isometry(m.pose.pose)));
     }
 
     void apply_fix(const std::optional<PairedFix>& f) {
         if (!f || robots_.empty()) return;
         Robot& robot = *robots_.front();
-        const MapFixResult r = mapper_->add_map_fix(robot.session, f->keyframe.local_map_id,
-                                                    f->keyframe.T_anchor_lidar, f->T_world_lidar,
-                                                    f->keyframe.index);
+        const MapFixResult r =
+            mapper_->add_map_fix(robot.session, f->keyframe.local_map_id,
+                                 f->keyframe.T_anchor_lidar, f->T_world_lidar, f->keyframe.index);
         if (!r.added) {
             if (r.message.rfind("fix refused", 0) == 0) {
                 ++fixes_refused_;
@@ -414,8 +415,10 @@ class MappingComponent : public runtime::Component {
             return;
         }
         if (c.malformed > 0)
-            ctx_.log().warn(std::to_string(c.malformed) + " malformed change(s) in map_changes "
-                            "pass " + std::to_string(m.pass) + ": left out");
+            ctx_.log().warn(std::to_string(c.malformed) +
+                            " malformed change(s) in map_changes "
+                            "pass " +
+                            std::to_string(m.pass) + ": left out");
         mapper_->keep_cells(c.added, c.cell_size);
         if (c.removed.empty()) return;
         const std::size_t cleared = mapper_->remove_cells(c.removed, c.cell_size);

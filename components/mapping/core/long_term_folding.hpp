@@ -33,9 +33,8 @@ class LongTermFolding {
     void record(std::uint32_t session, std::uint64_t local_map_id, const Folded& folded);
     // Node `n` was folded into `into` (n's anchor at T_into_n there): the maps folded into n
     // before now name `into`. Their (session, local map id), for the chains to follow.
-    std::vector<std::pair<std::uint32_t, std::uint64_t>> retarget(std::uint64_t n,
-                                                                  std::uint64_t into,
-                                                                  const Eigen::Isometry3d& T_into_n);
+    std::vector<std::pair<std::uint32_t, std::uint64_t>> retarget(
+        std::uint64_t n, std::uint64_t into, const Eigen::Isometry3d& T_into_n);
 
     // An odometry edge (from, to) made through a folded map.
     void relay(std::uint64_t from, std::uint64_t to) { relayed_.insert({from, to}); }

@@ -1,9 +1,10 @@
 #pragma once
-// Pairs the Mapper's keyframes with the localisation's poses of the same scans (Mapper::add_map_fix):
-// a keyframe, the localisation's state of its scan and its pose arrive in any order, from two
-// components. A pose is a fix only while the localisation is tracking the map (registered to it
-// this scan) and has been for `min_tracking_run` scans in a row: a first fix after a global
-// localisation can be metres off for a few scans. Bounded: the newest `keep` of each kind wait.
+// Pairs the Mapper's keyframes with the localisation's poses of the same scans
+// (Mapper::add_map_fix): a keyframe, the localisation's state of its scan and its pose arrive in
+// any order, from two components. A pose is a fix only while the localisation is tracking the map
+// (registered to it this scan) and has been for `min_tracking_run` scans in a row: a first fix
+// after a global localisation can be metres off for a few scans. Bounded: the newest `keep` of each
+// kind wait.
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <map>

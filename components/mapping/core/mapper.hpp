@@ -242,9 +242,9 @@ class Mapper {
     std::string inconsistency(std::uint64_t from, std::uint64_t to, double disagreement,
                               double disagreement_deg) const;
     // A local map with the removed cells' voxels left out (nullptr: none of its voxels there).
-    std::shared_ptr<const common::LocalMapData> without_removed(const common::LocalMapData& map,
-                                                                const Eigen::Isometry3d& T_world_anchor,
-                                                                std::size_t* removed) const;
+    std::shared_ptr<const common::LocalMapData> without_removed(
+        const common::LocalMapData& map, const Eigen::Isometry3d& T_world_anchor,
+        std::size_t* removed) const;
     // True when the node's part is placed with the map's first session's (by loops or fixes).
     bool on_reference_part(std::uint64_t node) const;
     // The map's first session: the lowest with nodes (a loaded map's first, or the default).

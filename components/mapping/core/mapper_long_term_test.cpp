@@ -278,8 +278,8 @@ TEST(MapperLongTerm, LocalisationFixesPlaceASessionOnTheLoadedMapWithoutLoops) {
         const KeyframeResult r = next.add_keyframe(k);
         ASSERT_TRUE(r.added) << r.message;
         EXPECT_TRUE(r.loops.empty());
-        const MapFixResult f =
-            next.add_map_fix(next.session(), k.local_map_id, k.T_anchor_lidar, again.truth[i], r.index);
+        const MapFixResult f = next.add_map_fix(next.session(), k.local_map_id, k.T_anchor_lidar,
+                                                again.truth[i], r.index);
         fixes += f.added;
         placed += f.placed_part;
         if (f.optimisation_due) {
@@ -420,12 +420,12 @@ TEST(MapFixPairer, PairsAKeyframeWithATrackedPoseInAnyOrderAfterARunOfTracking) 
 TEST(RemovedCells, CoversTheCellAndHalfACellAround) {
     RemovedCells cells;
     EXPECT_FALSE(cells.covers(Eigen::Vector3f(0.1f, 0.1f, 0.1f)));
-    EXPECT_EQ(cells.add({Eigen::Vector3f(0.1f, 0.1f, 0.1f),
-                         Eigen::Vector3f(std::nanf(""), 0.0f, 0.0f)},
-                        0.25f),
-              1u);
+    EXPECT_EQ(
+        cells.add({Eigen::Vector3f(0.1f, 0.1f, 0.1f), Eigen::Vector3f(std::nanf(""), 0.0f, 0.0f)},
+                  0.25f),
+        1u);
     EXPECT_TRUE(cells.covers(Eigen::Vector3f(0.2f, 0.05f, 0.0f)));
-    EXPECT_TRUE(cells.covers(Eigen::Vector3f(0.3f, 0.1f, 0.1f)));   // 0.05 beyond the cell
+    EXPECT_TRUE(cells.covers(Eigen::Vector3f(0.3f, 0.1f, 0.1f)));    // 0.05 beyond the cell
     EXPECT_FALSE(cells.covers(Eigen::Vector3f(0.45f, 0.1f, 0.1f)));  // 0.2 beyond
     EXPECT_FALSE(cells.covers(Eigen::Vector3f(-0.2f, 0.1f, 0.1f)));
     cells.erase({Eigen::Vector3f(0.2f, 0.2f, 0.2f)});

@@ -121,8 +121,7 @@ void Mapper::verify(std::uint32_t session, const common::KeyframeData& keyframe,
             r->rejected.push_back(rejection);
             continue;
         }
-        const bool placed =
-            together && (same_session || is_open(match.session) || fixes_expected_);
+        const bool placed = together && (same_session || is_open(match.session) || fixes_expected_);
         registration::GuessList guesses;
         const bool graph_guess = placed && config_.verify_from_graph;
         if (graph_guess) guesses.push_back(predicted * keyframe.T_anchor_lidar);

@@ -63,10 +63,10 @@ struct KeyframeResult {
 // A localisation fix of a keyframe (Mapper::add_map_fix).
 struct MapFixResult {
     bool added = false;
-    std::string message;           // why not, or what it did (one line)
-    bool placed_part = false;      // the first fix of its part: the part was set where it says
+    std::string message;            // why not, or what it did (one line)
+    bool placed_part = false;       // the first fix of its part: the part was set where it says
     bool optimisation_due = false;  // it does not merely agree with the graph
-    double disagreement = 0.0;     // with the graph's estimate before it [m]
+    double disagreement = 0.0;      // with the graph's estimate before it [m]
     std::uint64_t from_node = 0, to_node = 0;  // the edge: loaded map node -> keyframe's node
 };
 

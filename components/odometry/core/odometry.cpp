@@ -136,9 +136,9 @@ FrameResult Odometry::register_frame(const common::PointCloud& cloud) {
     if (maps_.empty()) {
         r.status = FrameStatus::kInitialised;
         r.covariance.setZero();  // the first pose defines the odometry frame
-    } else if (const double gap = cloud.stamp - last_stamp_;
-               has_stamp_ && config_.tracking.restart_gap > 0.0 &&
-               gap > config_.tracking.restart_gap) {
+    } else if (const double gap = cloud.stamp - last_stamp_; has_stamp_ &&
+                                                             config_.tracking.restart_gap > 0.0 &&
+                                                             gap > config_.tracking.restart_gap) {
         // No scan for a while: whatever happened meanwhile (the robot carried, a long stop of the
         // sensor) the motion model cannot bridge, and a fit of this scan to the old map can be a
         // look-alike place (a repetitive yard). A new segment, joined later by a loop or the

@@ -150,7 +150,8 @@ TEST_F(StreetOdometry, SkippedScanCarriesTheConstantVelocityPrediction) {
 // (the robot may have been carried to a look-alike place); shorter gaps are tracked across.
 TEST_F(StreetOdometry, ALongGapBetweenScansStartsANewSegment) {
     Odometry odo(OdometryConfig{}, street_pose(0));
-    for (int i = 0; i < 4; ++i) ASSERT_TRUE(odo.register_frame(street_scan(scene(), i)).pose_valid());
+    for (int i = 0; i < 4; ++i)
+        ASSERT_TRUE(odo.register_frame(street_scan(scene(), i)).pose_valid());
     common::PointCloud later = street_scan(scene(), 5);
     later.stamp = 0.3 + 1.5;  // 1.5 s gap: within restart_gap (2 s)
     FrameResult r = odo.register_frame(later);
@@ -166,7 +167,8 @@ TEST_F(StreetOdometry, ALongGapBetweenScansStartsANewSegment) {
     OdometryConfig off;
     off.tracking.restart_gap = 0.0;
     Odometry other(off, street_pose(0));
-    for (int i = 0; i < 4; ++i) ASSERT_TRUE(other.register_frame(street_scan(scene(), i)).pose_valid());
+    for (int i = 0; i < 4; ++i)
+        ASSERT_TRUE(other.register_frame(street_scan(scene(), i)).pose_valid());
     carried.stamp = 0.3 + 2.5;
     EXPECT_EQ(other.register_frame(carried).segment, 0u);
 }
