@@ -52,11 +52,13 @@ Simulator::Simulator(const ScenarioConfig& scenario, int session)
             throw ScenarioError(session_key(k) + "." + e.what());
         }
         // The site is the same however often a route is driven: a route of N laps shapes the
-        // world (along-route equipment, the terrain's extent, the changes, the draws of the one
-        // random sequence that places everything) as its first lap does; the later laps and the
-        // legs between them are only kept clear, and the actors of both stay off the scenery.
-        // (Shaped by all laps, a 3-lap site_loop was another site: 527 of its 724 objects
-        // elsewhere, and another day's scans of the 1-lap site localised 1/31 on its map.)
+        // world (along-route equipment, the terrain's extent, the changes, its actors, the draws
+        // of the one random sequence that places everything) as its first lap does, and the
+        // later laps and the legs between them are only kept clear. The first lap's actors go on
+        // back and forth along their paths through the later laps (drawn not to meet the robot
+        // on the first). (Shaped by all laps, a 3-lap site_loop was another site: 527 of its 724
+        // objects elsewhere, and another day's scans of the 1-lap site localised 1/31 on its
+        // map.)
         std::unique_ptr<RobotPath> one_lap;
         if (s.route.laps > 1) {
             RouteConfig first = s.route;
@@ -69,16 +71,10 @@ Simulator::Simulator(const ScenarioConfig& scenario, int session)
         inputs.robot_paths.push_back(routes.back());
         const auto g = paths.back()->ground_points(scenario_.sensor.height);
         inputs.ground.insert(inputs.ground.end(), g.begin(), g.end());
-        const std::uint64_t actor_seed =
-            hash_mix(scenario_.seed, 0xAC, static_cast<std::uint64_t>(k));
-        if (one_lap) {
-            for (const auto& a :
-                 make_session_actors(s.actors, *one_lap, street, actor_seed, nullptr))
-                inputs.actor_paths.emplace_back(a.waypoints, Actor(0, a).half_width());
-        }
         int left_out = 0;
-        actor_configs.push_back(
-            make_session_actors(s.actors, *paths.back(), street, actor_seed, &left_out));
+        actor_configs.push_back(make_session_actors(
+            s.actors, site_route, street,
+            hash_mix(scenario_.seed, 0xAC, static_cast<std::uint64_t>(k)), &left_out));
         if (left_out > 0) {
             warnings_.push_back(session_key(k) + ".actors: " + std::to_string(left_out) +
                                 " procedural actor(s) left out (every path tried met the robot)");
