@@ -26,10 +26,9 @@
 #include "common/core/ply_io.hpp"
 #include "map/core/map_store.hpp"
 #include "map/core/site_store.hpp"
-#include "mapping/component/map_change_cells.hpp"
+#include "mapping/component/map_edit_inputs.hpp"
 #include "mapping/component/mapper_messages.hpp"
 #include "mapping/component/place_descriptor_msg.hpp"
-#include "mapping/core/map_fix_pairer.hpp"
 #include "mapping/core/mapper.hpp"
 #include "mapping/params/mapper_params.hpp"
 #include "runtime/component.hpp"
@@ -64,16 +63,16 @@ class MappingComponent : public runtime::Component {
             p.fail("save_period_s", "must be >= 0 (0: save only on request and at shutdown)");
         const std::vector<std::string> robots = p.get<std::vector<std::string>>("robots", {});
         // Ties to a loaded map by the localisation on it (one robot), and what maintenance found.
-        const bool want_fixes = p.get<bool>("localisation_fixes", true) && robots.empty();
-        fixes_ = want_fixes && !load_dir.empty();
-        const int fix_after = p.get<int>("localisation_fix_after", 3);
-        if (fix_after < 1)
+        MapEditInputs::Options edits;
+        edits.subscribe_fixes = p.get<bool>("localisation_fixes", true) && robots.empty();
+        edits.use_fixes = edits.subscribe_fixes && !load_dir.empty();
+        edits.fix_after = p.get<int>("localisation_fix_after", 3);
+        if (edits.fix_after < 1)
             p.fail("localisation_fix_after", "must be >= 1 (scans tracked in a row)");
-        pairer_ = MapFixPairer(fix_after);
-        const bool apply_changes = p.get<bool>("apply_map_changes", true);
+        edits.apply_changes = p.get<bool>("apply_map_changes", true);
+        edits.frame_id = frame_id_;
         const MapperConfig config = load_mapper_config(p, "", "hdl64");
         create_mapper(p, config, load_dir, freeze_loaded);
-        mapper_->expect_map_fixes(fixes_);
         check_robots(p, robots);
         if (!map_dir_.empty()) {
             map::SaveOptions options;
@@ -103,17 +102,13 @@ class MappingComponent : public runtime::Component {
                 ctx.advertise<msg::TransformStamped>(topic(*r, "map_to_odom"), TopicRole::kState);
             robots_.push_back(std::move(robot));
         }
-        if (want_fixes) {  // the topics exist (remappable) on a new site too; unused there
-            ctx.subscribe<msg::LocalisationStatus>(
-                "localisation_status", TopicRole::kState,
-                [this](const msg::LocalisationStatus& m) { on_localisation_status(m); });
-            ctx.subscribe<msg::PoseWithCovarianceStamped>(
-                "localisation_pose", TopicRole::kState,
-                [this](const msg::PoseWithCovarianceStamped& m) { on_localisation_pose(m); });
-        }
-        if (apply_changes)
-            ctx.subscribe<msg::MapChangeSet>("map_changes", TopicRole::kMap,
-                                             [this](const msg::MapChangeSet& m) { on_changes(m); });
+        edits_ = std::make_unique<MapEditInputs>(
+            ctx, *mapper_, robots_.front()->session, edits,
+            [this](const std::string& what) {
+                ctx_.log().info(what);
+                status(StatusLevel::kOk, StatusCode::kSessionJoined, what);
+            },
+            [this] { optimise(); });
         ctx.subscribe<msg::MapRequest>("map_request", TopicRole::kState,
                                        [this](const msg::MapRequest& m) { on_request(m); });
         graph_out_ = ctx.advertise<msg::PoseGraph>("pose_graph", TopicRole::kMap);
@@ -130,13 +125,7 @@ class MappingComponent : public runtime::Component {
         ctx_.log().info(std::to_string(mapper_->keyframes().size()) + " keyframes, " +
                         std::to_string(mapper_->local_map_count()) + " local maps, " +
                         std::to_string(mapper_->loops().size()) + " loops closed");
-        if (fixes_)
-            ctx_.log().info(std::to_string(mapper_->map_fixes()) +
-                            " keyframes tied to the loaded map by the localisation (" +
-                            std::to_string(fixes_refused_) + " fixes refused)");
-        if (mapper_->removed_voxels() > 0)
-            ctx_.log().info(std::to_string(mapper_->removed_voxels()) +
-                            " voxels cleared from the local maps by map maintenance");
+        if (const std::string edits = edits_->summary(); !edits.empty()) ctx_.log().info(edits);
         // The host lists the outputs: what a saved one holds (the parenthesis of the log line),
         // why one was not saved.
         auto detail = [](const std::string& line) {
@@ -364,67 +353,8 @@ class MappingComponent : public runtime::Component {
         for (const LoopClosure& loop : r.loops) publish_loop(loop, m.header.stamp);
         loops_since_optimise_ += r.loops.size();
         if (r.optimisation_due()) optimise();
-        if (fixes_)
-            apply_fix(pairer_.keyframe(keyframe.stamp,
-                                       {keyframe.local_map_id, keyframe.T_anchor_lidar, r.index}));
+        edits_->keyframe(keyframe, r.index);
         publish_correction(robot, m.header.stamp);
-    }
-
-    // The localisation's state and pose of a scan (on the map this mapper continues).
-    void on_localisation_status(const msg::LocalisationStatus& m) {
-        if (!fixes_) return;
-        apply_fix(pairer_.state(convert::to_seconds(m.header.stamp),
-                                m.state == ltm_msgs_msg_LocalisationStatus_Constants_TRACKING));
-    }
-    void on_localisation_pose(const msg::PoseWithCovarianceStamped& m) {
-        if (!fixes_) return;
-        apply_fix(
-            pairer_.pose(convert::to_seconds(m.header.stamp), convert::to_isometry(m.pose.pose)));
-    }
-
-    void apply_fix(const std::optional<PairedFix>& f) {
-        if (!f || robots_.empty()) return;
-        Robot& robot = *robots_.front();
-        const MapFixResult r =
-            mapper_->add_map_fix(robot.session, f->keyframe.local_map_id,
-                                 f->keyframe.T_anchor_lidar, f->T_world_lidar, f->keyframe.index);
-        if (!r.added) {
-            if (r.message.rfind("fix refused", 0) == 0) {
-                ++fixes_refused_;
-                ctx_.log().debug(r.message);
-            }
-            return;
-        }
-        if (r.placed_part) {
-            ctx_.log().info("placed on the loaded map by the localisation: " + r.message);
-            status(StatusLevel::kOk, StatusCode::kSessionJoined,
-                   "placed on the loaded map by the localisation: " + r.message);
-        }
-        if (r.optimisation_due) optimise();
-    }
-
-    // What map maintenance removed leaves the local maps (localisation and loop verification use
-    // them, and tomorrow's map is saved from them); new objects found there stay.
-    void on_changes(const msg::MapChangeSet& m) {
-        const ChangeCells c = change_cells(m);
-        if (!c.frame_id.empty() && c.frame_id != frame_id_) {
-            if (!warned_change_frame_)
-                ctx_.log().warn("map_changes in frame '" + c.frame_id + "', not the map's '" +
-                                frame_id_ + "': left out");
-            warned_change_frame_ = true;
-            return;
-        }
-        if (c.malformed > 0)
-            ctx_.log().warn(std::to_string(c.malformed) +
-                            " malformed change(s) in map_changes "
-                            "pass " +
-                            std::to_string(m.pass) + ": left out");
-        mapper_->keep_cells(c.added, c.cell_size);
-        if (c.removed.empty()) return;
-        const std::size_t cleared = mapper_->remove_cells(c.removed, c.cell_size);
-        ctx_.log().info("map maintenance pass " + std::to_string(m.pass) + ": " +
-                        std::to_string(c.removed_segments) + " segment(s) gone, " +
-                        std::to_string(cleared) + " voxels cleared from the local maps");
     }
 
     // A keyframe's descriptor made on the robot (keyframe_digest); made here again from its points
@@ -575,10 +505,7 @@ class MappingComponent : public runtime::Component {
     std::vector<std::unique_ptr<Robot>> robots_;  // callbacks hold their robot's address
     std::unique_ptr<map::MapWriter> writer_;
     std::uint64_t saved_state_ = 0;
-    bool fixes_ = false;
-    MapFixPairer pairer_;
-    std::size_t fixes_refused_ = 0;
-    bool warned_change_frame_ = false;
+    std::unique_ptr<MapEditInputs> edits_;            // holds the mapper: declared after it
     static constexpr std::size_t kMaxWaiting = 1000;  // 100 s at 10 Hz
     runtime::Publisher<msg::PoseGraph> graph_out_;
     runtime::Publisher<msg::LoopClosure> loop_out_;

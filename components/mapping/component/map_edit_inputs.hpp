@@ -1,0 +1,55 @@
+#pragma once
+// What the mapping learns from the rest of the robot, beside its odometry and loops (issue 26):
+// the localisation's tracked poses of its keyframes, which tie a session continuing a loaded map to
+// it (Mapper::add_map_fix, paired by MapFixPairer), and map maintenance's changes, whose removed
+// segments leave the local maps (Mapper::remove_cells / keep_cells). Subscribes
+// `localisation_status` and `localisation_pose` (when asked for: one robot), `map_changes` (when
+// asked for); the component hands it each keyframe it added.
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+
+#include "common/core/local_map_data.hpp"
+#include "mapping/core/map_fix_pairer.hpp"
+#include "mapping/core/mapper.hpp"
+#include "runtime/component.hpp"
+
+namespace ltm::mapping {
+
+class MapEditInputs {
+  public:
+    struct Options {
+        bool subscribe_fixes = false;  // the localisation's topics exist (remappable)
+        bool use_fixes = false;        // and a loaded map to tie to
+        int fix_after = 3;             // scans tracked in a row
+        bool apply_changes = true;
+        std::string frame_id = "map";
+    };
+    // `placed` is told when a fix placed a part on the loaded map; `optimise` when one made an
+    // optimisation due.
+    MapEditInputs(runtime::ComponentContext& ctx, Mapper& mapper, std::uint32_t session,
+                  const Options& options, std::function<void(const std::string&)> placed,
+                  std::function<void()> optimise);
+
+    // A keyframe the mapper added (its index).
+    void keyframe(const common::KeyframeData& keyframe, std::uint32_t index);
+    // One line for the log at the end ("" when there is nothing to say).
+    std::string summary() const;
+
+  private:
+    void apply(const std::optional<PairedFix>& fix);
+    void on_changes(const msg::MapChangeSet& m);
+
+    runtime::ComponentContext& ctx_;
+    Mapper& mapper_;
+    std::uint32_t session_;
+    Options options_;
+    std::function<void(const std::string&)> placed_;
+    std::function<void()> optimise_;
+    MapFixPairer pairer_;
+    std::size_t refused_ = 0;
+    bool warned_frame_ = false;
+};
+
+}  // namespace ltm::mapping
