@@ -18,8 +18,9 @@ namespace {
 namespace fs = std::filesystem;
 
 int run_eval(const std::string& args, std::string* output) {
-    const std::string log =
-        testing::TempDir() + "ltm_eval_report_output_" + std::to_string(::getpid()) + ".txt";
+    static int calls = 0;  // one file per process and call: ctest runs tests in parallel processes
+    const std::string log = testing::TempDir() + "ltm_eval_report_output_" +
+                            std::to_string(::getpid()) + "_" + std::to_string(++calls) + ".txt";
     const int status = std::system(
         (std::string(LTM_BINARY_DIR) + "/bin/ltm_eval " + args + " > " + log + " 2>&1").c_str());
     std::ifstream in(log);
@@ -60,8 +61,8 @@ std::vector<std::uint8_t> status_cdr(double stamp, std::uint8_t state, const std
 
 // A run: 100 scans along a square's side, the localisation 5 cm to the side, a map cloud, its
 // status recorded (lost at scan 40, re-localised at 45), the launcher's run.txt and a host.log.
-fs::path make_run() {
-    const fs::path dir = fs::path(testing::TempDir()) / "ltm_eval_report_run";
+fs::path make_run(const std::string& name) {
+    const fs::path dir = fs::path(testing::TempDir()) / ("ltm_eval_report_" + name);
     fs::remove_all(dir);
     fs::create_directories(dir / "maintenance");
     common::Trajectory truth, estimate;
@@ -107,7 +108,7 @@ fs::path make_run() {
 }
 
 TEST(ReportCommand, WritesEverySectionOfARun) {
-    const fs::path dir = make_run();
+    const fs::path dir = make_run("sections");
     std::string out;
     ASSERT_EQ(run_eval("report " + dir.string(), &out), 0) << out;
     EXPECT_NE(out.find("report.html"), std::string::npos) << out;
@@ -131,7 +132,7 @@ TEST(ReportCommand, RendersInHeadlessChromium) {
         GTEST_SKIP() << "chromium is not installed (apt-get install chromium): the report's "
                         "render test is skipped";
     }
-    const fs::path dir = make_run();
+    const fs::path dir = make_run("chromium");
     std::string out;
     ASSERT_EQ(run_eval("report " + dir.string(), &out), 0) << out;
     const fs::path profile = dir / "chromium-profile";
