@@ -24,6 +24,7 @@ const std::vector<MessageTypeInfo>& known_message_types() {
         info<msg::Twist>(),
         info<msg::Odometry>(),
         info<msg::Path>(),
+        info<msg::TFMessage>(),
         info<msg::Keyframe>(),
         info<msg::LocalMap>(),
         info<msg::LoopClosure>(),

@@ -36,6 +36,7 @@
 #include "sensor_msgs/msg/PointCloud2.h"
 #include "sensor_msgs/msg/PointField.h"
 #include "std_msgs/msg/Header.h"
+#include "tf2_msgs/msg/TFMessage.h"
 
 namespace ltm::msg {
 using Time = builtin_interfaces_msg_dds__Time_;
@@ -55,6 +56,7 @@ using Twist = geometry_msgs_msg_dds__Twist_;
 using TwistWithCovariance = geometry_msgs_msg_dds__TwistWithCovariance_;
 using Odometry = nav_msgs_msg_dds__Odometry_;
 using Path = nav_msgs_msg_dds__Path_;
+using TFMessage = tf2_msgs_msg_dds__TFMessage_;
 using PlaceDescriptor = ltm_msgs_msg_dds__PlaceDescriptor_;
 using Keyframe = ltm_msgs_msg_dds__Keyframe_;
 using Voxel = ltm_msgs_msg_dds__Voxel_;
@@ -98,6 +100,7 @@ LTM_MESSAGE_TRAITS(geometry_msgs_msg_dds__TransformStamped_, "geometry_msgs/msg/
 LTM_MESSAGE_TRAITS(geometry_msgs_msg_dds__Twist_, "geometry_msgs/msg/Twist")
 LTM_MESSAGE_TRAITS(nav_msgs_msg_dds__Odometry_, "nav_msgs/msg/Odometry")
 LTM_MESSAGE_TRAITS(nav_msgs_msg_dds__Path_, "nav_msgs/msg/Path")
+LTM_MESSAGE_TRAITS(tf2_msgs_msg_dds__TFMessage_, "tf2_msgs/msg/TFMessage")
 LTM_MESSAGE_TRAITS(ltm_msgs_msg_dds__Keyframe_, "ltm_msgs/msg/Keyframe")
 LTM_MESSAGE_TRAITS(ltm_msgs_msg_dds__LocalMap_, "ltm_msgs/msg/LocalMap")
 LTM_MESSAGE_TRAITS(ltm_msgs_msg_dds__LoopClosure_, "ltm_msgs/msg/LoopClosure")
