@@ -206,6 +206,13 @@ SiteVersion SiteStore::commit(VersionSummary summary, std::size_t keep) {
     sync_dir(versions);
     made.intact = true;
 
+    prune(made, summary.started_from, keep);
+    return made;
+}
+
+void SiteStore::prune(const SiteVersion& made, const std::string& started_from, std::size_t keep) {
+    const fs::path versions = fs::path(dir_) / kVersions;
+    std::error_code ec;
     // Pruning: the oldest beyond `keep`. Interrupted removals (".removing-v0001") first.
     for (const fs::directory_entry& e : fs::directory_iterator(versions, ec))
         if (e.path().filename().string().rfind(kRemoving, 0) == 0) fs::remove_all(e.path(), ec);
@@ -215,7 +222,7 @@ SiteVersion SiteStore::commit(VersionSummary summary, std::size_t keep) {
     for (std::size_t i = 0; i < all.size() && count > keep; ++i) {
         SiteVersion& v = all[i];
         if (v.number == made.number) continue;
-        if (v.name == summary.started_from) {
+        if (v.name == started_from) {
             bool other_intact = false;
             for (std::size_t j = 0; j < all.size() && !other_intact; ++j) {
                 if (j == i || all[j].number >= made.number) continue;
@@ -231,6 +238,34 @@ SiteVersion SiteStore::commit(VersionSummary summary, std::size_t keep) {
         --count;
     }
     sync_dir(versions);
+}
+
+SiteVersion SiteStore::adopt(const std::string& made_dir, std::uint32_t number, std::size_t keep) {
+    pruned_.clear();
+    const fs::path from(made_dir);
+    if (number == 0) throw common::IoError(made_dir, "version number 0");
+    if (const std::string p = check_map_dir((from / "map").string()); !p.empty())
+        throw common::IoError(made_dir, "not a whole version: " + p);
+    if (const std::string p = check_maintained_map_file((from / kMaintained).string()); !p.empty())
+        throw common::IoError(made_dir, "not a whole version: " + p);
+    SiteVersion made;
+    made.number = number;
+    made.name = version_name(number);
+    const fs::path versions = fs::path(dir_) / kVersions;
+    made.dir = (versions / made.name).string();
+    std::error_code ec;
+    if (fs::exists(made.dir, ec))
+        throw common::IoError(made.dir, "the site has a " + made.name + " already");
+    for (const char* sub : {"map/local_maps", "map", "maintenance", ""}) sync_dir(from / sub);
+    fs::create_directories(versions, ec);
+    if (ec) throw common::IoError(versions.string(), "cannot create: " + ec.message());
+    sync_dir(dir_);
+    if (::rename(from.c_str(), made.dir.c_str()) != 0)
+        throw common::IoError(made.dir,
+                              std::string("cannot make the version: ") + std::strerror(errno));
+    sync_dir(versions);
+    made.intact = true;
+    prune(made, "", keep);
     return made;
 }
 
