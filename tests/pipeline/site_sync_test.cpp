@@ -2,7 +2,9 @@
 // host process runs both ends (site_publisher on the base station's site, site_receiver on the
 // robot's), over loopback DDS with the link's small fragments. The robot holds v0001 and half of
 // v0002's chunks from an interrupted transfer; it fetches only the rest of the files it does not
-// hold and commits v0002, byte for byte the base station's.
+// hold and commits v0002, byte for byte the base station's. And a version on request in the middle
+// of a session (`./ltm map commit`: the map_request tool's command commit): committed at once,
+// atomic, and the session's end commits the next one.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -99,4 +101,54 @@ TEST_F(SiteSyncPipeline, ANewVersionReachesTheRobotWithOnlyWhatChangedAndResumes
     EXPECT_NE(host.err().find("final: " + std::to_string(to_send - kept) + " chunks sent"),
               std::string::npos)
         << host.err();
+}
+
+TEST_F(SiteSyncPipeline, AVersionOnRequestMidSessionThenTheSessionsEndCommitsTheNext) {
+    const std::string site = path("site");
+    map::SiteStore store(site);
+    site_sync::test::session(store, map::test::tiny_map(2), 1);  // v0001
+    const std::string dds = "dds: {interfaces: [lo], multicast: false, peers: [127.0.0.1]}\n";
+    const std::string cfg = write("commit.yaml", "domain_id: " + std::to_string(kDomain) +
+                                                     "\nnamespace: /sync_commit\n" + dds +
+                                                     "components:\n  - name: site\n    type: "
+                                                     "site\n    params: {site_dir: " +
+                                                     site + "}\n");
+    Process host({kHost, cfg}, path("host"));
+    ASSERT_TRUE(wait_for_log(host, "the session starts from v0001")) << host.err();
+    // What the session's mapping has saved so far.
+    map::SaveOptions options;
+    options.link_from = store.start_version("")->map_dir();
+    map::save_map(store.staging_map_dir(), map::test::tiny_map(3), options);
+    const std::vector<std::string> ask{
+        kHost,
+        std::string(LTM_SOURCE_DIR) + "/launch_configs/tools/map_request.yaml",
+        "--set",
+        "map_request.command=commit",
+        "--set",
+        "domain_id=" + std::to_string(kDomain),
+        "--set",
+        "namespace=/sync_commit",
+        "--set",
+        "dds={interfaces: [lo], multicast: false, peers: "
+        "[127.0.0.1]}"};
+    Process request(ask, path("request"));
+    ASSERT_EQ(request.wait(90), 0) << request.err() << host.err();
+    EXPECT_NE(request.err().find("committed v0002 (" + site + "/versions/v0002)"),
+              std::string::npos)
+        << request.err();
+    auto versions = store.versions();
+    ASSERT_EQ(versions.size(), 2u);
+    EXPECT_TRUE(versions[1].intact) << versions[1].problem;
+    EXPECT_EQ(map::load_map(versions[1].map_dir()).map.local_maps.size(), 3u);
+    EXPECT_TRUE(fs::exists(store.staging_map_dir() + "/manifest.txt"));  // the session goes on
+    // The session saves on; its end commits v0003 with the rest.
+    map::save_map(store.staging_map_dir(), map::test::tiny_map(4), options);
+    map::test::write_maintained_map(store.staging_maintained_map_file(), 3);
+    host.signal(SIGTERM);
+    ASSERT_EQ(host.wait(60), 0) << host.err();
+    versions = store.versions();
+    ASSERT_EQ(versions.size(), 3u);
+    EXPECT_TRUE(versions[2].intact) << versions[2].problem;
+    EXPECT_EQ(map::load_map(versions[2].map_dir()).map.local_maps.size(), 4u);
+    EXPECT_EQ(map::load_map(versions[1].map_dir()).map.local_maps.size(), 3u);  // unchanged
 }

@@ -241,6 +241,11 @@ void SiteStore::prune(const SiteVersion& made, const std::string& started_from, 
 }
 
 SiteVersion SiteStore::adopt(const std::string& made_dir, std::uint32_t number, std::size_t keep) {
+    return adopt_as(made_dir, number, keep, "");
+}
+
+SiteVersion SiteStore::adopt_as(const std::string& made_dir, std::uint32_t number, std::size_t keep,
+                                const std::string& started_from) {
     pruned_.clear();
     const fs::path from(made_dir);
     if (number == 0) throw common::IoError(made_dir, "version number 0");
@@ -265,8 +270,53 @@ SiteVersion SiteStore::adopt(const std::string& made_dir, std::uint32_t number, 
                               std::string("cannot make the version: ") + std::strerror(errno));
     sync_dir(versions);
     made.intact = true;
-    prune(made, "", keep);
+    prune(made, started_from, keep);
     return made;
+}
+
+std::string SiteStore::snapshot_staging() const {
+    const fs::path from(staging_dir());
+    const fs::path to = fs::path(dir_) / ".snapshot";
+    std::error_code ec;
+    fs::remove_all(to, ec);
+    if (!fs::is_directory(from / "map", ec))
+        throw common::IoError(from.string(), "no staging map yet: the session saved nothing");
+    // The manifest first: files it names may be replaced later by a save (the check catches it).
+    fs::create_directories(to / "map", ec);
+    fs::create_hard_link(from / "map/manifest.txt", to / "map/manifest.txt", ec);
+    if (ec) throw common::IoError(from.string(), "no staged manifest: " + ec.message());
+    for (fs::recursive_directory_iterator it(from, ec), end; !ec && it != end; it.increment(ec)) {
+        const fs::path rel = fs::relative(it->path(), from, ec);
+        const std::string name = it->path().filename().string();
+        if (it->is_directory(ec)) {
+            fs::create_directories(to / rel, ec);
+        } else if (rel != "map/manifest.txt" && name.find(".tmp") == std::string::npos) {
+            std::error_code link;
+            fs::create_hard_link(it->path(), to / rel, link);  // gone meanwhile: the check says
+        }
+    }
+    if (ec) throw common::IoError(from.string(), "cannot snapshot: " + ec.message());
+    return to.string();
+}
+
+SiteVersion SiteStore::commit_snapshot(const std::string& snapshot, VersionSummary summary,
+                                       std::size_t keep) {
+    const fs::path snap(snapshot);
+    std::error_code ec;
+    const std::vector<SiteVersion> before = list(dir_);
+    if (!fs::exists(snap / kMaintained, ec) && !summary.started_from.empty())
+        for (const SiteVersion& v : before)
+            if (v.name == summary.started_from && fs::exists(v.maintained_map_file(), ec))
+                link_or_copy(v.maintained_map_file(), snap / kMaintained);
+    summary.number = before.empty() ? 1 : before.back().number + 1;
+    if (summary.created == 0) summary.created = std::int64_t(std::time(nullptr));
+    common::write_file_atomic((snap / "version.txt").string(), write_version_text(summary));
+    try {
+        return adopt_as(snapshot, summary.number, keep, summary.started_from);
+    } catch (const common::IoError&) {
+        fs::remove_all(snap, ec);
+        throw;
+    }
 }
 
 std::string SiteSession::describe() const {

@@ -5,7 +5,9 @@
 // the robot knows what it has (site/core/incoming_version.hpp), so a restarted base station
 // simply answers the next requests. A full link (the chunk writer's history) delays the sending,
 // never the component.
-// Parameters: site_dir (required), chunk_kib (16), scan_period_s (2), max_queue_chunks (8192).
+// Chunks cross compressed when that makes them smaller (site/core/chunk_codec.hpp).
+// Parameters: site_dir (required), chunk_kib (16), compression_level (3; 0: none), scan_period_s
+// (2), max_queue_chunks (8192).
 #include <dds/dds.h>
 
 #include <deque>
@@ -18,6 +20,7 @@
 #include "map/core/site_store.hpp"
 #include "runtime/component.hpp"
 #include "runtime/convert/dds_string.hpp"
+#include "site/core/chunk_codec.hpp"
 #include "site/core/version_files.hpp"
 
 namespace ltm::site_sync {
@@ -36,6 +39,8 @@ class SitePublisher : public runtime::Component {
         const int kib = p.get<int>("chunk_kib", 16);
         if (kib < 1 || kib > 16384) p.fail("chunk_kib", "must be 1 to 16384");
         chunk_size_ = std::uint32_t(kib) * 1024u;
+        level_ = p.get<int>("compression_level", 3);
+        if (level_ < 0 || level_ > 19) p.fail("compression_level", "must be 0 (none) to 19");
         const double scan_period = p.get<double>("scan_period_s", 2.0);
         if (!(scan_period > 0)) p.fail("scan_period_s", "must be > 0");
         max_queue_ = p.get<std::size_t>("max_queue_chunks", 8192);
@@ -129,15 +134,17 @@ class SitePublisher : public runtime::Component {
             m.file = c.file;
             m.chunk = c.chunk;
             m.hash = chunk_hash(bytes.data(), bytes.size());
-            m.data._buffer = reinterpret_cast<std::uint8_t*>(bytes.data());
-            m.data._length = m.data._maximum = std::uint32_t(bytes.size());
+            EncodedChunk wire = encode_chunk(bytes, level_);
+            m.encoding = std::uint8_t(wire.encoding);
+            m.data._buffer = reinterpret_cast<std::uint8_t*>(wire.data.data());
+            m.data._length = m.data._maximum = std::uint32_t(wire.data.size());
             m.data._release = false;
             const dds_return_t rc = chunk_out_.try_publish(m);
             if (rc == DDS_RETCODE_TIMEOUT) return;  // the link is full: later
             if (rc != DDS_RETCODE_OK)
                 ctx_.log().warn(std::string("chunk not sent (") + dds_strretcode(rc) + ")");
             else
-                bytes_sent_ += bytes.size(), ++chunks_sent_;
+                bytes_sent_ += bytes.size(), wire_bytes_ += wire.data.size(), ++chunks_sent_;
             queued_.erase(c);
             queue_.pop_front();
         }
@@ -146,7 +153,8 @@ class SitePublisher : public runtime::Component {
     void report(bool final) {
         if (chunks_sent_ == 0 && !final) return;
         std::string line = std::string(final ? "final: " : "") + std::to_string(chunks_sent_) +
-                           " chunks sent (" + std::to_string(bytes_sent_ >> 10) + " KiB) of " +
+                           " chunks sent (" + std::to_string(bytes_sent_ >> 10) + " KiB, " +
+                           std::to_string(wire_bytes_ >> 10) + " KiB on the wire) of " +
                            map::version_name(offer_.number);
         for (const auto& [robot, p] : progress_)
             line += "; " + robot + " misses " + std::to_string(p.first) + " of " +
@@ -170,7 +178,8 @@ class SitePublisher : public runtime::Component {
     std::set<ChunkRef> queued_;
     std::set<std::string> robots_;
     std::map<std::string, std::pair<std::uint64_t, std::uint64_t>> progress_;
-    std::uint64_t bytes_sent_ = 0, chunks_sent_ = 0, stale_requests_ = 0;
+    int level_ = 3;
+    std::uint64_t bytes_sent_ = 0, wire_bytes_ = 0, chunks_sent_ = 0, stale_requests_ = 0;
 };
 
 }  // namespace

@@ -24,6 +24,7 @@
 #include "runtime/component.hpp"
 #include "runtime/convert/dds_string.hpp"
 #include "site/core/chunk_asker.hpp"
+#include "site/core/chunk_codec.hpp"
 #include "site/core/held_files.hpp"
 #include "site/core/incoming_version.hpp"
 
@@ -141,9 +142,14 @@ class SiteReceiver : public runtime::Component {
     void on_chunk(const msg::SiteChunk& m) {
         if (!incoming_ || m.offer_id != current_id_) return;
         const ChunkRef c{m.file, m.chunk};
-        ChunkVerdict v = ChunkVerdict::kNotAsked;
+        if (!incoming_->offer().valid(c)) return;
+        wire_ += m.data._length;
+        std::string bytes;
+        ChunkVerdict v = ChunkVerdict::kDamaged;
         try {
-            v = incoming_->accept(c, m.hash, m.data._buffer, m.data._length);
+            if (decode_chunk(m.encoding, m.data._buffer, m.data._length,
+                             incoming_->offer().chunk_length(c), &bytes))
+                v = incoming_->accept(c, m.hash, bytes.data(), bytes.size());
         } catch (const common::IoError& e) {
             ctx_.log().error(std::string("chunk not stored: ") + e.what());
             return;
@@ -156,7 +162,7 @@ class SiteReceiver : public runtime::Component {
                                 " so far");
             return;
         }
-        if (v == ChunkVerdict::kStored) bytes_ += m.data._length;
+        if (v == ChunkVerdict::kStored) bytes_ += bytes.size();
         asker_->received(c, mono_s());
         if (incoming_->missing_count() == 0) finish();
     }
@@ -212,7 +218,8 @@ class SiteReceiver : public runtime::Component {
                 name + " from the base station: " + std::to_string(p.files_to_send) + " of " +
                 std::to_string(incoming_->offer().files.size()) + " files fetched (" +
                 kib(p.bytes_to_send) + " of " + kib(p.bytes_total) + "), " + kib(bytes_) +
-                " received in " + std::to_string(mono_s() - started_).substr(0, 5) +
+                " received as " + kib(wire_) + " on the wire in " +
+                std::to_string(mono_s() - started_).substr(0, 5) +
                 " s; the localisation uses it at its next start";
             ctx_.log().info("received " + detail + " (" + made.dir + ")");
             for (const std::string& pruned : store_.pruned())
@@ -230,7 +237,7 @@ class SiteReceiver : public runtime::Component {
         if (refuse) refused_id_ = current_id_;
         incoming_.reset();
         current_id_ = 0;
-        bytes_ = 0;
+        bytes_ = wire_ = 0;
         std::error_code ec;
         fs::remove_all(dir, ec);
     }
@@ -251,7 +258,7 @@ class SiteReceiver : public runtime::Component {
     std::unique_ptr<ChunkAsker> asker_;
     runtime::Publisher<msg::SiteRequest> request_out_;
     std::unique_ptr<IncomingVersion> incoming_;
-    std::uint64_t current_id_ = 0, refused_id_ = 0, bytes_ = 0, damaged_ = 0;
+    std::uint64_t current_id_ = 0, refused_id_ = 0, bytes_ = 0, wire_ = 0, damaged_ = 0;
     std::uint32_t reported_current_ = 0;
     double started_ = 0;
     bool waiting_for_lock_ = false;
