@@ -62,9 +62,8 @@ trap cleanup EXIT
 trap 'exit 130' INT
 trap 'exit 143' TERM
 
-ADDR_B=127.0.0.1 ADDR_R=127.0.0.1 IF=lo
-in_b() { "$@"; }
-in_r() { "$@"; }
+ADDR_B=127.0.0.1 ADDR_R=127.0.0.1
+PRE_B=() PRE_R=()  # ip netns exec NS: it execs the program (the pid is the host's)
 if [ "$NETNS" = 1 ]; then
     ip netns add "$NS_R" || die "cannot create $NS_R"
     ip link add "$DEV_B" type veth peer name "$DEV_R" || die "cannot create a veth pair"
@@ -87,8 +86,7 @@ add rule netdev ltm_sync out numgen random mod 10000 < $n counter drop
         ip netns exec "$NS_R" tc qdisc add dev "$DEV_R" root tbf rate "${RATE}mbit" burst "$burst" latency 100ms || die "tc tbf failed"
         ip netns exec "$NS_B" tc qdisc add dev "$DEV_B" root tbf rate "${RATE}mbit" burst "$burst" latency 100ms
     fi
-    in_b() { ip netns exec "$NS_B" "$@"; }
-    in_r() { ip netns exec "$NS_R" "$@"; }
+    PRE_B=(ip netns exec "$NS_B") PRE_R=(ip netns exec "$NS_R")
     IF_B="$DEV_B" IF_R="$DEV_R"
 else
     echo "== not root or no network namespaces here: both ends on loopback, no loss, no rate"
@@ -135,14 +133,14 @@ YAML
 } > "$WORK/robot.yaml"
 
 now() { date +%s.%N; }
-bytes_of() {  # NS-RUNNER DEV -> "rx tx"
-    "$1" ip -s link show dev "$2" | awk '/RX:/ {getline; rb=$1} /TX:/ {getline; tb=$1} END {print rb, tb}'
+bytes_of() {  # DEV -> "rx tx" (the robot's end)
+    "${PRE_R[@]}" ip -s link show dev "$1" | awk '/RX:/ {getline; rb=$1} /TX:/ {getline; tb=$1} END {print rb, tb}'
 }
 echo "== base station: $WORK/base ($HAS, $NEWEST), robot: $WORK/robot ($HAS); loss ${LOSS} %, rate ${RATE} Mbit/s (0: none), chunks ${CHUNK} KiB, zstd level $LEVEL, domain $DOMAIN"
-read -r r0 t0 < <(bytes_of in_r "$IF_R")
-in_b "$BIN/ltm_host" "$WORK/base.yaml" > "$WORK/base.out" 2> "$WORK/base.log" & PIDS+=($!)
+read -r r0 t0 < <(bytes_of "$IF_R")
+"${PRE_B[@]}" "$BIN/ltm_host" "$WORK/base.yaml" > "$WORK/base.out" 2> "$WORK/base.log" & PIDS+=($!)
 start=$(now)
-in_r "$BIN/ltm_host" "$WORK/robot.yaml" > "$WORK/robot.out" 2> "$WORK/robot.log" & RPID=$!; PIDS+=($RPID)
+"${PRE_R[@]}" "$BIN/ltm_host" "$WORK/robot.yaml" > "$WORK/robot.out" 2> "$WORK/robot.log" & RPID=$!; PIDS+=($RPID)
 restarted=0
 while :; do
     if grep -q "received $NEWEST from the base station" "$WORK/robot.log" "$WORK/robot.log.1" 2>/dev/null; then break; fi
@@ -151,7 +149,7 @@ while :; do
         kill -KILL "$RPID"; wait "$RPID" 2>/dev/null
         mv "$WORK/robot.log" "$WORK/robot.log.1"
         echo "   robot killed (SIGKILL) at ${KILL_AT} s; restarted"
-        in_r "$BIN/ltm_host" "$WORK/robot.yaml" > "$WORK/robot.out" 2> "$WORK/robot.log" & RPID=$!; PIDS+=($RPID)
+        "${PRE_R[@]}" "$BIN/ltm_host" "$WORK/robot.yaml" > "$WORK/robot.out" 2> "$WORK/robot.log" & RPID=$!; PIDS+=($RPID)
         restarted=1
     fi
     if awk -v a="$start" -v b="$t" 'BEGIN {exit !(b - a > 1800)}'; then echo "   not received within 30 min"; break; fi
@@ -159,8 +157,9 @@ while :; do
     sleep 0.2
 done
 end=$(now)
-read -r r1 t1 < <(bytes_of in_r "$IF_R")
-kill -TERM "${PIDS[@]}" 2>/dev/null; wait 2>/dev/null
+read -r r1 t1 < <(bytes_of "$IF_R")
+kill -TERM "${PIDS[@]}" 2>/dev/null
+for p in "${PIDS[@]}"; do wait "$p" 2>/dev/null; done
 echo "== robot"
 grep -h -E "offers|kept from|received v|damaged|not whole|asked again|waits" "$WORK"/robot.log* | sed 's/^/   /' | cut -c1-260 | tail -8
 echo "== base station"

@@ -157,8 +157,8 @@ class SitePublisher : public runtime::Component {
                            std::to_string(wire_bytes_ >> 10) + " KiB on the wire) of " +
                            map::version_name(offer_.number);
         for (const auto& [robot, p] : progress_)
-            line += "; " + robot + " misses " + std::to_string(p.first) + " of " +
-                    std::to_string(p.second);
+            line += "; " + robot + " missed " + std::to_string(p.first) + " of " +
+                    std::to_string(p.second) + " at its last request";
         if (stale_requests_) line += "; " + std::to_string(stale_requests_) + " stale requests";
         ctx_.log().info(line);
     }
