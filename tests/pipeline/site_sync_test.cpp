@@ -4,7 +4,8 @@
 // v0002's chunks from an interrupted transfer; it fetches only the rest of the files it does not
 // hold and commits v0002, byte for byte the base station's. And a version on request in the middle
 // of a session (`./ltm map commit`: the map_request tool's command commit): committed at once,
-// atomic, and the session's end commits the next one.
+// atomic, with the mapping asked to save first when there is one, and the session's end
+// commits the next one.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -151,4 +152,37 @@ TEST_F(SiteSyncPipeline, AVersionOnRequestMidSessionThenTheSessionsEndCommitsThe
     EXPECT_TRUE(versions[2].intact) << versions[2].problem;
     EXPECT_EQ(map::load_map(versions[2].map_dir()).map.local_maps.size(), 4u);
     EXPECT_EQ(map::load_map(versions[1].map_dir()).map.local_maps.size(), 3u);  // unchanged
+}
+
+TEST_F(SiteSyncPipeline, AVersionOnRequestAsksTheMappingToSaveFirst) {
+    const std::string site = path("site");
+    map::SiteStore store(site);
+    site_sync::test::session(store, map::test::tiny_map(2), 1);  // v0001
+    const std::string cfg =
+        write("mapping.yaml",
+              "domain_id: " + std::to_string(kDomain) +
+                  "\nnamespace: /sync_save\ndds: {interfaces: [lo], multicast: false, "
+                  "peers: [127.0.0.1]}\ncomponents:\n  - name: mapping\n    type: "
+                  "mapping\n    params: {site_dir: " +
+                  site +
+                  ", save_period_s: 0, scan_context: {rings: 6, sectors: 12, max_range: 80, "
+                  "min_range: 0, sensor_height: 2}}\n  - name: site\n    type: site\n    "
+                  "params: {site_dir: " +
+                  site + "}\n");
+    Process host({kHost, cfg}, path("host"));
+    ASSERT_TRUE(wait_for_log(host, "the session starts from v0001")) << host.err();
+    Process request({kHost, std::string(LTM_SOURCE_DIR) + "/launch_configs/tools/map_request.yaml",
+                     "--set", "map_request.command=commit", "--set",
+                     "domain_id=" + std::to_string(kDomain), "--set", "namespace=/sync_save",
+                     "--set", "dds={interfaces: [lo], multicast: false, peers: [127.0.0.1]}"},
+                    path("request"));
+    ASSERT_EQ(request.wait(90), 0) << request.err() << host.err();
+    EXPECT_NE(host.err().find("the mapping saves first"), std::string::npos) << host.err();
+    EXPECT_NE(request.err().find("committed v0002"), std::string::npos) << request.err();
+    const auto versions = store.versions();
+    ASSERT_EQ(versions.size(), 2u);
+    EXPECT_TRUE(versions[1].intact) << versions[1].problem;
+    EXPECT_EQ(map::load_map(versions[1].map_dir()).map.local_maps.size(), 2u);
+    host.signal(SIGTERM);
+    EXPECT_EQ(host.wait(60), 0) << host.err();
 }
