@@ -36,6 +36,9 @@ const std::vector<MessageTypeInfo>& known_message_types() {
         info<msg::MapRequest>(),
         info<msg::LinkPacket>(),
         info<msg::LinkAck>(),
+        info<msg::SiteOffer>(),
+        info<msg::SiteRequest>(),
+        info<msg::SiteChunk>(),
     };
     return types;
 }

@@ -30,6 +30,9 @@
 #include "ltm_msgs/msg/Mesh.h"
 #include "ltm_msgs/msg/PlaceDescriptor.h"
 #include "ltm_msgs/msg/PoseGraph.h"
+#include "ltm_msgs/msg/SiteChunk.h"
+#include "ltm_msgs/msg/SiteOffer.h"
+#include "ltm_msgs/msg/SiteRequest.h"
 #include "ltm_msgs/msg/Status.h"
 #include "nav_msgs/msg/Odometry.h"
 #include "nav_msgs/msg/Path.h"
@@ -74,6 +77,9 @@ using Status = ltm_msgs_msg_dds__Status_;
 using MapRequest = ltm_msgs_msg_dds__MapRequest_;
 using LinkPacket = ltm_msgs_msg_dds__LinkPacket_;
 using LinkAck = ltm_msgs_msg_dds__LinkAck_;
+using SiteOffer = ltm_msgs_msg_dds__SiteOffer_;
+using SiteRequest = ltm_msgs_msg_dds__SiteRequest_;
+using SiteChunk = ltm_msgs_msg_dds__SiteChunk_;
 }  // namespace ltm::msg
 
 namespace ltm::runtime {
@@ -112,6 +118,9 @@ LTM_MESSAGE_TRAITS(ltm_msgs_msg_dds__Status_, "ltm_msgs/msg/Status")
 LTM_MESSAGE_TRAITS(ltm_msgs_msg_dds__MapRequest_, "ltm_msgs/msg/MapRequest")
 LTM_MESSAGE_TRAITS(ltm_msgs_msg_dds__LinkPacket_, "ltm_msgs/msg/LinkPacket")
 LTM_MESSAGE_TRAITS(ltm_msgs_msg_dds__LinkAck_, "ltm_msgs/msg/LinkAck")
+LTM_MESSAGE_TRAITS(ltm_msgs_msg_dds__SiteOffer_, "ltm_msgs/msg/SiteOffer")
+LTM_MESSAGE_TRAITS(ltm_msgs_msg_dds__SiteRequest_, "ltm_msgs/msg/SiteRequest")
+LTM_MESSAGE_TRAITS(ltm_msgs_msg_dds__SiteChunk_, "ltm_msgs/msg/SiteChunk")
 
 // The table of known top-level types: for `--all` recording, replay and `ltm_host --list-types`.
 struct MessageTypeInfo {
