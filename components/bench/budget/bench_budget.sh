@@ -120,9 +120,9 @@ wait_hosts() {  # waits for every host, monitor and profile; prints a host that 
 perf_summary() {  # DIR: where the robot host's CPU went (self time, by thread and function)
     [ -f "$1/perf.data" ] || return 0
     perf report -i "$1/perf.data" --no-children --sort comm,sym --stdio 2>/dev/null |
-        grep -vE '^#|^$' | grep -E '^ +[0-9]' | head -40 > "$1/perf_top.txt"
+        grep -E '^ +[0-9.]+%' | head -40 > "$1/perf_top.txt"
     perf report -i "$1/perf.data" --no-children --sort comm --stdio 2>/dev/null |
-        grep -E '^ +[0-9]' | head -20 > "$1/perf_threads.txt"
+        grep -E '^ +[0-9.]+%' | head -20 > "$1/perf_threads.txt"
     {
         echo; echo "## perf (199 Hz, self time) of the robot's host: threads"; echo
         echo '```'; cat "$1/perf_threads.txt"; echo '```'
