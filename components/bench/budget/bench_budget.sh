@@ -14,6 +14,10 @@
 #   --config base_station_multi  two robot.yaml hosts (/robot1: session 0, /robot2: session 1)
 #                                and base_station_multi.yaml
 #   --config all                 the three in turn (default)
+#   --report-only                the reports again from D's samples and probes (no host runs)
+#   --nice N                     the hosts at nice N (e.g. -5, root: the mission ahead of the
+#                                machine's other work, as on a robot's own computer; said in the
+#                                report)
 # Every host on domain LTM_BENCH_DOMAIN (default 66). The machine's load is measured and printed
 # with each run: CPU figures are CPU time (load does not inflate them); latencies are wall clock
 # and are labelled with the load they were measured under.
@@ -22,6 +26,7 @@ ROOT="$(cd "$(dirname "$0")/../../.." && pwd)"
 BIN="${LTM_BUILD_DIR:-$ROOT/build}/bin"
 DOMAIN="${LTM_BENCH_DOMAIN:-66}"
 CONFIG=all; SCENARIO="$ROOT/components/simulator/scenarios/site_loop.yaml"; FRAMES=""; OUT=""; PERF=1
+REPORT_ONLY=0; NICE=""
 usage() {
     echo "The robot's mission at the sensor's rate: CPU, memory, missed scans, latency per component"
     printf 'Usage: ./ltm bench budget [OPTIONS]\n\nOptions:\n'
@@ -30,18 +35,21 @@ usage() {
         "--scenario S" "the scenario (default site_loop); sessions 0 and 1 are played" \
         "--frames A:B" "only scans A..B-1 of each session (a short run)" \
         "--out D" "the results (default results/budget-<time>)" \
-        "--no-perf" "no perf profile of the robot's host"
+        "--no-perf" "no perf profile of the robot's host" \
+        "--report-only" "write the reports again from D's samples and probes (needs --out D)" \
+        "--nice N" "run the hosts at nice N (negative: ahead of the machine's other work; root)"
 }
 fail() { echo "ltm bench budget: $*" >&2; exit 2; }
 while [ $# -gt 0 ]; do
     case "$1" in
         -h|--help) usage; exit 0 ;;
         --no-perf) PERF=0; shift ;;
-        --config|--scenario|--frames|--out)
+        --report-only) REPORT_ONLY=1; shift ;;
+        --config|--scenario|--frames|--out|--nice)
             [ $# -ge 2 ] || fail "$1: needs a value"
             case "$1" in
                 --config) CONFIG="$2" ;; --scenario) SCENARIO="$2" ;;
-                --frames) FRAMES="$2" ;; --out) OUT="$2" ;;
+                --frames) FRAMES="$2" ;; --out) OUT="$2" ;; --nice) NICE="$2" ;;
             esac
             shift 2 ;;
         *) fail "unknown argument '$1' (--help)" ;;
@@ -51,12 +59,14 @@ case "$CONFIG" in lifelong|base_station|base_station_multi|all) ;; *) fail "--co
 [ -f "$SCENARIO" ] || fail "--scenario: no such file: $SCENARIO"
 SCENARIO="$(cd "$(dirname "$SCENARIO")" && pwd)/$(basename "$SCENARIO")"
 [ -z "$FRAMES" ] || [[ "$FRAMES" =~ ^[0-9]*:[0-9]*$ ]] || fail "--frames: A:B, got '$FRAMES'"
+[ -z "$NICE" ] || [[ "$NICE" =~ ^-?[0-9]+$ ]] || fail "--nice: a whole number, got '$NICE'"
 for exe in ltm_host ltm_sim ltm_budget; do
     [ -x "$BIN/$exe" ] || fail "$BIN/$exe is not built (ninja -C build ltm_host ltm_sim ltm_budget)"
 done
 if [ "$PERF" = 1 ] && ! command -v perf >/dev/null; then
     echo "ltm bench budget: perf is missing (apt-get install linux-perf): no profile" >&2; PERF=0
 fi
+[ "$REPORT_ONLY" = 0 ] || [ -n "$OUT" ] || fail "--report-only: needs --out D (a run's folder)"
 OUT="${OUT:-$ROOT/results/budget-$(date +%Y%m%d-%H%M%S)}"
 mkdir -p "$OUT" || fail "--out: cannot create $OUT"
 OUT="$(cd "$OUT" && pwd)"
@@ -82,7 +92,7 @@ load_note() {  # load_note "BUSY0 TOTAL0"
     now="$(cpu_mark)"
     busy=$(awk -v a="$1" -v b="$now" 'BEGIN{split(a,x," ");split(b,y," ");
         if (y[2]>x[2]) printf "%.0f", 100*(y[1]-x[1])/(y[2]-x[2]); else print "?"}')
-    echo "machine during the run: $(nproc) cores ${busy} % busy (all users), load average $(cut -d' ' -f1-3 /proc/loadavg) at the end (latencies are wall clock under this load)"
+    echo "machine during the run: $(nproc) cores ${busy} % busy (all users), load average $(cut -d' ' -f1-3 /proc/loadavg) at the end (latencies are wall clock under this load)${NICE:+; the hosts ran at nice $NICE}"
 }
 
 # start_host LABEL DIR LAUNCH [ENV=V ...] -- [HOST ARGS]: starts a host in the background with its
@@ -94,7 +104,9 @@ start_host() {
     while [ $# -gt 0 ] && [ "$1" != "--" ]; do envs+=("$1"); shift; done
     shift
     mkdir -p "$dir"
-    env "${envs[@]}" LTM_OUT="$dir" "$BIN/ltm_host" "$launch" --set "domain_id=$DOMAIN" "$@" \
+    local -a nice=()
+    [ -z "$NICE" ] || nice=(nice -n "$NICE")
+    env "${envs[@]}" LTM_OUT="$dir" "${nice[@]}" "$BIN/ltm_host" "$launch" --set "domain_id=$DOMAIN" "$@" \
         > "$dir/host.log" 2>&1 &
     PIDS[$label]=$!
     "$BIN/ltm_budget" monitor --pid "${PIDS[$label]}" --out "$dir/samples.txt" 2>>"$dir/monitor.log" &
@@ -133,6 +145,27 @@ perf_summary() {  # DIR: where the robot host's CPU went (self time, by thread a
 }
 published() { grep -oE 'published [0-9]+ scans' "$1" | tail -1 | grep -oE '[0-9]+' || echo 0; }
 
+# What the components said of themselves at the end (host.log): the localisation's scans
+# localised, relocalisations and skipped while busy; the maintenance's passes.
+component_lines() {
+    { echo; echo "## the components' own counts (host.log)"; echo; echo '```'
+      grep -E '\[localisation\] [0-9]+ scans:|\[maintenance\].*pass|\[odometry\].*(scans|skipped|dropped)' "$1" |
+          sed -E 's/^[0-9:.]+ +[a-z]+ +//' | tail -12
+      echo '```'; } >> "$2"
+}
+
+report_lifelong_day() {  # DAY SESSION
+    local day="$1" dir="$OUT/lifelong/day$1"
+    [ -f "$dir/samples.txt" ] || { echo "  no $dir/samples.txt: day $day did not run"; return; }
+    "$BIN/ltm_budget" report --host "robot:$dir/samples.txt:$dir/launch.yaml" --probe "$dir/probe.csv" \
+        --published "$(published "$dir/host.log")" --out "$dir" --with-pose \
+        --title "robot_lifelong.yaml, $NAME session $2 (day $day), VLP-32C at 10 Hz" \
+        --note "$(cat "$dir/load.txt" 2>/dev/null)" > /dev/null || echo "  report failed: see above"
+    component_lines "$dir/host.log" "$dir/report.md"
+    perf_summary "$dir"
+    echo "  report: $dir/report.md"
+}
+
 run_lifelong_day() {  # DAY SESSION
     local day="$1" dir="$OUT/lifelong/day$1" s mark
     s="$(scans "$2")" || exit 2
@@ -147,22 +180,37 @@ run_lifelong_day() {  # DAY SESSION
         --set localisation.skip_while_busy=true
     profile robot "$dir"
     wait_hosts
-    "$BIN/ltm_budget" report --host "robot:$dir/samples.txt:$dir/launch.yaml" --probe "$dir/probe.csv" \
-        --published "$(published "$dir/host.log")" --out "$dir" \
-        --title "robot_lifelong.yaml, $NAME session $2 (day $day), VLP-32C at 10 Hz" \
-        --note "$(load_note "$mark")" > /dev/null || echo "  report failed: see above"
-    perf_summary "$dir"
-    echo "  report: $dir/report.md"
+    load_note "$mark" > "$dir/load.txt"
+    report_lifelong_day "$@"
+}
+
+base_dir() { if [ "$1" = 1 ]; then echo "$OUT/base_station"; else echo "$OUT/base_station_multi"; fi; }
+base_yaml() { if [ "$1" = 1 ]; then echo base_station.yaml; else echo base_station_multi.yaml; fi; }
+
+report_base_station() {  # ROBOTS
+    local n="$1" dir base i h
+    dir="$(base_dir "$n")"; base="$(base_yaml "$n")"
+    for ((i = 1; i <= n; ++i)); do
+        h="robot$i"
+        [ -f "$dir/$h/samples.txt" ] || { echo "  no $dir/$h/samples.txt: did not run"; continue; }
+        "$BIN/ltm_budget" report --host "$h:$dir/$h/samples.txt:$dir/$h/launch.yaml" \
+            --host "base:$dir/base/samples.txt:$ROOT/launch_configs/$base" --probe "$dir/$h/probe.csv" \
+            --published "$(published "$dir/$h/host.log")" --out "$dir/$h" \
+            --title "$base with $n robot(s): $h's host and the base station's, VLP-32C at 10 Hz" \
+            --note "$(cat "$dir/load.txt" 2>/dev/null)" > /dev/null || echo "  report failed: see above"
+        component_lines "$dir/$h/host.log" "$dir/$h/report.md"
+        [ "$i" = 1 ] && perf_summary "$dir/robot1"
+        echo "  report: $dir/$h/report.md"
+    done
 }
 
 run_base_station() {  # ROBOTS (1 or 2)
-    local n="$1" dir launch base mark i s
-    if [ "$n" = 1 ]; then dir="$OUT/base_station"; base=base_station.yaml; else dir="$OUT/base_station_multi"; base=base_station_multi.yaml; fi
+    local n="$1" dir base mark i s
+    dir="$(base_dir "$n")"; base="$(base_yaml "$n")"
     mkdir -p "$dir"
     mark="$(cpu_mark)"
     # The scans are VLP-32C: every preset says so.
     start_host base "$dir/base" "$ROOT/launch_configs/$base" -- --set mapping.preset=vlp32
-    local hosts=()
     for ((i = 1; i <= n; ++i)); do
         s="$(scans $((i - 1)))" || exit 2
         mkdir -p "$dir/robot$i"
@@ -173,25 +221,23 @@ run_base_station() {  # ROBOTS (1 or 2)
         start_host "robot$i" "$dir/robot$i" "$dir/robot$i/launch.yaml" LTM_DATA="$s" -- \
             --set namespace=$ns --set odometry.preset=vlp32 --set keyframe_digest.preset=vlp32
         [ "$i" = 1 ] && profile robot1 "$dir/robot$i"
-        hosts+=("robot$i")
     done
     wait_hosts
-    for h in "${hosts[@]}"; do
-        "$BIN/ltm_budget" report --host "$h:$dir/$h/samples.txt:$dir/$h/launch.yaml" \
-            --host "base:$dir/base/samples.txt:$ROOT/launch_configs/$base" --probe "$dir/$h/probe.csv" \
-            --published "$(published "$dir/$h/host.log")" --out "$dir/$h" \
-            --title "$base with $n robot(s): $h's host and the base station's, VLP-32C at 10 Hz" \
-            --note "$(load_note "$mark")" > /dev/null || echo "  report failed: see above"
-        echo "  report: $dir/$h/report.md"
-    done
-    perf_summary "$dir/robot1"
+    load_note "$mark" > "$dir/load.txt"
+    report_base_station "$n"
 }
 
-if [ "$CONFIG" = lifelong ] || [ "$CONFIG" = all ]; then
-    rm -rf "$OUT/lifelong/site"   # a fresh site: day 0 maps it
-    run_lifelong_day 0 0
-    run_lifelong_day 1 1
+if [ "$REPORT_ONLY" = 1 ]; then
+    if [ "$CONFIG" = lifelong ] || [ "$CONFIG" = all ]; then report_lifelong_day 0 0; report_lifelong_day 1 1; fi
+    if [ "$CONFIG" = base_station ] || [ "$CONFIG" = all ]; then report_base_station 1; fi
+    if [ "$CONFIG" = base_station_multi ] || [ "$CONFIG" = all ]; then report_base_station 2; fi
+else
+    if [ "$CONFIG" = lifelong ] || [ "$CONFIG" = all ]; then
+        rm -rf "$OUT/lifelong/site"   # a fresh site: day 0 maps it
+        run_lifelong_day 0 0
+        run_lifelong_day 1 1
+    fi
+    if [ "$CONFIG" = base_station ] || [ "$CONFIG" = all ]; then run_base_station 1; fi
+    if [ "$CONFIG" = base_station_multi ] || [ "$CONFIG" = all ]; then run_base_station 2; fi
 fi
-[ "$CONFIG" = base_station ] || [ "$CONFIG" = all ] && run_base_station 1
-[ "$CONFIG" = base_station_multi ] || [ "$CONFIG" = all ] && run_base_station 2
 echo "ltm bench budget: done; reports: $(find "$OUT" -name report.md | sort | tr '\n' ' ')"

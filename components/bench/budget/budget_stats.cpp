@@ -13,7 +13,8 @@ namespace ltm::bench {
 void write_sample(std::ostream& out, const ProcessSample& s) {
     out << "s " << std::fixed << std::setprecision(6) << s.t << ' ' << s.process_ticks << ' '
         << s.memory.rss_kb << ' ' << s.memory.hwm_kb << '\n';
-    for (const auto& t : s.threads) out << "t " << t.tid << ' ' << t.ticks << ' ' << t.name << '\n';
+    for (const auto& t : s.threads)
+        out << "w " << t.tid << ' ' << t.ticks << ' ' << t.wait_ns << ' ' << t.name << '\n';
 }
 
 SampleLog read_samples(std::istream& in) {
@@ -33,9 +34,10 @@ SampleLog read_samples(std::istream& in) {
             ProcessSample s;
             ok = bool(f >> s.t >> s.process_ticks >> s.memory.rss_kb >> s.memory.hwm_kb);
             if (ok) log.samples.push_back(s);
-        } else if (kind == "t" && !log.samples.empty()) {
+        } else if ((kind == "t" || kind == "w") && !log.samples.empty()) {
             TaskStat t;
             ok = bool(f >> t.tid >> t.ticks);
+            if (ok && kind == "w") ok = bool(f >> t.wait_ns);
             if (ok) {
                 f.get();  // the one space before the name (which may hold spaces)
                 std::getline(f, t.name);
@@ -52,7 +54,8 @@ SampleLog read_samples(std::istream& in) {
 std::map<std::string, CpuSeries> cpu_by_owner(const SampleLog& log,
                                               const std::vector<std::string>& components) {
     std::map<std::string, CpuSeries> out;
-    std::map<std::pair<int, std::string>, std::uint64_t> last;  // (tid, name): ticks
+    std::map<std::pair<int, std::string>, std::pair<std::uint64_t, std::uint64_t>>
+        last;  // (tid, name): ticks, wait_ns
     std::map<std::pair<int, std::string>, std::string> key_of;
     std::map<std::string, bool> keys;
     for (const auto& s : log.samples)
@@ -63,18 +66,25 @@ std::map<std::string, CpuSeries> cpu_by_owner(const SampleLog& log,
         }
     const double hz = double(log.hz);
     for (const auto& s : log.samples) {
-        for (const auto& t : s.threads) last[{t.tid, t.name}] = t.ticks;
-        std::map<std::string, std::uint64_t> sum;
-        for (const auto& [k, ticks] : last) sum[key_of[k]] += ticks;
+        for (const auto& t : s.threads) last[{t.tid, t.name}] = {t.ticks, t.wait_ns};
+        std::map<std::string, std::pair<std::uint64_t, std::uint64_t>> sum;
+        std::uint64_t all_wait = 0;
+        for (const auto& [k, v] : last) {
+            sum[key_of[k]].first += v.first;
+            sum[key_of[k]].second += v.second;
+            all_wait += v.second;
+        }
         for (const auto& [key, unused] : keys) {
             (void)unused;
             auto& series = out[key];
             series.t.push_back(s.t);
-            series.cpu_s.push_back(sum.count(key) ? sum[key] / hz : 0.0);
+            series.cpu_s.push_back(sum.count(key) ? sum[key].first / hz : 0.0);
+            series.wait_s.push_back(sum.count(key) ? 1e-9 * double(sum[key].second) : 0.0);
         }
         auto& p = out["process"];
         p.t.push_back(s.t);
         p.cpu_s.push_back(s.process_ticks / hz);
+        p.wait_s.push_back(1e-9 * double(all_wait));
     }
     return out;
 }
@@ -86,20 +96,29 @@ CpuSeries sum_series(const std::vector<const CpuSeries*>& parts) {
     for (std::size_t p = 1; p < parts.size(); ++p) {
         if (parts[p]->cpu_s.size() != out.cpu_s.size())
             throw std::invalid_argument("sum_series: series of different lengths");
-        for (std::size_t i = 0; i < out.cpu_s.size(); ++i) out.cpu_s[i] += parts[p]->cpu_s[i];
+        for (std::size_t i = 0; i < out.cpu_s.size(); ++i) {
+            out.cpu_s[i] += parts[p]->cpu_s[i];
+            if (i < out.wait_s.size() && i < parts[p]->wait_s.size())
+                out.wait_s[i] += parts[p]->wait_s[i];
+        }
     }
     return out;
 }
 
-double cpu_at(const CpuSeries& s, double t) {
-    if (s.t.empty()) return 0.0;
-    if (t <= s.t.front()) return s.cpu_s.front();
-    if (t >= s.t.back()) return s.cpu_s.back();
-    const auto it = std::upper_bound(s.t.begin(), s.t.end(), t);
-    const std::size_t i = std::size_t(it - s.t.begin());
-    const double a = (t - s.t[i - 1]) / (s.t[i] - s.t[i - 1]);
-    return s.cpu_s[i - 1] + a * (s.cpu_s[i] - s.cpu_s[i - 1]);
+namespace {
+double value_at(const std::vector<double>& times, const std::vector<double>& v, double t) {
+    if (times.empty() || v.size() != times.size()) return 0.0;
+    if (t <= times.front()) return v.front();
+    if (t >= times.back()) return v.back();
+    const auto it = std::upper_bound(times.begin(), times.end(), t);
+    const std::size_t i = std::size_t(it - times.begin());
+    const double a = (t - times[i - 1]) / (times[i] - times[i - 1]);
+    return v[i - 1] + a * (v[i] - v[i - 1]);
 }
+}  // namespace
+
+double cpu_at(const CpuSeries& s, double t) { return value_at(s.t, s.cpu_s, t); }
+double wait_at(const CpuSeries& s, double t) { return value_at(s.t, s.wait_s, t); }
 
 double average_share(const CpuSeries& s, double t0, double t1) {
     if (t1 <= t0) return 0.0;
@@ -113,6 +132,13 @@ double worst_window_share(const CpuSeries& s, double t0, double t1, double windo
         worst = std::max(worst, (cpu_at(s, s.t[i] + window_s) - s.cpu_s[i]) / window_s);
     }
     return worst;
+}
+
+int busy_seconds(const CpuSeries& s, double t0, double t1, double threshold) {
+    int n = 0;
+    for (double t = t0; t + 1.0 <= t1 + 1e-9; t += 1.0)
+        if (cpu_at(s, t + 1.0) - cpu_at(s, t) >= threshold) ++n;
+    return n;
 }
 
 double percentile(std::vector<double> v, double p) {

@@ -14,7 +14,7 @@
 namespace ltm::bench {
 
 // --- the monitor's samples file: "hz H", then per sample "s T PROCESS_TICKS RSS_KB HWM_KB" and a
-// "t TID TICKS NAME" line per thread.
+// "w TID TICKS WAIT_NS NAME" line per thread (older files: "t TID TICKS NAME", no wait).
 void write_sample(std::ostream& out, const ProcessSample& s);
 struct SampleLog {
     long hz = 100;
@@ -22,23 +22,27 @@ struct SampleLog {
 };
 SampleLog read_samples(std::istream& in);  // throws std::runtime_error naming the bad line
 
-// Cumulative CPU time [s] at each sample time.
+// Cumulative CPU time [s] at each sample time, and the time runnable but waiting for a core [s].
 struct CpuSeries {
-    std::vector<double> t, cpu_s;
+    std::vector<double> t, cpu_s, wait_s;
 };
 
-// Per owner ("component/role", thread_owner's key) and "process" (/proc/PID/stat: exited threads
-// too). A thread that ended keeps the CPU time it had when last seen.
+// Per owner ("component/role", thread_owner's key) and "process" (CPU: /proc/PID/stat, exited
+// threads too; wait: the threads' sum). A thread that ended keeps the times it had when last seen.
 std::map<std::string, CpuSeries> cpu_by_owner(const SampleLog& log,
                                               const std::vector<std::string>& components);
 // Sums series of the same times (e.g. every role of one component).
 CpuSeries sum_series(const std::vector<const CpuSeries*>& parts);
 
-double cpu_at(const CpuSeries& s, double t);  // linear between samples, clamped to the ends
+double cpu_at(const CpuSeries& s, double t);   // linear between samples, clamped to the ends
+double wait_at(const CpuSeries& s, double t);  // the same of the run-queue wait
 // CPU seconds per wall second over [t0, t1] (1.0 = one core).
 double average_share(const CpuSeries& s, double t0, double t1);
 // The largest share over windows of `window_s` starting at a sample inside [t0, t1 - window_s].
 double worst_window_share(const CpuSeries& s, double t0, double t1, double window_s = 1.0);
+// Whole seconds [t0 + k, t0 + k + 1) inside [t0, t1] in which the share was at least `threshold`
+// (a burst: a maintenance pass holding a core).
+int busy_seconds(const CpuSeries& s, double t0, double t1, double threshold = 0.9);
 // Linear between the closest ranks (p in [0, 100]); 0 for an empty set.
 double percentile(std::vector<double> values, double p);
 
@@ -51,8 +55,8 @@ std::vector<ProbeRecord> read_probe(std::istream& in);  // throws std::runtime_e
 std::vector<ProbeRecord> of_topic(const std::vector<ProbeRecord>& all, const std::string& topic);
 
 struct Delivery {
-    std::size_t scans = 0;    // scans the probe saw published
-    std::size_t missing = 0;  // with no output for them
+    std::size_t scans = 0;          // scans the probe saw published
+    std::size_t missing = 0;        // with no output for them
     std::vector<double> latency_s;  // sent(output) - sent(scan), one per matched scan
 };
 // Each scan's output of the same stamp (within 1 us).

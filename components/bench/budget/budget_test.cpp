@@ -39,6 +39,11 @@ TEST(ProcStatTest, ParsesStatusMemory) {
     EXPECT_FALSE(parse_status("Name:\tkthreadd\nState:\tS\n"));
 }
 
+TEST(ProcStatTest, ParsesTheRunQueueWait) {
+    EXPECT_EQ(parse_schedstat_wait("123456789 5000000 42\n"), 5000000u);
+    EXPECT_FALSE(parse_schedstat_wait("garbage"));
+}
+
 TEST(ProcStatTest, SamplesThisProcessAndSeesANamedThread) {
     std::atomic<bool> named{false}, done{false};
     std::thread t([&] {
@@ -132,6 +137,29 @@ TEST(BudgetStatsTest, AverageAndWorstWindowShares) {
     EXPECT_DOUBLE_EQ(worst_window_share(p, 10.0, 10.9), 0.0);  // no whole window
 }
 
+TEST(BudgetStatsTest, SumsTheRunQueueWaitPerOwner) {
+    std::istringstream in(
+        "hz 100\n"
+        "s 0.0 0 1 1\n"
+        "w 1 0 0 odometry\n"
+        "w 2 0 0 tev\n"
+        "s 1.0 10 1 1\n"
+        "w 1 5 300000000 odometry\n"
+        "w 2 5 100000000 tev\n");
+    const auto s = cpu_by_owner(read_samples(in), {"odometry"});
+    EXPECT_DOUBLE_EQ(wait_at(s.at("odometry/main"), 1.0), 0.3);
+    EXPECT_DOUBLE_EQ(wait_at(s.at("odometry/main"), 0.5), 0.15);
+    EXPECT_DOUBLE_EQ(wait_at(s.at("process"), 1.0), 0.4);
+    EXPECT_DOUBLE_EQ(cpu_at(s.at("dds/tev"), 1.0), 0.05);
+}
+
+TEST(BudgetStatsTest, CountsTheSecondsABurstHeldACore) {
+    const auto s = cpu_by_owner(two_threads(), {"odometry", "localisation"});
+    EXPECT_EQ(busy_seconds(s.at("process"), 10.0, 12.5), 1);  // 11..12: 1.5 cores
+    EXPECT_EQ(busy_seconds(s.at("process"), 10.0, 12.5, 0.3), 2);
+    EXPECT_EQ(busy_seconds(s.at("odometry/main"), 10.0, 12.5), 0);  // 50 % throughout
+}
+
 TEST(BudgetStatsTest, Percentiles) {
     EXPECT_DOUBLE_EQ(percentile({}, 50), 0.0);
     EXPECT_DOUBLE_EQ(percentile({3, 1, 2}, 50), 2.0);
@@ -147,7 +175,7 @@ TEST(BudgetStatsTest, SamplesRoundTripAndABadLineIsNamed) {
     s.t = 5.25;
     s.process_ticks = 7;
     s.memory = {100, 200};
-    s.threads = {{3, "a name with spaces", 4}};
+    s.threads = {{3, "a name with spaces", 4, 9000000000}};
     std::stringstream io;
     io << "hz 250\n";
     write_sample(io, s);
@@ -156,6 +184,7 @@ TEST(BudgetStatsTest, SamplesRoundTripAndABadLineIsNamed) {
     EXPECT_EQ(log.hz, 250);
     EXPECT_EQ(log.samples[0].threads[0].name, "a name with spaces");
     EXPECT_EQ(log.samples[0].memory.hwm_kb, 200u);
+    EXPECT_EQ(log.samples[0].threads[0].wait_ns, 9000000000u);
     std::istringstream bad("hz 100\ns 1.0 x\n");
     try {
         read_samples(bad);
@@ -236,6 +265,18 @@ TEST(MemoryFigureTest, WritesAPolylinePerHostAndTheBudget) {
     EXPECT_NE(svg.find("a &lt;title&gt;"), std::string::npos);
     EXPECT_NE(svg.find("budget 1024 MB"), std::string::npos);
     EXPECT_NE(svg.find("</svg>"), std::string::npos);
+}
+
+// Issue 28: meshing belongs to the base station; the robot's configs have no mesh component (the
+// demo's all-in-one robot_composed.yaml, a workstation run, may).
+TEST(RobotConfigsTest, HaveNoMeshComponent) {
+    const std::string dir = std::string(LTM_SOURCE_DIR) + "/launch_configs/";
+    for (const char* name : {"robot.yaml", "robot_lifelong.yaml", "robot_localise.yaml",
+                             "robot_maintain.yaml", "robot_localise_maintain.yaml"}) {
+        const auto config = YAML::LoadFile(dir + name);
+        for (const auto& c : config["components"])
+            EXPECT_NE(c["type"].as<std::string>(""), "mesh") << name << ": " << c["name"];
+    }
 }
 
 }  // namespace

@@ -10,10 +10,14 @@ namespace {
 std::string escape(const std::string& s) {
     std::string out;
     for (char c : s) {
-        if (c == '<') out += "&lt;";
-        else if (c == '>') out += "&gt;";
-        else if (c == '&') out += "&amp;";
-        else out += c;
+        if (c == '<')
+            out += "&lt;";
+        else if (c == '>')
+            out += "&gt;";
+        else if (c == '&')
+            out += "&amp;";
+        else
+            out += c;
     }
     return out;
 }
@@ -52,22 +56,23 @@ void write_memory_svg(std::ostream& out, const std::string& title,
         << escape(title) << "</text>\n";
     const double ts = tick_step(t_max, 8), ms = tick_step(m_max, 6);
     for (double t = 0; t <= t_max + 1e-9; t += ts)
-        out << "<line x1=\"" << X(t) << "\" y1=\"" << T << "\" x2=\"" << X(t) << "\" y2=\""
-            << H - B << "\" stroke=\"#eee\"/><text x=\"" << X(t) << "\" y=\"" << H - B + 16
+        out << "<line x1=\"" << X(t) << "\" y1=\"" << T << "\" x2=\"" << X(t) << "\" y2=\"" << H - B
+            << "\" stroke=\"#eee\"/><text x=\"" << X(t) << "\" y=\"" << H - B + 16
             << "\" text-anchor=\"middle\">" << num(t) << "</text>\n";
     for (double m = 0; m <= m_max + 1e-9; m += ms)
-        out << "<line x1=\"" << L << "\" y1=\"" << Y(m) << "\" x2=\"" << W - R << "\" y2=\""
-            << Y(m) << "\" stroke=\"#eee\"/><text x=\"" << L - 6 << "\" y=\"" << Y(m) + 4
+        out << "<line x1=\"" << L << "\" y1=\"" << Y(m) << "\" x2=\"" << W - R << "\" y2=\"" << Y(m)
+            << "\" stroke=\"#eee\"/><text x=\"" << L - 6 << "\" y=\"" << Y(m) + 4
             << "\" text-anchor=\"end\">" << num(m) << "</text>\n";
     out << "<rect x=\"" << L << "\" y=\"" << T << "\" width=\"" << W - L - R << "\" height=\""
         << H - T - B << "\" fill=\"none\" stroke=\"black\"/>\n"
         << "<text x=\"" << (L + W - R) / 2 << "\" y=\"" << H - 12
         << "\" text-anchor=\"middle\">time since the host started [s]</text>\n"
-        << "<text x=\"16\" y=\"" << (T + H - B) / 2 << "\" text-anchor=\"middle\" transform=\"rotate(-90 16 "
-        << (T + H - B) / 2 << ")\">resident memory [MB]</text>\n";
+        << "<text x=\"16\" y=\"" << (T + H - B) / 2
+        << "\" text-anchor=\"middle\" transform=\"rotate(-90 16 " << (T + H - B) / 2
+        << ")\">resident memory [MB]</text>\n";
     if (budget_mb > 0)
-        out << "<line x1=\"" << L << "\" y1=\"" << Y(budget_mb) << "\" x2=\"" << W - R
-            << "\" y2=\"" << Y(budget_mb) << "\" stroke=\"black\" stroke-dasharray=\"6 4\"/>"
+        out << "<line x1=\"" << L << "\" y1=\"" << Y(budget_mb) << "\" x2=\"" << W - R << "\" y2=\""
+            << Y(budget_mb) << "\" stroke=\"black\" stroke-dasharray=\"6 4\"/>"
             << "<text x=\"" << W - R - 4 << "\" y=\"" << Y(budget_mb) - 5
             << "\" text-anchor=\"end\">budget " << num(budget_mb) << " MB</text>\n";
     for (std::size_t i = 0; i < curves.size(); ++i) {
@@ -76,8 +81,8 @@ void write_memory_svg(std::ostream& out, const std::string& title,
         out << "<polyline fill=\"none\" stroke=\"" << colour << "\" stroke-width=\"1.5\" points=\"";
         for (std::size_t k = 0; k < c.t_s.size() && k < c.rss_mb.size(); ++k)
             out << X(c.t_s[k]) << ',' << Y(c.rss_mb[k]) << ' ';
-        out << "\"/>\n<text x=\"" << L + 10 << "\" y=\"" << T + 18 + 16 * i << "\" fill=\"" << colour
-            << "\">" << escape(c.label) << "</text>\n";
+        out << "\"/>\n<text x=\"" << L + 10 << "\" y=\"" << T + 18 + 16 * i << "\" fill=\""
+            << colour << "\">" << escape(c.label) << "</text>\n";
     }
     out << "</svg>\n";
 }

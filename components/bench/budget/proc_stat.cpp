@@ -37,6 +37,13 @@ std::optional<TaskStat> parse_task_stat(const std::string& line) {
     return s;
 }
 
+std::optional<std::uint64_t> parse_schedstat_wait(const std::string& text) {
+    std::istringstream in(text);
+    std::uint64_t run = 0, wait = 0;
+    if (!(in >> run >> wait)) return {};
+    return wait;
+}
+
 std::optional<ProcessMemory> parse_status(const std::string& text) {
     ProcessMemory m;
     bool rss = false, hwm = false;
@@ -84,7 +91,11 @@ std::optional<ProcessSample> sample_process(int pid) {
         if (e->d_name[0] == '.') continue;
         const auto ts = read_text(dir + "/task/" + e->d_name + "/stat");
         if (!ts) continue;  // the thread ended meanwhile
-        if (auto t = parse_task_stat(*ts)) s.threads.push_back(*t);
+        auto t = parse_task_stat(*ts);
+        if (!t) continue;
+        if (const auto sched = read_text(dir + "/task/" + e->d_name + "/schedstat"))
+            t->wait_ns = parse_schedstat_wait(*sched).value_or(0);
+        s.threads.push_back(*t);
     }
     closedir(d);
     return s;

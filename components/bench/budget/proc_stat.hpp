@@ -11,8 +11,9 @@ namespace ltm::bench {
 
 struct TaskStat {
     int tid = 0;
-    std::string name;          // comm: the thread's name (15 characters at most)
-    std::uint64_t ticks = 0;   // utime + stime [clock ticks]
+    std::string name;           // comm: the thread's name (15 characters at most)
+    std::uint64_t ticks = 0;    // utime + stime [clock ticks]
+    std::uint64_t wait_ns = 0;  // time runnable but waiting for a core (/proc/.../schedstat)
 };
 
 struct ProcessMemory {
@@ -22,11 +23,13 @@ struct ProcessMemory {
 
 // One line of /proc/.../stat; nullopt when it is not one (the name may hold spaces and ')').
 std::optional<TaskStat> parse_task_stat(const std::string& line);
+// /proc/.../schedstat ("run_ns wait_ns timeslices"): the run-queue wait; nullopt if malformed.
+std::optional<std::uint64_t> parse_schedstat_wait(const std::string& text);
 // The text of /proc/PID/status; nullopt without VmRSS and VmHWM (a zombie, a kernel thread).
 std::optional<ProcessMemory> parse_status(const std::string& text);
 
 struct ProcessSample {
-    double t = 0;                 // CLOCK_REALTIME [s] (comparable with DDS source timestamps)
+    double t = 0;  // CLOCK_REALTIME [s] (comparable with DDS source timestamps)
     std::uint64_t process_ticks = 0;
     ProcessMemory memory;
     std::vector<TaskStat> threads;

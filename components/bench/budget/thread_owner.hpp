@@ -15,7 +15,8 @@ struct ThreadOwner {
     std::string key() const { return component + "/" + role; }
 };
 
-ThreadOwner thread_owner(const std::string& thread_name, const std::vector<std::string>& components);
+ThreadOwner thread_owner(const std::string& thread_name,
+                         const std::vector<std::string>& components);
 
 // Cyclone DDS's thread names (gc, dq.builtins, dq.user, tev, lease, recv, recvMC, recvUC, xmit.*).
 bool is_dds_thread(const std::string& thread_name);

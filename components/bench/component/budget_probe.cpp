@@ -35,24 +35,27 @@ class BudgetProbe : public runtime::Component {
             {"odometry", TopicRole::kState, runtime::MessageTraits<msg::Odometry>::descriptor()},
             {"pose", TopicRole::kState,
              runtime::MessageTraits<msg::PoseWithCovarianceStamped>::descriptor()},
-            {"map_changes", TopicRole::kMap, runtime::MessageTraits<msg::MapChangeSet>::descriptor()},
+            {"map_changes", TopicRole::kMap,
+             runtime::MessageTraits<msg::MapChangeSet>::descriptor()},
         };
         for (const auto& name : inputs) {
             const Input* in = nullptr;
             for (const auto& k : known)
                 if (name == k.topic) in = &k;
-            if (!in) p.fail("inputs", "unknown input '" + name + "' (points, odometry, pose, map_changes)");
+            if (!in)
+                p.fail("inputs",
+                       "unknown input '" + name + "' (points, odometry, pose, map_changes)");
             auto qos = ctx.role_profile(in->topic, in->role);
             if (!qos.keep_all) qos.depth = std::max(qos.depth, 1000);  // the probe never drops
             const std::string topic = in->topic;
-            ctx.subscribe_raw(topic, in->desc, qos,
-                              [this, topic](const std::vector<std::uint8_t>& cdr,
-                                            const dds_sample_info_t& info) {
-                                  const auto stamp = cdr_header_stamp(cdr.data(), cdr.size());
-                                  if (!stamp) return;
-                                  rows_.push_back({topic, *stamp, 1e-9 * double(info.source_timestamp),
-                                                   realtime_now_s()});
-                              });
+            ctx.subscribe_raw(
+                topic, in->desc, qos,
+                [this, topic](const std::vector<std::uint8_t>& cdr, const dds_sample_info_t& info) {
+                    const auto stamp = cdr_header_stamp(cdr.data(), cdr.size());
+                    if (!stamp) return;
+                    rows_.push_back(
+                        {topic, *stamp, 1e-9 * double(info.source_timestamp), realtime_now_s()});
+                });
         }
     }
 
@@ -82,5 +85,6 @@ class BudgetProbe : public runtime::Component {
 }  // namespace
 }  // namespace ltm::bench
 
-LTM_REGISTER_COMPONENT(ltm::bench::BudgetProbe, "budget_probe",
-                       "records the stamp and source time of every sample of its inputs (bench budget)")
+LTM_REGISTER_COMPONENT(
+    ltm::bench::BudgetProbe, "budget_probe",
+    "records the stamp and source time of every sample of its inputs (bench budget)")
