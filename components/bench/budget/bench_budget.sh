@@ -115,7 +115,9 @@ start_host() {
 # profile LABEL DIR: perf on the host (199 Hz: about 1 % of a core) until it exits.
 profile() {
     [ "$PERF" = 1 ] || return 0
-    perf record -F 199 -g -p "${PIDS[$1]}" -o "$2/perf.data" > "$2/perf.log" 2>&1 &
+    # After the start-up: perf follows the threads that exist when it attaches (a host that had
+    # not made its components' threads yet was profiled on its main thread alone).
+    (sleep 5; exec perf record -F 199 -g -p "${PIDS[$1]}" -o "$2/perf.data") > "$2/perf.log" 2>&1 &
     PERFS+=($!)
 }
 PERFS=()
@@ -149,8 +151,8 @@ published() { grep -oE 'published [0-9]+ scans' "$1" | tail -1 | grep -oE '[0-9]
 # localised, relocalisations and skipped while busy; the maintenance's passes.
 component_lines() {
     { echo; echo "## the components' own counts (host.log)"; echo; echo '```'
-      grep -E '\[localisation\] [0-9]+ scans:|\[maintenance\].*pass|\[odometry\].*(scans|skipped|dropped)' "$1" |
-          sed -E 's/^[0-9:.]+ +[a-z]+ +//' | tail -12
+      grep -E '\[maintenance\] pass [0-9]+:' "$1" | sed -E 's/^[0-9:.]+ +[a-z]+ +//' | tail -6
+      grep -E '\[(localisation|maintenance|odometry)\] [0-9]+ scans' "$1" | sed -E 's/^[0-9:.]+ +[a-z]+ +//'
       echo '```'; } >> "$2"
 }
 

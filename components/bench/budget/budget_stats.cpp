@@ -37,7 +37,10 @@ SampleLog read_samples(std::istream& in) {
         } else if ((kind == "t" || kind == "w") && !log.samples.empty()) {
             TaskStat t;
             ok = bool(f >> t.tid >> t.ticks);
-            if (ok && kind == "w") ok = bool(f >> t.wait_ns);
+            if (ok && kind == "w") {
+                ok = bool(f >> t.wait_ns);
+                log.has_wait = true;
+            }
             if (ok) {
                 f.get();  // the one space before the name (which may hold spaces)
                 std::getline(f, t.name);

@@ -18,6 +18,7 @@ namespace ltm::bench {
 void write_sample(std::ostream& out, const ProcessSample& s);
 struct SampleLog {
     long hz = 100;
+    bool has_wait = false;  // "w" lines: the run-queue wait was sampled
     std::vector<ProcessSample> samples;
 };
 SampleLog read_samples(std::istream& in);  // throws std::runtime_error naming the bad line

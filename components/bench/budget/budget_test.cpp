@@ -146,7 +146,10 @@ TEST(BudgetStatsTest, SumsTheRunQueueWaitPerOwner) {
         "s 1.0 10 1 1\n"
         "w 1 5 300000000 odometry\n"
         "w 2 5 100000000 tev\n");
-    const auto s = cpu_by_owner(read_samples(in), {"odometry"});
+    const auto log = read_samples(in);
+    EXPECT_TRUE(log.has_wait);
+    EXPECT_FALSE(two_threads().has_wait);
+    const auto s = cpu_by_owner(log, {"odometry"});
     EXPECT_DOUBLE_EQ(wait_at(s.at("odometry/main"), 1.0), 0.3);
     EXPECT_DOUBLE_EQ(wait_at(s.at("odometry/main"), 0.5), 0.15);
     EXPECT_DOUBLE_EQ(wait_at(s.at("process"), 1.0), 0.4);

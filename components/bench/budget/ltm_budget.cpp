@@ -91,7 +91,10 @@ void report_host(std::ostream& out, const HostRun& h, double t0, double t1, std:
             << fmt("%.1f %%", 100 * average_share(s, t0, t1)) << " | "
             << fmt("%.0f %%", 100 * worst_window_share(s, t0, t1)) << " | "
             << busy_seconds(s, t0, t1) << " | "
-            << fmt("%.1f", scans ? 1e3 * (wait_at(s, t1) - wait_at(s, t0)) / double(scans) : 0.0)
+            << (h.log.has_wait
+                    ? fmt("%.1f",
+                          scans ? 1e3 * (wait_at(s, t1) - wait_at(s, t0)) / double(scans) : 0.0)
+                    : std::string("-"))
             << " | " << fmt("%.2f", s.cpu_s.back() - s.cpu_s.front()) << " |\n";
     };
     for (const auto& [component, parts] : by_component) {
