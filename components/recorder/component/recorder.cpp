@@ -15,6 +15,7 @@
 #include "runtime/component.hpp"
 #include "runtime/idl_schema.hpp"
 #include "runtime/topic_names.hpp"
+#include "runtime/worker.hpp"
 
 namespace ltm::recorder {
 namespace {
@@ -50,6 +51,7 @@ class Recorder : public runtime::Component {
         wc.sync = p.get<bool>("sync", false);
         AsyncWriterConfig ac;
         ac.max_queue_bytes = static_cast<std::size_t>(p.get<double>("queue_mb", 512.0) * (1 << 20));
+        ac.thread_name = runtime::worker_thread_name(ctx.name(), "write");
         try {
             writer_ = std::make_unique<AsyncMcapWriter>(
                 std::make_unique<McapWriter>(file, wc), ac,
