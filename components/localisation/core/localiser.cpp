@@ -171,6 +171,7 @@ bool Localiser::track(const Eigen::Isometry3d& predicted, LocalisationUpdate* u)
         u->message = "tracking failed: " + why.str();
         return false;
     }
+    u->overlap = r.overlap();
     T_map_lidar_ = r.T_map_lidar;
     u->T_map_lidar = r.T_map_lidar;
     u->covariance = r.covariance;
@@ -233,8 +234,20 @@ LocalisationUpdate Localiser::process(double stamp, const std::vector<Eigen::Vec
             u.message = "beyond the map: following the odometry";
             last_good_ = stamp;
         } else if (track(predicted, &u)) {
-            T_map_odom_ = u.T_map_lidar * T_odom_lidar.inverse();
-            state_ = LocalisationState::kTracking;
+            if (u.overlap < config_.edge_overlap) {
+                // The map's edge: the odometry from the last scan the map covered better.
+                state_ = LocalisationState::kOffMap;
+                T_map_lidar_ = predicted;
+                u.T_map_lidar = predicted;
+                std::ostringstream s;
+                s.precision(2);
+                s << "at the map's edge (overlap " << u.overlap << " below " << config_.edge_overlap
+                  << "): following the odometry";
+                u.message = s.str();
+            } else {
+                T_map_odom_ = u.T_map_lidar * T_odom_lidar.inverse();
+                state_ = LocalisationState::kTracking;
+            }
             last_good_ = stamp;
         } else {
             T_map_lidar_ = predicted;

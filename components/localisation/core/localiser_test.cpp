@@ -247,6 +247,59 @@ TEST(Localiser, TracksAndRelocalisesAfterAKidnap) {
     EXPECT_LT(error_of(u.T_map_lidar, truth).translation, 0.1);
 }
 
+// The map's edge: a scan of which the map explains less than edge_overlap (here half of it is
+// structure the map never saw) is not registered; the pose follows the odometry from the last
+// scan the map covered (off the map), and tracking resumes where the map covers the scan again.
+TEST(Localiser, AtTheMapsEdgeThePoseFollowsTheOdometry) {
+    const SceneMap& s = scene_map();
+    // Unmapped structure: a grid of points 1 m apart (each survives the 1 m down-sampling) far
+    // above anything the map has.
+    std::vector<Eigen::Vector3f> unmapped;
+    for (int x = -20; x < 20; ++x)
+        for (int y = -20; y < 20; ++y)
+            for (int z = 25; z < 35; ++z) unmapped.emplace_back(x, y, z);
+    for (const double edge : {0.0, 0.7}) {
+        LocaliserConfig c;
+        c.edge_overlap = edge;
+        Localiser loc(s.map, c);
+        double stamp = 100.0;
+        LocalisationUpdate u;
+        for (int i = 2; i <= 5; ++i) {
+            OdometryInput o;
+            o.T_odom_lidar = s.path[std::size_t(i)];
+            u = loc.process(stamp, mt::view(s.scene, s.path[std::size_t(i)], 60.0), o);
+            stamp += 0.1;
+            ASSERT_TRUE(u.pose_valid) << u.message;
+        }
+        // At path[6]: the odometry 0.15 m off along the way, half the scan unmapped.
+        const Eigen::Isometry3d truth = s.path[6];
+        OdometryInput o;
+        o.T_odom_lidar = truth * mt::xy_yaw(0.15, 0.0, 0.0);
+        std::vector<Eigen::Vector3f> scan = mt::view(s.scene, truth, 60.0);
+        scan.insert(scan.end(), unmapped.begin(), unmapped.end());
+        u = loc.process(stamp, scan, o);
+        stamp += 0.1;
+        ASSERT_TRUE(u.pose_valid) << u.message;
+        EXPECT_GT(u.overlap, c.min_overlap) << u.message;
+        EXPECT_LT(u.overlap, 0.7) << u.message;
+        if (edge == 0.0) {
+            // Registered: the map corrects the odometry.
+            EXPECT_EQ(u.state, LocalisationState::kTracking) << u.message;
+            EXPECT_LT(error_of(u.T_map_lidar, truth).translation, 0.05) << u.message;
+        } else {
+            EXPECT_EQ(u.state, LocalisationState::kOffMap) << u.message;
+            EXPECT_NE(u.message.find("map's edge"), std::string::npos) << u.message;
+            EXPECT_NEAR(error_of(u.T_map_lidar, truth).translation, 0.15, 0.03) << u.message;
+            EXPECT_EQ(u.confidence, 0.0);
+            // The map covers the next scan again: tracked, corrected.
+            u = loc.process(stamp, mt::view(s.scene, s.path[7], 60.0),
+                            OdometryInput{s.path[7] * mt::xy_yaw(0.15, 0.0, 0.0), 0});
+            EXPECT_EQ(u.state, LocalisationState::kTracking) << u.message;
+            EXPECT_LT(error_of(u.T_map_lidar, s.path[7]).translation, 0.05) << u.message;
+        }
+    }
+}
+
 TEST(Localiser, RefusesAnInvalidConfigurationWithOneLine) {
     LocaliserConfig c;
     c.min_overlap = 2.0;
