@@ -210,7 +210,9 @@ FrameResult Odometry::register_frame(const common::PointCloud& cloud) {
     // the sweep; the pose at the stamp follows with that motion.
     if (motion_.poses() > 0 && cloud.stamp > motion_.last_stamp()) {
         const Eigen::Isometry3d T_odom_mid = r.T_odom_lidar * scan_.T_stamp_mid;
-        preprocessor_.redeskew_map_points(motion_.velocity_to(cloud.stamp, T_odom_mid), &scan_);
+        registration::Vector6d sweep = motion_.velocity_to(cloud.stamp, T_odom_mid);
+        if (prior_ != nullptr) prior_->deskew_velocity(cloud, &sweep);  // measured over the sweep
+        preprocessor_.redeskew_map_points(sweep, &scan_);
         r.T_odom_lidar = T_odom_mid * scan_.T_stamp_mid.inverse();
         r.deskewed = scan_.deskewed;
     }
