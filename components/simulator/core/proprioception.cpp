@@ -66,7 +66,7 @@ void ImuSimulator::run(const PoseAt& pose, double t0, double t1, std::vector<Imu
     const double gyro_sigma = config_.gyro_noise * std::sqrt(rate);
     const double accel_sigma = config_.accel_noise * std::sqrt(rate);
     const double walk_sigma = config_.gyro_bias_walk * std::sqrt(dt);
-    for (std::int64_t k = first_index(t0, rate); double(k) * dt < t1; ++k) {
+    for (std::int64_t k = first_index(t0, rate); double(k) * dt < t1 - 1e-9; ++k) {
         ImuSample s;
         s.stamp = double(k) * dt;
         Eigen::Vector3d rate_true, force_true;
@@ -93,7 +93,7 @@ void WheelSimulator::run(const PoseAt& pose, double t0, double t1, std::vector<W
     const double dt = 1.0 / rate;
     const double h = 1e-3;
     const Eigen::Isometry3d& B = config_.T_lidar_base;
-    for (std::int64_t k = first_index(t0, rate); double(k) * dt < t1; ++k) {
+    for (std::int64_t k = first_index(t0, rate); double(k) * dt < t1 - 1e-9; ++k) {
         const double t = double(k) * dt;
         const auto key = static_cast<std::uint64_t>(k);
         // The base's true forward speed and yaw rate, in its own frame.
