@@ -189,11 +189,6 @@ int run(const Args& a) {
     if (a.prior != "none") {
         const bool imu = a.prior != "wheel", wheel = a.prior != "imu";
         prior_samples = odometry::bench::read_prior_samples(a.dir, imu, wheel, &prior_config);
-        if (std::getenv("LTM_PRIOR_REPLACE")) prior_config.replace_rotation = true;
-        if (std::getenv("LTM_PRIOR_WINDOW"))
-            prior_config.bias_window = std::atof(std::getenv("LTM_PRIOR_WINDOW"));
-        if (std::getenv("LTM_PRIOR_GAIN"))
-            prior_config.bias_gain = std::atof(std::getenv("LTM_PRIOR_GAIN"));
         prior = std::make_unique<odometry::MotionPrior>(prior_config);
         odo.set_prior(prior.get());
         std::printf("motion prior: %s (%zu IMU, %zu wheel samples)\n", a.prior.c_str(),

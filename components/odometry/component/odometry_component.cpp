@@ -102,12 +102,15 @@ class OdometryComponent : public runtime::Component {
         odometry_->set_prior(prior_.get());
         ctx.subscribe<msg::Imu>("imu", TopicRole::kSensor, [this](const msg::Imu& m) {
             convert::ImuData d;
-            if (convert::from_msg(m, &d).empty()) prior_->add_imu(d.stamp, d.angular_velocity);
+            if (!convert::from_msg(m, &d).empty()) return;
+            prior_->add_imu(d.stamp, d.angular_velocity);
+            ++imu_samples_;
         });
         ctx.subscribe<msg::Odometry>(
             "wheel_odometry", TopicRole::kSensor, [this](const msg::Odometry& m) {
                 const convert::OdometryData d = convert::from_msg(m);
                 prior_->add_wheel(convert::to_seconds(d.stamp), d.T_parent_child);
+                ++wheel_samples_;
             });
         ctx.subscribe<msg::PointCloud2>("points", TopicRole::kSensor,
                                         [this](const msg::PointCloud2& m) { on_points(m); });
@@ -123,6 +126,14 @@ class OdometryComponent : public runtime::Component {
         ctx_.log().info(std::to_string(frames_) + " scans, " + std::to_string(tracked_) +
                         " tracked, " + std::to_string(frames_ - tracked_) + " not (see status), " +
                         std::to_string(maps_published_) + " local maps published");
+        if (imu_samples_ + wheel_samples_ > 0) {
+            const Eigen::Vector3d b = prior_->gyro_bias();
+            ctx_.log().info("motion prior: " + std::to_string(imu_samples_) + " IMU and " +
+                            std::to_string(wheel_samples_) +
+                            " wheel samples; gyro bias learnt (IMU frame) " +
+                            std::to_string(b.x()) + " " + std::to_string(b.y()) + " " +
+                            std::to_string(b.z()) + " rad/s");
+        }
     }
 
   private:
@@ -211,6 +222,7 @@ class OdometryComponent : public runtime::Component {
     double last_stamp_ = 0.0;
     bool has_last_ = false;
     std::uint64_t frames_ = 0, tracked_ = 0, warnings_ = 0, maps_published_ = 0;
+    std::uint64_t imu_samples_ = 0, wheel_samples_ = 0;
 };
 
 }  // namespace

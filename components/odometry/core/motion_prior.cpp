@@ -177,7 +177,7 @@ std::string MotionPrior::disagreement(const Eigen::Isometry3d& T0, double t0, do
         std::max(config_.gate_rotation * M_PI / 180.0, config_.gate_sigmas * sr);
     std::ostringstream s;
     s.precision(3);
-    if (turn > max_turn && !config_.replace_rotation) {
+    if (turn > max_turn) {
         s << "turned " << turn * 180.0 / M_PI << " deg off the motion prior's (at most "
           << max_turn * 180.0 / M_PI << ")";
         return s.str();
@@ -209,7 +209,7 @@ void MotionPrior::deskew_velocity(const common::PointCloud& cloud,
 Eigen::Isometry3d MotionPrior::fill_unobserved(
     const Eigen::Isometry3d& T0, double t0, double t1, const Eigen::Isometry3d& estimate,
     const std::vector<registration::Vector6d>& directions, double lever) const {
-    if ((directions.empty() && !config_.replace_rotation) || !(lever > 0.0)) return estimate;
+    if (directions.empty() || !(lever > 0.0)) return estimate;
     const std::optional<PriorMotion> m = between(t0, t1);
     if (!m) return estimate;
     const Eigen::Isometry3d prior = T0 * m->T_lidar0_lidar1;
@@ -227,13 +227,6 @@ Eigen::Isometry3d MotionPrior::fill_unobserved(
     if (!m->has_rotation) wanted.tail<3>() = fit.tail<3>();
     registration::Vector6d out = fit;
     for (const registration::Vector6d& v : directions) out += v.dot(wanted - fit) * v;
-    if (config_.replace_rotation && m->has_rotation) {
-        const double sr = std::sqrt(m->covariance.bottomRightCorner<3, 3>().diagonal().maxCoeff());
-        const double max_turn =
-            std::max(config_.gate_rotation * M_PI / 180.0, config_.gate_sigmas * sr);
-        if ((out.tail<3>() - wanted.tail<3>()).norm() / lever > max_turn)
-            out.tail<3>() = wanted.tail<3>();
-    }
     Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
     T.linear() = registration::so3_exp(out.tail<3>() / lever) * T0.linear();
     T.translation() = T0.translation() + out.head<3>();

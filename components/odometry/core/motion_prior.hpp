@@ -35,11 +35,8 @@ struct MotionPriorConfig {
     double gate_sigmas = 4.0;
     double gate_rotation = 1.0;     // [deg]
     double gate_translation = 0.3;  // [m]
-    // A fit turned off the gyro's turn: false: refused; true: kept with the gyro's rotation (the
-    // map grows on through a spin that the LiDAR alone cannot follow).
-    bool replace_rotation = false;
-    double max_gap = 0.2;       // [s] samples further apart than this: no prior across the gap
-    double keep_seconds = 5.0;  // [s] samples older than this before the newest are dropped
+    double max_gap = 0.2;           // [s] samples further apart than this: no prior across the gap
+    double keep_seconds = 5.0;      // [s] samples older than this before the newest are dropped
 };
 // The first problem of the config (its key), or none.
 std::optional<common::ConfigProblem> validate(const MotionPriorConfig& config);

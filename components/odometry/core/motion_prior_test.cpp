@@ -22,7 +22,8 @@ MotionPriorConfig turned_imu() {
 
 // Feeds a constant body rate `w_imu` (IMU frame) plus `bias` from t0 to t1.
 void feed_gyro(MotionPrior& p, double t0, double t1, const Vector3d& w_imu, const Vector3d& bias) {
-    for (int k = int(std::ceil(t0 * kRate)); k / kRate <= t1; ++k) p.add_imu(k / kRate, w_imu + bias);
+    for (int k = int(std::ceil(t0 * kRate)); k / kRate <= t1; ++k)
+        p.add_imu(k / kRate, w_imu + bias);
 }
 
 double angle_between(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {

@@ -48,8 +48,8 @@ void run(const registration::test::Scene& scene, Truth truth, int scans, MotionP
             for (; wheels && wheel / 50.0 <= t + kPeriod; ++wheel)
                 prior->add_wheel(wheel / 50.0, truth(0.0).inverse() * truth(wheel / 50.0));
         }
-        common::PointCloud c = registration::test::scan_scene(
-            scene, small_pattern(), truth(t), truth(t + kPeriod), 100 + i, true);
+        common::PointCloud c = registration::test::scan_scene(scene, small_pattern(), truth(t),
+                                                              truth(t + kPeriod), 100 + i, true);
         c.stamp = t;
         results->push_back(odo.register_frame(c));
         const Isometry3d d = truth(t).inverse() * results->back().T_odom_lidar;

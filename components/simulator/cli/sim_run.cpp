@@ -49,10 +49,7 @@ void write_motion_sensors(const SimRunOptions& o, const ScenarioConfig& sc, cons
     if (o.imu_rate <= 0.0 && o.wheel_rate <= 0.0) return;
     ImuConfig imu_config;
     imu_config.rate = o.imu_rate > 0.0 ? o.imu_rate : 1.0;
-    // A mount that is not the LiDAR's: a little behind and below it, turned 90 deg.
-    imu_config.T_lidar_imu.translation() = Eigen::Vector3d(-0.05, 0.0, -0.08);
-    imu_config.T_lidar_imu.linear() =
-        Eigen::AngleAxisd(M_PI / 2.0, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    imu_config.T_lidar_imu = default_imu_mount();
     WheelConfig wheel_config;
     wheel_config.rate = o.wheel_rate > 0.0 ? o.wheel_rate : 1.0;
     wheel_config.T_lidar_base.translation() = Eigen::Vector3d(0.0, 0.0, -sc.sensor.height);

@@ -281,8 +281,8 @@ TEST(SimRun, WritesTheRobotsMotionSensorsAndThinsScans) {
     const std::string bare = out + "_bare";
     std::filesystem::remove_all(bare);
     SimRunOptions b;
-    ASSERT_EQ(parse_sim_args({kFastTurns, "--frames", "0:1", "--imu-rate", "0", "--wheel-rate",
-                              "0", "--quiet", "--out", bare},
+    ASSERT_EQ(parse_sim_args({kFastTurns, "--frames", "0:1", "--imu-rate", "0", "--wheel-rate", "0",
+                              "--quiet", "--out", bare},
                              b, error),
               -1);
     ASSERT_EQ(run_sim(b), 0);

@@ -56,7 +56,7 @@ class SimulatorComponent : public runtime::Component {
         wheel_config_.rate = p.get<double>("wheel_rate", 50.0);
         if (imu_config_.rate < 0.0) p.fail("imu_rate", "must be >= 0 (0: no IMU)");
         if (wheel_config_.rate < 0.0) p.fail("wheel_rate", "must be >= 0 (0: no wheel odometry)");
-        imu_config_.T_lidar_imu = pose_param(p, "imu_extrinsic", imu_config_.T_lidar_imu);
+        imu_config_.T_lidar_imu = pose_param(p, "imu_extrinsic", default_imu_mount());
         try {
             ScenarioConfig sc = load_scenario(path);
             if (seed >= 0) sc.seed = static_cast<std::uint64_t>(seed);

@@ -43,6 +43,13 @@ std::int64_t first_index(double t, double rate) {
 
 }  // namespace
 
+Eigen::Isometry3d default_imu_mount() {
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.translation() = Eigen::Vector3d(-0.05, 0.0, -0.08);
+    T.linear() = Eigen::AngleAxisd(M_PI / 2.0, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    return T;
+}
+
 void true_inertial(const PoseAt& pose, double t, const Eigen::Isometry3d& T_lidar_frame,
                    Eigen::Vector3d* rate, Eigen::Vector3d* specific_force, double h) {
     const Eigen::Isometry3d a = pose(t - h) * T_lidar_frame;

@@ -46,6 +46,10 @@ struct WheelSample {
     Eigen::Vector3d angular = Eigen::Vector3d::Zero();              // [rad/s] base frame
 };
 
+// Where ltm_sim and the simulator component put the IMU unless told otherwise: 5 cm behind and
+// 8 cm below the LiDAR, turned 90 deg about z (a mount that is not the LiDAR's own frame).
+Eigen::Isometry3d default_imu_mount();
+
 // The true T_world_lidar at a time.
 using PoseAt = std::function<Eigen::Isometry3d(double)>;
 
