@@ -33,7 +33,7 @@ struct MotionPriorConfig {
     // gate_rotation / gate_translation is refused (a wrong minimum: a slide or a turn the robot
     // did not make).
     double gate_sigmas = 4.0;
-    double gate_rotation = 1.0;     // [deg]
+    double gate_rotation = 2.0;     // [deg]
     double gate_translation = 0.3;  // [m]
     double max_gap = 0.2;           // [s] samples further apart than this: no prior across the gap
     double keep_seconds = 5.0;      // [s] samples older than this before the newest are dropped
