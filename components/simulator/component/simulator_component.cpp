@@ -2,7 +2,8 @@
 // `t` when the scenario's sensor has it) and `ground_truth` (PoseStamped) at the sensor's rate,
 // or as fast as readers take them; and the robot's motion sensors (simulator/core/proprioception):
 // `imu` (sensor_msgs/Imu, frame `imu_frame_id`) at `imu_rate` and `wheel_odometry`
-// (nav_msgs/Odometry of `base_frame_id`) at `wheel_rate` (0: not published), each scan's sweep
+// (nav_msgs/Odometry of `base_frame_id`) at `wheel_rate` (default 0: not published; a launch
+// config that sets them gives the odometry its `prior.*` extrinsics too), each scan's sweep
 // of samples published just before the scan (a driver hands a scan over after its sweep).
 #include <chrono>
 #include <deque>
@@ -52,8 +53,8 @@ class SimulatorComponent : public runtime::Component {
         imu_frame_id_ = p.get<std::string>("imu_frame_id", "imu");
         base_frame_id_ = p.get<std::string>("base_frame_id", "base_link");
         wheel_frame_id_ = p.get<std::string>("wheel_frame_id", "wheel_odom");
-        imu_config_.rate = p.get<double>("imu_rate", 200.0);
-        wheel_config_.rate = p.get<double>("wheel_rate", 50.0);
+        imu_config_.rate = p.get<double>("imu_rate", 0.0);
+        wheel_config_.rate = p.get<double>("wheel_rate", 0.0);
         if (imu_config_.rate < 0.0) p.fail("imu_rate", "must be >= 0 (0: no IMU)");
         if (wheel_config_.rate < 0.0) p.fail("wheel_rate", "must be >= 0 (0: no wheel odometry)");
         imu_config_.T_lidar_imu = pose_param(p, "imu_extrinsic", default_imu_mount());
