@@ -16,6 +16,7 @@ const std::vector<MessageTypeInfo>& known_message_types() {
         info<msg::Time>(),
         info<msg::Header>(),
         info<msg::PointCloud2>(),
+        info<msg::Imu>(),
         info<msg::Point>(),
         info<msg::Pose>(),
         info<msg::PoseStamped>(),

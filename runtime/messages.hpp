@@ -36,6 +36,7 @@
 #include "ltm_msgs/msg/Status.h"
 #include "nav_msgs/msg/Odometry.h"
 #include "nav_msgs/msg/Path.h"
+#include "sensor_msgs/msg/Imu.h"
 #include "sensor_msgs/msg/PointCloud2.h"
 #include "sensor_msgs/msg/PointField.h"
 #include "std_msgs/msg/Header.h"
@@ -46,6 +47,7 @@ using Time = builtin_interfaces_msg_dds__Time_;
 using Header = std_msgs_msg_dds__Header_;
 using PointField = sensor_msgs_msg_dds__PointField_;
 using PointCloud2 = sensor_msgs_msg_dds__PointCloud2_;
+using Imu = sensor_msgs_msg_dds__Imu_;
 using Point = geometry_msgs_msg_dds__Point_;
 using Vector3 = geometry_msgs_msg_dds__Vector3_;
 using Quaternion = geometry_msgs_msg_dds__Quaternion_;
@@ -97,6 +99,7 @@ struct MessageTraits;  // descriptor() and ros_name for every top-level message 
 LTM_MESSAGE_TRAITS(builtin_interfaces_msg_dds__Time_, "builtin_interfaces/msg/Time")
 LTM_MESSAGE_TRAITS(std_msgs_msg_dds__Header_, "std_msgs/msg/Header")
 LTM_MESSAGE_TRAITS(sensor_msgs_msg_dds__PointCloud2_, "sensor_msgs/msg/PointCloud2")
+LTM_MESSAGE_TRAITS(sensor_msgs_msg_dds__Imu_, "sensor_msgs/msg/Imu")
 LTM_MESSAGE_TRAITS(geometry_msgs_msg_dds__Point_, "geometry_msgs/msg/Point")
 LTM_MESSAGE_TRAITS(geometry_msgs_msg_dds__Pose_, "geometry_msgs/msg/Pose")
 LTM_MESSAGE_TRAITS(geometry_msgs_msg_dds__PoseStamped_, "geometry_msgs/msg/PoseStamped")
