@@ -254,6 +254,7 @@ int run(const Args& a) {
     std::size_t ok = 0, right = 0, wrong = 0, none = 0, scored = 0;
     std::size_t near = 0, near_right = 0;  // scans within --near of a map keyframe
     std::vector<double> times, cpu_times, t_err, r_err;
+    std::vector<double> step_times[5];  // global mode: the localiser's steps (StepTimes)
     std::vector<double> track_err;
     // Track mode: events (start, jumps of the reference) and when they were settled.
     struct Event {
@@ -295,6 +296,9 @@ int run(const Args& a) {
             const localisation::GlobalLocalisation g = global.localise(scan.map_points);
             time_s = std::chrono::duration<double>(Clock::now() - t0).count();
             cpu_s = cpu_seconds() - cpu0;
+            const double steps[5] = {g.steps.places, g.steps.features, g.steps.probes,
+                                     g.steps.verification, g.steps.checks};
+            for (int k = 0; k < 5; ++k) step_times[k].push_back(steps[k]);
             has_pose = g.localised;
             pose = g.T_map_lidar;
             if (std::getenv("LTM_BENCH_VERBOSE")) std::printf("  %zu: %s\n", i, g.reason.c_str());
@@ -397,6 +401,14 @@ int run(const Args& a) {
                 percentile(times, 0.9), percentile(times, 1.0));
     std::printf("cpu a scan: median %.3f s, 90 %% %.3f s, max %.3f s\n", percentile(cpu_times, 0.5),
                 percentile(cpu_times, 0.9), percentile(cpu_times, 1.0));
+    if (a.mode == "global") {
+        std::printf(
+            "steps (wall, median): places %.3f s, features %.3f s, probes %.3f s, verification "
+            "%.3f s, checks %.3f s\n",
+            percentile(step_times[0], 0.5), percentile(step_times[1], 0.5),
+            percentile(step_times[2], 0.5), percentile(step_times[3], 0.5),
+            percentile(step_times[4], 0.5));
+    }
     if (a.mode == "track") {
         std::printf(
             "track: %.1f scans/s (odometry + localisation, one thread), relocalisations "
