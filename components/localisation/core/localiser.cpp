@@ -49,6 +49,9 @@ LocaliserConfig localiser_preset(common::SensorPreset preset) {
     c.global.verification.downsample = row.places.verify_downsample;
     c.global.verification.min_inliers = row.places.verify_min_inliers;
     c.global.verification.coarse_factor = row.places.verify_coarse_factor;
+    // A narrow view's probe can end in a poorer minimum beside the right pose that the fine pass
+    // alone accepts (GlobalLocaliserConfig::fine_only): both passes there.
+    c.global.fine_only = row.horizontal_fov_deg >= 360.0;
     c.off_map_margin = row.localisation.off_map_margin;
     return c;
 }

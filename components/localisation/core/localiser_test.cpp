@@ -182,6 +182,37 @@ TEST(GlobalLocaliser, AHintNarrowsTheSearchToItsPlace) {
     EXPECT_LT(error_of(r.T_map_lidar, truth).translation, 0.1);
 }
 
+TEST(GlobalLocaliser, TheSlideTestRunsOnlyWhereTheFitIsWeakAndFineOnlyGivesTheSamePose) {
+    const SceneMap& s = scene_map();
+    const Eigen::Isometry3d truth = s.path[7] * mt::xy_yaw(1.0, -1.5, 60.0);
+    const std::vector<Eigen::Vector3f> scan = mt::view(s.scene, truth, 60.0);
+    GlobalLocaliserConfig always;
+    always.slide_below_share = 1.0;
+    always.fine_only = false;
+    GlobalLocaliser reference(s.map, always);
+    const GlobalLocalisation a = reference.localise(scan);
+    ASSERT_TRUE(a.localised) << a.reason;
+    EXPECT_TRUE(a.slide_tested);
+    // The synthetic scene pins both horizontal directions: the weakest one holds a large share
+    // of the information, so the default skips the slide test, and verifies fine-only.
+    GlobalLocaliser g(s.map);
+    const GlobalLocalisation b = g.localise(scan);
+    ASSERT_TRUE(b.localised) << b.reason;
+    EXPECT_GT(b.weakest_share, g.config().slide_below_share);
+    EXPECT_FALSE(b.slide_tested);
+    EXPECT_LT(b.verified, a.verified);
+    EXPECT_LT(error_of(b.T_map_lidar, a.T_map_lidar).translation, 0.01);
+    EXPECT_LT(error_of(b.T_map_lidar, truth).translation, 0.1);
+    EXPECT_TRUE(b.covariance.allFinite());
+    EXPECT_GT(b.covariance(0, 0), 0.0);
+    // Out-of-range keys are refused, naming the key.
+    GlobalLocaliserConfig bad;
+    bad.fine_only_probe_share = 1.5;
+    const auto problem = validate(bad);
+    ASSERT_TRUE(problem);
+    EXPECT_EQ(problem->key, "fine_only_probe_share");
+}
+
 TEST(Localiser, TracksAndRelocalisesAfterAKidnap) {
     const SceneMap& s = scene_map();
     Localiser loc(s.map);
