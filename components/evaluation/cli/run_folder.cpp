@@ -180,7 +180,10 @@ RunFolder scan_run_folder(const std::string& dir) {
             run.figures.push_back(p.string());
         }
         if (top && name == "global_map.ply") run.map_clouds.push_back(p.string());
-        if (name == "changes_removed_added.ply") run.change_clouds.push_back(p.string());
+        // This run's changes (its folder or maintenance/), not a nested run's (another_day/...).
+        if (name == "changes_removed_added.ply" && std::count(rel.begin(), rel.end(), '/') <= 1) {
+            run.change_clouds.push_back(p.string());
+        }
         if (ends_with(name, ".mcap") && rel.find('/') == std::string::npos)
             read_status(run, p.string());
         if (name == "changes.txt" && run.maintenance_summary.empty())

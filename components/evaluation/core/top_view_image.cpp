@@ -116,7 +116,7 @@ TopView render_top_view(const std::vector<TopViewLayer>& layers,
             for (int x = 0; x < width; ++x) {
                 const std::uint32_t n = count[static_cast<std::size_t>(y) * width + x];
                 if (n == 0) continue;
-                const double a = 0.35 + 0.65 * std::log1p(static_cast<double>(n)) / log_most;
+                const double a = 0.55 + 0.45 * std::log1p(static_cast<double>(n)) / log_most;
                 const Rgb under = view.image.at(x, y);
                 Rgb c;
                 for (int k = 0; k < 3; ++k) {
