@@ -21,7 +21,7 @@ namespace fs = std::filesystem;
 const fs::path kRoot = fs::path(LTM_BINARY_DIR) / "site_sync_test" / "files";
 
 TEST(VersionFiles, AnOfferListsEveryFileAndRoundTrips) {
-    const std::string base = test::base_site(kRoot);
+    const std::string base = test::base_site(kRoot / "offer");  // its own: ctest runs tests at once
     const VersionOffer offer = scan_version(base + "/versions/v0002", 2, 4096);
     ASSERT_GE(offer.files.size(), 8u);
     bool manifest = false, maintained = false, summary = false;
@@ -75,8 +75,8 @@ TEST(VersionFiles, BadOffersAreRefusedInOneLine) {
 }
 
 TEST(TransferPlan, OnlyFilesTheRobotDoesNotHoldAreSent) {
-    const std::string base = test::base_site(kRoot);
-    const std::string robot = test::robot_site(kRoot, base);
+    const std::string base = test::base_site(kRoot / "plan");
+    const std::string robot = test::robot_site(kRoot / "plan", base);
     const VersionOffer offer = scan_version(base + "/versions/v0002", 2, 4096);
     HeldFiles held;
     held.add_site(robot);
