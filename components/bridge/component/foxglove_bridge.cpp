@@ -216,20 +216,10 @@ class FoxgloveBridge : public runtime::Component {
             ctx_.log().warn("not bridging " + topic + ": type " + type + " is unknown to ltm");
             return;
         }
-        QosProfile qos;
-        dds_reliability_kind_t rel = DDS_RELIABILITY_BEST_EFFORT;
-        dds_duration_t block = 0;
-        dds_durability_kind_t dur = DDS_DURABILITY_VOLATILE;
-        if (pub.qos) {
-            dds_qget_reliability(pub.qos, &rel, &block);
-            dds_qget_durability(pub.qos, &dur);
-        }
         // Never a reader that holds a writer back: best effort unless the writer is reliable, and
         // then a shallow keep-last (a late sample replaces an old one).
-        qos.reliable = rel == DDS_RELIABILITY_RELIABLE;
-        qos.transient_local = dur != DDS_DURABILITY_VOLATILE;
-        qos.keep_all = false;
-        qos.depth = qos.transient_local ? 16 : 4;
+        QosProfile qos = runtime::matching_reader_profile(pub.qos, 4);
+        if (qos.transient_local) qos.depth = 16;
         Channel c;
         c.id = next_channel_++;
         c.topic = topic.substr(2);

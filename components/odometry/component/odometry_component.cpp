@@ -20,6 +20,7 @@
 #include "runtime/convert/odometry.hpp"
 #include "runtime/convert/pointcloud2.hpp"
 #include "runtime/convert/status.hpp"
+#include "runtime/pose_param.hpp"
 
 namespace ltm::odometry {
 namespace {
@@ -49,27 +50,11 @@ StatusCode status_code(FrameStatus status) {
     return StatusCode::kUnknown;
 }
 
-// [x, y, z, roll, pitch, yaw] (m, deg) at `key`, or `fallback`.
-Eigen::Isometry3d pose_param(runtime::Parameters& p, const std::string& key,
-                             const Eigen::Isometry3d& fallback) {
-    if (!p.has(key)) return fallback;
-    const std::vector<double> v = p.get<std::vector<double>>(key, {});
-    if (v.size() != 6) p.fail(key, "expected [x, y, z, roll, pitch, yaw] (m, deg)");
-    const double d = M_PI / 180.0;
-    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-    T.translation() = Eigen::Vector3d(v[0], v[1], v[2]);
-    T.linear() = (Eigen::AngleAxisd(v[5] * d, Eigen::Vector3d::UnitZ()) *
-                  Eigen::AngleAxisd(v[4] * d, Eigen::Vector3d::UnitY()) *
-                  Eigen::AngleAxisd(v[3] * d, Eigen::Vector3d::UnitX()))
-                     .toRotationMatrix();
-    return T;
-}
-
 // The motion prior's `prior.*` parameters (defaults: MotionPriorConfig's).
 MotionPriorConfig load_prior_config(runtime::Parameters& p) {
     MotionPriorConfig c;
-    c.T_lidar_imu = pose_param(p, "prior.imu_extrinsic", c.T_lidar_imu);
-    c.T_lidar_base = pose_param(p, "prior.wheel_extrinsic", c.T_lidar_base);
+    c.T_lidar_imu = runtime::pose_param(p, "prior.imu_extrinsic", c.T_lidar_imu);
+    c.T_lidar_base = runtime::pose_param(p, "prior.wheel_extrinsic", c.T_lidar_base);
     c.gyro_noise = p.get<double>("prior.gyro_noise", c.gyro_noise);
     c.gyro_bias = p.get<double>("prior.gyro_bias", c.gyro_bias);
     c.bias_gain = p.get<double>("prior.bias_gain", c.bias_gain);

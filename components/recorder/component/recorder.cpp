@@ -101,18 +101,8 @@ class Recorder : public runtime::Component {
                 " is unknown to ltm (Cyclone DDS 0.10 as packaged has no type discovery)");
             return;
         }
-        QosProfile qos;
-        dds_reliability_kind_t rel = DDS_RELIABILITY_BEST_EFFORT;
-        dds_duration_t block = 0;
-        dds_durability_kind_t dur = DDS_DURABILITY_VOLATILE;
-        if (pub.qos) {
-            dds_qget_reliability(pub.qos, &rel, &block);
-            dds_qget_durability(pub.qos, &dur);
-        }
-        qos.reliable = rel == DDS_RELIABILITY_RELIABLE;
-        qos.transient_local = dur != DDS_DURABILITY_VOLATILE;
+        QosProfile qos = runtime::matching_reader_profile(pub.qos, 64);
         qos.keep_all = qos.reliable;  // no resource limits: the reader never blocks the writer
-        qos.depth = 64;
         const std::uint16_t schema = schema_for(*info);
         const std::uint16_t channel = writer_->add_channel(
             schema, topic, "cdr",

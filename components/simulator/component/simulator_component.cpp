@@ -17,6 +17,7 @@
 #include "runtime/convert/odometry.hpp"
 #include "runtime/convert/path.hpp"
 #include "runtime/convert/pointcloud2.hpp"
+#include "runtime/pose_param.hpp"
 #include "simulator/core/proprioception.hpp"
 #include "simulator/core/random.hpp"
 #include "simulator/core/scenario_yaml.hpp"
@@ -57,7 +58,7 @@ class SimulatorComponent : public runtime::Component {
         wheel_config_.rate = p.get<double>("wheel_rate", 0.0);
         if (imu_config_.rate < 0.0) p.fail("imu_rate", "must be >= 0 (0: no IMU)");
         if (wheel_config_.rate < 0.0) p.fail("wheel_rate", "must be >= 0 (0: no wheel odometry)");
-        imu_config_.T_lidar_imu = pose_param(p, "imu_extrinsic", default_imu_mount());
+        imu_config_.T_lidar_imu = runtime::pose_param(p, "imu_extrinsic", default_imu_mount());
         try {
             ScenarioConfig sc = load_scenario(path);
             if (seed >= 0) sc.seed = static_cast<std::uint64_t>(seed);
@@ -75,7 +76,8 @@ class SimulatorComponent : public runtime::Component {
         // The base on the ground below the LiDAR unless told otherwise.
         wheel_config_.T_lidar_base.translation() =
             Eigen::Vector3d(0.0, 0.0, -sim_->scenario().sensor.height);
-        wheel_config_.T_lidar_base = pose_param(p, "wheel_extrinsic", wheel_config_.T_lidar_base);
+        wheel_config_.T_lidar_base =
+            runtime::pose_param(p, "wheel_extrinsic", wheel_config_.T_lidar_base);
         const std::uint64_t motion_seed =
             hash_mix(sim_->scenario().seed, std::uint64_t(session), 0x1A2Bull);  // as ltm_sim
         imu_ = std::make_unique<ImuSimulator>(imu_config_, motion_seed);
@@ -135,22 +137,6 @@ class SimulatorComponent : public runtime::Component {
         ground_truth_.publish(*convert::to_msg(
             common::StampedPose{scan_.cloud.stamp, scan_.T_world_lidar}, world_frame_id_));
         progress_->update(i + 1 - first_);
-    }
-
-    // [x, y, z, roll, pitch, yaw] (m, deg): the sensor's frame in the LiDAR frame.
-    static Eigen::Isometry3d pose_param(runtime::Parameters& p, const std::string& key,
-                                        const Eigen::Isometry3d& fallback) {
-        if (!p.has(key)) return fallback;
-        const std::vector<double> v = p.get<std::vector<double>>(key, {});
-        if (v.size() != 6) p.fail(key, "expected [x, y, z, roll, pitch, yaw] (m, deg)");
-        const double d = M_PI / 180.0;
-        Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-        T.translation() = Eigen::Vector3d(v[0], v[1], v[2]);
-        T.linear() = (Eigen::AngleAxisd(v[5] * d, Eigen::Vector3d::UnitZ()) *
-                      Eigen::AngleAxisd(v[4] * d, Eigen::Vector3d::UnitY()) *
-                      Eigen::AngleAxisd(v[3] * d, Eigen::Vector3d::UnitX()))
-                         .toRotationMatrix();
-        return T;
     }
 
     // The IMU and wheel samples of scan i's sweep (to the next scan, or the sweep's end before a

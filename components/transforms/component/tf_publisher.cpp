@@ -3,13 +3,13 @@
 // odometry pose) and `tf_static` (base_link -> lidar, the extrinsic of the launch config,
 // transient-local). ROS 2 tools read /tf and /tf_static: remap tf: /tf, tf_static: /tf_static.
 #include <memory>
-#include <stdexcept>
 
 #include "runtime/component.hpp"
 #include "runtime/convert/dds_string.hpp"
 #include "runtime/convert/geometry.hpp"
 #include "runtime/convert/odometry.hpp"
 #include "runtime/convert/transform.hpp"
+#include "runtime/pose_param.hpp"
 #include "transforms/core/transform_tree.hpp"
 
 namespace ltm::transforms {
@@ -46,19 +46,12 @@ FrameNames frame_names(runtime::Parameters& p) {
     return n;
 }
 
-Eigen::Isometry3d extrinsic(runtime::Parameters& p) {
-    const auto v = p.get<std::vector<double>>("base_to_lidar", {0, 0, 0, 0, 0, 0});
-    try {
-        return pose_from_xyz_rpy(v);
-    } catch (const std::invalid_argument& e) {
-        p.fail("base_to_lidar", e.what());
-    }
-}
-
 class TfPublisher : public runtime::Component {
   public:
     explicit TfPublisher(runtime::ComponentContext& ctx)
-        : ctx_(ctx), tree_(frame_names(ctx.params()), extrinsic(ctx.params())) {
+        : ctx_(ctx),
+          tree_(frame_names(ctx.params()),
+                runtime::pose_param(ctx.params(), "base_to_lidar", Eigen::Isometry3d::Identity())) {
         tf_out_ = ctx.advertise<msg::TFMessage>("tf", TopicRole::kState);
         static_out_ = ctx.advertise<msg::TFMessage>("tf_static", TopicRole::kMap);
         ctx.subscribe<msg::Odometry>("odometry", TopicRole::kState, [this](const msg::Odometry& m) {

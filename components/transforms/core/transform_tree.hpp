@@ -9,11 +9,6 @@
 
 namespace ltm::transforms {
 
-// x y z [m] roll pitch yaw [deg] (rotations about the fixed x, y, z axes in that order, as ROS's
-// static_transform_publisher) as T_parent_child. Throws std::invalid_argument (one line) on a
-// wrong count or a value that is not finite.
-Eigen::Isometry3d pose_from_xyz_rpy(const std::vector<double>& xyz_rpy_deg);
-
 struct FrameNames {
     std::string map = "map", odom = "odom", base = "base_link", lidar = "lidar";
 };

@@ -5,28 +5,18 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "common/core/pose_xyz_rpy.hpp"
+
 namespace ltm::transforms {
 namespace {
 
 Eigen::Isometry3d pose(double x, double y, double z, double yaw_deg) {
-    return pose_from_xyz_rpy({x, y, z, 0.0, 0.0, yaw_deg});
-}
-
-TEST(TransformTree, XyzRpyAsRosStaticTransformPublisher) {
-    const Eigen::Isometry3d T = pose_from_xyz_rpy({1.0, 2.0, 3.0, 90.0, 0.0, 0.0});
-    EXPECT_TRUE(T.translation().isApprox(Eigen::Vector3d(1, 2, 3)));
-    // Roll 90 deg: y goes to z.
-    EXPECT_TRUE((T.linear() * Eigen::Vector3d::UnitY()).isApprox(Eigen::Vector3d::UnitZ(), 1e-12));
-    // Fixed axes x, then y, then z: R = Rz(yaw) Ry(pitch) Rx(roll).
-    const Eigen::Isometry3d R = pose_from_xyz_rpy({0, 0, 0, 90.0, 0.0, 90.0});
-    EXPECT_TRUE((R.linear() * Eigen::Vector3d::UnitY()).isApprox(Eigen::Vector3d::UnitZ(), 1e-12));
-    EXPECT_TRUE((R.linear() * Eigen::Vector3d::UnitX()).isApprox(Eigen::Vector3d::UnitY(), 1e-12));
-    EXPECT_THROW(pose_from_xyz_rpy({1.0, 2.0}), std::invalid_argument);
-    EXPECT_THROW(pose_from_xyz_rpy({0, 0, NAN, 0, 0, 0}), std::invalid_argument);
+    return common::pose_from_xyz_rpy({x, y, z, 0.0, 0.0, yaw_deg});
 }
 
 TEST(TransformTree, TheChainGivesTheLidarPoseInTheMap) {
-    const Eigen::Isometry3d T_base_lidar = pose_from_xyz_rpy({0.3, 0.0, 1.2, 0.0, 2.0, 180.0});
+    const Eigen::Isometry3d T_base_lidar =
+        common::pose_from_xyz_rpy({0.3, 0.0, 1.2, 0.0, 2.0, 180.0});
     TransformTree tree(FrameNames{}, T_base_lidar);
     const Transform s = tree.static_transform();
     EXPECT_EQ(s.parent, "base_link");
