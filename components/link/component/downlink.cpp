@@ -19,6 +19,7 @@
 #include "link/core/link_journal.hpp"
 #include "link/core/payload_codec.hpp"
 #include "link/core/receive_window.hpp"
+#include "link/core/write_fault.hpp"
 #include "runtime/component.hpp"
 #include "runtime/convert/dds_string.hpp"
 
@@ -218,10 +219,17 @@ class Downlink : public runtime::Component {
         for (const JournalRecord& r : ready) {
             try {
                 run.journal->append(r);
+                if (const std::string l = disk_.accepted("the journal's disk takes packets again");
+                    !l.empty())
+                    ctx_.log().info(l);
             } catch (const std::exception& e) {
-                // Not kept, not acknowledged: the robot sends it again.
-                ctx_.log().error(std::string("packet not journaled (the robot will resend it): ") +
-                                 e.what());
+                // Not kept, not acknowledged: the robot sends it again (and keeps it meanwhile).
+                // One line when the disk starts refusing; the resends it refuses are counted.
+                if (const std::string l = disk_.refused(
+                        std::string("packet not journaled (the robot keeps it and resends it): ") +
+                        e.what());
+                    !l.empty())
+                    ctx_.log().error(l);
                 run.window = std::make_unique<ReceiveWindow>(run.journal->last_seq(), max_held_);
                 break;
             }
@@ -266,8 +274,11 @@ class Downlink : public runtime::Component {
             std::to_string(held) + " waiting for a gap, " + std::to_string(lost) + " lost" +
             (other_robots_
                  ? ", " + std::to_string(other_robots_) + " packets of other robots ignored"
-                 : "");
-        if (lost > 0 || undeliverable_ > 0) {
+                 : "") +
+            (disk_.total() ? ", " + std::to_string(disk_.total()) +
+                                 " refused by the journal's disk (left to the robot)"
+                           : "");
+        if (lost > 0 || undeliverable_ > 0 || disk_.failing()) {
             ctx_.log().warn(line);
         } else {
             ctx_.log().info(line);
@@ -284,6 +295,7 @@ class Downlink : public runtime::Component {
     bool started_ = false;
     std::map<std::string, std::shared_ptr<runtime::RawWriterHandle>> writers_;
     std::uint64_t delivered_ = 0, replayed_ = 0, undeliverable_ = 0, other_robots_ = 0;
+    WriteFault disk_;  // the journal's disk refusing appends: one line a spell
     runtime::Publisher<msg::LinkAck> ack_out_;
 };
 

@@ -23,6 +23,7 @@
 #include "link/core/payload_codec.hpp"
 #include "link/core/robot_ids.hpp"
 #include "link/core/send_window.hpp"
+#include "link/core/write_fault.hpp"
 #include "runtime/component.hpp"
 #include "runtime/convert/dds_string.hpp"
 
@@ -219,15 +220,21 @@ class Uplink : public runtime::Component {
                                  " oldest unacknowledged packets dropped (" +
                                  std::to_string(dropped_) + " so far); raise max_backlog_mb");
             }
+            if (const std::string l = disk_.accepted("the backlog's disk takes messages again");
+                !l.empty())
+                ctx_.log().info(l);
             ++stored_;
             unsynced_ = true;
             stored_bytes_ += cdr.size();
             wire_bytes_ += r.payload.size();
         } catch (const std::exception& e) {
             // Without its journal copy the message cannot be sent (packets are sent from the
-            // journal): said every time; its seq goes to the next message, so the base station
-            // sees no gap.
-            ctx_.log().error("a " + topic + " message is lost: " + e.what());
+            // journal): said in one line when the disk starts refusing (counted after that, in
+            // the final report); its seq goes to the next message, so the base station sees no
+            // gap.
+            if (const std::string l = disk_.refused("a " + topic + " message is lost: " + e.what());
+                !l.empty())
+                ctx_.log().error(l);
         }
         pump();
     }
@@ -405,9 +412,14 @@ class Uplink : public runtime::Component {
             std::to_string(journal_->bytes() >> 20) + " MiB)" +
             (earlier_.empty() ? ""
                               : ", and " + std::to_string(earlier_.size()) +
-                                    " earlier runs' backlogs being sent");
+                                    " earlier runs' backlogs being sent") +
+            (disk_.total() ? "; " + std::to_string(disk_.total()) +
+                                 " messages lost: the backlog's disk refused them"
+                           : std::string());
         if (final && window_.acked() < journal_->last_seq()) {
             ctx_.log().warn(line + ": the unacknowledged packets stay in " + journal_->dir());
+        } else if (disk_.total() > 0) {
+            ctx_.log().warn(line);
         } else {
             ctx_.log().info(line);
         }
@@ -430,6 +442,7 @@ class Uplink : public runtime::Component {
     std::unique_ptr<RobotIdRenumbering> ids_;
     std::vector<Earlier> earlier_;
     std::uint64_t stored_ = 0, stored_bytes_ = 0, wire_bytes_ = 0, dropped_ = 0, send_errors_ = 0;
+    WriteFault disk_;  // the backlog's disk refusing appends: one line a spell
     PayloadCodecConfig codec_;
     bool unsynced_ = false;
     bool unmatched_ = true;       // no base station's reader matched (at the last pump)

@@ -210,11 +210,19 @@ std::size_t LinkJournal::append(const JournalRecord& r) {
     Segment& seg = segments_.back();
     if (std::fwrite(rec.data(), 1, rec.size(), out_) != rec.size() || std::fflush(out_) != 0) {
         const std::string why = sys_error();
-        // Leave the file as it was: a partial record would end the segment when reopened.
-        if (::ftruncate(fileno(out_), static_cast<off_t>(seg.bytes)) != 0) {
-        }
+        // Leave the file as it was: a partial record would end the segment when reopened. The
+        // stream is closed first (its close flushes what its buffer still holds), then cut back.
         std::fclose(out_);
         out_ = nullptr;
+        if (::truncate(seg.path.c_str(), static_cast<off_t>(seg.bytes)) != 0) {
+        }
+        // A segment this append opened holds nothing: it goes, or the retry of the same seq would
+        // open a second entry on the same file (and releasing the empty one would delete both).
+        if (seg.records == 0) {
+            std::error_code ec;
+            fs::remove(seg.path, ec);
+            segments_.pop_back();
+        }
         throw common::IoError(seg.path, "cannot append: " + why);
     }
     if (seg.records == 0) seg.first_seq = r.seq;

@@ -4,7 +4,14 @@
 // Topics are found through DDS discovery (the DCPSPublication built-in topic), so publishers
 // may appear at any time; each is read with QoS matching its writer. Writing happens on its own
 // thread behind a bounded queue: the recorder never stalls a publisher, and drops are reported.
+// The disk (issue 28): the folder of recordings is kept within `max_total_mb` / `keep_newest`
+// (oldest whole files removed, never this one), and recording stops with one line, the file
+// closed and readable, when the disk's free space falls under `min_free_mb` or this file alone
+// outgrows `max_total_mb`.
+#include <sys/statvfs.h>
 #include <time.h>
+
+#include <filesystem>
 
 #include <map>
 #include <memory>
@@ -12,6 +19,7 @@
 
 #include "common/core/io_error.hpp"
 #include "recorder/async/async_mcap_writer.hpp"
+#include "recorder/core/recording_budget.hpp"
 #include "runtime/component.hpp"
 #include "runtime/idl_schema.hpp"
 #include "runtime/topic_names.hpp"
@@ -52,6 +60,20 @@ class Recorder : public runtime::Component {
         AsyncWriterConfig ac;
         ac.max_queue_bytes = static_cast<std::size_t>(p.get<double>("queue_mb", 512.0) * (1 << 20));
         ac.thread_name = runtime::worker_thread_name(ctx.name(), "write");
+        // The disk's budget: the folder of recordings (with sub-folders: a day's output each).
+        budget_dir_ = p.path("budget_dir", "", PathCheck::kNone);
+        const double max_total_mb = p.get<double>("max_total_mb", 0.0);
+        const int keep_newest = p.get<int>("keep_newest", 0);
+        min_free_mb_ = p.get<double>("min_free_mb", 512.0);
+        if (!(max_total_mb >= 0)) p.fail("max_total_mb", "must be >= 0 (0: no bound)");
+        if (keep_newest < 0) p.fail("keep_newest", "must be >= 0 (0: no bound)");
+        if (!(min_free_mb_ >= 0)) p.fail("min_free_mb", "must be >= 0 (0: no floor)");
+        budget_.max_total_bytes = static_cast<std::uint64_t>(max_total_mb * (1 << 20));
+        budget_.keep_newest = static_cast<std::size_t>(keep_newest);
+        if (budget_dir_.empty() && (budget_.max_total_bytes > 0 || budget_.keep_newest > 0))
+            budget_dir_ = std::filesystem::path(file).parent_path().string();
+        if (!budget_dir_.empty() && budget_.max_total_bytes == 0 && budget_.keep_newest == 0)
+            p.fail("budget_dir", "give max_total_mb or keep_newest (the bounds of the folder)");
         try {
             writer_ = std::make_unique<AsyncMcapWriter>(
                 std::make_unique<McapWriter>(file, wc), ac,
@@ -60,6 +82,7 @@ class Recorder : public runtime::Component {
             p.fail("file", e.what());
         }
         file_ = file;
+        check_disk();
         // Every publication on the domain, past and future.
         const dds_entity_t reader = dds_create_reader(
             ctx.participant(), DDS_BUILTIN_TOPIC_DCPSPUBLICATION, nullptr, nullptr);
@@ -69,7 +92,10 @@ class Recorder : public runtime::Component {
         ctx.subscribe_reader(reader, [this](const void* s) {
             on_publication(*static_cast<const dds_builtintopic_endpoint_t*>(s));
         });
-        ctx.add_timer(5.0, [this] { report(false); });
+        ctx.add_timer(5.0, [this] {
+            check_disk();
+            report(false);
+        });
     }
 
     void on_shutdown() override {
@@ -80,13 +106,45 @@ class Recorder : public runtime::Component {
             st.failed ? st.error
                       : std::to_string(st.writer.messages) + " messages" +
                             (st.dropped() ? ", " + std::to_string(st.dropped()) + " dropped"
-                                          : std::string()));
+                                          : std::string()) +
+                            (stopped_ ? "; stopped early: " + stop_reason_ : std::string()));
         for (const auto& t : wanted_)
             if (!recording_.count(t))
                 ctx_.log().warn("topic " + t + " was never published; nothing recorded for it");
     }
 
   private:
+    // The folder within its budget, the disk above its floor; else recording stops (one line).
+    void check_disk() {
+        if (stopped_) return;
+        if (!budget_dir_.empty()) {
+            const BudgetResult r = enforce_budget(budget_dir_, budget_, {file_});
+            if (!r.removed.empty() || !r.error.empty())
+                (r.error.empty() ? ctx_.log().info(describe(r)) : ctx_.log().warn(describe(r)));
+            if (r.protected_over_budget)
+                return stop("this recording alone is " + std::to_string(r.kept_bytes >> 20) +
+                            " MiB, over max_total_mb " +
+                            std::to_string(budget_.max_total_bytes >> 20));
+        }
+        struct statvfs fs {};
+        const std::string folder = std::filesystem::path(file_).parent_path().string();
+        if (min_free_mb_ > 0 && ::statvfs(folder.empty() ? "." : folder.c_str(), &fs) == 0) {
+            const double free_mb = static_cast<double>(fs.f_bavail) * fs.f_frsize / (1 << 20);
+            if (free_mb < min_free_mb_)
+                stop(std::to_string(static_cast<long long>(free_mb)) + " MiB free on the disk, " +
+                     "under min_free_mb " + std::to_string(static_cast<long long>(min_free_mb_)) +
+                     " (the room is kept for the map's saves)");
+        }
+    }
+    void stop(const std::string& why) {
+        stopped_ = true;
+        stop_reason_ = why;
+        const AsyncWriterStats st = writer_->close();
+        ctx_.log().error("recording stopped: " + why + "; " + file_ + " closed with " +
+                         std::to_string(st.writer.messages) + " messages" +
+                         (st.failed ? " (" + st.error + ")" : std::string()));
+    }
+
     void on_publication(const dds_builtintopic_endpoint_t& pub) {
         const std::string topic = pub.topic_name ? pub.topic_name : "";
         const std::string type = pub.type_name ? pub.type_name : "";
@@ -148,7 +206,10 @@ class Recorder : public runtime::Component {
 
     runtime::ComponentContext& ctx_;
     std::unique_ptr<AsyncMcapWriter> writer_;
-    std::string file_;
+    std::string file_, budget_dir_, stop_reason_;
+    RecordingBudget budget_;
+    double min_free_mb_ = 512.0;
+    bool stopped_ = false;
     bool all_ = false;
     std::set<std::string> wanted_, refused_;
     std::map<std::string, std::uint16_t> recording_, schemas_;
