@@ -8,6 +8,9 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "common/core/io_error.hpp"
+#include "runtime/config_error.hpp"
+#include "runtime/log_file.hpp"
 #include "runtime/logging.hpp"
 #include "runtime/systemd_notify.hpp"
 
@@ -85,6 +88,13 @@ Host::Host(LaunchConfig config) : config_(std::move(config)) {
                 known += (known.empty() ? "" : ", ") + i->type;
             throw ConfigError(config_.file, spec.type_line, spec.name + ".type",
                               "unknown component type '" + spec.type + "' (known: " + known + ")");
+        }
+    }
+    if (!config_.log.file.empty()) {
+        try {
+            set_log_file(std::make_shared<RotatingLogFile>(config_.log));
+        } catch (const common::IoError& e) {
+            throw ConfigError(config_.file, config_.log_line, "log.file", e.what());
         }
     }
     domain_ = std::make_unique<Domain>(config_);

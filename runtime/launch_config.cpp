@@ -359,7 +359,7 @@ LaunchConfig load_launch_config(const std::string& path,
     check_keys(f, root, "",
                {"domain_id", "namespace", "dds", "qos", "topics", "on_component_error",
                 "max_restarts", "exit_when_sources_done", "idle_exit_s", "shutdown_timeout_s",
-                "finish_timeout_s", "components"});
+                "finish_timeout_s", "log", "components"});
 
     cfg.domain_id = scalar<int>(f, root, "domain_id", "", 0);
     if (cfg.domain_id < 0 || cfg.domain_id > 232)
@@ -397,6 +397,21 @@ LaunchConfig load_launch_config(const std::string& path,
         if (const YAML::Node sec = dds["security"]; sec.IsDefined() && !sec.IsNull())
             cfg.dds.security = load_security(f, dds, sec);
         load_dds_tuning(f, dds, cfg.dds);
+    }
+
+    if (const YAML::Node log = croot["log"]; log.IsDefined() && !log.IsNull()) {
+        if (!log.IsMap()) throw ConfigError(f, line_of(log), "log", "expected a map");
+        check_keys(f, log, "log", {"file", "max_mb", "keep"});
+        cfg.log.file = expand_env(scalar<std::string>(f, log, "file", "log", ""));
+        cfg.log.max_mb = scalar<double>(f, log, "max_mb", "log", cfg.log.max_mb);
+        cfg.log.keep = scalar<int>(f, log, "keep", "log", cfg.log.keep);
+        cfg.log_line = line_of(log);
+        if (cfg.log.file.empty())
+            throw ConfigError(f, cfg.log_line, "log.file", "required: the host's log file");
+        if (!(cfg.log.max_mb > 0))
+            throw ConfigError(f, key_line(log, "max_mb"), "log.max_mb", "must be > 0");
+        if (cfg.log.keep < 0)
+            throw ConfigError(f, key_line(log, "keep"), "log.keep", "must be >= 0");
     }
 
     for (TopicRole r : {TopicRole::kSensor, TopicRole::kState, TopicRole::kMap, TopicRole::kStream})

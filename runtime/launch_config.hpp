@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "runtime/dds_security.hpp"
+#include "runtime/log_file.hpp"
 #include "runtime/qos.hpp"
 
 namespace ltm::runtime {
@@ -68,6 +69,8 @@ struct LaunchConfig {
         0.0;  // hosts without sources: stop after this long without input (0: never)
     double shutdown_timeout_s = 30.0;  // the stop deadline after SIGINT/SIGTERM (final saves)
     double finish_timeout_s = 60.0;    // after the sources finished or the idle exit (final saves)
+    HostLogConfig log;                 // `log:` the host's lines also in a bounded file
+    int log_line = 0;
     std::vector<ComponentSpec> components;
 };
 

@@ -106,7 +106,7 @@ TEST(LaunchConfig, BadConfigurationsNameLineAndKey) {
     EXPECT_EQ(
         error_of("domain_id: 1\ncomponentz: []\n"),
         ":2: componentz: unknown key (known: components, dds, domain_id, exit_when_sources_done, "
-        "finish_timeout_s, idle_exit_s, max_restarts, namespace, on_component_error, qos, "
+        "finish_timeout_s, idle_exit_s, log, max_restarts, namespace, on_component_error, qos, "
         "shutdown_timeout_s, "
         "topics)");
     EXPECT_EQ(error_of("domain_id: x\ncomponents: [{type: a}]\n"),

@@ -11,6 +11,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -52,6 +53,12 @@ class Downlink : public runtime::Component {
             p.fail("output_namespace", "an absolute namespace (\"/robot1\")");
         if (!(ack_period > 0)) p.fail("ack_period_s", "must be > 0");
         if (max_held_ == 0) p.fail("max_held", "must be > 0");
+        // The journal is what a restarted base station replays to the mapping (nothing else holds
+        // the session's messages until its version is committed): beyond this bound its oldest
+        // packets go, said in one line, and a restart can no longer replay them.
+        const double max_journal_mb = p.get<double>("max_journal_mb", 4096.0);
+        if (!(max_journal_mb > 0)) p.fail("max_journal_mb", "must be > 0");
+        journal_config_.max_bytes = static_cast<std::uint64_t>(max_journal_mb * (1 << 20));
         dir_ += "/" + robot_;
         base_run_ = new_run_id();
         try {
@@ -90,7 +97,7 @@ class Downlink : public runtime::Component {
         for (const auto& [run, path] : run_folders(dir_)) {
             const std::string name = run_hex(run);
             Run r;
-            r.journal = std::make_unique<LinkJournal>(path);
+            r.journal = std::make_unique<LinkJournal>(path, journal_config_);
             if (!r.journal->recovery().empty())
                 ctx_.log().warn("journal of run " + name + ": " + r.journal->recovery());
             r.window = std::make_unique<ReceiveWindow>(r.journal->last_seq(), max_held_);
@@ -191,7 +198,7 @@ class Downlink : public runtime::Component {
         if (it == runs_.end()) {
             Run r;
             try {
-                r.journal = std::make_unique<LinkJournal>(dir_ + "/" + run_hex(m.run));
+                r.journal = std::make_unique<LinkJournal>(dir_ + "/" + run_hex(m.run), journal_config_);
             } catch (const common::IoError& e) {
                 ctx_.log().error(std::string("packets of run ") + run_hex(m.run) +
                                  " not kept: " + e.what());
@@ -218,7 +225,14 @@ class Downlink : public runtime::Component {
         run.dirty = true;
         for (const JournalRecord& r : ready) {
             try {
-                run.journal->append(r);
+                const std::size_t dropped = run.journal->append(r);
+                if (dropped > 0 && !capped_.count(m.run)) {
+                    capped_.insert(m.run);
+                    ctx_.log().error("journal of run " + run_hex(m.run) + " reached max_journal_mb: " +
+                                     "its oldest packets go (" + std::to_string(dropped) +
+                                     " now, more as it grows); a restarted base station can no " +
+                                     "longer replay them to the mapping");
+                }
                 if (const std::string l = disk_.accepted("the journal's disk takes packets again");
                     !l.empty())
                     ctx_.log().info(l);
@@ -296,6 +310,8 @@ class Downlink : public runtime::Component {
     std::map<std::string, std::shared_ptr<runtime::RawWriterHandle>> writers_;
     std::uint64_t delivered_ = 0, replayed_ = 0, undeliverable_ = 0, other_robots_ = 0;
     WriteFault disk_;  // the journal's disk refusing appends: one line a spell
+    JournalConfig journal_config_;
+    std::set<std::uint64_t> capped_;  // runs whose journal reached max_journal_mb (said once)
     runtime::Publisher<msg::LinkAck> ack_out_;
 };
 

@@ -146,7 +146,9 @@ AsyncWriterStats AsyncMcapWriter::stats() const {
 }
 
 void AsyncMcapWriter::maybe_report(std::unique_lock<std::mutex>& lock, bool force) {
-    if (!report_) return;
+    // After a write error the failure was said in its own line; the messages dropped since are
+    // in the final counters, not in a line a second.
+    if (!report_ || (stats_.failed && !force)) return;
     const auto now = std::chrono::steady_clock::now();
     const std::uint64_t drops = stats_.dropped();
     if (drops == reported_drops_) return;

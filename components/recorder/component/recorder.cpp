@@ -189,7 +189,7 @@ class Recorder : public runtime::Component {
 
     void report(bool final_report, const AsyncWriterStats* final_stats = nullptr) {
         const AsyncWriterStats st = final_stats ? *final_stats : writer_->stats();
-        if (!final_report && st.accepted == last_accepted_) return;
+        if (!final_report && (st.accepted == last_accepted_ || st.failed)) return;
         last_accepted_ = st.accepted;
         std::string line = std::to_string(final_report ? st.writer.messages : st.accepted) +
                            " messages on " + std::to_string(recording_.size()) + " topics, " +
