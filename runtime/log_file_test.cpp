@@ -22,10 +22,11 @@ std::string read(const std::string& path) {
     return ss.str();
 }
 
+// 64 bytes with its '\n'.
 std::string line(int i) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "line %06d of the host's log, padded to 64 bytes ......\n", i);
-    return buf;
+    std::string s = "line " + std::to_string(1000000 + i).substr(1) + " of the host's log";
+    s.resize(63, '.');
+    return s + "\n";
 }
 
 TEST(RotatingLogFile, StaysWithinKeepPlusOneFilesOfMaxSizeAndKeepsTheNewestLines) {
