@@ -11,9 +11,8 @@ HOST="$BUILD/bin/ltm_host"
 MCAP="$BUILD/bin/ltm_mcap"
 DOMAIN=189
 TMP="$(mktemp -d /tmp/ltm_full_disk.XXXXXX)"
-MOUNTS=()
-cleanup() {
-    for m in "${MOUNTS[@]}"; do umount -l "$m" 2>/dev/null; done
+cleanup() {  # the mounts are listed in a file: each check runs in a subshell
+    [ -f "$TMP/mounts" ] && while read -r m; do umount -l "$m" 2>/dev/null; done < "$TMP/mounts"
     rm -rf "$TMP"
 }
 trap cleanup EXIT
@@ -62,7 +61,7 @@ small_disk() {  # small_disk DIR SIZE: a tmpfs, or exit 77
     [ "$(id -u)" -eq 0 ] || { echo "SKIPPED: needs root to mount a small tmpfs"; exit 77; }
     mount -t tmpfs -o "size=$2" ltm_full_disk "$1" 2>"$TMP/mount.err" ||
         { echo "SKIPPED: cannot mount a tmpfs here: $(cat "$TMP/mount.err")"; exit 77; }
-    MOUNTS+=("$1")
+    echo "$1" >> "$TMP/mounts"
 }
 
 # Yesterday's and older recordings (sparse files: their size counts) beside today's.
@@ -109,12 +108,13 @@ a_full_disk_is_one_line_and_the_file_stays_readable() {
 # The free-space floor: recording stops before the disk is full, leaving the room to the map.
 the_free_space_floor_stops_the_recording() {
     local m="$TMP/floor"
-    small_disk "$m" 16M
-    run_recorder floor 7 "file: $m/rec.mcap" "min_free_mb: 12"
+    small_disk "$m" 64M
+    run_recorder floor 7 "file: $m/rec.mcap" "min_free_mb: 40"
     [ "$RC" = 0 ] || { echo "exit code $RC"; cat "$TMP/floor.log"; return 1; }
-    [ "$(grep -c 'recording stopped: [0-9]* MiB free on the disk, under min_free_mb 12' "$TMP/floor.log")" = 1 ] ||
+    [ "$(grep -c 'recording stopped: [0-9]* MiB free on the disk, under min_free_mb 40' "$TMP/floor.log")" = 1 ] ||
         { echo "expected one 'recording stopped' line:"; cat "$TMP/floor.log"; return 1; }
-    [ "$(df -k --output=avail "$m" | tail -1)" -gt 8192 ] || { echo "the floor did not keep the room"; return 1; }
+    grep -q 'disk full' "$TMP/floor.log" && { echo "the disk filled:"; cat "$TMP/floor.log"; return 1; }
+    [ "$(df -k --output=avail "$m" | tail -1)" -gt 16384 ] || { echo "the floor did not keep the room"; return 1; }
     readable "$m/rec.mcap"
 }
 

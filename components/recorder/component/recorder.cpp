@@ -92,6 +92,9 @@ class Recorder : public runtime::Component {
         ctx.subscribe_reader(reader, [this](const void* s) {
             on_publication(*static_cast<const dds_builtintopic_endpoint_t*>(s));
         });
+        // The free space every half second (a statvfs), the folder's budget (a walk of it) and
+        // the report every 5 s.
+        ctx.add_timer(0.5, [this] { check_free_space(); });
         ctx.add_timer(5.0, [this] {
             check_disk();
             report(false);
@@ -116,7 +119,7 @@ class Recorder : public runtime::Component {
   private:
     // The folder within its budget, the disk above its floor; else recording stops (one line).
     void check_disk() {
-        if (stopped_) return;
+        if (stopped_ || writer_->stats().failed) return;
         if (!budget_dir_.empty()) {
             const BudgetResult r = enforce_budget(budget_dir_, budget_, {file_});
             if (!r.removed.empty() || !r.error.empty())
@@ -126,9 +129,13 @@ class Recorder : public runtime::Component {
                             " MiB, over max_total_mb " +
                             std::to_string(budget_.max_total_bytes >> 20));
         }
+        check_free_space();
+    }
+    void check_free_space() {
+        if (stopped_ || min_free_mb_ <= 0) return;
         struct statvfs fs {};
         const std::string folder = std::filesystem::path(file_).parent_path().string();
-        if (min_free_mb_ > 0 && ::statvfs(folder.empty() ? "." : folder.c_str(), &fs) == 0) {
+        if (::statvfs(folder.empty() ? "." : folder.c_str(), &fs) == 0) {
             const double free_mb = static_cast<double>(fs.f_bavail) * fs.f_frsize / (1 << 20);
             if (free_mb < min_free_mb_)
                 stop(std::to_string(static_cast<long long>(free_mb)) + " MiB free on the disk, " +
@@ -138,6 +145,7 @@ class Recorder : public runtime::Component {
     }
     void stop(const std::string& why) {
         stopped_ = true;
+        if (writer_->stats().failed) return;  // said already (the disk refused a write)
         stop_reason_ = why;
         const AsyncWriterStats st = writer_->close();
         ctx_.log().error("recording stopped: " + why + "; " + file_ + " closed with " +
