@@ -65,7 +65,9 @@ EOT
     # Sleep a second so that the days' files differ in time (the budget goes by modification time).
     sleep 1
 done
-grep -h '\[recorder\] removed' "$WORK"/day*.log | sed 's/^[^[]*/  /' || true
+for day in $(seq 1 "$DAYS"); do
+    grep -h '\[recorder\] removed' "$WORK/day$day.log" | sed "s/^[^[]*/  day $day: /" || true
+done
 
 [ -n "$LINK" ] || exit 0
 echo "link: ./ltm bench link $LINK, journals sampled every second"
