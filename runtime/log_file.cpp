@@ -57,8 +57,8 @@ std::string RotatingLogFile::write(const std::string& line) {
     if (size_ > 0 && size_ + line.size() > max_bytes_) rotate();
     bool ok = out_ != nullptr;
     const char* why = "cannot open the file";
-    if (ok && (std::fwrite(line.data(), 1, line.size(), out_) != line.size() ||
-               std::fflush(out_) != 0)) {
+    if (ok &&
+        (std::fwrite(line.data(), 1, line.size(), out_) != line.size() || std::fflush(out_) != 0)) {
         ok = false;
         why = std::strerror(errno);
         // A line half written stays half: the next one starts on a line of its own.

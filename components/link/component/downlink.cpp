@@ -198,7 +198,8 @@ class Downlink : public runtime::Component {
         if (it == runs_.end()) {
             Run r;
             try {
-                r.journal = std::make_unique<LinkJournal>(dir_ + "/" + run_hex(m.run), journal_config_);
+                r.journal =
+                    std::make_unique<LinkJournal>(dir_ + "/" + run_hex(m.run), journal_config_);
             } catch (const common::IoError& e) {
                 ctx_.log().error(std::string("packets of run ") + run_hex(m.run) +
                                  " not kept: " + e.what());
@@ -228,8 +229,9 @@ class Downlink : public runtime::Component {
                 const std::size_t dropped = run.journal->append(r);
                 if (dropped > 0 && !capped_.count(m.run)) {
                     capped_.insert(m.run);
-                    ctx_.log().error("journal of run " + run_hex(m.run) + " reached max_journal_mb: " +
-                                     "its oldest packets go (" + std::to_string(dropped) +
+                    ctx_.log().error("journal of run " + run_hex(m.run) +
+                                     " reached max_journal_mb: " + "its oldest packets go (" +
+                                     std::to_string(dropped) +
                                      " now, more as it grows); a restarted base station can no " +
                                      "longer replay them to the mapping");
                 }

@@ -12,7 +12,6 @@
 #include <time.h>
 
 #include <filesystem>
-
 #include <map>
 #include <memory>
 #include <set>

@@ -22,9 +22,7 @@ std::string canonical_or_same(const std::string& path) {
     return ec ? path : c.string();
 }
 
-std::string mib(std::uint64_t bytes) {
-    return std::to_string((bytes + (1u << 19)) >> 20) + " MiB";
-}
+std::string mib(std::uint64_t bytes) { return std::to_string((bytes + (1u << 19)) >> 20) + " MiB"; }
 
 }  // namespace
 

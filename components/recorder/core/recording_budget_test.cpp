@@ -32,7 +32,7 @@ TEST(RecordingBudget, OldestWholeFilesGoFirstUntilTheSizeHolds) {
     make_file(d + "/day1/lifelong.mcap", 400, 400);
     make_file(d + "/day2/lifelong.mcap", 300, 300);
     make_file(d + "/day3/lifelong.mcap", 200, 200);
-    make_file(d + "/day3/notes.txt", 5000, 500);  // not a recording: never counted or removed
+    make_file(d + "/day3/notes.txt", 5000, 500);   // not a recording: never counted or removed
     make_file(d + "/day4/lifelong.mcap", 100, 0);  // being written
     RecordingBudget b;
     b.max_total_bytes = 350;
