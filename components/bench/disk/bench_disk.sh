@@ -79,8 +79,9 @@ bench=$!
 : > "$WORK/journals.tsv"
 t=0
 while kill -0 "$bench" 2>/dev/null; do
-    up=$(du -sb "$WORK"/link/robot*/uplink 2>/dev/null | awk '{s += $1} END {print s + 0}')
-    down=$(du -sb "$WORK"/link/base/downlink 2>/dev/null | awk '{s += $1} END {print s + 0}')
+    # (the folders appear as the hosts start: du's complaint about a missing one is no error)
+    up=$({ du -sb "$WORK"/link/robot*/uplink 2>/dev/null || true; } | awk '{s += $1} END {print s + 0}')
+    down=$({ du -sb "$WORK"/link/base/downlink 2>/dev/null || true; } | awk '{s += $1} END {print s + 0}')
     printf '%s\t%s\t%s\n' "$t" "$up" "$down" >> "$WORK/journals.tsv"
     sleep 1; t=$((t + 1))
 done
