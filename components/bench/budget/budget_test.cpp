@@ -282,5 +282,23 @@ TEST(RobotConfigsTest, HaveNoMeshComponent) {
     }
 }
 
+// Issue 28 item 3: in the one-process lifelong mission the local maps' DDS history is not kept
+// (the writer's transient-local history held a copy of every local map published), and the
+// benchmark's variant of the config keeps that setting, so it measures the mission as shipped.
+TEST(RobotConfigsTest, LifelongKeepsNoLocalMapHistory) {
+    const auto config =
+        YAML::LoadFile(std::string(LTM_SOURCE_DIR) + "/launch_configs/robot_lifelong.yaml");
+    const auto local_map = config["topics"]["local_map"];
+    ASSERT_TRUE(local_map.IsMap());
+    EXPECT_FALSE(local_map["transient_local"].as<bool>(true));
+    EXPECT_FALSE(local_map["depth"]);  // the readers' queues keep the role's depth
+    VariantOptions o;
+    o.replace = "sensor";
+    o.scans = "/data/scans";
+    const auto v = budget_variant(config, o);
+    EXPECT_FALSE(v["topics"]["local_map"]["transient_local"].as<bool>(true));
+    EXPECT_FALSE(v["topics"]["points"]);  // back to its declared role (sensor) for the bench
+}
+
 }  // namespace
 }  // namespace ltm::bench
