@@ -435,10 +435,24 @@ class LocalisationComponent : public runtime::Component {
 
     // --- the global thread: one query, its answer left for the worker's next scan ---
 
+    // Each query in the log with its wall-clock span (`./ltm bench budget` sets the poses
+    // published meanwhile against it).
     void answer_query(const GlobalRequest& request) {
+        const double t0 = wall_clock_s();
         GlobalAnswer a = answer(*global_localiser_, request);
+        char text[400];
+        std::snprintf(text, sizeof text,
+                      "global query for the scan at %.3f s: %.3f s (wall %.3f to %.3f): %s",
+                      request.stamp, a.result.time_s, t0, wall_clock_s(),
+                      a.result.localised ? "localised" : a.result.reason.c_str());
+        ctx_.log().info(text);
         std::lock_guard<std::mutex> lock(answer_mutex_);
         answer_ = std::move(a);
+    }
+
+    static double wall_clock_s() {
+        return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch())
+            .count();
     }
 
     // A new site: the SLAM's pose of a scan is its map pose (state OFF_MAP: not registered to a
