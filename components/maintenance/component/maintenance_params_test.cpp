@@ -24,7 +24,8 @@ TEST(MaintenanceParams, DefaultsThenOverrides) {
     runtime::Parameters p = params_of(
         "input: pose\noutput_dir: /tmp/x\nmap_file: /tmp/m.bin\nmaintain_every_s: 5\nsession: "
         "2\nmax_queue: 9\n"
-        "skip_while_busy: true\ncpu_share: 0.4\nvoxel_size: 0.3\nchange: {sigma: 2.5, voxel_level: true}\n"
+        "skip_while_busy: true\ncpu_share: 0.4\nvoxel_size: 0.3\nchange: {sigma: 2.5, voxel_level: "
+        "true}\n"
         "ground: {height: 0.4}\n");
     const MaintenanceComponentConfig c = load_maintenance_params(p);
     EXPECT_NO_THROW(p.check_all_used());
