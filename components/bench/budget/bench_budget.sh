@@ -15,6 +15,8 @@
 #                                and base_station_multi.yaml
 #   --config all                 the three in turn (default)
 #   --report-only                the reports again from D's samples and probes (no host runs)
+#   --maintenance-share X        the maintenance worker's CPU at most X of one core (its
+#                                cpu_share: passes spread, not bursts; default 0.35, 1: unpaced)
 #   --nice N                     the hosts at nice N (e.g. -5, root: the mission ahead of the
 #                                machine's other work, as on a robot's own computer; said in the
 #                                report)
@@ -26,7 +28,7 @@ ROOT="$(cd "$(dirname "$0")/../../.." && pwd)"
 BIN="${LTM_BUILD_DIR:-$ROOT/build}/bin"
 DOMAIN="${LTM_BENCH_DOMAIN:-66}"
 CONFIG=all; SCENARIO="$ROOT/components/simulator/scenarios/site_loop.yaml"; FRAMES=""; OUT=""; PERF=1
-REPORT_ONLY=0; NICE=""
+REPORT_ONLY=0; NICE=""; MAINT_SHARE=0.35
 usage() {
     echo "The robot's mission at the sensor's rate: CPU, memory, missed scans, latency per component"
     printf 'Usage: ./ltm bench budget [OPTIONS]\n\nOptions:\n'
@@ -37,7 +39,8 @@ usage() {
         "--out D" "the results (default results/budget-<time>)" \
         "--no-perf" "no perf profile of the robot's host" \
         "--report-only" "write the reports again from D's samples and probes (needs --out D)" \
-        "--nice N" "run the hosts at nice N (negative: ahead of the machine's other work; root)"
+        "--nice N" "run the hosts at nice N (negative: ahead of the machine's other work; root)" \
+        "--maintenance-share X" "the maintenance worker's CPU share of a core (default 0.35; 1: unpaced)"
 }
 fail() { echo "ltm bench budget: $*" >&2; exit 2; }
 while [ $# -gt 0 ]; do
@@ -45,11 +48,12 @@ while [ $# -gt 0 ]; do
         -h|--help) usage; exit 0 ;;
         --no-perf) PERF=0; shift ;;
         --report-only) REPORT_ONLY=1; shift ;;
-        --config|--scenario|--frames|--out|--nice)
+        --config|--scenario|--frames|--out|--nice|--maintenance-share)
             [ $# -ge 2 ] || fail "$1: needs a value"
             case "$1" in
                 --config) CONFIG="$2" ;; --scenario) SCENARIO="$2" ;;
                 --frames) FRAMES="$2" ;; --out) OUT="$2" ;; --nice) NICE="$2" ;;
+                --maintenance-share) MAINT_SHARE="$2" ;;
             esac
             shift 2 ;;
         *) fail "unknown argument '$1' (--help)" ;;
@@ -60,6 +64,7 @@ case "$CONFIG" in lifelong|base_station|base_station_multi|all) ;; *) fail "--co
 SCENARIO="$(cd "$(dirname "$SCENARIO")" && pwd)/$(basename "$SCENARIO")"
 [ -z "$FRAMES" ] || [[ "$FRAMES" =~ ^[0-9]*:[0-9]*$ ]] || fail "--frames: A:B, got '$FRAMES'"
 [ -z "$NICE" ] || [[ "$NICE" =~ ^-?[0-9]+$ ]] || fail "--nice: a whole number, got '$NICE'"
+[[ "$MAINT_SHARE" =~ ^[0-9]*\.?[0-9]+$ ]] || fail "--maintenance-share: a number in (0, 1], got '$MAINT_SHARE'"
 for exe in ltm_host ltm_sim ltm_budget; do
     [ -x "$BIN/$exe" ] || fail "$BIN/$exe is not built (ninja -C build ltm_host ltm_sim ltm_budget)"
 done
@@ -164,6 +169,8 @@ report_lifelong_day() {  # DAY SESSION
         --title "robot_lifelong.yaml, $NAME session $2 (day $day), VLP-32C at 10 Hz" \
         --note "$(cat "$dir/load.txt" 2>/dev/null)" > /dev/null || echo "  report failed: see above"
     component_lines "$dir/host.log" "$dir/report.md"
+    python3 "$ROOT/components/bench/budget/global_during.py" "$dir/host.log" "$dir/probe.csv" \
+        >> "$dir/report.md" || echo "  global_during.py failed: see above"
     perf_summary "$dir"
     echo "  report: $dir/report.md"
 }
@@ -177,9 +184,11 @@ run_lifelong_day() {  # DAY SESSION
         --probe-inputs points odometry pose map_changes || exit 2
     echo "  lifelong day $day: $(wc -l < "$s/times.txt") scans of session $2 at 10 Hz (about $(( $(wc -l < "$s/times.txt") / 600 + 1 )) min)"
     mark="$(cpu_mark)"
-    # Live: a scan that comes while the localiser is busy replaces the waiting one (counted).
+    # Live: a scan that comes while the localiser is busy replaces the waiting one (counted), and
+    # its global queries run on their own thread (global_thread, the default when live); the
+    # maintenance worker paced to a share of a core (cpu_share).
     start_host robot "$dir" "$dir/launch.yaml" LTM_SITE="$OUT/lifelong/site" -- \
-        --set localisation.skip_while_busy=true
+        --set localisation.skip_while_busy=true --set "maintenance.cpu_share=$MAINT_SHARE"
     profile robot "$dir"
     wait_hosts
     load_note "$mark" > "$dir/load.txt"

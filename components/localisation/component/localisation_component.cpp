@@ -17,6 +17,11 @@
 // scan is processed next, the skipped ones are counted); without it (offline runs) the component's
 // thread waits until each scan is done: back-pressure on the sensor, nothing skipped, and the host
 // sees the component busy until its last scan is localised.
+// With global_thread (default: as skip_while_busy, i.e. live), a global localisation does not run
+// on that worker: the localiser asks it (core/global_query.hpp) and a thread of its own
+// (`localisation/global`) answers, one query at a time, while the worker goes on tracking the
+// scans (or says "searching", no pose, while it has no fix); the answer is applied to the next
+// scan, carried forward by the odometry. Without it (offline) the query runs on the scan itself.
 //
 // A large map takes seconds to load. Offline (skip_while_busy false) it is loaded when the
 // component is configured: the host starts nothing before it is ready. Live, the worker loads it
@@ -96,6 +101,7 @@ struct Scan {
 };
 
 using Worker = runtime::Worker<Scan, PoseHint>;
+using GlobalWorker = runtime::Worker<GlobalRequest>;
 
 class LocalisationComponent : public runtime::Component {
   public:
@@ -103,6 +109,7 @@ class LocalisationComponent : public runtime::Component {
         auto& p = ctx.params();
         frame_id_ = p.get<std::string>("frame_id", "map");
         skip_while_busy_ = p.get<bool>("skip_while_busy", true);
+        global_thread_ = p.get<bool>("global_thread", skip_while_busy_);
         odometry_wait_s_ = p.get<double>("odometry_wait_s", 1.0);
         if (!(odometry_wait_s_ >= 0)) p.fail("odometry_wait_s", "must be >= 0 (0: do not wait)");
         hint_radius_.sigmas = p.get<double>("initial_pose.sigmas", hint_radius_.sigmas);
@@ -131,6 +138,17 @@ class LocalisationComponent : public runtime::Component {
                       0.0);
             });
 
+        // One global query at a time; a newer request (none while one runs: the localiser asks
+        // only then) would replace a waiting one. A stop abandons the query.
+        if (global_thread_)
+            global_.emplace(
+                runtime::WorkerOptions{ctx.name(), "global", 1, runtime::BusyPolicy::kDropOldest,
+                                       runtime::StopPolicy::kAbandon},
+                [this](GlobalWorker::Step& step, const StopToken&) { answer_query(*step.item); },
+                [this](const std::string& what) {
+                    event(StatusLevel::kError, StatusCode::kLocalisationFailed,
+                          common::one_line(what), 0.0);
+                });
         ctx.subscribe<msg::PointCloud2>("points", TopicRole::kSensor,
                                         [this](const msg::PointCloud2& m) { on_points(m); });
         ctx.subscribe<msg::Odometry>("odometry", TopicRole::kState,
@@ -164,9 +182,11 @@ class LocalisationComponent : public runtime::Component {
 
     ~LocalisationComponent() override {
         if (worker_) worker_->stop();
+        if (global_) global_->stop();
     }
 
     void on_activate() override {
+        if (global_) global_->start();
         // Live, the map is the worker's first job.
         worker_->start([this](const StopToken&) {
             if (map_state_ == kLoading) load_map();
@@ -180,6 +200,7 @@ class LocalisationComponent : public runtime::Component {
                 submit(std::move(s));
             });
         worker_->stop(ctx_.work_deadline());
+        if (global_) global_->stop();
         const StatusCounters c = counters();
         ctx_.log().info(std::to_string(scans_) + " scans: " + std::to_string(processed_) +
                         " localised (" + std::to_string(valid_) + " with a valid pose), " +
@@ -245,6 +266,11 @@ class LocalisationComponent : public runtime::Component {
             map = load_localisation_map(dir, localisation_map_preset(preset_), &refused);
             for (const std::string& r : refused) ctx_.log().warn("map: " + r + " (left out)");
             localiser_ = std::make_unique<Localiser>(map, config_);
+            if (global_) {
+                // The query's own (it keeps scratch state): never shared with tracking.
+                global_localiser_ = std::make_unique<GlobalLocaliser>(map, config_.global);
+                localiser_->set_global_elsewhere(true);
+            }
         } catch (const std::exception& e) {
             no_map_ = "no map to localise on: " + common::one_line(e.what());
             ctx_.log().error(no_map_ + " (the component runs and localises nothing)");
@@ -407,6 +433,28 @@ class LocalisationComponent : public runtime::Component {
         }
     }
 
+    // --- the global thread: one query, its answer left for the worker's next scan ---
+
+    // Each query in the log with its wall-clock span (`./ltm bench budget` sets the poses
+    // published meanwhile against it).
+    void answer_query(const GlobalRequest& request) {
+        const double t0 = wall_clock_s();
+        GlobalAnswer a = answer(*global_localiser_, request);
+        char text[400];
+        std::snprintf(text, sizeof text,
+                      "global query for the scan at %.3f s: %.3f s (wall %.3f to %.3f): %s",
+                      request.stamp, a.result.time_s, t0, wall_clock_s(),
+                      a.result.localised ? "localised" : a.result.reason.c_str());
+        ctx_.log().info(text);
+        std::lock_guard<std::mutex> lock(answer_mutex_);
+        answer_ = std::move(a);
+    }
+
+    static double wall_clock_s() {
+        return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch())
+            .count();
+    }
+
     // A new site: the SLAM's pose of a scan is its map pose (state OFF_MAP: not registered to a
     // saved map; the map is the one being made).
     void on_slam_pose(const msg::Odometry& m) {
@@ -452,8 +500,16 @@ class LocalisationComponent : public runtime::Component {
             return;
         }
         preprocessor_->run(scan.cloud, scan.odometry ? &scan.velocity : nullptr, &preprocessed_);
+        if (global_) {
+            std::lock_guard<std::mutex> lock(answer_mutex_);
+            if (answer_) localiser_->give_answer(std::move(*answer_));
+            answer_.reset();
+        }
         const LocalisationUpdate u =
             localiser_->process(scan.cloud.stamp, preprocessed_.map_points, scan.odometry);
+        if (global_)
+            if (std::optional<GlobalRequest> r = localiser_->take_request())
+                global_->push(std::move(*r));
         ++processed_;
         {
             std::lock_guard<std::mutex> lock(mutex_);
@@ -512,6 +568,7 @@ class LocalisationComponent : public runtime::Component {
     runtime::ComponentContext& ctx_;
     std::string frame_id_;
     bool skip_while_busy_ = true;
+    bool global_thread_ = true;  // global localisation on `localisation/global`
     double odometry_wait_s_ = 1.0;
     HintRadius hint_radius_;
     common::SensorPreset preset_ = common::SensorPreset::kHdl64;
@@ -548,6 +605,12 @@ class LocalisationComponent : public runtime::Component {
     runtime::Publisher<msg::PoseWithCovarianceStamped> site_pose_out_;
     runtime::Publisher<msg::TransformStamped> correction_out_;
     runtime::Publisher<msg::Status> events_out_;
+    // The global thread's, and its answer for the worker (under answer_mutex_).
+    std::unique_ptr<GlobalLocaliser> global_localiser_;
+    std::mutex answer_mutex_;
+    std::optional<GlobalAnswer> answer_;
+
+    std::optional<GlobalWorker> global_;
     std::optional<Worker> worker_;  // last: stopped before the members it uses go
 };
 

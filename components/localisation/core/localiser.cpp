@@ -82,6 +82,7 @@ Localiser::Localiser(std::shared_ptr<const LocalisationMap> map, const Localiser
 void Localiser::set_initial_pose(const PoseHint& hint) {
     hint_ = hint;
     last_global_ = -1e300;
+    handover_.hint_changed();  // a query out was asked without it
 }
 
 void Localiser::thin(const std::vector<Eigen::Vector3f>& points) {
@@ -191,7 +192,8 @@ LocalisationUpdate Localiser::process(double stamp, const std::vector<Eigen::Vec
     const Eigen::Isometry3d T_odom_lidar =
         odometry ? odometry->T_odom_lidar : T_map_odom_.inverse() * T_map_lidar_;
     std::string suspicion;
-    if (odometry && have_odometry_ && odometry->segment != segment_) {
+    const bool restarted = odometry && have_odometry_ && odometry->segment != segment_;
+    if (restarted) {
         suspicion = "the odometry restarted (segment " + std::to_string(odometry->segment) + ")";
     } else if (!first_ && stamp - last_stamp_ > config_.max_gap) {
         std::ostringstream s;
@@ -205,12 +207,36 @@ LocalisationUpdate Localiser::process(double stamp, const std::vector<Eigen::Vec
     first_ = false;
     last_stamp_ = stamp;
     thin(points);
+    // Elsewhere: the answer of the query out, carried forward to this scan.
+    if (answer_ && apply_answer(stamp, T_odom_lidar, &u)) {
+        if (!suspicion.empty()) u.message += " (after " + suspicion + ")";
+        finish(stamp, &u);
+        return u;
+    }
+    // Elsewhere, the new odometry frame until an answer comes: where the last estimate was (the
+    // odometry restarts at the robot's pose); tracking below checks it against the map.
+    if (elsewhere_ && restarted && have_fix_) T_map_odom_ = T_map_lidar_ * T_odom_lidar.inverse();
 
     const bool searching = state_ == LocalisationState::kInitialising ||
                            state_ == LocalisationState::kLost || !have_fix_;
-    if (searching || !suspicion.empty() || hint_) {
+    if (searching || !suspicion.empty() || hint_ || recheck_) {
         const bool due = !searching || hint_ || stamp - last_global_ >= config_.global_every;
-        if (due && run_global(stamp, points, T_odom_lidar, &u)) {
+        if (elsewhere_) {
+            // The query runs elsewhere; meanwhile the search goes on (no pose), or tracking does.
+            if (due) ask_global(stamp, points, T_odom_lidar, &u);
+            const std::string said = (suspicion.empty() ? "" : suspicion + "; ") + u.message;
+            if (searching) {
+                if (!due) u.message = "waiting to retry global localisation";
+            } else if (track(T_map_odom_ * T_odom_lidar, &u)) {
+                state_ = LocalisationState::kTracking;
+                last_good_ = stamp;
+                u.message = said + "; tracking meanwhile";
+            } else {
+                T_map_lidar_ = T_map_odom_ * T_odom_lidar;
+                state_ = LocalisationState::kLost;
+                u.message = said + "; " + u.message;
+            }
+        } else if (due && run_global(stamp, points, T_odom_lidar, &u)) {
             state_ = LocalisationState::kRelocalised;
             if (!suspicion.empty()) u.message += " (after " + suspicion + ")";
         } else if (searching) {
@@ -261,15 +287,19 @@ LocalisationUpdate Localiser::process(double stamp, const std::vector<Eigen::Vec
             }
         }
     }
-    u.state = state_;
-    u.pose_valid = have_fix_ && state_ != LocalisationState::kLost &&
-                   state_ != LocalisationState::kInitialising;
-    if (!u.pose_valid) u.T_map_lidar = T_map_lidar_;
-    u.T_map_odom = T_map_odom_;
-    u.lost_for = stamp - last_good_;
-    u.since_fix = have_fix_ ? stamp - last_fix_ : 0.0;
-    if (u.state == LocalisationState::kOffMap) u.confidence = 0.0;
+    finish(stamp, &u);
     return u;
+}
+
+void Localiser::finish(double stamp, LocalisationUpdate* u) {
+    u->state = state_;
+    u->pose_valid = have_fix_ && state_ != LocalisationState::kLost &&
+                    state_ != LocalisationState::kInitialising;
+    if (!u->pose_valid) u->T_map_lidar = T_map_lidar_;
+    u->T_map_odom = T_map_odom_;
+    u->lost_for = stamp - last_good_;
+    u->since_fix = have_fix_ ? stamp - last_fix_ : 0.0;
+    if (u->state == LocalisationState::kOffMap) u->confidence = 0.0;
 }
 
 }  // namespace ltm::localisation

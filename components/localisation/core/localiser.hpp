@@ -17,6 +17,7 @@
 #include "common/core/config_check.hpp"
 #include "common/core/sensor_preset.hpp"
 #include "localisation/core/global_localiser.hpp"
+#include "localisation/core/global_query.hpp"
 #include "localisation/core/localisation_map.hpp"
 #include "registration/core/registration.hpp"
 #include "registration/core/registration_config.hpp"
@@ -111,13 +112,16 @@ struct LocalisationUpdate {
     Eigen::Isometry3d T_map_odom = Eigen::Isometry3d::Identity();
     registration::Matrix6d covariance = registration::Matrix6d::Identity();  // [dt; dr]
     double confidence = 0.0;                                                 // 0..1
-    double inlier_fraction = 0.0;  // of this scan's registration
-    double overlap = 0.0;          // of this scan's registration: correspondences / points
-    bool global_ran = false;       // global localisation ran on this scan
-    double global_time_s = 0.0;    // its wall time
-    double lost_for = 0.0;         // sensor time since the last good registration [s]
-    double since_fix = 0.0;        // sensor time since the last global fix [s]
-    std::string message;           // one line: what happened (why lost, how relocalised)
+    double inlier_fraction = 0.0;   // of this scan's registration
+    double overlap = 0.0;           // of this scan's registration: correspondences / points
+    bool global_ran = false;        // global localisation ran on this scan (elsewhere: its
+                                    // answer came with this scan)
+    double global_time_s = 0.0;     // its wall time
+    bool global_asked = false;      // elsewhere: a global query was asked for this scan
+    double global_carried_s = 0.0;  // elsewhere: the answer's scan was this long before this one
+    double lost_for = 0.0;          // sensor time since the last good registration [s]
+    double since_fix = 0.0;         // sensor time since the last global fix [s]
+    std::string message;            // one line: what happened (why lost, how relocalised)
     EIGEN_MAKE_ALIGNED_OPERATOR_NEW
 };
 
@@ -135,6 +139,20 @@ class Localiser {
     LocalisationUpdate process(double stamp, const std::vector<Eigen::Vector3f>& points,
                                const std::optional<OdometryInput>& odometry = std::nullopt);
 
+    // Global localisation elsewhere (GlobalHandOver, global_query.hpp): process() never runs a
+    // global query itself; it asks one (take_request(), for another thread to answer with
+    // answer()) and applies the answer handed back (give_answer()) to the next scan it processes,
+    // carried forward by the odometry. Meanwhile it keeps tracking when it has a fix, and says
+    // "searching" (no valid pose) when it has none. Off (the default): the query runs inside
+    // process() on the scan that needs it (offline, deterministic).
+    void set_global_elsewhere(bool on) { elsewhere_ = on; }
+    bool global_elsewhere() const { return elsewhere_; }
+    // The query asked by the last process() (at most one out at a time), once.
+    std::optional<GlobalRequest> take_request();
+    // The answer to the query out: applied by the next process().
+    void give_answer(GlobalAnswer answer) { answer_ = std::move(answer); }
+    bool global_busy() const { return handover_.busy(); }
+
     LocalisationState state() const { return state_; }
     const LocalisationMap& map() const { return *map_; }
     const LocaliserConfig& config() const { return config_; }
@@ -142,6 +160,12 @@ class Localiser {
   private:
     bool run_global(double stamp, const std::vector<Eigen::Vector3f>& points,
                     const Eigen::Isometry3d& T_odom_lidar, LocalisationUpdate* u);
+    // Elsewhere (localiser_global.cpp): the answer waiting applied to this scan (true:
+    // relocalised), and a query asked for it.
+    bool apply_answer(double stamp, const Eigen::Isometry3d& T_odom_lidar, LocalisationUpdate* u);
+    void ask_global(double stamp, const std::vector<Eigen::Vector3f>& points,
+                    const Eigen::Isometry3d& T_odom_lidar, LocalisationUpdate* u);
+    void finish(double stamp, LocalisationUpdate* u);
     bool track(const Eigen::Isometry3d& predicted, LocalisationUpdate* u);
     void thin(const std::vector<Eigen::Vector3f>& points);
 
@@ -162,6 +186,12 @@ class Localiser {
     bool have_odometry_ = false;
     double last_stamp_ = 0.0, last_good_ = 0.0, last_fix_ = 0.0, last_global_ = -1e300;
     bool first_ = true;
+
+    bool elsewhere_ = false;
+    bool recheck_ = false;  // an answer was dropped (stale): ask again
+    GlobalHandOver handover_;
+    std::optional<GlobalRequest> request_;
+    std::optional<GlobalAnswer> answer_;
 };
 
 }  // namespace ltm::localisation

@@ -10,7 +10,11 @@
 // `maintain_every_s` seconds of scan time (stamps, so that a replay at any speed makes the same
 // passes) and the last one at shutdown. At most `max_queue` scans wait for the worker: then the
 // oldest is dropped (skip_while_busy, a live sensor) or the component's thread waits (offline:
-// back-pressure on the sensor, nothing dropped).
+// back-pressure on the sensor, nothing dropped). With `cpu_share` below 1 the worker spreads its
+// work: after each scan and between the regions of a pass it waits as long as keeps its CPU time
+// within that share of one core (maintenance/core/cpu_pacer.hpp), so a pass of seconds becomes a
+// slower pass at a bounded load instead of a burst; the scans wait in the queue meanwhile, and the
+// decisions are the same (nothing enters the map during a pass). Not while shutting down.
 //
 // With `map_file`, the maintained map is loaded from it when it exists (this run is the next
 // session on it; a damaged file refuses the component with one line and stays as it is) and saved
@@ -20,11 +24,18 @@
 // `output_dir` (created when missing) every pass writes there its change record (changes_NNNN.ltmc,
 // maintenance/core/change_record.hpp), appends its summary to changes.txt and rewrites
 // changes_removed_added.ply (every change of the run: removed voxels red, added green).
+#include <time.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <memory>
 #include <mutex>
+#include <optional>
+#include <thread>
 
 #include "common/core/io_error.hpp"
 #include "common/core/one_line.hpp"
@@ -32,6 +43,7 @@
 #include "maintenance/component/map_change_messages.hpp"
 #include "maintenance/core/change_record.hpp"
 #include "maintenance/core/change_report.hpp"
+#include "maintenance/core/cpu_pacer.hpp"
 #include "maintenance/core/long_term_map.hpp"
 #include "map/core/site_store.hpp"
 #include "runtime/component.hpp"
@@ -55,6 +67,19 @@ using runtime::StopToken;
 constexpr double kSameStamp = 1e-4;      // a scan and its pose [s]
 constexpr std::size_t kMaxPoses = 400;   // poses kept for pairing
 constexpr std::size_t kMaxWaiting = 50;  // scans waiting for their pose
+constexpr double kPaceBurst = 0.1;       // [s] of CPU the worker may use at once (cpu_share)
+constexpr double kPaceSlice = 0.05;      // [s] a wait is cut into (a stop ends it)
+
+double thread_cpu_s() {
+    timespec t{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+}
+
+double wall_s() {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
+        .count();
+}
 
 struct Scan {
     double stamp = 0.0;
@@ -81,6 +106,7 @@ class MaintenanceComponent : public runtime::Component {
                         stamp_);
               }) {
         auto& p = ctx.params();
+        if (config_.cpu_share < 1.0) pacer_.emplace(config_.cpu_share, kPaceBurst);
         load_map(p);
         if (!config_.output_dir.empty()) {
             std::error_code ec;
@@ -129,6 +155,7 @@ class MaintenanceComponent : public runtime::Component {
         // Scans still waiting for their poses: those will not come now.
         pairer_.release_all(
             [this](double, Points&&, std::optional<Eigen::Isometry3d>&&) { ++no_pose_; });
+        stopping_ = true;                    // no pacing: what waits is finished at full speed
         worker_.stop(ctx_.work_deadline());  // finishes the scans it has, within the deadline
         end_session();
         ctx_.log().info(std::to_string(scans_) + " scans: " + std::to_string(used_) +
@@ -234,15 +261,29 @@ class MaintenanceComponent : public runtime::Component {
             }
             map_->add_scan(scan.points, scan.T_world_sensor, stamp_);
             ++used_;
+            pace(stop);
             if (config_.maintain_every_s > 0 && stamp_ - last_pass_ >= config_.maintain_every_s &&
                 !stop.stop_requested()) {
                 last_pass_ = stamp_;
-                finish_pass(map_->maintain(), stamp_);
+                finish_pass(map_->maintain([&] { pace(stop); }), stamp_);
             }
         } catch (const std::exception& e) {
             event(StatusLevel::kError, StatusCode::kMaintenanceFailed, common::one_line(e.what()),
                   stamp_);
         }
+    }
+
+    // cpu_share: waits until the worker's CPU time is back within its share (see the file
+    // comment); at once when stopping.
+    void pace(const StopToken& stop) {
+        if (!pacer_) return;
+        double wait = pacer_->wait_after(thread_cpu_s(), wall_s());
+        while (wait > 0.0 && !stopping_ && !stop.stop_requested()) {
+            const double slice = std::min(wait, kPaceSlice);
+            std::this_thread::sleep_for(std::chrono::duration<double>(slice));
+            wait -= slice;
+        }
+        pacer_->waited(wall_s());
     }
 
     // The session's last pass and the map saved (after the worker stopped).
@@ -332,6 +373,8 @@ class MaintenanceComponent : public runtime::Component {
     double last_pass_ = 0.0, stamp_ = 0.0;
     std::uint64_t used_ = 0;
     std::uint32_t passes_ = 0;
+    std::optional<CpuPacer> pacer_;  // cpu_share < 1
+    std::atomic<bool> stopping_{false};
     ChangeSet all_;  // every change of the run (the PLY)
     std::ofstream summary_;
 

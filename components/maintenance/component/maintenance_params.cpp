@@ -39,6 +39,9 @@ MaintenanceComponentConfig load_maintenance_params(runtime::Parameters& p) {
     c.max_queue = p.get<int>("max_queue", c.max_queue);
     if (c.max_queue < 1) p.fail("max_queue", "must be >= 1");
     c.skip_while_busy = p.get<bool>("skip_while_busy", c.skip_while_busy);
+    c.cpu_share = p.get<double>("cpu_share", c.cpu_share);
+    if (!(c.cpu_share > 0.0 && c.cpu_share <= 1.0))
+        p.fail("cpu_share", "must be in (0, 1] (1: not paced)");
     visit_fields(c.maintenance, "", [&](const std::string& key, auto& field, const auto& /*rule*/) {
         using T = std::decay_t<decltype(field)>;
         if constexpr (is_optional<T>::value) {

@@ -34,6 +34,10 @@ struct MaintenanceComponentConfig {
     int session = -1;  // this run's session number on the map (-1: the loaded map's last + 1, or 0)
     int max_queue = 50;            // scans waiting for the worker
     bool skip_while_busy = false;  // a full queue drops its oldest scan (live) or waits (offline)
+    // The worker's CPU at most this share of one core (core/cpu_pacer.hpp, a bucket of 0.1 s):
+    // a pass is spread over time between its regions, and the scans after it too, rather than a
+    // burst of seconds (live). 1: as fast as it goes (offline).
+    double cpu_share = 1.0;
     MaintenanceConfig maintenance;
 };
 

@@ -24,7 +24,8 @@ TEST(MaintenanceParams, DefaultsThenOverrides) {
     runtime::Parameters p = params_of(
         "input: pose\noutput_dir: /tmp/x\nmap_file: /tmp/m.bin\nmaintain_every_s: 5\nsession: "
         "2\nmax_queue: 9\n"
-        "skip_while_busy: true\nvoxel_size: 0.3\nchange: {sigma: 2.5, voxel_level: true}\n"
+        "skip_while_busy: true\ncpu_share: 0.4\nvoxel_size: 0.3\nchange: {sigma: 2.5, voxel_level: "
+        "true}\n"
         "ground: {height: 0.4}\n");
     const MaintenanceComponentConfig c = load_maintenance_params(p);
     EXPECT_NO_THROW(p.check_all_used());
@@ -35,6 +36,7 @@ TEST(MaintenanceParams, DefaultsThenOverrides) {
     EXPECT_EQ(c.session, 2);
     EXPECT_EQ(c.max_queue, 9);
     EXPECT_TRUE(c.skip_while_busy);
+    EXPECT_DOUBLE_EQ(c.cpu_share, 0.4);
     EXPECT_DOUBLE_EQ(c.maintenance.voxel_size, 0.3);
     ASSERT_TRUE(c.maintenance.change.sigma.has_value());
     EXPECT_DOUBLE_EQ(*c.maintenance.change.sigma, 2.5);
@@ -55,6 +57,7 @@ TEST(MaintenanceParams, DefaultsThenOverrides) {
     EXPECT_TRUE(n.output_dir.empty());
     EXPECT_TRUE(n.map_file.empty());
     EXPECT_EQ(n.session, -1);
+    EXPECT_DOUBLE_EQ(n.cpu_share, 1.0);  // not paced
 }
 
 TEST(MaintenanceParams, ABadParameterIsOneLineNamingFileLineAndKey) {
@@ -78,6 +81,8 @@ TEST(MaintenanceParams, ABadParameterIsOneLineNamingFileLineAndKey) {
     // A site (site_dir) or a file (map_file), not both; a version needs a site.
     EXPECT_EQ(error_of("map_file: /tmp/m.bin\nsite_dir: /tmp/site"),
               "test.yaml:1: maintenance.map_file: give either map_file or site_dir, not both");
+    EXPECT_EQ(error_of("cpu_share: 0"),
+              "test.yaml:1: maintenance.cpu_share: must be in (0, 1] (1: not paced)");
     EXPECT_EQ(error_of("site_version: v0003"),
               "test.yaml:1: maintenance.site_version: needs site_dir");
     // An optional key is checked when given, and named among the known keys of a misspelt one.

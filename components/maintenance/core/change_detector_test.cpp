@@ -186,6 +186,56 @@ TEST(ChangeDetector, MovingCarRemovedWithinOneSession) {
     EXPECT_GE(kept_of(map, wall_cells), wall_cells.size() * 99 / 100);
 }
 
+// A pass spread over time (LongTermMap::maintain with work between its regions, as the component
+// paces it) decides exactly as the pass in one go: the same changes, the same map.
+TEST(ChangeDetector, SpreadPassesKeepTheSameMap) {
+    const Box wall{{-30, 9, 0}, {30, 9.3f, 3}, 1};
+    const Box shed{{-25, -12, 0}, {-20, -9, 2.5f}, 4};
+    MaintenanceConfig config = test_config();
+    config.region_size = 10.0;  // several regions in view at once
+    LongTermMap burst(config), spread(config);
+    std::vector<ChangeSet> burst_passes, spread_passes;
+    std::size_t betweens = 0;
+    double stamp = 0.0;
+    burst.begin_session(0, stamp);
+    spread.begin_session(0, stamp);
+    for (int k = 0; k <= 60; ++k) {
+        const double x_car = -20.0 + 5.0 * 0.2 * k;
+        const Box car{{float(x_car), -6.9f, 0.3f}, {float(x_car + 4), -5.1f, 1.5f}, 2};
+        const Eigen::Isometry3d T = at(-6.0 + 0.2 * k, 0.0);
+        const std::vector<Eigen::Vector3f> pts = cast({wall, shed, car}, T);
+        burst.add_scan(pts, T, stamp);
+        spread.add_scan(pts, T, stamp);
+        stamp += 0.2;
+        if (k % 15 == 14) {  // a pass every 3 s
+            burst_passes.push_back(burst.maintain());
+            spread_passes.push_back(spread.maintain([&] { ++betweens; }));
+        }
+    }
+    burst_passes.push_back(burst.end_session());
+    spread_passes.push_back(spread.end_session());
+    EXPECT_GT(betweens, 3u) << "passes over several regions";
+    ASSERT_EQ(burst_passes.size(), spread_passes.size());
+    std::size_t removed = 0;
+    for (std::size_t i = 0; i < burst_passes.size(); ++i) {
+        const ChangeSet &a = burst_passes[i], &b = spread_passes[i];
+        EXPECT_EQ(a.voxels_removed, b.voxels_removed) << i;
+        EXPECT_EQ(a.voxels_before, b.voxels_before) << i;
+        ASSERT_EQ(a.changes.size(), b.changes.size()) << i;
+        for (std::size_t j = 0; j < a.changes.size(); ++j) {
+            EXPECT_EQ(a.changes[j].id, b.changes[j].id);
+            EXPECT_EQ(a.changes[j].reason, b.changes[j].reason);
+            EXPECT_EQ(a.changes[j].voxels.size(), b.changes[j].voxels.size());
+        }
+        removed += a.voxels_removed;
+    }
+    EXPECT_GT(removed, 100u) << "the passing car left the map";
+    std::vector<Eigen::Vector3f> ca = burst.voxel_centres(), cb = spread.voxel_centres();
+    ASSERT_EQ(ca.size(), cb.size());
+    for (std::size_t i = 0; i < ca.size(); ++i) ASSERT_EQ(ca[i], cb[i]) << i;
+    EXPECT_EQ(burst.stats().voxels, spread.stats().voxels);
+}
+
 // One second of a 10 Hz LiDAR standing at the origin: a wall, a post, and a motorcyclist (1 m
 // long) riding 2 m along y = -5 past the post (0.3 m from its path: one segment with it); the
 // map with `config`. Returns how many of the rider's voxels and of the static ones it keeps.

@@ -116,15 +116,18 @@ void LongTermMap::flush_views() {
     }
 }
 
-ChangeSet LongTermMap::maintain() {
+ChangeSet LongTermMap::maintain(const std::function<void()>& between) {
     ChangeSet all;
     all.session = session_;
     all.map_time = now_;
     all.voxel_size = float(config_.voxel_size);
     const MaintenanceConfig decision = decision_config();
+    bool first = true;
     for (const std::pair<int, int>& key : dirty_) {  // the regions a view judged since the last
         const auto it = regions_.find(key);          // pass: nothing changed in the others
         if (it == regions_.end()) continue;
+        if (!first && between) between();
+        first = false;
         all.append(
             maintain_region(decision, *it->second, session_, now_, session_offset_, &next_change_));
     }
