@@ -23,10 +23,25 @@
 // when the component starts: the other components do not wait for it, and the newest scan waits
 // for it. A missing or damaged map does not stop the host: the component stays up, says why in one
 // line (log, `status`, and every scan's `localisation_status`) and localises nothing.
+//
+// Following a site (`site_poll_s` > 0, the split robot: its site_receiver commits the base
+// station's versions into the robot's site while it runs): a thread of its own looks for a newer
+// intact version every site_poll_s, loads it and builds its localiser while the worker goes on on
+// the old map; the worker swaps it in between two scans, the new localiser taking the old one's
+// track (the map frame stays put from version to version), so the poses go on without a gap or a
+// global localisation. A session that started with no map at all (a new site) starts localising
+// on the first version that arrives.
+//
+// A new site on the robot (`new_site_pose: odometry`): there is no SLAM on the robot, so each
+// odometry pose under the base station's map_to_odom (`slam_map_to_odom`) is the pose, state
+// OFF_MAP, never localised; while no map_to_odom came, or once the base station offers a version
+// (`site/offer`: it has a map, whose frame this session has not been placed in yet), only the
+// status goes out ("no map yet ...").
 #include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <future>
 #include <limits>
 #include <mutex>
 #include <optional>
@@ -34,6 +49,7 @@
 #include "common/core/one_line.hpp"
 #include "localisation/component/localisation_messages.hpp"
 #include "localisation/component/localiser_params.hpp"
+#include "localisation/core/site_follower.hpp"
 #include "map/core/site_anchor.hpp"
 #include "map/core/site_store.hpp"
 #include "odometry/core/odometry_config.hpp"
@@ -114,7 +130,14 @@ class LocalisationComponent : public runtime::Component {
         const odometry::OdometryConfig oc = odometry_in_use(ctx, preset_);
         preprocessor_.emplace(oc.preprocess, oc.voxel_size);
         map_dir_ = p.path("map", "", PathCheck::kNone);
+        site_poll_s_ = p.get<double>("site_poll_s", 0.0);
+        if (!(site_poll_s_ >= 0)) p.fail("site_poll_s", "must be >= 0 (0: the start version only)");
+        const std::string pose_from = p.get<std::string>("new_site_pose", "slam_odometry");
+        if (pose_from != "slam_odometry" && pose_from != "odometry")
+            p.fail("new_site_pose", "slam_odometry or odometry, not '" + pose_from + "'");
+        odometry_on_new_site_ = pose_from == "odometry";
         resolve_site_map(p);
+        if (site_poll_s_ > 0 && !on_site_) p.fail("site_poll_s", "needs site_dir");
         if (map_dir_.empty() && map_state_ != kFailed)
             p.fail("map", "required: the saved map directory to localise on (map_dir of mapping)");
         if (!skip_while_busy_ && map_state_ == kLoading) load_map();
@@ -152,10 +175,19 @@ class LocalisationComponent : public runtime::Component {
         if (on_site_) {
             ctx.subscribe<msg::Odometry>("slam_odometry", TopicRole::kState,
                                          [this](const msg::Odometry& m) { on_slam_pose(m); });
-            ctx.subscribe<msg::TransformStamped>("slam_map_to_odom", TopicRole::kState,
-                                                 [this](const msg::TransformStamped& m) {
-                                                     if (new_site_) correction_out_.publish(m);
-                                                 });
+            ctx.subscribe<msg::TransformStamped>(
+                "slam_map_to_odom", TopicRole::kState, [this](const msg::TransformStamped& m) {
+                    if (!new_site_) return;
+                    slam_map_odom_ = convert::to_isometry(m.transform);
+                    correction_out_.publish(m);
+                });
+            if (odometry_on_new_site_)
+                ctx.subscribe<msg::SiteOffer>("site/offer", TopicRole::kMap,
+                                              [this](const msg::SiteOffer&) { offered_ = true; });
+        }
+        if (site_poll_s_ > 0) {
+            follower_.emplace(site_dir_, in_use_);
+            ctx.add_timer(site_poll_s_, [this] { follow_site(); });
         }
         // Scans whose odometry is late: looked at a few times within odometry_wait_s.
         if (odometry_wait_s_ > 0)
@@ -164,6 +196,7 @@ class LocalisationComponent : public runtime::Component {
 
     ~LocalisationComponent() override {
         if (worker_) worker_->stop();
+        if (next_.valid()) next_.wait();
     }
 
     void on_activate() override {
@@ -201,6 +234,7 @@ class LocalisationComponent : public runtime::Component {
             return;
         }
         on_site_ = true;
+        site_dir_ = site;
         if (!map_dir_.empty()) p.fail("map", "give either map or site_dir, not both");
         map::SiteSession session;
         try {
@@ -222,6 +256,7 @@ class LocalisationComponent : public runtime::Component {
         }
         if (session.start) {
             map_dir_ = session.start->map_dir();
+            in_use_ = session.start->number;
             ctx_.log().info("site " + site + ": localising on " + session.describe());
             return;
         }
@@ -299,8 +334,124 @@ class LocalisationComponent : public runtime::Component {
             odom_frame_ = o.frame_id;
         }
         const double stamp = convert::to_seconds(o.stamp);
+        if (new_site_ && odometry_on_new_site_) {
+            new_site_odometry_pose(o);
+            return;
+        }
         pairer_->add_pose(stamp, std::move(o));
         pair();
+    }
+
+    // A new site on the robot (new_site_pose: odometry): the odometry under the base station's
+    // map_to_odom, never localised (see the file comment).
+    void new_site_odometry_pose(const convert::OdometryData& o) {
+        LocalisationUpdate u;
+        u.stamp = convert::to_seconds(o.stamp);
+        u.state = LocalisationState::kOffMap;
+        const std::optional<Eigen::Isometry3d> T_map_odom = slam_map_odom_;
+        if (offered_) {
+            u.message =
+                "no map yet: the base station's version is on its way (no pose until it "
+                "is here)";
+        } else if (!T_map_odom) {
+            u.message = "no map yet: odometry only (no map_to_odom from the base station yet)";
+        } else {
+            u.pose_valid = true;
+            u.T_map_lidar = *T_map_odom * o.T_parent_child;
+            u.T_map_odom = *T_map_odom;
+            u.covariance = o.pose_covariance;
+            u.message =
+                "no map yet: the odometry under the base station's map_to_odom, not "
+                "localised";
+        }
+        if (no_map_scans_++ % kNoMapRepeat == 0)
+            publish_event(StatusLevel::kWarn, StatusCode::kNoMap, u.message, u.stamp);
+        status_out_.publish(*status_msg(u, counters(), frame_id_));
+        if (!u.pose_valid) return;
+        ++valid_;
+        pose_out_.publish(*pose_msg(u, frame_id_));
+        if (T_site_map_) publish_site_pose(u);
+    }
+
+    // --- following the site (site_poll_s) ---
+
+    // A newer version loaded, with its localiser built, off the worker (the component's timer
+    // starts it, the next timer takes its result).
+    struct NextVersion {
+        std::optional<map::SiteVersion> version;
+        std::unique_ptr<Localiser> localiser;
+        std::vector<std::string> notes;
+        std::string error;  // it would not load: said, and the next poll looks again
+        double load_s = 0.0;
+    };
+
+    void follow_site() {
+        if (next_.valid()) {
+            if (next_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return;
+            take_next(next_.get());
+            return;  // a newer one again at the next poll
+        }
+        next_ = std::async(std::launch::async, [this] { return load_next(); });
+    }
+
+    NextVersion load_next() {
+        NextVersion n;
+        n.version = follower_->newer(&n.notes);
+        if (!n.version) return n;
+        const auto t0 = std::chrono::steady_clock::now();
+        try {
+            std::vector<std::string> refused;
+            auto map = load_localisation_map(n.version->map_dir(), localisation_map_preset(preset_),
+                                             &refused);
+            for (const std::string& r : refused) n.notes.push_back("map: " + r + " (left out)");
+            n.localiser = std::make_unique<Localiser>(map, config_);
+        } catch (const std::exception& e) {
+            n.error = common::one_line(e.what());
+        }
+        n.load_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        return n;
+    }
+
+    // The component's thread: a loaded version is handed to the worker, which swaps it in before
+    // its next scan; a new site's session localises from then on.
+    void take_next(NextVersion&& n) {
+        for (const std::string& note : n.notes) ctx_.log().warn("site " + site_dir_ + ": " + note);
+        if (!n.version) return;
+        follower_->adopt(n.version->number);  // a version that does not load is not tried again
+        if (!n.error.empty()) {
+            ctx_.log().error("site " + site_dir_ + ": " + n.version->name +
+                             " does not load: " + n.error + " (staying on what runs)");
+            return;
+        }
+        char text[300];
+        std::snprintf(text, sizeof text, "site %s: %s arrived (loaded in %.2f s): localising on it",
+                      site_dir_.c_str(), n.version->name.c_str(), n.load_s);
+        {
+            std::lock_guard<std::mutex> lock(mutex_);
+            pending_ = std::move(n.localiser);
+            pending_name_ = n.version->name;
+        }
+        event(StatusLevel::kOk, StatusCode::kOnMap, text, newest_scan_ > 0 ? newest_scan_ : 0.0);
+        if (map_state_ != kReady) {
+            no_map_.clear();
+            map_state_ = kReady;
+        }
+        new_site_ = false;
+    }
+
+    // The worker, before a scan: a newer version's localiser takes over the running one's track.
+    void swap_in_pending() {
+        std::unique_ptr<Localiser> next;
+        std::string name;
+        {
+            std::lock_guard<std::mutex> lock(mutex_);
+            if (!pending_) return;
+            next = std::move(pending_);
+            name = pending_name_;
+        }
+        if (localiser_) next->take_track(*localiser_);
+        localiser_ = std::move(next);
+        ctx_.log().info("now on " + name + " (" + to_string(localiser_->state()) + ")");
     }
 
     // Hands on every waiting scan whose odometry came (with its pose and twist), or will not come
@@ -398,6 +549,7 @@ class LocalisationComponent : public runtime::Component {
     void work(Worker::Step& step) {
         const std::optional<Scan>& scan = step.item;
         try {
+            swap_in_pending();
             if (step.latest && localiser_) localiser_->set_initial_pose(*step.latest);
             if (scan) process(*scan);
         } catch (const std::exception& e) {
@@ -519,7 +671,16 @@ class LocalisationComponent : public runtime::Component {
     std::string map_dir_;
     enum MapState : int { kLoading, kReady, kFailed };
     std::atomic<int> map_state_{kLoading};
-    bool on_site_ = false, new_site_ = false;  // site_dir given; and it has no version yet
+    bool on_site_ = false;               // site_dir given
+    std::atomic<bool> new_site_{false};  // and it has no version yet (until one arrives)
+    bool odometry_on_new_site_ = false;  // new_site_pose: odometry
+    std::atomic<bool> offered_{false};   // the base station offers a version (site/offer)
+    std::optional<Eigen::Isometry3d> slam_map_odom_;  // the base station's (component thread)
+    std::string site_dir_;
+    std::uint32_t in_use_ = 0;  // the version localised on (0: none)
+    double site_poll_s_ = 0.0;
+    std::optional<SiteFollower> follower_;  // used by one load_next() at a time
+    std::future<NextVersion> next_;
     std::string no_map_;  // why there is no map (set before map_state_ turns kFailed)
     std::atomic<std::uint64_t> no_map_scans_{0};
 
@@ -532,6 +693,8 @@ class LocalisationComponent : public runtime::Component {
 
     // Shared with the worker (under mutex_).
     std::mutex mutex_;
+    std::unique_ptr<Localiser> pending_;  // a newer version's, until the worker swaps it in
+    std::string pending_name_;
     StatusCounters counters_;  // but skipped_scans: the worker's count
     std::string odom_frame_ = "odom";
 

@@ -135,6 +135,11 @@ class Localiser {
     LocalisationUpdate process(double stamp, const std::vector<Eigen::Vector3f>& points,
                                const std::optional<OdometryInput>& odometry = std::nullopt);
 
+    // Goes on from another localiser's track (the same site's next version, whose map frame
+    // stays put): its state, pose, map_to_odom and odometry continue here, so the next scan is
+    // tracked on this map without a global localisation (one runs as usual when the other was
+    // initialising or lost). An initial pose hint given to the other is not taken.
+    void take_track(const Localiser& from);
     LocalisationState state() const { return state_; }
     const LocalisationMap& map() const { return *map_; }
     const LocaliserConfig& config() const { return config_; }
