@@ -80,10 +80,14 @@ class SplitRobot : public ltm::tests::TempDirTest {
                          ", mode: realtime, wait_for_readers: 3}\n");
         text += R"(  - name: localised
     type: trajectory_writer
-    params: {tum_file: ${LTM_OUT}/localisation_tum.txt, input: pose_with_covariance}
+    params:
+      tum_file: ${LTM_OUT}/localisation_tum.txt
+      input: pose_with_covariance
   - name: truth
     type: trajectory_writer
-    params: {tum_file: ${LTM_OUT}/ground_truth_tum.txt, input: pose}
+    params:
+      tum_file: ${LTM_OUT}/ground_truth_tum.txt
+      input: pose
     remap: {pose: ground_truth}
 )";
         return write("robot.yaml", text);

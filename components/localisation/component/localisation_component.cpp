@@ -187,7 +187,8 @@ class LocalisationComponent : public runtime::Component {
         }
         if (site_poll_s_ > 0) {
             follower_.emplace(site_dir_, in_use_);
-            ctx.add_timer(site_poll_s_, [this] { follow_site(); });
+            // A look every site_poll_s; a finished load is taken within 0.1 s.
+            ctx.add_timer(std::min(0.1, site_poll_s_), [this] { follow_site(); });
         }
         // Scans whose odometry is late: looked at a few times within odometry_wait_s.
         if (odometry_wait_s_ > 0)
@@ -261,9 +262,12 @@ class LocalisationComponent : public runtime::Component {
             return;
         }
         new_site_ = true;
-        no_map_ =
-            "new site: no map yet, nothing to localise on until the next session (the "
-            "SLAM's pose, slam_odometry, is the map pose meanwhile)";
+        no_map_ = odometry_on_new_site_
+                      ? "new site: no map yet (the odometry under the base station's map_to_odom "
+                        "is the pose meanwhile, never localised)"
+                      : "new site: no map yet, nothing to localise on until the next session (the "
+                        "SLAM's pose, slam_odometry, is the map pose meanwhile)";
+        if (site_poll_s_ > 0) no_map_ += "; a version that arrives is localised on at once";
         ctx_.log().info("site " + site + ": " + no_map_);
         map_state_ = kFailed;
     }
@@ -389,8 +393,11 @@ class LocalisationComponent : public runtime::Component {
         if (next_.valid()) {
             if (next_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return;
             take_next(next_.get());
-            return;  // a newer one again at the next poll
+            return;  // a newer one again at the next look
         }
+        const auto now = std::chrono::steady_clock::now();
+        if (now - last_look_ < std::chrono::duration<double>(site_poll_s_)) return;
+        last_look_ = now;
         next_ = std::async(std::launch::async, [this] { return load_next(); });
     }
 
@@ -681,6 +688,7 @@ class LocalisationComponent : public runtime::Component {
     double site_poll_s_ = 0.0;
     std::optional<SiteFollower> follower_;  // used by one load_next() at a time
     std::future<NextVersion> next_;
+    std::chrono::steady_clock::time_point last_look_;  // of follow_site (component thread)
     std::string no_map_;  // why there is no map (set before map_state_ turns kFailed)
     std::atomic<std::uint64_t> no_map_scans_{0};
 
