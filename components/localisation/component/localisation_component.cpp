@@ -41,7 +41,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <future>
 #include <limits>
 #include <mutex>
 #include <optional>
@@ -49,7 +48,7 @@
 #include "common/core/one_line.hpp"
 #include "localisation/component/localisation_messages.hpp"
 #include "localisation/component/localiser_params.hpp"
-#include "localisation/core/site_follower.hpp"
+#include "localisation/component/version_loader.hpp"
 #include "map/core/site_anchor.hpp"
 #include "map/core/site_store.hpp"
 #include "odometry/core/odometry_config.hpp"
@@ -186,7 +185,14 @@ class LocalisationComponent : public runtime::Component {
                                               [this](const msg::SiteOffer&) { offered_ = true; });
         }
         if (site_poll_s_ > 0) {
-            follower_.emplace(site_dir_, in_use_);
+            loader_.emplace(site_dir_, in_use_, site_poll_s_, localisation_map_preset(preset_),
+                            config_, [this](bool warning, const std::string& line) {
+                                if (warning) {
+                                    ctx_.log().warn(line);
+                                } else {
+                                    ctx_.log().error(line);
+                                }
+                            });
             // A look every site_poll_s; a finished load is taken within 0.1 s.
             ctx.add_timer(std::min(0.1, site_poll_s_), [this] { follow_site(); });
         }
@@ -197,7 +203,6 @@ class LocalisationComponent : public runtime::Component {
 
     ~LocalisationComponent() override {
         if (worker_) worker_->stop();
-        if (next_.valid()) next_.wait();
     }
 
     void on_activate() override {
@@ -379,64 +384,18 @@ class LocalisationComponent : public runtime::Component {
 
     // --- following the site (site_poll_s) ---
 
-    // A newer version loaded, with its localiser built, off the worker (the component's timer
-    // starts it, the next timer takes its result).
-    struct NextVersion {
-        std::optional<map::SiteVersion> version;
-        std::unique_ptr<Localiser> localiser;
-        std::vector<std::string> notes;
-        std::string error;  // it would not load: said, and the next poll looks again
-        double load_s = 0.0;
-    };
-
+    // The component's thread: a newer version, loaded (version_loader.hpp), is handed to the
+    // worker, which swaps it in before its next scan; a new site's session localises from then on.
     void follow_site() {
-        if (next_.valid()) {
-            if (next_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return;
-            take_next(next_.get());
-            return;  // a newer one again at the next look
-        }
-        const auto now = std::chrono::steady_clock::now();
-        if (now - last_look_ < std::chrono::duration<double>(site_poll_s_)) return;
-        last_look_ = now;
-        next_ = std::async(std::launch::async, [this] { return load_next(); });
-    }
-
-    NextVersion load_next() {
-        NextVersion n;
-        n.version = follower_->newer(&n.notes);
-        if (!n.version) return n;
-        const auto t0 = std::chrono::steady_clock::now();
-        try {
-            std::vector<std::string> refused;
-            auto map = load_localisation_map(n.version->map_dir(), localisation_map_preset(preset_),
-                                             &refused);
-            for (const std::string& r : refused) n.notes.push_back("map: " + r + " (left out)");
-            n.localiser = std::make_unique<Localiser>(map, config_);
-        } catch (const std::exception& e) {
-            n.error = common::one_line(e.what());
-        }
-        n.load_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        return n;
-    }
-
-    // The component's thread: a loaded version is handed to the worker, which swaps it in before
-    // its next scan; a new site's session localises from then on.
-    void take_next(NextVersion&& n) {
-        for (const std::string& note : n.notes) ctx_.log().warn("site " + site_dir_ + ": " + note);
-        if (!n.version) return;
-        follower_->adopt(n.version->number);  // a version that does not load is not tried again
-        if (!n.error.empty()) {
-            ctx_.log().error("site " + site_dir_ + ": " + n.version->name +
-                             " does not load: " + n.error + " (staying on what runs)");
-            return;
-        }
+        std::optional<VersionLoader::Loaded> n = loader_->poll();
+        if (!n) return;
         char text[300];
         std::snprintf(text, sizeof text, "site %s: %s arrived (loaded in %.2f s): localising on it",
-                      site_dir_.c_str(), n.version->name.c_str(), n.load_s);
+                      site_dir_.c_str(), n->version.name.c_str(), n->load_s);
         {
             std::lock_guard<std::mutex> lock(mutex_);
-            pending_ = std::move(n.localiser);
-            pending_name_ = n.version->name;
+            pending_ = std::move(n->localiser);
+            pending_name_ = n->version.name;
         }
         event(StatusLevel::kOk, StatusCode::kOnMap, text, newest_scan_ > 0 ? newest_scan_ : 0.0);
         if (map_state_ != kReady) {
@@ -686,9 +645,7 @@ class LocalisationComponent : public runtime::Component {
     std::string site_dir_;
     std::uint32_t in_use_ = 0;  // the version localised on (0: none)
     double site_poll_s_ = 0.0;
-    std::optional<SiteFollower> follower_;  // used by one load_next() at a time
-    std::future<NextVersion> next_;
-    std::chrono::steady_clock::time_point last_look_;  // of follow_site (component thread)
+    std::optional<VersionLoader> loader_;  // site_poll_s: its thread waited for at destruction
     std::string no_map_;  // why there is no map (set before map_state_ turns kFailed)
     std::atomic<std::uint64_t> no_map_scans_{0};
 
