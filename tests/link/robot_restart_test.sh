@@ -33,7 +33,7 @@ DDS=(--set domain_id=217 --set 'dds.interfaces=[lo]' --set dds.multicast=false
      --set 'dds.peers=[127.0.0.1]')
 robot() {  # robot LOG START COUNT [SETS...]
     local log="$1" start="$2" count="$3"; shift 3
-    env LTM_ROOT="$ROOT" LTM_DATA="$T/data" LTM_OUT="$T/robot" \
+    env LTM_ROOT="$ROOT" LTM_DATA="$T/data" LTM_OUT="$T/robot" LTM_SITE="$T/robot_site" \
         "$BIN/ltm_host" "$ROOT/launch_configs/robot.yaml" "${DDS[@]}" \
         --set odometry.preset=$preset --set keyframe_digest.preset=$preset \
         --set player.start="$start" --set player.count="$count" "$@" > "$T/$log" 2>&1

@@ -509,9 +509,10 @@ if [ "$COMPARE" = 1 ] && [ "$ROBOTS" = 1 ]; then
     echo "== the same scans in one process (the composed run): its map against the base station's"
     mkdir -p "$RUN/composed"
     # robot.yaml without its uplink (the odometry's outputs not remapped) and with a mapping: the
-    # robot's own settings, the scans played as fast as the odometry takes them.
-    awk '/^  - name:/ {skip = ($3 == "uplink" || $3 == "keyframe_digest" || $3 == "site_receiver")} skip {next}
-         /remap: \{keyframe: onboard\// {next} {print}' "$ROOT/launch_configs/robot.yaml" > "$WORK/composed.yaml"
+    # robot's own settings, the scans played as fast as the odometry takes them. Without the
+    # robot's localisation and maintenance (on its site: nothing this comparison looks at).
+    awk '/^  - name:/ {skip = ($3 == "uplink" || $3 == "keyframe_digest" || $3 == "site_receiver" || $3 == "localisation" || $3 == "maintenance")} skip {next}
+         /remap: \{keyframe: onboard\// {next} {sub(/wait_for_readers: 3 /, "wait_for_readers: 1 ")} {print}' "$ROOT/launch_configs/robot.yaml" > "$WORK/composed.yaml"
     printf '  - {name: mapping, type: mapping, params: {preset: %s, map_dir: "%s"}}\n' \
         "$preset" "$RUN/composed/map" >> "$WORK/composed.yaml"
     composed_sets=()

@@ -28,6 +28,20 @@
 // when the component starts: the other components do not wait for it, and the newest scan waits
 // for it. A missing or damaged map does not stop the host: the component stays up, says why in one
 // line (log, `status`, and every scan's `localisation_status`) and localises nothing.
+//
+// Following a site (`site_poll_s` > 0, the split robot: its site_receiver commits the base
+// station's versions into the robot's site while it runs): a thread of its own looks for a newer
+// intact version every site_poll_s, loads it and builds its localiser while the worker goes on on
+// the old map; the worker swaps it in between two scans, the new localiser taking the old one's
+// track (the map frame stays put from version to version), so the poses go on without a gap or a
+// global localisation. A session that started with no map at all (a new site) starts localising
+// on the first version that arrives.
+//
+// A new site on the robot (`new_site_pose: odometry`): there is no SLAM on the robot, so each
+// odometry pose under the base station's map_to_odom (`slam_map_to_odom`) is the pose, state
+// OFF_MAP, never localised; while no map_to_odom came, or once the base station offers a version
+// (`site/offer`: it has a map, whose frame this session has not been placed in yet), only the
+// status goes out ("no map yet ...").
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -39,6 +53,7 @@
 #include "common/core/one_line.hpp"
 #include "localisation/component/localisation_messages.hpp"
 #include "localisation/component/localiser_params.hpp"
+#include "localisation/component/version_loader.hpp"
 #include "map/core/site_anchor.hpp"
 #include "map/core/site_store.hpp"
 #include "odometry/core/odometry_config.hpp"
@@ -121,7 +136,14 @@ class LocalisationComponent : public runtime::Component {
         const odometry::OdometryConfig oc = odometry_in_use(ctx, preset_);
         preprocessor_.emplace(oc.preprocess, oc.voxel_size);
         map_dir_ = p.path("map", "", PathCheck::kNone);
+        site_poll_s_ = p.get<double>("site_poll_s", 0.0);
+        if (!(site_poll_s_ >= 0)) p.fail("site_poll_s", "must be >= 0 (0: the start version only)");
+        const std::string pose_from = p.get<std::string>("new_site_pose", "slam_odometry");
+        if (pose_from != "slam_odometry" && pose_from != "odometry")
+            p.fail("new_site_pose", "slam_odometry or odometry, not '" + pose_from + "'");
+        odometry_on_new_site_ = pose_from == "odometry";
         resolve_site_map(p);
+        if (site_poll_s_ > 0 && !on_site_) p.fail("site_poll_s", "needs site_dir");
         if (map_dir_.empty() && map_state_ != kFailed)
             p.fail("map", "required: the saved map directory to localise on (map_dir of mapping)");
         if (!skip_while_busy_ && map_state_ == kLoading) load_map();
@@ -170,10 +192,29 @@ class LocalisationComponent : public runtime::Component {
         if (on_site_) {
             ctx.subscribe<msg::Odometry>("slam_odometry", TopicRole::kState,
                                          [this](const msg::Odometry& m) { on_slam_pose(m); });
-            ctx.subscribe<msg::TransformStamped>("slam_map_to_odom", TopicRole::kState,
-                                                 [this](const msg::TransformStamped& m) {
-                                                     if (new_site_) correction_out_.publish(m);
-                                                 });
+            ctx.subscribe<msg::TransformStamped>(
+                "slam_map_to_odom", TopicRole::kState, [this](const msg::TransformStamped& m) {
+                    if (!new_site_) return;
+                    slam_map_odom_ = convert::to_isometry(m.transform);
+                    correction_out_.publish(m);
+                });
+            if (odometry_on_new_site_)
+                ctx.subscribe<msg::SiteOffer>("site/offer", TopicRole::kMap,
+                                              [this](const msg::SiteOffer&) { offered_ = true; });
+        }
+        if (site_poll_s_ > 0) {
+            loader_.emplace(
+                site_dir_, in_use_, site_poll_s_, localisation_map_preset(preset_), config_,
+                [this](bool warning, const std::string& line) {
+                    if (warning) {
+                        ctx_.log().warn(line);
+                    } else {
+                        ctx_.log().error(line);
+                    }
+                },
+                global_thread_);
+            // A look every site_poll_s; a finished load is taken within 0.1 s.
+            ctx.add_timer(std::min(0.1, site_poll_s_), [this] { follow_site(); });
         }
         // Scans whose odometry is late: looked at a few times within odometry_wait_s.
         if (odometry_wait_s_ > 0)
@@ -222,6 +263,7 @@ class LocalisationComponent : public runtime::Component {
             return;
         }
         on_site_ = true;
+        site_dir_ = site;
         if (!map_dir_.empty()) p.fail("map", "give either map or site_dir, not both");
         map::SiteSession session;
         try {
@@ -243,13 +285,17 @@ class LocalisationComponent : public runtime::Component {
         }
         if (session.start) {
             map_dir_ = session.start->map_dir();
+            in_use_ = session.start->number;
             ctx_.log().info("site " + site + ": localising on " + session.describe());
             return;
         }
         new_site_ = true;
-        no_map_ =
-            "new site: no map yet, nothing to localise on until the next session (the "
-            "SLAM's pose, slam_odometry, is the map pose meanwhile)";
+        no_map_ = odometry_on_new_site_
+                      ? "new site: no map yet (the odometry under the base station's map_to_odom "
+                        "is the pose meanwhile, never localised)"
+                      : "new site: no map yet, nothing to localise on until the next session (the "
+                        "SLAM's pose, slam_odometry, is the map pose meanwhile)";
+        if (site_poll_s_ > 0) no_map_ += "; a version that arrives is localised on at once";
         ctx_.log().info("site " + site + ": " + no_map_);
         map_state_ = kFailed;
     }
@@ -268,7 +314,8 @@ class LocalisationComponent : public runtime::Component {
             localiser_ = std::make_unique<Localiser>(map, config_);
             if (global_) {
                 // The query's own (it keeps scratch state): never shared with tracking.
-                global_localiser_ = std::make_unique<GlobalLocaliser>(map, config_.global);
+                std::lock_guard<std::mutex> lock(global_mutex_);
+                global_localiser_ = std::make_shared<GlobalLocaliser>(map, config_.global);
                 localiser_->set_global_elsewhere(true);
             }
         } catch (const std::exception& e) {
@@ -325,8 +372,90 @@ class LocalisationComponent : public runtime::Component {
             odom_frame_ = o.frame_id;
         }
         const double stamp = convert::to_seconds(o.stamp);
+        if (new_site_ && odometry_on_new_site_) {
+            new_site_odometry_pose(o);
+            return;
+        }
         pairer_->add_pose(stamp, std::move(o));
         pair();
+    }
+
+    // A new site on the robot (new_site_pose: odometry): the odometry under the base station's
+    // map_to_odom, never localised (see the file comment).
+    void new_site_odometry_pose(const convert::OdometryData& o) {
+        LocalisationUpdate u;
+        u.stamp = convert::to_seconds(o.stamp);
+        u.state = LocalisationState::kOffMap;
+        const std::optional<Eigen::Isometry3d> T_map_odom = slam_map_odom_;
+        if (offered_) {
+            u.message =
+                "no map yet: the base station's version is on its way (no pose until it "
+                "is here)";
+        } else if (!T_map_odom) {
+            u.message = "no map yet: odometry only (no map_to_odom from the base station yet)";
+        } else {
+            u.pose_valid = true;
+            u.T_map_lidar = *T_map_odom * o.T_parent_child;
+            u.T_map_odom = *T_map_odom;
+            u.covariance = o.pose_covariance;
+            u.message =
+                "no map yet: the odometry under the base station's map_to_odom, not "
+                "localised";
+        }
+        if (no_map_scans_++ % kNoMapRepeat == 0)
+            publish_event(StatusLevel::kWarn, StatusCode::kNoMap, u.message, u.stamp);
+        status_out_.publish(*status_msg(u, counters(), frame_id_));
+        if (!u.pose_valid) return;
+        ++valid_;
+        pose_out_.publish(*pose_msg(u, frame_id_));
+        if (T_site_map_) publish_site_pose(u);
+    }
+
+    // --- following the site (site_poll_s) ---
+
+    // The component's thread: a newer version, loaded (version_loader.hpp), is handed to the
+    // worker, which swaps it in before its next scan; a new site's session localises from then on.
+    void follow_site() {
+        std::optional<VersionLoader::Loaded> n = loader_->poll();
+        if (!n) return;
+        char text[300];
+        std::snprintf(text, sizeof text, "site %s: %s arrived (loaded in %.2f s): localising on it",
+                      site_dir_.c_str(), n->version.name.c_str(), n->load_s);
+        {
+            std::lock_guard<std::mutex> lock(mutex_);
+            pending_ = std::move(n->localiser);
+            pending_global_ = std::move(n->global);
+            pending_name_ = n->version.name;
+        }
+        event(StatusLevel::kOk, StatusCode::kOnMap, text, newest_scan_ > 0 ? newest_scan_ : 0.0);
+        if (map_state_ != kReady) {
+            no_map_.clear();
+            map_state_ = kReady;
+        }
+        new_site_ = false;
+    }
+
+    // The worker, before a scan: a newer version's localiser takes over the running one's track.
+    void swap_in_pending() {
+        std::unique_ptr<Localiser> next;
+        std::shared_ptr<GlobalLocaliser> global;
+        std::string name;
+        {
+            std::lock_guard<std::mutex> lock(mutex_);
+            if (!pending_) return;
+            next = std::move(pending_);
+            global = std::move(pending_global_);
+            name = pending_name_;
+        }
+        // The version's global localiser answers the next query (one out on the old map finishes
+        // there: the old one lives until then, and its answer holds in the same map frame).
+        if (global) {
+            std::lock_guard<std::mutex> lock(global_mutex_);
+            global_localiser_ = std::move(global);
+        }
+        if (localiser_) next->take_track(*localiser_);
+        localiser_ = std::move(next);
+        ctx_.log().info("now on " + name + " (" + to_string(localiser_->state()) + ")");
     }
 
     // Hands on every waiting scan whose odometry came (with its pose and twist), or will not come
@@ -424,6 +553,7 @@ class LocalisationComponent : public runtime::Component {
     void work(Worker::Step& step) {
         const std::optional<Scan>& scan = step.item;
         try {
+            swap_in_pending();
             if (step.latest && localiser_) localiser_->set_initial_pose(*step.latest);
             if (scan) process(*scan);
         } catch (const std::exception& e) {
@@ -439,7 +569,14 @@ class LocalisationComponent : public runtime::Component {
     // published meanwhile against it).
     void answer_query(const GlobalRequest& request) {
         const double t0 = wall_clock_s();
-        GlobalAnswer a = answer(*global_localiser_, request);
+        std::shared_ptr<GlobalLocaliser> global;
+        {
+            std::lock_guard<std::mutex> lock(global_mutex_);
+            global = global_localiser_;
+        }
+        // A localiser asks only with its version's global localiser swapped in with it.
+        if (!global) throw std::logic_error("a global query without a map to answer it on");
+        GlobalAnswer a = answer(*global, request);
         char text[400];
         std::snprintf(text, sizeof text,
                       "global query for the scan at %.3f s: %.3f s (wall %.3f to %.3f): %s",
@@ -576,7 +713,15 @@ class LocalisationComponent : public runtime::Component {
     std::string map_dir_;
     enum MapState : int { kLoading, kReady, kFailed };
     std::atomic<int> map_state_{kLoading};
-    bool on_site_ = false, new_site_ = false;  // site_dir given; and it has no version yet
+    bool on_site_ = false;               // site_dir given
+    std::atomic<bool> new_site_{false};  // and it has no version yet (until one arrives)
+    bool odometry_on_new_site_ = false;  // new_site_pose: odometry
+    std::atomic<bool> offered_{false};   // the base station offers a version (site/offer)
+    std::optional<Eigen::Isometry3d> slam_map_odom_;  // the base station's (component thread)
+    std::string site_dir_;
+    std::uint32_t in_use_ = 0;  // the version localised on (0: none)
+    double site_poll_s_ = 0.0;
+    std::optional<VersionLoader> loader_;  // site_poll_s: its thread waited for at destruction
     std::string no_map_;  // why there is no map (set before map_state_ turns kFailed)
     std::atomic<std::uint64_t> no_map_scans_{0};
 
@@ -589,6 +734,8 @@ class LocalisationComponent : public runtime::Component {
 
     // Shared with the worker (under mutex_).
     std::mutex mutex_;
+    std::unique_ptr<Localiser> pending_;  // a newer version's, until the worker swaps it in
+    std::string pending_name_;
     StatusCounters counters_;  // but skipped_scans: the worker's count
     std::string odom_frame_ = "odom";
 
@@ -606,7 +753,11 @@ class LocalisationComponent : public runtime::Component {
     runtime::Publisher<msg::TransformStamped> correction_out_;
     runtime::Publisher<msg::Status> events_out_;
     // The global thread's, and its answer for the worker (under answer_mutex_).
-    std::unique_ptr<GlobalLocaliser> global_localiser_;
+    // The global thread's (a query keeps scratch state in it: never shared with tracking); the
+    // worker swaps a newer version's in (global_mutex_).
+    std::shared_ptr<GlobalLocaliser> global_localiser_;
+    std::shared_ptr<GlobalLocaliser> pending_global_;  // with pending_
+    std::mutex global_mutex_;
     std::mutex answer_mutex_;
     std::optional<GlobalAnswer> answer_;
 

@@ -184,6 +184,27 @@ bool Localiser::track(const Eigen::Isometry3d& predicted, LocalisationUpdate* u)
     return true;
 }
 
+void Localiser::take_track(const Localiser& from) {
+    state_ = from.state_;
+    have_fix_ = from.have_fix_;
+    T_map_odom_ = from.T_map_odom_;
+    T_map_lidar_ = from.T_map_lidar_;
+    T_odom_lidar_ = from.T_odom_lidar_;
+    segment_ = from.segment_;
+    have_odometry_ = from.have_odometry_;
+    last_stamp_ = from.last_stamp_;
+    last_good_ = from.last_good_;
+    last_fix_ = from.last_fix_;
+    last_global_ = from.last_global_;
+    first_ = from.first_;
+    // A global query out for the old localiser answers for this one (the same map frame).
+    elsewhere_ = from.elsewhere_;
+    recheck_ = from.recheck_;
+    handover_ = from.handover_;
+    request_ = from.request_;
+    answer_ = from.answer_;
+}
+
 LocalisationUpdate Localiser::process(double stamp, const std::vector<Eigen::Vector3f>& points,
                                       const std::optional<OdometryInput>& odometry) {
     LocalisationUpdate u;

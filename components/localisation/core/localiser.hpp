@@ -153,6 +153,12 @@ class Localiser {
     void give_answer(GlobalAnswer answer) { answer_ = std::move(answer); }
     bool global_busy() const { return handover_.busy(); }
 
+    // Goes on from another localiser's track (the same site's next version, whose map frame
+    // stays put): its state, pose, map_to_odom and odometry continue here, so the next scan is
+    // tracked on this map without a global localisation (one runs as usual when the other was
+    // initialising or lost). An initial pose hint given to the other is not taken. Where the
+    // global localisation runs elsewhere, a query out for the other answers for this one.
+    void take_track(const Localiser& from);
     LocalisationState state() const { return state_; }
     const LocalisationMap& map() const { return *map_; }
     const LocaliserConfig& config() const { return config_; }

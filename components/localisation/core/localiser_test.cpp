@@ -265,6 +265,35 @@ TEST(Localiser, AtTheMapsEdgeThePoseFollowsTheOdometry) {
     }
 }
 
+// A newer version of the site arrives mid-session (the split robot): a localiser on it takes the
+// running one's track and tracks the next scan at once, without a global localisation; a fresh one
+// (the oracle) has to search first.
+TEST(Localiser, ANewVersionTakesTheTrackWithoutAGlobalLocalisation) {
+    const SceneMap& s = scene_map();
+    const Eigen::Isometry3d T_odom_map = mt::xy_yaw(12.0, 3.0, 31.0);
+    Localiser old_map(s.map);
+    double stamp = 50.0;
+    for (int i = 2; i <= 5; ++i) {
+        const LocalisationUpdate u =
+            old_map.process(stamp, mt::view(s.scene, s.path[std::size_t(i)], 60.0),
+                            OdometryInput{T_odom_map * s.path[std::size_t(i)], 0});
+        stamp += 0.1;
+        ASSERT_TRUE(u.pose_valid) << u.message;
+    }
+    const std::shared_ptr<const LocalisationMap> next = s.map;  // the map frame stays put
+    Localiser taken(next), fresh(next);
+    taken.take_track(old_map);
+    EXPECT_EQ(taken.state(), old_map.state());
+    const Eigen::Isometry3d truth = s.path[6];
+    const std::vector<Eigen::Vector3f> scan = mt::view(s.scene, truth, 60.0);
+    const LocalisationUpdate u = taken.process(stamp, scan, OdometryInput{T_odom_map * truth, 0});
+    EXPECT_EQ(u.state, LocalisationState::kTracking) << u.message;
+    EXPECT_FALSE(u.global_ran);
+    EXPECT_LT(error_of(u.T_map_lidar, truth).translation, 0.05) << u.message;
+    const LocalisationUpdate f = fresh.process(stamp, scan, OdometryInput{T_odom_map * truth, 0});
+    EXPECT_TRUE(f.global_ran) << "a fresh localiser searches first";
+}
+
 TEST(Localiser, RefusesAnInvalidConfigurationWithOneLine) {
     LocaliserConfig c;
     c.min_overlap = 2.0;

@@ -36,8 +36,9 @@ MapEditInputs::MapEditInputs(runtime::ComponentContext& ctx, Mapper& mapper, std
             });
     }
     if (options_.apply_changes)
-        ctx.subscribe<msg::MapChangeSet>("map_changes", TopicRole::kMap,
-                                         [this](const msg::MapChangeSet& m) { on_changes(m); });
+        for (const std::string& topic : options_.change_topics)
+            ctx.subscribe<msg::MapChangeSet>(topic, TopicRole::kMap,
+                                             [this](const msg::MapChangeSet& m) { on_changes(m); });
 }
 
 void MapEditInputs::keyframe(const common::KeyframeData& keyframe, std::uint32_t index) {

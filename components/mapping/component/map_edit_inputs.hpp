@@ -9,6 +9,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "common/core/local_map_data.hpp"
 #include "mapping/core/map_fix_pairer.hpp"
@@ -24,6 +25,9 @@ class MapEditInputs {
         bool use_fixes = false;        // and a loaded map to tie to
         int fix_after = 3;             // scans tracked in a row
         bool apply_changes = true;
+        // Where maintenance's changes come from: one robot's relative `map_changes`, or each
+        // robot's /R/map_changes at a base station (the robot's maintenance, over its uplink).
+        std::vector<std::string> change_topics = {"map_changes"};
         std::string frame_id = "map";
     };
     // `placed` is told when a fix placed a part on the loaded map; `optimise` when one made an

@@ -12,7 +12,8 @@
 // the inputs are /R/keyframe, /R/local_map, /R/odometry and the outputs /R/map_to_odom,
 // /R/corrected_odometry and /R/path, while pose_graph, loop_closure and status are shared; `status`
 // also says when a robot's session is joined to the map by a loop (until then its poses are its own
-// odometry's). Without robots (the default) the topic names are relative, as for one robot.
+// odometry's); each robot's /R/map_changes (its maintenance's, over its uplink) edit the local
+// maps. Without robots (the default) the topic names are relative, as for one robot.
 #include <algorithm>
 #include <cctype>
 #include <deque>
@@ -101,6 +102,11 @@ class MappingComponent : public runtime::Component {
             r->correction_out =
                 ctx.advertise<msg::TransformStamped>(topic(*r, "map_to_odom"), TopicRole::kState);
             robots_.push_back(std::move(robot));
+        }
+        // Each robot's maintenance findings (its uplink's map_changes), or the relative topic.
+        if (!robots.empty()) {
+            edits.change_topics.clear();
+            for (const auto& r : robots_) edits.change_topics.push_back(topic(*r, "map_changes"));
         }
         edits_ = std::make_unique<MapEditInputs>(
             ctx, *mapper_, robots_.front()->session, edits,

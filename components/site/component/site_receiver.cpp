@@ -220,7 +220,7 @@ class SiteReceiver : public runtime::Component {
                 kib(p.bytes_to_send) + " of " + kib(p.bytes_total) + "), " + kib(bytes_) +
                 " received as " + kib(wire_) + " on the wire in " +
                 std::to_string(mono_s() - started_).substr(0, 5) +
-                " s; the localisation uses it at its next start";
+                " s; a localisation with site_poll_s moves onto it, others at their next start";
             ctx_.log().info("received " + detail + " (" + made.dir + ")");
             for (const std::string& pruned : store_.pruned())
                 ctx_.log().info("removed " + pruned + " (more than keep_versions " +
