@@ -49,6 +49,7 @@
 #include <limits>
 #include <mutex>
 #include <optional>
+#include <stdexcept>
 
 #include "common/core/one_line.hpp"
 #include "localisation/component/localisation_messages.hpp"
