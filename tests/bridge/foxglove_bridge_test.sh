@@ -1,8 +1,11 @@
 #!/usr/bin/env bash
 # The Foxglove bridge with Foxglove's own client library (npm: @foxglove/ws-protocol,
-# @foxglove/omgidl-serialization, @mcap/core): a simulated robot runs in real time through the
-# host; the client subscribes, decodes every message with the schema the bridge advertised, and
-# each message must be byte for byte one the recorder took from DDS in the same run.
+# @foxglove/rosmsg2-serialization, @foxglove/omgidl-serialization, @mcap/core): a simulated robot
+# runs in real time through the host; the client subscribes, decodes every message with the
+# schema the bridge advertised (ros2msg for ROS 2's types), each message must be byte for byte one
+# the recorder took from DDS in the same run and decode as the recorder's IDL decodes it; the map
+# cloud (PointCloud2, <= max_points) and the mesh scene (SceneUpdate) decode and hold together.
+# Then, under DDS Security (a site's certificates made here), the bridge stays off unless asked.
 # Skipped (exit 77) when node/npm or the npm registry are not there.
 set -uo pipefail
 ROOT="$(cd "$(dirname "$0")/../.." && pwd)"
@@ -11,7 +14,8 @@ HERE="$ROOT/tests/bridge"
 command -v node > /dev/null && command -v npm > /dev/null ||
     { echo "SKIP: node and npm are needed for Foxglove's client library"; exit 77; }
 MODULES="$BUILD/tests/bridge_npm"
-if [ ! -d "$MODULES/node_modules/@foxglove/ws-protocol" ]; then
+if [ ! -d "$MODULES/node_modules/@foxglove/rosmsg2-serialization" ] ||
+    ! cmp -s "$HERE/package.json" "$MODULES/package.json"; then
     mkdir -p "$MODULES"
     cp "$HERE/package.json" "$MODULES/"
     (cd "$MODULES" && timeout 300 npm install --no-audit --no-fund --silent > npm.log 2>&1) ||
@@ -29,9 +33,39 @@ host=$!
 for _ in $(seq 1 200); do grep -q "Foxglove: connect to" "$TMP/host.log" && break; sleep 0.1; done
 grep -q "Foxglove: connect to ws://127.0.0.1:$port" "$TMP/host.log" ||
     { echo "FAIL: the bridge did not say its address"; cat "$TMP/host.log"; exit 1; }
-node "$MODULES/foxglove_client.mjs" "ws://127.0.0.1:$port" /robot/odometry,/tf 10 "$TMP/seen.json" ||
-    { echo "FAIL: the client did not get 10 of each: $(head -c 300 "$TMP/seen.json")"; cat "$TMP/host.log"; exit 1; }
+node "$MODULES/foxglove_client.mjs" "ws://127.0.0.1:$port" \
+    /robot/odometry:10,/tf:10,/robot/map_cloud:2,/robot/mesh_scene:1 "$TMP/seen.json" ||
+    { echo "FAIL: the client did not get what it waited for: $(head -c 300 "$TMP/seen.json")"; cat "$TMP/host.log"; exit 1; }
 wait $host; rc=$?
 [ "$rc" = 0 ] || { echo "FAIL: host exit $rc"; tail -5 "$TMP/host.log"; exit 1; }
 node "$MODULES/foxglove_client.mjs" --compare "$TMP/seen.json" "$TMP/run.mcap" || { echo "FAIL: compare"; exit 1; }
+grep "map cloud: " "$TMP/host.log" | tail -1
+
+# Under DDS Security: off with one line saying why, unless enable_with_security.
+if ! command -v openssl > /dev/null; then echo "PASS (the DDS Security part skipped: no openssl)"; exit 0; fi
+bash "$ROOT/launch_configs/security/make_site_certs.sh" "$TMP/site" robot > "$TMP/certs.log" 2>&1 ||
+    { echo "FAIL: make_site_certs.sh"; cat "$TMP/certs.log"; exit 1; }
+secure_bridge() {  # $1: enable_with_security; prints the host's log
+    cat > "$TMP/secure.yaml" <<YAML
+namespace: /robot
+components:
+  - name: bridge
+    type: foxglove_bridge
+    params: {port: $port, enable_with_security: $1}
+YAML
+    LTM_SECURITY_DIR="$TMP/site" LTM_PARTICIPANT=robot "$BUILD/bin/ltm_host" "$TMP/secure.yaml" \
+        --set "domain_id=$domain" --set 'dds={interfaces: [lo], multicast: false, peers: [127.0.0.1]}' \
+        --set "dds.security=$(cat "$ROOT/launch_configs/security/dds_security.yaml")" > "$TMP/secure.log" 2>&1 &
+    host=$!
+    for _ in $(seq 1 100); do grep -q "Foxglove bridge is off\|Foxglove: connect to\|error" "$TMP/secure.log" && break; sleep 0.1; done
+    kill -INT $host; wait $host
+    cat "$TMP/secure.log"
+}
+off="$(secure_bridge false)"
+echo "$off" | grep -q "the Foxglove bridge is off: this site runs DDS Security" ||
+    { echo "FAIL: under DDS Security the bridge did not say it is off"; echo "$off"; exit 1; }
+echo "$off" | grep -q "Foxglove: connect to" && { echo "FAIL: under DDS Security the bridge served"; exit 1; }
+on="$(secure_bridge true)"
+echo "$on" | grep -q "Foxglove: connect to ws://127.0.0.1:$port" ||
+    { echo "FAIL: enable_with_security: true did not serve"; echo "$on"; exit 1; }
 echo "PASS"

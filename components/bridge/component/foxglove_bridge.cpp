@@ -356,9 +356,10 @@ class FoxgloveBridge : public runtime::Component {
     }
 
     bool clients_empty() {
-        std::promise<bool> empty;
-        auto f = empty.get_future();
-        asio::post(server_.get_io_service(), [this, &empty] { empty.set_value(clients_.empty()); });
+        // Shared: the io thread may answer after this wait gave up.
+        auto empty = std::make_shared<std::promise<bool>>();
+        auto f = empty->get_future();
+        asio::post(server_.get_io_service(), [this, empty] { empty->set_value(clients_.empty()); });
         return f.wait_for(std::chrono::milliseconds(100)) == std::future_status::ready && f.get();
     }
 
