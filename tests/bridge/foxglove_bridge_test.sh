@@ -34,7 +34,7 @@ for _ in $(seq 1 200); do grep -q "Foxglove: connect to" "$TMP/host.log" && brea
 grep -q "Foxglove: connect to ws://127.0.0.1:$port" "$TMP/host.log" ||
     { echo "FAIL: the bridge did not say its address"; cat "$TMP/host.log"; exit 1; }
 node "$MODULES/foxglove_client.mjs" "ws://127.0.0.1:$port" \
-    /robot/odometry:10,/tf:10,/robot/map_cloud:2,/robot/mesh_scene:1 "$TMP/seen.json" ||
+    /robot/odometry:10,/tf:10,/tf_static:1,/robot/map_cloud:2,/robot/mesh_scene:1 "$TMP/seen.json" ||
     { echo "FAIL: the client did not get what it waited for: $(head -c 300 "$TMP/seen.json")"; cat "$TMP/host.log"; exit 1; }
 wait $host; rc=$?
 [ "$rc" = 0 ] || { echo "FAIL: host exit $rc"; tail -5 "$TMP/host.log"; exit 1; }
@@ -46,6 +46,7 @@ if ! command -v openssl > /dev/null; then echo "PASS (the DDS Security part skip
 bash "$ROOT/launch_configs/security/make_site_certs.sh" "$TMP/site" robot > "$TMP/certs.log" 2>&1 ||
     { echo "FAIL: make_site_certs.sh"; cat "$TMP/certs.log"; exit 1; }
 secure_bridge() {  # $1: enable_with_security; prints the host's log
+    local log="$TMP/secure_$1.log"
     cat > "$TMP/secure.yaml" <<YAML
 namespace: /robot
 components:
@@ -55,11 +56,11 @@ components:
 YAML
     LTM_SECURITY_DIR="$TMP/site" LTM_PARTICIPANT=robot "$BUILD/bin/ltm_host" "$TMP/secure.yaml" \
         --set "domain_id=$domain" --set 'dds={interfaces: [lo], multicast: false, peers: [127.0.0.1]}' \
-        --set "dds.security=$(cat "$ROOT/launch_configs/security/dds_security.yaml")" > "$TMP/secure.log" 2>&1 &
+        --set "dds.security=$(cat "$ROOT/launch_configs/security/dds_security.yaml")" > "$log" 2>&1 &
     host=$!
-    for _ in $(seq 1 100); do grep -q "Foxglove bridge is off\|Foxglove: connect to\|error" "$TMP/secure.log" && break; sleep 0.1; done
+    for _ in $(seq 1 200); do grep -qs "Foxglove bridge is off\|Foxglove: connect to\|error" "$log" && break; sleep 0.1; done
     kill -INT $host; wait $host
-    cat "$TMP/secure.log"
+    cat "$log"
 }
 off="$(secure_bridge false)"
 echo "$off" | grep -q "the Foxglove bridge is off: this site runs DDS Security" ||

@@ -6,6 +6,8 @@
 // to the same message (the ros2msg schema matches the IDL).
 //   node foxglove_client.mjs ws://127.0.0.1:PORT /robot/odometry:10,/tf:10,/robot/map_cloud:1 OUT.json
 //   node foxglove_client.mjs --compare OUT.json RUN.mcap
+//   node foxglove_client.mjs --all ws://127.0.0.1:PORT OUT.json   (./ltm bench bridge: every
+//     channel subscribed, messages and bytes counted, not decoded, until the server closes)
 import { readFileSync, writeFileSync } from "node:fs";
 import { isDeepStrictEqual } from "node:util";
 // Some of these packages are CommonJS, some ES modules: their exports either way.
@@ -147,6 +149,11 @@ async function compare(out, mcapFile) {
         }
       }
     }
+    // Published once at the start, before the client connected: the bridge kept it.
+    if (topic.endsWith("tf_static") && !list.some(({ msg }) => msg.transforms.some((t) => t.child_frame_id === "lidar"))) {
+      console.log("  no base_link->lidar in tf_static");
+      problems++;
+    }
     if (topic.endsWith("tf") && !list.some(({ msg }) => msg.transforms.some((t) => t.child_frame_id === "base_link"))) {
       console.log("  no odom->base_link in any tf");
       problems++;
@@ -155,6 +162,31 @@ async function compare(out, mcapFile) {
   process.exit(problems === 0 ? 0 : 1);
 }
 
+function everything(url, out) {
+  const client = new FoxgloveClient({ ws: new WebSocket(url, [FoxgloveClient.SUPPORTED_SUBPROTOCOL]) });
+  const subs = new Map();
+  const counts = {};
+  const start = Date.now();
+  const done = () => {
+    writeFileSync(out, JSON.stringify({ seconds: (Date.now() - start) / 1000, counts }));
+    process.exit(0);
+  };
+  client.on("advertise", (list) => {
+    for (const ch of list) {
+      counts[ch.topic] = { schema: ch.schemaName, encoding: ch.schemaEncoding, messages: 0, bytes: 0 };
+      subs.set(client.subscribe(ch.id), ch.topic);
+    }
+  });
+  client.on("message", ({ subscriptionId, data }) => {
+    const c = counts[subs.get(subscriptionId)];
+    c.messages++;
+    c.bytes += data.byteLength;
+  });
+  client.on("close", done);
+  client.on("error", done);
+}
+
 const args = process.argv.slice(2);
 if (args[0] === "--compare") await compare(args[1], args[2]);
+else if (args[0] === "--all") everything(args[1], args[2]);
 else await listen(args[0], Object.fromEntries(args[1].split(",").map((t) => [t.split(":")[0], Number(t.split(":")[1] ?? 1)])), args[2]);

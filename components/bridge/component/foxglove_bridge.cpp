@@ -7,6 +7,8 @@
 // pipeline never waits for a client. Off under DDS Security unless `enable_with_security`.
 // Connect Foxglove to ws://HOST:8765.
 #define ASIO_STANDALONE
+#include <pthread.h>
+
 #include <atomic>
 #include <chrono>
 #include <future>
@@ -140,7 +142,12 @@ class FoxgloveBridge : public runtime::Component {
             if (c.id != scene_->map_channel()) keyed_.insert(c.id);
         }
         ctx.add_timer(10.0, [this] { report(); });
-        thread_ = std::thread([this] { server_.run(); });
+        // Named as runtime::Worker names its threads ("bridge/io"), so `./ltm bench budget`
+        // and `./ltm bench bridge` count its CPU time to the bridge.
+        thread_ = std::thread([this, name = ctx.name() + "/io"] {
+            pthread_setname_np(pthread_self(), name.substr(0, 15).c_str());
+            server_.run();
+        });
     }
 
     ~FoxgloveBridge() override { stop(); }
@@ -313,13 +320,19 @@ class FoxgloveBridge : public runtime::Component {
             channels_[c.id] = c;
         }
         const std::uint32_t id = c.id;
+        // A transient-local topic (tf_static, path, pose graph, local maps) keeps each writer's
+        // last message for a client that subscribes later, as DDS does for a late reader.
+        const bool latch = qos.transient_local;
         ctx_.subscribe_raw(
             topic.substr(2), info->descriptor, qos,
-            [this, id](const std::vector<std::uint8_t>& cdr, const dds_sample_info_t&) {
+            [this, id, latch](const std::vector<std::uint8_t>& cdr, const dds_sample_info_t& i) {
                 auto shared = std::make_shared<const std::vector<std::uint8_t>>(cdr);
                 const std::uint64_t t = now_ns();
-                asio::post(server_.get_io_service(),
-                           [this, id, shared, t] { deliver(id, shared, t); });
+                const std::string writer = latch ? std::to_string(i.publication_handle) : "";
+                asio::post(server_.get_io_service(), [this, id, shared, t, writer] {
+                    if (!writer.empty()) latched_[id][writer] = {shared, t};
+                    deliver(id, shared, t);
+                });
             });
         asio::post(server_.get_io_service(), [this, c] {
             for (auto& [h, client] : clients_) send_text(h, advertise_json({c}));
