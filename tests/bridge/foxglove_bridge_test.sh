@@ -22,6 +22,16 @@ if [ ! -d "$MODULES/node_modules/@foxglove/rosmsg2-serialization" ] ||
         { echo "SKIP: npm install of Foxglove's client libraries failed (no registry?): $(tail -1 "$MODULES/npm.log")"; exit 77; }
 fi
 cp "$HERE/foxglove_client.mjs" "$MODULES/"
+# The layout file: JSON, every panel of its tree configured, every topic one ltm publishes.
+node -e '
+const l = JSON.parse(require("fs").readFileSync(process.argv[1], "utf8"));
+const leaves = (n) => (typeof n === "string" ? [n] : [...leaves(n.first), ...leaves(n.second)]);
+const missing = leaves(l.layout).filter((id) => !l.configById[id]);
+const topics = JSON.stringify(l.configById).match(/"\/(robot\/[a-z_]+|tf)[".]/g) ?? [];
+const known = ["map_cloud", "mesh_scene", "points", "path", "odometry", "corrected_odometry", "localisation_status", "map_changes"];
+const unknown = topics.filter((t) => t.startsWith("\"/robot/") && !known.includes(t.slice(8, -1)));
+if (missing.length || unknown.length) { console.log(`panels ${missing} not configured; topics ${unknown} unknown`); process.exit(1); }
+' "$ROOT/components/bridge/foxglove_layout.json" || { echo "FAIL: foxglove_layout.json"; exit 1; }
 TMP="$(mktemp -d)"
 trap 'kill $host 2>/dev/null; rm -rf "$TMP"' EXIT
 port=$((20000 + $$ % 20000))

@@ -61,7 +61,7 @@ hz="$(getconf CLK_TCK)"
 start=$(date +%s.%N)
 while kill -0 $host 2>/dev/null; do
     for stat in /proc/$host/task/*/stat; do
-        read -r line < "$stat" 2>/dev/null || continue
+        { read -r line < "$stat"; } 2>/dev/null || continue
         name="${line#*(}"; name="${name%%)*}"
         case "$name" in bridge|bridge/*) ;; *) continue ;; esac
         rest="${line##*) }"; set -- $rest

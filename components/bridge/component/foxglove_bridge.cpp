@@ -92,9 +92,7 @@ class FoxgloveBridge : public runtime::Component {
         server_.set_reuse_addr(true);
         server_.set_validate_handler([this](Connection h) { return validate(h); });
         server_.set_open_handler([this](Connection h) { on_open(h); });
-        server_.set_close_handler([this](Connection h) {
-            if (clients_.erase(h) > 0) --open_clients_;
-        });
+        server_.set_close_handler([this](Connection h) { on_close(h); });
         server_.set_message_handler(
             [this](Connection h, Server::message_ptr m) { on_message(h, m->get_payload()); });
         // A port in use or an address not here turns the bridge off with one warning: the live
@@ -193,6 +191,16 @@ class FoxgloveBridge : public runtime::Component {
         }
         if (!channels.empty()) send_text(h, advertise_json(channels));
         ++connections_;
+    }
+
+    // io thread
+    void on_close(Connection h) {
+        const auto it = clients_.find(h);
+        if (it == clients_.end()) return;
+        if (scene_ && it->second.subscription_by_channel.count(scene_->map_channel()))
+            --scene_->map_watchers();
+        clients_.erase(it);
+        --open_clients_;
     }
 
     // io thread

@@ -16,6 +16,26 @@ struct MapCloudConfig {
     double leaf_m = 0.5;              // decimation grid [m]; coarser when the map needs it
 };
 
+// The centroid of the points in each cell of a `leaf_m` grid, growing the leaf until at most
+// `max_points` cells remain; `leaf_m` is set to the leaf used. Keeps its table between calls.
+class VoxelDecimator {
+  public:
+    std::vector<Eigen::Vector3f> decimate(const std::vector<Eigen::Vector3f>& points,
+                                          std::size_t max_points, double& leaf_m);
+
+  private:
+    struct Cell {
+        std::uint64_t key = 0;  // 0: empty
+        std::uint32_t count = 0;
+        Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    };
+    std::vector<Cell> cells_;
+};
+
+// The same with a table of its own.
+std::vector<Eigen::Vector3f> decimate(const std::vector<Eigen::Vector3f>& points,
+                                      std::size_t max_points, double& leaf_m);
+
 class MapCloud {
   public:
     explicit MapCloud(MapCloudConfig config = {}) : config_(config) {}
@@ -51,11 +71,7 @@ class MapCloud {
     std::map<std::uint64_t, LocalMap> maps_;
     std::map<std::uint64_t, Eigen::Isometry3d> graph_;
     bool dirty_ = false;
+    VoxelDecimator decimator_;
 };
-
-// The centroid of the points in each cell of a `leaf_m` grid, growing the leaf until at most
-// `max_points` cells remain; `leaf_m` is set to the leaf used.
-std::vector<Eigen::Vector3f> decimate(const std::vector<Eigen::Vector3f>& points,
-                                      std::size_t max_points, double& leaf_m);
 
 }  // namespace ltm::bridge
