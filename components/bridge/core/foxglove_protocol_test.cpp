@@ -78,5 +78,13 @@ TEST(SendPolicy, BigMessagesAreRateLimitedAndABacklogDrops) {
     EXPECT_EQ(p.backlogged(), 1u);
 }
 
+TEST(SendPolicy, MessagesNoLaterOneReplacesAreNotRateLimitedButStillDropOnABacklog) {
+    SendPolicy p({/*big*/ 1000, /*rate*/ 2.0, /*buffer*/ 5000});
+    for (int i = 0; i < 5; ++i)  // five mesh chunks at once
+        EXPECT_EQ(p.decide(1, 2000, 0.0, 0, false), SendPolicy::Verdict::kSend);
+    EXPECT_EQ(p.decide(1, 2000, 0.0, 4000, false), SendPolicy::Verdict::kBacklogged);
+    EXPECT_EQ(p.rate_limited(), 0u);
+}
+
 }  // namespace
 }  // namespace ltm::bridge

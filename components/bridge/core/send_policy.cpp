@@ -3,12 +3,12 @@
 namespace ltm::bridge {
 
 SendPolicy::Verdict SendPolicy::decide(std::uint32_t subscription, std::size_t size, double now_s,
-                                       std::size_t buffered) {
+                                       std::size_t buffered, bool rate_limited) {
     if (buffered + size > config_.max_buffered_bytes && buffered > 0) {
         ++backlogged_;
         return Verdict::kBacklogged;
     }
-    if (size >= config_.big_message_bytes && config_.big_rate_hz > 0.0) {
+    if (rate_limited && size >= config_.big_message_bytes && config_.big_rate_hz > 0.0) {
         const auto it = last_big_.find(subscription);
         if (it != last_big_.end() && now_s - it->second < 1.0 / config_.big_rate_hz) {
             ++rate_limited_;

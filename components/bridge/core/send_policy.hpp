@@ -21,9 +21,10 @@ class SendPolicy {
     explicit SendPolicy(SendPolicyConfig config = {}) : config_(config) {}
 
     // For one subscription's message of `size` bytes at `now_s`, with `buffered` bytes already
-    // waiting in the client's socket.
-    Verdict decide(std::uint32_t subscription, std::size_t size, double now_s,
-                   std::size_t buffered);
+    // waiting in the client's socket. `rate_limited` false: a message that a later one does not
+    // replace (a mesh chunk) is never skipped for the rate, only for the backlog.
+    Verdict decide(std::uint32_t subscription, std::size_t size, double now_s, std::size_t buffered,
+                   bool rate_limited = true);
     void forget(std::uint32_t subscription) { last_big_.erase(subscription); }
 
     std::uint64_t sent() const { return sent_; }
