@@ -14,7 +14,7 @@ install(DIRECTORY ${CMAKE_SOURCE_DIR}/launch_configs/ DESTINATION launch_configs
         PATTERN "*.sh" PERMISSIONS OWNER_READ OWNER_WRITE OWNER_EXECUTE GROUP_READ GROUP_EXECUTE
                                    WORLD_READ WORLD_EXECUTE)
 # The simulator's scenarios (LTM_SCENARIO of robot_composed.yaml and the simulated robots) and the
-# ten KITTI 00 scans of the tests (LTM_DATA of robot.yaml and kitti_composed.yaml): a run works
+# three KITTI 00 scans of the tests (LTM_DATA of robot.yaml and kitti_composed.yaml): a run works
 # out of the box, a site mounts its own data over them.
 install(DIRECTORY ${CMAKE_SOURCE_DIR}/components/simulator/scenarios/ DESTINATION scenarios
         FILES_MATCHING PATTERN "*.yaml")

@@ -4,7 +4,7 @@
 #   image base [--mirror URL]            the Debian 12 base image, offline (debootstrap + import)
 #   image build [robot|base-station|all] [--jobs N] [--ccache DIR]
 #   image run robot|base-station [--chroot] [--netns NS] [--results DIR] [--data DIR]
-#             [-- LAUNCH.yaml HOST-ARGS...]
+#             [--entrypoint PROGRAM] [-- LAUNCH.yaml HOST-ARGS... | PROGRAM-ARGS...]
 # Engine: LTM_IMAGE_ENGINE=podman|docker, else podman if installed, else docker. Podman builds
 # with --isolation=chroot. Where `podman run` is refused (this sandbox: crun cannot set
 # RLIMIT_NOFILE/NPROC), `run --chroot` runs the image's entry point from its exported file
@@ -69,15 +69,17 @@ size_mb() { "$1" image inspect --format '{{.Size}}' "$2" | awk '{ printf "%.0f",
 
 run() {
     [ $# -ge 1 ] || usage_err "run: which image (robot or base-station)"
-    local target="$1" chroot=0 netns="" results="$PWD/results/image-$1" data="" eng image
+    local target="$1" chroot=0 netns="" results="$PWD/results/image-$1" data="" entry="" eng image
     shift
     image="$(image_of "$target")"
+    local given=("$@")
     while [ $# -gt 0 ]; do
         case "$1" in
             --chroot) chroot=1; shift ;;
             --netns) [ $# -ge 2 ] || usage_err "--netns needs a network namespace"; netns="$2"; shift 2 ;;
             --results) [ $# -ge 2 ] || usage_err "--results needs a folder"; results="$2"; shift 2 ;;
             --data) [ $# -ge 2 ] || usage_err "--data needs a folder"; data="$(realpath "$2")"; shift 2 ;;
+            --entrypoint) [ $# -ge 2 ] || usage_err "--entrypoint needs a program"; entry="$2"; shift 2 ;;
             --) shift; break ;;
             *) break ;;
         esac
@@ -88,12 +90,13 @@ run() {
     "$eng" image exists "$image" 2>/dev/null || "$eng" image inspect "$image" >/dev/null 2>&1 ||
         err "no image $image: ./ltm image build $target"
     if [ "$chroot" = 1 ]; then
-        run_chroot "$eng" "$image" "$results" "$data" "$netns" "$@"
+        run_chroot "$eng" "$image" "$results" "$data" "$netns" "$entry" "$@"
         return
     fi
     local opts=(--rm --net=host -v "$results:/results")
-    [ -z "$data" ] || opts+=(-v "$data:/data:ro" -e LTM_DATA=/data)
     [ -z "$netns" ] || opts=(--rm "--net=ns:/run/netns/$netns" -v "$results:/results")
+    [ -z "$data" ] || opts+=(-v "$data:/data:ro" -e LTM_DATA=/data)
+    [ -z "$entry" ] || opts+=(--entrypoint "$entry")
     [ -t 0 ] && opts+=(-it)
     local log rc=0
     log="$(mktemp)"
@@ -103,7 +106,7 @@ run() {
         say "$eng run was refused by the container runtime (crun cannot set the container's"
         say "resource limits or cgroups here): the image did not start. Run its entry point from"
         say "its exported file system by chroot instead (root):"
-        say "  ./ltm image run $target --chroot $*"
+        say "  ./ltm image run $target --chroot ${given[*]}"
         exit "$rc"
     fi
     rm -f "$log"
@@ -131,8 +134,8 @@ export_rootfs() {
 # WORKDIR) in the exported file system by chroot, /results bound to the host's results folder.
 # SIGINT/SIGTERM are forwarded to the host, which stops cleanly; the mounts are undone at exit.
 run_chroot() {
-    local eng="$1" image="$2" results="$3" data="$4" netns="$5"
-    shift 5
+    local eng="$1" image="$2" results="$3" data="$4" netns="$5" entrypoint="$6"
+    shift 6
     [ "$(id -u)" = 0 ] || err "run --chroot needs root (chroot, mount)"
     local rootfs entry=() cmd=() envs=() workdir
     rootfs="$(export_rootfs "$eng" "$image")"
@@ -140,6 +143,7 @@ run_chroot() {
     mapfile -t cmd < <("$eng" image inspect --format '{{range .Config.Cmd}}{{println .}}{{end}}' "$image" | sed '/^$/d')
     mapfile -t envs < <("$eng" image inspect --format '{{range .Config.Env}}{{println .}}{{end}}' "$image" | sed '/^$/d')
     workdir="$("$eng" image inspect --format '{{.Config.WorkingDir}}' "$image")"
+    [ -z "$entrypoint" ] || { entry=("$entrypoint"); cmd=(); }
     [ $# -eq 0 ] || cmd=("$@")
     [ -z "$data" ] || envs+=(LTM_DATA=/data)
     local mounts=()
