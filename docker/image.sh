@@ -19,6 +19,15 @@ say() { printf '\033[1mltm image:\033[0m %s\n' "$*" >&2; }
 usage() { awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "${BASH_SOURCE[0]}"; }
 
 engine() {
+    local e
+    e="$(pick_engine)" || exit $?
+    if [ "$e" = docker ] && ! docker info > /dev/null 2>&1; then
+        err "docker cannot reach its daemon (docker info failed): start dockerd, or install podman"
+    fi
+    echo "$e"
+}
+
+pick_engine() {
     if [ -n "${LTM_IMAGE_ENGINE:-}" ]; then
         case "$LTM_IMAGE_ENGINE" in podman|docker) ;; *) usage_err "LTM_IMAGE_ENGINE is podman or docker, not '$LTM_IMAGE_ENGINE'" ;; esac
         command -v "$LTM_IMAGE_ENGINE" >/dev/null || err "$LTM_IMAGE_ENGINE is not installed"

@@ -123,4 +123,14 @@ else
     echo "note: no python3-yaml: compose.yaml not checked"
 fi
 
+# 5. The launcher's image command: its help, and one-line usage errors with exit code 2.
+"$ROOT/ltm" image help > "$T/help" 2>&1 && grep -q 'image run robot|base-station' "$T/help" ||
+    fail "./ltm image help: $(head -n 1 "$T/help")"
+for args in "run" "run nope" "build nope" "nope"; do
+    # shellcheck disable=SC2086
+    out="$(LTM_IMAGE_ENGINE=podman "$ROOT/ltm" image $args 2>&1)"; rc=$?
+    [ "$rc" = 2 ] && [ "$(wc -l <<< "$out")" = 1 ] || fail "./ltm image $args: exit $rc, '$out' (a one-line usage error, exit 2)"
+done
+ok "./ltm image: help and usage errors"
+
 [ "$fails" = 0 ]
