@@ -70,17 +70,22 @@ else
     ok "the install tree holds every program and path the Dockerfile, compose.yaml and the units name"
     # The libraries come from the runtime list.
     if command -v dpkg > /dev/null && command -v objdump > /dev/null; then
+        # program soname path, for every library a program names (NEEDED), then one dpkg -S.
         for p in $programs; do
+            ldd "$P/bin/$p" > "$T/ldd"
             for so in $(objdump -p "$P/bin/$p" | awk '/NEEDED/ {print $2}'); do
-                lib="$(ldd "$P/bin/$p" | awk -v s="$so" '$1 == s {print $3; exit}')"
-                [ -n "$lib" ] && [ -e "$lib" ] || continue  # the loader itself
-                pkg="$(dpkg -S "$lib" 2>/dev/null || dpkg -S "$(readlink -f "$lib")" 2>/dev/null)"
-                pkg="${pkg%%:*}"
-                [ -n "$pkg" ] || { echo "note: $so ($lib) belongs to no Debian package"; continue; }
-                packages "$D/runtime-packages.txt" | grep -qx "$pkg" ||
-                    fail "$p needs $so from $pkg: not in docker/runtime-packages.txt"
+                lib="$(awk -v s="$so" '$1 == s {print $3; exit}' "$T/ldd")"
+                [ -n "$lib" ] && [ -e "$lib" ] && echo "$p $so $lib $(readlink -f "$lib")"
             done
-        done
+        done > "$T/needed"
+        # shellcheck disable=SC2046
+        dpkg -S $(awk '{print $3; print $4}' "$T/needed" | sort -u) 2> /dev/null | sed 's/^\([^:]*\):[^ ]* /\1 /' > "$T/owners"
+        packages "$D/runtime-packages.txt" > "$T/runtime"
+        while read -r p so lib real; do
+            pkg="$(awk -v l="$lib" -v r="$real" '$2 == l || $2 == r {print $1; exit}' "$T/owners")"
+            [ -n "$pkg" ] || { echo "note: $so ($lib) belongs to no Debian package"; continue; }
+            grep -qx "$pkg" "$T/runtime" || fail "$p needs $so from $pkg: not in docker/runtime-packages.txt"
+        done < "$T/needed"
         ok "every library the programs need comes from runtime-packages.txt"
     else
         echo "note: no dpkg/objdump: the programs' libraries not checked"
