@@ -135,6 +135,13 @@ export_rootfs() {
         "$eng" export "$cid" | tar -C "$dir" -x
         "$eng" rm "$cid" >/dev/null
         touch "$dir/.exported"
+        # Earlier exports of this image name go, unless a run still has something mounted there
+        # (its /results is the host's results folder: never delete through a mount).
+        local old
+        for old in "/var/tmp/ltm-image-${image##*/}-"*; do
+            [ "$old" != "$dir" ] && [ -d "$old" ] || continue
+            grep -qF " $old/" /proc/self/mounts || rm -rf "$old"
+        done
     fi
     echo "$dir"
 }
