@@ -107,9 +107,14 @@ run() {
     [ -z "$data" ] || opts+=(-v "$data:/data:ro" -e LTM_DATA=/data)
     [ -z "$entry" ] || opts+=(--entrypoint "$entry")
     [ -t 0 ] && opts+=(-it)
-    local log rc=0
+    local log rc=0 tee_pid
     log="$(mktemp)"
-    "$eng" run "${opts[@]}" "$image" "$@" 2> >(tee "$log" >&2) || rc=$?
+    # stderr shown as it comes and kept, to tell a refused start from the host's own failure
+    exec 3> >(tee "$log" >&2)
+    tee_pid=$!
+    "$eng" run "${opts[@]}" "$image" "$@" 2>&3 || rc=$?
+    exec 3>&-
+    wait "$tee_pid" 2>/dev/null || true
     if [ "$rc" != 0 ] && grep -q 'setrlimit\|cgroups in hybrid mode' "$log"; then
         rm -f "$log"
         say "$eng run was refused by the container runtime (crun cannot set the container's"
