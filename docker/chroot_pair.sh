@@ -74,5 +74,5 @@ printf 'chroot_pair: robot exit %s (%s), base station exit %s (%s), %.1f s in al
     "$base_rc" "$(grep -c 'stopped cleanly' "$results/base_station.log") x stopped cleanly" "$total"
 grep -E '\[(odometry|uplink|downlink|mapping)\] .*(scans|packets|keyframes)' "$results/robot.log" "$results/base_station.log" |
     sed "s|$results/||" | tail -n 6
-echo "chroot_pair: base station wrote $(ls "$results/base_station/maps" 2>/dev/null | grep -c '^local_map') local maps, $(wc -l < "$results/base_station/odometry.txt" 2>/dev/null || echo 0) odometry poses"
+echo "chroot_pair: base station wrote $(compgen -G "$results/base_station/maps/local_map_*.ply" | wc -l) local maps, $(wc -l < "$results/base_station/odometry.txt" 2>/dev/null || echo 0) odometry poses"
 [ "$robot_rc" = 0 ] && [ "$base_rc" = 0 ] && [ -n "$first" ]

@@ -183,7 +183,9 @@ run_chroot() {
     "${prefix[@]}" chroot "$rootfs" /usr/bin/env -i "${envs[@]}" /bin/sh -c 'cd "$0" && exec "$@"' \
         "${workdir:-/}" "${entry[@]}" "${cmd[@]}" &
     pid=$!
+    # shellcheck disable=SC2064  # the pid now
     trap "kill -INT $pid 2>/dev/null || true" INT
+    # shellcheck disable=SC2064
     trap "kill -TERM $pid 2>/dev/null || true" TERM
     while :; do
         rc=0
