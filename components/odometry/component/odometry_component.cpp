@@ -33,6 +33,8 @@ StatusCode status_code(FrameStatus status) {
             return StatusCode::kRecovered;
         case FrameStatus::kRestarted:
             return StatusCode::kRestarted;
+        case FrameStatus::kDegenerate:
+            return StatusCode::kDegenerate;
         case FrameStatus::kLost:
             return StatusCode::kLost;
         case FrameStatus::kSkippedTooFewPoints:
@@ -93,7 +95,7 @@ class OdometryComponent : public runtime::Component {
                    status_code(r.status), "scan " + std::to_string(index) + ": " + r.message,
                    r.stamp, r.status == FrameStatus::kRestarted ? r.segment : 0);
         }
-        if (r.degenerate())
+        if (r.degenerate() && r.status != FrameStatus::kDegenerate)  // else said above
             status(StatusLevel::kWarn, StatusCode::kDegenerate,
                    "scan " + std::to_string(index) + ": " +
                        std::to_string(r.degenerate_directions.size()) + " degenerate direction(s)",

@@ -50,6 +50,8 @@ const char* to_string(FrameStatus status) {
             return "recovered";
         case FrameStatus::kRestarted:
             return "restarted";
+        case FrameStatus::kDegenerate:
+            return "degenerate";
         case FrameStatus::kLost:
             return "lost";
         case FrameStatus::kSkippedTooFewPoints:
@@ -166,8 +168,10 @@ FrameResult Odometry::register_frame(const common::PointCloud& cloud) {
             }
             attempt.searched = true;
         }
+        if (attempt.searched && why.empty()) attempt.search_used = "search";
         r = attempt;
         r.attempts = attempts;
+        const bool observable = !why.empty() || check_observability(predicted, since_tracked, &r);
         r.registration_ms = lap();
         if (!why.empty() && since_tracked < config_.tracking.restart_after) {
             std::ostringstream s;
@@ -186,8 +190,19 @@ FrameResult Odometry::register_frame(const common::PointCloud& cloud) {
             s << "lost for " << since_tracked << " s (" << why << ")";
             restart_segment(s.str(), predicted, since_tracked, &r);
         } else {
-            r.status = lost_ ? FrameStatus::kRecovered : FrameStatus::kTracked;
-            if (lost_) {
+            r.status = !observable ? FrameStatus::kDegenerate
+                       : lost_     ? FrameStatus::kRecovered
+                                   : FrameStatus::kTracked;
+            if (!observable) {
+                std::ostringstream s;
+                s.precision(3);
+                s << "degenerate: " << r.constrained_directions
+                  << " of 3 translation directions constrained (information "
+                  << r.translation_information[0] << "), the search along the weakest found no "
+                  << "distinct fit (contrast " << r.profile_contrast
+                  << "): the position along it is the motion model's";
+                r.message = s.str();
+            } else if (lost_) {
                 std::ostringstream s;
                 s << "recovered after " << since_tracked << " s lost";
                 r.message = s.str();
@@ -378,7 +393,8 @@ std::string Odometry::try_register(const Eigen::Isometry3d& guess_odom, double d
     }
     if (why.str().empty()) {
         r->T_odom_lidar = estimate;
-        r->covariance = reg.covariance;
+        r->covariance = honest_covariance(reg.covariance, config_.observability);
+        r->information = reg.hessian;
         r->degenerate_directions = reg.degenerate_directions;
         r->min_information = reg.min_information;
     }

@@ -1,0 +1,78 @@
+// Odometry: the observability check of an accepted fit (issue 27; observability.hpp for the
+// criterion, step_search.hpp for the search along a weak direction).
+#include <algorithm>
+#include <cmath>
+
+#include "odometry/core/odometry.hpp"
+#include "odometry/core/step_search.hpp"
+
+namespace ltm::odometry {
+
+bool Odometry::check_observability(const Eigen::Isometry3d& predicted, double dt, FrameResult* r) {
+    const ObservabilityConfig& c = config_.observability;
+    const LocalMap& map = maps_.current();
+    const Eigen::Isometry3d T_odom_map = map.T_odom_map();
+    const Observability o = translation_observability(r->information, c.weak_information);
+    r->translation_information = o.information;
+    r->constrained_directions = o.constrained;
+    r->weak_direction = T_odom_map.linear() * o.weakest();
+    if (!o.weak()) return true;
+    // The steps since the last pose along the weakest direction: the fit's and the prediction's.
+    const Eigen::Vector3d v = r->weak_direction;
+    const Eigen::Vector3d last = motion_.last_pose().translation();
+    const double s_fit = v.dot(r->T_odom_lidar.translation() - last);
+    const double s_pred = v.dot(predicted.translation() - last);
+    const double d = s_pred - s_fit;
+    const bool disagrees = std::abs(d) > c.slide_tolerance + c.slide_fraction * std::abs(s_pred);
+    if (!disagrees && std::abs(s_pred) < c.search_step) return true;
+
+    // Where along v does the scan fit? From the fit, over the fit and the prediction and a
+    // margin either side.
+    const double margin = std::max(c.min_margin, c.margin_fraction * std::abs(s_pred));
+    ProfileRequest q;
+    q.from = std::min(0.0, d) - margin;
+    q.to = std::max(0.0, d) + margin;
+    q.spacing = config_.voxel_size;
+    q.peak_width = c.peak_width;
+    q.kernel = config_.registration.inlier_distance;
+    const Eigen::Isometry3d T_map_fit = T_odom_map.inverse() * r->T_odom_lidar;
+    const Eigen::Vector3d v_map = o.weakest();
+    const Profile p = search_along(coarse_points_, map.voxels(), registration_.imls_params(),
+                                   T_map_fit, v_map, q);
+    r->profile_contrast = p.contrast();
+    r->profile_support = p.best_support;
+    ++r->attempts;
+    const bool observable = p.best_support >= c.min_support && p.contrast() >= c.min_contrast;
+    if (!observable) {
+        // Not fixed along v: the position there is the motion model's.
+        r->T_odom_lidar.translation() += d * v;
+        r->search_used = "motion model";
+        const double sigma =
+            std::max(c.degenerate_min_sigma, c.degenerate_sigma_fraction * std::abs(s_pred));
+        r->covariance.topLeftCorner<3, 3>() += sigma * sigma * v * v.transpose();
+        return false;
+    }
+    if (std::abs(p.best_offset) <= 0.5 * q.spacing) {
+        r->search_used = "along (fit confirmed)";
+        return true;
+    }
+    // The fit slid: registered again from the best position along v.
+    Eigen::Isometry3d guess = r->T_odom_lidar;
+    guess.translation() += p.best_offset * v;
+    FrameResult again = *r;
+    const std::string why = try_register(guess, dt, &again);
+    ++r->attempts;
+    const double stayed = std::abs(v.dot(again.T_odom_lidar.translation() - guess.translation()));
+    if (why.empty() && stayed <= c.peak_width) {
+        const int attempts = r->attempts;
+        *r = again;
+        r->attempts = attempts;
+    } else {
+        r->T_odom_lidar = guess;  // the search's position (the fit there did not hold)
+    }
+    r->profile_shift = p.best_offset;
+    r->search_used = "along";
+    return true;
+}
+
+}  // namespace ltm::odometry
