@@ -22,18 +22,14 @@ struct ObservabilityConfig {
     // Normalised marginal translation information below this: a weak direction (about 10 % of
     // the 1/3 of an isotropic scene).
     double weak_information = 0.04;
-    // A fit whose step along a weak direction differs from the prediction's by more than
-    // slide_tolerance + slide_fraction * |predicted step| is checked by a search along it.
-    double slide_tolerance = 0.3;  // [m]
-    double slide_fraction = 0.05;
-    // Predicted steps along a weak direction at least this long are always searched (a fit
-    // that agrees with a long prediction may only have stayed where it started).
-    double search_step = 2.0;  // [m]
     // The search along a weak direction: from the fit and the prediction, margin_fraction of the
     // predicted step (at least min_margin) on either side, support evaluated every voxel_size,
     // then refined around the best.
     double margin_fraction = 0.3;
     double min_margin = 2.0;  // [m]
+    // The first step of a run (no velocity yet, the prediction is no motion): searched this far
+    // either side [m].
+    double first_step_range = 15.0;
     // The best position is observable when its support (Geman-McClure weighted points whose
     // normal sees the direction) is at least min_support and at least min_contrast times the
     // best support more than peak_width from it; else the position along the direction is the

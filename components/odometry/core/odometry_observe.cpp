@@ -17,18 +17,32 @@ bool Odometry::check_observability(const Eigen::Isometry3d& predicted, double dt
     r->constrained_directions = o.constrained;
     r->weak_direction = T_odom_map.linear() * o.weakest();
     if (!o.weak()) return true;
-    // The steps since the last pose along the weakest direction: the fit's and the prediction's.
-    const Eigen::Vector3d v = r->weak_direction;
+    // The direction searched: the weakest; when two are weak, the predicted motion (without a
+    // velocity yet: the sensor's forward axis) within the weak plane, where a vehicle moves.
+    Eigen::Vector3d v = r->weak_direction;
     const Eigen::Vector3d last = motion_.last_pose().translation();
+    const bool has_velocity = motion_.poses() >= 2;
+    if (o.constrained <= 1) {
+        const Eigen::Vector3d step = predicted.translation() - last;
+        const Eigen::Vector3d u = step.norm() > 0.5
+                                      ? Eigen::Vector3d(step.normalized())
+                                      : Eigen::Vector3d(r->T_odom_lidar.linear().col(0));
+        const Eigen::Vector3d v2 = T_odom_map.linear() * o.directions.col(1);
+        const Eigen::Vector3d in_plane = v * v.dot(u) + v2 * v2.dot(u);
+        if (in_plane.norm() > 0.3) v = in_plane.normalized();
+    }
+    // The steps since the last pose along it: the fit's and the prediction's.
     const double s_fit = v.dot(r->T_odom_lidar.translation() - last);
     const double s_pred = v.dot(predicted.translation() - last);
     const double d = s_pred - s_fit;
-    const bool disagrees = std::abs(d) > c.slide_tolerance + c.slide_fraction * std::abs(s_pred);
-    if (!disagrees && std::abs(s_pred) < c.search_step) return true;
 
     // Where along v does the scan fit? From the fit, over the fit and the prediction and a
     // margin either side.
-    const double margin = std::max(c.min_margin, c.margin_fraction * std::abs(s_pred));
+    // Without a velocity yet (the first step of a run) the prediction is no motion at all: the
+    // search covers first_step_range either side.
+    const double margin = has_velocity
+                              ? std::max(c.min_margin, c.margin_fraction * std::abs(s_pred))
+                              : std::max(c.min_margin, c.first_step_range);
     ProfileRequest q;
     q.from = std::min(0.0, d) - margin;
     q.to = std::max(0.0, d) + margin;
@@ -36,7 +50,7 @@ bool Odometry::check_observability(const Eigen::Isometry3d& predicted, double dt
     q.peak_width = c.peak_width;
     q.kernel = config_.registration.inlier_distance;
     const Eigen::Isometry3d T_map_fit = T_odom_map.inverse() * r->T_odom_lidar;
-    const Eigen::Vector3d v_map = o.weakest();
+    const Eigen::Vector3d v_map = T_odom_map.linear().transpose() * v;
     const Profile p = search_along(coarse_points_, map.voxels(), registration_.imls_params(),
                                    T_map_fit, v_map, q);
     r->profile_contrast = p.contrast();
@@ -50,6 +64,7 @@ bool Odometry::check_observability(const Eigen::Isometry3d& predicted, double dt
         const double sigma =
             std::max(c.degenerate_min_sigma, c.degenerate_sigma_fraction * std::abs(s_pred));
         r->covariance.topLeftCorner<3, 3>() += sigma * sigma * v * v.transpose();
+        r->weak_direction = v;
         return false;
     }
     if (std::abs(p.best_offset) <= 0.5 * q.spacing) {
@@ -71,6 +86,7 @@ bool Odometry::check_observability(const Eigen::Isometry3d& predicted, double dt
         r->T_odom_lidar = guess;  // the search's position (the fit there did not hold)
     }
     r->profile_shift = p.best_offset;
+    r->weak_direction = v;
     r->search_used = "along";
     return true;
 }
