@@ -27,15 +27,15 @@ struct ObservabilityConfig {
     // then refined around the best.
     double margin_fraction = 0.3;
     double min_margin = 2.0;  // [m]
-    // The first step of a run (no velocity yet, the prediction is no motion): searched this far
-    // either side [m].
+    // The first step of a run (no velocity yet, the prediction is no motion) and the scan after
+    // a degenerate one (its velocity is a guess): searched this far either side [m].
     double first_step_range = 15.0;
     // The best position is observable when its support (Geman-McClure weighted points whose
     // normal sees the direction) is at least min_support and at least min_contrast times the
     // best support more than peak_width from it; else the position along the direction is the
     // motion model's and the scan is degenerate.
     double min_support = 8.0;
-    double min_contrast = 1.3;
+    double min_contrast = 2.0;
     double peak_width = 1.5;  // [m]
     // A degenerate scan's standard deviation along the unobservable direction: this fraction of
     // the predicted step, at least min_sigma [m].

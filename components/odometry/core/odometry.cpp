@@ -223,7 +223,9 @@ FrameResult Odometry::register_frame(const common::PointCloud& cloud) {
     }
     accept(r);
     lap();
-    integrate(cloud.stamp, &r);
+    // A degenerate scan's position along its weak direction is a guess: it stays out of the map
+    // (which the next scans are measured against).
+    if (r.status != FrameStatus::kDegenerate) integrate(cloud.stamp, &r);
     r.update_ms = lap();
     return r;
 }

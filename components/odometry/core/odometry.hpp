@@ -196,6 +196,7 @@ class Odometry {
     double early_rms_ = 0.0, early_inliers_ = 0.0, early_overlap_ = 0.0;
     int early_frames_ = 0;
     bool lost_ = false;
+    bool unobserved_ = false;          // the last fit was degenerate: the velocity is a guess
     double last_tracked_stamp_ = 0.0;  // of the last scan with a valid pose
     Eigen::Isometry3d last_tracked_pose_ = Eigen::Isometry3d::Identity();
     bool has_stamp_ = false;

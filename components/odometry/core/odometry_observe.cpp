@@ -16,12 +16,13 @@ bool Odometry::check_observability(const Eigen::Isometry3d& predicted, double dt
     r->translation_information = o.information;
     r->constrained_directions = o.constrained;
     r->weak_direction = T_odom_map.linear() * o.weakest();
+    const bool guessed = unobserved_ || motion_.poses() < 2;
+    unobserved_ = false;
     if (!o.weak()) return true;
     // The direction searched: the weakest; when two are weak, the predicted motion (without a
     // velocity yet: the sensor's forward axis) within the weak plane, where a vehicle moves.
     Eigen::Vector3d v = r->weak_direction;
     const Eigen::Vector3d last = motion_.last_pose().translation();
-    const bool has_velocity = motion_.poses() >= 2;
     if (o.constrained <= 1) {
         const Eigen::Vector3d step = predicted.translation() - last;
         const Eigen::Vector3d u = step.norm() > 0.5
@@ -38,11 +39,11 @@ bool Odometry::check_observability(const Eigen::Isometry3d& predicted, double dt
 
     // Where along v does the scan fit? From the fit, over the fit and the prediction and a
     // margin either side.
-    // Without a velocity yet (the first step of a run) the prediction is no motion at all: the
-    // search covers first_step_range either side.
-    const double margin = has_velocity
-                              ? std::max(c.min_margin, c.margin_fraction * std::abs(s_pred))
-                              : std::max(c.min_margin, c.first_step_range);
+    // Without a velocity yet (the first step of a run: no motion predicted) or after a degenerate
+    // scan (the velocity along the weak direction is a guess), the search covers
+    // first_step_range either side.
+    const double margin = guessed ? std::max(c.min_margin, c.first_step_range)
+                                  : std::max(c.min_margin, c.margin_fraction * std::abs(s_pred));
     ProfileRequest q;
     q.from = std::min(0.0, d) - margin;
     q.to = std::max(0.0, d) + margin;
@@ -65,6 +66,7 @@ bool Odometry::check_observability(const Eigen::Isometry3d& predicted, double dt
             std::max(c.degenerate_min_sigma, c.degenerate_sigma_fraction * std::abs(s_pred));
         r->covariance.topLeftCorner<3, 3>() += sigma * sigma * v * v.transpose();
         r->weak_direction = v;
+        unobserved_ = true;
         return false;
     }
     if (std::abs(p.best_offset) <= 0.5 * q.spacing) {

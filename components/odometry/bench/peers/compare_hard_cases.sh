@@ -27,6 +27,8 @@
 #   --cases-dir DIR    where --observe's simulated cases are (default: OUT/sim)
 #   --kitti00-frames N scans of kitti00_path simulated (default 1500, 1.2 km; 4541: all of it)
 #   --out-dir DIR      poses, logs and table.txt (default: a new folder under /tmp)
+#   --reuse-peer       keep KISS-ICP's poses and log of an earlier run in the same --out-dir
+#                      (ltm runs again; KISS-ICP's results do not change with ltm's)
 #   --max-frames N     only the first N kept scans of each case
 #   --only REGEX       only the cases whose name matches
 #   --kiss-kitti-correction  give KISS-ICP's runner the KITTI vertical-angle correction its KITTI
@@ -55,6 +57,7 @@ KISS_EXTRA=()
 EXTRA=()
 SIM=0
 OBSERVE=0
+REUSE_PEER=0
 CASES_DIR=""
 KITTI00_FRAMES=1500
 
@@ -71,6 +74,7 @@ while [ $# -gt 0 ]; do
         --kiss-kitti-correction) KISS_EXTRA+=(--kitti-correction); shift ;;
         --sim) SIM=1; shift ;;
         --observe) OBSERVE=1; shift ;;
+        --reuse-peer) REUSE_PEER=1; shift ;;
         --cases-dir) [ $# -ge 2 ] || die "--cases-dir needs a folder"; CASES_DIR="$2"; shift 2 ;;
         --kitti00-frames)
             [ $# -ge 2 ] && [[ "$2" =~ ^[1-9][0-9]*$ ]] || die "--kitti00-frames needs a number"
@@ -221,7 +225,11 @@ for c in "${CASES[@]}"; do
 
     # KISS-ICP first: it reports how many scans were kept.
     kiss_fps="fail" kiss_ate="fail" kept=0
-    if "$RUNNER" "$dir" --every "$every" "${lim[@]+"${lim[@]}"}" --out "$OUT/$tag.kiss.txt" \
+    if [ "$REUSE_PEER" = 1 ] && [ -s "$OUT/$tag.kiss.txt" ] &&
+        grep -q '^speed by CPU time' "$OUT/$tag.kiss.log" 2>/dev/null; then
+        kept="$(awk '/^frames:/ {gsub(";", "", $2); print $2; exit}' "$OUT/$tag.kiss.log")"
+        kiss_fps="$(awk '/^speed by CPU time/ {print $(NF-5); exit}' "$OUT/$tag.kiss.log")"
+    elif "$RUNNER" "$dir" --every "$every" "${lim[@]+"${lim[@]}"}" --out "$OUT/$tag.kiss.txt" \
         "${KISS_EXTRA[@]+"${KISS_EXTRA[@]}"}" > "$OUT/$tag.kiss.log" 2>&1; then
         kept="$(awk '/^frames:/ {gsub(";", "", $2); print $2; exit}' "$OUT/$tag.kiss.log")"
         kiss_fps="$(awk '/^speed by CPU time/ {print $(NF-5); exit}' "$OUT/$tag.kiss.log")"
