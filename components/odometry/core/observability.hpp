@@ -37,6 +37,9 @@ struct ObservabilityConfig {
     double min_support = 8.0;
     double min_contrast = 2.0;
     double peak_width = 1.5;  // [m]
+    // The first step of a run in a scene constrained every way (not weak): searched along the
+    // sensor's forward axis from the prediction, a peak this distinct moves it.
+    double first_step_contrast = 1.3;
     // A degenerate scan's standard deviation along the unobservable direction: this fraction of
     // the predicted step, at least min_sigma [m].
     double degenerate_sigma_fraction = 0.2;

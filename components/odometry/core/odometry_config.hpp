@@ -139,6 +139,7 @@ void visit_fields(OdometryConfig& c, Visitor&& v) {
     v("observability.min_support", o.min_support, non_negative);
     v("observability.min_contrast", o.min_contrast, at_least(1));
     v("observability.peak_width", o.peak_width, positive);
+    v("observability.first_step_contrast", o.first_step_contrast, at_least(1));
     v("observability.degenerate_sigma_fraction", o.degenerate_sigma_fraction, non_negative);
     v("observability.degenerate_min_sigma", o.degenerate_min_sigma, non_negative);
     v("observability.covariance_scale", o.covariance_scale, at_least(1));
