@@ -23,7 +23,8 @@ bool Odometry::check_observability(const Eigen::Isometry3d& predicted, double dt
     // every later prediction inherits that. It is searched along the sensor's forward axis too.
     // (Doing the same after a degenerate scan, whose velocity is also a guess, made the
     // kitti00_path every-10th case worse: 41 m ATE instead of 32 m, wrong peaks at corners.)
-    const bool first_step = motion_.poses() < 2;
+    // Only after a gap (tracking.search_after): at 10 Hz a first step stays within the basin.
+    const bool first_step = motion_.poses() < 2 && dt > config_.tracking.search_after;
     const Eigen::Vector3d last = motion_.last_pose().translation();
     const Eigen::Vector3d step =
         first_step ? Eigen::Vector3d::Zero() : Eigen::Vector3d(predicted.translation() - last);
