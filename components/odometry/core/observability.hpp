@@ -22,6 +22,12 @@ struct ObservabilityConfig {
     // Normalised marginal translation information below this: a weak direction (about 10 % of
     // the 1/3 of an isotropic scene).
     double weak_information = 0.04;
+    // Along a weak direction, a fit whose step differs from the prediction's by more than
+    // slide_tolerance + slide_fraction * |predicted step|, or a predicted step of at least
+    // search_step, is searched (below, the step is within the fit's basin: trusted).
+    double slide_tolerance = 0.3;  // [m]
+    double slide_fraction = 0.05;
+    double search_step = 1.0;  // [m]
     // The search along a weak direction: from the fit and the prediction, margin_fraction of the
     // predicted step (at least min_margin) on either side, support evaluated every voxel_size,
     // then refined around the best.

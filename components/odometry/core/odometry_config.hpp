@@ -133,6 +133,9 @@ void visit_fields(OdometryConfig& c, Visitor&& v) {
     v("tracking.restart_gap", t.restart_gap, non_negative);
     auto& o = c.observability;
     v("observability.weak_information", o.weak_information, unit);
+    v("observability.slide_tolerance", o.slide_tolerance, non_negative);
+    v("observability.slide_fraction", o.slide_fraction, unit);
+    v("observability.search_step", o.search_step, positive);
     v("observability.margin_fraction", o.margin_fraction, non_negative);
     v("observability.min_margin", o.min_margin, non_negative);
     v("observability.first_step_range", o.first_step_range, non_negative);

@@ -16,7 +16,9 @@ bool Odometry::check_observability(const Eigen::Isometry3d& predicted, double dt
     r->translation_information = o.information;
     r->constrained_directions = o.constrained;
     r->weak_direction = T_odom_map.linear() * o.weakest();
-    const bool guessed = unobserved_ || motion_.poses() < 2;
+    // No velocity yet after a gap (tracking.search_after; at 10 Hz a first step stays within the
+    // basin), or the last scan was degenerate: the prediction is a guess.
+    const bool guessed = unobserved_ || (motion_.poses() < 2 && dt > config_.tracking.search_after);
     unobserved_ = false;
     // The first step of a run predicts no motion: a fit of a scan taken several metres on can
     // stay where it started even in a well constrained street (its basin is a few voxels), and
@@ -49,6 +51,12 @@ bool Odometry::check_observability(const Eigen::Isometry3d& predicted, double dt
     const double s_fit = v.dot(start.translation() - last);
     const double s_pred = v.dot(predicted.translation() - last);
     const double d = s_pred - s_fit;
+    // A small step that the fit agrees with is within the fit's basin: trusted (a direction
+    // nothing constrains is then at the prediction by the registration's solution remapping and
+    // reported in degenerate_directions). Checked: a fit short of or beyond the prediction, a
+    // long step, the first step.
+    const bool disagrees = std::abs(d) > c.slide_tolerance + c.slide_fraction * std::abs(s_pred);
+    if (!disagrees && std::abs(s_pred) < c.search_step && !guessed) return true;
 
     // Where along v does the scan fit? From the fit, over the fit and the prediction and a
     // margin either side.
