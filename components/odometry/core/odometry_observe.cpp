@@ -54,9 +54,14 @@ bool Odometry::check_observability(const Eigen::Isometry3d& predicted, double dt
     // A small step that the fit agrees with is within the fit's basin: trusted (a direction
     // nothing constrains is then at the prediction by the registration's solution remapping and
     // reported in degenerate_directions). Checked: a fit short of or beyond the prediction, a
-    // long step, the first step.
+    // long step, the first step, an unconstrained direction after a gap.
     const bool disagrees = std::abs(d) > c.slide_tolerance + c.slide_fraction * std::abs(s_pred);
-    if (!disagrees && std::abs(s_pred) < c.search_step && !guessed) return true;
+    // Between scans further apart than tracking.search_after a direction nothing constrains
+    // (below registration.degeneracy_ratio) is always checked: the prediction over a long gap
+    // is a guess, and a fit agreeing with it proves nothing.
+    const bool unconstrained = o.information[0] < config_.registration.degeneracy_ratio &&
+                               dt > config_.tracking.search_after;
+    if (!disagrees && std::abs(s_pred) < c.search_step && !guessed && !unconstrained) return true;
 
     // Where along v does the scan fit? From the fit, over the fit and the prediction and a
     // margin either side.
