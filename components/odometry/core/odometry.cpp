@@ -224,8 +224,12 @@ FrameResult Odometry::register_frame(const common::PointCloud& cloud) {
     accept(r);
     lap();
     // A degenerate scan's position along its weak direction is a guess: it stays out of the map
-    // (which the next scans are measured against).
-    if (r.status != FrameStatus::kDegenerate) integrate(cloud.stamp, &r);
+    // (which the next scans are measured against), but for the first scans of a segment: a map of
+    // one scan left the next scans of a turn nothing to fit (SlamSegments).
+    if (r.status != FrameStatus::kDegenerate || segment_scans_ < kYoungSegmentScans) {
+        integrate(cloud.stamp, &r);
+        ++segment_scans_;
+    }
     r.update_ms = lap();
     return r;
 }
@@ -236,6 +240,7 @@ void Odometry::restart_segment(const std::string& why, const Eigen::Isometry3d& 
     // scan starts a new segment at the best estimate.
     maps_.start_new_segment();
     keyframes_.reset();
+    segment_scans_ = 0;
     // The new map holds this one scan: the next scans fit it as the first scans of the run fit
     // theirs, not as well as a grown map did. Judged by the grown map's figures, every scan after
     // a kidnap was refused, and the odometry restarted every restart_after.

@@ -197,6 +197,8 @@ class Odometry {
     int early_frames_ = 0;
     bool lost_ = false;
     bool unobserved_ = false;          // the last fit was degenerate: the velocity is a guess
+    static constexpr int kYoungSegmentScans = 10;  // scans that enter a new segment's map anyway
+    int segment_scans_ = 0;                        // scans integrated since the segment began
     double last_tracked_stamp_ = 0.0;  // of the last scan with a valid pose
     Eigen::Isometry3d last_tracked_pose_ = Eigen::Isometry3d::Identity();
     bool has_stamp_ = false;

@@ -110,7 +110,15 @@ bool Odometry::check_observability(const Eigen::Isometry3d& predicted, double dt
     const std::string why = try_register(guess, dt, &again);
     ++r->attempts;
     const double stayed = std::abs(v.dot(again.T_odom_lidar.translation() - guess.translation()));
-    if (why.empty() && stayed <= c.peak_width) {
+    const bool held = why.empty() && stayed <= c.peak_width;
+    if (!o.weak() && !(held && again.inliers > r->inliers)) {
+        // A first step in a constrained scene: the fit at the searched position must explain
+        // more of the scan than the fit it would replace, else the fit stands (a turn after a gap
+        // restarted the odometry and the forward search found a look-alike 8 m on: SlamSegments).
+        r->search_used = "along (fit kept)";
+        return true;
+    }
+    if (held) {
         const int attempts = r->attempts;
         *r = again;
         r->attempts = attempts;
