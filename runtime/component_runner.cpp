@@ -4,6 +4,7 @@
 
 #include "runtime/dds_error.hpp"
 #include "runtime/raw_cdr.hpp"
+#include "runtime/worker.hpp"
 
 namespace ltm::runtime {
 namespace {
@@ -156,6 +157,7 @@ bool ComponentRunner::dispatch_one_round() {
 
 void ComponentRunner::run() {
     using clock = std::chrono::steady_clock;
+    set_current_thread_name(component_thread_name(spec_.name));
     auto lifecycle = [this](const char* stage, void (Component::*hook)()) {
         begin(stage);
         try {

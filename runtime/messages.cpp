@@ -16,6 +16,7 @@ const std::vector<MessageTypeInfo>& known_message_types() {
         info<msg::Time>(),
         info<msg::Header>(),
         info<msg::PointCloud2>(),
+        info<msg::Imu>(),
         info<msg::Point>(),
         info<msg::Pose>(),
         info<msg::PoseStamped>(),
@@ -24,6 +25,7 @@ const std::vector<MessageTypeInfo>& known_message_types() {
         info<msg::Twist>(),
         info<msg::Odometry>(),
         info<msg::Path>(),
+        info<msg::TFMessage>(),
         info<msg::Keyframe>(),
         info<msg::LocalMap>(),
         info<msg::LoopClosure>(),
@@ -35,6 +37,9 @@ const std::vector<MessageTypeInfo>& known_message_types() {
         info<msg::MapRequest>(),
         info<msg::LinkPacket>(),
         info<msg::LinkAck>(),
+        info<msg::SiteOffer>(),
+        info<msg::SiteRequest>(),
+        info<msg::SiteChunk>(),
     };
     return types;
 }

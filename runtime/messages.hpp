@@ -30,18 +30,24 @@
 #include "ltm_msgs/msg/Mesh.h"
 #include "ltm_msgs/msg/PlaceDescriptor.h"
 #include "ltm_msgs/msg/PoseGraph.h"
+#include "ltm_msgs/msg/SiteChunk.h"
+#include "ltm_msgs/msg/SiteOffer.h"
+#include "ltm_msgs/msg/SiteRequest.h"
 #include "ltm_msgs/msg/Status.h"
 #include "nav_msgs/msg/Odometry.h"
 #include "nav_msgs/msg/Path.h"
+#include "sensor_msgs/msg/Imu.h"
 #include "sensor_msgs/msg/PointCloud2.h"
 #include "sensor_msgs/msg/PointField.h"
 #include "std_msgs/msg/Header.h"
+#include "tf2_msgs/msg/TFMessage.h"
 
 namespace ltm::msg {
 using Time = builtin_interfaces_msg_dds__Time_;
 using Header = std_msgs_msg_dds__Header_;
 using PointField = sensor_msgs_msg_dds__PointField_;
 using PointCloud2 = sensor_msgs_msg_dds__PointCloud2_;
+using Imu = sensor_msgs_msg_dds__Imu_;
 using Point = geometry_msgs_msg_dds__Point_;
 using Vector3 = geometry_msgs_msg_dds__Vector3_;
 using Quaternion = geometry_msgs_msg_dds__Quaternion_;
@@ -55,6 +61,7 @@ using Twist = geometry_msgs_msg_dds__Twist_;
 using TwistWithCovariance = geometry_msgs_msg_dds__TwistWithCovariance_;
 using Odometry = nav_msgs_msg_dds__Odometry_;
 using Path = nav_msgs_msg_dds__Path_;
+using TFMessage = tf2_msgs_msg_dds__TFMessage_;
 using PlaceDescriptor = ltm_msgs_msg_dds__PlaceDescriptor_;
 using Keyframe = ltm_msgs_msg_dds__Keyframe_;
 using Voxel = ltm_msgs_msg_dds__Voxel_;
@@ -72,6 +79,9 @@ using Status = ltm_msgs_msg_dds__Status_;
 using MapRequest = ltm_msgs_msg_dds__MapRequest_;
 using LinkPacket = ltm_msgs_msg_dds__LinkPacket_;
 using LinkAck = ltm_msgs_msg_dds__LinkAck_;
+using SiteOffer = ltm_msgs_msg_dds__SiteOffer_;
+using SiteRequest = ltm_msgs_msg_dds__SiteRequest_;
+using SiteChunk = ltm_msgs_msg_dds__SiteChunk_;
 }  // namespace ltm::msg
 
 namespace ltm::runtime {
@@ -89,6 +99,7 @@ struct MessageTraits;  // descriptor() and ros_name for every top-level message 
 LTM_MESSAGE_TRAITS(builtin_interfaces_msg_dds__Time_, "builtin_interfaces/msg/Time")
 LTM_MESSAGE_TRAITS(std_msgs_msg_dds__Header_, "std_msgs/msg/Header")
 LTM_MESSAGE_TRAITS(sensor_msgs_msg_dds__PointCloud2_, "sensor_msgs/msg/PointCloud2")
+LTM_MESSAGE_TRAITS(sensor_msgs_msg_dds__Imu_, "sensor_msgs/msg/Imu")
 LTM_MESSAGE_TRAITS(geometry_msgs_msg_dds__Point_, "geometry_msgs/msg/Point")
 LTM_MESSAGE_TRAITS(geometry_msgs_msg_dds__Pose_, "geometry_msgs/msg/Pose")
 LTM_MESSAGE_TRAITS(geometry_msgs_msg_dds__PoseStamped_, "geometry_msgs/msg/PoseStamped")
@@ -98,6 +109,7 @@ LTM_MESSAGE_TRAITS(geometry_msgs_msg_dds__TransformStamped_, "geometry_msgs/msg/
 LTM_MESSAGE_TRAITS(geometry_msgs_msg_dds__Twist_, "geometry_msgs/msg/Twist")
 LTM_MESSAGE_TRAITS(nav_msgs_msg_dds__Odometry_, "nav_msgs/msg/Odometry")
 LTM_MESSAGE_TRAITS(nav_msgs_msg_dds__Path_, "nav_msgs/msg/Path")
+LTM_MESSAGE_TRAITS(tf2_msgs_msg_dds__TFMessage_, "tf2_msgs/msg/TFMessage")
 LTM_MESSAGE_TRAITS(ltm_msgs_msg_dds__Keyframe_, "ltm_msgs/msg/Keyframe")
 LTM_MESSAGE_TRAITS(ltm_msgs_msg_dds__LocalMap_, "ltm_msgs/msg/LocalMap")
 LTM_MESSAGE_TRAITS(ltm_msgs_msg_dds__LoopClosure_, "ltm_msgs/msg/LoopClosure")
@@ -109,6 +121,9 @@ LTM_MESSAGE_TRAITS(ltm_msgs_msg_dds__Status_, "ltm_msgs/msg/Status")
 LTM_MESSAGE_TRAITS(ltm_msgs_msg_dds__MapRequest_, "ltm_msgs/msg/MapRequest")
 LTM_MESSAGE_TRAITS(ltm_msgs_msg_dds__LinkPacket_, "ltm_msgs/msg/LinkPacket")
 LTM_MESSAGE_TRAITS(ltm_msgs_msg_dds__LinkAck_, "ltm_msgs/msg/LinkAck")
+LTM_MESSAGE_TRAITS(ltm_msgs_msg_dds__SiteOffer_, "ltm_msgs/msg/SiteOffer")
+LTM_MESSAGE_TRAITS(ltm_msgs_msg_dds__SiteRequest_, "ltm_msgs/msg/SiteRequest")
+LTM_MESSAGE_TRAITS(ltm_msgs_msg_dds__SiteChunk_, "ltm_msgs/msg/SiteChunk")
 
 // The table of known top-level types: for `--all` recording, replay and `ltm_host --list-types`.
 struct MessageTypeInfo {

@@ -91,4 +91,20 @@ void fill_reader_qos(const QosProfile& p, dds_qos_t* qos) {
     }
 }
 
+QosProfile matching_reader_profile(const dds_qos_t* writer_qos, int depth) {
+    dds_reliability_kind_t reliability = DDS_RELIABILITY_BEST_EFFORT;
+    dds_duration_t blocking = 0;
+    dds_durability_kind_t durability = DDS_DURABILITY_VOLATILE;
+    if (writer_qos) {
+        dds_qget_reliability(writer_qos, &reliability, &blocking);
+        dds_qget_durability(writer_qos, &durability);
+    }
+    QosProfile p;
+    p.reliable = reliability == DDS_RELIABILITY_RELIABLE;
+    p.transient_local = durability != DDS_DURABILITY_VOLATILE;
+    p.keep_all = false;
+    p.depth = depth;
+    return p;
+}
+
 }  // namespace ltm::runtime

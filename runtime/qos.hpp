@@ -56,4 +56,8 @@ class Qos {
 void fill_writer_qos(const QosProfile& p, dds_qos_t* qos);
 void fill_reader_qos(const QosProfile& p, dds_qos_t* qos);
 
+// A reader's profile matching a discovered writer (DCPSPublication's QoS, null: the defaults,
+// best-effort volatile): its reliability and durability; keep-last `depth` otherwise.
+QosProfile matching_reader_profile(const dds_qos_t* writer_qos, int depth);
+
 }  // namespace ltm::runtime

@@ -10,6 +10,8 @@ std::string worker_thread_name(const std::string& component, const std::string& 
     return component.substr(0, kMax - tail.size()) + tail;
 }
 
+std::string component_thread_name(const std::string& component) { return component.substr(0, 15); }
+
 void set_current_thread_name(const std::string& name) {
     pthread_setname_np(pthread_self(), name.substr(0, 15).c_str());
 }

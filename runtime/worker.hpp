@@ -69,6 +69,10 @@ struct WorkerOptions {
 
 // "component/role" in at most 15 characters: the component's name is cut, the role kept.
 std::string worker_thread_name(const std::string& component, const std::string& role);
+// A component's own thread (its handlers and timers): the component's name, cut to 15 characters.
+// Together with worker_thread_name the scheme is: no '/' = the component's own thread, "c/role" =
+// its worker `role` (a profiler's or `./ltm bench budget`'s way back to the component).
+std::string component_thread_name(const std::string& component);
 // Names the calling thread (best effort: a failure is not an error).
 void set_current_thread_name(const std::string& name);
 

@@ -2,9 +2,11 @@
 // messages are owned: each is freed by its generated free function at the end of the test.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <set>
 
 #include "runtime/convert/geometry.hpp"
+#include "runtime/convert/imu.hpp"
 #include "runtime/convert/loop_closure.hpp"
 #include "runtime/convert/odometry.hpp"
 #include "runtime/convert/path.hpp"
@@ -173,6 +175,29 @@ TEST(OdometryMessage, BuildAndBack) {
     EXPECT_EQ(out.linear_velocity, in.linear_velocity);
     EXPECT_EQ(out.angular_velocity, in.angular_velocity);
     EXPECT_EQ(out.twist_covariance, in.twist_covariance);
+}
+
+TEST(ImuMessage, BuildAndBack) {
+    ImuData in;
+    in.stamp = 12.345;
+    in.frame_id = "imu_link";
+    in.angular_velocity = {0.1, -0.2, 1.5};
+    in.linear_acceleration = {0.3, 0.0, 9.81};
+    in.gyro_variance = 4e-4;
+    in.accel_variance = 1e-3;
+    const Owned<msg::Imu> m = to_msg(in);
+    EXPECT_EQ(m->orientation_covariance[0], -1.0);  // no orientation
+    EXPECT_EQ(m->angular_velocity_covariance[4], 4e-4);
+    ImuData out;
+    ASSERT_EQ(from_msg(*m, &out), "");
+    EXPECT_NEAR(out.stamp, in.stamp, 1e-9);
+    EXPECT_EQ(out.frame_id, "imu_link");
+    EXPECT_TRUE(out.angular_velocity.isApprox(in.angular_velocity));
+    EXPECT_TRUE(out.linear_acceleration.isApprox(in.linear_acceleration));
+    EXPECT_EQ(out.accel_variance, 1e-3);
+    ImuData bad = in;
+    bad.angular_velocity.z() = std::nan("");
+    EXPECT_EQ(from_msg(*to_msg(bad), &out), "IMU angular velocity is not finite");
 }
 
 TEST(OdometryMessage, ReparentMovesThePoseAndRotatesItsCovariance) {

@@ -29,6 +29,12 @@ check() {  # check NAME FUNCTION
     fi
 }
 namespaces() { ip netns list | grep -c '^ltm_' || true; }
+# all_delivered TOPIC < bench output: every message of robot/TOPIC sent was delivered, once. The
+# robot's own recorder finds the topics by discovery and can miss a topic's first message; the
+# bench then counts what only the base station recorded as sent and says so in brackets.
+all_delivered() {
+    grep -Eq "^   robot/$1 +sent +([1-9][0-9]*) .*delivered +\\1 +late +[0-9]+ +missing 0( \\[[0-9]+ only in the base station's recording\\])?\$"
+}
 
 every_local_map_at_5_percent_loss() {
     local out rc
@@ -38,8 +44,8 @@ every_local_map_at_5_percent_loss() {
     # Frames were really dropped, and local maps and keyframes were really sent (and all
     # delivered, once).
     echo "$out" | grep -Eq 'frames dropped for loss: [1-9][0-9]* robot -> base' || return 1
-    echo "$out" | grep -Eq '^   robot/local_map +sent +([1-9][0-9]*) .*delivered +\1 +late +[0-9]+ +missing 0$' || return 1
-    echo "$out" | grep -Eq '^   robot/keyframe +sent +([1-9][0-9]*) .*delivered +\1 +late +[0-9]+ +missing 0$'
+    echo "$out" | all_delivered local_map || return 1
+    echo "$out" | all_delivered keyframe
 }
 
 # tiny_loop played at half speed (~16 s, so that a loaded machine's odometry still takes every
@@ -69,7 +75,7 @@ intruder_hears_nothing_with_security() {
     echo "$out"
     [ "$rc" = 0 ] || return 1
     echo "$out" | grep -Eq 'without credentials .*: 0 messages received' || return 1
-    echo "$out" | grep -Eq '^   robot/keyframe +sent +([1-9][0-9]*) .*delivered +\1 +late +[0-9]+ +missing 0$'
+    echo "$out" | all_delivered keyframe
 }
 
 stopped_run_cleans_up() {

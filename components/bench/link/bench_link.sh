@@ -295,7 +295,7 @@ start_base() {  # start_base N: the Nth start of the base station (its own recor
     local suffix=""; [ "$1" -gt 1 ] && suffix="$1"
     BASE_RECORDING="$RUN/base/delivered$suffix.mcap"
     dds "$BRIDGE" "$robot_peers"
-    ip netns exec "$NS_BASE" env LTM_ROOT="$ROOT" LTM_OUT="$RUN/base" LTM_RECORDING="$BASE_RECORDING" \
+    ip netns exec "$NS_BASE" env LTM_ROOT="$ROOT" LTM_OUT="$RUN/base" LTM_SITE="$RUN/base/site" LTM_RECORDING="$BASE_RECORDING" \
         LTM_SECURITY_DIR="$WORK/certs" LTM_PARTICIPANT=base_station \
         "$BIN/ltm_host" "$WORK/base.yaml" "${DDS[@]}" "${security_set[@]}" \
         --set "mapping.preset=$preset" --set idle_exit_s=0 --set shutdown_timeout_s=60 \
@@ -329,7 +329,7 @@ for i in "${!NS_R[@]}"; do
     ns_set=(); [ "$ROBOTS" -gt 1 ] && ns_set=(--set "namespace=/${NAME_R[$i]}")
     mkdir -p "$RUN/${NAME_R[$i]}"
     dds "${DEV_R[$i]}" "$ADDR_BASE"
-    ip netns exec "${NS_R[$i]}" env LTM_ROOT="$ROOT" LTM_DATA="${DATA[$i]}" LTM_OUT="$RUN/${NAME_R[$i]}" \
+    ip netns exec "${NS_R[$i]}" env LTM_ROOT="$ROOT" LTM_DATA="${DATA[$i]}" LTM_OUT="$RUN/${NAME_R[$i]}" LTM_SITE="$RUN/${NAME_R[$i]}/site" \
         LTM_SECURITY_DIR="$WORK/certs" LTM_PARTICIPANT="${NAME_R[$i]}" \
         "$BIN/ltm_host" "$WORK/robot.yaml" "${DDS[@]}" "${linger_set[@]}" \
         "${ns_set[@]}" "${security_set[@]}" --set "odometry.preset=$preset" --set "keyframe_digest.preset=$preset" "${ROBOT_SETS[@]}" \
@@ -510,7 +510,7 @@ if [ "$COMPARE" = 1 ] && [ "$ROBOTS" = 1 ]; then
     mkdir -p "$RUN/composed"
     # robot.yaml without its uplink (the odometry's outputs not remapped) and with a mapping: the
     # robot's own settings, the scans played as fast as the odometry takes them.
-    awk '/^  - name:/ {skip = ($3 == "uplink" || $3 == "keyframe_digest")} skip {next}
+    awk '/^  - name:/ {skip = ($3 == "uplink" || $3 == "keyframe_digest" || $3 == "site_receiver")} skip {next}
          /remap: \{keyframe: onboard\// {next} {print}' "$ROOT/launch_configs/robot.yaml" > "$WORK/composed.yaml"
     printf '  - {name: mapping, type: mapping, params: {preset: %s, map_dir: "%s"}}\n' \
         "$preset" "$RUN/composed/map" >> "$WORK/composed.yaml"

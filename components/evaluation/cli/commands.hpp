@@ -17,5 +17,6 @@ Run add_mesh(CLI::App& app);
 Run add_loops(CLI::App& app);
 Run add_reloc(CLI::App& app);
 Run add_lifelong(CLI::App& app);
+Run add_report(CLI::App& app);
 
 }  // namespace ltm::eval::cli

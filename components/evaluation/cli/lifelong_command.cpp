@@ -1,5 +1,6 @@
 // ltm_eval lifelong: every day of a lifelong benchmark run scored against the simulator's truth,
 // one row a day (the layout of a run's folder: components/bench/lifelong/README.md).
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -16,6 +17,7 @@
 #include "evaluation/core/lifelong_poses.hpp"
 #include "evaluation/core/map_change_score.hpp"
 #include "evaluation/core/new_ground.hpp"
+#include "evaluation/core/object_account.hpp"
 
 namespace ltm::eval::cli {
 
@@ -55,6 +57,28 @@ std::string fmt(const char* f, double v) {
 std::string gone_text(std::size_t kept, std::size_t before) {
     if (before == 0) return "-";
     return fmt("%.1f%%", 100.0 - percent(kept, before)) + " of " + std::to_string(before);
+}
+
+// "93.1%/150": the share of the places' voxels gone, of how many; "-" without any.
+std::string gone_short(const AccountTotals& t) {
+    if (t.before == 0) return "-";
+    return fmt("%.1f%%", 100.0 - percent(t.kept, t.before)) + "/" + std::to_string(t.before);
+}
+
+std::string objects_text(const std::vector<ObjectAccount>& accounts) {
+    std::ostringstream out;
+    out << "# id kind what left route_m voxels_day0 at_start after kept_z  (left: today = it "
+           "stood there the day before; route_m: nearest scan of the day to its centre; voxels of "
+           "the place in day 0's map, the map the day started from and the map after it; kept_z: "
+           "median height of the voxels kept above the object's base [m])\n";
+    for (const auto& a : accounts) {
+        char line[200];
+        std::snprintf(line, sizeof line, "%u %s %s %s %.1f %zu %zu %zu %.2f\n", a.object.id,
+                      a.object.kind.c_str(), a.what.c_str(), a.today ? "today" : "earlier",
+                      a.route_distance, a.before, a.at_start, a.kept, a.kept_median_height);
+        out << line;
+    }
+    return out.str();
 }
 
 std::string kidnap_text(const DayPoseScore& s) {
@@ -100,13 +124,14 @@ int run_lifelong(const LifelongOptions& o) {
           << fmt("%.3f", align.ate.rmse) << " m over " << align.matched << " keyframes\n";
     char header[512];
     std::snprintf(header, sizeof header,
-                  "%3s %5s %6s %6s %6s %6s %6s  %-16s %9s  %-13s %-11s %9s %7s %7s %7s %8s %7s "
-                  "%6s\n",
+                  "%3s %5s %6s %6s %6s %6s %6s  %-16s %9s  %-13s %-11s %-12s %-12s %-12s "
+                  "%-12s %9s %7s %7s %7s %8s %7s %6s\n",
                   "day", "scans", "pose%", "rmse", "p95", "max", ">0.5m", "kidnap->correct",
-                  "new/mapped", "removed_gone", "moved_gone", "moved_new", "added", "static%",
-                  "map_MB", "maint_MB", "peak_MB", "cpu_ms");
+                  "new/mapped", "removed_gone", "moved_gone", "rm_today", "rm_earlier", "mv_today",
+                  "mv_earlier", "moved_new", "added", "static%", "map_MB", "maint_MB", "peak_MB",
+                  "cpu_ms");
     table << header;
-    std::vector<Eigen::Vector3d> earlier;
+    std::vector<Eigen::Vector3d> earlier, start_map;
     for (int d = 0; d < o.days; ++d) {
         const std::string dir = day_dir(o, d);
         const common::Trajectory truth =
@@ -128,6 +153,16 @@ int run_lifelong(const LifelongOptions& o) {
                                                o.min_planarity);
             c = score_map_changes(first_map, later, changes, unstable, o.changes);
         }
+        const std::vector<ObjectAccount> accounts =
+            have_map && d > 0
+                ? account_left_places(first_map, start_map, later, changes,
+                                      objects[static_cast<std::size_t>(d - 1)],
+                                      objects[static_cast<std::size_t>(d)], path, o.changes)
+                : std::vector<ObjectAccount>{};
+        const AccountTotals rm_today = sum_accounts(accounts, "removed", true),
+                            rm_earlier = sum_accounts(accounts, "removed", false),
+                            mv_today = sum_accounts(accounts, "moved", true),
+                            mv_earlier = sum_accounts(accounts, "moved", false);
         const NewGround ground = new_ground(path, earlier, later, o.ground);
         const ProcessUsage usage = read_time_report(dir + "/time.txt");
         const double map_mb = static_cast<double>(bytes_on_disk(map_dir)) / (1 << 20);
@@ -136,14 +171,16 @@ int run_lifelong(const LifelongOptions& o) {
 
         char row[512];
         std::snprintf(row, sizeof row,
-                      "%3d %5zu %6.1f %6.3f %6.3f %6.2f %6zu  %-16s %9s  %-13s %-11s %4zu/%-4zu "
-                      "%3zu/%-3zu %7.2f %7.1f %8.1f %7.0f %6.1f\n",
+                      "%3d %5zu %6.1f %6.3f %6.3f %6.2f %6zu  %-16s %9s  %-13s %-11s %-12s %-12s "
+                      "%-12s %-12s %4zu/%-4zu %3zu/%-3zu %7.2f %7.1f %8.1f %7.0f %6.1f\n",
                       d, s.scans, percent(s.with_pose, s.scans), s.rmse, s.p95, s.max, s.wrong,
                       kidnap_text(s).c_str(),
                       (fmt("%.0f", ground.driven) + "/" + fmt("%.0f", ground.mapped)).c_str(),
                       gone_text(c.removed_kept, c.removed_before).c_str(),
-                      gone_text(c.moved_from_kept, c.moved_from_before).c_str(), c.moved_to_present,
-                      c.moved_objects, c.added_present, c.added_objects,
+                      gone_text(c.moved_from_kept, c.moved_from_before).c_str(),
+                      gone_short(rm_today).c_str(), gone_short(rm_earlier).c_str(),
+                      gone_short(mv_today).c_str(), gone_short(mv_earlier).c_str(),
+                      c.moved_to_present, c.moved_objects, c.added_present, c.added_objects,
                       percent(c.static_kept, c.static_before), map_mb, maint_mb,
                       usage.valid ? usage.max_rss_mb : 0.0, cpu_ms);
         table << row;
@@ -176,6 +213,15 @@ int run_lifelong(const LifelongOptions& o) {
         report.add_count("added_objects", c.added_objects);
         report.add_count("added_present", c.added_present);
         report.add_count("added_voxels", c.added_voxels);
+        for (const auto& [key, t] :
+             {std::pair<const char*, AccountTotals>{"removed_today", rm_today},
+              {"removed_earlier", rm_earlier},
+              {"moved_today", mv_today},
+              {"moved_earlier", mv_earlier}}) {
+            report.add_count(std::string(key) + "_objects", t.objects);
+            report.add_count(std::string(key) + "_voxels", t.before);
+            report.add_count(std::string(key) + "_voxels_kept", t.kept);
+        }
         report.add_count("static_voxels_day0_map", c.static_before);
         report.add_count("static_voxels_kept", c.static_kept);
         report.add("map_on_disk", map_mb, "MiB");
@@ -196,18 +242,35 @@ int run_lifelong(const LifelongOptions& o) {
             fig.changes = changes;
             write_text_file(o.out + "/day" + std::to_string(d) + ".svg", lifelong_day_svg(fig));
             std::ostringstream scans;
-            scans << "# stamp true_x true_y error_m (-1: no map pose)\n";
+            scans << "# stamp true_x true_y error_m (-1: no map pose) error_along error_across "
+                     "error_z [m] error_yaw [deg] (the pose minus the truth: along and across "
+                     "the true heading, up; yaw)\n";
             for (std::size_t i = 0; i < truth.size(); ++i) {
-                char line[128];
-                std::snprintf(line, sizeof line, "%.3f %.2f %.2f %.3f\n", truth[i].stamp,
-                              truth[i].pose.translation().x(), truth[i].pose.translation().y(),
-                              s.error[i]);
+                const Eigen::Isometry3d& T = truth[i].pose;
+                Eigen::Vector3d e = Eigen::Vector3d::Zero();
+                double yaw = 0.0;
+                if (s.error[i] >= 0.0) {
+                    const Eigen::Vector3d dw = s.aligned[i].translation() - T.translation();
+                    const Eigen::Vector3d fwd = T.linear().col(0);
+                    const Eigen::Vector3d left = Eigen::Vector3d::UnitZ().cross(fwd).normalized();
+                    e = {dw.dot(fwd), dw.dot(left), dw.z()};
+                    const Eigen::Matrix3d dR = T.linear().transpose() * s.aligned[i].linear();
+                    yaw = std::atan2(dR(1, 0), dR(0, 0)) * 180.0 / M_PI;
+                }
+                char line[160];
+                std::snprintf(line, sizeof line, "%.3f %.2f %.2f %.3f %.3f %.3f %.3f %.3f\n",
+                              truth[i].stamp, T.translation().x(), T.translation().y(), s.error[i],
+                              e.x(), e.y(), e.z(), yaw);
                 scans << line;
             }
             write_text_file(o.out + "/day" + std::to_string(d) + "_scans.txt", scans.str());
+            if (!accounts.empty())
+                write_text_file(o.out + "/day" + std::to_string(d) + "_objects.txt",
+                                objects_text(accounts));
         }
         // Every few scans is plenty for "more than 10 m from every earlier path".
         for (std::size_t i = 0; i < path.size(); i += 5) earlier.push_back(path[i]);
+        start_map = std::move(later);
     }
     table << "pose%: scans with a published map pose; kidnap->correct: scan time to the first "
              "pose within "
@@ -220,7 +283,9 @@ int run_lifelong(const LifelongOptions& o) {
              "objects / moved objects' old places in day 0's map that the map after the day no "
              "longer has; moved_new / added: objects with >= "
           << o.changes.min_voxels << " voxels in the map after the day; static%: day 0's other "
-          << "voxels kept\n";
+          << "voxels kept; rm_today / rm_earlier / mv_today / mv_earlier: the same, objects that "
+             "left today (they stood there the day before) and on an earlier day, without voxels "
+             "in the box of an object standing on the day (dayN_objects.txt: object by object)\n";
     std::cout << table.str();
     if (!o.out.empty()) {
         report.write(o.out);

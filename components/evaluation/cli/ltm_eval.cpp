@@ -14,8 +14,9 @@ int main(int argc, char** argv) {
     cli::configure(app);
     app.require_subcommand(1);
     const std::map<std::string, Run> runs = {
-        {"traj", add_traj(app)},   {"dynamic", add_dynamic(app)}, {"mesh", add_mesh(app)},
-        {"loops", add_loops(app)}, {"reloc", add_reloc(app)},     {"lifelong", add_lifelong(app)}};
+        {"traj", add_traj(app)},    {"dynamic", add_dynamic(app)}, {"mesh", add_mesh(app)},
+        {"loops", add_loops(app)},  {"reloc", add_reloc(app)},     {"lifelong", add_lifelong(app)},
+        {"report", add_report(app)}};
     if (const int code = cli::parse(app, argc, argv); code >= 0) return code;
     try {
         return runs.at(app.get_subcommands().front()->get_name())();

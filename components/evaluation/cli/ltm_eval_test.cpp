@@ -111,9 +111,10 @@ TEST(LtmEvalCli, BadInputGivesOneLineAndAnExitCode) {
     EXPECT_NE(missing.output.find("/nonexistent/a.txt: cannot open"), std::string::npos);
     EXPECT_EQ(run("nosuchcommand").output,
               "ltm_eval: nosuchcommand: unknown command (traj, dynamic, mesh, loops, reloc, "
-              "lifelong)\n");
-    EXPECT_EQ(run("").output,
-              "ltm_eval: a command is required (traj, dynamic, mesh, loops, reloc, lifelong)\n");
+              "lifelong, report)\n");
+    EXPECT_EQ(
+        run("").output,
+        "ltm_eval: a command is required (traj, dynamic, mesh, loops, reloc, lifelong, report)\n");
     EXPECT_EQ(run("").code, 2);
     EXPECT_EQ(run("traj --estimate a --reference b --reference-frame camera").code, 1);
 }

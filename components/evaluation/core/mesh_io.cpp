@@ -12,7 +12,9 @@
 
 namespace ltm::eval {
 
-common::PlyMesh read_mesh_file(const std::string& path) {
+namespace {
+
+pcl::PolygonMesh load_ply(const std::string& path) {
     if (!std::filesystem::is_regular_file(path)) throw common::IoError(path, "no such file");
     std::string ext = std::filesystem::path(path).extension().string();
     for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -24,6 +26,36 @@ common::PlyMesh read_mesh_file(const std::string& path) {
     bool has_xyz = false;
     for (const auto& f : mesh.cloud.fields) has_xyz |= f.name == "x";
     if (!has_xyz) throw common::IoError(path, "PLY vertices have no x y z");
+    return mesh;
+}
+
+}  // namespace
+
+ColouredCloud read_coloured_cloud(const std::string& path) {
+    const pcl::PolygonMesh mesh = load_ply(path);
+    bool has_rgb = false;
+    for (const auto& f : mesh.cloud.fields) has_rgb |= f.name == "rgb" || f.name == "red";
+    ColouredCloud out;
+    if (has_rgb) {
+        pcl::PointCloud<pcl::PointXYZRGB> cloud;
+        pcl::fromPCLPointCloud2(mesh.cloud, cloud);
+        out.points.reserve(cloud.size());
+        out.colours.reserve(cloud.size());
+        for (const auto& p : cloud.points) {
+            out.points.emplace_back(p.x, p.y, p.z);
+            out.colours.push_back({p.r, p.g, p.b});
+        }
+        return out;
+    }
+    pcl::PointCloud<pcl::PointXYZ> cloud;
+    pcl::fromPCLPointCloud2(mesh.cloud, cloud);
+    out.points.reserve(cloud.size());
+    for (const auto& p : cloud.points) out.points.emplace_back(p.x, p.y, p.z);
+    return out;
+}
+
+common::PlyMesh read_mesh_file(const std::string& path) {
+    const pcl::PolygonMesh mesh = load_ply(path);
     pcl::PointCloud<pcl::PointXYZ> cloud;
     pcl::fromPCLPointCloud2(mesh.cloud, cloud);
 

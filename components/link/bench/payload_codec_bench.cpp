@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "link/core/cdr_cursor.hpp"
+#include "common/core/cdr_cursor.hpp"
 #include "link/core/payload_codec.hpp"
 #include "recorder/core/mcap_reader.hpp"
 
@@ -41,8 +41,8 @@ std::string dds_type(const std::string& ros) {
 
 // A LocalMap_'s `finished` flag (false when it does not parse).
 bool finished_map(const std::vector<std::uint8_t>& cdr) {
-    if (!link::is_cdr_le(cdr)) return false;
-    link::CdrReader r(cdr.data(), cdr.size());
+    if (!common::is_cdr_le(cdr)) return false;
+    common::CdrReader r(cdr.data(), cdr.size());
     std::int32_t sec;
     std::uint32_t nsec, revision;
     std::uint64_t id;

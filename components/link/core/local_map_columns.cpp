@@ -6,7 +6,7 @@
 #include <string>
 #include <unordered_map>
 
-#include "link/core/cdr_cursor.hpp"
+#include "common/core/cdr_cursor.hpp"
 
 namespace ltm::link {
 namespace {
@@ -62,7 +62,7 @@ struct Prefix {
 };
 
 // Everything of a LocalMap_ before its voxel count; false when it is not one.
-bool parse_prefix(CdrReader& r, const std::uint8_t* data, Prefix& p) {
+bool parse_prefix(common::CdrReader& r, const std::uint8_t* data, Prefix& p) {
     std::int32_t sec;
     std::uint32_t u32, nsec, count;
     std::uint64_t u64;
@@ -176,8 +176,8 @@ struct Parsed {
 };
 
 bool parse(const std::vector<std::uint8_t>& cdr, Parsed& p) {
-    if (!is_cdr_le(cdr)) return false;
-    CdrReader r(cdr.data(), cdr.size());
+    if (!common::is_cdr_le(cdr)) return false;
+    common::CdrReader r(cdr.data(), cdr.size());
     Prefix prefix;
     if (!parse_prefix(r, cdr.data(), prefix)) return false;
     p.prefix = r.pos();
@@ -271,11 +271,12 @@ std::vector<std::uint8_t> local_map_from_columns(const std::vector<std::uint8_t>
         return v;
     };
     const std::uint32_t prefix_size = u32("the header");
-    if (prefix_size < kCdrHeader || prefix_size > in.size() - at) malformed("bad header length");
+    if (prefix_size < common::kCdrHeader || prefix_size > in.size() - at)
+        malformed("bad header length");
     std::vector<std::uint8_t> out(in.begin() + at, in.begin() + at + prefix_size);
     at += prefix_size;
     Prefix prefix;
-    CdrReader header(out.data(), out.size());
+    common::CdrReader header(out.data(), out.size());
     if (!parse_prefix(header, out.data(), prefix) || header.pos() != out.size())
         malformed("the header is not a local map's");
     const std::uint32_t voxels = u32("the voxel count");
@@ -301,7 +302,7 @@ std::vector<std::uint8_t> local_map_from_columns(const std::vector<std::uint8_t>
     at += seen.size();
 
     out.reserve(in.size() + std::size_t{voxels} * 8);
-    CdrWriter w(out);
+    common::CdrWriter w(out);
     w.write(voxels);
     const Predictor predict{prefix};
     std::uint64_t raw[kFields] = {}, previous[kFields] = {};

@@ -6,7 +6,7 @@
 #include <cstring>
 #include <stdexcept>
 
-#include "link/core/cdr_cursor.hpp"
+#include "common/core/cdr_cursor.hpp"
 #include "link/core/local_map_columns.hpp"
 
 namespace ltm::link {
@@ -38,7 +38,7 @@ void add_range(std::vector<Range>& ranges, std::size_t offset, std::size_t count
                           static_cast<std::uint8_t>(delta && stride % 4 == 0)});
 }
 
-bool skip_header(CdrReader& r) {
+bool skip_header(common::CdrReader& r) {
     std::int32_t sec;
     std::uint32_t nsec;
     return r.read(sec) && r.read(nsec) && r.skip_string();
@@ -49,8 +49,8 @@ bool skip_header(CdrReader& r) {
 // only a permutation).
 std::vector<Range> keyframe_ranges(const std::vector<std::uint8_t>& cdr) {
     std::vector<Range> ranges;
-    if (!is_cdr_le(cdr)) return ranges;
-    CdrReader r(cdr.data(), cdr.size());
+    if (!common::is_cdr_le(cdr)) return ranges;
+    common::CdrReader r(cdr.data(), cdr.size());
     std::uint64_t u64;
     std::uint32_t u32, height, width, fields, point_step, count;
     std::uint8_t u8;

@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "link/core/cdr_cursor.hpp"
+#include "common/core/cdr_cursor.hpp"
 #include "link/core/local_map_columns.hpp"
 
 using namespace ltm::link;
@@ -21,7 +21,7 @@ const std::string kLocalMap = "ltm_msgs::msg::dds_::LocalMap_";
 // payload_codec_messages_test checks the codec on Cyclone's own bytes).
 struct Cdr {
     std::vector<std::uint8_t> bytes{0, 1, 0, 0};
-    CdrWriter w{bytes};
+    ltm::common::CdrWriter w{bytes};
     template <class T>
     void put(T v) {
         w.write(v);

@@ -10,8 +10,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "common/core/cdr_cursor.hpp"
 #include "common/core/io_error.hpp"
-#include "link/core/cdr_cursor.hpp"
 
 namespace ltm::link {
 namespace {
@@ -20,7 +20,7 @@ const char* const kKeyframe = "ltm_msgs::msg::dds_::Keyframe_";
 const char* const kLocalMap = "ltm_msgs::msg::dds_::LocalMap_";
 const char* const kMagic = "ltm robot ids 1";
 
-bool skip_header(CdrReader& r) {
+bool skip_header(common::CdrReader& r) {
     std::int32_t sec;
     std::uint32_t nsec;
     return r.read(sec) && r.read(nsec) && r.skip_string();
@@ -28,7 +28,7 @@ bool skip_header(CdrReader& r) {
 
 // Where a field was read: its offset, for writing it back.
 template <class T>
-bool read_at(CdrReader& r, T& v, std::size_t& at) {
+bool read_at(common::CdrReader& r, T& v, std::size_t& at) {
     if (!r.read(v)) return false;
     at = r.pos() - sizeof(T);
     return true;
@@ -61,8 +61,8 @@ RobotIdRenumbering::RobotIdRenumbering(std::string file) : file_(std::move(file)
 
 bool RobotIdRenumbering::renumber(const std::string& dds_type, std::vector<std::uint8_t>& cdr) {
     const bool keyframe = dds_type == kKeyframe;
-    if ((!keyframe && dds_type != kLocalMap) || !is_cdr_le(cdr)) return false;
-    CdrReader r(cdr.data(), cdr.size());
+    if ((!keyframe && dds_type != kLocalMap) || !common::is_cdr_le(cdr)) return false;
+    common::CdrReader r(cdr.data(), cdr.size());
     std::uint64_t id = 0, scan_index = 0, local_map = 0;
     std::uint32_t segment = 0, revision = 0;
     std::uint8_t finished = 0;

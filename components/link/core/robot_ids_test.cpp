@@ -7,8 +7,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include "common/core/cdr_cursor.hpp"
 #include "common/core/io_error.hpp"
-#include "link/core/cdr_cursor.hpp"
 
 namespace ltm::link {
 namespace {
@@ -20,7 +20,7 @@ const std::string kLocalMap = "ltm_msgs::msg::dds_::LocalMap_";
 
 // The leading fields of a Keyframe_ / LocalMap_ as Cyclone lays them out (XCDR1 LE), then some
 // bytes of the rest.
-void header(CdrWriter& w) {
+void header(common::CdrWriter& w) {
     w.write(std::int32_t{100});
     w.write(std::uint32_t{5});
     const char frame[] = "odom";
@@ -30,7 +30,7 @@ void header(CdrWriter& w) {
 std::vector<std::uint8_t> keyframe(std::uint64_t id, std::uint64_t map, std::uint32_t segment,
                                    std::uint64_t scan_index = 1000) {
     std::vector<std::uint8_t> out{0, 1, 0, 0};
-    CdrWriter w(out);
+    common::CdrWriter w(out);
     header(w);
     w.write(id);
     w.write(scan_index);  // the scan's index in its input: not renumbered
@@ -41,7 +41,7 @@ std::vector<std::uint8_t> keyframe(std::uint64_t id, std::uint64_t map, std::uin
 }
 std::vector<std::uint8_t> local_map(std::uint64_t id, std::uint32_t segment) {
     std::vector<std::uint8_t> out{0, 1, 0, 0};
-    CdrWriter w(out);
+    common::CdrWriter w(out);
     header(w);
     w.write(id);
     w.write(std::uint32_t{3});  // revision

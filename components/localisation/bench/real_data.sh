@@ -8,6 +8,7 @@
 #     for the scans of the cross-session pairs, against the pairs' ICP-refined poses
 #     (hku_score.py: verified pairs, and the others that view the same place).
 #   real_data.sh [--out-dir DIR]        ./ltm bench localise_real [--out-dir DIR]
+# Maps already in DIR (a previous run's) are reused.
 # Environment: LTM_BUILD_DIR (default ./build), LTM_SHARED_DATA (default shared/data next to the checkout;
 # skipped with a message when absent).
 set -euo pipefail
@@ -32,24 +33,27 @@ echo "results in $OUT"
 K="$DATA/kitti/sequences"
 for s in 00 04 05 07; do
     [ -d "$K/$s" ] || continue
-    "$B/ltm_bench_slam" "$K/$s" --poses "$K/$s/poses_semantickitti.txt" --calib "$K/$s/calib.txt" \
-        --preset hdl64 --out "$OUT/kitti_$s" > "$OUT/kitti_map_$s.log" 2>&1
+    [ -f "$OUT/kitti_$s/map/manifest.txt" ] ||
+        "$B/ltm_bench_slam" "$K/$s" --poses "$K/$s/poses_semantickitti.txt" --calib "$K/$s/calib.txt" \
+            --preset hdl64 --out "$OUT/kitti_$s" > "$OUT/kitti_map_$s.log" 2>&1
     for seed in 1 2 3; do
         "$B/ltm_bench_localise" --map "$OUT/kitti_$s/map" "$K/$s" --reference "$OUT/kitti_$s/slam.txt" \
             --preset hdl64 --mode global --perturb-yaw 180 --perturb-shift 5 --seed "$seed" \
             --out "$OUT/kitti_${s}_seed$seed.txt" > "$OUT/kitti_${s}_seed$seed.log" 2>&1
         echo "KITTI $s, seed $seed: $(grep -E '^against' "$OUT/kitti_${s}_seed$seed.log");" \
-            "$(grep -E '^time a scan' "$OUT/kitti_${s}_seed$seed.log")"
+            "$(grep -E '^time a scan' "$OUT/kitti_${s}_seed$seed.log");" \
+            "$(grep -E '^cpu a scan' "$OUT/kitti_${s}_seed$seed.log")"
     done
 done
 H="$DATA/hku-avia-2session"
 if [ -d "$H" ]; then
-    "$B/ltm_bench_slam" "$H/session1" --preset narrow --poses "$H/session1/odom_poses.txt" \
-        --out "$OUT/hku_s1" > "$OUT/hku_map.log" 2>&1
+    [ -f "$OUT/hku_s1/map/manifest.txt" ] ||
+        "$B/ltm_bench_slam" "$H/session1" --preset narrow --poses "$H/session1/odom_poses.txt" \
+            --out "$OUT/hku_s1" > "$OUT/hku_map.log" 2>&1
     "$B/ltm_bench_localise" --map "$OUT/hku_s1/map" "$H/session2" --reference "$H/session2/odom_poses.txt" \
         --reference-transform "$H/T_s1_s2.txt" --preset narrow --mode global \
         --out "$OUT/hku_global.txt" > "$OUT/hku_global.log" 2>&1
     echo "hku session 2 on session 1's map:"
-    grep -E '^(against|error|time a scan)' "$OUT/hku_global.log" | sed 's/^/  /'
+    grep -E '^(against|error|time a scan|cpu a scan)' "$OUT/hku_global.log" | sed 's/^/  /'
     HKU_DATA="$H" python3 "$HERE/hku_score.py" "$OUT/hku_global.txt" | sed 's/^/  /'
 fi

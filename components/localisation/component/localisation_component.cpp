@@ -148,9 +148,15 @@ class LocalisationComponent : public runtime::Component {
         events_out_ = ctx.advertise<msg::Status>("status", TopicRole::kState);
         // A lifelong session on a new site: the map is being made today, and the SLAM's pose
         // (`slam_odometry`: the mapping's corrected_odometry, frame map) is the map pose.
-        if (on_site_)
+        // Its map -> odom (`slam_map_to_odom`: the mapping's map_to_odom) is then the map's too.
+        if (on_site_) {
             ctx.subscribe<msg::Odometry>("slam_odometry", TopicRole::kState,
                                          [this](const msg::Odometry& m) { on_slam_pose(m); });
+            ctx.subscribe<msg::TransformStamped>("slam_map_to_odom", TopicRole::kState,
+                                                 [this](const msg::TransformStamped& m) {
+                                                     if (new_site_) correction_out_.publish(m);
+                                                 });
+        }
         // Scans whose odometry is late: looked at a few times within odometry_wait_s.
         if (odometry_wait_s_ > 0)
             ctx.add_timer(std::max(0.02, odometry_wait_s_ / 4), [this] { pair(); });

@@ -49,6 +49,9 @@ LocaliserConfig localiser_preset(common::SensorPreset preset) {
     c.global.verification.downsample = row.places.verify_downsample;
     c.global.verification.min_inliers = row.places.verify_min_inliers;
     c.global.verification.coarse_factor = row.places.verify_coarse_factor;
+    // A narrow view's probe can end in a poorer minimum beside the right pose that the fine pass
+    // alone accepts (GlobalLocaliserConfig::fine_only): both passes there.
+    c.global.fine_only = row.horizontal_fov_deg >= 360.0;
     c.off_map_margin = row.localisation.off_map_margin;
     return c;
 }
@@ -171,6 +174,7 @@ bool Localiser::track(const Eigen::Isometry3d& predicted, LocalisationUpdate* u)
         u->message = "tracking failed: " + why.str();
         return false;
     }
+    u->overlap = r.overlap();
     T_map_lidar_ = r.T_map_lidar;
     u->T_map_lidar = r.T_map_lidar;
     u->covariance = r.covariance;
@@ -233,8 +237,20 @@ LocalisationUpdate Localiser::process(double stamp, const std::vector<Eigen::Vec
             u.message = "beyond the map: following the odometry";
             last_good_ = stamp;
         } else if (track(predicted, &u)) {
-            T_map_odom_ = u.T_map_lidar * T_odom_lidar.inverse();
-            state_ = LocalisationState::kTracking;
+            if (u.overlap < config_.edge_overlap) {
+                // The map's edge: the odometry from the last scan the map covered better.
+                state_ = LocalisationState::kOffMap;
+                T_map_lidar_ = predicted;
+                u.T_map_lidar = predicted;
+                std::ostringstream s;
+                s.precision(2);
+                s << "at the map's edge (overlap " << u.overlap << " below " << config_.edge_overlap
+                  << "): following the odometry";
+                u.message = s.str();
+            } else {
+                T_map_odom_ = u.T_map_lidar * T_odom_lidar.inverse();
+                state_ = LocalisationState::kTracking;
+            }
             last_good_ = stamp;
         } else {
             T_map_lidar_ = predicted;

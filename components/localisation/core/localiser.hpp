@@ -54,6 +54,12 @@ struct LocaliserConfig {
     double lost_after = 0.5;      // tracking failed this long (sensor time): lost [s]
     double global_every = 0.0;    // while lost: global localisation at most this often [s]
     double off_map_margin = 8.0;  // no map voxel within this of the pose: off the map [m]
+    // A registration that finds map surfaces for fewer than this share of the scan's points
+    // (but at least min_overlap) sees only the map's edge: voxels seen from afar, few and far
+    // apart, pull the pose by centimetres a scan along the road; it is not used, the pose
+    // follows the odometry from the last scan the map covered better (off the map) [0..1].
+    // 0: every registration that passes is used.
+    double edge_overlap = 0.0;
     // Gap between scans (sensor time) after which the odometry's motion is not trusted and
     // global localisation checks the pose [s].
     double max_gap = 1.0;
@@ -76,6 +82,7 @@ void visit_fields(LocaliserConfig& c, Visitor&& v) {
     v("lost_after", c.lost_after, non_negative);
     v("global_every", c.global_every, non_negative);
     v("off_map_margin", c.off_map_margin, positive);
+    v("edge_overlap", c.edge_overlap, unit);
     v("max_gap", c.max_gap, positive);
 }
 
@@ -105,6 +112,7 @@ struct LocalisationUpdate {
     registration::Matrix6d covariance = registration::Matrix6d::Identity();  // [dt; dr]
     double confidence = 0.0;                                                 // 0..1
     double inlier_fraction = 0.0;  // of this scan's registration
+    double overlap = 0.0;          // of this scan's registration: correspondences / points
     bool global_ran = false;       // global localisation ran on this scan
     double global_time_s = 0.0;    // its wall time
     double lost_for = 0.0;         // sensor time since the last good registration [s]

@@ -182,6 +182,37 @@ TEST(GlobalLocaliser, AHintNarrowsTheSearchToItsPlace) {
     EXPECT_LT(error_of(r.T_map_lidar, truth).translation, 0.1);
 }
 
+TEST(GlobalLocaliser, TheSlideTestRunsOnlyWhereTheFitIsWeakAndFineOnlyGivesTheSamePose) {
+    const SceneMap& s = scene_map();
+    const Eigen::Isometry3d truth = s.path[7] * mt::xy_yaw(1.0, -1.5, 60.0);
+    const std::vector<Eigen::Vector3f> scan = mt::view(s.scene, truth, 60.0);
+    GlobalLocaliserConfig always;
+    always.slide_below_share = 1.0;
+    always.fine_only = false;
+    GlobalLocaliser reference(s.map, always);
+    const GlobalLocalisation a = reference.localise(scan);
+    ASSERT_TRUE(a.localised) << a.reason;
+    EXPECT_TRUE(a.slide_tested);
+    // The synthetic scene pins both horizontal directions: the weakest one holds a large share
+    // of the information, so the default skips the slide test, and verifies fine-only.
+    GlobalLocaliser g(s.map);
+    const GlobalLocalisation b = g.localise(scan);
+    ASSERT_TRUE(b.localised) << b.reason;
+    EXPECT_GT(b.weakest_share, g.config().slide_below_share);
+    EXPECT_FALSE(b.slide_tested);
+    EXPECT_LT(b.verified, a.verified);
+    EXPECT_LT(error_of(b.T_map_lidar, a.T_map_lidar).translation, 0.01);
+    EXPECT_LT(error_of(b.T_map_lidar, truth).translation, 0.1);
+    EXPECT_TRUE(b.covariance.allFinite());
+    EXPECT_GT(b.covariance(0, 0), 0.0);
+    // Out-of-range keys are refused, naming the key.
+    GlobalLocaliserConfig bad;
+    bad.fine_only_probe_share = 1.5;
+    const auto problem = validate(bad);
+    ASSERT_TRUE(problem);
+    EXPECT_EQ(problem->key, "fine_only_probe_share");
+}
+
 TEST(Localiser, TracksAndRelocalisesAfterAKidnap) {
     const SceneMap& s = scene_map();
     Localiser loc(s.map);
@@ -245,6 +276,59 @@ TEST(Localiser, TracksAndRelocalisesAfterAKidnap) {
     u = step(truth, 1, mt::xy_yaw(-3.0, 5.0, 40.0));
     EXPECT_EQ(u.state, LocalisationState::kRelocalised) << u.message;
     EXPECT_LT(error_of(u.T_map_lidar, truth).translation, 0.1);
+}
+
+// The map's edge: a scan of which the map explains less than edge_overlap (here half of it is
+// structure the map never saw) is not registered; the pose follows the odometry from the last
+// scan the map covered (off the map), and tracking resumes where the map covers the scan again.
+TEST(Localiser, AtTheMapsEdgeThePoseFollowsTheOdometry) {
+    const SceneMap& s = scene_map();
+    // Unmapped structure: a grid of points 1 m apart (each survives the 1 m down-sampling) far
+    // above anything the map has.
+    std::vector<Eigen::Vector3f> unmapped;
+    for (int x = -20; x < 20; ++x)
+        for (int y = -20; y < 20; ++y)
+            for (int z = 25; z < 35; ++z) unmapped.emplace_back(x, y, z);
+    for (const double edge : {0.0, 0.7}) {
+        LocaliserConfig c;
+        c.edge_overlap = edge;
+        Localiser loc(s.map, c);
+        double stamp = 100.0;
+        LocalisationUpdate u;
+        for (int i = 2; i <= 5; ++i) {
+            OdometryInput o;
+            o.T_odom_lidar = s.path[std::size_t(i)];
+            u = loc.process(stamp, mt::view(s.scene, s.path[std::size_t(i)], 60.0), o);
+            stamp += 0.1;
+            ASSERT_TRUE(u.pose_valid) << u.message;
+        }
+        // At path[6]: the odometry 0.15 m off along the way, half the scan unmapped.
+        const Eigen::Isometry3d truth = s.path[6];
+        OdometryInput o;
+        o.T_odom_lidar = truth * mt::xy_yaw(0.15, 0.0, 0.0);
+        std::vector<Eigen::Vector3f> scan = mt::view(s.scene, truth, 60.0);
+        scan.insert(scan.end(), unmapped.begin(), unmapped.end());
+        u = loc.process(stamp, scan, o);
+        stamp += 0.1;
+        ASSERT_TRUE(u.pose_valid) << u.message;
+        EXPECT_GT(u.overlap, c.min_overlap) << u.message;
+        EXPECT_LT(u.overlap, 0.7) << u.message;
+        if (edge == 0.0) {
+            // Registered: the map corrects the odometry.
+            EXPECT_EQ(u.state, LocalisationState::kTracking) << u.message;
+            EXPECT_LT(error_of(u.T_map_lidar, truth).translation, 0.05) << u.message;
+        } else {
+            EXPECT_EQ(u.state, LocalisationState::kOffMap) << u.message;
+            EXPECT_NE(u.message.find("map's edge"), std::string::npos) << u.message;
+            EXPECT_NEAR(error_of(u.T_map_lidar, truth).translation, 0.15, 0.03) << u.message;
+            EXPECT_EQ(u.confidence, 0.0);
+            // The map covers the next scan again: tracked, corrected.
+            u = loc.process(stamp, mt::view(s.scene, s.path[7], 60.0),
+                            OdometryInput{s.path[7] * mt::xy_yaw(0.15, 0.0, 0.0), 0});
+            EXPECT_EQ(u.state, LocalisationState::kTracking) << u.message;
+            EXPECT_LT(error_of(u.T_map_lidar, s.path[7]).translation, 0.05) << u.message;
+        }
+    }
 }
 
 TEST(Localiser, RefusesAnInvalidConfigurationWithOneLine) {

@@ -206,6 +206,13 @@ SiteVersion SiteStore::commit(VersionSummary summary, std::size_t keep) {
     sync_dir(versions);
     made.intact = true;
 
+    prune(made, summary.started_from, keep);
+    return made;
+}
+
+void SiteStore::prune(const SiteVersion& made, const std::string& started_from, std::size_t keep) {
+    const fs::path versions = fs::path(dir_) / kVersions;
+    std::error_code ec;
     // Pruning: the oldest beyond `keep`. Interrupted removals (".removing-v0001") first.
     for (const fs::directory_entry& e : fs::directory_iterator(versions, ec))
         if (e.path().filename().string().rfind(kRemoving, 0) == 0) fs::remove_all(e.path(), ec);
@@ -215,7 +222,7 @@ SiteVersion SiteStore::commit(VersionSummary summary, std::size_t keep) {
     for (std::size_t i = 0; i < all.size() && count > keep; ++i) {
         SiteVersion& v = all[i];
         if (v.number == made.number) continue;
-        if (v.name == summary.started_from) {
+        if (v.name == started_from) {
             bool other_intact = false;
             for (std::size_t j = 0; j < all.size() && !other_intact; ++j) {
                 if (j == i || all[j].number >= made.number) continue;
@@ -231,7 +238,85 @@ SiteVersion SiteStore::commit(VersionSummary summary, std::size_t keep) {
         --count;
     }
     sync_dir(versions);
+}
+
+SiteVersion SiteStore::adopt(const std::string& made_dir, std::uint32_t number, std::size_t keep) {
+    return adopt_as(made_dir, number, keep, "");
+}
+
+SiteVersion SiteStore::adopt_as(const std::string& made_dir, std::uint32_t number, std::size_t keep,
+                                const std::string& started_from) {
+    pruned_.clear();
+    const fs::path from(made_dir);
+    if (number == 0) throw common::IoError(made_dir, "version number 0");
+    if (const std::string p = check_map_dir((from / "map").string()); !p.empty())
+        throw common::IoError(made_dir, "not a whole version: " + p);
+    if (const std::string p = check_maintained_map_file((from / kMaintained).string()); !p.empty())
+        throw common::IoError(made_dir, "not a whole version: " + p);
+    SiteVersion made;
+    made.number = number;
+    made.name = version_name(number);
+    const fs::path versions = fs::path(dir_) / kVersions;
+    made.dir = (versions / made.name).string();
+    std::error_code ec;
+    if (fs::exists(made.dir, ec))
+        throw common::IoError(made.dir, "the site has a " + made.name + " already");
+    for (const char* sub : {"map/local_maps", "map", "maintenance", ""}) sync_dir(from / sub);
+    fs::create_directories(versions, ec);
+    if (ec) throw common::IoError(versions.string(), "cannot create: " + ec.message());
+    sync_dir(dir_);
+    if (::rename(from.c_str(), made.dir.c_str()) != 0)
+        throw common::IoError(made.dir,
+                              std::string("cannot make the version: ") + std::strerror(errno));
+    sync_dir(versions);
+    made.intact = true;
+    prune(made, started_from, keep);
     return made;
+}
+
+std::string SiteStore::snapshot_staging() const {
+    const fs::path from(staging_dir());
+    const fs::path to = fs::path(dir_) / ".snapshot";
+    std::error_code ec;
+    fs::remove_all(to, ec);
+    if (!fs::is_directory(from / "map", ec))
+        throw common::IoError(from.string(), "no staging map yet: the session saved nothing");
+    // The manifest first: files it names may be replaced later by a save (the check catches it).
+    fs::create_directories(to / "map", ec);
+    fs::create_hard_link(from / "map/manifest.txt", to / "map/manifest.txt", ec);
+    if (ec) throw common::IoError(from.string(), "no staged manifest: " + ec.message());
+    for (fs::recursive_directory_iterator it(from, ec), end; !ec && it != end; it.increment(ec)) {
+        const fs::path rel = fs::relative(it->path(), from, ec);
+        const std::string name = it->path().filename().string();
+        if (it->is_directory(ec)) {
+            fs::create_directories(to / rel, ec);
+        } else if (rel != "map/manifest.txt" && name.find(".tmp") == std::string::npos) {
+            std::error_code link;
+            fs::create_hard_link(it->path(), to / rel, link);  // gone meanwhile: the check says
+        }
+    }
+    if (ec) throw common::IoError(from.string(), "cannot snapshot: " + ec.message());
+    return to.string();
+}
+
+SiteVersion SiteStore::commit_snapshot(const std::string& snapshot, VersionSummary summary,
+                                       std::size_t keep) {
+    const fs::path snap(snapshot);
+    std::error_code ec;
+    const std::vector<SiteVersion> before = list(dir_);
+    if (!fs::exists(snap / kMaintained, ec) && !summary.started_from.empty())
+        for (const SiteVersion& v : before)
+            if (v.name == summary.started_from && fs::exists(v.maintained_map_file(), ec))
+                link_or_copy(v.maintained_map_file(), snap / kMaintained);
+    summary.number = before.empty() ? 1 : before.back().number + 1;
+    if (summary.created == 0) summary.created = std::int64_t(std::time(nullptr));
+    common::write_file_atomic((snap / "version.txt").string(), write_version_text(summary));
+    try {
+        return adopt_as(snapshot, summary.number, keep, summary.started_from);
+    } catch (const common::IoError&) {
+        fs::remove_all(snap, ec);
+        throw;
+    }
 }
 
 std::string SiteSession::describe() const {

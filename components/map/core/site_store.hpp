@@ -71,10 +71,29 @@ class SiteStore {
     // maintenance keeps what earlier ones learnt). Throws common::IoError (one line) when the
     // staging is missing or not intact; nothing changes then. Sets number and created.
     SiteVersion commit(VersionSummary summary, std::size_t keep);
-    // The versions commit() removed (names), for the log.
+    // A version on request in the middle of a session (issue 26): the staging as it is now,
+    // hard-linked file by file into SITE/.snapshot (every map file is written to a temporary name
+    // and renamed, never changed in place, so the links keep what the staging held; the staging
+    // goes on). Returns that folder; measure it, then commit_snapshot(). Throws common::IoError.
+    std::string snapshot_staging() const;
+    // Makes a snapshot the next version as adopt() does (checked whole first: a save that ran
+    // during the snapshot fails the check and nothing changes; take another snapshot), with
+    // version.txt from `summary` and the start version's maintained map when none was staged.
+    SiteVersion commit_snapshot(const std::string& snapshot, VersionSummary summary,
+                                std::size_t keep);
+    // A version made elsewhere and received whole (the base station's, site_sync): the folder
+    // `made_dir` (on this site's filesystem, holding map/ and maybe maintenance/ and version.txt)
+    // is checked, fsynced and renamed to SITE/versions/v<number> in one rename, then pruned as by
+    // commit(). Throws common::IoError (one line) when the folder is not whole or the site has a
+    // version of that number already; nothing changes then.
+    SiteVersion adopt(const std::string& made_dir, std::uint32_t number, std::size_t keep);
+    // The versions commit() or adopt() removed (names), for the log.
     const std::vector<std::string>& pruned() const { return pruned_; }
 
   private:
+    void prune(const SiteVersion& made, const std::string& started_from, std::size_t keep);
+    SiteVersion adopt_as(const std::string& made_dir, std::uint32_t number, std::size_t keep,
+                         const std::string& started_from);
     std::string dir_;
     std::vector<std::string> pruned_;
 };

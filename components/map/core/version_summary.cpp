@@ -97,6 +97,22 @@ bool parse_number(const std::string& text, T* v) {
     }
 }
 
+// "3:robot1 4:-" -> {3, robot1}, {4, ""}.
+bool parse_sessions(const std::string& value,
+                    std::vector<std::pair<std::uint32_t, std::string>>* out) {
+    std::istringstream in(value);
+    for (std::string item; in >> item;) {
+        const auto colon = item.find(':');
+        std::uint32_t id = 0;
+        if (colon == std::string::npos || colon + 1 == item.size() ||
+            !parse_number(item.substr(0, colon), &id))
+            return false;
+        const std::string robot = item.substr(colon + 1);
+        out->emplace_back(id, robot == "-" ? "" : robot);
+    }
+    return !out->empty();
+}
+
 std::string fixed(double v, int digits) {
     char buf[64];
     std::snprintf(buf, sizeof buf, "%.*f", digits, v);
@@ -113,6 +129,11 @@ VersionSummary measure_version(const std::string& new_map_dir, const std::string
     Skeleton before;
     if (!start_map_dir.empty()) before = read_skeleton(start_map_dir);
     s.session = now.last_session;
+    for (const SessionRecord& r : now.manifest.sessions) {
+        bool known = false;
+        for (const SessionRecord& b : before.manifest.sessions) known |= b.id == r.id;
+        if (!known) s.sessions_added.emplace_back(r.id, r.robot);
+    }
 
     const auto maps_now = local_map_hashes(now.manifest);
     const auto maps_before = local_map_hashes(before.manifest);
@@ -162,8 +183,14 @@ std::string write_version_text(const VersionSummary& s) {
       << "number " << s.number << "\n"
       << "created " << s.created << "\n"
       << "started_from " << (s.started_from.empty() ? "-" : s.started_from) << "\n"
-      << "session " << s.session << "\n"
-      << "local_maps " << s.local_maps << "\n"
+      << "session " << s.session << "\n";
+    if (!s.sessions_added.empty()) {
+        o << "sessions_added";
+        for (const auto& [id, robot] : s.sessions_added)
+            o << " " << id << ":" << (robot.empty() ? "-" : robot);
+        o << "\n";
+    }
+    o << "local_maps " << s.local_maps << "\n"
       << "local_maps_added " << s.local_maps_added << "\n"
       << "local_maps_updated " << s.local_maps_updated << "\n"
       << "local_maps_removed " << s.local_maps_removed << "\n"
@@ -215,6 +242,8 @@ VersionSummary parse_version_text(const std::string& text, const std::string& na
             s.started_from = value == "-" ? "" : value;
         else if (key == "session")
             ok = parse_number(value, &s.session);
+        else if (key == "sessions_added")
+            ok = parse_sessions(value, &s.sessions_added);
         else if (key == "local_maps")
             ok = parse_number(value, &s.local_maps);
         else if (key == "local_maps_added")
@@ -274,6 +303,14 @@ std::string version_line(const VersionSummary& s) {
                (s.voxels_removed ? std::to_string(*s.voxels_removed) : std::string("?")) +
                " voxels removed, " +
                (s.voxels_added ? std::to_string(*s.voxels_added) : std::string("?")) + " added";
+    bool robots = false;
+    for (const auto& [id, robot] : s.sessions_added) robots |= !robot.empty();
+    if (robots) {
+        out += "; sessions ";
+        for (std::size_t i = 0; i < s.sessions_added.size(); ++i)
+            out += (i ? ", " : "") + std::to_string(s.sessions_added[i].first) + " (" +
+                   (s.sessions_added[i].second.empty() ? "-" : s.sessions_added[i].second) + ")";
+    }
     out += s.started_from.empty() ? "; first version" : "; from " + s.started_from;
     return out;
 }

@@ -5,6 +5,8 @@
 //   number 4                      created 1795810503 (UTC seconds)
 //   started_from v0003            ("-" for a site's first version)
 //   session 3                     the newest session the map records
+//   sessions_added 3:robot1 4:robot2   the sessions this version adds, with the robot that drove
+//                                 each ("-": one robot built the map); absent when none recorded
 //   local_maps 48 / local_maps_added 3 / local_maps_updated 5 / local_maps_removed 0
 //   keyframes 1210 / keyframes_added 120 / trajectory_m 512.3
 //   voxels_removed 1234 / voxels_added 456       (by maintenance; absent when not known)
@@ -15,6 +17,8 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace ltm::map {
 
@@ -23,6 +27,9 @@ struct VersionSummary {
     std::int64_t created = 0;   // wall time [s since 1970, UTC]; commit sets it when 0
     std::string started_from;   // "v0003"; "" for the site's first version
     std::uint32_t session = 0;  // the newest session of the map
+    // The sessions in the new map and not in the start one, each with its robot ("" for a map one
+    // robot built): several robots changing one site on one day end in one version.
+    std::vector<std::pair<std::uint32_t, std::string>> sessions_added;
     std::uint64_t local_maps = 0, local_maps_added = 0, local_maps_updated = 0;
     std::uint64_t local_maps_removed = 0;
     std::uint64_t keyframes = 0, keyframes_added = 0;

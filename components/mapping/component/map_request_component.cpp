@@ -35,13 +35,19 @@ class MapRequestComponent : public runtime::Component {
         } else if (what == "mesh") {
             command_ = ltm_msgs_msg_MapRequest_Constants_WRITE_MESH;
             answerer_ = "mesh";
+        } else if (what == "commit") {
+            command_ = ltm_msgs_msg_MapRequest_Constants_COMMIT_VERSION;
+            answerer_ = "site";
         } else {
-            p.fail("command", "expected save, global_map, all or mesh, got '" + what + "'");
+            p.fail("command", "expected save, global_map, all, mesh or commit, got '" + what + "'");
         }
         map_dir_ = p.path("map_dir", "", PathCheck::kParentExists);
         global_map_file_ = p.path("global_map_file", "", PathCheck::kParentExists);
         const std::string mesh_file = p.path("mesh_file", "", PathCheck::kParentExists);
         const bool mesh = command_ == ltm_msgs_msg_MapRequest_Constants_WRITE_MESH;
+        const bool commit = command_ == ltm_msgs_msg_MapRequest_Constants_COMMIT_VERSION;
+        if (commit && (!map_dir_.empty() || !global_map_file_.empty() || !mesh_file.empty()))
+            p.fail("command", "commit takes no file: the site commits its own staging");
         if (!mesh && !mesh_file.empty()) p.fail("mesh_file", "only with command mesh");
         if (mesh && !map_dir_.empty()) p.fail("map_dir", "not with command mesh");
         if (mesh && !global_map_file_.empty())

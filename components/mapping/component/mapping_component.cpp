@@ -305,7 +305,9 @@ class MappingComponent : public runtime::Component {
     }
 
     void on_request(const msg::MapRequest& m) {
-        if (m.command == ltm_msgs_msg_MapRequest_Constants_WRITE_MESH) return;  // the mesh's
+        if (m.command == ltm_msgs_msg_MapRequest_Constants_WRITE_MESH ||
+            m.command == ltm_msgs_msg_MapRequest_Constants_COMMIT_VERSION)
+            return;  // the mesh's, the site's
         const std::string requested_dir = convert::to_string(m.map_dir);
         const std::string requested_file = convert::to_string(m.global_map_file);
         const std::string dir = requested_dir.empty() ? map_dir_ : requested_dir;

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <memory>
 #include <numeric>
 #include <string>
 
@@ -21,6 +22,7 @@
 #include "evaluation/core/ate.hpp"
 #include "evaluation/core/kitti_metric.hpp"
 #include "evaluation/core/rpe.hpp"
+#include "odometry/bench/prior_files.hpp"
 #include "odometry/core/odometry.hpp"
 #include "odometry/params/odometry_params.hpp"
 #include "self_check.hpp"
@@ -33,6 +35,7 @@ using Clock = std::chrono::steady_clock;
 
 struct Args {
     std::string dir, out, reference, calib, preset, config, frame_log;
+    std::string prior = "none";  // the robot's motion sensors beside the scans (prior_files.hpp)
     int threads = 1;
     std::size_t max_frames = 0;
     std::size_t every = 1;
@@ -62,6 +65,11 @@ void add_options(CLI::App& app, Args& a) {
                    "reference lines of the kept scans are used")
         ->check(common::cli::at_least(1));
     app.add_option("--frame-log", a.frame_log, "per-frame times and sizes (CSV)");
+    app.add_option("--prior", a.prior,
+                   "a motion prior from DIR/imu.txt, DIR/wheel_odometry.txt (both: IMU rotation, "
+                   "wheel translation) with DIR/extrinsics.txt, as ltm_sim writes them")
+        ->check(CLI::IsMember({"none", "imu", "wheel", "both"}))
+        ->default_str("none");
 }
 
 // Stretches of scans without a registered pose: each lasts from its first scan to the next
@@ -173,6 +181,19 @@ int run(const Args& a) {
     std::vector<odometry::FrameResult> results;  // for the self-check and the frame log
 
     odometry::Odometry odo(config);
+    // The motion prior, fed with its samples up to the end of each scan's sweep.
+    odometry::MotionPriorConfig prior_config;
+    odometry::bench::PriorSamples prior_samples;
+    std::unique_ptr<odometry::MotionPrior> prior;
+    std::size_t next_imu = 0, next_wheel = 0;
+    if (a.prior != "none") {
+        const bool imu = a.prior != "wheel", wheel = a.prior != "imu";
+        prior_samples = odometry::bench::read_prior_samples(a.dir, imu, wheel, &prior_config);
+        prior = std::make_unique<odometry::MotionPrior>(prior_config);
+        odo.set_prior(prior.get());
+        std::printf("motion prior: %s (%zu IMU, %zu wheel samples)\n", a.prior.c_str(),
+                    prior_samples.imu_stamps.size(), prior_samples.wheel_stamps.size());
+    }
     common::PoseList poses;
     std::vector<double> ms;
     std::map<std::string, std::size_t> statuses;
@@ -187,6 +208,12 @@ int run(const Args& a) {
         const auto t0 = Clock::now();
         const common::PointCloud cloud = data.load(i * a.every);
         const auto t1 = Clock::now();
+        if (prior) {
+            const float sweep =
+                cloud.has_time() ? *std::max_element(cloud.time.begin(), cloud.time.end()) : 0.0f;
+            odometry::bench::feed_prior(prior_samples, cloud.stamp + std::max(0.0f, sweep),
+                                        &next_imu, &next_wheel, prior.get());
+        }
         const double c1 = thread_cpu_seconds();
         const odometry::FrameResult r = odo.register_frame(cloud);
         cpu_seconds += thread_cpu_seconds() - c1;
@@ -257,6 +284,11 @@ int run(const Args& a) {
         dropped_non_finite);
     std::printf("memory: peak resident %.1f MiB (VmHWM); local maps now %.1f MiB\n",
                 common::process_memory().peak_mib, odo.memory_bytes() / 1048576.0);
+    if (prior && prior->has_imu()) {
+        const Eigen::Vector3d b = prior->gyro_bias();
+        std::printf("motion prior: gyro bias learnt %.5f %.5f %.5f rad/s (IMU frame)\n", b.x(),
+                    b.y(), b.z());
+    }
     if (!a.out.empty()) {
         common::write_kitti_poses(a.out, poses);
         std::printf("poses: %s (T_odom_lidar, KITTI format)\n", a.out.c_str());

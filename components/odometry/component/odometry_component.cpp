@@ -3,6 +3,11 @@
 // observation times: the hand-over policy of odometry/core/map_handover.hpp, the same as the
 // offline pipeline's) and `status` (skipped, rejected or diverged scans) out. Parameters: the
 // odometry's (preset and keys, see odometry/params) plus the frames and the snapshot period.
+// Optional inputs, a motion prior from the robot (odometry/core/motion_prior.hpp): `imu`
+// (sensor_msgs/Imu, gyro) and `wheel_odometry` (nav_msgs/Odometry of the base frame), with the
+// `prior.*` parameters (the extrinsics `prior.imu_extrinsic`, `prior.wheel_extrinsic` as
+// [x, y, z, roll, pitch, yaw] in m and deg: the sensor's frame in the LiDAR frame; noise, gate).
+// Without samples on them nothing changes.
 #include <memory>
 
 #include "odometry/core/map_handover.hpp"
@@ -10,10 +15,12 @@
 #include "odometry/params/odometry_params.hpp"
 #include "runtime/component.hpp"
 #include "runtime/convert/geometry.hpp"
+#include "runtime/convert/imu.hpp"
 #include "runtime/convert/local_map.hpp"
 #include "runtime/convert/odometry.hpp"
 #include "runtime/convert/pointcloud2.hpp"
 #include "runtime/convert/status.hpp"
+#include "runtime/pose_param.hpp"
 
 namespace ltm::odometry {
 namespace {
@@ -45,6 +52,26 @@ StatusCode status_code(FrameStatus status) {
     return StatusCode::kUnknown;
 }
 
+// The motion prior's `prior.*` parameters (defaults: MotionPriorConfig's).
+MotionPriorConfig load_prior_config(runtime::Parameters& p) {
+    MotionPriorConfig c;
+    c.T_lidar_imu = runtime::pose_param(p, "prior.imu_extrinsic", c.T_lidar_imu);
+    c.T_lidar_base = runtime::pose_param(p, "prior.wheel_extrinsic", c.T_lidar_base);
+    c.gyro_noise = p.get<double>("prior.gyro_noise", c.gyro_noise);
+    c.gyro_bias = p.get<double>("prior.gyro_bias", c.gyro_bias);
+    c.bias_gain = p.get<double>("prior.bias_gain", c.bias_gain);
+    c.bias_window = p.get<double>("prior.bias_window", c.bias_window);
+    c.wheel_scale = p.get<double>("prior.wheel_scale", c.wheel_scale);
+    c.wheel_turn = p.get<double>("prior.wheel_turn", c.wheel_turn);
+    c.gate_sigmas = p.get<double>("prior.gate_sigmas", c.gate_sigmas);
+    c.gate_rotation = p.get<double>("prior.gate_rotation", c.gate_rotation);
+    c.gate_translation = p.get<double>("prior.gate_translation", c.gate_translation);
+    c.max_gap = p.get<double>("prior.max_gap", c.max_gap);
+    c.keep_seconds = p.get<double>("prior.keep_seconds", c.keep_seconds);
+    if (const auto problem = validate(c)) p.fail("prior." + problem->key, problem->problem);
+    return c;
+}
+
 class OdometryComponent : public runtime::Component {
   public:
     explicit OdometryComponent(runtime::ComponentContext& ctx) : ctx_(ctx) {
@@ -58,6 +85,20 @@ class OdometryComponent : public runtime::Component {
             p.fail("snapshot_every_keyframes", "must be >= 0 (0: finished maps only)");
         handover_ = MapHandover(handover);
         odometry_ = std::make_unique<Odometry>(load_odometry_config(p));
+        prior_ = std::make_unique<MotionPrior>(load_prior_config(p));
+        odometry_->set_prior(prior_.get());
+        ctx.subscribe<msg::Imu>("imu", TopicRole::kSensor, [this](const msg::Imu& m) {
+            convert::ImuData d;
+            if (!convert::from_msg(m, &d).empty()) return;
+            prior_->add_imu(d.stamp, d.angular_velocity);
+            ++imu_samples_;
+        });
+        ctx.subscribe<msg::Odometry>(
+            "wheel_odometry", TopicRole::kSensor, [this](const msg::Odometry& m) {
+                const convert::OdometryData d = convert::from_msg(m);
+                prior_->add_wheel(convert::to_seconds(d.stamp), d.T_parent_child);
+                ++wheel_samples_;
+            });
         ctx.subscribe<msg::PointCloud2>("points", TopicRole::kSensor,
                                         [this](const msg::PointCloud2& m) { on_points(m); });
         odometry_out_ = ctx.advertise<msg::Odometry>("odometry", TopicRole::kState);
@@ -74,6 +115,14 @@ class OdometryComponent : public runtime::Component {
                         " degenerate (published, along a direction the motion model's), " +
                         std::to_string(frames_ - tracked_ - degenerate_) + " not (see status), " +
                         std::to_string(maps_published_) + " local maps published");
+        if (imu_samples_ + wheel_samples_ > 0) {
+            const Eigen::Vector3d b = prior_->gyro_bias();
+            ctx_.log().info("motion prior: " + std::to_string(imu_samples_) + " IMU and " +
+                            std::to_string(wheel_samples_) +
+                            " wheel samples; gyro bias learnt (IMU frame) " +
+                            std::to_string(b.x()) + " " + std::to_string(b.y()) + " " +
+                            std::to_string(b.z()) + " rad/s");
+        }
     }
 
   private:
@@ -147,6 +196,7 @@ class OdometryComponent : public runtime::Component {
     }
 
     runtime::ComponentContext& ctx_;
+    std::unique_ptr<MotionPrior> prior_;  // declared first: the odometry points to it
     std::unique_ptr<Odometry> odometry_;
     MapHandover handover_;
     std::string odom_frame_, child_frame_;
@@ -161,6 +211,7 @@ class OdometryComponent : public runtime::Component {
     double last_stamp_ = 0.0;
     bool has_last_ = false;
     std::uint64_t frames_ = 0, tracked_ = 0, degenerate_ = 0, warnings_ = 0, maps_published_ = 0;
+    std::uint64_t imu_samples_ = 0, wheel_samples_ = 0;
 };
 
 }  // namespace

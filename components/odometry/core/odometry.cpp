@@ -93,7 +93,8 @@ FrameResult Odometry::register_frame(const common::PointCloud& cloud) {
     if (!maps_.empty()) r.local_map_id = maps_.current().id();
     if (stamp_refused(cloud, &r)) return r;
 
-    const registration::Vector6d velocity = motion_.velocity();
+    registration::Vector6d velocity = motion_.velocity();
+    if (prior_ != nullptr) prior_->deskew_velocity(cloud, &velocity);
     auto tick = std::chrono::steady_clock::now();
     auto lap = [&tick]() {
         const auto now = std::chrono::steady_clock::now();
@@ -113,8 +114,10 @@ FrameResult Odometry::register_frame(const common::PointCloud& cloud) {
     r.map_points = scan_.map_points.size();
     r.registration_points = scan_.registration_points.size();
     r.deskewed = scan_.deskewed;
-    const Eigen::Isometry3d predicted =
-        motion_.poses() ? motion_.predict(cloud.stamp) : initial_pose_;
+    Eigen::Isometry3d predicted = motion_.poses() ? motion_.predict(cloud.stamp) : initial_pose_;
+    if (prior_ != nullptr && motion_.poses() > 0)
+        predicted =
+            prior_->predict(motion_.last_pose(), motion_.last_stamp(), cloud.stamp, predicted);
     r.T_odom_lidar = predicted;
 
     r.segment = maps_.segment();
@@ -212,12 +215,19 @@ FrameResult Odometry::register_frame(const common::PointCloud& cloud) {
         }
         lost_ = false;
     }
+    if (prior_ != nullptr && r.registered() && motion_.poses() > 0) {  // the prior where unobserved
+        r.T_odom_lidar = prior_->fill_unobserved(
+            motion_.last_pose(), motion_.last_stamp(), cloud.stamp, r.T_odom_lidar,
+            r.degenerate_directions, config_.registration.degeneracy_length);
+    }
     // The map gets the scan de-skewed with the motion just estimated (better than the predicted
     // one, and available from the second scan on). Registration fixed the pose at the middle of
     // the sweep; the pose at the stamp follows with that motion.
     if (motion_.poses() > 0 && cloud.stamp > motion_.last_stamp()) {
         const Eigen::Isometry3d T_odom_mid = r.T_odom_lidar * scan_.T_stamp_mid;
-        preprocessor_.redeskew_map_points(motion_.velocity_to(cloud.stamp, T_odom_mid), &scan_);
+        registration::Vector6d sweep = motion_.velocity_to(cloud.stamp, T_odom_mid);
+        if (prior_ != nullptr) prior_->deskew_velocity(cloud, &sweep);  // measured over the sweep
+        preprocessor_.redeskew_map_points(sweep, &scan_);
         r.T_odom_lidar = T_odom_mid * scan_.T_stamp_mid.inverse();
         r.deskewed = scan_.deskewed;
     }
@@ -392,6 +402,12 @@ std::string Odometry::try_register(const Eigen::Isometry3d& guess_odom, double d
                turned > c.max_angular_speed * dt + 5.0) {
         why << "implausible motion: " << moved << " m / " << turned << " deg in " << dt
             << " s (limits " << c.max_speed << " m/s, " << c.max_angular_speed << " deg/s)";
+    } else if (const std::string off =
+                   prior_ == nullptr ? std::string()
+                                     : prior_->disagreement(last_tracked_pose_, last_tracked_stamp_,
+                                                            last_tracked_stamp_ + dt, estimate);
+               !off.empty()) {
+        why << off;
     } else if (!r->converged && (reg.last_step_translation > c.max_final_step_translation ||
                                  reg.last_step_rotation * kRadToDeg > c.max_final_step_rotation)) {
         why << "registration did not converge in " << reg.iterations << " iterations (last step "
@@ -498,6 +514,9 @@ void Odometry::learn(const FrameResult& r) {
 }
 
 void Odometry::accept(const FrameResult& result) {
+    if (prior_ != nullptr) {
+        prior_->observe(result.stamp, result.T_odom_lidar.linear(), result.registered());
+    }
     has_stamp_ = true;
     last_stamp_ = result.stamp;
     last_tracked_stamp_ = result.stamp;

@@ -13,6 +13,7 @@
 #include "odometry/core/local_map_set.hpp"
 #include "odometry/core/motion_model.hpp"
 #include "odometry/core/observability.hpp"
+#include "odometry/core/motion_prior.hpp"
 #include "odometry/core/odometry_config.hpp"
 #include "registration/core/parallel.hpp"
 #include "registration/core/preprocess.hpp"
@@ -128,6 +129,10 @@ class Odometry {
     // tiny scan as in register_frame. Do not mix with register_frame in one run.
     FrameResult place_frame(const common::PointCloud& cloud, const Eigen::Isometry3d& T_odom_lidar);
 
+    // An optional motion prior from the robot (IMU, wheel odometry), fed by the caller before
+    // each scan with its samples up to the end of the sweep; null: none. Not owned.
+    void set_prior(MotionPrior* prior) { prior_ = prior; }
+
     const OdometryConfig& config() const { return config_; }
     // The last pose (estimated or carried forward) and whether any frame was accepted yet.
     const Eigen::Isometry3d& pose() const {
@@ -185,6 +190,7 @@ class Odometry {
     registration::Registration coarse_registration_;  // used when the maps have a coarse grid
     registration::Registration probe_registration_;   // a search guess's quick coarse alignment
     MotionModel motion_;
+    MotionPrior* prior_ = nullptr;
     LocalMapSet maps_;
     KeyframeSelector keyframes_;
     std::uint64_t next_keyframe_id_ = 0;

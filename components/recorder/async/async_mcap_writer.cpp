@@ -1,5 +1,7 @@
 #include "recorder/async/async_mcap_writer.hpp"
 
+#include <pthread.h>
+
 #include <algorithm>
 #include <stdexcept>
 
@@ -167,6 +169,8 @@ void AsyncMcapWriter::maybe_report(std::unique_lock<std::mutex>& lock, bool forc
 }
 
 void AsyncMcapWriter::run() {
+    if (!config_.thread_name.empty())
+        pthread_setname_np(pthread_self(), config_.thread_name.substr(0, 15).c_str());
     std::unique_lock<std::mutex> lock(mutex_);
     const auto idle = std::chrono::duration<double>(config_.idle_flush_s);
     while (true) {

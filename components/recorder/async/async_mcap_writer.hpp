@@ -26,6 +26,7 @@ struct AsyncWriterConfig {
     std::size_t max_queue_messages = 10000;                // messages waiting to be written
     double idle_flush_s = 1.0;     // close the open chunk after this long without a message
     double report_period_s = 1.0;  // at most one drop report per period
+    std::string thread_name;       // the writing thread's name (15 characters; "": inherited)
 };
 
 struct AsyncWriterStats {

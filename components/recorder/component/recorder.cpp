@@ -15,6 +15,7 @@
 #include "runtime/component.hpp"
 #include "runtime/idl_schema.hpp"
 #include "runtime/topic_names.hpp"
+#include "runtime/worker.hpp"
 
 namespace ltm::recorder {
 namespace {
@@ -50,6 +51,7 @@ class Recorder : public runtime::Component {
         wc.sync = p.get<bool>("sync", false);
         AsyncWriterConfig ac;
         ac.max_queue_bytes = static_cast<std::size_t>(p.get<double>("queue_mb", 512.0) * (1 << 20));
+        ac.thread_name = runtime::worker_thread_name(ctx.name(), "write");
         try {
             writer_ = std::make_unique<AsyncMcapWriter>(
                 std::make_unique<McapWriter>(file, wc), ac,
@@ -99,18 +101,8 @@ class Recorder : public runtime::Component {
                 " is unknown to ltm (Cyclone DDS 0.10 as packaged has no type discovery)");
             return;
         }
-        QosProfile qos;
-        dds_reliability_kind_t rel = DDS_RELIABILITY_BEST_EFFORT;
-        dds_duration_t block = 0;
-        dds_durability_kind_t dur = DDS_DURABILITY_VOLATILE;
-        if (pub.qos) {
-            dds_qget_reliability(pub.qos, &rel, &block);
-            dds_qget_durability(pub.qos, &dur);
-        }
-        qos.reliable = rel == DDS_RELIABILITY_RELIABLE;
-        qos.transient_local = dur != DDS_DURABILITY_VOLATILE;
+        QosProfile qos = runtime::matching_reader_profile(pub.qos, 64);
         qos.keep_all = qos.reliable;  // no resource limits: the reader never blocks the writer
-        qos.depth = 64;
         const std::uint16_t schema = schema_for(*info);
         const std::uint16_t channel = writer_->add_channel(
             schema, topic, "cdr",

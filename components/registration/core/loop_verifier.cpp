@@ -51,22 +51,25 @@ std::shared_ptr<RegistrationTarget> LoopVerifier::target(std::uint64_t key,
 }
 
 LoopVerification LoopVerifier::attempt(const std::vector<Eigen::Vector3f>& points,
-                                       const RegistrationTarget& t,
-                                       const Eigen::Isometry3d& guess) {
+                                       const RegistrationTarget& t, const Eigen::Isometry3d& guess,
+                                       Passes passes) {
     LoopVerification v;
     v.points = points.size();
-    const registration::VoxelGrid& first = t.coarse ? *t.coarse : t.fine;
-    registration::Registration coarse(config_.coarse, first.voxel_size());
     registration::Registration fine(config_.fine, t.fine.voxel_size());
-    const registration::RegistrationResult c =
-        coarse.align(points, first, t.T_anchor_grid.inverse() * guess);
-    v.iterations = c.iterations;
-    if (!c.ok()) {
-        v.reason = std::string("coarse registration: ") + registration::to_string(c.status) + " (" +
-                   std::to_string(c.correspondences) + " correspondences)";
-        return v;
+    Eigen::Isometry3d start = t.T_anchor_grid.inverse() * guess;
+    if (passes == Passes::kCoarseThenFine) {
+        const registration::VoxelGrid& first = t.coarse ? *t.coarse : t.fine;
+        registration::Registration coarse(config_.coarse, first.voxel_size());
+        const registration::RegistrationResult c = coarse.align(points, first, start);
+        v.iterations = c.iterations;
+        if (!c.ok()) {
+            v.reason = std::string("coarse registration: ") + registration::to_string(c.status) +
+                       " (" + std::to_string(c.correspondences) + " correspondences)";
+            return v;
+        }
+        start = c.T_map_lidar;
     }
-    const registration::RegistrationResult f = fine.align(points, t.fine, c.T_map_lidar);
+    const registration::RegistrationResult f = fine.align(points, t.fine, start);
     v.iterations += f.iterations;
     if (f.status != registration::RegistrationResult::Status::kConverged ||
         !f.T_map_lidar.matrix().allFinite()) {
@@ -99,6 +102,8 @@ LoopVerification LoopVerifier::attempt(const std::vector<Eigen::Vector3f>& point
     v.correction_translation = correction.translation().norm();
     v.correction_rotation = Eigen::AngleAxisd(correction.linear()).angle() / kDegToRad;
     v.degenerate_directions = f.degenerate_directions.size();
+    v.hessian = f.hessian;
+    v.covariance = f.covariance;
     std::ostringstream why;
     if (config_.refuse_degenerate && v.degenerate_directions > 0) {
         why << "registration is degenerate in " << v.degenerate_directions << " direction(s)";
@@ -147,7 +152,8 @@ LoopVerification LoopVerifier::verify(const std::vector<Eigen::Vector3f>& points
 }
 
 LoopVerification LoopVerifier::verify(const std::vector<Eigen::Vector3f>& points,
-                                      const RegistrationTarget& target, const GuessList& guesses) {
+                                      const RegistrationTarget& target, const GuessList& guesses,
+                                      Passes passes) {
     LoopVerification best;
     if (guesses.empty()) {
         best.reason = "no initial guess";
@@ -174,7 +180,8 @@ LoopVerification LoopVerifier::verify(const std::vector<Eigen::Vector3f>& points
     bool first = true;
     for (std::size_t g = 0; g < guesses.size() && !best.accepted; ++g) {
         for (const double offset : config_.yaw_offsets) {
-            LoopVerification v = attempt(sampled_, *t, yawed(guesses[g], offset * kDegToRad));
+            LoopVerification v =
+                attempt(sampled_, *t, yawed(guesses[g], offset * kDegToRad), passes);
             v.guess = g;
             const bool better = v.accepted != best.accepted ? v.accepted : v.inliers > best.inliers;
             if (first || better) best = v;

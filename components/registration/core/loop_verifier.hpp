@@ -18,6 +18,7 @@
 #include "registration/core/preprocess.hpp"
 #include "registration/core/registration_config.hpp"
 #include "registration/core/registration_target.hpp"
+#include "registration/core/se3.hpp"
 
 namespace ltm::registration {
 
@@ -105,6 +106,11 @@ struct LoopVerification {
     double correction_translation = 0.0;    // result vs guess [m]
     double correction_rotation = 0.0;       // [deg]
     std::size_t degenerate_directions = 0;  // of the fine registration
+    // The fine registration's Hessian (sum w J^T J) and covariance at the final pose, in the grid
+    // frame ([dt; dr], as RegistrationResult): what a caller needs about the fit's constraints
+    // without registering again.
+    Matrix6d hessian = Matrix6d::Zero();
+    Matrix6d covariance = Matrix6d::Identity();
     // Points on structure (the normal of their surface not vertical, in the grid frame) that have
     // a surface within reach, and those of them that are inliers.
     std::size_t structure_points = 0, structure_inliers = 0;
@@ -135,9 +141,12 @@ class LoopVerifier {
     LoopVerification verify(const std::vector<Eigen::Vector3f>& points, std::uint64_t map_key,
                             const common::LocalMapData& map, const GuessList& guesses);
     // The same against a target the caller prepared and keeps (global localisation registers
-    // against one merged map).
+    // against one merged map). kFineOnly: the guesses are in the fine pass's basin already (a
+    // caller's own coarse probe put them there): the coarse pass is left out.
+    enum class Passes { kCoarseThenFine, kFineOnly };
     LoopVerification verify(const std::vector<Eigen::Vector3f>& points,
-                            const RegistrationTarget& target, const GuessList& guesses);
+                            const RegistrationTarget& target, const GuessList& guesses,
+                            Passes passes = Passes::kCoarseThenFine);
 
   private:
     struct Cached {
@@ -146,7 +155,8 @@ class LoopVerifier {
     };
     std::shared_ptr<RegistrationTarget> target(std::uint64_t key, const common::LocalMapData& map);
     LoopVerification attempt(const std::vector<Eigen::Vector3f>& points,
-                             const RegistrationTarget& target, const Eigen::Isometry3d& guess);
+                             const RegistrationTarget& target, const Eigen::Isometry3d& guess,
+                             Passes passes);
 
     LoopVerifierConfig config_;
     std::deque<Cached> cache_;  // most recent first

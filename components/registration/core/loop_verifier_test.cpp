@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
 #include <cmath>
 #include <limits>
 
@@ -135,6 +136,34 @@ TEST(LoopVerifier, SeveralGuessesAreTriedInOrderUntilOneIsAccepted) {
     }
     EXPECT_NE(verifier.verify(pts, 1, map, GuessList{}).reason.find("no initial guess"),
               std::string::npos);
+}
+
+TEST(LoopVerifier, FineOnlyFromANearGuessAgreesWithBothPassesAndFailsFromAFarOne) {
+    const std::vector<Eigen::Vector3f> scene = test::with_dense_ground(test::synthetic_scene(43));
+    const Eigen::Isometry3d anchor = test::xy_yaw(0, 0, 0);
+    const common::LocalMapData map =
+        test::build_local_map(1, anchor, {test::view(scene, anchor, 50.0)}, {anchor}, 1.0, 50.0);
+    const RegistrationTarget target = make_registration_target(map, 0.4, 3);
+    const Eigen::Isometry3d truth = test::xy_yaw(3.0, -2.0, 20.0);
+    const std::vector<Eigen::Vector3f> pts = test::view(scene, truth, 50.0);
+    LoopVerifier verifier{LoopVerifierConfig()};
+    const GuessList near{truth * test::xy_yaw(0.2, -0.15, 1.0)};
+    const LoopVerification both = verifier.verify(pts, target, near);
+    const LoopVerification fine =
+        verifier.verify(pts, target, near, LoopVerifier::Passes::kFineOnly);
+    ASSERT_TRUE(both.accepted) << both.reason;
+    ASSERT_TRUE(fine.accepted) << fine.reason;
+    EXPECT_LT((both.T_anchor_lidar.inverse() * fine.T_anchor_lidar).translation().norm(), 0.01);
+    EXPECT_LT((truth.inverse() * fine.T_anchor_lidar).translation().norm(), 0.05);
+    EXPECT_LT(fine.iterations, both.iterations);  // the coarse pass was left out
+    // The fit's constraints come with it: a positive definite Hessian, a finite covariance.
+    EXPECT_GT(Eigen::SelfAdjointEigenSolver<Matrix6d>(fine.hessian).eigenvalues()[0], 0.0);
+    EXPECT_TRUE(fine.covariance.allFinite());
+    // From 6 m off, the fine pass alone does not reach the truth: refused or elsewhere.
+    const GuessList far{truth * test::xy_yaw(6.0, 0.0, 0.0)};
+    const LoopVerification f = verifier.verify(pts, target, far, LoopVerifier::Passes::kFineOnly);
+    const double off = (truth.inverse() * f.T_anchor_lidar).translation().norm();
+    EXPECT_TRUE(!f.accepted || off > 1.0) << off;
 }
 
 }  // namespace

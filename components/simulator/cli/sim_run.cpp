@@ -11,7 +11,9 @@
 #include "common/core/progress.hpp"
 #include "common/core/trajectory_io.hpp"
 #include "simulator/cli/pcd_scan.hpp"
+#include "simulator/cli/proprio_files.hpp"
 #include "simulator/cli/truth_files.hpp"
+#include "simulator/core/random.hpp"
 #include "simulator/core/scenario_yaml.hpp"
 #include "simulator/core/simulator.hpp"
 
@@ -41,6 +43,51 @@ std::string frame_name(std::size_t i, const char* ext) {
     return buf;
 }
 
+// imu.txt, wheel_odometry.txt and extrinsics.txt (proprio_files.hpp) when their rates are set.
+void write_motion_sensors(const SimRunOptions& o, const ScenarioConfig& sc, const Simulator& sim,
+                          std::size_t first, std::size_t last, const std::string& out) {
+    if (o.imu_rate <= 0.0 && o.wheel_rate <= 0.0) return;
+    ImuConfig imu_config;
+    imu_config.rate = o.imu_rate > 0.0 ? o.imu_rate : 1.0;
+    imu_config.T_lidar_imu = default_imu_mount();
+    WheelConfig wheel_config;
+    wheel_config.rate = o.wheel_rate > 0.0 ? o.wheel_rate : 1.0;
+    wheel_config.T_lidar_base.translation() = Eigen::Vector3d(0.0, 0.0, -sc.sensor.height);
+    const std::uint64_t seed = hash_mix(sc.seed, std::uint64_t(o.session), 0x1A2Bull);
+    ImuSimulator imu(imu_config, seed);
+    WheelSimulator wheel(wheel_config, seed);
+    std::vector<ImuSample> imu_samples;
+    std::vector<WheelSample> wheel_samples;
+    simulate_proprioception(sim, first, last, o.imu_rate > 0.0 ? &imu : nullptr,
+                            o.wheel_rate > 0.0 ? &wheel : nullptr, &imu_samples, &wheel_samples);
+    namespace fs = std::filesystem;
+    if (o.imu_rate > 0.0)
+        write_imu((fs::path(out) / "imu.txt").string(), imu_samples, imu_config, imu);
+    if (o.wheel_rate > 0.0) {
+        write_wheel_odometry((fs::path(out) / "wheel_odometry.txt").string(), wheel_samples,
+                             wheel_config, wheel);
+    }
+    write_extrinsics((fs::path(out) / "extrinsics.txt").string(), imu_config, wheel_config);
+}
+
+// Every `stride`th point of a scan, with its channels and labels.
+void thin(std::size_t stride, SimScan* scan) {
+    common::PointCloud& c = scan->cloud;
+    std::size_t k = 0;
+    for (std::size_t i = 0; i < c.size(); i += stride, ++k) {
+        c.points[k] = c.points[i];
+        if (c.has_intensity()) c.intensity[k] = c.intensity[i];
+        if (c.has_time()) c.time[k] = c.time[i];
+        if (i < scan->labels.size()) scan->labels[k] = scan->labels[i];
+        if (i < scan->rings.size()) scan->rings[k] = scan->rings[i];
+    }
+    c.points.resize(k);
+    if (c.has_intensity()) c.intensity.resize(k);
+    if (c.has_time()) c.time.resize(k);
+    scan->labels.resize(std::min(k, scan->labels.size()));
+    scan->rings.resize(std::min(k, scan->rings.size()));
+}
+
 }  // namespace
 
 void add_seed_option(CLI::App& app, SimRunOptions& o) {
@@ -68,7 +115,8 @@ void add_sim_options(CLI::App& app, SimRunOptions& o) {
         "Writes DIR/velodyne/NNNNNN.bin (--format pcd: DIR/Scans/NNNNNN.pcd with per-point time\n"
         "t [s after the stamp] for raw sweeps), labels/, times.txt, poses.txt (KITTI, LiDAR\n"
         "frame), poses_tum.txt, calib.txt (identity), truth_mesh.ply, scenario.yaml,\n"
-        "objects.txt, changes.txt, actors.txt, kidnaps.txt.");
+        "objects.txt, changes.txt, actors.txt, kidnaps.txt, and the robot's motion sensors:\n"
+        "imu.txt (gyro, accelerometer), wheel_odometry.txt and extrinsics.txt (their mounts).");
     app.add_option("SCENARIO", o.scenario, "the scenario (YAML)")->required();
     add_seed_option(app, o);
     app.add_option("--session", o.session, "session of the scenario")
@@ -84,6 +132,16 @@ void add_sim_options(CLI::App& app, SimRunOptions& o) {
     app.add_flag("--truth-only", o.truth_only,
                  "only times, poses, objects, changes, actors and kidnaps (no scans, labels or "
                  "truth mesh: fast)");
+    app.add_option("--point-stride", o.point_stride,
+                   "keep every Nth point of each scan (labels follow; default 1: all)")
+        ->check(common::cli::at_least(1));
+    app.add_option("--imu-rate", o.imu_rate, "IMU samples a second (imu.txt; 0: none)")
+        ->check(CLI::Range(0.0, 2000.0))
+        ->default_str("200");
+    app.add_option("--wheel-rate", o.wheel_rate,
+                   "wheel odometry samples a second (wheel_odometry.txt; 0: none)")
+        ->check(CLI::Range(0.0, 1000.0))
+        ->default_str("50");
     app.add_flag("--quiet", o.quiet, "no summary and no progress");
     app.add_option("--out", o.out, "the output folder")->required();
 }
@@ -157,6 +215,7 @@ int run_sim(const SimRunOptions& o) {
                 continue;
             }
             sim.scan(i, scan);
+            if (o.point_stride > 1) thin(o.point_stride, &scan);
             if (pcd) {
                 write_scan_pcd((scans / frame_name(k, ".pcd")).string(), scan.cloud);
             } else {
@@ -185,6 +244,7 @@ int run_sim(const SimRunOptions& o) {
         write_changes((out / "changes.txt").string(), sim);
         write_actors((out / "actors.txt").string(), sim);
         write_kidnaps((out / "kidnaps.txt").string(), kidnap_frames, kidnap_stamps);
+        write_motion_sensors(o, sc, sim, first, last, out.string());
         copy_scenario(o.scenario, (out / "scenario.yaml").string(),
                       "seed " + std::to_string(sc.seed) + ", session " + std::to_string(o.session) +
                           ", frames " + std::to_string(first) + ":" + std::to_string(last) +

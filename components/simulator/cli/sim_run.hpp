@@ -30,6 +30,11 @@ struct SimRunOptions {
     // Only the truth files (times, poses, objects, changes, actors, kidnaps): no scans, labels
     // or truth mesh; what a benchmark needs to score a session the host ran.
     bool truth_only = false;
+    // The robot's motion sensors (proprio_files.hpp): IMU and wheel odometry rates [Hz], 0: none.
+    double imu_rate = 200.0;
+    double wheel_rate = 50.0;
+    // Keep every Nth point of each scan (a sparser sensor of the same pattern; labels follow).
+    std::size_t point_stride = 1;
 };
 
 // Declares ltm_sim's command line on `app`: the scenario, --seed, --session, --frames, --sensor,

@@ -221,3 +221,74 @@ TEST(SimRun, BadInputIsAnErrorNotACrash) {
 
 }  // namespace
 }  // namespace ltm::sim::cli
+
+namespace ltm::sim::cli {
+namespace {
+
+// Lines of a text file that are not comments.
+std::vector<std::string> data_lines(const std::string& path) {
+    std::ifstream in(path);
+    std::vector<std::string> out;
+    for (std::string line; std::getline(in, line);)
+        if (!line.empty() && line[0] != '#') out.push_back(line);
+    return out;
+}
+
+// The robot's motion sensors beside the scans: IMU and wheel odometry at their rates over the
+// scans' time (to the last sweep's end), the extrinsics; --point-stride thins the scans.
+TEST(SimRun, WritesTheRobotsMotionSensorsAndThinsScans) {
+    const std::string out = LTM_BINARY_DIR "/tests/sim_run_test_motion";
+    std::filesystem::remove_all(out);
+    SimRunOptions o;
+    std::string error;
+    ASSERT_EQ(parse_sim_args({kFastTurns, "--frames", "0:3", "--imu-rate", "100", "--wheel-rate",
+                              "20", "--point-stride", "4", "--quiet", "--out", out},
+                             o, error),
+              -1)
+        << error;
+    ASSERT_EQ(run_sim(o), 0);
+    const std::vector<double> times = common::read_times(out + "/times.txt");
+    ASSERT_EQ(times.size(), 3u);
+    const std::vector<std::string> imu = data_lines(out + "/imu.txt");
+    const std::vector<std::string> wheel = data_lines(out + "/wheel_odometry.txt");
+    EXPECT_EQ(imu.size(), 30u);  // 0.3 s at 100 Hz
+    EXPECT_EQ(wheel.size(), 6u);
+    for (std::size_t i = 0; i < imu.size(); ++i) {
+        std::istringstream s(imu[i]);
+        const std::string& l = imu[i];
+        double v[7];
+        for (double& x : v) s >> x;
+        ASSERT_TRUE(bool(s)) << l;
+        EXPECT_GE(v[0], times.front() - 1e-9);
+        EXPECT_LT(v[0], times.back() + 0.1);
+        // Gravity while driving; the route starts at full speed: the first sample saturates.
+        if (i > 0) {
+            EXPECT_NEAR(Eigen::Vector3d(v[4], v[5], v[6]).norm(), 9.81, 3.0) << l;
+        }
+    }
+    const std::vector<std::string> extrinsics = data_lines(out + "/extrinsics.txt");
+    ASSERT_EQ(extrinsics.size(), 2u);
+    EXPECT_EQ(extrinsics[0].rfind("T_lidar_imu ", 0), 0u);
+    EXPECT_EQ(extrinsics[1].rfind("T_lidar_base ", 0), 0u);
+    // Every 4th point of the full scan.
+    const Simulator sim(load_scenario(kFastTurns));
+    SimScan full;
+    ASSERT_TRUE(sim.scan(1, full));
+    const common::PointCloud thin = common::read_kitti_bin(common::list_kitti_scans(out)[1]);
+    EXPECT_EQ(thin.size(), (full.cloud.size() + 3) / 4);
+    EXPECT_TRUE(thin.points[5].isApprox(full.cloud.points[20], 1e-5f));
+    // --imu-rate 0 --wheel-rate 0: none of them.
+    const std::string bare = out + "_bare";
+    std::filesystem::remove_all(bare);
+    SimRunOptions b;
+    ASSERT_EQ(parse_sim_args({kFastTurns, "--frames", "0:1", "--imu-rate", "0", "--wheel-rate", "0",
+                              "--quiet", "--out", bare},
+                             b, error),
+              -1);
+    ASSERT_EQ(run_sim(b), 0);
+    EXPECT_FALSE(std::filesystem::exists(bare + "/imu.txt"));
+    EXPECT_FALSE(std::filesystem::exists(bare + "/extrinsics.txt"));
+}
+
+}  // namespace
+}  // namespace ltm::sim::cli

@@ -14,7 +14,16 @@
 //     `keep_versions` removed, the lock released; the host lists the output ("site version").
 //     A staging that is not whole commits nothing: the output is NOT saved (exit 4) and the
 //     start version stays the newest.
-// Parameters: site_dir (required), keep_versions (10), site_version ("": the newest intact one).
+//   map_request COMMIT_VERSION (`./ltm map commit`): a version in the middle of the session. The
+//     mapping of the launch config is asked to save first (a SAVE_MAP request of this component's
+//     own, answered on `status`), then the staging as it is is hard-linked aside, checked,
+//     measured and committed as the next version (map/core/site_store.hpp: snapshot_staging,
+//     commit_snapshot; atomic as the end-of-session commit; a save that ran meanwhile fails the
+//     check and the snapshot is taken again, 3 times at most). The answer goes on `status`. The
+//     session goes on saving into the staging; its end commits another version.
+// Parameters: site_dir (required), keep_versions (10), site_version ("": the newest intact one),
+// save_timeout_s (60: how long a commit on request waits for the mapping's save).
+#include <chrono>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -24,6 +33,8 @@
 #include "map/core/site_lock.hpp"
 #include "map/core/site_store.hpp"
 #include "runtime/component.hpp"
+#include "runtime/convert/owned_message.hpp"
+#include "runtime/convert/status.hpp"
 
 namespace ltm::map {
 namespace {
@@ -50,6 +61,8 @@ class SiteComponent : public runtime::Component {
         if (keep < 1) p.fail("keep_versions", "must be >= 1");
         keep_ = std::size_t(keep);
         version_ = p.get<std::string>("site_version", "");
+        save_timeout_s_ = p.get<double>("save_timeout_s", 60.0);
+        if (!(save_timeout_s_ > 0)) p.fail("save_timeout_s", "must be > 0");
         check_others(p);
         try {
             lock_ = std::make_unique<SiteLock>(store_.lock_file());
@@ -68,6 +81,13 @@ class SiteComponent : public runtime::Component {
         ctx.log().info("site " + store_.dir() + ": the session starts from " + session_.describe() +
                        "; it will be saved as the next version (keeping " + std::to_string(keep_) +
                        ")");
+        request_out_ = ctx.advertise<msg::MapRequest>("map_request", TopicRole::kState);
+        status_out_ = ctx.advertise<msg::Status>("status", TopicRole::kState);
+        ctx.subscribe<msg::MapRequest>("map_request", TopicRole::kState,
+                                       [this](const msg::MapRequest& m) { on_request(m); });
+        ctx.subscribe<msg::Status>("status", TopicRole::kState,
+                                   [this](const msg::Status& m) { on_status(m); });
+        ctx.add_timer(1.0, [this] { check_save_timeout(); });
         if (maintenance_) {
             ctx.subscribe<msg::MapChangeSet>(
                 "map_changes", TopicRole::kMap, [this](const msg::MapChangeSet& m) {
@@ -113,6 +133,88 @@ class SiteComponent : public runtime::Component {
     }
 
   private:
+    // A commit on request: the mapping saves first (when the launch config has one).
+    void on_request(const msg::MapRequest& m) {
+        if (m.command != ltm_msgs_msg_MapRequest_Constants_COMMIT_VERSION) return;
+        if (pending_) return answer(m.id, false, "a commit is under way already");
+        if (!lock_) return answer(m.id, false, "the session has ended");
+        pending_ = m.id;
+        if (!mapping_) return commit_now();
+        save_id_ = m.id ^ 0x5a5a5a5au;
+        if (save_id_ == m.id) ++save_id_;
+        save_deadline_ = std::chrono::steady_clock::now() +
+                         std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                             std::chrono::duration<double>(save_timeout_s_));
+        convert::Owned<msg::MapRequest> r;
+        r->id = save_id_;
+        r->command = ltm_msgs_msg_MapRequest_Constants_SAVE_MAP;
+        request_out_.publish(*r);
+        ctx_.log().info("request " + std::to_string(m.id) +
+                        ": a version on request; the mapping saves first");
+    }
+
+    void on_status(const msg::Status& m) {
+        if (!pending_ || !save_id_) return;
+        const convert::StatusData s = convert::from_msg(m);
+        if (s.request_id != save_id_) return;
+        if (s.code == common::StatusCode::kMapRequestFailed) {
+            save_id_ = 0;
+            return finish_request(false, "the mapping could not save: " + s.message);
+        }
+        if (s.code != common::StatusCode::kMapRequestDone) return;
+        save_id_ = 0;
+        commit_now();
+    }
+
+    void check_save_timeout() {
+        if (!pending_ || !save_id_ || std::chrono::steady_clock::now() < save_deadline_) return;
+        save_id_ = 0;
+        finish_request(false, "no answer from the mapping's save within " +
+                                  std::to_string(int(save_timeout_s_)) + " s; nothing committed");
+    }
+
+    // The staging as it is now, committed as the next version (3 snapshots at most: a periodic
+    // save that replaced files meanwhile fails the check).
+    void commit_now() {
+        std::string problem;
+        for (int attempt = 0; attempt < 3; ++attempt) {
+            try {
+                const std::string snap = store_.snapshot_staging();
+                VersionSummary summary =
+                    measure_version(snap + "/map", session_.start ? session_.start->map_dir() : "",
+                                    session_.start ? session_.start->name : "");
+                if (maintenance_) {
+                    summary.voxels_removed = removed_;
+                    summary.voxels_added = added_;
+                }
+                const SiteVersion made = store_.commit_snapshot(snap, summary, keep_);
+                ctx_.report_output("site version", made.dir, true,
+                                   made.name + " (on request): " + version_line(summary));
+                return finish_request(true, "committed " + made.name + " (" + made.dir + ")");
+            } catch (const std::exception& e) {
+                problem = common::one_line(e.what());
+            }
+        }
+        finish_request(false, "nothing committed: " + problem);
+    }
+
+    void finish_request(bool ok, const std::string& text) {
+        const std::uint32_t id = pending_;
+        pending_ = 0;
+        answer(id, ok, text);
+    }
+
+    void answer(std::uint32_t id, bool ok, const std::string& text) {
+        convert::StatusData s;
+        s.component = ctx_.name();
+        s.level = ok ? convert::StatusLevel::kOk : convert::StatusLevel::kError;
+        s.code = ok ? common::StatusCode::kMapRequestDone : common::StatusCode::kMapRequestFailed;
+        s.message = "request " + std::to_string(id) + ": " + text;
+        s.request_id = id;
+        convert::log_status(ctx_.log(), s.level, s.message);
+        status_out_.publish(*convert::to_msg(s));
+    }
+
     // Every other component given a site must name this one, and the same version: one session,
     // one start. Notes whether a maintenance component takes part.
     void check_others(runtime::Parameters& p) {
@@ -132,6 +234,8 @@ class SiteComponent : public runtime::Component {
                                            "': every component must start from one version");
             if (c.type == "maintenance") maintenance_ = true;
         }
+        for (const runtime::ComponentSpec& c : launch.components)
+            if (c.type == "mapping") mapping_ = true;
     }
 
     runtime::ComponentContext& ctx_;
@@ -139,6 +243,12 @@ class SiteComponent : public runtime::Component {
     std::size_t keep_ = 10;
     std::string version_;
     bool maintenance_ = false;
+    bool mapping_ = false;  // in this launch config: a commit on request asks it to save first
+    double save_timeout_s_ = 60.0;
+    runtime::Publisher<msg::MapRequest> request_out_;
+    runtime::Publisher<msg::Status> status_out_;
+    std::uint32_t pending_ = 0, save_id_ = 0;  // the request being answered, our save request
+    std::chrono::steady_clock::time_point save_deadline_{};
     std::unique_ptr<SiteLock> lock_;
     SiteSession session_;
     std::uint64_t removed_ = 0, added_ = 0;  // by the maintenance (map_changes)

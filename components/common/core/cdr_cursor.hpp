@@ -1,14 +1,16 @@
 #pragma once
 // Reading and writing plain little-endian CDR (XCDR1, encapsulation CDR_LE: what Cyclone DDS 0.10
-// writes for ltm's final types) without the generated types: the payload codec's view of a
-// message. Alignment is relative to the end of the 4-byte encapsulation header; 8-byte values
-// align to 8. Every read is bounds-checked: false once the data ran out (the cursor stays failed).
+// writes for ltm's final types) without the generated types: the link's payload codec and the
+// run report read messages this way. Alignment is relative to the end of the 4-byte encapsulation
+// header; 8-byte values align to 8. Every read is bounds-checked: false once the data ran out (the
+// cursor stays failed).
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <string>
 #include <vector>
 
-namespace ltm::link {
+namespace ltm::common {
 
 // True when `cdr` starts with the CDR_LE encapsulation header: 00 01, then the options, whose low
 // two bits count the padding bytes appended to make the size a multiple of 4 (Cyclone sets them).
@@ -45,6 +47,14 @@ class CdrReader {
     bool skip_string() {
         std::uint32_t n = 0;
         return read(n) && skip(n);
+    }
+    // A string, without its NUL.
+    bool read_string(std::string& s) {
+        std::uint32_t n = 0;
+        if (!read(n) || n == 0 || n > size_ - pos_) return ok_ = false;
+        s.assign(reinterpret_cast<const char*>(data_ + pos_), n - 1);
+        pos_ += n;
+        return true;
     }
     // A sequence of `element`-byte primitives: its count, then the elements; `offset` is where
     // the elements start.
@@ -85,4 +95,4 @@ class CdrWriter {
     std::vector<std::uint8_t>& out_;
 };
 
-}  // namespace ltm::link
+}  // namespace ltm::common

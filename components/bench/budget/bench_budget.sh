@@ -1,0 +1,245 @@
+#!/usr/bin/env bash
+# ./ltm bench budget [--config C] [--scenario S] [--frames A:B] [--out D] [--no-perf]
+# The robot's mission through the host at the sensor's real rate: a kitti_player plays a
+# scenario's scans (rendered once by ltm_sim, so rendering is not counted) at their own times
+# (10 Hz) into the launch config, while `ltm_budget monitor` samples each host's threads from
+# /proc (every 0.1 s), a probe component records every scan's, pose's and map update's source
+# timestamp, and perf samples the robot's host. `ltm_budget report` then prints, per component and
+# thread: CPU a scan, share of one core (average, worst 1 s window), peak and final memory, scans
+# the odometry missed and the localisation skipped, latency scan -> pose and scan -> map update,
+# against the targets of issue 28; memory over time as D/<run>/memory.svg.
+#   --config lifelong            robot_lifelong.yaml on a fresh site (day 0: session 0 of the
+#                                scenario) and a second day on it (session 1)
+#   --config base_station        robot.yaml (session 0) and base_station.yaml, two hosts
+#   --config base_station_multi  two robot.yaml hosts (/robot1: session 0, /robot2: session 1)
+#                                and base_station_multi.yaml
+#   --config all                 the three in turn (default)
+#   --report-only                the reports again from D's samples and probes (no host runs)
+#   --nice N                     the hosts at nice N (e.g. -5, root: the mission ahead of the
+#                                machine's other work, as on a robot's own computer; said in the
+#                                report)
+# Every host on domain LTM_BENCH_DOMAIN (default 66). The machine's load is measured and printed
+# with each run: CPU figures are CPU time (load does not inflate them); latencies are wall clock
+# and are labelled with the load they were measured under.
+set -uo pipefail
+ROOT="$(cd "$(dirname "$0")/../../.." && pwd)"
+BIN="${LTM_BUILD_DIR:-$ROOT/build}/bin"
+DOMAIN="${LTM_BENCH_DOMAIN:-66}"
+CONFIG=all; SCENARIO="$ROOT/components/simulator/scenarios/site_loop.yaml"; FRAMES=""; OUT=""; PERF=1
+REPORT_ONLY=0; NICE=""
+usage() {
+    echo "The robot's mission at the sensor's rate: CPU, memory, missed scans, latency per component"
+    printf 'Usage: ./ltm bench budget [OPTIONS]\n\nOptions:\n'
+    printf '  %-22s%s\n' "-h,--help" "Print this help message and exit" \
+        "--config C" "lifelong, base_station, base_station_multi or all (default)" \
+        "--scenario S" "the scenario (default site_loop); sessions 0 and 1 are played" \
+        "--frames A:B" "only scans A..B-1 of each session (a short run)" \
+        "--out D" "the results (default results/budget-<time>)" \
+        "--no-perf" "no perf profile of the robot's host" \
+        "--report-only" "write the reports again from D's samples and probes (needs --out D)" \
+        "--nice N" "run the hosts at nice N (negative: ahead of the machine's other work; root)"
+}
+fail() { echo "ltm bench budget: $*" >&2; exit 2; }
+while [ $# -gt 0 ]; do
+    case "$1" in
+        -h|--help) usage; exit 0 ;;
+        --no-perf) PERF=0; shift ;;
+        --report-only) REPORT_ONLY=1; shift ;;
+        --config|--scenario|--frames|--out|--nice)
+            [ $# -ge 2 ] || fail "$1: needs a value"
+            case "$1" in
+                --config) CONFIG="$2" ;; --scenario) SCENARIO="$2" ;;
+                --frames) FRAMES="$2" ;; --out) OUT="$2" ;; --nice) NICE="$2" ;;
+            esac
+            shift 2 ;;
+        *) fail "unknown argument '$1' (--help)" ;;
+    esac
+done
+case "$CONFIG" in lifelong|base_station|base_station_multi|all) ;; *) fail "--config: lifelong, base_station, base_station_multi or all, got '$CONFIG'" ;; esac
+[ -f "$SCENARIO" ] || fail "--scenario: no such file: $SCENARIO"
+SCENARIO="$(cd "$(dirname "$SCENARIO")" && pwd)/$(basename "$SCENARIO")"
+[ -z "$FRAMES" ] || [[ "$FRAMES" =~ ^[0-9]*:[0-9]*$ ]] || fail "--frames: A:B, got '$FRAMES'"
+[ -z "$NICE" ] || [[ "$NICE" =~ ^-?[0-9]+$ ]] || fail "--nice: a whole number, got '$NICE'"
+for exe in ltm_host ltm_sim ltm_budget; do
+    [ -x "$BIN/$exe" ] || fail "$BIN/$exe is not built (ninja -C build ltm_host ltm_sim ltm_budget)"
+done
+if [ "$PERF" = 1 ] && ! command -v perf >/dev/null; then
+    echo "ltm bench budget: perf is missing (apt-get install linux-perf): no profile" >&2; PERF=0
+fi
+[ "$REPORT_ONLY" = 0 ] || [ -n "$OUT" ] || fail "--report-only: needs --out D (a run's folder)"
+OUT="${OUT:-$ROOT/results/budget-$(date +%Y%m%d-%H%M%S)}"
+mkdir -p "$OUT" || fail "--out: cannot create $OUT"
+OUT="$(cd "$OUT" && pwd)"
+NAME="$(basename "$SCENARIO" .yaml)"
+echo "ltm bench budget: $CONFIG on $NAME, domain $DOMAIN, results in $OUT"
+
+# scans N: the folder of session N's scans (rendered once, kept beside the results).
+scans() {
+    local dir="$ROOT/results/budget-scans/$NAME-s$1${FRAMES:+-${FRAMES/:/-}}"
+    if [ ! -f "$dir/times.txt" ]; then
+        echo "  rendering $NAME session $1 ${FRAMES:+(frames $FRAMES) }into $dir" >&2
+        "$BIN/ltm_sim" "$SCENARIO" --session "$1" ${FRAMES:+--frames "$FRAMES"} --quiet \
+            --out "$dir.tmp" >&2 || fail "ltm_sim failed for session $1"
+        rm -rf "$dir"; mv "$dir.tmp" "$dir"
+    fi
+    echo "$dir"
+}
+
+# The machine: load average and the share of both cores busy (everyone's) since `cpu_mark`.
+cpu_mark() { awk '/^cpu /{print $2+$3+$4+$7+$8, $2+$3+$4+$5+$6+$7+$8}' /proc/stat; }
+load_note() {  # load_note "BUSY0 TOTAL0"
+    local now busy
+    now="$(cpu_mark)"
+    busy=$(awk -v a="$1" -v b="$now" 'BEGIN{split(a,x," ");split(b,y," ");
+        if (y[2]>x[2]) printf "%.0f", 100*(y[1]-x[1])/(y[2]-x[2]); else print "?"}')
+    echo "machine during the run: $(nproc) cores ${busy} % busy (all users), load average $(cut -d' ' -f1-3 /proc/loadavg) at the end (latencies are wall clock under this load)${NICE:+; the hosts ran at nice $NICE}"
+}
+
+# start_host LABEL DIR LAUNCH [ENV=V ...] -- [HOST ARGS]: starts a host in the background with its
+# monitor; sets PIDS[LABEL] and MONS[LABEL].
+declare -A PIDS MONS
+start_host() {
+    local label="$1" dir="$2" launch="$3"; shift 3
+    local -a envs=()
+    while [ $# -gt 0 ] && [ "$1" != "--" ]; do envs+=("$1"); shift; done
+    shift
+    mkdir -p "$dir"
+    local -a nice=()
+    [ -z "$NICE" ] || nice=(nice -n "$NICE")
+    env "${envs[@]}" LTM_OUT="$dir" "${nice[@]}" "$BIN/ltm_host" "$launch" --set "domain_id=$DOMAIN" "$@" \
+        > "$dir/host.log" 2>&1 &
+    PIDS[$label]=$!
+    "$BIN/ltm_budget" monitor --pid "${PIDS[$label]}" --out "$dir/samples.txt" 2>>"$dir/monitor.log" &
+    MONS[$label]=$!
+}
+# profile LABEL DIR: perf on the host (199 Hz: about 1 % of a core) until it exits.
+profile() {
+    [ "$PERF" = 1 ] || return 0
+    # After the start-up: perf follows the threads that exist when it attaches (a host that had
+    # not made its components' threads yet was profiled on its main thread alone).
+    (sleep 5; exec perf record -F 199 -g -p "${PIDS[$1]}" -o "$2/perf.data") > "$2/perf.log" 2>&1 &
+    PERFS+=($!)
+}
+PERFS=()
+wait_hosts() {  # waits for every host, monitor and profile; prints a host that failed
+    local label rc
+    for label in "${!PIDS[@]}"; do
+        rc=0; wait "${PIDS[$label]}" || rc=$?
+        [ "$rc" = 0 ] || echo "  host $label exited with $rc (see its host.log)"
+        wait "${MONS[$label]}" 2>/dev/null
+    done
+    local p; for p in "${PERFS[@]}"; do wait "$p" 2>/dev/null; done
+    PIDS=(); MONS=(); PERFS=()
+}
+perf_summary() {  # DIR: where the robot host's CPU went (self time, by thread and function)
+    [ -f "$1/perf.data" ] || return 0
+    perf report -i "$1/perf.data" --no-children --sort comm,sym --stdio 2>/dev/null |
+        grep -E '^ +[0-9.]+%' | head -40 > "$1/perf_top.txt"
+    perf report -i "$1/perf.data" --no-children --sort comm --stdio 2>/dev/null |
+        grep -E '^ +[0-9.]+%' | head -20 > "$1/perf_threads.txt"
+    {
+        echo; echo "## perf (199 Hz, self time) of the robot's host: threads"; echo
+        echo '```'; cat "$1/perf_threads.txt"; echo '```'
+        echo; echo "hottest functions (thread, function: share of all samples)"; echo
+        echo '```'; head -30 "$1/perf_top.txt"; echo '```'
+    } >> "$1/report.md"
+    echo "  perf: $1/perf_top.txt (report: perf report -i $1/perf.data)"
+}
+published() { grep -oE 'published [0-9]+ scans' "$1" | tail -1 | grep -oE '[0-9]+' || echo 0; }
+
+# What the components said of themselves at the end (host.log): the localisation's scans
+# localised, relocalisations and skipped while busy; the maintenance's passes.
+component_lines() {
+    { echo; echo "## the components' own counts (host.log)"; echo; echo '```'
+      grep -E '\[maintenance\] pass [0-9]+:' "$1" | sed -E 's/^[0-9:.]+ +[a-z]+ +//' | tail -6
+      grep -E '\[(localisation|maintenance|odometry)\] [0-9]+ scans' "$1" | sed -E 's/^[0-9:.]+ +[a-z]+ +//'
+      echo '```'; } >> "$2"
+}
+
+report_lifelong_day() {  # DAY SESSION
+    local day="$1" dir="$OUT/lifelong/day$1"
+    [ -f "$dir/samples.txt" ] || { echo "  no $dir/samples.txt: day $day did not run"; return; }
+    "$BIN/ltm_budget" report --host "robot:$dir/samples.txt:$dir/launch.yaml" --probe "$dir/probe.csv" \
+        --published "$(published "$dir/host.log")" --out "$dir" --with-pose \
+        --title "robot_lifelong.yaml, $NAME session $2 (day $day), VLP-32C at 10 Hz" \
+        --note "$(cat "$dir/load.txt" 2>/dev/null)" > /dev/null || echo "  report failed: see above"
+    component_lines "$dir/host.log" "$dir/report.md"
+    perf_summary "$dir"
+    echo "  report: $dir/report.md"
+}
+
+run_lifelong_day() {  # DAY SESSION
+    local day="$1" dir="$OUT/lifelong/day$1" s mark
+    s="$(scans "$2")" || exit 2
+    mkdir -p "$dir"
+    "$BIN/ltm_budget" variant --in "$ROOT/launch_configs/robot_lifelong.yaml" --out "$dir/launch.yaml" \
+        --replace sensor --scans "$s" --wait-for-readers 4 --probe "$dir/probe.csv" \
+        --probe-inputs points odometry pose map_changes || exit 2
+    echo "  lifelong day $day: $(wc -l < "$s/times.txt") scans of session $2 at 10 Hz (about $(( $(wc -l < "$s/times.txt") / 600 + 1 )) min)"
+    mark="$(cpu_mark)"
+    # Live: a scan that comes while the localiser is busy replaces the waiting one (counted).
+    start_host robot "$dir" "$dir/launch.yaml" LTM_SITE="$OUT/lifelong/site" -- \
+        --set localisation.skip_while_busy=true
+    profile robot "$dir"
+    wait_hosts
+    load_note "$mark" > "$dir/load.txt"
+    report_lifelong_day "$@"
+}
+
+base_dir() { if [ "$1" = 1 ]; then echo "$OUT/base_station"; else echo "$OUT/base_station_multi"; fi; }
+base_yaml() { if [ "$1" = 1 ]; then echo base_station.yaml; else echo base_station_multi.yaml; fi; }
+
+report_base_station() {  # ROBOTS
+    local n="$1" dir base i h
+    dir="$(base_dir "$n")"; base="$(base_yaml "$n")"
+    for ((i = 1; i <= n; ++i)); do
+        h="robot$i"
+        [ -f "$dir/$h/samples.txt" ] || { echo "  no $dir/$h/samples.txt: did not run"; continue; }
+        "$BIN/ltm_budget" report --host "$h:$dir/$h/samples.txt:$dir/$h/launch.yaml" \
+            --host "base:$dir/base/samples.txt:$ROOT/launch_configs/$base" --probe "$dir/$h/probe.csv" \
+            --published "$(published "$dir/$h/host.log")" --out "$dir/$h" \
+            --title "$base with $n robot(s): $h's host and the base station's, VLP-32C at 10 Hz" \
+            --note "$(cat "$dir/load.txt" 2>/dev/null)" > /dev/null || echo "  report failed: see above"
+        component_lines "$dir/$h/host.log" "$dir/$h/report.md"
+        [ "$i" = 1 ] && perf_summary "$dir/robot1"
+        echo "  report: $dir/$h/report.md"
+    done
+}
+
+run_base_station() {  # ROBOTS (1 or 2)
+    local n="$1" dir base mark i s
+    dir="$(base_dir "$n")"; base="$(base_yaml "$n")"
+    mkdir -p "$dir"
+    mark="$(cpu_mark)"
+    # The scans are VLP-32C: every preset says so.
+    start_host base "$dir/base" "$ROOT/launch_configs/$base" -- --set mapping.preset=vlp32
+    for ((i = 1; i <= n; ++i)); do
+        s="$(scans $((i - 1)))" || exit 2
+        mkdir -p "$dir/robot$i"
+        "$BIN/ltm_budget" variant --in "$ROOT/launch_configs/robot.yaml" --out "$dir/robot$i/launch.yaml" \
+            --probe "$dir/robot$i/probe.csv" --probe-inputs points odometry || exit 2
+        local ns=/robot; [ "$n" = 1 ] || ns=/robot$i
+        echo "  robot$i ($ns): $(wc -l < "$s/times.txt") scans of session $((i - 1)) at 10 Hz"
+        start_host "robot$i" "$dir/robot$i" "$dir/robot$i/launch.yaml" LTM_DATA="$s" -- \
+            --set namespace=$ns --set odometry.preset=vlp32 --set keyframe_digest.preset=vlp32
+        [ "$i" = 1 ] && profile robot1 "$dir/robot$i"
+    done
+    wait_hosts
+    load_note "$mark" > "$dir/load.txt"
+    report_base_station "$n"
+}
+
+if [ "$REPORT_ONLY" = 1 ]; then
+    if [ "$CONFIG" = lifelong ] || [ "$CONFIG" = all ]; then report_lifelong_day 0 0; report_lifelong_day 1 1; fi
+    if [ "$CONFIG" = base_station ] || [ "$CONFIG" = all ]; then report_base_station 1; fi
+    if [ "$CONFIG" = base_station_multi ] || [ "$CONFIG" = all ]; then report_base_station 2; fi
+else
+    if [ "$CONFIG" = lifelong ] || [ "$CONFIG" = all ]; then
+        rm -rf "$OUT/lifelong/site"   # a fresh site: day 0 maps it
+        run_lifelong_day 0 0
+        run_lifelong_day 1 1
+    fi
+    if [ "$CONFIG" = base_station ] || [ "$CONFIG" = all ]; then run_base_station 1; fi
+    if [ "$CONFIG" = base_station_multi ] || [ "$CONFIG" = all ]; then run_base_station 2; fi
+fi
+echo "ltm bench budget: done; reports: $(find "$OUT" -name report.md | sort | tr '\n' ' ')"
