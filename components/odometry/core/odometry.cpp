@@ -201,9 +201,13 @@ FrameResult Odometry::register_frame(const common::PointCloud& cloud) {
                 s.precision(3);
                 s << "degenerate: " << r.constrained_directions
                   << " of 3 translation directions constrained (information "
-                  << r.translation_information[0] << "), the search along the weakest found no "
-                  << "distinct fit (contrast " << r.profile_contrast
-                  << "): the position along it is the motion model's";
+                  << r.translation_information[0] << "), the search along the weakest "
+                  << (std::string(r.search_used) == "along (fit kept, weak)"
+                          ? "peaked where the fit from there was no better"
+                          : "found no distinct fit")
+                  << " (contrast " << r.profile_contrast << "): the position along it is the "
+                  << (std::string(r.search_used) == "motion model" ? "motion model's"
+                                                                   : "fit's (weakly constrained)");
                 r.message = s.str();
             } else if (lost_) {
                 std::ostringstream s;

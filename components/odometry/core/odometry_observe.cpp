@@ -88,17 +88,37 @@ bool Odometry::check_observability(const Eigen::Isometry3d& predicted, double dt
     const double contrast = o.weak() ? c.min_contrast : c.first_step_contrast;
     const bool observable = p.best_support >= c.min_support && p.contrast() >= contrast;
     if (!observable && !o.weak()) return true;  // the first step: the fit's own position stands
-    if (!observable) {
-        // Not fixed along v: the position there is the motion model's.
-        r->T_odom_lidar.translation() += d * v;
-        r->search_used = "motion model";
+    // Degenerate: the position along v is not fixed by this scan. It becomes the motion model's
+    // only when that is a motion model (a velocity, or the robot's prior) and the scan does not
+    // place the fit distinctly better than the prediction (directional support at the fit at most
+    // min_contrast times the prediction's): a replacement may not be worse on the residual the
+    // search measures. Otherwise the fit's own position stands, flagged (the first step of a run
+    // at 5 Hz: the fit had moved 0.8 m, the prediction none; SlamSegments).
+    const auto degenerate = [&](const char* fit_used) {
+        r->weak_direction = v;
+        r->search_used = fit_used;
+        unobserved_ = true;
+        const bool informed = motion_.poses() >= 2 || prior_ != nullptr;
+        if (informed) {
+            const Eigen::Isometry3d T_map_pred = Eigen::Translation3d(d * v_map) * T_map_fit;
+            const registration::ImlsParams& imls = registration_.imls_params();
+            const double at_fit =
+                directional_support(coarse_points_, map.voxels(), imls, T_map_fit, v_map, q.kernel)
+                    .support;
+            const double at_pred =
+                directional_support(coarse_points_, map.voxels(), imls, T_map_pred, v_map, q.kernel)
+                    .support;
+            if (at_fit <= c.min_contrast * std::max(at_pred, 1.0)) {
+                r->T_odom_lidar.translation() += d * v;
+                r->search_used = "motion model";
+            }
+        }
         const double sigma =
             std::max(c.degenerate_min_sigma, c.degenerate_sigma_fraction * std::abs(s_pred));
         r->covariance.topLeftCorner<3, 3>() += sigma * sigma * v * v.transpose();
-        r->weak_direction = v;
-        unobserved_ = true;
         return false;
-    }
+    };
+    if (!observable) return degenerate("fit (weak)");
     if (std::abs(p.best_offset) <= 0.5 * q.spacing && o.weak()) {
         r->search_used = "along (fit confirmed)";
         return true;
@@ -111,20 +131,20 @@ bool Odometry::check_observability(const Eigen::Isometry3d& predicted, double dt
     ++r->attempts;
     const double stayed = std::abs(v.dot(again.T_odom_lidar.translation() - guess.translation()));
     const bool held = why.empty() && stayed <= c.peak_width;
-    if (!o.weak() && !(held && again.inliers > r->inliers)) {
-        // A first step in a constrained scene: the fit at the searched position must explain
-        // more of the scan than the fit it would replace, else the fit stands (a turn after a gap
-        // restarted the odometry and the forward search found a look-alike 8 m on: SlamSegments).
-        r->search_used = "along (fit kept)";
-        return true;
+    // A replacement must beat the fit it replaces on the registration's own residual: more of
+    // the same scan points within registration.inlier_distance of the same map. When it does
+    // not, the fit stands: in a scene constrained every way (a first step) as it is; along a weak
+    // direction flagged, since the search and the fit disagree on where the scan is.
+    if (!(held && again.inliers > r->inliers)) {
+        if (!o.weak()) {
+            r->search_used = "along (fit kept)";
+            return true;
+        }
+        return degenerate("along (fit kept, weak)");
     }
-    if (held) {
-        const int attempts = r->attempts;
-        *r = again;
-        r->attempts = attempts;
-    } else {
-        r->T_odom_lidar = guess;  // the search's position (the fit there did not hold)
-    }
+    const int attempts = r->attempts;
+    *r = again;
+    r->attempts = attempts;
     r->profile_shift = p.best_offset;
     r->weak_direction = v;
     r->search_used = "along";
