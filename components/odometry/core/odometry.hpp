@@ -12,8 +12,8 @@
 #include "odometry/core/keyframe_selector.hpp"
 #include "odometry/core/local_map_set.hpp"
 #include "odometry/core/motion_model.hpp"
-#include "odometry/core/observability.hpp"
 #include "odometry/core/motion_prior.hpp"
+#include "odometry/core/observability.hpp"
 #include "odometry/core/odometry_config.hpp"
 #include "registration/core/parallel.hpp"
 #include "registration/core/preprocess.hpp"
@@ -202,10 +202,10 @@ class Odometry {
     double early_rms_ = 0.0, early_inliers_ = 0.0, early_overlap_ = 0.0;
     int early_frames_ = 0;
     bool lost_ = false;
-    bool unobserved_ = false;          // the last fit was degenerate: the velocity is a guess
+    bool unobserved_ = false;  // the last fit was degenerate: the velocity is a guess
     static constexpr int kYoungSegmentScans = 10;  // scans that enter a new segment's map anyway
     int segment_scans_ = 0;                        // scans integrated since the segment began
-    double last_tracked_stamp_ = 0.0;  // of the last scan with a valid pose
+    double last_tracked_stamp_ = 0.0;              // of the last scan with a valid pose
     Eigen::Isometry3d last_tracked_pose_ = Eigen::Isometry3d::Identity();
     bool has_stamp_ = false;
     double last_stamp_ = 0.0;

@@ -89,7 +89,7 @@ bool Odometry::check_observability(const Eigen::Isometry3d& predicted, double dt
     const bool observable = p.best_support >= c.min_support && p.contrast() >= contrast;
     if (!observable && !o.weak()) return true;  // the first step: the fit's own position stands
     // Degenerate: the position along v is not fixed by this scan. It becomes the motion model's
-    // only when that is a motion model (a velocity, or the robot's prior) and the scan does not
+    // only when that is a motion model (a velocity, or wheel odometry) and the scan does not
     // place the fit distinctly better than the prediction (directional support at the fit at most
     // min_contrast times the prediction's): a replacement may not be worse on the residual the
     // search measures. Otherwise the fit's own position stands, flagged (the first step of a run
@@ -98,7 +98,7 @@ bool Odometry::check_observability(const Eigen::Isometry3d& predicted, double dt
         r->weak_direction = v;
         r->search_used = fit_used;
         unobserved_ = true;
-        const bool informed = motion_.poses() >= 2 || prior_ != nullptr;
+        const bool informed = motion_.poses() >= 2 || (prior_ != nullptr && prior_->has_wheel());
         if (informed) {
             const Eigen::Isometry3d T_map_pred = Eigen::Translation3d(d * v_map) * T_map_fit;
             const registration::ImlsParams& imls = registration_.imls_params();
