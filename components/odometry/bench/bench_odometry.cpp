@@ -25,6 +25,7 @@
 #include "odometry/bench/prior_files.hpp"
 #include "odometry/core/odometry.hpp"
 #include "odometry/params/odometry_params.hpp"
+#include "self_check.hpp"
 #include "sources/core/scan_folder.hpp"
 
 namespace {
@@ -124,19 +125,26 @@ odometry::OdometryConfig make_config(const Args& a) {
     return config;
 }
 
-void report_accuracy(const common::PoseList& est, const Args& a) {
+// The reference lines of the kept scans (empty without --reference).
+common::PoseList kept_reference(const Args& a, std::size_t frames) {
+    if (a.reference.empty()) return {};
     common::PoseList ref = common::read_kitti_poses(a.reference);
     if (!a.calib.empty())
         ref = common::camera_to_lidar_poses(ref, common::read_kitti_calib_tr(a.calib));
-    if (ref.size() < est.size()) {
-        std::printf("warning: reference has %zu poses for %zu frames; comparing the first %zu\n",
-                    ref.size(), est.size(), ref.size());
-    }
     if (a.every > 1) {
         common::PoseList kept;
         for (std::size_t i = 0; i < ref.size(); i += a.every) kept.push_back(ref[i]);
         ref.swap(kept);
     }
+    if (ref.size() < frames) {
+        std::printf("warning: reference has %zu poses for %zu frames; comparing the first %zu\n",
+                    ref.size(), frames, ref.size());
+    }
+    ref.resize(std::min(ref.size(), frames));
+    return ref;
+}
+
+void report_accuracy(const common::PoseList& est, common::PoseList ref) {
     ref.resize(std::min(ref.size(), est.size()));
     const eval::AteResult ate = eval::compute_ate(est, ref);
     std::printf("ATE (SE(3)-aligned, %zu poses): rmse %.4f m  mean %.4f  median %.4f  max %.4f\n",
@@ -170,15 +178,7 @@ int run(const Args& a) {
                 a.every > 1 ? (" (every " + std::to_string(a.every) + ")").c_str() : "",
                 data.has_times() ? "" : " (no times.txt: 10 Hz assumed)", config.threads,
                 config.voxel_size);
-    std::ofstream log;
-    if (!a.frame_log.empty()) {
-        log.open(a.frame_log);
-        if (!log) throw common::IoError(a.frame_log, "cannot write");
-        log << "frame,status,ms,preprocess_ms,registration_ms,update_ms,input,"
-               "registration_points,correspondences,attempts,iterations,coarse_iterations,residual_"
-               "rms,"
-               "degenerate,min_information,local_map,inlier_fraction,searched,segment,lost_for\n";
-    }
+    std::vector<odometry::FrameResult> results;  // for the self-check and the frame log
 
     odometry::Odometry odo(config);
     // The motion prior, fed with its samples up to the end of each scan's sweep.
@@ -223,7 +223,11 @@ int run(const Args& a) {
         ms.push_back(std::chrono::duration<double, std::milli>(t2 - t1).count());
         poses.push_back(r.T_odom_lidar);
         ++statuses[odometry::to_string(r.status)];
-        stretches.add(r.stamp, r.registered() || r.status == odometry::FrameStatus::kInitialised);
+        // A degenerate scan is not registered, but not lost either (its pose is published).
+        if (r.status != odometry::FrameStatus::kDegenerate) {
+            stretches.add(r.stamp,
+                          r.registered() || r.status == odometry::FrameStatus::kInitialised);
+        }
         keyframes += r.keyframe.has_value();
         dropped_non_finite += r.dropped_non_finite;
         reg_points += r.registration_points;
@@ -234,15 +238,8 @@ int run(const Args& a) {
         reg_ms += r.registration_ms;
         upd_ms += r.update_ms;
         if (!r.message.empty()) std::fprintf(stderr, "frame %zu: %s\n", i, r.message.c_str());
-        if (log) {
-            log << i << ',' << odometry::to_string(r.status) << ',' << ms.back() << ','
-                << r.preprocess_ms << ',' << r.registration_ms << ',' << r.update_ms << ','
-                << r.input_points << ',' << r.registration_points << ',' << r.correspondences << ','
-                << r.attempts << ',' << r.iterations << ',' << r.coarse_iterations << ','
-                << r.residual_rms << ',' << r.degenerate_directions.size() << ','
-                << r.min_information << ',' << r.local_map_id << ',' << r.inlier_fraction << ','
-                << r.searched << ',' << r.segment << ',' << r.lost_for << '\n';
-        }
+        results.push_back(r);
+        results.back().keyframe.reset();
         progress.update(i + 1);
     }
     progress.finish();
@@ -259,11 +256,12 @@ int run(const Args& a) {
     std::printf(" keyframes %zu; local maps finished %zu, active %zu\n", keyframes, maps_finished,
                 odo.active_local_maps().size());
     stretches.finish();
+    const std::size_t degenerate = statuses["degenerate"];
+    const std::size_t registered = frames - stretches.lost_scans - degenerate;
     std::printf(
-        "tracking: %zu of %zu scans registered (%.2f %%), %zu not (lost, skipped or restarted); "
-        "%zu lost stretches, the longest %.2f s of sensor time (from scan %zu)\n",
-        frames - stretches.lost_scans, frames,
-        100.0 * double(frames - stretches.lost_scans) / frames, stretches.lost_scans,
+        "tracking: %zu of %zu scans registered (%.2f %%), %zu degenerate, %zu not (lost, skipped "
+        "or restarted); %zu lost stretches, the longest %.2f s of sensor time (from scan %zu)\n",
+        registered, frames, 100.0 * double(registered) / frames, degenerate, stretches.lost_scans,
         stretches.count, stretches.longest, stretches.longest_from);
     std::printf(
         "speed: %.1f frames/s odometry (pre-processing included, file reading excluded), "
@@ -295,7 +293,11 @@ int run(const Args& a) {
         common::write_kitti_poses(a.out, poses);
         std::printf("poses: %s (T_odom_lidar, KITTI format)\n", a.out.c_str());
     }
-    if (!a.reference.empty()) report_accuracy(poses, a);
+    const common::PoseList reference = kept_reference(a, poses.size());
+    const odometry::bench::SelfCheck check = odometry::bench::self_check(results, reference);
+    odometry::bench::print_self_check(check, stdout);
+    if (!a.frame_log.empty()) odometry::bench::write_frame_log(a.frame_log, results, ms, check);
+    if (!a.reference.empty()) report_accuracy(poses, reference);
     return 0;
 }
 

@@ -40,6 +40,8 @@ StatusCode status_code(FrameStatus status) {
             return StatusCode::kRecovered;
         case FrameStatus::kRestarted:
             return StatusCode::kRestarted;
+        case FrameStatus::kDegenerate:
+            return StatusCode::kDegenerate;
         case FrameStatus::kLost:
             return StatusCode::kLost;
         case FrameStatus::kSkippedTooFewPoints:
@@ -109,7 +111,9 @@ class OdometryComponent : public runtime::Component {
         // Hand every map on: the active ones are finished here, nothing built is lost.
         for (const common::LocalMapData& m : handover_.finish(*odometry_)) publish_local_map(m);
         ctx_.log().info(std::to_string(frames_) + " scans, " + std::to_string(tracked_) +
-                        " tracked, " + std::to_string(frames_ - tracked_) + " not (see status), " +
+                        " tracked, " + std::to_string(degenerate_) +
+                        " degenerate (published, along a direction the motion model's), " +
+                        std::to_string(frames_ - tracked_ - degenerate_) + " not (see status), " +
                         std::to_string(maps_published_) + " local maps published");
         if (imu_samples_ + wheel_samples_ > 0) {
             const Eigen::Vector3d b = prior_->gyro_bias();
@@ -132,7 +136,7 @@ class OdometryComponent : public runtime::Component {
         }
         const FrameResult r = odometry_->register_frame(cloud_);
         if (r.pose_valid()) {
-            ++tracked_;
+            ++(r.status == FrameStatus::kDegenerate ? degenerate_ : tracked_);
             publish_odometry(r);
         }
         // lost, skipped, rejected: a warning each scan; restarted (a new segment at a guessed
@@ -142,7 +146,7 @@ class OdometryComponent : public runtime::Component {
                    status_code(r.status), "scan " + std::to_string(index) + ": " + r.message,
                    r.stamp, r.status == FrameStatus::kRestarted ? r.segment : 0);
         }
-        if (r.degenerate())
+        if (r.degenerate() && r.status != FrameStatus::kDegenerate)  // else said above
             status(StatusLevel::kWarn, StatusCode::kDegenerate,
                    "scan " + std::to_string(index) + ": " +
                        std::to_string(r.degenerate_directions.size()) + " degenerate direction(s)",
@@ -206,7 +210,7 @@ class OdometryComponent : public runtime::Component {
     Eigen::Isometry3d last_pose_ = Eigen::Isometry3d::Identity();
     double last_stamp_ = 0.0;
     bool has_last_ = false;
-    std::uint64_t frames_ = 0, tracked_ = 0, warnings_ = 0, maps_published_ = 0;
+    std::uint64_t frames_ = 0, tracked_ = 0, degenerate_ = 0, warnings_ = 0, maps_published_ = 0;
     std::uint64_t imu_samples_ = 0, wheel_samples_ = 0;
 };
 

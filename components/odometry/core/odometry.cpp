@@ -50,6 +50,8 @@ const char* to_string(FrameStatus status) {
             return "recovered";
         case FrameStatus::kRestarted:
             return "restarted";
+        case FrameStatus::kDegenerate:
+            return "degenerate";
         case FrameStatus::kLost:
             return "lost";
         case FrameStatus::kSkippedTooFewPoints:
@@ -169,8 +171,10 @@ FrameResult Odometry::register_frame(const common::PointCloud& cloud) {
             }
             attempt.searched = true;
         }
+        if (attempt.searched && why.empty()) attempt.search_used = "search";
         r = attempt;
         r.attempts = attempts;
+        const bool observable = !why.empty() || check_observability(predicted, since_tracked, &r);
         r.registration_ms = lap();
         if (!why.empty() && since_tracked < config_.tracking.restart_after) {
             std::ostringstream s;
@@ -189,8 +193,23 @@ FrameResult Odometry::register_frame(const common::PointCloud& cloud) {
             s << "lost for " << since_tracked << " s (" << why << ")";
             restart_segment(s.str(), predicted, since_tracked, &r);
         } else {
-            r.status = lost_ ? FrameStatus::kRecovered : FrameStatus::kTracked;
-            if (lost_) {
+            r.status = !observable ? FrameStatus::kDegenerate
+                       : lost_     ? FrameStatus::kRecovered
+                                   : FrameStatus::kTracked;
+            if (!observable) {
+                std::ostringstream s;
+                s.precision(3);
+                s << "degenerate: " << r.constrained_directions
+                  << " of 3 translation directions constrained (information "
+                  << r.translation_information[0] << "), the search along the weakest "
+                  << (std::string(r.search_used) == "along (fit kept, weak)"
+                          ? "peaked where the fit from there was no better"
+                          : "found no distinct fit")
+                  << " (contrast " << r.profile_contrast << "): the position along it is the "
+                  << (std::string(r.search_used) == "motion model" ? "motion model's"
+                                                                   : "fit's (weakly constrained)");
+                r.message = s.str();
+            } else if (lost_) {
                 std::ostringstream s;
                 s << "recovered after " << since_tracked << " s lost";
                 r.message = s.str();
@@ -218,7 +237,13 @@ FrameResult Odometry::register_frame(const common::PointCloud& cloud) {
     }
     accept(r);
     lap();
-    integrate(cloud.stamp, &r);
+    // A degenerate scan's position along its weak direction is a guess: it stays out of the map
+    // (which the next scans are measured against), but for the first scans of a segment: a map of
+    // one scan left the next scans of a turn nothing to fit (SlamSegments).
+    if (r.status != FrameStatus::kDegenerate || segment_scans_ < kYoungSegmentScans) {
+        integrate(cloud.stamp, &r);
+        ++segment_scans_;
+    }
     r.update_ms = lap();
     return r;
 }
@@ -229,6 +254,7 @@ void Odometry::restart_segment(const std::string& why, const Eigen::Isometry3d& 
     // scan starts a new segment at the best estimate.
     maps_.start_new_segment();
     keyframes_.reset();
+    segment_scans_ = 0;
     // The new map holds this one scan: the next scans fit it as the first scans of the run fit
     // theirs, not as well as a grown map did. Judged by the grown map's figures, every scan after
     // a kidnap was refused, and the odometry restarted every restart_after.
@@ -394,7 +420,8 @@ std::string Odometry::try_register(const Eigen::Isometry3d& guess_odom, double d
     }
     if (why.str().empty()) {
         r->T_odom_lidar = estimate;
-        r->covariance = reg.covariance;
+        r->covariance = honest_covariance(reg.covariance, config_.observability);
+        r->information = reg.hessian;
         r->degenerate_directions = reg.degenerate_directions;
         r->min_information = reg.min_information;
     }

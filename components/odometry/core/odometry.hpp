@@ -13,6 +13,7 @@
 #include "odometry/core/local_map_set.hpp"
 #include "odometry/core/motion_model.hpp"
 #include "odometry/core/motion_prior.hpp"
+#include "odometry/core/observability.hpp"
 #include "odometry/core/odometry_config.hpp"
 #include "registration/core/parallel.hpp"
 #include "registration/core/preprocess.hpp"
@@ -24,6 +25,10 @@ enum class FrameStatus {
     kInitialised,  // first usable scan: the first local map starts at the initial pose
     kTracked,      // registered against the local map
     kRecovered,    // registered again after lost or skipped scans (same segment, consistent)
+    // The fit holds but does not fix the position along a direction (observability.hpp): the
+    // position there is the motion model's, with its uncertainty in the covariance. Published,
+    // not counted as registered.
+    kDegenerate,
     // Lost for tracking.restart_after: the local maps are ended and a new one (a new segment)
     // starts with this scan at the best estimate (the prediction). The pose continues the
     // odometry but is a guess relative to the maps before it (large covariance).
@@ -53,6 +58,21 @@ struct FrameResult {
     std::vector<registration::Vector6d>
         degenerate_directions;     // unit, [dt; dr * degeneracy_length]
     double min_information = 0.0;  // of the weakest direction (see RegistrationResult)
+    // The accepted fit's Hessian (sum w J^T J, [dt; dr], local map axes).
+    registration::Matrix6d information = registration::Matrix6d::Zero();
+    // Observability of the translation (observability.hpp): normalised marginal information,
+    // ascending, the directions at or above observability.weak_information, the weakest
+    // direction (odometry axes).
+    Eigen::Vector3d translation_information = Eigen::Vector3d::Zero();
+    int constrained_directions = 0;
+    Eigen::Vector3d weak_direction = Eigen::Vector3d::Zero();
+    // How the pose was found: "prediction", "search" (the last pose, yaw offsets), "along" (the
+    // search along the weak direction moved it), "along (fit confirmed)", "motion model" (the
+    // position along the weak direction is the prediction's: kDegenerate).
+    const char* search_used = "prediction";
+    double profile_support = 0.0;   // the search along the weak direction: best support
+    double profile_contrast = 0.0;  // ... over the best rival (0: not searched)
+    double profile_shift = 0.0;     // [m] moved along the weak direction by it
     std::size_t input_points = 0;
     std::size_t dropped_non_finite = 0;
     std::size_t dropped_range = 0;
@@ -79,13 +99,16 @@ struct FrameResult {
 
     bool pose_valid() const {
         return status == FrameStatus::kInitialised || status == FrameStatus::kTracked ||
-               status == FrameStatus::kRecovered || status == FrameStatus::kRestarted;
+               status == FrameStatus::kRecovered || status == FrameStatus::kRestarted ||
+               status == FrameStatus::kDegenerate;
     }
     // Registered against the map (a measured pose, not a guess).
     bool registered() const {
         return status == FrameStatus::kTracked || status == FrameStatus::kRecovered;
     }
-    bool degenerate() const { return !degenerate_directions.empty(); }
+    bool degenerate() const {
+        return status == FrameStatus::kDegenerate || !degenerate_directions.empty();
+    }
 };
 
 class Odometry {
@@ -149,6 +172,11 @@ class Odometry {
     // one, or the quick probe of a search guess).
     registration::RegistrationResult coarse_align(const Eigen::Isometry3d& guess_map,
                                                   registration::Registration& registration);
+    // After an accepted fit (odometry_observe.cpp): the translation's observability; along a
+    // weak direction where the fit's step disagrees with the prediction's (or is long), a search
+    // along it and a fit again from the best position. False when the search cannot fix the
+    // position there: it is then the prediction's (the caller reports kDegenerate).
+    bool check_observability(const Eigen::Isometry3d& predicted, double dt, FrameResult* r);
     bool excellent(const FrameResult& r) const;
     bool doubtful(const FrameResult& r) const;
     void learn(const FrameResult& r);
@@ -174,7 +202,10 @@ class Odometry {
     double early_rms_ = 0.0, early_inliers_ = 0.0, early_overlap_ = 0.0;
     int early_frames_ = 0;
     bool lost_ = false;
-    double last_tracked_stamp_ = 0.0;  // of the last scan with a valid pose
+    bool unobserved_ = false;  // the last fit was degenerate: the velocity is a guess
+    static constexpr int kYoungSegmentScans = 10;  // scans that enter a new segment's map anyway
+    int segment_scans_ = 0;                        // scans integrated since the segment began
+    double last_tracked_stamp_ = 0.0;              // of the last scan with a valid pose
     Eigen::Isometry3d last_tracked_pose_ = Eigen::Isometry3d::Identity();
     bool has_stamp_ = false;
     double last_stamp_ = 0.0;

@@ -7,6 +7,7 @@
 
 #include "common/core/config_check.hpp"
 #include "common/core/sensor_preset.hpp"
+#include "odometry/core/observability.hpp"
 #include "registration/core/registration_config.hpp"
 
 namespace ltm::odometry {
@@ -88,6 +89,7 @@ struct OdometryConfig {
     VoxelConfig voxel;
     RegistrationConfig registration;
     TrackingConfig tracking;
+    ObservabilityConfig observability;
     LocalMapConfig local_map;
     KeyframeConfig keyframe;
     int min_scan_points = 100;  // fewer registration points: frame skipped
@@ -129,6 +131,22 @@ void visit_fields(OdometryConfig& c, Visitor&& v) {
     v("tracking.yaw_step", t.yaw_step, in_range(1, 90));
     v("tracking.restart_after", t.restart_after, non_negative);
     v("tracking.restart_gap", t.restart_gap, non_negative);
+    auto& o = c.observability;
+    v("observability.weak_information", o.weak_information, unit);
+    v("observability.slide_tolerance", o.slide_tolerance, non_negative);
+    v("observability.slide_fraction", o.slide_fraction, unit);
+    v("observability.search_step", o.search_step, positive);
+    v("observability.margin_fraction", o.margin_fraction, non_negative);
+    v("observability.min_margin", o.min_margin, non_negative);
+    v("observability.first_step_range", o.first_step_range, non_negative);
+    v("observability.min_support", o.min_support, non_negative);
+    v("observability.min_contrast", o.min_contrast, at_least(1));
+    v("observability.peak_width", o.peak_width, positive);
+    v("observability.first_step_contrast", o.first_step_contrast, at_least(1));
+    v("observability.degenerate_sigma_fraction", o.degenerate_sigma_fraction, non_negative);
+    v("observability.degenerate_min_sigma", o.degenerate_min_sigma, non_negative);
+    v("observability.covariance_scale", o.covariance_scale, at_least(1));
+    v("observability.covariance_floor", o.covariance_floor, non_negative);
     auto& m = c.local_map;
     v("local_map.half_extent", m.half_extent, positive);
     v("local_map.switch_distance", m.switch_distance, positive);

@@ -1,0 +1,78 @@
+#pragma once
+// Observability of a registration's translation (issue 27): along which directions the fit's own
+// normal equations fix the position, and whether the motion since the last scan is one the fit
+// could have seen.
+//
+// The criterion: the translation information with the rotation marginalised out (the Schur
+// complement S = H_tt - H_tr H_rr^-1 H_rt of the fit's Gauss-Newton Hessian H = sum w J^T J,
+// perturbation [dt; dr]) divided by the total weight trace(H_tt) = sum w (|n| = 1). An eigenvalue
+// of that normalised S is the weighted mean of (n.v)^2 over the correspondences, the rotation
+// free to absorb what it can: 1/3 per axis when the normals point every way, 0 along a corridor.
+// A direction whose eigenvalue is below `weak_information` is weak: a fit moves along it only as
+// far as the few points that see it pull, and from a start a few metres off it stays there (the
+// ground and the side surfaces fit just as well). Its position comes from a search of the
+// directional support along it (step_search.hpp), or from the motion model.
+#include <Eigen/Core>
+
+#include "registration/core/se3.hpp"
+
+namespace ltm::odometry {
+
+struct ObservabilityConfig {
+    // Normalised marginal translation information below this: a weak direction (about 10 % of
+    // the 1/3 of an isotropic scene).
+    double weak_information = 0.04;
+    // Along a weak direction, a fit whose step differs from the prediction's by more than
+    // slide_tolerance + slide_fraction * |predicted step|, or a predicted step of at least
+    // search_step, is searched (below, the step is within the fit's basin: trusted).
+    double slide_tolerance = 0.3;  // [m]
+    double slide_fraction = 0.05;
+    double search_step = 1.0;  // [m]
+    // The search along a weak direction: from the fit and the prediction, margin_fraction of the
+    // predicted step (at least min_margin) on either side, support evaluated every voxel_size,
+    // then refined around the best.
+    double margin_fraction = 0.3;
+    double min_margin = 2.0;  // [m]
+    // The first step of a run (no velocity yet, the prediction is no motion) and the scan after
+    // a degenerate one (its velocity is a guess): searched this far either side [m].
+    double first_step_range = 15.0;
+    // The best position is observable when its support (Geman-McClure weighted points whose
+    // normal sees the direction) is at least min_support and at least min_contrast times the
+    // best support more than peak_width from it; else the position along the direction is the
+    // motion model's and the scan is degenerate.
+    double min_support = 8.0;
+    double min_contrast = 2.0;
+    double peak_width = 1.5;  // [m]
+    // The first step of a run in a scene constrained every way (not weak): searched along the
+    // sensor's forward axis from the prediction, a peak this distinct moves it.
+    double first_step_contrast = 1.3;
+    // A degenerate scan's standard deviation along the unobservable direction: this fraction of
+    // the predicted step, at least min_sigma [m].
+    double degenerate_sigma_fraction = 0.2;
+    double degenerate_min_sigma = 0.3;
+    // The published covariance of a registered scan: sigma^2 H^-1 times covariance_scale, plus
+    // covariance_floor^2 on each position axis (the fit's own statistics ignore correlated
+    // points and the map's own error).
+    double covariance_scale = 4.0;
+    double covariance_floor = 0.02;  // [m]
+};
+
+struct Observability {
+    Eigen::Vector3d information = Eigen::Vector3d::Zero();     // normalised, ascending
+    Eigen::Matrix3d directions = Eigen::Matrix3d::Identity();  // unit columns, odometry axes
+    int constrained = 0;  // directions at or above weak_information (0..3)
+
+    Eigen::Vector3d weakest() const { return directions.col(0); }
+    bool weak() const { return constrained < 3; }
+};
+
+// From the fit's Hessian (sum w J^T J, [dt; dr], map axes = odometry axes up to the local map's
+// rotation, which the caller applies).
+Observability translation_observability(const registration::Matrix6d& hessian,
+                                        double weak_information);
+
+// The published covariance of a registered scan (see ObservabilityConfig).
+registration::Matrix6d honest_covariance(const registration::Matrix6d& fit_covariance,
+                                         const ObservabilityConfig& config);
+
+}  // namespace ltm::odometry
