@@ -166,8 +166,14 @@ function everything(url, out) {
   const client = new FoxgloveClient({ ws: new WebSocket(url, [FoxgloveClient.SUPPORTED_SUBPROTOCOL]) });
   const subs = new Map();
   const counts = {};
+  const latencies = {};  // ms from the message's time (its DDS source timestamp) to its arrival here
   const start = Date.now();
   const done = () => {
+    for (const [topic, l] of Object.entries(latencies)) {
+      l.sort((a, b) => a - b);
+      const at = (q) => l[Math.min(l.length - 1, Math.floor(q * l.length))];
+      Object.assign(counts[topic], { latency_p50_ms: at(0.5), latency_p99_ms: at(0.99), latency_max_ms: l[l.length - 1] });
+    }
     writeFileSync(out, JSON.stringify({ seconds: (Date.now() - start) / 1000, counts }));
     process.exit(0);
   };
@@ -177,10 +183,12 @@ function everything(url, out) {
       subs.set(client.subscribe(ch.id), ch.topic);
     }
   });
-  client.on("message", ({ subscriptionId, data }) => {
-    const c = counts[subs.get(subscriptionId)];
+  client.on("message", ({ subscriptionId, timestamp, data }) => {
+    const topic = subs.get(subscriptionId);
+    const c = counts[topic];
     c.messages++;
     c.bytes += data.byteLength;
+    (latencies[topic] ??= []).push(Date.now() - Number(timestamp / 1000000n));
   });
   client.on("close", done);
   client.on("error", done);

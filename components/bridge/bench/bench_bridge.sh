@@ -91,6 +91,7 @@ scans="$(grep -o 'sensor: [0-9]*/[0-9]*' "$OUT/host.log" | tail -1 | cut -d' ' -
     if [ -f "$OUT/client.json" ]; then
         node -e 'const r = JSON.parse(require("fs").readFileSync(process.argv[1]));
           for (const [t, c] of Object.entries(r.counts).sort())
-            console.log(`client: ${t} (${c.schema}, ${c.encoding}): ${c.messages} messages, ${(c.bytes / 1048576).toFixed(1)} MiB`);' "$OUT/client.json"
+            console.log(`client: ${t} (${c.schema}, ${c.encoding}): ${c.messages} messages, ${(c.bytes / 1048576).toFixed(1)} MiB` +
+              (c.messages ? `, latency from the DDS source timestamp p50 ${c.latency_p50_ms} / p99 ${c.latency_p99_ms} / max ${c.latency_max_ms} ms` : ""));' "$OUT/client.json"
     fi
 } | tee "$OUT/report.txt"

@@ -335,7 +335,12 @@ class FoxgloveBridge : public runtime::Component {
             topic.substr(2), info->descriptor, qos,
             [this, id, latch](const std::vector<std::uint8_t>& cdr, const dds_sample_info_t& i) {
                 auto shared = std::make_shared<const std::vector<std::uint8_t>>(cdr);
-                const std::uint64_t t = now_ns();
+                // The message's time: its DDS source timestamp (the writer's clock, this host's
+                // in one process), so a client reads the delivery latency; the bridge's receipt
+                // time where a writer gave none.
+                const std::uint64_t t = i.source_timestamp > 0
+                                            ? static_cast<std::uint64_t>(i.source_timestamp)
+                                            : now_ns();
                 const std::string writer = latch ? std::to_string(i.publication_handle) : "";
                 asio::post(server_.get_io_service(), [this, id, shared, t, writer] {
                     if (!writer.empty()) latched_[id][writer] = {shared, t};
