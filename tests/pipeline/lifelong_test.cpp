@@ -12,6 +12,7 @@
 #include "common/core/trajectory_io.hpp"
 #include "evaluation/core/alignment.hpp"
 #include "host/process.hpp"
+#include "host/stamped_poses.hpp"
 #include "host/temp_dir_test.hpp"
 #include "map/core/map_store.hpp"
 #include "map/core/site_store.hpp"
@@ -29,14 +30,6 @@ const std::string kHost = std::string(LTM_BINARY_DIR) + "/bin/ltm_host";
 const std::string kConfig = std::string(LTM_SOURCE_DIR) + "/launch_configs/robot_lifelong.yaml";
 const std::string kScenario =
     std::string(LTM_SOURCE_DIR) + "/components/simulator/scenarios/tiny_week.yaml";
-
-// The poses of a TUM file by stamp (ms).
-std::map<long long, Eigen::Isometry3d> by_stamp(const std::string& file) {
-    std::map<long long, Eigen::Isometry3d> out;
-    for (const common::StampedPose& p : common::read_tum_trajectory(file))
-        out[std::llround(p.stamp * 1000.0)] = p.pose;
-    return out;
-}
 
 class LifelongPipeline : public ltm::tests::TempDirTest {
   protected:
@@ -60,17 +53,7 @@ class LifelongPipeline : public ltm::tests::TempDirTest {
 
     // Monday's SLAM keyframes (map frame) against the truth (world): the map-to-world alignment.
     Eigen::Isometry3d map_to_world() {
-        const auto slam = by_stamp(path("day0/slam_tum.txt"));
-        const auto truth = by_stamp(path("day0/ground_truth_tum.txt"));
-        std::vector<Eigen::Vector3d> est, ref;
-        for (const auto& [t, T] : slam) {
-            const auto it = truth.find(t);
-            if (it == truth.end()) continue;
-            est.push_back(T.translation());
-            ref.push_back(it->second.translation());
-        }
-        EXPECT_GE(est.size(), 10u);
-        return eval::umeyama_se3(est, ref);
+        return tests::map_to_world(path("day0/slam_tum.txt"), path("day0/ground_truth_tum.txt"));
     }
 
     // World positions of a saved map's voxels.
@@ -105,8 +88,8 @@ TEST_F(LifelongPipeline, ThreeDaysOnOneConfigGrowTheMapLearnItsChangesAndLocalis
     for (const map::SiteVersion& v : versions) EXPECT_TRUE(v.intact) << v.name << ": " << v.problem;
     const Eigen::Isometry3d T_world_map = map_to_world();
     // Monday, a new site: the SLAM's pose of every scan was the map pose.
-    EXPECT_GE(by_stamp(path("day0/localisation_tum.txt")).size(),
-              by_stamp(path("day0/ground_truth_tum.txt")).size() * 9 / 10);
+    EXPECT_GE(tests::poses_by_stamp_ms(path("day0/localisation_tum.txt")).size(),
+              tests::poses_by_stamp_ms(path("day0/ground_truth_tum.txt")).size() * 9 / 10);
 
     // Tuesday's new ground (x > 30 m, where Monday never drove) has keyframes in Tuesday's version.
     auto keyframes_east = [&](const map::SiteVersion& v) {
@@ -153,8 +136,8 @@ TEST_F(LifelongPipeline, ThreeDaysOnOneConfigGrowTheMapLearnItsChangesAndLocalis
 
     // Wednesday, set down on Tuesday's new ground: localised from its first second of scans, on
     // the truth (Monday's alignment for every day).
-    const auto located = by_stamp(path("day2/localisation_tum.txt"));
-    const auto truth = by_stamp(path("day2/ground_truth_tum.txt"));
+    const auto located = tests::poses_by_stamp_ms(path("day2/localisation_tum.txt"));
+    const auto truth = tests::poses_by_stamp_ms(path("day2/ground_truth_tum.txt"));
     ASSERT_FALSE(truth.empty());
     const long long start = truth.begin()->first;
     std::size_t early = 0, right = 0, checked = 0;

@@ -17,6 +17,7 @@
 #include "common/core/trajectory_io.hpp"
 #include "evaluation/core/alignment.hpp"
 #include "host/process.hpp"
+#include "host/stamped_poses.hpp"
 #include "host/temp_dir_test.hpp"
 #include "link/core/link_journal.hpp"
 #include "map/core/map_store.hpp"
@@ -37,13 +38,6 @@ const std::string kScenario =
     std::string(LTM_SOURCE_DIR) + "/components/simulator/scenarios/tiny_week.yaml";
 const std::string kDomain = "domain_id=66";
 const std::string kDds = "dds={interfaces: [lo], multicast: false, peers: [127.0.0.1]}";
-
-std::map<long long, Eigen::Isometry3d> by_stamp(const std::string& file) {
-    std::map<long long, Eigen::Isometry3d> out;
-    for (const common::StampedPose& p : common::read_tum_trajectory(file))
-        out[std::llround(p.stamp * 1000.0)] = p.pose;
-    return out;
-}
 
 // What crossed the uplink, by topic (the base station's downlink journal of robot1: every run),
 // in the link's wire form (compressed payloads, without DDS's headers): messages and bytes.
@@ -118,17 +112,8 @@ class SplitRobot : public ltm::tests::TempDirTest {
 
     // The base station's Monday SLAM keyframes (map frame) against the truth: map -> world.
     Eigen::Isometry3d map_to_world() {
-        const auto slam = by_stamp(path("base0/slam_robot1_tum.txt"));
-        const auto truth = by_stamp(path("robot0/ground_truth_tum.txt"));
-        std::vector<Eigen::Vector3d> est, ref;
-        for (const auto& [t, T] : slam) {
-            const auto it = truth.find(t);
-            if (it == truth.end()) continue;
-            est.push_back(T.translation());
-            ref.push_back(it->second.translation());
-        }
-        EXPECT_GE(est.size(), 10u);
-        return eval::umeyama_se3(est, ref);
+        return tests::map_to_world(path("base0/slam_robot1_tum.txt"),
+                                   path("robot0/ground_truth_tum.txt"));
     }
 
     // Voxels of a saved map (world frame) on the footprint of `o` above its base.
@@ -181,8 +166,8 @@ TEST_F(SplitRobot, TheRobotLocalisesOnTheVersionItReceivesAndItsMaintenanceReach
 
     // Tuesday's poses in the map frame, against the truth in Monday's alignment.
     const Eigen::Isometry3d T_world_map = map_to_world();
-    const auto located = by_stamp(path("robot1/localisation_tum.txt"));
-    const auto truth = by_stamp(path("robot1/ground_truth_tum.txt"));
+    const auto located = tests::poses_by_stamp_ms(path("robot1/localisation_tum.txt"));
+    const auto truth = tests::poses_by_stamp_ms(path("robot1/ground_truth_tum.txt"));
     ASSERT_GE(truth.size(), 50u);
     std::size_t checked = 0, right = 0;
     double worst = 0.0, sum_sq = 0.0;

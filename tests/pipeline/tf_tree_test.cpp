@@ -11,6 +11,7 @@
 #include "common/core/cdr_cursor.hpp"
 #include "common/core/trajectory_io.hpp"
 #include "host/process.hpp"
+#include "host/stamped_poses.hpp"
 #include "host/temp_dir_test.hpp"
 #include "recorder/core/mcap_reader.hpp"
 
@@ -71,9 +72,8 @@ TEST_F(TfTree, TheChainIsTheMapPoseOfEveryScan) {
                  out + "_host");
     ASSERT_EQ(host.wait(600), 0) << host.err();
 
-    std::map<long long, Eigen::Isometry3d> map_poses;
-    for (const common::StampedPose& p : common::read_tum_trajectory(out + "/localisation_tum.txt"))
-        map_poses[std::llround(p.stamp * 1000.0)] = p.pose;
+    const std::map<long long, Eigen::Isometry3d> map_poses =
+        tests::poses_by_stamp_ms(out + "/localisation_tum.txt");
     ASSERT_GE(map_poses.size(), 20u);
 
     recorder::McapReader reader(out + "/lifelong.mcap");
