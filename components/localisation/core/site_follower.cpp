@@ -5,24 +5,11 @@
 #include <utility>
 
 #include "map/core/site_check.hpp"
+#include "map/core/site_store.hpp"
 
 namespace ltm::localisation {
-namespace {
 
 namespace fs = std::filesystem;
-
-// The number of a version folder's name ("v0003" -> 3), 0 when it is not one (as site_store).
-std::uint32_t number_of(const std::string& name) {
-    if (name.size() < 2 || name[0] != 'v' || name.size() > 10) return 0;
-    std::uint64_t n = 0;
-    for (std::size_t i = 1; i < name.size(); ++i) {
-        if (name[i] < '0' || name[i] > '9') return 0;
-        n = n * 10 + std::uint64_t(name[i] - '0');
-    }
-    return n > 0 && n <= 0xffffffffull ? std::uint32_t(n) : 0;
-}
-
-}  // namespace
 
 SiteFollower::SiteFollower(std::string site_dir, std::uint32_t in_use)
     : site_dir_(std::move(site_dir)), in_use_(in_use) {}
@@ -32,7 +19,7 @@ std::optional<map::SiteVersion> SiteFollower::newer(std::vector<std::string>* no
     std::error_code ec;
     const fs::path root = fs::path(site_dir_) / "versions";
     for (const fs::directory_entry& e : fs::directory_iterator(root, ec)) {
-        const std::uint32_t n = number_of(e.path().filename().string());
+        const std::uint32_t n = map::version_number(e.path().filename().string());
         if (n > in_use_ && !damaged_.count(n) && e.is_directory(ec)) found.push_back(n);
     }
     std::sort(found.rbegin(), found.rend());  // newest first

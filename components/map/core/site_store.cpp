@@ -24,21 +24,10 @@ constexpr const char* kStaging = "next";
 constexpr const char* kMaintained = "maintenance/long_term_map.bin";
 constexpr const char* kRemoving = ".removing-";
 
-// The number of a version folder's name ("v0003" -> 3), 0 when it is not one.
-std::uint32_t number_of(const std::string& name) {
-    if (name.size() < 2 || name[0] != 'v' || name.size() > 10) return 0;
-    std::uint64_t n = 0;
-    for (std::size_t i = 1; i < name.size(); ++i) {
-        if (name[i] < '0' || name[i] > '9') return 0;
-        n = n * 10 + std::uint64_t(name[i] - '0');
-    }
-    return n > 0 && n <= 0xffffffffull ? std::uint32_t(n) : 0;
-}
-
 // A version named by the user: "v0003", "v3" or "3".
 std::uint32_t parse_user_name(const std::string& name) {
-    if (!name.empty() && name[0] != 'v') return number_of("v" + name);
-    return number_of(name);
+    if (!name.empty() && name[0] != 'v') return version_number("v" + name);
+    return version_number(name);
 }
 
 // Every version folder, ascending, not checked.
@@ -48,7 +37,7 @@ std::vector<SiteVersion> list(const std::string& site) {
     const fs::path root = fs::path(site) / kVersions;
     for (const fs::directory_entry& e : fs::directory_iterator(root, ec)) {
         const std::string name = e.path().filename().string();
-        const std::uint32_t n = number_of(name);
+        const std::uint32_t n = version_number(name);
         if (n == 0 || !e.is_directory(ec)) continue;
         SiteVersion v;
         v.number = n;
@@ -94,6 +83,16 @@ std::string known(const std::vector<SiteVersion>& all) {
 }
 
 }  // namespace
+
+std::uint32_t version_number(const std::string& name) {
+    if (name.size() < 2 || name[0] != 'v' || name.size() > 10) return 0;
+    std::uint64_t n = 0;
+    for (std::size_t i = 1; i < name.size(); ++i) {
+        if (name[i] < '0' || name[i] > '9') return 0;
+        n = n * 10 + std::uint64_t(name[i] - '0');
+    }
+    return n > 0 && n <= 0xffffffffull ? std::uint32_t(n) : 0;
+}
 
 std::string version_name(std::uint32_t number) {
     char buf[16];

@@ -35,6 +35,8 @@ struct SiteVersion {
 
 // "v0003" of 3.
 std::string version_name(std::uint32_t number);
+// The number of a version folder's name ("v0003" -> 3), 0 when it is not one.
+std::uint32_t version_number(const std::string& folder_name);
 
 class SiteStore {
   public:
