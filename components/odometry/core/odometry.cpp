@@ -462,22 +462,37 @@ std::string Odometry::search(const Eigen::Isometry3d& predicted, double dt, Fram
     struct Start {
         Eigen::Isometry3d guess_odom;
         std::size_t score;
+        Eigen::Isometry3d probed;  // the guess it came from
     };
     std::vector<Start> starts;
     int coarse_iterations = 0;
-    for (const Eigen::Isometry3d& g : guesses) {
+    const auto probe = [&](const Eigen::Isometry3d& g) {
         if (map.coarse() == nullptr) {
-            starts.push_back({g, 0});
-            continue;
+            starts.push_back({g, 0, g});
+            return;
         }
         const registration::RegistrationResult coarse =
             coarse_align(T_map_odom * g, probe_registration_);
         coarse_iterations += coarse.iterations;
-        if (!coarse.ok()) continue;
-        starts.push_back({map.T_odom_map() * coarse.T_map_lidar, coarse.inliers});
+        if (!coarse.ok()) return;
+        starts.push_back({map.T_odom_map() * coarse.T_map_lidar, coarse.inliers, g});
+    };
+    for (const Eigen::Isometry3d& g : guesses) probe(g);
+    const auto by_score = [](const Start& a, const Start& b) { return a.score > b.score; };
+    std::stable_sort(starts.begin(), starts.end(), by_score);
+    // Coarse to fine in yaw: a probe barely turns (its basin in yaw is a few degrees where the
+    // translation is also off, as at a corner 1 s after the last scan), so the best guess is
+    // probed again turned by +-yaw_refine; the best of all go on.
+    // Only with a velocity (a turn extrapolated past a corner): a first step's guesses all stay
+    // short of a long step, and a finer turn only picks among equally wrong fits.
+    if (map.coarse() != nullptr && c.yaw_refine > 0.0 && motion_.poses() >= 2 && !starts.empty()) {
+        const Eigen::Isometry3d centre = starts.front().probed;
+        for (const int sign : {1, -1}) {
+            const double yaw = sign * c.yaw_refine / kRadToDeg;
+            probe(centre * Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()));
+        }
+        std::stable_sort(starts.begin(), starts.end(), by_score);
     }
-    std::stable_sort(starts.begin(), starts.end(),
-                     [](const Start& a, const Start& b) { return a.score > b.score; });
     if (map.coarse() != nullptr && starts.size() > 2) starts.resize(2);
     std::string first_why = "no guess reached the map's coarse grid";
     bool found = false;

@@ -53,6 +53,9 @@ struct TrackingConfig {
     double degenerate_velocity_keep = 0.5;
     double yaw_search = 90.0;  // [deg] 0: no yaw search
     double yaw_step = 15.0;    // [deg]
+    // The best of those guesses is probed again turned by +-yaw_refine (coarse to fine: a fit's
+    // basin in yaw is a few degrees when its translation is off too). 0: not refined.
+    double yaw_refine = 5.0;  // [deg]
     // Lost (no acceptable registration) for this long since the last tracked scan, sensor time:
     // the odometry ends its local maps and starts a new one at its best estimate (a new segment,
     // joined to the map later by a loop or by localisation).
@@ -129,6 +132,7 @@ void visit_fields(OdometryConfig& c, Visitor&& v) {
     v("tracking.degenerate_velocity_keep", t.degenerate_velocity_keep, unit);
     v("tracking.yaw_search", t.yaw_search, in_range(0, 180));
     v("tracking.yaw_step", t.yaw_step, in_range(1, 90));
+    v("tracking.yaw_refine", t.yaw_refine, in_range(0, 45));
     v("tracking.restart_after", t.restart_after, non_negative);
     v("tracking.restart_gap", t.restart_gap, non_negative);
     auto& o = c.observability;
