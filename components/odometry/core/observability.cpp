@@ -3,6 +3,7 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 #include <algorithm>
+#include <cmath>
 
 namespace ltm::odometry {
 
@@ -30,6 +31,15 @@ registration::Matrix6d honest_covariance(const registration::Matrix6d& fit,
     const double f2 = config.covariance_floor * config.covariance_floor;
     for (int i = 0; i < 3; ++i) c(i, i) += f2;
     return c;
+}
+
+void inflate_weak(const Observability& o, const Eigen::Matrix3d& R_odom_map,
+                  const Eigen::Vector3d& fixed, double sigma, registration::Matrix6d* covariance) {
+    for (int i = 0; i < 3 - o.constrained; ++i) {
+        const Eigen::Vector3d u = R_odom_map * o.directions.col(i);
+        if (std::abs(u.dot(fixed)) > 0.9) continue;
+        covariance->topLeftCorner<3, 3>() += sigma * sigma * u * u.transpose();
+    }
 }
 
 }  // namespace ltm::odometry

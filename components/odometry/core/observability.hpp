@@ -46,10 +46,20 @@ struct ObservabilityConfig {
     // The first step of a run in a scene constrained every way (not weak): searched along the
     // sensor's forward axis from the prediction, a peak this distinct moves it.
     double first_step_contrast = 1.3;
-    // A degenerate scan's standard deviation along the unobservable direction: this fraction of
-    // the predicted step, at least min_sigma [m].
-    double degenerate_sigma_fraction = 0.2;
+    // The published covariance is inflated along every weak direction by a standard deviation
+    // of a fraction of the expected step (the larger of the predicted step and the speed last
+    // measured in a scene constrained every way, times the time since the last scan): along a
+    // weak direction the fit stays near where it started, so its error is the prediction's,
+    // which is the whole step when the velocity there has died out (a corridor). Measured on
+    // the hard cases: such steps are off by up to 100 % of the step, hence 0.5 (3 sigma = 1.5
+    // steps). A degenerate scan (the motion model stood in): degenerate_sigma_fraction, at least
+    // degenerate_min_sigma [m]; a weak direction the fit was trusted along (a small step it agreed
+    // with): weak_sigma_fraction, at least weak_min_sigma [m]. A direction whose position the
+    // search along it found (a distinct peak) is not inflated.
+    double degenerate_sigma_fraction = 0.5;
     double degenerate_min_sigma = 0.3;
+    double weak_sigma_fraction = 0.5;
+    double weak_min_sigma = 0.05;
     // The published covariance of a registered scan: sigma^2 H^-1 times covariance_scale, plus
     // covariance_floor^2 on each position axis (the fit's own statistics ignore correlated
     // points and the map's own error).
@@ -74,5 +84,11 @@ Observability translation_observability(const registration::Matrix6d& hessian,
 // The published covariance of a registered scan (see ObservabilityConfig).
 registration::Matrix6d honest_covariance(const registration::Matrix6d& fit_covariance,
                                          const ObservabilityConfig& config);
+
+// Adds sigma^2 u u^T to the position block of `covariance` for every weak direction u of `o`
+// (rotated into odometry axes by R_odom_map) that is not within about 25 deg of `fixed` (a unit
+// direction whose position a search found; zero: none).
+void inflate_weak(const Observability& o, const Eigen::Matrix3d& R_odom_map,
+                  const Eigen::Vector3d& fixed, double sigma, registration::Matrix6d* covariance);
 
 }  // namespace ltm::odometry

@@ -215,6 +215,7 @@ FrameResult Odometry::register_frame(const common::PointCloud& cloud) {
                 r.message = s.str();
                 r.lost_for = since_tracked;
             }
+            inflate_covariance(predicted, since_tracked, &r);
             learn(r);
         }
         lost_ = false;
@@ -519,6 +520,12 @@ std::string Odometry::search(const Eigen::Isometry3d& predicted, double dt, Fram
 }
 
 void Odometry::learn(const FrameResult& r) {
+    if (r.registered() && r.constrained_directions == 3 && motion_.poses() > 0 &&
+        r.stamp > motion_.last_stamp()) {
+        observed_speed_ =
+            (r.T_odom_lidar.translation() - motion_.last_pose().translation()).norm() /
+            (r.stamp - motion_.last_stamp());
+    }
     if (early_frames_ < kEarlyFrames) {
         const double n = double(++early_frames_);
         early_rms_ += (r.residual_rms - early_rms_) / n;

@@ -177,6 +177,9 @@ class Odometry {
     // along it and a fit again from the best position. False when the search cannot fix the
     // position there: it is then the prediction's (the caller reports kDegenerate).
     bool check_observability(const Eigen::Isometry3d& predicted, double dt, FrameResult* r);
+    // The published covariance of an accepted fit widened along its weak directions
+    // (observability.hpp: the expected step from the prediction and the speed last measured).
+    void inflate_covariance(const Eigen::Isometry3d& predicted, double dt, FrameResult* r) const;
     bool excellent(const FrameResult& r) const;
     bool doubtful(const FrameResult& r) const;
     void learn(const FrameResult& r);
@@ -202,7 +205,8 @@ class Odometry {
     double early_rms_ = 0.0, early_inliers_ = 0.0, early_overlap_ = 0.0;
     int early_frames_ = 0;
     bool lost_ = false;
-    bool unobserved_ = false;  // the last fit was degenerate: the velocity is a guess
+    bool unobserved_ = false;      // the last fit was degenerate: the velocity is a guess
+    double observed_speed_ = 0.0;  // [m/s] of the last registered scan constrained every way
     static constexpr int kYoungSegmentScans = 10;  // scans that enter a new segment's map anyway
     int segment_scans_ = 0;                        // scans integrated since the segment began
     double last_tracked_stamp_ = 0.0;              // of the last scan with a valid pose

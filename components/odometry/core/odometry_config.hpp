@@ -149,6 +149,8 @@ void visit_fields(OdometryConfig& c, Visitor&& v) {
     v("observability.first_step_contrast", o.first_step_contrast, at_least(1));
     v("observability.degenerate_sigma_fraction", o.degenerate_sigma_fraction, non_negative);
     v("observability.degenerate_min_sigma", o.degenerate_min_sigma, non_negative);
+    v("observability.weak_sigma_fraction", o.weak_sigma_fraction, non_negative);
+    v("observability.weak_min_sigma", o.weak_min_sigma, non_negative);
     v("observability.covariance_scale", o.covariance_scale, at_least(1));
     v("observability.covariance_floor", o.covariance_floor, non_negative);
     auto& m = c.local_map;

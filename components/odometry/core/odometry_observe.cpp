@@ -2,6 +2,7 @@
 // criterion, step_search.hpp for the search along a weak direction).
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "odometry/core/odometry.hpp"
 #include "odometry/core/step_search.hpp"
@@ -113,10 +114,7 @@ bool Odometry::check_observability(const Eigen::Isometry3d& predicted, double dt
                 r->search_used = "motion model";
             }
         }
-        const double sigma =
-            std::max(c.degenerate_min_sigma, c.degenerate_sigma_fraction * std::abs(s_pred));
-        r->covariance.topLeftCorner<3, 3>() += sigma * sigma * v * v.transpose();
-        return false;
+        return false;  // inflate_covariance widens the covariance along the weak directions
     };
     if (!observable) return degenerate("fit (weak)");
     if (std::abs(p.best_offset) <= 0.5 * q.spacing && o.weak()) {
@@ -149,6 +147,24 @@ bool Odometry::check_observability(const Eigen::Isometry3d& predicted, double dt
     r->weak_direction = v;
     r->search_used = "along";
     return true;
+}
+
+void Odometry::inflate_covariance(const Eigen::Isometry3d& predicted, double dt,
+                                  FrameResult* r) const {
+    const ObservabilityConfig& c = config_.observability;
+    const Observability o = translation_observability(r->information, c.weak_information);
+    if (!o.weak()) return;
+    const double expected = std::max(
+        (predicted.translation() - motion_.last_pose().translation()).norm(), observed_speed_ * dt);
+    const bool degenerate = r->status == FrameStatus::kDegenerate;
+    const double sigma =
+        degenerate ? std::max(c.degenerate_min_sigma, c.degenerate_sigma_fraction * expected)
+                   : std::max(c.weak_min_sigma, c.weak_sigma_fraction * expected);
+    // A position the search along the weak direction found (a distinct peak) is measured.
+    const std::string used = r->search_used;
+    const bool found = !degenerate && (used == "along" || used == "along (fit confirmed)");
+    inflate_weak(o, maps_.current().T_odom_map().linear(),
+                 found ? r->weak_direction : Eigen::Vector3d::Zero(), sigma, &r->covariance);
 }
 
 }  // namespace ltm::odometry
