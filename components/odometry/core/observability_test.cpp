@@ -66,6 +66,36 @@ TEST(Observability, HonestCovarianceScalesAndFloors) {
     EXPECT_NEAR(h(5, 5), 4e-6, 1e-12);  // rotation: scaled only
 }
 
+TEST(Observability, CovarianceWidenedAlongEveryWeakDirectionButAFoundOne) {
+    std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> corridor;
+    for (int i = -20; i <= 20; ++i) {
+        for (int k = 0; k < 3; ++k) {
+            corridor.push_back({{double(i), 2.0, double(k)}, {0, -1, 0}});
+            corridor.push_back({{double(i), -2.0, double(k)}, {0, 1, 0}});
+            corridor.push_back({{double(i), double(k) - 1.0, -1.0}, {0, 0, 1}});
+        }
+    }
+    const Observability o = translation_observability(hessian_of(corridor), 0.04);
+    ASSERT_EQ(o.constrained, 2);
+    const Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+    Matrix6d c = Matrix6d::Identity() * 1e-4;
+    inflate_weak(o, R, Eigen::Vector3d::Zero(), 0.5, &c);
+    EXPECT_NEAR(c(0, 0), 1e-4 + 0.25, 1e-6);  // along the corridor: the step's share
+    EXPECT_NEAR(c(1, 1), 1e-4, 1e-9);         // across it and up: the fit's own
+    EXPECT_NEAR(c(2, 2), 1e-4, 1e-9);
+    EXPECT_NEAR(c(3, 3), 1e-4, 1e-9);  // rotation untouched
+    // In map axes turned 90 deg about z, the weak direction is the odometry's y.
+    Matrix6d turned = Matrix6d::Identity() * 1e-4;
+    inflate_weak(o, Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix(),
+                 Eigen::Vector3d::Zero(), 0.5, &turned);
+    EXPECT_NEAR(turned(1, 1), 1e-4 + 0.25, 1e-6);
+    EXPECT_NEAR(turned(0, 0), 1e-4, 1e-9);
+    // A position the search along it found is not widened.
+    Matrix6d found = Matrix6d::Identity() * 1e-4;
+    inflate_weak(o, R, Eigen::Vector3d::UnitX(), 0.5, &found);
+    EXPECT_NEAR(found(0, 0), 1e-4, 1e-9);
+}
+
 // A straight tree-lined road: the ground, and a trunk about every 5 m (irregular) on alternating
 // sides: along the road only the trunks fix the position.
 registration::test::Scene pole_road() {
