@@ -484,9 +484,12 @@ std::string Odometry::search(const Eigen::Isometry3d& predicted, double dt, Fram
     // Coarse to fine in yaw: a probe barely turns (its basin in yaw is a few degrees where the
     // translation is also off, as at a corner 1 s after the last scan), so the best guess is
     // probed again turned by +-yaw_refine; the best of all go on.
-    // Only with a velocity (a turn extrapolated past a corner): a first step's guesses all stay
+    // Only with a velocity (a turn extrapolated past a corner) and not back from lost (a recovery
+    // must fit as the recent scans do; SlamSegments: a +-5 deg probe after two empty seconds in a
+    // turn recovered 8 m / 180 deg off): a first step's guesses all stay
     // short of a long step, and a finer turn only picks among equally wrong fits.
-    if (map.coarse() != nullptr && c.yaw_refine > 0.0 && motion_.poses() >= 2 && !starts.empty()) {
+    if (map.coarse() != nullptr && c.yaw_refine > 0.0 && motion_.poses() >= 2 && !lost_ &&
+        !starts.empty()) {
         const Eigen::Isometry3d centre = starts.front().probed;
         for (const int sign : {1, -1}) {
             const double yaw = sign * c.yaw_refine / kRadToDeg;
