@@ -24,8 +24,17 @@ struct Cluster {
     std::unordered_map<CellKey, std::uint32_t> index;
     std::vector<Eigen::Vector3f> points;
     Eigen::Vector3f centroid = Eigen::Vector3f::Zero();
-    bool reported = false;  // its points were returned as moving
+    Cluster* prev = nullptr;  // the same object in the previous kept scan, if matched
+    bool reported = false;    // its points were returned as moving
 };
+
+// c and the earlier clusters it is linked to, unless reported already: their points into out.
+void report(Cluster* c, std::vector<Eigen::Vector3f>* out) {
+    for (; c && !c->reported; c = c->prev) {
+        c->reported = true;
+        out->insert(out->end(), c->points.begin(), c->points.end());
+    }
+}
 
 }  // namespace
 
@@ -252,14 +261,46 @@ MotionTracker& MotionTracker::operator=(MotionTracker&&) noexcept = default;
 
 void MotionTracker::clear() { kept_.clear(); }
 
+namespace {
+
+// The cluster of `before` that best matches c rigidly (at least min_match of each within
+// match_distance of the other at the displacement), and the displacement; nullptr if none.
+// With `moved`, only displacements of at least min_shift count.
+Cluster* best_match(const MotionConfig& config, const Cells& cells, const Cluster& c,
+                    std::vector<Cluster>& before, double lag, bool moved, MotionStats* stats) {
+    const float radius = float(config.match_distance);
+    const float reach = float(config.max_speed * lag) + 1.0f;
+    Cluster* best = nullptr;
+    double best_match = 0.0;
+    for (Cluster& b : before) {
+        if ((c.centroid - b.centroid).norm() > reach) continue;
+        const double ratio = double(std::min(c.cells.size(), b.cells.size())) /
+                             double(std::max(c.cells.size(), b.cells.size()));
+        if (ratio < 0.4) continue;
+        ++stats->compared;
+        const Eigen::Vector3f t = align(cells, c, b, 2.0f * radius);
+        if (moved && t.head<2>().norm() < float(config.min_shift)) continue;
+        const double m =
+            std::min(matched(cells, c, b, -t, radius), matched(cells, b, c, t, radius));
+        if (m >= config.min_match && m > best_match) {
+            best_match = m;
+            best = &b;
+        }
+    }
+    return best;
+}
+
+}  // namespace
+
 std::vector<Eigen::Vector3f> MotionTracker::add_scan(const std::vector<Eigen::Vector3f>& points,
                                                      const Eigen::Isometry3d& T_world_sensor,
                                                      double time) {
     std::vector<Eigen::Vector3f> out;
     if (!T_world_sensor.matrix().allFinite() || !std::isfinite(time)) return out;
-    while (!kept_.empty() &&
-           (kept_.front()->time < time - config_.max_lag - 1e-6 || kept_.front()->time > time))
-        kept_.pop_front();  // too old, or from before a jump back in time
+    if (!kept_.empty() && kept_.back()->time > time) kept_.clear();  // time went back
+    while (!kept_.empty() && kept_.front()->time < time - config_.max_lag - 1e-6) kept_.pop_front();
+    if (!kept_.empty())
+        for (Cluster& c : kept_.front()->clusters) c.prev = nullptr;  // its scan is gone
     auto scan = std::make_unique<Scan>();
     scan->time = time;
     scan->T_sensor_world = T_world_sensor.inverse().cast<float>();
@@ -280,38 +321,24 @@ std::vector<Eigen::Vector3f> MotionTracker::add_scan(const std::vector<Eigen::Ve
     build(config_, cells, world, scan.get());
     ++stats_.scans;
     stats_.clusters += scan->clusters.size();
-    const float radius = float(config_.match_distance);
+    // The same objects in the previous scan (any displacement): a moving object stays moving.
+    if (!kept_.empty()) {
+        Scan& prev = *kept_.back();
+        for (Cluster& c : scan->clusters) {
+            c.prev = best_match(config_, cells, c, prev.clusters, time - prev.time, false, &stats_);
+            if (c.prev && c.prev->reported) report(&c, &out);
+        }
+    }
     for (const auto& before : kept_) {
         const double lag = time - before->time;
         if (lag < config_.min_lag - 1e-6 || lag > config_.max_lag + 1e-6) continue;
-        const float reach = float(config_.max_speed * lag) + 1.0f;
         for (Cluster& c : scan->clusters) {
-            Cluster* best = nullptr;
-            double best_match = 0.0;
-            for (Cluster& b : before->clusters) {
-                if ((c.centroid - b.centroid).norm() > reach) continue;
-                const double ratio = double(std::min(c.cells.size(), b.cells.size())) /
-                                     double(std::max(c.cells.size(), b.cells.size()));
-                if (ratio < 0.4) continue;
-                ++stats_.compared;
-                const Eigen::Vector3f t = align(cells, c, b, 2.0f * radius);
-                if (t.head<2>().norm() < float(config_.min_shift)) continue;
-                const double m =
-                    std::min(matched(cells, c, b, -t, radius), matched(cells, b, c, t, radius));
-                if (m >= config_.min_match && m > best_match) {
-                    best_match = m;
-                    best = &b;
-                }
-            }
-            if (!best || !empty_in(config_, cells, c, *before) ||
-                !empty_in(config_, cells, *best, *scan))
+            Cluster* b = best_match(config_, cells, c, before->clusters, lag, true, &stats_);
+            if (!b || !empty_in(config_, cells, c, *before) || !empty_in(config_, cells, *b, *scan))
                 continue;
             ++stats_.moving;
-            for (Cluster* m : {&c, best}) {
-                if (m->reported) continue;
-                m->reported = true;
-                out.insert(out.end(), m->points.begin(), m->points.end());
-            }
+            report(&c, &out);
+            report(b, &out);
         }
     }
     kept_.push_back(std::move(scan));

@@ -16,8 +16,11 @@
 //     the other scan saw (occupied within a cell, or seen through by its beams: its range image),
 //     at least min_known, at most max_overlap occupied.
 // A parked car seen from a passing car changes its visible side, not its place: its cells are
-// occupied (or occluded) in the other scan, never empty. Both clusters' points are returned as
-// moving; the caller flags their voxels (LongTermMap).
+// occupied (or occluded) in the other scan, never empty. Each cluster is also linked to the
+// cluster of the previous scan that matches it rigidly (any displacement): the same object, so
+// an object found moving is moving in the scans between and after (the middle of a 1 m walk is
+// less than its width from either end). The clusters' points are returned as moving; the caller
+// flags their voxels (LongTermMap).
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <deque>
