@@ -24,8 +24,12 @@ struct Cluster {
     std::unordered_map<CellKey, std::uint32_t> index;
     std::vector<Eigen::Vector3f> points;
     Eigen::Vector3f centroid = Eigen::Vector3f::Zero();
-    Cluster* prev = nullptr;  // the same object in the previous kept scan, if matched
-    bool reported = false;    // its points were returned as moving
+    Eigen::Vector3f extent = Eigen::Vector3f::Zero();  // of its cells' box
+    // The same object in an earlier kept scan (the newest where it matched), its scan and time.
+    Cluster* prev = nullptr;
+    const MotionTracker::Scan* prev_scan = nullptr;
+    double prev_time = 0.0;
+    bool reported = false;  // its points were returned as moving
 };
 
 // c and the earlier clusters it is linked to, unless reported already: their points into out.
@@ -110,10 +114,14 @@ Eigen::Vector3f align(const Cells& cells, const Cluster& now, const Cluster& bef
     return t;
 }
 
-// Was the place of `c` empty in `other`: of its cells that scan saw (a point in the cell, a
-// return at it, or a beam through it), enough were seen, and few occupied.
-bool empty_in(const MotionConfig& config, const Cells& cells, const Cluster& c,
-              const MotionTracker::Scan& other) {
+struct Seen {
+    std::size_t cells = 0, known = 0, occupied = 0;
+};
+
+// What `other` saw of the place of `c`: its cells with a point in them or a return at them
+// (occupied), or a beam through them (empty).
+Seen seen_in(const MotionConfig& config, const Cells& cells, const Cluster& c,
+             const MotionTracker::Scan& other) {
     std::size_t known = 0, occupied = 0;
     const float size = float(config.cell);
     for (const Eigen::Vector3f& x : c.cells) {
@@ -134,8 +142,17 @@ bool empty_in(const MotionConfig& config, const Cells& cells, const Cluster& c,
             ++known;
         }
     }
-    return double(known) >= config.min_known * double(c.cells.size()) && known > 0 &&
-           double(occupied) <= config.max_overlap * double(known);
+    return {c.cells.size(), known, occupied};
+}
+
+// Not occupied: at most max_overlap of the cells seen.
+bool free_of(const MotionConfig& config, const Seen& s) {
+    return double(s.occupied) <= config.max_overlap * double(s.known);
+}
+// Seen empty: enough of its cells seen, and not occupied.
+bool seen_empty(const MotionConfig& config, const Seen& s) {
+    return s.known > 0 && double(s.known) >= config.min_known * double(s.cells) &&
+           free_of(config, s);
 }
 
 // The scan's cells, ground, and clusters of object size.
@@ -240,6 +257,7 @@ void build(const MotionConfig& config, const Cells& cells, const std::vector<Eig
             ext.z() > float(config.max_height))
             continue;
         c.centroid /= float(c.cells.size());
+        c.extent = ext;
         cluster_of_label[label[groups[g].front()]] = std::int32_t(scan->clusters.size());
         scan->clusters.push_back(std::move(c));
     }
@@ -262,28 +280,39 @@ MotionTracker& MotionTracker::operator=(MotionTracker&&) noexcept = default;
 void MotionTracker::clear() { kept_.clear(); }
 
 namespace {
+constexpr double kMaxLinkGap = 0.35;  // [s] an object is linked across at most this
+}  // namespace
 
-// The cluster of `before` that best matches c rigidly (at least min_match of each within
-// match_distance of the other at the displacement), and the displacement; nullptr if none.
-// With `moved`, only displacements of at least min_shift count.
-Cluster* best_match(const MotionConfig& config, const Cells& cells, const Cluster& c,
-                    std::vector<Cluster>& before, double lag, bool moved, MotionStats* stats) {
+namespace {
+
+// The cluster of `before` that is c displaced rigidly (at least min_match of each within
+// match_distance of the other at the displacement, boxes of similar size) by the least, within
+// max_speed x lag; nullptr if none. Its displacement in *t.
+Cluster* link(const MotionConfig& config, const Cells& cells, const Cluster& c,
+              std::vector<Cluster>& before, double lag, MotionStats* stats) {
     const float radius = float(config.match_distance);
-    const float reach = float(config.max_speed * lag) + 1.0f;
+    const float reach = float(config.max_speed * lag) + 0.5f;
     Cluster* best = nullptr;
-    double best_match = 0.0;
+    float best_shift = std::numeric_limits<float>::infinity();
     for (Cluster& b : before) {
         if ((c.centroid - b.centroid).norm() > reach) continue;
         const double ratio = double(std::min(c.cells.size(), b.cells.size())) /
                              double(std::max(c.cells.size(), b.cells.size()));
-        if (ratio < 0.4) continue;
+        if (ratio < 0.5) continue;
+        // A rigid object keeps its size: boxes within 0.5 m and 30 % on every axis.
+        const Eigen::Vector3f d = (c.extent - b.extent).cwiseAbs();
+        if ((d.array() > 0.5f + 0.3f * c.extent.cwiseMax(b.extent).array()).any()) continue;
+        // ... and its height: its top and bottom within 0.3 m (objects move on the ground).
+        if (d.z() > 0.3f + 0.1f * std::max(c.extent.z(), b.extent.z()) ||
+            std::abs(c.centroid.z() - b.centroid.z()) > 0.3f)
+            continue;
         ++stats->compared;
         const Eigen::Vector3f t = align(cells, c, b, 2.0f * radius);
-        if (moved && t.head<2>().norm() < float(config.min_shift)) continue;
+        if (t.norm() > reach || t.norm() >= best_shift) continue;
         const double m =
             std::min(matched(cells, c, b, -t, radius), matched(cells, b, c, t, radius));
-        if (m >= config.min_match && m > best_match) {
-            best_match = m;
+        if (m >= config.min_match) {
+            best_shift = t.norm();
             best = &b;
         }
     }
@@ -299,8 +328,9 @@ std::vector<Eigen::Vector3f> MotionTracker::add_scan(const std::vector<Eigen::Ve
     if (!T_world_sensor.matrix().allFinite() || !std::isfinite(time)) return out;
     if (!kept_.empty() && kept_.back()->time > time) kept_.clear();  // time went back
     while (!kept_.empty() && kept_.front()->time < time - config_.max_lag - 1e-6) kept_.pop_front();
-    if (!kept_.empty())
-        for (Cluster& c : kept_.front()->clusters) c.prev = nullptr;  // its scan is gone
+    for (auto& k : kept_)  // links into scans gone
+        for (Cluster& c : k->clusters)
+            if (c.prev && c.prev_time < kept_.front()->time) c.prev = nullptr;
     auto scan = std::make_unique<Scan>();
     scan->time = time;
     scan->T_sensor_world = T_world_sensor.inverse().cast<float>();
@@ -321,25 +351,46 @@ std::vector<Eigen::Vector3f> MotionTracker::add_scan(const std::vector<Eigen::Ve
     build(config_, cells, world, scan.get());
     ++stats_.scans;
     stats_.clusters += scan->clusters.size();
-    // The same objects in the previous scan (any displacement): a moving object stays moving.
-    if (!kept_.empty()) {
-        Scan& prev = *kept_.back();
-        for (Cluster& c : scan->clusters) {
-            c.prev = best_match(config_, cells, c, prev.clusters, time - prev.time, false, &stats_);
-            if (c.prev && c.prev->reported) report(&c, &out);
+    const float radius = float(config_.match_distance);
+    for (Cluster& c : scan->clusters) {
+        // The same object in the newest kept scan where it matches (a scan or two back: it may
+        // have been joined to something else in one).
+        for (auto it = kept_.rbegin(); it != kept_.rend() && !c.prev; ++it) {
+            if (time - (*it)->time > kMaxLinkGap) break;
+            c.prev = link(config_, cells, c, (*it)->clusters, time - (*it)->time, &stats_);
+            c.prev_scan = it->get();
+            c.prev_time = (*it)->time;
         }
-    }
-    for (const auto& before : kept_) {
-        const double lag = time - before->time;
-        if (lag < config_.min_lag - 1e-6 || lag > config_.max_lag + 1e-6) continue;
-        for (Cluster& c : scan->clusters) {
-            Cluster* b = best_match(config_, cells, c, before->clusters, lag, true, &stats_);
-            if (!b || !empty_in(config_, cells, c, *before) || !empty_in(config_, cells, *b, *scan))
-                continue;
-            ++stats_.moving;
+        if (!c.prev) continue;
+        if (c.prev->reported) {  // moving before: moving now
             report(&c, &out);
-            report(b, &out);
+            continue;
         }
+        // Its oldest ancestor within max_lag, at least min_lag ago.
+        const Cluster* a = &c;
+        const MotionTracker::Scan* a_scan = nullptr;
+        for (const Cluster* p = &c; p->prev && time - p->prev_time <= config_.max_lag + 1e-6;
+             p = p->prev) {
+            a = p->prev;
+            a_scan = p->prev_scan;
+        }
+        if (!a_scan || time - a_scan->time < config_.min_lag - 1e-6) continue;
+        ++stats_.compared;
+        const Eigen::Vector3f t = align(cells, c, *a, 2.0f * radius);
+        if (t.head<2>().norm() < float(config_.min_shift)) continue;
+        if (std::min(matched(cells, c, *a, -t, radius), matched(cells, *a, c, t, radius)) <
+            config_.min_match)
+            continue;
+        // Its place now was not occupied then, nor its place then now, and one of them was
+        // seen empty (the other may be hidden: an object moving along the beams hides its own
+        // place ahead of it).
+        const Seen now_then = seen_in(config_, cells, c, *a_scan);
+        const Seen then_now = seen_in(config_, cells, *a, *scan);
+        if (!free_of(config_, now_then) || !free_of(config_, then_now) ||
+            !(seen_empty(config_, now_then) || seen_empty(config_, then_now)))
+            continue;
+        ++stats_.moving;
+        report(&c, &out);
     }
     kept_.push_back(std::move(scan));
     return out;
