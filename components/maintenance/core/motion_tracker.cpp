@@ -29,12 +29,14 @@ struct Cluster {
     Cluster* prev = nullptr;
     const MotionTracker::Scan* prev_scan = nullptr;
     double prev_time = 0.0;
-    bool reported = false;  // its points were returned as moving
+    bool prev_moved = false;  // displaced from prev by at least the slowest speed followed
+    bool reported = false;    // its points were returned as moving
 };
 
-// c and the earlier clusters it is linked to, unless reported already: their points into out.
+// c and the earlier clusters it is linked to by displacements, unless reported already: their
+// points into out.
 void report(Cluster* c, std::vector<Eigen::Vector3f>* out) {
-    for (; c && !c->reported; c = c->prev) {
+    for (; c && !c->reported; c = c->prev_moved ? c->prev : nullptr) {
         c->reported = true;
         out->insert(out->end(), c->points.begin(), c->points.end());
     }
@@ -131,9 +133,9 @@ Seen seen_in(const MotionConfig& config, const Cells& cells, const Cluster& c,
             continue;
         }
         const Eigen::Vector3f p = other.T_sensor_world * x;
-        // Tighter than a view's margin (range_image.hpp): a wall half a metre behind a walker's
-        // former place must not count as the place being occupied.
-        const float margin = 0.05f + 0.87f * size + 0.005f * p.norm();
+        // A view's margin (maintenance_config.hpp: free_margin, free_margin_per_m): a surface
+        // seen at a grazing angle returns beyond its own cell, and is not empty space.
+        const float margin = 0.3f + 0.87f * size + 0.01f * p.norm();
         const Visibility v = other.image.classify(p, size, margin);
         if (v == Visibility::kSurface) {
             ++known;
@@ -289,7 +291,7 @@ namespace {
 // match_distance of the other at the displacement, boxes of similar size) by the least, within
 // max_speed x lag; nullptr if none. Its displacement in *t.
 Cluster* link(const MotionConfig& config, const Cells& cells, const Cluster& c,
-              std::vector<Cluster>& before, double lag, MotionStats* stats) {
+              std::vector<Cluster>& before, double lag, MotionStats* stats, float* shift) {
     const float radius = float(config.match_distance);
     const float reach = float(config.max_speed * lag) + 0.5f;
     Cluster* best = nullptr;
@@ -314,6 +316,7 @@ Cluster* link(const MotionConfig& config, const Cells& cells, const Cluster& c,
         if (m >= config.min_match) {
             best_shift = t.norm();
             best = &b;
+            *shift = t.head<2>().norm();
         }
     }
     return best;
@@ -357,12 +360,16 @@ std::vector<Eigen::Vector3f> MotionTracker::add_scan(const std::vector<Eigen::Ve
         // have been joined to something else in one).
         for (auto it = kept_.rbegin(); it != kept_.rend() && !c.prev; ++it) {
             if (time - (*it)->time > kMaxLinkGap) break;
-            c.prev = link(config_, cells, c, (*it)->clusters, time - (*it)->time, &stats_);
+            float shift = 0.0f;
+            c.prev = link(config_, cells, c, (*it)->clusters, time - (*it)->time, &stats_, &shift);
             c.prev_scan = it->get();
             c.prev_time = (*it)->time;
+            // The slowest speed the displacement test below accepts.
+            c.prev_moved =
+                double(shift) >= config_.min_shift / config_.max_lag * (time - c.prev_time);
         }
         if (!c.prev) continue;
-        if (c.prev->reported) {  // moving before: moving now
+        if (c.prev->reported && c.prev_moved) {  // moving before, still moving: moving now
             report(&c, &out);
             continue;
         }

@@ -25,11 +25,11 @@ Eigen::Isometry3d sensor_at(double x, double y) {
     return T;
 }
 
-// A street: a wall along y = 1, a parked car, a walker 0.5 m in front of the wall walking 1 m
+// A street: a wall along y = 1.5, a parked car, a walker 1 m in front of the wall walking 1 m
 // along it in 1 s; the sensor (a car) drives past at `sensor_speed` m/s. Scan k at 0.1 k s.
 std::vector<Box> street(double time) {
     const float x = float(4.0 + 1.0 * time);  // the walker's rear edge
-    return {{{-30.0f, 1.0f, 0.0f}, {30.0f, 1.3f, 3.0f}, kWall},
+    return {{{-30.0f, 1.5f, 0.0f}, {30.0f, 1.8f, 3.0f}, kWall},
             {{-6.0f, -1.0f, 0.0f}, {-1.5f, 0.8f, 1.5f}, kCar},
             {{x, 0.0f, 0.0f}, {x + 0.5f, 0.5f, 1.7f}, kWalker}};
 }
