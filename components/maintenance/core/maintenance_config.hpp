@@ -86,11 +86,11 @@ struct ChangeConfig {
     bool voxel_level = false;  // also remove changed voxels of unchanged segments
 };
 
-// Motion of objects across the scans of a short window (motion_tracker.hpp): per scan, the
-// non-ground points in clusters; a cluster found again in a scan min_lag..max_lag s earlier,
-// displaced by at least min_shift as a rigid shape (matched both ways) while its place then and
-// its place now are each empty in the other scan, is moving: its voxels leave the map (unless
-// ground, or hit over more than max_hit_span: a parked car stays whatever one pair said).
+// Motion of objects across the scans of a short window (motion_tracker.hpp states the rule):
+// per scan, the non-ground points in clusters, linked scan to scan; a cluster displaced from its
+// linked ancestor min_lag..max_lag s earlier by at least min_shift as a rigid shape, into and out
+// of places that were not occupied (one of them seen empty), is moving: its voxels leave the map
+// (unless ground, or hit over more than max_hit_span: a parked car stays whatever a pair said).
 struct MotionConfig {
     bool enabled = true;
     double cell = 0.2;             // [m] cells of a scan's points

@@ -6,21 +6,24 @@
 //
 // Per scan (world frame): its points in cells of `cell`; the ground (cells within ground_height
 // of the lowest cell of their 3 x 3 column neighbourhood); the other cells clustered (cells
-// within `neighbourhood` cells of each other); clusters of object size (min_cells..max_cells,
-// at most max_extent wide and max_height tall) are followed. Each is compared with every kept
-// scan min_lag..max_lag s earlier: it is moving when
-//   - a cluster of that scan within max_speed x lag matches it rigidly displaced by at least
-//     min_shift (after a few nearest-cell iterations from the centroids' difference, at least
-//     min_match of the cells of each matched within match_distance of the other's), and
-//   - its place now was empty then, and the earlier cluster's place is empty now: of the cells
-//     the other scan saw (occupied within a cell, or seen through by its beams: its range image),
-//     at least min_known, at most max_overlap occupied.
+// within `neighbourhood` cells of each other, twice that vertically); clusters of object size
+// (min_cells..max_cells, at most max_extent wide and max_height tall) are followed.
+// Each cluster is linked to the cluster of the newest of the last scans (up to 0.35 s back)
+// that is it rigidly displaced by the least (similar box and height; after nearest-cell
+// iterations from the centroids' difference, at least min_match of the cells of each within
+// match_distance of the other's, within max_speed x lag): the same object. It is moving when
+//   - its oldest linked ancestor min_lag..max_lag s earlier is it displaced by at least
+//     min_shift (horizontally) as a rigid shape (the same match), and
+//   - its place now was not occupied then, nor the ancestor's place now (at most max_overlap of
+//     the cells the other scan saw: a point in the cell or a return at it, within a view's
+//     margin), and one of the two was seen empty (at least min_known of its cells seen
+//     through; the other may be hidden: an object moving along the beams hides its own place
+//     ahead of it).
 // A parked car seen from a passing car changes its visible side, not its place: its cells are
-// occupied (or occluded) in the other scan, never empty. Each cluster is also linked to the
-// cluster of the previous scan that matches it rigidly (any displacement): the same object, so
-// an object found moving is moving in the scans between and after (the middle of a 1 m walk is
-// less than its width from either end). The clusters' points are returned as moving; the caller
-// flags their voxels (LongTermMap).
+// occupied (or hidden) in the other scan, never empty. A moving cluster's points are returned,
+// with those of the clusters its chain links it to and of the clusters that link to it later,
+// as far as each link moved at least min_shift / max_lag (a link that stood still ends the
+// chain). The caller flags their voxels (LongTermMap).
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <deque>

@@ -5,9 +5,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <set>
+#include <string>
 #include <tuple>
 
+#include "common/core/config_check.hpp"
 #include "maintenance/core/long_term_map.hpp"
 #include "maintenance/core/test_scene.hpp"
 
@@ -142,6 +145,35 @@ TEST(MotionTracker, ItsVoxelsLeaveTheMapStaticOnesStay) {
     EXPECT_GE(stat_kept, stat * 99 / 100) << stat_kept << " of " << stat << " kept";
     run(false, &walker, &walker_kept, &stat, &stat_kept);
     EXPECT_GT(walker_kept, walker / 2) << walker_kept << " of " << walker << " kept without it";
+}
+
+TEST(MotionTracker, BadKeysAreOneLineNamingTheKey) {
+    MaintenanceConfig c;
+    c.motion.min_lag = 2.0;  // above max_lag
+    try {
+        LongTermMap map(c);
+        FAIL() << "accepted";
+    } catch (const common::ConfigError& e) {
+        EXPECT_NE(std::string(e.what()).find("motion.min_lag"), std::string::npos) << e.what();
+    }
+    c = MaintenanceConfig{};
+    c.motion.cell = 0.0;
+    EXPECT_THROW(LongTermMap{c}, common::ConfigError);
+}
+
+TEST(MotionTracker, OddInputFindsNothing) {
+    MotionTracker tracker(MotionConfig{}, RangeImageConfig{}, 50.0);
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    EXPECT_TRUE(tracker.add_scan({}, sensor_at(0, 0), 0.0).empty());
+    EXPECT_TRUE(tracker.add_scan({{nan, 1.0f, 0.0f}}, sensor_at(0, 0), 0.1).empty());
+    Eigen::Isometry3d bad = sensor_at(0, 0);
+    bad(0, 3) = std::numeric_limits<double>::infinity();
+    EXPECT_TRUE(tracker.add_scan(cast(street(0.2), sensor_at(0, -9)), bad, 0.2).empty());
+    // Time going back: the kept scans are forgotten, not compared.
+    EXPECT_TRUE(
+        tracker.add_scan(cast(street(1.0), sensor_at(0, -9)), sensor_at(0, -9), 5.0).empty());
+    EXPECT_TRUE(
+        tracker.add_scan(cast(street(0.0), sensor_at(0, -9)), sensor_at(0, -9), 4.0).empty());
 }
 
 }  // namespace
