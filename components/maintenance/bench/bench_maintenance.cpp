@@ -168,6 +168,11 @@ int run(const Args& a) {
             s, f.size(), add_s, f.size() / std::max(add_s, 1e-9), st.judge_ms / 1000.0, c.time_ms,
             st.regions, c.time_ms / std::max<std::size_t>(1, st.regions));
         std::printf(
+            "  motion tracker (so far): %.1f s, %zu clusters, %zu compared, %zu moving pairs, "
+            "%zu voxels flagged moving\n",
+            st.motion_ms / 1000.0, st.motion.clusters, st.motion.compared, st.motion.moving,
+            st.voxels_flagged_moving);
+        std::printf(
             "  removed: %zu moving, %zu vanished segments (%zu + %zu voxels); new: %zu; "
             "map %zu voxels, %.1f MiB\n",
             c.count(maintenance::ChangeReason::kMoving),

@@ -115,6 +115,7 @@ struct Tally {
 struct RegionJudgement {
     std::vector<VoxelJudgement> judged;  // by voxel
     std::vector<bool> stale;             // by voxel
+    std::vector<bool> tracked;           // by voxel: seen moving by the motion tracker
     std::vector<Tally> tally;            // by segment
     std::size_t voxels_judged = 0;
 };
@@ -159,8 +160,17 @@ RegionJudgement judge_region(const MaintenanceConfig& config, const ObservationM
     std::int32_t region_latest = std::numeric_limits<std::int32_t>::min();
     for (std::int32_t l : latest) region_latest = std::max(region_latest, l);
     out.stale.assign(map.size(), false);
+    out.tracked.assign(map.size(), false);
     for (std::uint32_t i = 0; i < map.size(); ++i) {
         VoxelJudgement& j = judged[i];
+        // Seen moving (motion_tracker.hpp), not ground, and not hit for long: moving, whatever
+        // its history says (a walker's voxels are hit in nearly every view of a second).
+        const ObservedVoxel& v = map.voxel(i);
+        if (config.motion.enabled && (v.flags & kMoving) && !(v.flags & kGround) &&
+            double(v.history.hit_span()) * config.slot <= config.motion.max_hit_span) {
+            out.tracked[i] = true;
+            if (j.verdict != Verdict::kVanished) j.verdict = Verdict::kMoving;
+        }
         const std::uint32_t s = map.voxel(i).segment;
         if (s != 0 && (j.views == 0 || j.last_view_slot < region_latest - recent_slots)) {
             out.stale[i] = true;  // its verdict votes, but a gone segment takes it along
@@ -253,7 +263,7 @@ RegionChanges decide_voxels(const ChangeConfig& config, ObservationMap& map,
         const bool is_ground = (v.flags & kGround) != 0;
         if (!is_ground && ((segment_gone && (voxel_gone || verdict == Verdict::kUnjudged ||
                                              (judgement.stale[i] && vanished_segment))) ||
-                           (voxel_gone && (config.voxel_level || s == 0 ||
+                           (voxel_gone && (config.voxel_level || s == 0 || judgement.tracked[i] ||
                                            judgement.judged[i].score >= config.voxel_score)))) {
             out.remove[i] = true;
             note(map, i, out.gone[s]);

@@ -19,6 +19,9 @@
 // views never saw it, e.g. the roof of a car that left, with only sky behind it since) votes with
 // its last verdict but goes with its segment when the segment vanished (mostly first seen in an
 // earlier session); never with a passer-by of this session that touched it.
+// A voxel flagged kMoving (an object the motion tracker saw move across scans put points in it:
+// motion_tracker.hpp) that is not ground and was hit over at most motion.max_hit_span is moving,
+// whatever its history, and leaves even an unchanged segment (a motorcyclist joined to the road).
 #include <cstdint>
 
 #include "maintenance/core/change_set.hpp"

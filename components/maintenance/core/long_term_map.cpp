@@ -17,10 +17,15 @@ std::optional<common::ConfigProblem> validate(const MaintenanceConfig& config) {
               "must be below range_image.max_range");
     k.require(c.change.gone_hit_fraction < c.change.new_hit_fraction, "change.gone_hit_fraction",
               "must be below change.new_hit_fraction");
+    k.require(c.motion.min_lag <= c.motion.max_lag, "motion.min_lag",
+              "must not be above motion.max_lag");
+    k.require(c.motion.min_cells <= c.motion.max_cells, "motion.min_cells",
+              "must not be above motion.max_cells");
     return k.problem();
 }
 
-LongTermMap::LongTermMap(const MaintenanceConfig& config) : config_(config) {
+LongTermMap::LongTermMap(const MaintenanceConfig& config)
+    : config_(config), motion_(config.motion, config.range_image, config.max_range) {
     common::throw_if(validate(config), "maintenance");
 }
 
@@ -37,6 +42,7 @@ void LongTermMap::begin_session(std::uint32_t session, double first_stamp) {
     now_ = session_offset_;
     last_view_time_ = -1e300;
     session_views_ = 0;
+    motion_.clear();
 }
 
 double LongTermMap::map_time_of(double stamp) const {
@@ -75,6 +81,7 @@ void LongTermMap::add_scan(const std::vector<Eigen::Vector3f>& points,
         by_region[{r.x(), r.y()}].push_back(q);
     }
     for (auto& [key, pts] : by_region) region({key.first, key.second}).add_points(pts, t);
+    if (config_.motion.enabled) follow_motion(points, T_world_sensor, t);
     // A view every view_spacing seconds (unset: from the session's span so far).
     if (t - last_view_time_ >= view_spacing_at(config_, t - session_offset_)) {
         last_view_time_ = t;
@@ -91,6 +98,23 @@ void LongTermMap::add_scan(const std::vector<Eigen::Vector3f>& points,
         judge(pending_.front());
         pending_.pop_front();
     }
+}
+
+void LongTermMap::follow_motion(const std::vector<Eigen::Vector3f>& points,
+                                const Eigen::Isometry3d& T_world_sensor, double map_time) {
+    const auto t0 = std::chrono::steady_clock::now();
+    for (const Eigen::Vector3f& p : motion_.add_scan(points, T_world_sensor, map_time)) {
+        const Eigen::Vector2i r = region_of(p);
+        const auto it = regions_.find({r.x(), r.y()});
+        if (it == regions_.end()) continue;
+        const std::uint32_t i = it->second->find(p);
+        if (i == ObservationMap::kNone) continue;
+        ObservedVoxel& v = it->second->voxel(i);
+        if (!(v.flags & kMoving)) ++flagged_moving_;
+        v.flags = std::uint8_t(v.flags | kMoving);
+    }
+    motion_ms_ +=
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
 void LongTermMap::judge(const View& view) {
@@ -171,6 +195,10 @@ LongTermMapStats LongTermMap::stats() const {
         s.memory_bytes += map->memory_bytes();
     }
     for (const View& v : pending_) s.memory_bytes += v.image.memory_bytes();
+    s.memory_bytes += motion_.memory_bytes();
+    s.motion_ms = motion_ms_;
+    s.motion = motion_.stats();
+    s.voxels_flagged_moving = flagged_moving_;
     s.views = views_;
     s.views_pending = pending_.size();
     s.judge_ms = judge_ms_;

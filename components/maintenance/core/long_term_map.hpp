@@ -21,6 +21,7 @@
 
 #include "maintenance/core/change_detector.hpp"
 #include "maintenance/core/change_set.hpp"
+#include "maintenance/core/motion_tracker.hpp"
 #include "maintenance/core/observation_map.hpp"
 
 namespace ltm::maintenance {
@@ -28,7 +29,10 @@ namespace ltm::maintenance {
 struct LongTermMapStats {
     std::size_t regions = 0, voxels = 0, views = 0, views_pending = 0;
     std::size_t memory_bytes = 0;
-    double judge_ms = 0.0;  // total time views spent judging voxels
+    double judge_ms = 0.0;   // total time views spent judging voxels
+    double motion_ms = 0.0;  // total time the motion tracker took
+    MotionStats motion;
+    std::size_t voxels_flagged_moving = 0;  // flags set by the motion tracker (a voxel each time)
 };
 
 class LongTermMap {
@@ -49,7 +53,9 @@ class LongTermMap {
     double map_time_of(double stamp) const;  // in the current session
 
     // A registered scan: points in the sensor frame, the sensor's world pose, its stamp.
-    // Non-finite points are skipped; points beyond max_range are not mapped.
+    // Non-finite points are skipped; points beyond max_range are not mapped. With
+    // motion.enabled, the points of objects seen moving (motion_tracker.hpp) flag their voxels
+    // kMoving: the next pass removes them (change_detector.hpp).
     void add_scan(const std::vector<Eigen::Vector3f>& points,
                   const Eigen::Isometry3d& T_world_sensor, double stamp);
 
@@ -85,6 +91,8 @@ class LongTermMap {
     Eigen::Vector2i region_of(const Eigen::Vector3f& p) const;
     ObservationMap& region(const Eigen::Vector2i& key);
     void judge(const View& view);
+    void follow_motion(const std::vector<Eigen::Vector3f>& points,
+                       const Eigen::Isometry3d& T_world_sensor, double map_time);
 
     MaintenanceConfig config_;
     std::map<std::pair<int, int>, std::unique_ptr<ObservationMap>> regions_;
@@ -96,7 +104,9 @@ class LongTermMap {
     double last_view_time_ = -1e300;
     std::uint64_t next_view_ = 0, next_change_ = 1;
     std::size_t views_ = 0, session_views_ = 0;
-    double judge_ms_ = 0.0;
+    double judge_ms_ = 0.0, motion_ms_ = 0.0;
+    MotionTracker motion_;
+    std::size_t flagged_moving_ = 0;
     std::vector<std::uint32_t> sessions_;
 };
 

@@ -86,6 +86,32 @@ struct ChangeConfig {
     bool voxel_level = false;  // also remove changed voxels of unchanged segments
 };
 
+// Motion of objects across the scans of a short window (motion_tracker.hpp states the rule):
+// per scan, the non-ground points in clusters, linked scan to scan; a cluster displaced from its
+// linked ancestor min_lag..max_lag s earlier by at least min_shift as a rigid shape, into and out
+// of places that were not occupied (one of them seen empty), is moving: its voxels leave the map
+// (unless ground, or hit over more than max_hit_span: a parked car stays whatever a pair said).
+struct MotionConfig {
+    bool enabled = true;
+    double cell = 0.2;             // [m] cells of a scan's points
+    int neighbourhood = 1;         // cells each way that join a cluster (twice that vertically)
+    double ground_column = 1.0;    // [m] columns for the scan's ground
+    double ground_height = 0.3;    // [m] cells this close to the local lowest are ground
+    int min_cells = 6;             // smaller clusters are not followed
+    int max_cells = 3000;          // larger ones neither (buildings, rows of trees)
+    double max_extent = 8.0;       // [m] horizontal: larger clusters are not objects
+    double max_height = 4.0;       // [m] vertical extent of an object
+    double min_lag = 0.4;          // [s] scans compared are this far apart ...
+    double max_lag = 1.0;          // [s] ... and at most this
+    double max_speed = 25.0;       // [m/s] the search radius for the same object earlier
+    double min_shift = 0.3;        // [m] smaller displacements are registration noise
+    double match_distance = 0.25;  // [m] a cell matches a cell of the other scan this close
+    double min_match = 0.6;        // share of cells matched both ways at the displacement
+    double max_overlap = 0.2;      // share of the known cells occupied at the other scan's time
+    double min_known = 0.5;        // share of cells the other scan saw (occupied or through)
+    double max_hit_span = 2.0;     // [s] a voxel hit over a longer span is kept
+};
+
 struct MaintenanceConfig {
     double voxel_size = 0.25;   // [m] maintenance voxels (finer than the registration voxels)
     double region_size = 40.0;  // [m] the map is maintained in square regions of this size
@@ -103,6 +129,7 @@ struct MaintenanceConfig {
     GroundConfig ground;
     SegmentationConfig segmentation;
     ChangeConfig change;
+    MotionConfig motion;
 };
 
 template <class Visitor>
@@ -146,6 +173,24 @@ void visit_fields(MaintenanceConfig& c, const std::string& prefix, Visitor&& v) 
     v(prefix + "change.free_dominant", c.change.free_dominant, unit);
     v(prefix + "change.voxel_score", c.change.voxel_score, unit);
     v(prefix + "change.voxel_level", c.change.voxel_level, unchecked);
+    v(prefix + "motion.enabled", c.motion.enabled, unchecked);
+    v(prefix + "motion.cell", c.motion.cell, in_range(0.02, 2.0));
+    v(prefix + "motion.neighbourhood", c.motion.neighbourhood, in_range(1, 5));
+    v(prefix + "motion.ground_column", c.motion.ground_column, positive);
+    v(prefix + "motion.ground_height", c.motion.ground_height, non_negative);
+    v(prefix + "motion.min_cells", c.motion.min_cells, at_least(1));
+    v(prefix + "motion.max_cells", c.motion.max_cells, at_least(1));
+    v(prefix + "motion.max_extent", c.motion.max_extent, positive);
+    v(prefix + "motion.max_height", c.motion.max_height, positive);
+    v(prefix + "motion.min_lag", c.motion.min_lag, positive);
+    v(prefix + "motion.max_lag", c.motion.max_lag, in_range(0.01, 10.0));
+    v(prefix + "motion.max_speed", c.motion.max_speed, positive);
+    v(prefix + "motion.min_shift", c.motion.min_shift, positive);
+    v(prefix + "motion.match_distance", c.motion.match_distance, positive);
+    v(prefix + "motion.min_match", c.motion.min_match, unit);
+    v(prefix + "motion.max_overlap", c.motion.max_overlap, unit);
+    v(prefix + "motion.min_known", c.motion.min_known, unit);
+    v(prefix + "motion.max_hit_span", c.motion.max_hit_span, non_negative);
 }
 
 // A visitor of visit_fields that passes the optional keys on only when they are given (checking

@@ -33,7 +33,8 @@ struct View {
     EIGEN_MAKE_ALIGNED_OPERATOR_NEW
 };
 
-enum VoxelFlags : std::uint8_t { kGround = 1, kNew = 2 };
+// kMoving: a point of an object the motion tracker saw move landed in it (motion_tracker.hpp).
+enum VoxelFlags : std::uint8_t { kGround = 1, kNew = 2, kMoving = 4 };
 
 // Map times of a voxel are kept in ticks of 1/16 s (uint32: 8.5 years of map time); a session
 // starts on a tick (LongTermMap), so "created before this session" is exact.
