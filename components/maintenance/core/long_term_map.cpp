@@ -81,7 +81,11 @@ void LongTermMap::add_scan(const std::vector<Eigen::Vector3f>& points,
         by_region[{r.x(), r.y()}].push_back(q);
     }
     for (auto& [key, pts] : by_region) region({key.first, key.second}).add_points(pts, t);
-    if (config_.motion.enabled) follow_motion(points, T_world_sensor, t);
+    if (config_.motion.enabled && t - session_offset_ < config_.motion.session_span) {
+        follow_motion(points, T_world_sensor, t);
+    } else if (motion_.memory_bytes() > 0) {
+        motion_.clear();  // past the session's first span: its scans are not needed any more
+    }
     // A view every view_spacing seconds (unset: from the session's span so far).
     if (t - last_view_time_ >= view_spacing_at(config_, t - session_offset_)) {
         last_view_time_ = t;

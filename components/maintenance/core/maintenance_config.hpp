@@ -93,6 +93,10 @@ struct ChangeConfig {
 // (unless ground, or hit over more than max_hit_span: a parked car stays whatever a pair said).
 struct MotionConfig {
     bool enabled = true;
+    // [s] followed only this far into a session: from about 12 s on, a voxel's views order its
+    // history (derived_thresholds.hpp) and what moves is seen through; the tracker costs tens of
+    // ms a scan, which a robot's whole-day session must not pay (issue 28's budget)
+    double session_span = 12.0;
     double cell = 0.2;             // [m] cells of a scan's points
     int neighbourhood = 1;         // cells each way that join a cluster (twice that vertically)
     double ground_column = 1.0;    // [m] columns for the scan's ground
@@ -174,6 +178,7 @@ void visit_fields(MaintenanceConfig& c, const std::string& prefix, Visitor&& v) 
     v(prefix + "change.voxel_score", c.change.voxel_score, unit);
     v(prefix + "change.voxel_level", c.change.voxel_level, unchecked);
     v(prefix + "motion.enabled", c.motion.enabled, unchecked);
+    v(prefix + "motion.session_span", c.motion.session_span, non_negative);
     v(prefix + "motion.cell", c.motion.cell, in_range(0.02, 2.0));
     v(prefix + "motion.neighbourhood", c.motion.neighbourhood, in_range(1, 5));
     v(prefix + "motion.ground_column", c.motion.ground_column, positive);
