@@ -360,10 +360,11 @@ class MappingComponent : public runtime::Component {
         robot.has_current_map = true;
         flush_waiting(robot);
         for (const LoopClosure& loop : r.loops) publish_loop(loop, m.header.stamp);
-        for (const LoopRejection& j : r.rejected) {  // map_edge: rare, and worth knowing
-            if (j.reason.rfind("at the loaded map's edge", 0) == 0)
-                ctx_.log().info(prefix(robot) + "loop not tied: scan " +
-                                std::to_string(keyframe.scan_index) + " " + j.reason);
+        for (const LoopRejection& j : r.rejected) {  // map_edge: worth knowing, once a keyframe
+            if (j.reason.rfind("at the loaded map's edge", 0) != 0) continue;
+            ctx_.log().info(prefix(robot) + "loop not tied: scan " +
+                            std::to_string(keyframe.scan_index) + " " + j.reason);
+            break;
         }
         loops_since_optimise_ += r.loops.size();
         if (r.optimisation_due()) optimise();

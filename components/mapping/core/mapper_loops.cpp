@@ -143,7 +143,7 @@ void Mapper::verify(std::uint32_t session, const common::KeyframeData& keyframe,
             std::ostringstream why;
             why.precision(2);
             why << "at the loaded map's edge: its local map explains " << v.min_sector_fraction
-                << " of the keyframe's points towards " << v.weakest_sector_deg
+                << " of the keyframe's points towards " << int(std::lround(v.weakest_sector_deg))
                 << " deg (below map_edge.overlap " << config_.map_edge.overlap << ")";
             rejection.reason = why.str();
             r->rejected.push_back(rejection);

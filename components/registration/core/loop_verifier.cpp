@@ -1,12 +1,11 @@
 #include "registration/core/loop_verifier.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <sstream>
-#include <vector>
 
 #include "registration/core/imls.hpp"
 #include "registration/core/registration.hpp"
+#include "registration/core/sector_overlap.hpp"
 
 namespace ltm::registration {
 namespace {
@@ -85,19 +84,14 @@ LoopVerification LoopVerifier::attempt(const std::vector<Eigen::Vector3f>& point
     const Eigen::Vector3f tr = f.T_map_lidar.translation().cast<float>();
     double sq = 0.0;
     registration::ImlsResult r;
-    const int sectors = std::max(config_.sectors, 1);
-    std::vector<std::size_t> in_sector(std::size_t(sectors), 0), inliers_in(in_sector);
-    const double sector_width = 2.0 * M_PI / double(sectors);
+    SectorCounter sectors(config_.sectors);
     for (const Eigen::Vector3f& p : points) {
-        // Sector 0 centred on the x axis.
-        const double azimuth = std::atan2(double(p.y()), double(p.x())) + 0.5 * sector_width;
-        const int s = std::clamp(
-            int(std::floor((azimuth < 0.0 ? azimuth + 2.0 * M_PI : azimuth) / sector_width)), 0,
-            sectors - 1);
-        ++in_sector[std::size_t(s)];
-        if (!registration::imls_distance(t.fine, R * p + tr, imls, &r)) continue;
+        if (!registration::imls_distance(t.fine, R * p + tr, imls, &r)) {
+            sectors.add(p, false);
+            continue;
+        }
         const bool inlier = std::abs(r.distance) <= config_.inlier_distance;
-        inliers_in[std::size_t(s)] += inlier;
+        sectors.add(p, inlier);
         // Structure: not ground-like (the ground matches almost anywhere).
         if (std::abs(r.normal.z()) < 0.8f) {
             ++v.structure_points;
@@ -109,15 +103,9 @@ LoopVerification LoopVerifier::attempt(const std::vector<Eigen::Vector3f>& point
     }
     v.inlier_fraction = v.points ? double(v.inliers) / double(v.points) : 0.0;
     v.inlier_rms = v.inliers ? std::sqrt(sq / double(v.inliers)) : 0.0;
-    for (int s = 0; s < sectors; ++s) {
-        const std::size_t n = in_sector[std::size_t(s)];
-        if (n == 0 || double(n) < config_.min_sector_share * double(v.points)) continue;
-        const double f = double(inliers_in[std::size_t(s)]) / double(n);
-        if (f < v.min_sector_fraction) {
-            v.min_sector_fraction = f;
-            v.weakest_sector_deg = double(s) * sector_width / kDegToRad;
-        }
-    }
+    const SectorOverlap weakest = sectors.weakest(config_.min_sector_share);
+    v.min_sector_fraction = weakest.min_fraction;
+    v.weakest_sector_deg = weakest.weakest_deg;
     v.T_anchor_lidar = t.T_anchor_grid * f.T_map_lidar;
     const Eigen::Isometry3d correction = guess.inverse() * v.T_anchor_lidar;
     v.correction_translation = correction.translation().norm();
