@@ -112,6 +112,13 @@ bool Localiser::run_global(double stamp, const std::vector<Eigen::Vector3f>& poi
     return true;
 }
 
+registration::SectorOverlap Localiser::weakest_sector(const Eigen::Isometry3d& T_map_lidar) const {
+    if (!(config_.edge_sector_overlap > 0.0)) return {};
+    return registration::sector_overlap(sampled_, map_->target().fine, T_map_lidar,
+                                        tracker_.imls_params(), config_.inlier_distance,
+                                        config_.edge_sectors, 0.1);
+}
+
 bool Localiser::track(const Eigen::Isometry3d& predicted, LocalisationUpdate* u) {
     const registration::RegistrationResult r =
         tracker_.align(sampled_, map_->target().fine, predicted);
@@ -284,15 +291,23 @@ LocalisationUpdate Localiser::process(double stamp, const std::vector<Eigen::Vec
             u.message = "beyond the map: following the odometry";
             last_good_ = stamp;
         } else if (track(predicted, &u)) {
-            if (u.overlap < config_.edge_overlap) {
+            const registration::SectorOverlap sector = weakest_sector(u.T_map_lidar);
+            if (u.overlap < config_.edge_overlap ||
+                sector.min_fraction < config_.edge_sector_overlap) {
                 // The map's edge: the odometry from the last scan the map covered better.
                 state_ = LocalisationState::kOffMap;
                 T_map_lidar_ = predicted;
                 u.T_map_lidar = predicted;
                 std::ostringstream s;
                 s.precision(2);
-                s << "at the map's edge (overlap " << u.overlap << " below " << config_.edge_overlap
-                  << "): following the odometry";
+                if (u.overlap < config_.edge_overlap) {
+                    s << "at the map's edge (overlap " << u.overlap << " below "
+                      << config_.edge_overlap << "): following the odometry";
+                } else {
+                    s << "at the map's edge (" << sector.min_fraction << " explained towards "
+                      << int(std::lround(sector.weakest_deg)) << " deg, below "
+                      << config_.edge_sector_overlap << "): following the odometry";
+                }
                 u.message = s.str();
             } else {
                 T_map_odom_ = u.T_map_lidar * T_odom_lidar.inverse();

@@ -265,6 +265,44 @@ TEST(Localiser, AtTheMapsEdgeThePoseFollowsTheOdometry) {
     }
 }
 
+// The map's edge seen in one direction only (edge_sector_overlap): ahead of the sensor, structure
+// the map never saw; the scan as a whole is still mostly explained (overall overlap above 0.5),
+// but the sector ahead is not. Without the rule it is tracked; with it, it is at the map's edge.
+TEST(Localiser, AtTheMapsEdgeAheadOnlyThePoseFollowsTheOdometry) {
+    const SceneMap& s = scene_map();
+    const Eigen::Isometry3d truth = s.path[6];
+    std::vector<Eigen::Vector3f> scan = mt::view(s.scene, truth, 60.0);
+    // Unmapped, ahead (LiDAR +x), far above anything the map has: 1 m apart.
+    for (int x = 10; x < 40; ++x)
+        for (int y = -6; y < 6; ++y)
+            for (int z = 25; z < 45; ++z) scan.emplace_back(x, y, z);
+    for (const double sector : {0.0, 0.5}) {
+        LocaliserConfig c;
+        c.edge_sector_overlap = sector;
+        Localiser loc(s.map, c);
+        double stamp = 100.0;
+        LocalisationUpdate u;
+        for (int i = 2; i <= 5; ++i) {
+            OdometryInput o;
+            o.T_odom_lidar = s.path[std::size_t(i)];
+            u = loc.process(stamp, mt::view(s.scene, s.path[std::size_t(i)], 60.0), o);
+            stamp += 0.1;
+            ASSERT_TRUE(u.pose_valid) << u.message;
+        }
+        u = loc.process(stamp, scan, OdometryInput{truth * mt::xy_yaw(0.15, 0.0, 0.0), 0});
+        ASSERT_TRUE(u.pose_valid) << u.message;
+        EXPECT_GT(u.overlap, 0.5) << u.message;
+        if (sector == 0.0) {
+            EXPECT_EQ(u.state, LocalisationState::kTracking) << u.message;
+            EXPECT_LT(error_of(u.T_map_lidar, truth).translation, 0.05) << u.message;
+        } else {
+            EXPECT_EQ(u.state, LocalisationState::kOffMap) << u.message;
+            EXPECT_NE(u.message.find("explained towards 0 deg"), std::string::npos) << u.message;
+            EXPECT_NEAR(error_of(u.T_map_lidar, truth).translation, 0.15, 0.03) << u.message;
+        }
+    }
+}
+
 // A newer version of the site arrives mid-session (the split robot): a localiser on it takes the
 // running one's track and tracks the next scan at once, without a global localisation; a fresh one
 // (the oracle) has to search first.

@@ -16,6 +16,7 @@
 // maps. Without robots (the default) the topic names are relative, as for one robot.
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <deque>
 #include <filesystem>
 #include <map>
@@ -359,6 +360,12 @@ class MappingComponent : public runtime::Component {
         robot.has_current_map = true;
         flush_waiting(robot);
         for (const LoopClosure& loop : r.loops) publish_loop(loop, m.header.stamp);
+        for (const LoopRejection& j : r.rejected) {  // map_edge: worth knowing, once a keyframe
+            if (j.reason.rfind("at the loaded map's edge", 0) != 0) continue;
+            ctx_.log().info(prefix(robot) + "loop not tied: scan " +
+                            std::to_string(keyframe.scan_index) + " " + j.reason);
+            break;
+        }
         loops_since_optimise_ += r.loops.size();
         if (r.optimisation_due()) optimise();
         edits_->keyframe(keyframe, r.index);
@@ -496,7 +503,9 @@ class MappingComponent : public runtime::Component {
         const std::string own = robots_.size() > 1 ? who(loop.query_session) + ": " : "";
         ctx_.log().info(own + "loop closed: scan " + std::to_string(loop.query_scan) +
                         " with scan " + std::to_string(loop.match_scan) + other + " (" +
-                        std::to_string(loop.inliers) + " inliers)");
+                        std::to_string(loop.inliers) + " inliers, worst direction " +
+                        std::to_string(int(std::lround(100.0 * loop.min_sector_fraction))) +
+                        " % explained)");
     }
 
     void publish_graph() { graph_out_.publish(*convert::to_msg(graph_data(*mapper_, frame_id_))); }

@@ -116,6 +116,17 @@ inline places::ScanContextConfig default_localisation_descriptor() {
     return c;
 }
 
+// A loaded map's edge (issue 26). A loop from this session's keyframe to a local map of a loaded
+// (earlier) session is refused when that local map explains fewer than `overlap` of the
+// keyframe's points in any direction (azimuth sector, verification.sectors, holding at least
+// verification.min_sector_share of them): a keyframe at the map's edge, where the map ahead is
+// only what an earlier day saw from afar. Such a registration is pulled along the road towards
+// the map (the same ~0.1 m the localisation's edge_overlap keeps out of tracking); tied, it puts
+// the new road that far off in the saved map. Loops deeper in the map tie it instead. 0: off.
+struct MapEdgeConfig {
+    double overlap = 0.5;  // inlier fraction in the keyframe's worst-explained direction
+};
+
 struct MapperConfig {
     places::ScanContextConfig scan_context;  // loop closure
     places::ScanContextConfig localisation_descriptor = default_localisation_descriptor();
@@ -130,6 +141,7 @@ struct MapperConfig {
     SessionJoinConfig session_join;
     PlaceCandidateConfig place_candidates;
     MapFixConfig map_fix;
+    MapEdgeConfig map_edge;
     int max_loops_per_keyframe = 1;  // verified loops kept a keyframe (best candidates first)
     // After a keyframe closes a loop, this many following keyframes are not verified (their
     // descriptors are still kept): a revisit is closed every few keyframes, not at each one.
@@ -194,6 +206,7 @@ void visit_own_fields(MapperConfig& c, Visitor&& v) {
     v("map_fix.enabled", c.map_fix.enabled, unchecked);
     v("map_fix.per_local_map", c.map_fix.per_local_map, at_least(1));
     v("map_fix.radius", c.map_fix.radius, positive);
+    v("map_edge.overlap", c.map_edge.overlap, unit);
 }
 
 // Every field but the Scan Context kinds (enums: loaders read scan_context.kind as a name; the

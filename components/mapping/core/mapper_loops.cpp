@@ -139,6 +139,16 @@ void Mapper::verify(std::uint32_t session, const common::KeyframeData& keyframe,
             r->rejected.push_back(rejection);
             continue;
         }
+        if (loaded_match && v.min_sector_fraction < config_.map_edge.overlap) {
+            std::ostringstream why;
+            why.precision(2);
+            why << "at the loaded map's edge: its local map explains " << v.min_sector_fraction
+                << " of the keyframe's points towards " << int(std::lround(v.weakest_sector_deg))
+                << " deg (below map_edge.overlap " << config_.map_edge.overlap << ")";
+            rejection.reason = why.str();
+            r->rejected.push_back(rejection);
+            continue;
+        }
         map::PoseGraphEdge e;
         e.from = match.node;
         e.to = node;
@@ -183,6 +193,7 @@ void Mapper::verify(std::uint32_t session, const common::KeyframeData& keyframe,
         l.disagreement = disagreement;
         l.structure_points = v.structure_points;
         l.structure_inliers = v.structure_inliers;
+        l.min_sector_fraction = v.min_sector_fraction;
         l.from_graph_guess = graph_guess && v.guess == 0;
         // Places joined already (by loops, as of the last optimisation) and a loop that only
         // confirms the graph: no optimisation due for it.

@@ -27,6 +27,7 @@ struct LoopClosure {
     double correction_translation = 0.0;  // verification result vs the guess it started from [m]
     double disagreement = 0.0;            // with the graph's estimate at the time [m]
     std::size_t structure_points = 0, structure_inliers = 0;  // see registration::LoopVerification
+    double min_sector_fraction = 1.0;                         // see registration::LoopVerification
     bool from_graph_guess = false;  // verified from the graph's estimate, not the descriptor's
     // Between places already joined by loops, agreeing with the graph to within
     // long_term.agree_translation / agree_rotation: added without making an optimisation due.

@@ -5,6 +5,7 @@
 
 #include "registration/core/imls.hpp"
 #include "registration/core/registration.hpp"
+#include "registration/core/sector_overlap.hpp"
 
 namespace ltm::registration {
 namespace {
@@ -83,9 +84,14 @@ LoopVerification LoopVerifier::attempt(const std::vector<Eigen::Vector3f>& point
     const Eigen::Vector3f tr = f.T_map_lidar.translation().cast<float>();
     double sq = 0.0;
     registration::ImlsResult r;
+    SectorCounter sectors(config_.sectors);
     for (const Eigen::Vector3f& p : points) {
-        if (!registration::imls_distance(t.fine, R * p + tr, imls, &r)) continue;
+        if (!registration::imls_distance(t.fine, R * p + tr, imls, &r)) {
+            sectors.add(p, false);
+            continue;
+        }
         const bool inlier = std::abs(r.distance) <= config_.inlier_distance;
+        sectors.add(p, inlier);
         // Structure: not ground-like (the ground matches almost anywhere).
         if (std::abs(r.normal.z()) < 0.8f) {
             ++v.structure_points;
@@ -97,6 +103,9 @@ LoopVerification LoopVerifier::attempt(const std::vector<Eigen::Vector3f>& point
     }
     v.inlier_fraction = v.points ? double(v.inliers) / double(v.points) : 0.0;
     v.inlier_rms = v.inliers ? std::sqrt(sq / double(v.inliers)) : 0.0;
+    const SectorOverlap weakest = sectors.weakest(config_.min_sector_share);
+    v.min_sector_fraction = weakest.min_fraction;
+    v.weakest_sector_deg = weakest.weakest_deg;
     v.T_anchor_lidar = t.T_anchor_grid * f.T_map_lidar;
     const Eigen::Isometry3d correction = guess.inverse() * v.T_anchor_lidar;
     v.correction_translation = correction.translation().norm();

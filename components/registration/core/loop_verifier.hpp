@@ -50,6 +50,13 @@ struct LoopVerifierConfig {
     double max_correction_translation = 8.0;
     double max_correction_rotation = 30.0;
     int cache_size = 6;  // rebuilt local maps kept
+    // How much of the keyframe the map explains, direction by direction: the keyframe's points are
+    // split into this many azimuth sectors about the sensor (the first centred on its x axis) and
+    // each sector holding at least min_sector_share of them gets its own inlier fraction
+    // (LoopVerification::min_sector_fraction). Reported, not judged here: a caller (the mapping,
+    // against a loaded map's edge) decides.
+    int sectors = 4;
+    double min_sector_share = 0.1;
 
     static registration::RegistrationConfig fine_defaults() {
         registration::RegistrationConfig c;  // the odometry's, with more iterations
@@ -91,6 +98,8 @@ void visit_fields(LoopVerifierConfig& c, const std::string& prefix, Visitor&& v)
     v(prefix + "max_correction_translation", c.max_correction_translation, positive.or_infinite());
     v(prefix + "max_correction_rotation", c.max_correction_rotation, positive.or_infinite());
     v(prefix + "cache_size", c.cache_size, at_least(1));
+    v(prefix + "sectors", c.sectors, in_range(1, 36));
+    v(prefix + "min_sector_share", c.min_sector_share, unit);
 }
 
 // The first field that breaks its rule (key relative: "min_inliers"); nullopt when valid.
@@ -114,6 +123,11 @@ struct LoopVerification {
     // Points on structure (the normal of their surface not vertical, in the grid frame) that have
     // a surface within reach, and those of them that are inliers.
     std::size_t structure_points = 0, structure_inliers = 0;
+    // The lowest inlier fraction over the azimuth sectors holding at least min_sector_share of
+    // the points (1 when none does), and that sector's centre (LiDAR frame, deg from x towards
+    // y): a keyframe at a map's edge is explained on one side and not towards the edge.
+    double min_sector_fraction = 1.0;
+    double weakest_sector_deg = 0.0;
     int iterations = 0;     // coarse + fine
     std::size_t guess = 0;  // index of the initial guess the result came from
     EIGEN_MAKE_ALIGNED_OPERATOR_NEW
