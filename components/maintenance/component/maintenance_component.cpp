@@ -325,7 +325,14 @@ class MaintenanceComponent : public runtime::Component {
                 const std::string what = std::to_string(st.voxels) + " voxels, session " +
                                          std::to_string(session_) + " of " +
                                          std::to_string(map_->sessions().size());
-                ctx_.log().info("map saved to " + save_file_ + ": " + what);
+                std::string paging;
+                if (config_.paging_radius > 0.0) {
+                    paging = "; paging: " + std::to_string(st.regions_paged) + " of " +
+                             std::to_string(st.regions) + " regions on disk, " +
+                             std::to_string(st.pages_out) + " written out and " +
+                             std::to_string(st.pages_in) + " read back in the session";
+                }
+                ctx_.log().info("map saved to " + save_file_ + ": " + what + paging);
                 ctx_.report_output("maintained map", save_file_, true, what);
             }
         } catch (const std::exception& e) {
