@@ -24,7 +24,11 @@
 // `output_dir` (created when missing) every pass writes there its change record (changes_NNNN.ltmc,
 // maintenance/core/change_record.hpp), appends its summary to changes.txt and rewrites
 // changes_removed_added.ply (every change of the run: removed voxels red, added green).
+// Paging (`paging_radius`, `paging_dir`): only the regions near the robot stay in memory, the
+// others wait on disk (maintenance/core/region_pager.hpp; the worker reads them back when a scan
+// or a view reaches them, on its own thread).
 #include <time.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
@@ -170,10 +174,16 @@ class MaintenanceComponent : public runtime::Component {
     void load_map(runtime::Parameters& p) {
         std::uint32_t session = 0;
         resolve_files(p);
+        PagingConfig paging{config_.paging_radius, paging_dir()};
+        try {  // the folder first: a map file's regions go there as they are read
+            if (paging.radius > 0.0) RegionPager(paging.dir, config_.maintenance);
+        } catch (const common::IoError& e) {
+            p.fail("paging_dir", e.what());
+        }
         if (!load_file_.empty() && fs::exists(load_file_)) {
             try {
                 map_ = std::make_unique<LongTermMap>(
-                    LongTermMap::load(load_file_, config_.maintenance));
+                    LongTermMap::load(load_file_, config_.maintenance, paging));
             } catch (const common::IoError& e) {
                 p.fail(config_.site_dir.empty() ? "map_file" : "site_dir", e.what());
             }
@@ -183,8 +193,20 @@ class MaintenanceComponent : public runtime::Component {
                             std::to_string(map_->sessions().size()) + " sessions");
         } else {
             map_ = std::make_unique<LongTermMap>(config_.maintenance);
+            map_->set_paging(paging);
         }
+        if (paging.radius > 0.0)
+            ctx_.log().info("paging: regions farther than " + std::to_string(int(paging.radius)) +
+                            " m from the robot wait in " + paging.dir);
         session_ = config_.session >= 0 ? std::uint32_t(config_.session) : session;
+    }
+
+    std::string paging_dir() const {
+        if (!config_.paging_dir.empty()) return config_.paging_dir;
+        if (!config_.output_dir.empty()) return config_.output_dir + "/paged_regions";
+        return (fs::temp_directory_path() /
+                ("ltm-maintenance-" + std::to_string(::getpid()) + "-" + ctx_.name()))
+            .string();
     }
 
     // Where the maintained map comes from and goes: map_file both ways, or with site_dir the
@@ -303,7 +325,14 @@ class MaintenanceComponent : public runtime::Component {
                 const std::string what = std::to_string(st.voxels) + " voxels, session " +
                                          std::to_string(session_) + " of " +
                                          std::to_string(map_->sessions().size());
-                ctx_.log().info("map saved to " + save_file_ + ": " + what);
+                std::string paging;
+                if (config_.paging_radius > 0.0) {
+                    paging = "; paging: " + std::to_string(st.regions_paged) + " of " +
+                             std::to_string(st.regions) + " regions on disk, " +
+                             std::to_string(st.pages_out) + " written out and " +
+                             std::to_string(st.pages_in) + " read back in the session";
+                }
+                ctx_.log().info("map saved to " + save_file_ + ": " + what + paging);
                 ctx_.report_output("maintained map", save_file_, true, what);
             }
         } catch (const std::exception& e) {
@@ -320,10 +349,10 @@ class MaintenanceComponent : public runtime::Component {
         char text[300];
         std::snprintf(text, sizeof text,
                       "pass %u: %zu moving, %zu vanished, %zu new segments; %zu voxels removed; "
-                      "map %zu voxels, %.1f MiB; %.0f ms",
+                      "map %zu voxels, %.1f MiB (%zu voxels paged out); %.0f ms",
                       pass, c.count(ChangeReason::kMoving), c.count(ChangeReason::kVanished),
                       c.count(ChangeReason::kNew), c.voxels_removed, st.voxels,
-                      st.memory_bytes / 1048576.0, c.time_ms);
+                      st.memory_bytes / 1048576.0, st.voxels_paged, c.time_ms);
         event(StatusLevel::kOk, StatusCode::kMaintained, text, stamp);
         if (!c.changes.empty()) changes_out_.publish(*to_msg(c, pass, stamp, frame_id()));
         if (config_.output_dir.empty()) return;

@@ -42,6 +42,9 @@ MaintenanceComponentConfig load_maintenance_params(runtime::Parameters& p) {
     c.cpu_share = p.get<double>("cpu_share", c.cpu_share);
     if (!(c.cpu_share > 0.0 && c.cpu_share <= 1.0))
         p.fail("cpu_share", "must be in (0, 1] (1: not paced)");
+    c.paging_radius = p.get<double>("paging_radius", c.paging_radius);
+    if (!(c.paging_radius >= 0.0)) p.fail("paging_radius", "must be >= 0 (0: no paging)");
+    c.paging_dir = p.path("paging_dir", "", runtime::PathCheck::kNone);
     visit_fields(c.maintenance, "", [&](const std::string& key, auto& field, const auto& /*rule*/) {
         using T = std::decay_t<decltype(field)>;
         if constexpr (is_optional<T>::value) {

@@ -38,6 +38,12 @@ struct MaintenanceComponentConfig {
     // a pass is spread over time between its regions, and the scans after it too, rather than a
     // burst of seconds (live). 1: as fast as it goes (offline).
     double cpu_share = 1.0;
+    // Paging (maintenance/core/region_pager.hpp): regions of the maintained map farther than
+    // paging_radius [m] from the robot wait on disk in paging_dir until the robot comes back
+    // (a loaded map's regions all start there). 0: the whole map in memory. paging_dir "":
+    // OUTPUT_DIR/paged_regions, or without output_dir a folder of the system's temporary one.
+    double paging_radius = 100.0;
+    std::string paging_dir;
     MaintenanceConfig maintenance;
 };
 

@@ -57,7 +57,15 @@ TEST(MaintenanceParams, DefaultsThenOverrides) {
     EXPECT_TRUE(n.output_dir.empty());
     EXPECT_TRUE(n.map_file.empty());
     EXPECT_EQ(n.session, -1);
-    EXPECT_DOUBLE_EQ(n.cpu_share, 1.0);  // not paced
+    EXPECT_DOUBLE_EQ(n.cpu_share, 1.0);        // not paced
+    EXPECT_DOUBLE_EQ(n.paging_radius, 100.0);  // paged: the neighbourhood in memory
+    EXPECT_TRUE(n.paging_dir.empty());
+
+    runtime::Parameters paged = params_of("paging_radius: 0\npaging_dir: /tmp/pages\n");
+    const MaintenanceComponentConfig g = load_maintenance_params(paged);
+    EXPECT_NO_THROW(paged.check_all_used());
+    EXPECT_DOUBLE_EQ(g.paging_radius, 0.0);
+    EXPECT_EQ(g.paging_dir, "/tmp/pages");
 }
 
 TEST(MaintenanceParams, ABadParameterIsOneLineNamingFileLineAndKey) {
@@ -83,6 +91,8 @@ TEST(MaintenanceParams, ABadParameterIsOneLineNamingFileLineAndKey) {
               "test.yaml:1: maintenance.map_file: give either map_file or site_dir, not both");
     EXPECT_EQ(error_of("cpu_share: 0"),
               "test.yaml:1: maintenance.cpu_share: must be in (0, 1] (1: not paced)");
+    EXPECT_EQ(error_of("paging_radius: -5"),
+              "test.yaml:1: maintenance.paging_radius: must be >= 0 (0: no paging)");
     EXPECT_EQ(error_of("site_version: v0003"),
               "test.yaml:1: maintenance.site_version: needs site_dir");
     // An optional key is checked when given, and named among the known keys of a misspelt one.

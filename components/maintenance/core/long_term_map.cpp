@@ -55,10 +55,54 @@ Eigen::Vector2i LongTermMap::region_of(const Eigen::Vector3f& p) const {
     return {int(std::floor(p.x() * inv)), int(std::floor(p.y() * inv))};
 }
 
+void LongTermMap::set_paging(const PagingConfig& paging) {
+    if (paging.radius <= 0.0) {
+        page_in_all();
+        pager_.reset();
+        paging_radius_ = 0.0;
+        return;
+    }
+    if (paging.dir.empty())
+        throw common::ConfigError("paging_dir", "is required with a paging radius");
+    pager_ = std::make_unique<RegionPager>(paging.dir, config_);
+    paging_radius_ = paging.radius;
+}
+
 ObservationMap& LongTermMap::region(const Eigen::Vector2i& key) {
-    auto& slot = regions_[{key.x(), key.y()}];
-    if (!slot) slot = std::make_unique<ObservationMap>(config_, key);
+    const RegionKey k{key.x(), key.y()};
+    auto& slot = regions_[k];
+    if (!slot) {
+        slot = pager_ && pager_->holds(k) ? pager_->page_in(k)
+                                          : std::make_unique<ObservationMap>(config_, key);
+    }
     return *slot;
+}
+
+bool LongTermMap::within(const RegionKey& key, const Eigen::Vector2f& p, float reach) const {
+    const float size = float(config_.region_size);
+    const Eigen::Vector2f lo = Eigen::Vector2f(float(key.first), float(key.second)) * size;
+    const Eigen::Vector2f nearest = p.cwiseMax(lo).cwiseMin(lo + Eigen::Vector2f(size, size));
+    return (nearest - p).norm() <= reach;
+}
+
+void LongTermMap::page_far(const Eigen::Vector3d& sensor) {
+    if (!pager_) return;
+    const Eigen::Vector2f p = sensor.head<2>().cast<float>();
+    for (auto it = regions_.begin(); it != regions_.end();) {
+        if (dirty_.count(it->first) || within(it->first, p, float(paging_radius_))) {
+            ++it;
+            continue;
+        }
+        pager_->page_out(it->first, *it->second);
+        it = regions_.erase(it);
+    }
+}
+
+void LongTermMap::page_in_all() {
+    if (!pager_) return;
+    std::vector<RegionKey> keys;
+    for (const auto& entry : pager_->regions()) keys.push_back(entry.first);
+    for (const RegionKey& k : keys) region({k.first, k.second});
 }
 
 void LongTermMap::add_scan(const std::vector<Eigen::Vector3f>& points,
@@ -102,6 +146,7 @@ void LongTermMap::add_scan(const std::vector<Eigen::Vector3f>& points,
         judge(pending_.front());
         pending_.pop_front();
     }
+    page_far(T_world_sensor.translation());
 }
 
 void LongTermMap::follow_motion(const std::vector<Eigen::Vector3f>& points,
@@ -124,12 +169,17 @@ void LongTermMap::follow_motion(const std::vector<Eigen::Vector3f>& points,
 void LongTermMap::judge(const View& view) {
     const auto t0 = std::chrono::steady_clock::now();
     const Eigen::Vector2f s = view.T_world_sensor.translation().head<2>().cast<float>();
-    const float size = float(config_.region_size), reach = float(config_.max_range);
-    for (auto& [key, map] : regions_) {  // regions whose square comes within max_range
-        const Eigen::Vector2f lo = Eigen::Vector2f(float(key.first), float(key.second)) * size;
-        const Eigen::Vector2f nearest = s.cwiseMax(lo).cwiseMin(lo + Eigen::Vector2f(size, size));
-        if ((nearest - s).norm() > reach) continue;
-        map->judge(view);
+    const float reach = float(config_.max_range);
+    std::vector<RegionKey> keys;  // regions whose square comes within max_range, in key order
+    for (const auto& entry : regions_)
+        if (within(entry.first, s, reach)) keys.push_back(entry.first);
+    if (pager_) {
+        for (const auto& entry : pager_->regions())
+            if (within(entry.first, s, reach)) keys.push_back(entry.first);
+        std::sort(keys.begin(), keys.end());
+    }
+    for (const RegionKey& key : keys) {
+        region({key.first, key.second}).judge(view);
         dirty_.insert(key);
     }
     ++views_;
@@ -151,13 +201,14 @@ ChangeSet LongTermMap::maintain(const std::function<void()>& between) {
     all.voxel_size = float(config_.voxel_size);
     const MaintenanceConfig decision = decision_config();
     bool first = true;
-    for (const std::pair<int, int>& key : dirty_) {  // the regions a view judged since the last
-        const auto it = regions_.find(key);          // pass: nothing changed in the others
-        if (it == regions_.end()) continue;
+    // The regions a view judged since the last pass (in memory: page_far keeps them there):
+    // nothing changed in the others.
+    for (const std::pair<int, int>& key : dirty_) {
+        if (!regions_.count(key) && !(pager_ && pager_->holds(key))) continue;
         if (!first && between) between();
         first = false;
-        all.append(
-            maintain_region(decision, *it->second, session_, now_, session_offset_, &next_change_));
+        all.append(maintain_region(decision, region({key.first, key.second}), session_, now_,
+                                   session_offset_, &next_change_));
     }
     dirty_.clear();
     return all;
@@ -203,6 +254,15 @@ LongTermMapStats LongTermMap::stats() const {
     s.motion_ms = motion_ms_;
     s.motion = motion_.stats();
     s.voxels_flagged_moving = flagged_moving_;
+    if (pager_) {
+        s.regions_paged = pager_->regions().size();
+        s.voxels_paged = pager_->voxels();
+        s.voxels += s.voxels_paged;
+        s.regions += s.regions_paged;
+        s.paged_bytes = pager_->disk_bytes();
+        s.pages_out = pager_->pages_out();
+        s.pages_in = pager_->pages_in();
+    }
     s.views = views_;
     s.views_pending = pending_.size();
     s.judge_ms = judge_ms_;

@@ -6,6 +6,9 @@
 // leaves behind it exist by then).
 // maintain() runs the change decisions region by region and erases what is gone.
 //
+// Paging (set_paging, region_pager.hpp): only the regions near the robot are in memory, the rest
+// on disk until a scan or a view reaches them; what the map decides is the same either way.
+//
 // Map time: the stamps of a session, shifted so that each session starts session_gap seconds
 // after the previous one ended (days between sessions would swamp seconds within them).
 #include <Eigen/Geometry>
@@ -23,12 +26,17 @@
 #include "maintenance/core/change_set.hpp"
 #include "maintenance/core/motion_tracker.hpp"
 #include "maintenance/core/observation_map.hpp"
+#include "maintenance/core/region_pager.hpp"
 
 namespace ltm::maintenance {
 
 struct LongTermMapStats {
     std::size_t regions = 0, voxels = 0, views = 0, views_pending = 0;
-    std::size_t memory_bytes = 0;
+    std::size_t memory_bytes = 0;  // the regions in memory and the pending views
+    // Paging: regions (and their voxels, included in `voxels`) on disk, the bytes of their files,
+    // regions written out and read back since the start.
+    std::size_t regions_paged = 0, voxels_paged = 0, paged_bytes = 0;
+    std::size_t pages_out = 0, pages_in = 0;
     double judge_ms = 0.0;   // total time views spent judging voxels
     double motion_ms = 0.0;  // total time the motion tracker took
     MotionStats motion;
@@ -39,6 +47,10 @@ class LongTermMap {
   public:
     // Throws common::ConfigError (naming the key) on an invalid configuration.
     explicit LongTermMap(const MaintenanceConfig& config);
+    // From now on only the regions within paging.radius of the robot stay in memory (radius 0:
+    // every region, the default). Throws common::IoError when the folder cannot be made, and
+    // common::ConfigError when a radius comes without a folder.
+    void set_paging(const PagingConfig& paging);
 
     const MaintenanceConfig& config() const { return config_; }
     // The configuration the next pass decides with: the keys left unset filled from what the
@@ -69,12 +81,15 @@ class LongTermMap {
     // End of a session: flush_views() then maintain().
     ChangeSet end_session();
 
+    // The next three look at the regions in memory (every region without paging; page_in_all()).
     // True when the map keeps the voxel holding p (world frame): it exists and was not erased.
     bool keeps(const Eigen::Vector3f& p) const;
     // Flags of the voxel holding p (kGround, kNew), or nothing when it is not in the map.
     const ObservedVoxel* voxel_at(const Eigen::Vector3f& p) const;
     // Centres of every voxel (world frame).
     std::vector<Eigen::Vector3f> voxel_centres() const;
+    // Every paged-out region back in memory (paging stays on: the next scan may page out again).
+    void page_in_all();
 
     LongTermMapStats stats() const;
 
@@ -82,17 +97,25 @@ class LongTermMap {
     // file with a CRC-32 a section, written atomically. Views still pending are not saved: call
     // end_session() first. load() refuses a damaged file, or one made with another voxel size,
     // region size or slot, with one line (common::IoError / FormatError) and returns nothing.
+    // Both go a region at a time (the file is never whole in memory); with `paging`, load() puts
+    // every region on disk as it reads it, to come back when the robot approaches.
     void save(const std::string& path) const;
-    static LongTermMap load(const std::string& path, const MaintenanceConfig& config);
+    static LongTermMap load(const std::string& path, const MaintenanceConfig& config,
+                            const PagingConfig& paging = {});
     // Sessions that built the map, in order.
     const std::vector<std::uint32_t>& sessions() const { return sessions_; }
 
   private:
     Eigen::Vector2i region_of(const Eigen::Vector3f& p) const;
-    ObservationMap& region(const Eigen::Vector2i& key);
+    ObservationMap& region(const Eigen::Vector2i& key);  // created, or paged in, when missing
+    bool within(const RegionKey& key, const Eigen::Vector2f& p, float reach) const;
     void judge(const View& view);
     void follow_motion(const std::vector<Eigen::Vector3f>& points,
                        const Eigen::Isometry3d& T_world_sensor, double map_time);
+    void page_far(const Eigen::Vector3d& sensor);  // regions beyond the radius to disk
+
+    double paging_radius_ = 0.0;
+    std::unique_ptr<RegionPager> pager_;
 
     MaintenanceConfig config_;
     std::map<std::pair<int, int>, std::unique_ptr<ObservationMap>> regions_;

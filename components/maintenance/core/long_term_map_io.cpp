@@ -6,11 +6,14 @@
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <set>
 
 #include "common/core/byte_io.hpp"
 #include "common/core/file_io.hpp"
 #include "common/core/io_error.hpp"
+#include "common/core/streamed_file.hpp"
 #include "maintenance/core/long_term_map.hpp"
+#include "maintenance/core/region_io.hpp"
 
 namespace ltm::maintenance {
 
@@ -19,7 +22,7 @@ namespace {
 constexpr char kMagic[8] = {'L', 'T', 'M', 'M', 'A', 'I', 'N', 'T'};
 // 2: the compact voxel (fixed-point point sums, ticks, one view history of at most 6 entries).
 // 1: float sums, double times, separate hit and free histograms; still read, converted.
-constexpr std::uint32_t kVersion = 2, kVersion1 = 1;
+// (kMaintainedMapVersion and kMaintainedMapVersion1, region_io.hpp)
 
 template <class IO>
 void history_io(IO& io, VoxelHistory& history) {
@@ -130,102 +133,167 @@ void read_voxel_v1(common::ByteReader& io, float voxel_size, ObservedVoxel& v) {
 
 }  // namespace
 
-void LongTermMap::save(const std::string& path) const {
-    common::ByteWriter w;
-    w.raw(kMagic, sizeof kMagic);
-    w.value(kVersion);
-    w.section("header", [&](auto& s) {
-        s.value(config_.voxel_size);
-        s.value(config_.region_size);
-        s.value(config_.slot);
-        s.value(session_);
-        s.value(session_offset_);
-        s.value(now_);
-        s.value(next_change_);
-        s.value(static_cast<std::uint32_t>(sessions_.size()));
-        for (std::uint32_t id : sessions_) s.value(id);
-        s.value(static_cast<std::uint32_t>(regions_.size()));
+void write_region_section(common::ByteWriter& w, const std::pair<int, int>& key,
+                          const ObservationMap& map) {
+    w.section("region", [&](auto& s) {
+        s.value(std::int32_t(key.first));
+        s.value(std::int32_t(key.second));
+        s.value(static_cast<std::uint32_t>(map.size()));
+        for (std::uint32_t i = 0; i < map.size(); ++i) {
+            ObservedVoxel v = map.voxel(i);
+            voxel_io(s, v);
+        }
     });
-    for (const auto& entry : regions_) {
-        const std::pair<int, int> key = entry.first;
-        const ObservationMap& map = *entry.second;
-        w.section("region", [&](auto& s) {
-            s.value(std::int32_t(key.first));
-            s.value(std::int32_t(key.second));
-            s.value(static_cast<std::uint32_t>(map.size()));
-            for (std::uint32_t i = 0; i < map.size(); ++i) {
-                ObservedVoxel v = map.voxel(i);
-                voxel_io(s, v);
-            }
-        });
-    }
-    common::write_file_atomic(path, w.bytes().data(), w.bytes().size());
 }
 
-LongTermMap LongTermMap::load(const std::string& path, const MaintenanceConfig& config) {
+namespace detail {
+
+std::pair<int, int> read_region_key(common::ByteReader& s) {
+    const auto x = s.get<std::int32_t>("region.x");
+    const auto y = s.get<std::int32_t>("region.y");
+    return {x, y};
+}
+
+void read_region_voxels(common::ByteReader& s, std::uint32_t version, float voxel_size,
+                        ObservationMap& map) {
+    const std::uint64_t at = s.offset();
+    const auto n = s.get<std::uint32_t>("voxels");
+    // A voxel with an empty history: 43 bytes (version 1: 73).
+    const std::uint64_t min_voxel_bytes = version == kMaintainedMapVersion1 ? 73 : 43;
+    s.check(std::uint64_t(n) * min_voxel_bytes <= s.remaining(), "voxels", at,
+            "more voxels than the section holds");
+    map.reserve(map.size() + n);
+    for (std::uint32_t i = 0; i < n; ++i) {
+        s.item("voxels", i);
+        const std::uint64_t at_voxel = s.offset();
+        ObservedVoxel v;
+        if (version == kMaintainedMapVersion1) {
+            read_voxel_v1(s, voxel_size, v);
+        } else {
+            voxel_io(s, v);
+        }
+        s.check(map.restore(v), "key", at_voxel, "a repeated voxel");
+    }
+}
+
+}  // namespace detail
+
+// Written a region at a time to PATH.tmp (the paged-out regions' sections copied from their
+// files), then renamed: the file is never whole in memory.
+void LongTermMap::save(const std::string& path) const {
+    common::AtomicFileWriter out(path);
+    {
+        common::ByteWriter w;
+        w.raw(kMagic, sizeof kMagic);
+        w.value(kMaintainedMapVersion);
+        w.section("header", [&](auto& s) {
+            s.value(config_.voxel_size);
+            s.value(config_.region_size);
+            s.value(config_.slot);
+            s.value(session_);
+            s.value(session_offset_);
+            s.value(now_);
+            s.value(next_change_);
+            s.value(static_cast<std::uint32_t>(sessions_.size()));
+            for (std::uint32_t id : sessions_) s.value(id);
+            const std::size_t paged = pager_ ? pager_->regions().size() : 0;
+            s.value(static_cast<std::uint32_t>(regions_.size() + paged));
+        });
+        out.append(w.bytes());
+    }
+    std::set<RegionKey> keys;
+    for (const auto& entry : regions_) keys.insert(entry.first);
+    if (pager_)
+        for (const auto& entry : pager_->regions()) keys.insert(entry.first);
+    for (const RegionKey& key : keys) {  // in key order, as before paging
+        const auto it = regions_.find(key);
+        if (it != regions_.end()) {
+            common::ByteWriter w;
+            write_region_section(w, key, *it->second);
+            out.append(w.bytes());
+        } else {
+            out.append(pager_->section(key));
+        }
+    }
+    out.commit();
+}
+
+// Read a section at a time; with paging (set_paging before, or `paging` here), every region goes
+// to disk as it is read and comes back when the robot approaches it.
+LongTermMap LongTermMap::load(const std::string& path, const MaintenanceConfig& config,
+                              const PagingConfig& paging) {
     LongTermMap m(config);
-    const std::string bytes = common::read_file(path, path);
-    common::ByteReader r(path, bytes.data(), bytes.size());
-    char magic[sizeof kMagic];
-    r.raw(magic, sizeof magic, "magic");
-    if (std::memcmp(magic, kMagic, sizeof kMagic) != 0)
-        r.fail_at("magic", 0, "not a maintained map (no LTMMAINT signature)");
-    const std::uint64_t at_version = r.offset();
-    const auto version = r.get<std::uint32_t>("version");
-    r.check(version == kVersion || version == kVersion1, "version", at_version, [&] {
-        return "format version " + std::to_string(version) +
-               " is not supported (this build reads 1 and " + std::to_string(kVersion) + ")";
-    });
+    m.set_paging(paging);
+    common::SectionFileReader file(path, path);
+    std::uint32_t version = 0;
+    {
+        const std::vector<std::uint8_t> head = file.bytes(sizeof kMagic + 4, "magic");
+        common::ByteReader r(path, head.data(), head.size());
+        char magic[sizeof kMagic];
+        r.raw(magic, sizeof magic, "magic");
+        if (std::memcmp(magic, kMagic, sizeof kMagic) != 0)
+            r.fail_at("magic", 0, "not a maintained map (no LTMMAINT signature)");
+        const std::uint64_t at_version = r.offset();
+        version = r.get<std::uint32_t>("version");
+        r.check(version == kMaintainedMapVersion || version == kMaintainedMapVersion1, "version",
+                at_version, [&] {
+                    return "format version " + std::to_string(version) +
+                           " is not supported (this build reads 1 and " +
+                           std::to_string(kMaintainedMapVersion) + ")";
+                });
+    }
     std::uint32_t regions = 0;
-    r.section("header", [&](common::ByteReader& s) {
-        const auto same = [&](const char* field, double expected) {
+    file.next_section("header");
+    {
+        common::ByteReader r = file.reader();
+        r.section("header", [&](common::ByteReader& s) {
+            const auto same = [&](const char* field, double expected) {
+                const std::uint64_t at = s.offset();
+                const auto v = s.get<double>(field);
+                s.check(std::abs(v - expected) < 1e-9, field, at, [&] {
+                    return "the map was made with " + std::string(field) + " " + std::to_string(v) +
+                           ", the configuration says " + std::to_string(expected);
+                });
+            };
+            same("voxel_size", config.voxel_size);
+            same("region_size", config.region_size);
+            same("slot", config.slot);
+            s.value(m.session_, "session");
+            s.value(m.session_offset_, "session_offset");
+            s.value(m.now_, "now");
+            s.value(m.next_change_, "next_change");
             const std::uint64_t at = s.offset();
-            const auto v = s.get<double>(field);
-            s.check(std::abs(v - expected) < 1e-9, field, at, [&] {
-                return "the map was made with " + std::string(field) + " " + std::to_string(v) +
-                       ", the configuration says " + std::to_string(expected);
-            });
-        };
-        same("voxel_size", config.voxel_size);
-        same("region_size", config.region_size);
-        same("slot", config.slot);
-        s.value(m.session_, "session");
-        s.value(m.session_offset_, "session_offset");
-        s.value(m.now_, "now");
-        s.value(m.next_change_, "next_change");
-        const std::uint64_t at = s.offset();
-        const auto n = s.get<std::uint32_t>("sessions");
-        s.check(std::uint64_t(n) * 4 <= s.remaining(), "sessions", at, "more than the file holds");
-        m.sessions_.resize(n);
-        for (std::uint32_t& id : m.sessions_) s.value(id, "sessions");
-        s.value(regions, "regions");
-    });
-    for (std::uint32_t k = 0; k < regions; ++k) {
-        r.section("region", [&](common::ByteReader& s) {
-            const auto x = s.get<std::int32_t>("region.x");
-            const auto y = s.get<std::int32_t>("region.y");
-            const std::uint64_t at = s.offset();
-            const auto n = s.get<std::uint32_t>("voxels");
-            // A voxel with an empty history: 43 bytes (version 1: 73).
-            const std::uint64_t min_voxel_bytes = version == kVersion1 ? 73 : 43;
-            s.check(std::uint64_t(n) * min_voxel_bytes <= s.remaining(), "voxels", at,
-                    "more voxels than the section holds");
-            ObservationMap& map = m.region({x, y});
-            map.reserve(map.size() + n);
-            for (std::uint32_t i = 0; i < n; ++i) {
-                s.item("voxels", i);
-                const std::uint64_t at_voxel = s.offset();
-                ObservedVoxel v;
-                if (version == kVersion1) {
-                    read_voxel_v1(s, float(config.voxel_size), v);
-                } else {
-                    voxel_io(s, v);
-                }
-                s.check(map.restore(v), "key", at_voxel, "a repeated voxel");
-            }
+            const auto n = s.get<std::uint32_t>("sessions");
+            s.check(std::uint64_t(n) * 4 <= s.remaining(), "sessions", at,
+                    "more than the file holds");
+            m.sessions_.resize(n);
+            for (std::uint32_t& id : m.sessions_) s.value(id, "sessions");
+            s.value(regions, "regions");
         });
     }
-    r.expect_end("the map");
+    for (std::uint32_t k = 0; k < regions; ++k) {
+        const std::vector<std::uint8_t>& bytes = file.next_section("region");
+        common::ByteReader r = file.reader();
+        RegionKey key;
+        read_region_section(
+            r, version, float(config.voxel_size), [&](const RegionKey& read) -> ObservationMap& {
+                key = read;
+                r.check(!m.pager_ || !m.pager_->holds(read), "region", 0, "a repeated region");
+                return m.region({read.first, read.second});
+            });
+        if (m.pager_) {  // checked above; on disk until the robot comes near
+            const ObservationMap& map = *m.regions_.at(key);
+            if (version == kMaintainedMapVersion) {
+                m.pager_->page_out_section(key, bytes, map.size());
+            } else {
+                m.pager_->page_out(key, map);
+            }
+            m.regions_.erase(key);
+        }
+    }
+    if (!file.at_end()) {
+        throw common::FormatError(path, "the map", file.offset(), "unexpected bytes after the end");
+    }
     m.in_session_ = false;
     return m;
 }

@@ -77,6 +77,7 @@ MergedVoxels merge_voxels(const MapData& map, const MergedVoxelsFilter& filter) 
         }
     }
     out.sessions = sessions.size();
+    merged.voxels.shrink_to_fit();  // kept for the session: no doubling slack (up to half)
     if (!merged.voxels.empty()) {
         merged.bbox_min = lo;
         merged.bbox_max = hi;

@@ -37,6 +37,11 @@ VoxelGrid VoxelGrid::from_data(const common::LocalMapData& data, const VoxelConf
     const double g =
         data.voxel_size > 0.0f && std::isfinite(data.voxel_size) ? double(data.voxel_size) : 1.0;
     VoxelGrid grid(g, config);
+    // Room for every voxel at once: no doubling slack in a loaded map's grids (up to half of them).
+    grid.hash_.reserve(data.voxels.size());
+    grid.keys_.reserve(data.voxels.size());
+    grid.surfels_.reserve(data.voxels.size());
+    grid.records_.reserve(data.voxels.size());
     std::size_t left_out = 0;
     // In-plane spread of the rebuilt covariance: points uniform over the cell (g^2 / 12).
     const float spread = float(g * g / 12.0);
