@@ -37,6 +37,8 @@ const std::vector<MessageTypeInfo>& known_message_types() {
         info<msg::MapRequest>(),
         info<msg::LinkPacket>(),
         info<msg::LinkAck>(),
+        info<msg::LinkDelivered>(),
+        info<msg::MapVersion>(),
         info<msg::SiteOffer>(),
         info<msg::SiteRequest>(),
         info<msg::SiteChunk>(),
