@@ -40,10 +40,10 @@ LinkApplied parse_link_applied(const std::string& text) {
         const bool hex = run.size() == 16 && std::all_of(run.begin(), run.end(), [](char c) {
                              return std::isxdigit(static_cast<unsigned char>(c));
                          });
-        const bool digits =
-            !through.empty() && through.size() <= 20 &&
-            std::all_of(through.begin(), through.end(),
-                        [](char c) { return std::isdigit(static_cast<unsigned char>(c)); });
+        const bool digits = !through.empty() && through.size() <= 20 &&
+                            std::all_of(through.begin(), through.end(), [](char c) {
+                                return std::isdigit(static_cast<unsigned char>(c));
+                            });
         if (!hex) fail("run '" + run + "' is not 16 hex digits");
         if (!digits) fail("through '" + through + "' is not a count");
         std::uint64_t& t = applied[robot][std::stoull(run, nullptr, 16)];

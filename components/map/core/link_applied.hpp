@@ -9,9 +9,10 @@
 // The file: one line a run, `link <robot> <run, 16 hex digits> <through>`, ascending.
 //
 // DeliveryTracker is how the mapping learns it: the downlink says, after handing packets on, "run
-// R through seq S took K keyframes, L local maps and C map changes since I started" (LinkDelivered);
-// the mapping counts what it took on the same topics, and a mark is applied once its counts are
-// reached on every topic the mapping reads (topics it does not read hold nothing for its map).
+// R through seq S took K keyframes, L local maps and C map changes since I started"
+// (LinkDelivered); the mapping counts what it took on the same topics, and a mark is applied once
+// its counts are reached on every topic the mapping reads (topics it does not read hold nothing for
+// its map).
 #include <cstdint>
 #include <deque>
 #include <map>
