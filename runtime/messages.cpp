@@ -1,5 +1,7 @@
 #include "runtime/messages.hpp"
 
+#include "runtime/link_messages.hpp"
+
 namespace ltm::runtime {
 namespace {
 

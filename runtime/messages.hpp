@@ -21,14 +21,12 @@
 #include "geometry_msgs/msg/Vector3.h"
 #include "ltm_msgs/msg/Keyframe.h"
 #include "ltm_msgs/msg/LinkAck.h"
-#include "ltm_msgs/msg/LinkDelivered.h"
 #include "ltm_msgs/msg/LinkPacket.h"
 #include "ltm_msgs/msg/LocalMap.h"
 #include "ltm_msgs/msg/LocalisationStatus.h"
 #include "ltm_msgs/msg/LoopClosure.h"
 #include "ltm_msgs/msg/MapChangeSet.h"
 #include "ltm_msgs/msg/MapRequest.h"
-#include "ltm_msgs/msg/MapVersion.h"
 #include "ltm_msgs/msg/Mesh.h"
 #include "ltm_msgs/msg/PlaceDescriptor.h"
 #include "ltm_msgs/msg/PoseGraph.h"
@@ -81,8 +79,6 @@ using Status = ltm_msgs_msg_dds__Status_;
 using MapRequest = ltm_msgs_msg_dds__MapRequest_;
 using LinkPacket = ltm_msgs_msg_dds__LinkPacket_;
 using LinkAck = ltm_msgs_msg_dds__LinkAck_;
-using LinkDelivered = ltm_msgs_msg_dds__LinkDelivered_;
-using MapVersion = ltm_msgs_msg_dds__MapVersion_;
 using SiteOffer = ltm_msgs_msg_dds__SiteOffer_;
 using SiteRequest = ltm_msgs_msg_dds__SiteRequest_;
 using SiteChunk = ltm_msgs_msg_dds__SiteChunk_;
@@ -125,8 +121,6 @@ LTM_MESSAGE_TRAITS(ltm_msgs_msg_dds__Status_, "ltm_msgs/msg/Status")
 LTM_MESSAGE_TRAITS(ltm_msgs_msg_dds__MapRequest_, "ltm_msgs/msg/MapRequest")
 LTM_MESSAGE_TRAITS(ltm_msgs_msg_dds__LinkPacket_, "ltm_msgs/msg/LinkPacket")
 LTM_MESSAGE_TRAITS(ltm_msgs_msg_dds__LinkAck_, "ltm_msgs/msg/LinkAck")
-LTM_MESSAGE_TRAITS(ltm_msgs_msg_dds__LinkDelivered_, "ltm_msgs/msg/LinkDelivered")
-LTM_MESSAGE_TRAITS(ltm_msgs_msg_dds__MapVersion_, "ltm_msgs/msg/MapVersion")
 LTM_MESSAGE_TRAITS(ltm_msgs_msg_dds__SiteOffer_, "ltm_msgs/msg/SiteOffer")
 LTM_MESSAGE_TRAITS(ltm_msgs_msg_dds__SiteRequest_, "ltm_msgs/msg/SiteRequest")
 LTM_MESSAGE_TRAITS(ltm_msgs_msg_dds__SiteChunk_, "ltm_msgs/msg/SiteChunk")

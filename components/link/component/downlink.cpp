@@ -30,6 +30,7 @@
 #include "link/core/write_fault.hpp"
 #include "runtime/component.hpp"
 #include "runtime/convert/dds_string.hpp"
+#include "runtime/link_messages.hpp"
 
 namespace ltm::link {
 namespace {
@@ -77,6 +78,7 @@ class Downlink : public runtime::Component {
         if (!site.empty()) {
             try {
                 site_.emplace(site, version, robot_);
+                if (!site_->start_note().empty()) ctx.log().warn(site_->start_note());
             } catch (const common::IoError& e) {
                 p.fail(version.empty() ? "site_dir" : "site_version", e.what());
             }

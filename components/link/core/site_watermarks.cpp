@@ -12,8 +12,9 @@ namespace ltm::link {
 namespace fs = std::filesystem;
 
 namespace {
-SiteWatermarks::Through record_of(const std::string& map_dir, const std::string& robot) {
-    const map::LinkApplied all = map::read_link_applied(map_dir);
+SiteWatermarks::Through record_of(const std::string& map_dir, const std::string& robot,
+                                  std::string* note) {
+    const map::LinkApplied all = map::read_link_applied(map_dir, note);
     const auto it = all.find(robot);
     return it == all.end() ? SiteWatermarks::Through{} : it->second;
 }
@@ -26,7 +27,7 @@ SiteWatermarks::SiteWatermarks(std::string site_dir, const std::string& version,
     if (!start) return;  // a new site
     start_name_ = start->name;
     seen_ = start->number;
-    start_ = record_of(start->map_dir(), robot_);
+    start_ = record_of(start->map_dir(), robot_, &start_note_);
 }
 
 std::optional<SiteWatermarks::Newer> SiteWatermarks::poll(std::string* note) {
@@ -47,7 +48,7 @@ std::optional<SiteWatermarks::Newer> SiteWatermarks::poll(std::string* note) {
         return std::nullopt;
     }
     try {
-        return Newer{name, record_of(dir + "/map", robot_)};
+        return Newer{name, record_of(dir + "/map", robot_, note)};
     } catch (const common::IoError& e) {
         if (note) *note = name + ": " + e.what() + ": its record is not used";
         return std::nullopt;

@@ -23,6 +23,8 @@ class SiteWatermarks {
 
     const std::string& start_name() const { return start_name_; }  // "" on a new site
     const Through& start() const { return start_; }
+    // "" unless the start version's record was not used (written with another save's manifest).
+    const std::string& start_note() const { return start_note_; }
 
     // A version committed since the newest one seen (checked whole: map and maintained map)
     // and its record; nullopt when there is none. A version that is not whole is passed over
@@ -34,7 +36,7 @@ class SiteWatermarks {
     std::optional<Newer> poll(std::string* note);
 
   private:
-    std::string site_dir_, robot_, start_name_;
+    std::string site_dir_, robot_, start_name_, start_note_;
     std::uint32_t seen_ = 0;  // the newest version number looked at
     Through start_;
 };

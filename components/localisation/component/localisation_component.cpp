@@ -70,6 +70,7 @@
 #include "runtime/convert/pointcloud2.hpp"
 #include "runtime/convert/status.hpp"
 #include "runtime/convert/transform.hpp"
+#include "runtime/link_messages.hpp"
 #include "runtime/stamp_pairer.hpp"
 #include "runtime/worker.hpp"
 

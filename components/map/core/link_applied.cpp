@@ -8,12 +8,14 @@
 
 #include "common/core/file_io.hpp"
 #include "common/core/io_error.hpp"
+#include "map/core/map_manifest.hpp"
 
 namespace ltm::map {
 
-std::string write_link_applied(const LinkApplied& applied) {
-    std::string out;
+std::string write_link_applied(const LinkApplied& applied, std::uint64_t manifest_hash) {
     char line[64];
+    std::snprintf(line, sizeof line, "manifest %016" PRIx64 "\n", manifest_hash);
+    std::string out = line;
     for (const auto& [robot, runs] : applied)
         for (const auto& [run, through] : runs) {
             std::snprintf(line, sizeof line, " %016" PRIx64 " %" PRIu64 "\n", run, through);
@@ -22,8 +24,17 @@ std::string write_link_applied(const LinkApplied& applied) {
     return out;
 }
 
-LinkApplied parse_link_applied(const std::string& text) {
+namespace {
+bool hex16(const std::string& s) {
+    return s.size() == 16 && std::all_of(s.begin(), s.end(), [](char c) {
+               return std::isxdigit(static_cast<unsigned char>(c));
+           });
+}
+}  // namespace
+
+LinkApplied parse_link_applied(const std::string& text, std::uint64_t* manifest_hash) {
     LinkApplied applied;
+    bool have_manifest = false;
     std::istringstream in(text);
     std::string line;
     for (int number = 1; std::getline(in, line); ++number) {
@@ -34,12 +45,18 @@ LinkApplied parse_link_applied(const std::string& text) {
             throw common::FormatError(kLinkAppliedFile,
                                       "line " + std::to_string(number) + ": " + problem);
         };
+        if (!have_manifest) {
+            std::string hash;
+            if (key != "manifest" || !(words >> hash) || (words >> extra) || !hex16(hash))
+                fail("expected 'manifest <16 hex digits>' first");
+            if (manifest_hash) *manifest_hash = std::stoull(hash, nullptr, 16);
+            have_manifest = true;
+            continue;
+        }
         if (key != "link") fail("unknown entry '" + key + "' (expected 'link')");
         if (!(words >> robot >> run >> through) || (words >> extra))
             fail("expected 'link <robot> <run> <through>'");
-        const bool hex = run.size() == 16 && std::all_of(run.begin(), run.end(), [](char c) {
-                             return std::isxdigit(static_cast<unsigned char>(c));
-                         });
+        const bool hex = hex16(run);
         const bool digits = !through.empty() && through.size() <= 20 &&
                             std::all_of(through.begin(), through.end(), [](char c) {
                                 return std::isdigit(static_cast<unsigned char>(c));
@@ -49,18 +66,36 @@ LinkApplied parse_link_applied(const std::string& text) {
         std::uint64_t& t = applied[robot][std::stoull(run, nullptr, 16)];
         t = std::max<std::uint64_t>(t, std::stoull(through));
     }
+    if (!have_manifest)
+        throw common::FormatError(kLinkAppliedFile, "empty: no 'manifest' line (cut short?)");
     return applied;
 }
 
-LinkApplied read_link_applied(const std::string& map_dir) {
+namespace {
+std::uint64_t manifest_hash_of(const std::string& map_dir) {
+    return map_file_hash(common::read_file(map_dir + "/" + kManifestFile, kManifestFile));
+}
+}  // namespace
+
+LinkApplied read_link_applied(const std::string& map_dir, std::string* note) {
     const std::string path = map_dir + "/" + kLinkAppliedFile;
     std::error_code ec;
     if (!std::filesystem::exists(path, ec)) return {};
-    return parse_link_applied(common::read_file(path, kLinkAppliedFile));
+    std::uint64_t hash = 0;
+    LinkApplied applied = parse_link_applied(common::read_file(path, kLinkAppliedFile), &hash);
+    if (hash != manifest_hash_of(map_dir)) {
+        if (note)
+            *note = map_dir + "/" + kLinkAppliedFile +
+                    " was written with another save's manifest: not used (nothing of the link "
+                    "counted as held)";
+        return {};
+    }
+    return applied;
 }
 
 void save_link_applied(const std::string& map_dir, const LinkApplied& applied) {
-    common::write_file_atomic(map_dir + "/" + kLinkAppliedFile, write_link_applied(applied));
+    common::write_file_atomic(map_dir + "/" + kLinkAppliedFile,
+                              write_link_applied(applied, manifest_hash_of(map_dir)));
 }
 
 void merge_link_applied(LinkApplied& into, const LinkApplied& from) {

@@ -6,7 +6,10 @@
 // those packets from its journal: a restarted base station starts from that version and replays
 // only what came after.
 //
-// The file: one line a run, `link <robot> <run, 16 hex digits> <through>`, ascending.
+// The file: `manifest <FNV-1a 64 of the map's manifest.txt, 16 hex digits>`, then one line a run,
+// `link <robot> <run, 16 hex digits> <through>`, ascending. The manifest's hash ties the record
+// to the save it was written with: a record beside another save's manifest (a version snapshot
+// taken while a save replaced the files) is not used.
 //
 // DeliveryTracker is how the mapping learns it: the downlink says, after handing packets on, "run
 // R through seq S took K keyframes, L local maps and C map changes since I started"
@@ -26,12 +29,14 @@ inline constexpr const char* kLinkAppliedFile = "link_applied.txt";
 using LinkApplied = std::map<std::string, std::map<std::uint64_t, std::uint64_t>>;
 
 // The file's text, and back. parse throws common::FormatError naming the line for a malformed one.
-std::string write_link_applied(const LinkApplied& applied);
-LinkApplied parse_link_applied(const std::string& text);
-// Reads map_dir/link_applied.txt: empty when there is none (a map made without a link). Throws
-// common::IoError when it is there and unreadable, common::FormatError when malformed.
-LinkApplied read_link_applied(const std::string& map_dir);
-// Writes it atomically (temporary file, fsync, rename). Throws common::IoError.
+std::string write_link_applied(const LinkApplied& applied, std::uint64_t manifest_hash);
+LinkApplied parse_link_applied(const std::string& text, std::uint64_t* manifest_hash);
+// Reads map_dir/link_applied.txt: empty when there is none (a map made without a link) or when
+// it belongs to another manifest than map_dir's (then *note says so). Throws common::IoError
+// when it is there and unreadable, common::FormatError when malformed.
+LinkApplied read_link_applied(const std::string& map_dir, std::string* note = nullptr);
+// Writes it atomically (temporary file, fsync, rename) for the manifest map_dir holds now (call
+// right after the save). Throws common::IoError.
 void save_link_applied(const std::string& map_dir, const LinkApplied& applied);
 // Every entry of `from` into `into`, keeping the larger through.
 void merge_link_applied(LinkApplied& into, const LinkApplied& from);

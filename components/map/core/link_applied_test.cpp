@@ -17,9 +17,12 @@ TEST(LinkApplied, TheFileRoundTripsAndKeepsTheLargerThrough) {
     a["robot1"][0x0123456789abcdefull] = 41;
     a["robot1"][7] = 3;
     a["robot2"][0xffffffffffffffffull] = 18446744073709551615ull;
-    const std::string text = write_link_applied(a);
-    EXPECT_EQ(text.substr(0, 35), "link robot1 0000000000000007 3\nlink");
-    EXPECT_EQ(parse_link_applied(text), a);
+    const std::string text = write_link_applied(a, 0xabcdef0123456789ull);
+    EXPECT_EQ(text.substr(0, 61),
+              "manifest abcdef0123456789\nlink robot1 0000000000000007 3\nlink");
+    std::uint64_t hash = 0;
+    EXPECT_EQ(parse_link_applied(text, &hash), a);
+    EXPECT_EQ(hash, 0xabcdef0123456789ull);
     LinkApplied b;
     b["robot1"][7] = 9;
     b["robot1"][0x0123456789abcdefull] = 40;
@@ -33,23 +36,32 @@ TEST(LinkApplied, AMalformedLineIsOneLineNamingIt) {
                                   "link robot1 0000000000000001 x\n", "kink r 0000000000000001 1\n",
                                   "link r 0000000000000001 1 2\n"}) {
         try {
-            parse_link_applied("link r 0000000000000001 1\n" + bad);
+            parse_link_applied("manifest 0000000000000001\n" + bad, nullptr);
             ADD_FAILURE() << "accepted: " << bad;
         } catch (const common::FormatError& e) {
             EXPECT_NE(std::string(e.what()).find("line 2"), std::string::npos) << e.what();
         }
     }
+    EXPECT_THROW(parse_link_applied("link r 0000000000000001 1\n", nullptr), common::FormatError)
+        << "the manifest line comes first";
+    EXPECT_THROW(parse_link_applied("", nullptr), common::FormatError) << "cut short";
 }
 
-TEST(LinkApplied, NoFileIsNothingApplied) {
+TEST(LinkApplied, NoFileOrAnotherSavesRecordIsNothingApplied) {
     const std::string dir = ::testing::TempDir() + "/link_applied_test";
     std::filesystem::remove_all(dir);
     std::filesystem::create_directories(dir);
     EXPECT_TRUE(read_link_applied(dir).empty());
+    common::write_file_atomic(dir + "/manifest.txt", std::string("a save's manifest\n"));
     LinkApplied a;
     a["r"][1] = 5;
     save_link_applied(dir, a);
     EXPECT_EQ(read_link_applied(dir), a);
+    // Another save's manifest beside it (a snapshot taken while a save replaced the files).
+    common::write_file_atomic(dir + "/manifest.txt", std::string("the next save's manifest\n"));
+    std::string note;
+    EXPECT_TRUE(read_link_applied(dir, &note).empty());
+    EXPECT_NE(note.find("another save's manifest"), std::string::npos) << note;
     std::filesystem::remove_all(dir);
 }
 

@@ -41,6 +41,7 @@
 #include "runtime/convert/path.hpp"
 #include "runtime/convert/status.hpp"
 #include "runtime/convert/transform.hpp"
+#include "runtime/link_messages.hpp"
 
 namespace ltm::mapping {
 namespace {
@@ -272,7 +273,9 @@ class MappingComponent : public runtime::Component {
             for (const std::string& r : loaded.refused)
                 ctx_.log().warn("loaded map: " + r + " (left out)");
             mapper_ = std::make_unique<Mapper>(config, loaded.map, freeze_loaded);
-            delivery_.seed(map::read_link_applied(load_dir));
+            std::string note;
+            delivery_.seed(map::read_link_applied(load_dir, &note));
+            if (!note.empty()) ctx_.log().warn(note);
             ctx_.log().info("continuing the map of " + load_dir + " (" +
                             std::to_string(mapper_->local_map_count()) + " local maps, " +
                             std::to_string(mapper_->keyframes().size()) +
