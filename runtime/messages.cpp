@@ -1,5 +1,7 @@
 #include "runtime/messages.hpp"
 
+#include "runtime/link_messages.hpp"
+
 namespace ltm::runtime {
 namespace {
 
@@ -37,6 +39,8 @@ const std::vector<MessageTypeInfo>& known_message_types() {
         info<msg::MapRequest>(),
         info<msg::LinkPacket>(),
         info<msg::LinkAck>(),
+        info<msg::LinkDelivered>(),
+        info<msg::MapVersion>(),
         info<msg::SiteOffer>(),
         info<msg::SiteRequest>(),
         info<msg::SiteChunk>(),

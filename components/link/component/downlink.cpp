@@ -4,6 +4,12 @@
 // `/<robot>/<topic>` (`keyframe`, `local_map`) for the mapping. A restarted base station replays
 // its journal first (the mapping starts again from the map it loaded, so nothing is applied
 // twice) and tells the robot what it holds: the robot sends the rest.
+// After handing packets on it tells the mapping in its process how far (`link/delivered`: run,
+// seq, messages a topic so far), and the mapping records in every save what it holds
+// (map/core/link_applied.hpp). With `site_dir` (the mapping's site) the journal keeps only what
+// no committed version holds: at the start, what the start version holds is skipped (the mapping
+// starts from it) and forgotten; a version committed while it runs (`./ltm map commit`) lets it
+// forget what that version holds.
 #include <dds/dds.h>
 
 #include <algorithm>
@@ -20,9 +26,11 @@
 #include "link/core/link_journal.hpp"
 #include "link/core/payload_codec.hpp"
 #include "link/core/receive_window.hpp"
+#include "link/core/site_watermarks.hpp"
 #include "link/core/write_fault.hpp"
 #include "runtime/component.hpp"
 #include "runtime/convert/dds_string.hpp"
+#include "runtime/link_messages.hpp"
 
 namespace ltm::link {
 namespace {
@@ -61,14 +69,31 @@ class Downlink : public runtime::Component {
         journal_config_.max_bytes = static_cast<std::uint64_t>(max_journal_mb * (1 << 20));
         dir_ += "/" + robot_;
         base_run_ = new_run_id();
+        // The site the mapping continues: what its start version holds is not replayed.
+        const std::string site = p.path("site_dir", "", PathCheck::kNone);
+        const std::string version = p.get<std::string>("site_version", "");
+        const double site_poll = p.get<double>("site_poll_s", 2.0);
+        if (!(site_poll > 0)) p.fail("site_poll_s", "must be > 0");
+        if (!version.empty() && site.empty()) p.fail("site_version", "needs site_dir");
+        if (!site.empty()) {
+            try {
+                site_.emplace(site, version, robot_);
+                if (!site_->start_note().empty()) ctx.log().warn(site_->start_note());
+            } catch (const common::IoError& e) {
+                p.fail(version.empty() ? "site_dir" : "site_version", e.what());
+            }
+        }
         try {
             load_runs();
         } catch (const common::IoError& e) {
             p.fail("journal_dir", e.what());
         }
+        if (site_) ctx.add_timer(site_poll, [this] { watch_site(); });
         // The outputs take the host's `topics:` role (base_station.yaml: stream, lossless with
         // back-pressure), else the role their readers declare (local_map: map, others: state).
         for (const std::string topic : {"keyframe", "local_map"}) output(topic);
+        delivered_out_ =
+            ctx.advertise<msg::LinkDelivered>(out_ns_ + "/link/delivered", TopicRole::kState);
         ctx.subscribe<msg::LinkPacket>("link/packets", TopicRole::kState,
                                        [this](const msg::LinkPacket& m) { on_packet(m); });
         ack_out_ = ctx.advertise<msg::LinkAck>("link/ack", TopicRole::kState);
@@ -89,7 +114,64 @@ class Downlink : public runtime::Component {
         bool dirty = true;              // an acknowledgement is due
         std::uint64_t delivered = 0;    // every seq <= delivered was handed on (or skipped)
         std::uint64_t replay_last = 0;  // the journal's last seq when this base station started
+        bool write_failed = false;      // a message not handed on: no more marks for this run
     };
+
+    // A run's start when the site's start version holds its packets through `held`: those are
+    // neither replayed nor resent (the window starts after them) and leave the journal.
+    void start_after(std::uint64_t id, Run& r) {
+        if (!site_) return;
+        const auto it = site_->start().find(id);
+        if (it == site_->start().end()) return;
+        const std::uint64_t held = it->second;
+        const std::uint64_t bytes = r.journal->bytes();
+        r.journal->release_through(held);
+        r.delivered = std::max(r.delivered, held);
+        r.window = std::make_unique<ReceiveWindow>(r.journal->last_seq(), max_held_);
+        ctx_.log().info("run " + run_hex(id) + ": packets through " + std::to_string(held) +
+                        " are in site version " + site_->start_name() +
+                        " (the mapping starts from it): not replayed, " +
+                        std::to_string((bytes - r.journal->bytes()) >> 10) +
+                        " KiB of journal released");
+    }
+
+    // A version committed while running: what it holds leaves the journal (a restart starts from
+    // it). Only what was handed on, of course, which is all a version can hold.
+    void watch_site() {
+        std::string note;
+        const auto newer = site_->poll(&note);
+        if (!note.empty()) ctx_.log().warn(note);
+        if (!newer) return;
+        std::uint64_t freed = 0;
+        std::size_t runs = 0;
+        for (const auto& [id, through] : newer->through) {
+            auto it = runs_.find(id);
+            if (it == runs_.end()) continue;
+            Run& r = it->second;
+            const std::uint64_t upto = std::min(through, r.delivered);
+            if (upto <= r.journal->released_through()) continue;
+            const std::uint64_t bytes = r.journal->bytes();
+            try {
+                r.journal->release_through(upto);
+            } catch (const std::exception& e) {
+                ctx_.log().error(std::string("journal not released: ") + e.what());
+                continue;
+            }
+            freed += bytes - r.journal->bytes();
+            ++runs;
+        }
+        if (runs > 0)
+            ctx_.log().info("site version " + newer->name + " holds " + std::to_string(runs) +
+                            " run(s) of " + robot_ + " up to their packets " +
+                            describe(newer->through) + ": " + std::to_string(freed >> 10) +
+                            " KiB of journal released");
+    }
+    static std::string describe(const SiteWatermarks::Through& t) {
+        std::string out;
+        for (const auto& [id, through] : t)
+            out += (out.empty() ? "" : ", ") + run_hex(id) + ":" + std::to_string(through);
+        return out;
+    }
 
     // Runs journaled by an earlier start of this base station.
     void load_runs() {
@@ -104,6 +186,7 @@ class Downlink : public runtime::Component {
             r.replay_last = r.journal->last_seq();
             const auto first = r.journal->read_from(0);
             found.emplace_back(first ? first->stamp_ns : 0, name);
+            start_after(run, r);
             runs_[run] = std::move(r);
         }
         std::sort(found.begin(), found.end());
@@ -120,6 +203,7 @@ class Downlink : public runtime::Component {
         }
         for (const std::uint64_t id : order_) {
             Run& r = runs_.at(id);
+            const std::uint64_t before = r.delivered;
             while (r.delivered < r.journal->last_seq() && !ctx_.stop_requested()) {
                 std::optional<JournalRecord> rec;
                 try {
@@ -131,7 +215,7 @@ class Downlink : public runtime::Component {
                 }
                 if (!rec) break;
                 r.delivered = rec->seq;
-                deliver(*rec);
+                if (!deliver(*rec)) r.write_failed = true;
                 if (rec->seq <= r.replay_last) {
                     ++replayed_;
                     if (rec->seq == r.replay_last)
@@ -140,7 +224,20 @@ class Downlink : public runtime::Component {
                                         " from " + r.journal->dir());
                 }
             }
+            if (r.delivered != before && !r.write_failed) mark(id, r);
         }
+    }
+
+    // Tells the mapping how far this run was handed on, and in how many messages a topic.
+    void mark(std::uint64_t id, const Run& r) {
+        msg::LinkDelivered m{};
+        m.robot = const_cast<char*>(robot_.c_str());
+        m.run = id;
+        m.through = r.delivered;
+        m.keyframes = by_topic_["keyframe"];
+        m.local_maps = by_topic_["local_map"];
+        m.map_changes = by_topic_["map_changes"];
+        delivered_out_.publish(m);
     }
 
     runtime::RawWriterHandle* output(const std::string& topic) {
@@ -163,7 +260,9 @@ class Downlink : public runtime::Component {
         return (writers_[topic] = std::move(w)).get();
     }
 
-    void deliver(const JournalRecord& r) {
+    // False only when a message was not written to the mapping (it would then be missing from a
+    // map whose record says it holds it); a packet no one can read is not held back for.
+    bool deliver(const JournalRecord& r) {
         runtime::RawWriterHandle* w = nullptr;
         auto it = writers_.find(r.topic);
         if (it != writers_.end()) {
@@ -175,7 +274,7 @@ class Downlink : public runtime::Component {
             ++undeliverable_;
             ctx_.log().warn("packet " + std::to_string(r.seq) + " on '" + r.topic +
                             "' is of an unknown type '" + r.type + "': kept, not delivered");
-            return;
+            return true;
         }
         std::vector<std::uint8_t> cdr;
         try {
@@ -184,9 +283,16 @@ class Downlink : public runtime::Component {
             ++undeliverable_;
             ctx_.log().error("packet " + std::to_string(r.seq) + " on '" + r.topic +
                              "' does not decode: " + e.what());
-            return;
+            return true;
         }
-        if (runtime::write_raw(*w, cdr.data(), cdr.size())) ++delivered_;
+        if (!runtime::write_raw(*w, cdr.data(), cdr.size())) {
+            ctx_.log().error("packet " + std::to_string(r.seq) + " on '" + r.topic +
+                             "' not handed on: its run's packets stay in the journal from here");
+            return false;
+        }
+        ++delivered_;
+        ++by_topic_[r.topic];
+        return true;
     }
 
     void on_packet(const msg::LinkPacket& m) {
@@ -206,6 +312,7 @@ class Downlink : public runtime::Component {
                 return;
             }
             r.window = std::make_unique<ReceiveWindow>(r.journal->last_seq(), max_held_);
+            start_after(m.run, r);
             it = runs_.emplace(m.run, std::move(r)).first;
             order_.push_back(m.run);
             ctx_.log().info("run " + run_hex(m.run) + " of " + robot_ + " connected");
@@ -315,6 +422,9 @@ class Downlink : public runtime::Component {
     JournalConfig journal_config_;
     std::set<std::uint64_t> capped_;  // runs whose journal reached max_journal_mb (said once)
     runtime::Publisher<msg::LinkAck> ack_out_;
+    runtime::Publisher<msg::LinkDelivered> delivered_out_;
+    std::map<std::string, std::uint64_t> by_topic_;  // messages handed on, by topic
+    std::optional<SiteWatermarks> site_;
 };
 
 }  // namespace

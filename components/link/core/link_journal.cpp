@@ -273,6 +273,7 @@ std::optional<JournalRecord> LinkJournal::read_from(std::uint64_t seq) const {
 void LinkJournal::release_through(std::uint64_t seq) {
     if (seq <= released_) return;
     released_ = seq;
+    last_seq_ = std::max(last_seq_, released_);  // as a reopen reads it back: appends go above
     while (!index_.empty() && index_.front().seq <= seq) {
         --segments_[index_.front().segment - segment_base_].records;
         bytes_ -= index_.front().length;

@@ -59,7 +59,8 @@ class LinkJournal {
     // cannot be read back.
     std::optional<JournalRecord> read_from(std::uint64_t seq) const;
     // Forgets every record with seq <= `seq`; a segment file goes once all its records are
-    // forgotten. What is forgotten stays forgotten across a reopen (`released` file).
+    // forgotten. What is forgotten stays forgotten across a reopen (`released` file), and
+    // last_seq() is at least `seq` from then on (appends go above it).
     void release_through(std::uint64_t seq);
     std::uint64_t released_through() const { return released_; }
 

@@ -41,7 +41,10 @@
 // odometry pose under the base station's map_to_odom (`slam_map_to_odom`) is the pose, state
 // OFF_MAP, never localised; while no map_to_odom came, or once the base station offers a version
 // (`site/offer`: it has a map, whose frame this session has not been placed in yet), only the
-// status goes out ("no map yet ...").
+// status goes out ("no map yet ..."). The base station's map_to_odom is used only while its
+// mapping says it belongs to no version (`slam_map_version`, "": a new site there too): a mapping
+// that continues a version the robot does not have yet publishes that version's frame, and its
+// map_to_odom can reach the robot before the version's offer does.
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -67,6 +70,7 @@
 #include "runtime/convert/pointcloud2.hpp"
 #include "runtime/convert/status.hpp"
 #include "runtime/convert/transform.hpp"
+#include "runtime/link_messages.hpp"
 #include "runtime/stamp_pairer.hpp"
 #include "runtime/worker.hpp"
 
@@ -197,11 +201,16 @@ class LocalisationComponent : public runtime::Component {
                 "slam_map_to_odom", TopicRole::kState, [this](const msg::TransformStamped& m) {
                     if (!new_site_) return;
                     slam_map_odom_ = convert::to_isometry(m.transform);
-                    correction_out_.publish(m);
+                    if (base_frame_is_ours()) correction_out_.publish(m);
                 });
-            if (odometry_on_new_site_)
+            if (odometry_on_new_site_) {
                 ctx.subscribe<msg::SiteOffer>("site/offer", TopicRole::kMap,
                                               [this](const msg::SiteOffer&) { offered_ = true; });
+                ctx.subscribe<msg::MapVersion>("slam_map_version", TopicRole::kMap,
+                                               [this](const msg::MapVersion& m) {
+                                                   base_version_ = convert::to_string(m.version);
+                                               });
+            }
         }
         if (site_poll_s_ > 0) {
             loader_.emplace(
@@ -392,6 +401,14 @@ class LocalisationComponent : public runtime::Component {
             u.message =
                 "no map yet: the base station's version is on its way (no pose until it "
                 "is here)";
+        } else if (!base_version_) {
+            u.message =
+                "no map yet: odometry only (the base station has not said which site version "
+                "its map_to_odom belongs to)";
+        } else if (!base_frame_is_ours()) {
+            u.message = "no map yet: the base station's map_to_odom belongs to site version " +
+                        *base_version_ +
+                        ", which this robot does not have yet (no pose until it is here)";
         } else if (!T_map_odom) {
             u.message = "no map yet: odometry only (no map_to_odom from the base station yet)";
         } else {
@@ -405,6 +422,7 @@ class LocalisationComponent : public runtime::Component {
         }
         if (no_map_scans_++ % kNoMapRepeat == 0)
             publish_event(StatusLevel::kWarn, StatusCode::kNoMap, u.message, u.stamp);
+        if (u.message != new_site_said_) ctx_.log().info(new_site_said_ = u.message);
         status_out_.publish(*status_msg(u, counters(), frame_id_));
         if (!u.pose_valid) return;
         ++valid_;
@@ -718,6 +736,15 @@ class LocalisationComponent : public runtime::Component {
     std::atomic<bool> new_site_{false};  // and it has no version yet (until one arrives)
     bool odometry_on_new_site_ = false;  // new_site_pose: odometry
     std::atomic<bool> offered_{false};   // the base station offers a version (site/offer)
+    // The site version the base station's map_to_odom belongs to (its mapping's map_version;
+    // "": a new site there too), component thread; unknown until it says.
+    std::optional<std::string> base_version_;
+    std::string new_site_said_;  // the last reason logged (once each time it changes)
+    // The base station's map frame is this session's: a new site on both sides (a robot with a
+    // version does not use the base station's map_to_odom at all).
+    bool base_frame_is_ours() const {
+        return !odometry_on_new_site_ || (base_version_ && base_version_->empty());
+    }
     std::optional<Eigen::Isometry3d> slam_map_odom_;  // the base station's (component thread)
     std::string site_dir_;
     std::uint32_t in_use_ = 0;  // the version localised on (0: none)

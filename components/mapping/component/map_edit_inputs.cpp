@@ -36,9 +36,12 @@ MapEditInputs::MapEditInputs(runtime::ComponentContext& ctx, Mapper& mapper, std
             });
     }
     if (options_.apply_changes)
-        for (const std::string& topic : options_.change_topics)
-            ctx.subscribe<msg::MapChangeSet>(topic, TopicRole::kMap,
-                                             [this](const msg::MapChangeSet& m) { on_changes(m); });
+        for (std::size_t i = 0; i < options_.change_topics.size(); ++i)
+            ctx.subscribe<msg::MapChangeSet>(options_.change_topics[i], TopicRole::kMap,
+                                             [this, i](const msg::MapChangeSet& m) {
+                                                 on_changes(m);
+                                                 if (taken_) taken_(i);
+                                             });
 }
 
 void MapEditInputs::keyframe(const common::KeyframeData& keyframe, std::uint32_t index) {

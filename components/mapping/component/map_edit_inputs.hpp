@@ -40,6 +40,9 @@ class MapEditInputs {
     void keyframe(const common::KeyframeData& keyframe, std::uint32_t index);
     // One line for the log at the end ("" when there is nothing to say).
     std::string summary() const;
+    // Told, after each MapChangeSet taken, which of change_topics it came on (its index): the
+    // link's packets the mapping holds (map/core/link_applied.hpp).
+    void on_taken(std::function<void(std::size_t)> taken) { taken_ = std::move(taken); }
 
   private:
     void apply(const std::optional<PairedFix>& fix);
@@ -51,6 +54,7 @@ class MapEditInputs {
     Options options_;
     std::function<void(const std::string&)> placed_;
     std::function<void()> optimise_;
+    std::function<void(std::size_t)> taken_;
     MapFixPairer pairer_;
     std::size_t refused_ = 0;
     bool warned_frame_ = false;

@@ -26,6 +26,7 @@
 
 #include "common/core/io_error.hpp"
 #include "common/core/ply_io.hpp"
+#include "map/core/link_applied.hpp"
 #include "map/core/map_store.hpp"
 #include "map/core/site_store.hpp"
 #include "mapping/component/map_edit_inputs.hpp"
@@ -41,6 +42,7 @@
 #include "runtime/convert/path.hpp"
 #include "runtime/convert/status.hpp"
 #include "runtime/convert/transform.hpp"
+#include "runtime/link_messages.hpp"
 
 namespace ltm::mapping {
 namespace {
@@ -74,6 +76,9 @@ class MappingComponent : public runtime::Component {
         edits.apply_changes = p.get<bool>("apply_map_changes", true);
         edits.frame_id = frame_id_;
         const MapperConfig config = load_mapper_config(p, "", "hdl64");
+        // The robots' link packets this map holds (map/core/link_applied.hpp): the loaded map's,
+        // then what the downlinks hand on and this component takes; written beside every save.
+        delivery_ = map::DeliveryTracker(edits.apply_changes);
         create_mapper(p, config, load_dir, freeze_loaded);
         check_robots(p, robots);
         if (!map_dir_.empty()) {
@@ -97,11 +102,26 @@ class MappingComponent : public runtime::Component {
                                          [this, r](const msg::Keyframe& m) { on_keyframe(*r, m); });
             ctx.subscribe<msg::Odometry>(topic(*r, "odometry"), TopicRole::kState,
                                          [this, r](const msg::Odometry& m) { on_odometry(*r, m); });
+            ctx.subscribe<msg::LinkDelivered>(
+                topic(*r, "link/delivered"), TopicRole::kState,
+                [this, r](const msg::LinkDelivered& m) {
+                    delivery_.mark(r->name, convert::to_string(m.robot), m.run, m.through,
+                                   {m.keyframes, m.local_maps, m.map_changes});
+                });
             r->path_out = ctx.advertise<msg::Path>(topic(*r, "path"), TopicRole::kMap);
             r->odometry_out =
                 ctx.advertise<msg::Odometry>(topic(*r, "corrected_odometry"), TopicRole::kState);
             r->correction_out =
                 ctx.advertise<msg::TransformStamped>(topic(*r, "map_to_odom"), TopicRole::kState);
+            // The version this map frame belongs to, beside map_to_odom (held for late joiners):
+            // a split robot uses this map_to_odom only on that version (none: a new site).
+            auto version_out =
+                ctx.advertise<msg::MapVersion>(topic(*r, "map_version"), TopicRole::kMap);
+            msg::MapVersion v{};
+            v.site = const_cast<char*>(site_dir_.c_str());
+            v.version = const_cast<char*>(start_version_.c_str());
+            version_out.publish(v);
+            r->version_out = std::move(version_out);
             robots_.push_back(std::move(robot));
         }
         // Each robot's maintenance findings (its uplink's map_changes), or the relative topic.
@@ -116,6 +136,9 @@ class MappingComponent : public runtime::Component {
                 status(StatusLevel::kOk, StatusCode::kSessionJoined, what);
             },
             [this] { optimise(); });
+        edits_->on_taken([this](std::size_t i) {
+            if (i < robots_.size()) delivery_.took_map_changes(robots_[i]->name);
+        });
         ctx.subscribe<msg::MapRequest>("map_request", TopicRole::kState,
                                        [this](const msg::MapRequest& m) { on_request(m); });
         graph_out_ = ctx.advertise<msg::PoseGraph>("pose_graph", TopicRole::kMap);
@@ -173,9 +196,11 @@ class MappingComponent : public runtime::Component {
         }
         for (const std::string& note : session.notes) ctx_.log().warn(note);
         map_dir_ = session.staging_map_dir;  // created by the first save
+        site_dir_ = site;
         if (session.start) {
             *load_dir = session.start->map_dir();
             link_from_ = *load_dir;
+            start_version_ = session.start->name;
         }
         ctx_.log().info("site " + site + ": continuing " + session.describe() +
                         "; the session's map goes to " + map_dir_);
@@ -195,6 +220,7 @@ class MappingComponent : public runtime::Component {
         runtime::Publisher<msg::Path> path_out;
         runtime::Publisher<msg::Odometry> odometry_out;
         runtime::Publisher<msg::TransformStamped> correction_out;
+        runtime::Publisher<msg::MapVersion> version_out;
     };
 
     // "keyframe", or "/robot1/keyframe" for robot robot1.
@@ -222,6 +248,7 @@ class MappingComponent : public runtime::Component {
     static std::string prefix(const Robot& r) { return r.name.empty() ? "" : r.name + ": "; }
 
     void on_local_map(Robot& r, const msg::LocalMap& m) {
+        delivery_.took_local_map(r.name);  // a save runs on this thread: after this handler
         const LocalMapResult result = mapper_->add_local_map(convert::from_msg(m), r.session);
         if (!result.added && !result.message.empty()) ctx_.log().debug(prefix(r) + result.message);
         report_segments();
@@ -247,6 +274,9 @@ class MappingComponent : public runtime::Component {
             for (const std::string& r : loaded.refused)
                 ctx_.log().warn("loaded map: " + r + " (left out)");
             mapper_ = std::make_unique<Mapper>(config, loaded.map, freeze_loaded);
+            std::string note;
+            delivery_.seed(map::read_link_applied(load_dir, &note));
+            if (!note.empty()) ctx_.log().warn(note);
             ctx_.log().info("continuing the map of " + load_dir + " (" +
                             std::to_string(mapper_->local_map_count()) + " local maps, " +
                             std::to_string(mapper_->keyframes().size()) +
@@ -281,6 +311,9 @@ class MappingComponent : public runtime::Component {
             } else {
                 st = map::save_map(dir, mapper_->snapshot());
             }
+            // After the manifest: a version committed from this save holds both (the site
+            // component commits only once a save is done), so its record is never ahead of it.
+            if (!delivery_.applied().empty()) map::save_link_applied(dir, delivery_.applied());
             return report(true,
                           "map saved to " + dir + " (" + std::to_string(st.files_written) +
                               " files written, " + std::to_string(st.bytes_total >> 20) +
@@ -343,6 +376,7 @@ class MappingComponent : public runtime::Component {
     }
 
     void on_keyframe(Robot& robot, const msg::Keyframe& m) {
+        delivery_.took_keyframe(robot.name);  // a save runs on this thread: after this handler
         KeyframeDescriptors given;
         given.loop = descriptor(robot, m.descriptor, mapper_->config().scan_context, "scan_context",
                                 &robot.told_loop);
@@ -522,6 +556,8 @@ class MappingComponent : public runtime::Component {
     std::vector<std::unique_ptr<Robot>> robots_;  // callbacks hold their robot's address
     std::unique_ptr<map::MapWriter> writer_;
     std::uint64_t saved_state_ = 0;
+    std::string site_dir_, start_version_;  // site_dir; the version continued ("": none)
+    map::DeliveryTracker delivery_;
     std::unique_ptr<MapEditInputs> edits_;            // holds the mapper: declared after it
     static constexpr std::size_t kMaxWaiting = 1000;  // 100 s at 10 Hz
     runtime::Publisher<msg::PoseGraph> graph_out_;
