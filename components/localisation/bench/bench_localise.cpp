@@ -45,6 +45,7 @@ struct Args {
     std::string map, dir, reference, reference_transform, preset = "hdl64", mode = "global", out;
     std::string config, trajectory;
     std::size_t every = 1, max_frames = 0, first = 0;
+    std::vector<std::size_t> only;  // global mode: localise these frames alone (same perturbations)
     double perturb_yaw = 0.0, perturb_shift = 0.0;
     unsigned seed = 1;
     double max_translation = 0.5, max_rotation = 2.0;
@@ -268,15 +269,20 @@ int run(const Args& a) {
     common::Progress progress(a.mode, frames.size(), "scans");
     for (std::size_t n = 0; n < frames.size(); ++n) {
         const std::size_t i = frames[n];
-        common::PointCloud cloud = folder.load(i);
         Eigen::Isometry3d T_pert = Eigen::Isometry3d::Identity();
-        if (a.perturb_yaw > 0 || a.perturb_shift > 0) {
+        const bool perturbed = a.perturb_yaw > 0 || a.perturb_shift > 0;
+        if (perturbed) {
             T_pert.linear() =
                 Eigen::AngleAxisd(uni(rng) * a.perturb_yaw * kDegToRad, Eigen::Vector3d::UnitZ())
                     .toRotationMatrix();
             const double r = a.perturb_shift * std::sqrt(0.5 * (uni(rng) + 1.0));
             const double th = uni(rng) * M_PI;
             T_pert.translation() = Eigen::Vector3d(r * std::cos(th), r * std::sin(th), 0.0);
+        }
+        // --only: the other frames' perturbations are drawn (the listed ones get theirs), no more.
+        if (!a.only.empty() && std::find(a.only.begin(), a.only.end(), i) == a.only.end()) continue;
+        common::PointCloud cloud = folder.load(i);
+        if (perturbed) {
             const Eigen::Matrix3f R = T_pert.linear().cast<float>();
             const Eigen::Vector3f t = T_pert.translation().cast<float>();
             for (Eigen::Vector3f& p : cloud.points) p = R * p + t;
@@ -304,8 +310,11 @@ int run(const Args& a) {
             if (std::getenv("LTM_BENCH_VERBOSE")) std::printf("  %zu: %s\n", i, g.reason.c_str());
             if (a.verify_reference && have_ref) {
                 const localisation::GlobalLocalisation v = global.verify(scan.map_points, truth);
-                std::printf("  %zu at the reference: %s (inliers %zu of %zu)\n", i,
-                            v.reason.c_str(), v.inliers, v.points);
+                std::printf(
+                    "  %zu at the reference (%.2f %.2f, yaw %.1f): %s (inliers %zu of %zu)\n", i,
+                    truth.translation().x(), truth.translation().y(),
+                    std::atan2(truth.linear()(1, 0), truth.linear()(0, 0)) / kDegToRad,
+                    v.reason.c_str(), v.inliers, v.points);
             }
         } else {
             const auto t0 = Clock::now();
@@ -473,6 +482,9 @@ int main(int argc, char** argv) {
     app.add_option("--perturb-shift", a.perturb_shift,
                    "shift each scan by a random horizontal offset up to this [m]");
     app.add_option("--seed", a.seed, "random seed of the perturbations");
+    app.add_option("--only", a.only,
+                   "global mode: localise only these frames (of the --first/--every ones, with "
+                   "the perturbations a whole run gives them)");
     app.add_option("--max-translation", a.max_translation, "a right answer: within [m]");
     app.add_option("--max-rotation", a.max_rotation, "a right answer: within [deg]");
     app.add_option("--near", a.near,

@@ -270,7 +270,12 @@ GlobalLocalisation GlobalLocaliser::localise(const std::vector<Eigen::Vector3f>&
     }
     const std::vector<std::size_t> order = probe(finite, &guesses);
     out.steps.probes = lap(&t);
-    const std::vector<Verified> accepted = verify_guesses(finite, guesses, order, &out);
+    std::vector<Verified> accepted = verify_guesses(finite, guesses, order, &out);
+    if (config_.search.radius > 0.0 &&
+        (accepted.empty() ||
+         accepted.front().v.inlier_fraction < config_.search.below_inlier_fraction)) {
+        search_around(finite, guesses, order, &accepted, &out);
+    }
     out.steps.verification = lap(&t);
     if (accepted.empty()) return finished(out, start);
     const registration::LoopVerification& best = accepted.front().v;
@@ -421,6 +426,41 @@ std::vector<GlobalLocaliser::Verified> GlobalLocaliser::verify_guesses(
     return accepted;
 }
 
+void GlobalLocaliser::search_around(const std::vector<Eigen::Vector3f>& finite,
+                                    const Guesses& guesses, const std::vector<std::size_t>& order,
+                                    std::vector<Verified>* accepted, GlobalLocalisation* out) {
+    const bool none_before = accepted->empty();
+    for (std::size_t g : order) {
+        const TranslationSearchResult r =
+            search_translation(finite, map_->target().fine, fine_.imls_params(),
+                               guesses[g].T_map_lidar, config_.search);
+        ++out->searched;
+        // At the guess itself (or next to it) the verification has started already.
+        if (r.offset < 0.5 * config_.search.step || r.share <= r.share_at_start) continue;
+        bool known = false;
+        for (const Verified& a : *accepted) {
+            const auto [dt, dr] = pose_distance(a.v.T_anchor_lidar, r.T_map_lidar);
+            if (dt < 0.5 * config_.distinct_translation && dr < config_.distinct_rotation)
+                known = true;
+        }
+        if (known) continue;
+        registration::LoopVerification v =
+            verifier_.verify(finite, map_->target(), registration::GuessList{r.T_map_lidar});
+        ++out->verified;
+        if (!v.accepted) continue;
+        bool same = false;  // the search led back to an answer already there
+        for (const Verified& a : *accepted) {
+            const auto [dt, dr] = pose_distance(a.v.T_anchor_lidar, v.T_anchor_lidar);
+            if (dt < 0.5 * config_.distinct_translation && dr < config_.distinct_rotation)
+                same = true;
+        }
+        if (!same) accepted->push_back({std::move(v), int(g)});
+    }
+    std::sort(accepted->begin(), accepted->end(),
+              [](const Verified& a, const Verified& b) { return a.v.inliers > b.v.inliers; });
+    if (none_before && !accepted->empty()) out->reason.clear();
+}
+
 double GlobalLocaliser::rival_ratio(const std::vector<Verified>& accepted) const {
     const registration::LoopVerification& best = accepted.front().v;
     double ratio = 0.0;
@@ -486,8 +526,10 @@ std::string GlobalLocaliser::describe(const Guess& from, const std::vector<Place
     }
     how.precision(3);
     how << "; inliers " << best.inliers << " of " << best.points << ", structure "
-        << structure_ratio(best) << ", rival " << out.second_inliers_ratio << ", weakest share "
-        << out.weakest_share;
+        << structure_ratio(best) << ", unmatched "
+        << (best.points ? double(best.unmatched) / double(best.points) : 0.0) << ", rival "
+        << out.second_inliers_ratio << ", weakest share " << out.weakest_share;
+    if (out.searched) how << ", searched around " << out.searched;
     if (out.slide_tested) how << ", slide rival " << out.slide_inliers_ratio;
     how << ", verified " << out.verified;
     return how.str();

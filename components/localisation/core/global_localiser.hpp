@@ -20,6 +20,7 @@
 
 #include "common/core/config_check.hpp"
 #include "localisation/core/localisation_map.hpp"
+#include "localisation/core/translation_search.hpp"
 #include "places/core/local_feature_matching.hpp"
 #include "places/core/local_features.hpp"
 #include "registration/core/loop_verifier.hpp"
@@ -58,6 +59,10 @@ struct GlobalLocaliserConfig {
     double fine_only_probe_share = 0.6;
     double fine_only_min_inlier_fraction = 0.7;
     registration::LoopVerifierConfig verification = verification_defaults();
+    // When no guess verified, or the best fit leaves many points off: around each verified
+    // guess, the horizontal offset where most points lie on a surface, verified again
+    // (translation_search.hpp). A better fit found so is the answer; the poorer one its rival.
+    TranslationSearchConfig search;
     // A second verified pose more than this far from the best, with at least ambiguity_ratio of
     // its inliers: the site repeats itself, no answer [m], [deg].
     double distinct_translation = 1.0;
@@ -120,6 +125,7 @@ void visit_fields(GlobalLocaliserConfig& c, const std::string& prefix, Visitor&&
     v(prefix + "fine_only", c.fine_only, unchecked);
     v(prefix + "fine_only_probe_share", c.fine_only_probe_share, unit);
     v(prefix + "fine_only_min_inlier_fraction", c.fine_only_min_inlier_fraction, unit);
+    visit_fields(c.search, prefix + "search.", v);
     v(prefix + "distinct_translation", c.distinct_translation, positive);
     v(prefix + "distinct_rotation", c.distinct_rotation, positive);
     v(prefix + "ambiguity_ratio", c.ambiguity_ratio, unit);
@@ -154,6 +160,7 @@ struct GlobalLocalisation {
     bool from_features = false;                 // the initial pose came from local features
     double second_inliers_ratio = 0.0;          // the best distinct rival's inliers / the answer's
     double weakest_share = 0.0;        // the answer's weakest horizontal share (slide_below_share)
+    int searched = 0;                  // guesses the translation search ran around
     bool slide_tested = false;         // the slide test ran
     double slide_inliers_ratio = 0.0;  // its best distinct pose's inliers / the answer's
     double time_s = 0.0;               // wall time of the query
@@ -217,6 +224,11 @@ class GlobalLocaliser {
                                          const Guesses& guesses,
                                          const std::vector<std::size_t>& order,
                                          GlobalLocalisation* out);
+    // The translation search around the verified guesses (config_.search), adding what verifies
+    // to *accepted (kept most inliers first).
+    void search_around(const std::vector<Eigen::Vector3f>& finite, const Guesses& guesses,
+                       const std::vector<std::size_t>& order, std::vector<Verified>* accepted,
+                       GlobalLocalisation* out);
     // The best distinct rival's inliers over the best's (0: none).
     double rival_ratio(const std::vector<Verified>& accepted) const;
     void take_answer(const registration::LoopVerification& best, const Guess& from,

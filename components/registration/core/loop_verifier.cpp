@@ -88,6 +88,7 @@ LoopVerification LoopVerifier::attempt(const std::vector<Eigen::Vector3f>& point
     for (const Eigen::Vector3f& p : points) {
         if (!registration::imls_distance(t.fine, R * p + tr, imls, &r)) {
             sectors.add(p, false);
+            ++v.unmatched;
             continue;
         }
         const bool inlier = std::abs(r.distance) <= config_.inlier_distance;
@@ -131,6 +132,9 @@ LoopVerification LoopVerifier::attempt(const std::vector<Eigen::Vector3f>& point
                config_.min_structure_inlier_ratio * double(v.structure_points)) {
         why << "structure inlier ratio " << double(v.structure_inliers) / double(v.structure_points)
             << " below " << config_.min_structure_inlier_ratio;
+    } else if (double(v.unmatched) > config_.max_unmatched_fraction * double(v.points)) {
+        why << "unmatched fraction " << double(v.unmatched) / double(v.points) << " above "
+            << config_.max_unmatched_fraction << " (points with no map surface within reach)";
     } else if (v.inliers < std::size_t(config_.min_inliers)) {
         why << v.inliers << " inliers, fewer than " << config_.min_inliers;
     } else if (v.inlier_fraction < config_.min_inlier_fraction) {

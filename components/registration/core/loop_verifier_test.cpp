@@ -166,5 +166,44 @@ TEST(LoopVerifier, FineOnlyFromANearGuessAgreesWithBothPassesAndFailsFromAFarOne
     EXPECT_TRUE(!f.accepted || off > 1.0) << off;
 }
 
+// A wrong alignment can fit the part of a scan that reaches the map and leave the rest in the
+// map's empty space; the structure ratio counts only points that reach a surface, so the share of
+// unmatched points is checked on its own (max_unmatched_fraction).
+TEST(LoopVerifier, AScanPartlyInTheMapsEmptySpaceIsRefusedWithAnUnmatchedLimit) {
+    const std::vector<Eigen::Vector3f> scene = test::with_dense_ground(test::synthetic_scene(43));
+    const Eigen::Isometry3d anchor = test::xy_yaw(0, 0, 0);
+    const common::LocalMapData map =
+        test::build_local_map(1, anchor, {test::view(scene, anchor, 50.0)}, {anchor}, 1.0, 50.0);
+    const RegistrationTarget target = make_registration_target(map, 0.4, 3);
+    const Eigen::Isometry3d truth = test::xy_yaw(3.0, -2.0, 20.0);
+    const std::vector<Eigen::Vector3f> clean = test::view(scene, truth, 50.0);
+    // The same scan with another scene's nearest 25 m 40 m above it, where the map has nothing
+    // (a fifth to a third of the points, once down-sampled, unmatched).
+    std::vector<Eigen::Vector3f> half = clean;
+    for (const Eigen::Vector3f& p : test::view(test::synthetic_scene(44), anchor, 25.0))
+        half.push_back(p + Eigen::Vector3f(0.0f, 0.0f, 40.0f));
+    const GuessList near{truth * test::xy_yaw(0.2, -0.15, 1.0)};
+    LoopVerifierConfig config;
+    config.max_points = 100000;
+    LoopVerifier unlimited{config};
+    const LoopVerification a = unlimited.verify(half, target, near);
+    ASSERT_TRUE(a.accepted) << a.reason;  // no limit: what the structure ratio alone passes
+    const double share = double(a.unmatched) / double(a.points);
+    EXPECT_GT(share, 0.18) << a.inlier_fraction;
+    EXPECT_LT(share, 0.4);
+
+    config.max_unmatched_fraction = 0.15;
+    LoopVerifier limited{config};
+    const LoopVerification b = limited.verify(half, target, near);
+    EXPECT_FALSE(b.accepted);
+    EXPECT_NE(b.reason.find("unmatched fraction"), std::string::npos) << b.reason;
+    const LoopVerification c = limited.verify(clean, target, near);
+    ASSERT_TRUE(c.accepted) << c.reason;
+    EXPECT_LT(double(c.unmatched) / double(c.points), 0.15);
+    EXPECT_LT((truth.inverse() * c.T_anchor_lidar).translation().norm(), 0.05);
+    config.max_unmatched_fraction = 1.5;
+    EXPECT_EQ(validate(config)->key, "max_unmatched_fraction");
+}
+
 }  // namespace
 }  // namespace ltm::registration
