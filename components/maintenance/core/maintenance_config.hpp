@@ -45,7 +45,7 @@ struct RangeImageConfig {
     // few returns, is not sky. Below the horizon a beam without a return says nothing (a dark
     // car's black paint). A fence segment taken down leaves sky where its upper half was: without
     // this its voxels above the sensor were never judged. sky_range 0 turns it off.
-    double sky_elevation = 1.0;   // [deg] above the horizon
+    double sky_elevation = 0.5;   // [deg] above the horizon (at 50 m: 0.44 m above the sensor)
     double sky_range = 50.0;      // [m] along a sky beam, free up to this range
     double sky_clearance = 0.25;  // [m] around a cube, no nearer return for sky to count
 };

@@ -30,7 +30,13 @@ TEST(RangeImage, SurfaceFreeOccludedUnseen) {
     EXPECT_EQ(image.classify({10.0f, 0.0f, 0.0f}, size, margin), Visibility::kSurface);
     EXPECT_EQ(image.classify({5.0f, 0.5f, 0.0f}, size, margin), Visibility::kFree);
     EXPECT_EQ(image.classify({15.0f, 0.0f, 0.0f}, size, margin), Visibility::kOccluded);
-    EXPECT_EQ(image.classify({-5.0f, 0.0f, 0.0f}, size, margin), Visibility::kUnseen);  // no return
+    // No return behind the sensor: below the horizon nothing is said, above it is sky.
+    EXPECT_EQ(image.classify({-5.0f, 0.0f, -1.0f}, size, margin), Visibility::kUnseen);
+    EXPECT_EQ(image.classify({-5.0f, 0.0f, 0.0f}, size, margin), Visibility::kFree);
+    RangeImageConfig no_sky;
+    no_sky.sky_range = 0.0;
+    EXPECT_EQ(RangeImage(no_sky, wall_scan()).classify({-5.0f, 0.0f, 0.0f}, size, margin),
+              Visibility::kUnseen);
     EXPECT_EQ(image.classify({5.0f, 0.0f, 4.0f}, size, margin), Visibility::kUnseen);   // above
     // Between two beams (2 deg apart, 0.17 m at 5 m): a small cube there is not seen.
     const float between = float(5.0 * std::tan(-12.0 * M_PI / 180.0));
