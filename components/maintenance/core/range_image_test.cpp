@@ -37,7 +37,7 @@ TEST(RangeImage, SurfaceFreeOccludedUnseen) {
     no_sky.sky_range = 0.0;
     EXPECT_EQ(RangeImage(no_sky, wall_scan()).classify({-5.0f, 0.0f, 0.0f}, size, margin),
               Visibility::kUnseen);
-    EXPECT_EQ(image.classify({5.0f, 0.0f, 4.0f}, size, margin), Visibility::kUnseen);   // above
+    EXPECT_EQ(image.classify({5.0f, 0.0f, 4.0f}, size, margin), Visibility::kUnseen);  // above
     // Between two beams (2 deg apart, 0.17 m at 5 m): a small cube there is not seen.
     const float between = float(5.0 * std::tan(-12.0 * M_PI / 180.0));
     EXPECT_EQ(image.classify({5.0f, 0.0f, between}, 0.1f, margin), Visibility::kUnseen);
