@@ -139,7 +139,10 @@ void LongTermMap::add_scan(const std::vector<Eigen::Vector3f>& points,
         v.session = session_;
         v.map_time = t;
         v.T_world_sensor = T_world_sensor;
-        v.image = RangeImage(config_.range_image, points);
+        // The world's vertical in the sensor frame: the horizon of the range image's sky.
+        const Eigen::Vector3f up =
+            (T_world_sensor.linear().transpose() * Eigen::Vector3d::UnitZ()).cast<float>();
+        v.image = RangeImage(config_.range_image, points, up);
         pending_.push_back(std::move(v));
     }
     while (!pending_.empty() && pending_.front().map_time < now_ - config_.view_delay) {

@@ -37,6 +37,17 @@ struct RangeImageConfig {
     double min_range = 1.0;             // [m] nearer returns are ignored (the robot itself)
     double max_range = 120.0;           // [m] farther returns are ignored
     int max_samples = 5;                // pixels sampled per axis over a cube's angular footprint
+    // Sky: a beam without a return that points at least sky_elevation above the horizon (the
+    // world's, not the sensor's: the view's pose gives it) met nothing within the sensor's reach,
+    // so a cube it passes through within sky_range is free, when no return around the cube
+    // (within sky_clearance of it, across the beams) ends before the cube's far side: the edge
+    // of an object standing next to the cube, or a dark or shiny spot on a surface that lost a
+    // few returns, is not sky. Below the horizon a beam without a return says nothing (a dark
+    // car's black paint). A fence segment taken down leaves sky where its upper half was: without
+    // this its voxels above the sensor were never judged. sky_range 0 turns it off.
+    double sky_elevation = 0.5;   // [deg] above the horizon (at 50 m: 0.44 m above the sensor)
+    double sky_range = 50.0;      // [m] along a sky beam, free up to this range
+    double sky_clearance = 0.25;  // [m] around a cube, no nearer return for sky to count
 };
 
 // Ground removal on the voxels: the lowest voxel of each column neighbourhood, and the voxels just
@@ -156,6 +167,9 @@ void visit_fields(MaintenanceConfig& c, const std::string& prefix, Visitor&& v) 
     v(prefix + "range_image.min_range", c.range_image.min_range, non_negative);
     v(prefix + "range_image.max_range", c.range_image.max_range, positive);
     v(prefix + "range_image.max_samples", c.range_image.max_samples, in_range(1, 64));
+    v(prefix + "range_image.sky_elevation", c.range_image.sky_elevation, in_range(0.0, 90.0));
+    v(prefix + "range_image.sky_range", c.range_image.sky_range, non_negative);
+    v(prefix + "range_image.sky_clearance", c.range_image.sky_clearance, in_range(0.0, 10.0));
     v(prefix + "ground.column_size", c.ground.column_size, positive);
     v(prefix + "ground.neighbourhood", c.ground.neighbourhood, in_range(0, 20));
     v(prefix + "ground.height", c.ground.height, non_negative);

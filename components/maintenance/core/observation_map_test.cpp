@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <random>
 #include <set>
 #include <tuple>
@@ -84,6 +86,60 @@ TEST(ObservationMap, EveryPointFindsItsVoxelInUnder100BytesAVoxel) {
     for (registration::VoxelKey k : kept) EXPECT_NE(map.find(at(k)), ObservationMap::kNone);
     for (registration::VoxelKey k : gone) EXPECT_EQ(map.find(at(k)), ObservationMap::kNone);
     EXPECT_LE(double(map.memory_bytes()) / double(map.size()), 100.0);
+}
+
+// The points of a fence at x = 10.1 m, y in [-1.9, 1.9], between heights z0 and z1 (world).
+std::vector<Eigen::Vector3f> fence_points(float z0, float z1) {
+    std::vector<Eigen::Vector3f> pts;
+    for (float y = -1.9f; y <= 1.9f; y += 0.05f)
+        for (float z = z0; z <= z1; z += 0.05f) pts.emplace_back(10.1f, y, z);
+    return pts;
+}
+
+// A 16-beam scan (+-15 deg, 2 deg apart) from 1 m above flat ground, in the sensor frame, after
+// the fence was taken down: the downward beams hit the ground, the upward ones the sky but for a
+// building wall at y = -8 m (azimuth -100..-80 deg).
+std::vector<Eigen::Vector3f> scan_without_fence() {
+    std::vector<Eigen::Vector3f> pts;
+    for (int ring = 0; ring < 16; ++ring) {
+        const double el = (-15.0 + 2.0 * ring) * M_PI / 180.0;
+        for (int k = 0; k < 1800; ++k) {
+            const double az_deg = -180.0 + 0.2 * k + 0.1, az = az_deg * M_PI / 180.0;
+            const Eigen::Vector3d d(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az),
+                                    std::sin(el));
+            double t = 1e9;
+            if (d.z() < 0.0) t = -1.0 / d.z();
+            if (az_deg > -100.0 && az_deg < -80.0) t = std::min(t, -8.0 / d.y());
+            if (t < 100.0) pts.push_back((d * t).cast<float>());
+        }
+    }
+    return pts;
+}
+
+// A removed object above the sensor with sky behind it: the beams through its upper half return
+// nothing, and they are what says it is gone (its lower half has the ground behind it).
+TEST(ObservationMap, TheSkyBehindARemovedFenceSeesThroughItsUpperHalf) {
+    const auto seen_through = [](const RangeImageConfig& image_config, float z0, float z1) {
+        MaintenanceConfig c;
+        c.range_image = image_config;
+        ObservationMap map(c, {0, -1});
+        map.add_points(fence_points(z0, z1), 0.0);
+        View view;
+        view.T_world_sensor.translation() = Eigen::Vector3d(0, 0, 1);  // sensor 1 m up
+        view.map_time = 1.0;
+        view.image = RangeImage(image_config, scan_without_fence());
+        const JudgeCounts counts = map.judge(view);
+        EXPECT_EQ(counts.hit, 0u);
+        return double(counts.free) / double(std::max<std::size_t>(counts.voxels, 1));
+    };
+    const RangeImageConfig sky;  // the defaults
+    RangeImageConfig no_sky;
+    no_sky.sky_range = 0.0;
+    const double lower = seen_through(sky, 0.05f, 0.5f), upper = seen_through(sky, 1.5f, 2.0f);
+    EXPECT_GT(lower, 0.3) << "the ground behind the lower half";
+    EXPECT_GT(upper, 0.8 * lower) << "the sky behind the upper half";
+    EXPECT_EQ(seen_through(no_sky, 1.5f, 2.0f), 0.0) << "without the sky rule: never judged";
+    EXPECT_EQ(seen_through(no_sky, 0.05f, 0.5f), lower);
 }
 
 }  // namespace

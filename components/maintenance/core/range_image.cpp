@@ -10,7 +10,8 @@ constexpr float kPi = 3.14159265358979f;
 constexpr float kDeg = kPi / 180.0f;
 }  // namespace
 
-RangeImage::RangeImage(const RangeImageConfig& config, const std::vector<Eigen::Vector3f>& points)
+RangeImage::RangeImage(const RangeImageConfig& config, const std::vector<Eigen::Vector3f>& points,
+                       const Eigen::Vector3f& up)
     : config_(config) {
     az_res_ = float(config.azimuth_resolution) * kDeg;
     el_res_ = float(config.elevation_resolution) * kDeg;
@@ -37,7 +38,7 @@ RangeImage::RangeImage(const RangeImageConfig& config, const std::vector<Eigen::
         col = ((col % cols_) + cols_) % cols_;
         const int row = std::clamp(int(std::floor((q.y() - el_min_) / el_res_)), 0, rows_ - 1);
         std::uint16_t& cell = range_cm_[std::size_t(row) * std::size_t(cols_) + std::size_t(col)];
-        const auto cm = std::uint16_t(std::clamp(q.z() * 100.0f + 0.5f, 1.0f, 65535.0f));
+        const auto cm = std::uint16_t(std::clamp(q.z() * 100.0f + 0.5f, 1.0f, float(kMaxReturnCm)));
         if (cell == 0 || cm < cell) cell = cm;
         ++returns_;
     }
@@ -48,6 +49,53 @@ RangeImage::RangeImage(const RangeImageConfig& config, const std::vector<Eigen::
         for (int c = 0; c < cols_ && !any; ++c) any = at(row, c) > 0.0f;
         next_row_[std::size_t(row)] = any ? row : next_row_[std::size_t(row) + 1];
     }
+    mark_sky(up);
+}
+
+void RangeImage::mark_sky(const Eigen::Vector3f& up_in) {
+    if (!(config_.sky_range > 0.0) || !up_in.allFinite() || !(up_in.norm() > 1e-6f)) return;
+    const Eigen::Vector3f up = up_in.normalized();
+    const float up_xy = up.head<2>().norm();
+    const float min_dot = std::sin(float(config_.sky_elevation) * kDeg);
+    const auto n_cols = std::size_t(cols_);
+    std::vector<float> col_cos(n_cols), col_sin(n_cols);
+    for (int c = 0; c < cols_; ++c) {
+        const float az = (float(c) + 0.5f) * az_res_ - kPi;
+        col_cos[std::size_t(c)] = std::cos(az);
+        col_sin[std::size_t(c)] = std::sin(az);
+    }
+    // Only the beams' rows (rows with a return): a row between the beams is never sampled.
+    for (int row = next_row_[0]; row < rows_; row = next_row_[std::size_t(row) + 1]) {
+        const float el = el_min_ + (float(row) + 0.5f) * el_res_;
+        const float s = std::sin(el), co = std::cos(el);
+        if (s * up.z() + co * up_xy < min_dot) continue;  // no pixel of this beam is sky
+        for (std::size_t col = 0; col < n_cols; ++col) {
+            std::uint16_t& v = range_cm_[std::size_t(row) * n_cols + col];
+            if (v != 0) continue;
+            if (s * up.z() + co * (col_cos[col] * up.x() + col_sin[col] * up.y()) < min_dot)
+                continue;
+            v = kSky;
+            ++sky_pixels_;
+        }
+    }
+}
+
+bool RangeImage::clear_around(float az, float el, float r, float reach) const {
+    const float half = std::atan2(reach, r);
+    const float half_az = std::min(half / std::max(std::cos(el), 0.05f), kPi);
+    const int r0 = std::max(0, int(std::floor((el - half - el_min_) / el_res_)));
+    const int r1 = std::min(rows_ - 1, int(std::floor((el + half - el_min_) / el_res_)));
+    const int c0 = int(std::floor((az - half_az + kPi) / az_res_));
+    const int c1 = std::min(c0 + cols_ - 1, int(std::floor((az + half_az + kPi) / az_res_)));
+    const auto before_cm = std::uint16_t(std::clamp(r * 100.0f, 0.0f, float(kMaxReturnCm)));
+    for (int row = r0 > r1 ? rows_ : next_row_[std::size_t(r0)]; row <= r1;
+         row = next_row_[std::size_t(row) + 1]) {
+        for (int c = c0; c <= c1; ++c) {
+            const std::uint16_t v = cell(row, ((c % cols_) + cols_) % cols_);
+            if (v != 0 && v <= before_cm) return false;
+        }
+    }
+    return true;
 }
 
 Visibility RangeImage::classify(const Eigen::Vector3f& p, float size, float margin) const {
@@ -76,12 +124,17 @@ Visibility RangeImage::classify(const Eigen::Vector3f& p, float size, float marg
     if (n_rows == 0) return Visibility::kUnseen;
     const int row_step = std::max(1, (n_rows + max_samples - 1) / max_samples);
     const int col_step = std::max(1, (c1 - c0 + max_samples - 1) / max_samples);
-    int surface = 0, beyond = 0, before = 0;
+    int surface = 0, beyond = 0, before = 0, sky = 0;
     for (int k = 0; k < n_rows; k += row_step) {
         const int row = rows[k];
         for (int c = c0; c <= c1; c += col_step) {
-            const float range = at(row, ((c % cols_) + cols_) % cols_);
-            if (range <= 0.0f) continue;
+            const std::uint16_t v = cell(row, ((c % cols_) + cols_) % cols_);
+            if (v == 0) continue;
+            if (v == kSky) {
+                ++sky;
+                continue;
+            }
+            const float range = 0.01f * float(v);
             if (range > r + margin) {
                 ++beyond;
             } else if (range < r - margin) {
@@ -94,6 +147,11 @@ Visibility RangeImage::classify(const Eigen::Vector3f& p, float size, float marg
     if (surface > 0) return Visibility::kSurface;
     if (beyond > 0) return Visibility::kFree;
     if (before > 0) return Visibility::kOccluded;
+    // Only beams to the sky through the cube: free when it is within their range and nothing
+    // around it returned before its far side (the object's own edge, a lost return on a surface).
+    if (sky > 0 && r + margin < float(config_.sky_range) &&
+        clear_around(az, el, r + margin, 0.5f * size + float(config_.sky_clearance)))
+        return Visibility::kFree;
     return Visibility::kUnseen;
 }
 
