@@ -97,13 +97,18 @@ SaveStats MapWriter::save(const MapData& map) {
         return !lec;
     };
     auto emit = [&](const std::string& key, const std::string& kind, const std::string& prefix,
-                    std::shared_ptr<const void> first, std::shared_ptr<const void> last,
+                    const std::vector<std::shared_ptr<const void>>& from,
                     const std::function<std::string()>& encode) -> ManifestEntry {
         ManifestEntry e;
         e.kind = kind;
         const auto hit = cache_.find(key);
-        if (first && hit != cache_.end() && hit->second.first.lock() == first &&
-            hit->second.last.lock() == last &&
+        const auto same = [&](const Written& w) {
+            if (w.from.size() != from.size()) return false;
+            for (std::size_t i = 0; i < from.size(); ++i)
+                if (w.from[i].lock() != from[i]) return false;
+            return true;
+        };
+        if (!from.empty() && hit != cache_.end() && same(hit->second) &&
             fs::file_size(fs::path(dir_) / hit->second.file, ec) == hit->second.size && !ec) {
             e.file = hit->second.file;
             e.size = hit->second.size;
@@ -126,11 +131,11 @@ SaveStats MapWriter::save(const MapData& map) {
             }
         }
         stats.bytes_total += e.size;
-        if (first) cache[key] = Written{first, last, e.file, e.size, e.hash};
+        if (!from.empty()) cache[key] = Written{{from.begin(), from.end()}, e.file, e.size, e.hash};
         return e;
     };
 
-    manifest.files.push_back(emit("graph", "graph", "graph_", nullptr, nullptr, [&] {
+    manifest.files.push_back(emit("graph", "graph", "graph_", {}, [&] {
         return encode_graph(map.revision, map.nodes, map.edges, version);
     }));
     const std::size_t per = options_.keyframes_per_file;
@@ -138,7 +143,9 @@ SaveStats MapWriter::save(const MapData& map) {
         const std::size_t n = std::min(per, map.keyframes.size() - a);
         ManifestEntry e =
             emit(v + "kf:" + std::to_string(a) + ":" + std::to_string(n), "keyframes",
-                 "keyframes_" + padded(a, 8) + "_", map.keyframes[a], map.keyframes[a + n - 1],
+                 "keyframes_" + padded(a, 8) + "_",
+                 {map.keyframes.begin() + std::ptrdiff_t(a),
+                  map.keyframes.begin() + std::ptrdiff_t(a + n)},
                  [&] { return encode_keyframes(settings, map.keyframes, a, n, version); });
         e.first = a;
         e.count = n;
@@ -147,7 +154,7 @@ SaveStats MapWriter::save(const MapData& map) {
     for (const StoredLocalMap& m : map.local_maps) {
         if (!m.data) continue;
         ManifestEntry e = emit(v + "lm:" + std::to_string(m.node), "local_map",
-                               "local_maps/lm_" + padded(m.node, 8) + "_", m.data, m.data,
+                               "local_maps/lm_" + padded(m.node, 8) + "_", {m.data},
                                [&] { return encode_local_map(m, version); });
         e.node = m.node;
         manifest.files.push_back(e);

@@ -53,7 +53,9 @@ class MapWriter {
 
   private:
     struct Written {
-        std::weak_ptr<const void> first, last;  // the objects the file was made from
+        // The objects the file was made from, every one: a folded local map's keyframes are
+        // replaced in the middle of a chunk (new node), its first and last unchanged.
+        std::vector<std::weak_ptr<const void>> from;
         std::string file;
         std::uint64_t size = 0;
         std::uint64_t hash = 0;

@@ -267,6 +267,31 @@ TEST(MapStore, OnlyChangedFilesAreWrittenAndStaleOnesRemoved) {
     expect_same(map, load_map(dir.string()).map);
 }
 
+TEST(MapStore, AKeyframeReplacedInTheMiddleOfAChunkIsWritten) {
+    // The long-term folding moves a folded map's keyframes to the node it went into: new objects
+    // in the middle of a chunk whose first and last stay. A writer that compared only those kept
+    // the old chunk, whose keyframes named a node the graph no longer had (site_week day 2).
+    const fs::path dir = fresh_dir("middle");
+    MapData map = sample_map();
+    ASSERT_GE(map.keyframes.size(), 3u);
+    MapWriter writer(dir.string(), SaveOptions{1000});
+    writer.save(map);
+    const std::size_t mid = map.keyframes.size() / 2;
+    const std::uint64_t other = map.keyframes.front()->node != map.keyframes[mid]->node
+                                    ? map.keyframes.front()->node
+                                    : map.keyframes.back()->node;
+    ASSERT_NE(other, map.keyframes[mid]->node) << "the sample needs keyframes of two nodes";
+    auto moved = std::make_shared<StoredKeyframe>(*map.keyframes[mid]);
+    moved->node = other;
+    map.keyframes[mid] = moved;
+    map.revision += 1;
+    writer.save(map);
+    const LoadedMap loaded = load_map(dir.string());
+    ASSERT_TRUE(loaded.refused.empty()) << loaded.refused.front();
+    ASSERT_EQ(loaded.map.keyframes.size(), map.keyframes.size());
+    EXPECT_EQ(loaded.map.keyframes[mid]->node, other);
+}
+
 TEST(MapStore, DamagedLocalMapIsRefusedAndTheRestLoads) {
     const fs::path dir = fresh_dir("damaged");
     const MapData map = sample_map();
