@@ -36,7 +36,6 @@ const std::string kHost = std::string(LTM_BINARY_DIR) + "/bin/ltm_host";
 const std::string kConfigs = std::string(LTM_SOURCE_DIR) + "/launch_configs/";
 const std::string kScenario =
     std::string(LTM_SOURCE_DIR) + "/components/simulator/scenarios/tiny_week.yaml";
-const std::string kDomain = "domain_id=177";
 const std::string kDds = "dds={interfaces: [lo], multicast: false, peers: [127.0.0.1]}";
 
 bool wait_for(const Process& p, const std::string& text, double seconds) {
@@ -67,6 +66,10 @@ std::size_t lines(const std::string& file) {
 class BaseJournal : public ltm::tests::TempDirTest {
   protected:
     BaseJournal() : TempDirTest("ltm_base_journal_") {}
+
+    // Each test on a domain of its own (ctest runs the two at once: on one domain the second
+    // test's robot heard the first test's base station).
+    std::string domain_ = "domain_id=177";
 
     // robot.yaml with the simulator as its sensor at `rate` and the poses written.
     std::string robot_config(double rate) {
@@ -105,7 +108,7 @@ class BaseJournal : public ltm::tests::TempDirTest {
     std::vector<std::string> base(const std::string& config, const std::string& out) {
         setenv("LTM_SITE", path("base_site").c_str(), 1);
         setenv("LTM_OUT", path(out).c_str(), 1);
-        return {kHost,   config,         "--set", kDomain,
+        return {kHost,   config,         "--set", domain_,
                 "--set", kDds,           "--set", "mapping.preset=vlp16",
                 "--set", "idle_exit_s=6"};
     }
@@ -114,7 +117,7 @@ class BaseJournal : public ltm::tests::TempDirTest {
         setenv("LTM_SITE", path(site).c_str(), 1);
         setenv("LTM_OUT", path("robot" + n).c_str(), 1);
         return {kHost,   robot_config(rate),
-                "--set", kDomain,
+                "--set", domain_,
                 "--set", kDds,
                 "--set", "namespace=/robot1",
                 "--set", "odometry.preset=vlp16",
@@ -139,7 +142,7 @@ TEST_F(BaseJournal, ACommittedVersionPrunesTheJournalAndARestartedBaseStationRes
     ASSERT_GE(journal_bytes(journal), 200u * 1024) << first->err();
     Process request(
         {kHost, kConfigs + "tools/map_request.yaml", "--set", "map_request.command=commit", "--set",
-         kDomain, "--set", "namespace=\"\"", "--set", kDds},
+         domain_, "--set", "namespace=\"\"", "--set", kDds},
         path("request"));
     ASSERT_EQ(request.wait(90), 0) << request.err() << first->err();
     ASSERT_NE(request.err().find("committed v0001"), std::string::npos) << request.err();
@@ -199,6 +202,7 @@ TEST_F(BaseJournal, ACommittedVersionPrunesTheJournalAndARestartedBaseStationRes
 }
 
 TEST_F(BaseJournal, ARobotWithoutTheBaseStationsVersionDoesNotPoseInItsFrame) {
+    domain_ = "domain_id=178";
     // v0001 on the base station only (a day's map, made through the host).
     {
         Process b(base(kConfigs + "base_station_multi.yaml", "base0"), path("base0_host"));
