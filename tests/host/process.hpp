@@ -62,6 +62,17 @@ class Process {
         return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
     }
     std::string err() const { return read(log_ + ".err"); }
+    // Waits until the log (stderr) holds `text` (true), or `timeout_s` from now (false): a
+    // generous bound, never a timing assertion.
+    bool wait_for_log(const std::string& text, double timeout_s) const {
+        const auto deadline =
+            std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+        while (std::chrono::steady_clock::now() < deadline) {
+            if (err().find(text) != std::string::npos) return true;
+            std::this_thread::sleep_for(std::chrono::milliseconds(50));
+        }
+        return false;
+    }
     std::string out() const { return read(log_ + ".out"); }
 
     static std::string read(const std::string& path) {

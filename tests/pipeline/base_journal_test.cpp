@@ -38,15 +38,6 @@ const std::string kScenario =
     std::string(LTM_SOURCE_DIR) + "/components/simulator/scenarios/tiny_week.yaml";
 const std::string kDds = "dds={interfaces: [lo], multicast: false, peers: [127.0.0.1]}";
 
-bool wait_for(const Process& p, const std::string& text, double seconds) {
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
-    while (std::chrono::steady_clock::now() < deadline) {
-        if (p.err().find(text) != std::string::npos) return true;
-        std::this_thread::sleep_for(std::chrono::milliseconds(100));
-    }
-    return false;
-}
-
 // Bytes of the segment files under a journal folder (every run).
 std::uint64_t journal_bytes(const std::string& dir) {
     std::uint64_t n = 0;
@@ -147,7 +138,7 @@ TEST_F(BaseJournal, ACommittedVersionPrunesTheJournalAndARestartedBaseStationRes
     ASSERT_EQ(request.wait(90), 0) << request.err() << first->err();
     ASSERT_NE(request.err().find("committed v0001"), std::string::npos) << request.err();
     // The downlink sees the version and forgets what it holds.
-    ASSERT_TRUE(wait_for(*first, "KiB of journal released", 30)) << first->err();
+    ASSERT_TRUE(first->wait_for_log("KiB of journal released", 30)) << first->err();
     const std::uint64_t kept = journal_bytes(journal);
     const map::LinkApplied v1 = map::read_link_applied(path("base_site/versions/v0001/map"));
     ASSERT_EQ(v1.count("robot1"), 1u) << "v0001 records what it holds of robot1's packets";

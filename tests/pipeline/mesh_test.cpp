@@ -30,15 +30,6 @@ std::string header(int domain) {
            "\ndds: {interfaces: [lo], multicast: false, peers: [127.0.0.1]}\nnamespace: /robot\n";
 }
 
-// Waits until `host`'s log holds `text` (true), or up to `timeout_s` (false).
-bool wait_for_log(const Process& host, const std::string& text, double timeout_s) {
-    while (host.seconds_since_start() < timeout_s) {
-        if (host.err().find(text) != std::string::npos) return true;
-        std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    }
-    return false;
-}
-
 struct Counts {
     long vertices = -1, triangles = -1;
 };
@@ -89,7 +80,7 @@ components:
     params: {mesh_file: )" + mesh_file + R"(}
 )");
     Process host({kHost, mission}, path("mission"));
-    ASSERT_TRUE(wait_for_log(host, " triangles owned; ", 120)) << host.err();
+    ASSERT_TRUE(host.wait_for_log(" triangles owned; ", 120)) << host.err();
 
     // `./ltm map mesh --mesh-file requested.ply` while it runs.
     const std::string requested = path("requested.ply");

@@ -31,15 +31,6 @@ class SiteSyncPipeline : public ltm::tests::TempDirTest {
     SiteSyncPipeline() : TempDirTest("ltm_site_sync_") {}
 };
 
-bool wait_for_log(const Process& p, const std::string& text) {
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
-    while (std::chrono::steady_clock::now() < deadline) {
-        if (p.err().find(text) != std::string::npos) return true;
-        std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    }
-    return false;
-}
-
 }  // namespace
 
 TEST_F(SiteSyncPipeline, ANewVersionReachesTheRobotWithOnlyWhatChangedAndResumes) {
@@ -80,7 +71,7 @@ TEST_F(SiteSyncPipeline, ANewVersionReachesTheRobotWithOnlyWhatChangedAndResumes
             "  - name: site_receiver\n    type: site_receiver\n    params: {site_dir: " +
             robot + ", window_chunks: 16, resend_after_s: 30}\n");
     Process host({kHost, cfg}, path("host"));
-    ASSERT_TRUE(wait_for_log(host, "received v0002 from the base station")) << host.err();
+    ASSERT_TRUE(host.wait_for_log("received v0002 from the base station", 120)) << host.err();
     EXPECT_NE(host.err().find("offering v0002"), std::string::npos) << host.err();
     EXPECT_NE(host.err().find(std::to_string(kept) + " chunks kept from an earlier start"),
               std::string::npos)
@@ -115,7 +106,7 @@ TEST_F(SiteSyncPipeline, AVersionOnRequestMidSessionThenTheSessionsEndCommitsThe
                                                      "site\n    params: {site_dir: " +
                                                      site + "}\n");
     Process host({kHost, cfg}, path("host"));
-    ASSERT_TRUE(wait_for_log(host, "the session starts from v0001")) << host.err();
+    ASSERT_TRUE(host.wait_for_log("the session starts from v0001", 120)) << host.err();
     // What the session's mapping has saved so far.
     map::SaveOptions options;
     options.link_from = store.start_version("")->map_dir();
@@ -170,7 +161,7 @@ TEST_F(SiteSyncPipeline, AVersionOnRequestAsksTheMappingToSaveFirst) {
                   "params: {site_dir: " +
                   site + "}\n");
     Process host({kHost, cfg}, path("host"));
-    ASSERT_TRUE(wait_for_log(host, "the session starts from v0001")) << host.err();
+    ASSERT_TRUE(host.wait_for_log("the session starts from v0001", 120)) << host.err();
     Process request({kHost, std::string(LTM_SOURCE_DIR) + "/launch_configs/tools/map_request.yaml",
                      "--set", "map_request.command=commit", "--set",
                      "domain_id=" + std::to_string(kDomain), "--set", "namespace=/sync_save",

@@ -49,16 +49,6 @@ class SitePipeline : public ltm::tests::TempDirTest {
     }
 };
 
-// Waits (no timing assertion: a generous bound) until the host's log holds `text`.
-bool wait_for_log(const Process& p, const std::string& text) {
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-    while (std::chrono::steady_clock::now() < deadline) {
-        if (p.err().find(text) != std::string::npos) return true;
-        std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    }
-    return false;
-}
-
 }  // namespace
 
 TEST_F(SitePipeline, TheStagedSessionBecomesTheNextVersionAndASecondSessionIsRefused) {
@@ -66,7 +56,7 @@ TEST_F(SitePipeline, TheStagedSessionBecomesTheNextVersionAndASecondSessionIsRef
     make_first_version(site);
     fs::create_directories(fs::path(site) / "next/map");  // a crashed session's staging
     Process host({kHost, config(171, site)}, path("host"));
-    ASSERT_TRUE(wait_for_log(host, "the session starts from v0001")) << host.err();
+    ASSERT_TRUE(host.wait_for_log("the session starts from v0001", 60)) << host.err();
     EXPECT_NE(host.err().find("the staging of a session that did not finish"), std::string::npos)
         << host.err();
 
@@ -98,7 +88,7 @@ TEST_F(SitePipeline, NothingStagedIsNotSavedAndThePreviousVersionStays) {
     const std::string site = path("site");
     make_first_version(site);
     Process host({kHost, config(173, site)}, path("host"));
-    ASSERT_TRUE(wait_for_log(host, "the session starts from v0001")) << host.err();
+    ASSERT_TRUE(host.wait_for_log("the session starts from v0001", 60)) << host.err();
     host.signal(SIGTERM);
     EXPECT_EQ(host.wait(60), 4) << host.err();
     EXPECT_NE(host.err().find("NOT saved: site version (site)"), std::string::npos) << host.err();
@@ -129,7 +119,7 @@ TEST_F(SitePipeline, LocalisationOnANewSiteSaysThereIsNoMapYet) {
         "{site_dir: " +
         site + "}\n";
     Process host({kHost, config(175, site, loc)}, path("host"));
-    ASSERT_TRUE(wait_for_log(host, "the session starts from none (a new site)")) << host.err();
+    ASSERT_TRUE(host.wait_for_log("the session starts from none (a new site)", 60)) << host.err();
     EXPECT_NE(host.err().find("new site: no map yet, nothing to localise on until the next "
                               "session"),
               std::string::npos)
