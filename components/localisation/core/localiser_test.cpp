@@ -212,6 +212,23 @@ TEST(Localiser, TracksAndRelocalisesAfterAKidnap) {
     EXPECT_LT(error_of(u.T_map_lidar, truth).translation, 0.1);
 }
 
+// Scans at path[2..5] with their odometry (the map's path in the odom frame T_odom_map),
+// 0.1 s apart from *stamp: true when each has a pose.
+bool track_path_start(Localiser& loc, const SceneMap& s, double* stamp,
+                      const Eigen::Isometry3d& T_odom_map = Eigen::Isometry3d::Identity()) {
+    for (int i = 2; i <= 5; ++i) {
+        const Eigen::Isometry3d& T = s.path[std::size_t(i)];
+        const LocalisationUpdate u =
+            loc.process(*stamp, mt::view(s.scene, T, 60.0), OdometryInput{T_odom_map * T, 0});
+        *stamp += 0.1;
+        if (!u.pose_valid) {
+            ADD_FAILURE() << "scan " << i << ": " << u.message;
+            return false;
+        }
+    }
+    return true;
+}
+
 // The map's edge: a scan of which the map explains less than edge_overlap (here half of it is
 // structure the map never saw) is not registered; the pose follows the odometry from the last
 // scan the map covered (off the map), and tracking resumes where the map covers the scan again.
@@ -228,14 +245,8 @@ TEST(Localiser, AtTheMapsEdgeThePoseFollowsTheOdometry) {
         c.edge_overlap = edge;
         Localiser loc(s.map, c);
         double stamp = 100.0;
+        ASSERT_TRUE(track_path_start(loc, s, &stamp));
         LocalisationUpdate u;
-        for (int i = 2; i <= 5; ++i) {
-            OdometryInput o;
-            o.T_odom_lidar = s.path[std::size_t(i)];
-            u = loc.process(stamp, mt::view(s.scene, s.path[std::size_t(i)], 60.0), o);
-            stamp += 0.1;
-            ASSERT_TRUE(u.pose_valid) << u.message;
-        }
         // At path[6]: the odometry 0.15 m off along the way, half the scan unmapped.
         const Eigen::Isometry3d truth = s.path[6];
         OdometryInput o;
@@ -281,14 +292,8 @@ TEST(Localiser, AtTheMapsEdgeAheadOnlyThePoseFollowsTheOdometry) {
         c.edge_sector_overlap = sector;
         Localiser loc(s.map, c);
         double stamp = 100.0;
+        ASSERT_TRUE(track_path_start(loc, s, &stamp));
         LocalisationUpdate u;
-        for (int i = 2; i <= 5; ++i) {
-            OdometryInput o;
-            o.T_odom_lidar = s.path[std::size_t(i)];
-            u = loc.process(stamp, mt::view(s.scene, s.path[std::size_t(i)], 60.0), o);
-            stamp += 0.1;
-            ASSERT_TRUE(u.pose_valid) << u.message;
-        }
         u = loc.process(stamp, scan, OdometryInput{truth * mt::xy_yaw(0.15, 0.0, 0.0), 0});
         ASSERT_TRUE(u.pose_valid) << u.message;
         EXPECT_GT(u.overlap, 0.5) << u.message;
@@ -311,13 +316,7 @@ TEST(Localiser, ANewVersionTakesTheTrackWithoutAGlobalLocalisation) {
     const Eigen::Isometry3d T_odom_map = mt::xy_yaw(12.0, 3.0, 31.0);
     Localiser old_map(s.map);
     double stamp = 50.0;
-    for (int i = 2; i <= 5; ++i) {
-        const LocalisationUpdate u =
-            old_map.process(stamp, mt::view(s.scene, s.path[std::size_t(i)], 60.0),
-                            OdometryInput{T_odom_map * s.path[std::size_t(i)], 0});
-        stamp += 0.1;
-        ASSERT_TRUE(u.pose_valid) << u.message;
-    }
+    ASSERT_TRUE(track_path_start(old_map, s, &stamp, T_odom_map));
     const std::shared_ptr<const LocalisationMap> next = s.map;  // the map frame stays put
     Localiser taken(next), fresh(next);
     taken.take_track(old_map);
