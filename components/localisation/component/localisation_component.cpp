@@ -37,14 +37,12 @@
 // global localisation. A session that started with no map at all (a new site) starts localising
 // on the first version that arrives.
 //
-// A new site on the robot (`new_site_pose: odometry`): there is no SLAM on the robot, so each
-// odometry pose under the base station's map_to_odom (`slam_map_to_odom`) is the pose, state
-// OFF_MAP, never localised; while no map_to_odom came, or once the base station offers a version
-// (`site/offer`: it has a map, whose frame this session has not been placed in yet), only the
-// status goes out ("no map yet ..."). The base station's map_to_odom is used only while its
-// mapping says it belongs to no version (`slam_map_version`, "": a new site there too): a mapping
-// that continues a version the robot does not have yet publishes that version's frame, and its
-// map_to_odom can reach the robot before the version's offer does.
+// A new site (no version yet): the pose of the map being made, OFF_MAP, never localised
+// (`new_site_pose`, core/new_site_pose.hpp): by default each odometry pose under the mapping's
+// map_to_odom (`slam_map_to_odom`), so the mapping's thread never delays a pose; on the split robot
+// (`odometry`: no SLAM on it) the same under the base station's map_to_odom, only while the base
+// station's mapping says it belongs to no version (`slam_map_version`, "": a new site there too)
+// and no version is offered (`site/offer`); otherwise only the status goes out ("no map yet ...").
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -58,6 +56,7 @@
 #include "localisation/component/localisation_messages.hpp"
 #include "localisation/component/localiser_params.hpp"
 #include "localisation/component/version_loader.hpp"
+#include "localisation/core/new_site_pose.hpp"
 #include "map/core/site_anchor.hpp"
 #include "map/core/site_store.hpp"
 #include "odometry/core/odometry_config.hpp"
@@ -143,10 +142,11 @@ class LocalisationComponent : public runtime::Component {
         map_dir_ = p.path("map", "", PathCheck::kNone);
         site_poll_s_ = p.get<double>("site_poll_s", 0.0);
         if (!(site_poll_s_ >= 0)) p.fail("site_poll_s", "must be >= 0 (0: the start version only)");
-        const std::string pose_from = p.get<std::string>("new_site_pose", "slam_odometry");
-        if (pose_from != "slam_odometry" && pose_from != "odometry")
-            p.fail("new_site_pose", "slam_odometry or odometry, not '" + pose_from + "'");
-        odometry_on_new_site_ = pose_from == "odometry";
+        const std::string pose_from = p.get<std::string>("new_site_pose", "slam_map_to_odom");
+        const std::optional<NewSitePoseSource> source = parse_new_site_pose(pose_from);
+        if (!source)
+            p.fail("new_site_pose", std::string(kNewSitePoseNames) + ", not '" + pose_from + "'");
+        new_site_pose_.emplace(*source);
         resolve_site_map(p);
         if (site_poll_s_ > 0 && !on_site_) p.fail("site_poll_s", "needs site_dir");
         if (map_dir_.empty() && map_state_ != kFailed)
@@ -195,21 +195,25 @@ class LocalisationComponent : public runtime::Component {
         // (`slam_odometry`: the mapping's corrected_odometry, frame map) is the map pose.
         // Its map -> odom (`slam_map_to_odom`: the mapping's map_to_odom) is then the map's too.
         if (on_site_) {
-            ctx.subscribe<msg::Odometry>("slam_odometry", TopicRole::kState,
-                                         [this](const msg::Odometry& m) { on_slam_pose(m); });
+            if (!new_site_pose_->composes_odometry())
+                ctx.subscribe<msg::Odometry>("slam_odometry", TopicRole::kState,
+                                             [this](const msg::Odometry& m) { on_slam_pose(m); });
             ctx.subscribe<msg::TransformStamped>(
                 "slam_map_to_odom", TopicRole::kState, [this](const msg::TransformStamped& m) {
                     if (!new_site_) return;
-                    slam_map_odom_ = convert::to_isometry(m.transform);
-                    if (base_frame_is_ours()) correction_out_.publish(m);
+                    for (const LocalisationUpdate& u :
+                         new_site_pose_->map_to_odom(convert::to_isometry(m.transform)))
+                        publish_new_site(u);
+                    if (new_site_pose_->frame_is_ours()) correction_out_.publish(m);
                 });
-            if (odometry_on_new_site_) {
-                ctx.subscribe<msg::SiteOffer>("site/offer", TopicRole::kMap,
-                                              [this](const msg::SiteOffer&) { offered_ = true; });
-                ctx.subscribe<msg::MapVersion>("slam_map_version", TopicRole::kMap,
-                                               [this](const msg::MapVersion& m) {
-                                                   base_version_ = convert::to_string(m.version);
-                                               });
+            if (new_site_pose_->source() == NewSitePoseSource::kBaseStation) {
+                ctx.subscribe<msg::SiteOffer>(
+                    "site/offer", TopicRole::kMap,
+                    [this](const msg::SiteOffer&) { new_site_pose_->offered(); });
+                ctx.subscribe<msg::MapVersion>(
+                    "slam_map_version", TopicRole::kMap, [this](const msg::MapVersion& m) {
+                        new_site_pose_->base_version(convert::to_string(m.version));
+                    });
             }
         }
         if (site_poll_s_ > 0) {
@@ -300,11 +304,7 @@ class LocalisationComponent : public runtime::Component {
             return;
         }
         new_site_ = true;
-        no_map_ = odometry_on_new_site_
-                      ? "new site: no map yet (the odometry under the base station's map_to_odom "
-                        "is the pose meanwhile, never localised)"
-                      : "new site: no map yet, nothing to localise on until the next session (the "
-                        "SLAM's pose, slam_odometry, is the map pose meanwhile)";
+        no_map_ = new_site_pose_->start_line();
         if (site_poll_s_ > 0) no_map_ += "; a version that arrives is localised on at once";
         ctx_.log().info("site " + site + ": " + no_map_);
         map_state_ = kFailed;
@@ -382,45 +382,21 @@ class LocalisationComponent : public runtime::Component {
             odom_frame_ = o.frame_id;
         }
         const double stamp = convert::to_seconds(o.stamp);
-        if (new_site_ && odometry_on_new_site_) {
-            new_site_odometry_pose(o);
+        if (new_site_ && new_site_pose_->composes_odometry()) {
+            if (const std::optional<LocalisationUpdate> u =
+                    new_site_pose_->odometry({stamp, o.T_parent_child, o.pose_covariance}))
+                publish_new_site(*u);
             return;
         }
         pairer_->add_pose(stamp, std::move(o));
         pair();
     }
 
-    // A new site on the robot (new_site_pose: odometry): the odometry under the base station's
-    // map_to_odom, never localised (see the file comment).
-    void new_site_odometry_pose(const convert::OdometryData& o) {
-        LocalisationUpdate u;
-        u.stamp = convert::to_seconds(o.stamp);
-        u.state = LocalisationState::kOffMap;
-        const std::optional<Eigen::Isometry3d> T_map_odom = slam_map_odom_;
-        if (offered_) {
-            u.message =
-                "no map yet: the base station's version is on its way (no pose until it "
-                "is here)";
-        } else if (!base_version_) {
-            u.message =
-                "no map yet: odometry only (the base station has not said which site version "
-                "its map_to_odom belongs to)";
-        } else if (!base_frame_is_ours()) {
-            u.message = "no map yet: the base station's map_to_odom belongs to site version " +
-                        *base_version_ +
-                        ", which this robot does not have yet (no pose until it is here)";
-        } else if (!T_map_odom) {
-            u.message = "no map yet: odometry only (no map_to_odom from the base station yet)";
-        } else {
-            u.pose_valid = true;
-            u.T_map_lidar = *T_map_odom * o.T_parent_child;
-            u.T_map_odom = *T_map_odom;
-            u.covariance = o.pose_covariance;
-            u.message =
-                "no map yet: the odometry under the base station's map_to_odom, not "
-                "localised";
-        }
-        if (no_map_scans_++ % kNoMapRepeat == 0)
+    // A new site (core/new_site_pose.hpp): the pose of the map being made, or (the split robot,
+    // while the base station's map_to_odom is not this session's) a status line without one.
+    void publish_new_site(const LocalisationUpdate& u) {
+        const bool split = new_site_pose_->source() == NewSitePoseSource::kBaseStation;
+        if (split && no_map_scans_++ % kNoMapRepeat == 0)
             publish_event(StatusLevel::kWarn, StatusCode::kNoMap, u.message, u.stamp);
         if (u.message != new_site_said_) ctx_.log().info(new_site_said_ = u.message);
         status_out_.publish(*status_msg(u, counters(), frame_id_));
@@ -617,17 +593,8 @@ class LocalisationComponent : public runtime::Component {
         if (!new_site_) return;
         const convert::OdometryData o = convert::from_msg(m);
         if (!o.frame_id.empty() && o.frame_id != frame_id_) return;
-        LocalisationUpdate u;
-        u.stamp = convert::to_seconds(o.stamp);
-        u.state = LocalisationState::kOffMap;
-        u.pose_valid = true;
-        u.T_map_lidar = o.T_parent_child;
-        u.covariance = o.pose_covariance;
-        u.message = "new site: the pose of the map being made (SLAM)";
-        ++valid_;
-        status_out_.publish(*status_msg(u, counters(), frame_id_));
-        pose_out_.publish(*pose_msg(u, frame_id_));
-        if (T_site_map_) publish_site_pose(u);
+        publish_new_site(NewSitePose::slam_pose(convert::to_seconds(o.stamp), o.T_parent_child,
+                                                o.pose_covariance));
     }
 
     // The pose in the site's own frame (SITE/anchor.yaml): T_site_lidar = T_site_map T_map_lidar,
@@ -732,20 +699,10 @@ class LocalisationComponent : public runtime::Component {
     std::string map_dir_;
     enum MapState : int { kLoading, kReady, kFailed };
     std::atomic<int> map_state_{kLoading};
-    bool on_site_ = false;               // site_dir given
-    std::atomic<bool> new_site_{false};  // and it has no version yet (until one arrives)
-    bool odometry_on_new_site_ = false;  // new_site_pose: odometry
-    std::atomic<bool> offered_{false};   // the base station offers a version (site/offer)
-    // The site version the base station's map_to_odom belongs to (its mapping's map_version;
-    // "": a new site there too), component thread; unknown until it says.
-    std::optional<std::string> base_version_;
+    bool on_site_ = false;                      // site_dir given
+    std::atomic<bool> new_site_{false};         // and it has no version yet (until one arrives)
+    std::optional<NewSitePose> new_site_pose_;  // new_site_pose (component thread)
     std::string new_site_said_;  // the last reason logged (once each time it changes)
-    // The base station's map frame is this session's: a new site on both sides (a robot with a
-    // version does not use the base station's map_to_odom at all).
-    bool base_frame_is_ours() const {
-        return !odometry_on_new_site_ || (base_version_ && base_version_->empty());
-    }
-    std::optional<Eigen::Isometry3d> slam_map_odom_;  // the base station's (component thread)
     std::string site_dir_;
     std::uint32_t in_use_ = 0;  // the version localised on (0: none)
     double site_poll_s_ = 0.0;
