@@ -43,8 +43,8 @@ TEST(NewSitePose, PosesWaitForTheFirstMapToOdomThenGoOutAtOnce) {
     ASSERT_TRUE(u);
     EXPECT_TRUE(u->T_map_lidar.translation().isApprox(Eigen::Vector3d(3, 2, 0)));
     EXPECT_TRUE(n.map_to_odom(shifted(-1.0)).empty());  // nothing waits any more
-    EXPECT_TRUE(n.odometry(at(0.3, 3.0))->T_map_lidar.translation().isApprox(
-        Eigen::Vector3d(3, -1, 0)));
+    EXPECT_TRUE(
+        n.odometry(at(0.3, 3.0))->T_map_lidar.translation().isApprox(Eigen::Vector3d(3, -1, 0)));
     EXPECT_TRUE(n.frame_is_ours());
 }
 
