@@ -1,7 +1,11 @@
 #include "odometry/core/motion_model.hpp"
 
+#include <cmath>
+
 namespace ltm::odometry {
 namespace {
+
+constexpr double kTravelCos = 0.9;  // a degenerate direction this close to the last step's: travel
 
 // Re-orthonormalised: Isometry3d::inverse() transposes the rotation, so a rotation that drifts
 // from orthonormal would make repeated extrapolation grow without bound.
@@ -36,13 +40,19 @@ Eigen::Isometry3d MotionModel::predict(double stamp) const {
 }
 
 void MotionModel::damp(const std::vector<registration::Vector6d>& directions, double lever,
-                       double keep) {
+                       double keep, double travel_keep) {
     if (count_ < 2 || directions.empty()) return;
     // The last motion in odometry axes, rotation as displacement at the lever arm.
     registration::Vector6d m;
     m.head<3>() = pose_[1].translation() - pose_[0].translation();
     m.tail<3>() = lever * registration::so3_log(pose_[1].linear() * pose_[0].linear().transpose());
-    for (const registration::Vector6d& v : directions) m -= (1.0 - keep) * v.dot(m) * v;
+    const Eigen::Vector3d step = m.head<3>();
+    for (const registration::Vector6d& v : directions) {
+        const Eigen::Vector3d t = v.head<3>();
+        const bool travel = step.norm() > 1e-6 && t.norm() > 0.9 &&
+                            std::abs(t.dot(step)) > kTravelCos * t.norm() * step.norm();
+        m -= (1.0 - (travel ? travel_keep : keep)) * v.dot(m) * v;
+    }
     // The previous pose is rewritten so that the last motion is the damped one.
     pose_[0].linear() = registration::so3_exp(-m.tail<3>() / lever) * pose_[1].linear();
     pose_[0].translation() = pose_[1].translation() - m.head<3>();

@@ -40,8 +40,12 @@ class MotionModel {
     // The last registration could not observe `directions` (unit, [dt; dr * lever] in odometry
     // axes, as RegistrationResult::degenerate_directions): the last motion along them is not a
     // measurement but the prediction carried on. Keep only `keep` of it, so that a wrong velocity
-    // along an unobservable direction dies out instead of being extrapolated for ever.
-    void damp(const std::vector<registration::Vector6d>& directions, double lever, double keep);
+    // along an unobservable direction dies out instead of being extrapolated for ever. A direction
+    // within ~26 deg of the last step's (the way the sensor travels: down a corridor, a tunnel)
+    // keeps `travel_keep` of it instead: a vehicle goes on at its speed, while a sideways velocity
+    // a narrow view over open ground made up still dies out.
+    void damp(const std::vector<registration::Vector6d>& directions, double lever, double keep,
+              double travel_keep);
 
   private:
     PredictionMode mode_;

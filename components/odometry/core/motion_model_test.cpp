@@ -32,6 +32,32 @@ TEST(MotionModel, ConstantVelocityScaledByTime) {
     EXPECT_TRUE(m.velocity().isApprox(registration::se3_log(delta) / 0.1, 1e-12));
 }
 
+// Down a corridor (x unobservable) the motion along the way of travel goes on; a sideways
+// velocity along an unobservable direction dies out (damped by `keep`).
+TEST(MotionModel, DampingKeepsTheWayOfTravelAndDampsSideways) {
+    const auto straight = [](double x, double y) {
+        Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+        T.translation() = Eigen::Vector3d(x, y, 0);
+        return T;
+    };
+    registration::Vector6d along = registration::Vector6d::Zero(), side = along;
+    along(0) = 1.0;
+    side(1) = 1.0;
+    MotionModel m;
+    m.push(0.0, straight(0, 0));
+    m.push(0.1, straight(1.0, 0.1));
+    m.damp({along, side}, 1.0, 0.5, 1.0);
+    const Eigen::Vector3d step = m.predict(0.2).translation() - Eigen::Vector3d(1.0, 0.1, 0);
+    EXPECT_NEAR(step.x(), 1.0, 1e-9);   // travel: kept
+    EXPECT_NEAR(step.y(), 0.05, 1e-9);  // sideways: halved
+    // travel_keep below 1 damps the way of travel too.
+    MotionModel n;
+    n.push(0.0, straight(0, 0));
+    n.push(0.1, straight(1.0, 0));
+    n.damp({along}, 1.0, 0.5, 0.5);
+    EXPECT_NEAR(n.predict(0.2).translation().x() - 1.0, 0.5, 1e-9);
+}
+
 TEST(MotionModel, VelocityIsTakenBetweenTheMidSweepPoses) {
     // Scans de-skewed with different velocities: their poses at the stamps differ by what each
     // de-skew assumed; the poses at the middle of the sweeps (where registration fixes a de-skewed

@@ -33,6 +33,14 @@ RegistrationConfig probe_config(const OdometryConfig& config) {
     return c;
 }
 
+// How many of a registration's degenerate directions ([dt; dr * lever], unit) are mostly a
+// translation: the position along them is the prediction's.
+int translation_directions(const std::vector<registration::Vector6d>& directions) {
+    int n = 0;
+    for (const registration::Vector6d& v : directions) n += v.head<3>().norm() > 0.7 ? 1 : 0;
+    return n;
+}
+
 const OdometryConfig& checked(const OdometryConfig& config) {
     common::throw_if(validate(config), "odometry");
     return config;
@@ -87,6 +95,7 @@ FrameResult Odometry::reject(FrameResult result, FrameStatus status, std::string
 
 FrameResult Odometry::register_frame(const common::PointCloud& cloud) {
     FrameResult r;
+    bool kept_out = false;  // degenerate by the observability check: stays out of the map
     r.stamp = cloud.stamp;
     r.input_points = cloud.size();
     r.T_odom_lidar = motion_.poses() ? motion_.last_pose() : initial_pose_;
@@ -175,6 +184,7 @@ FrameResult Odometry::register_frame(const common::PointCloud& cloud) {
         r = attempt;
         r.attempts = attempts;
         const bool observable = !why.empty() || check_observability(predicted, since_tracked, &r);
+        kept_out = !observable;
         r.registration_ms = lap();
         if (!why.empty() && since_tracked < config_.tracking.restart_after) {
             std::ostringstream s;
@@ -193,10 +203,23 @@ FrameResult Odometry::register_frame(const common::PointCloud& cloud) {
             s << "lost for " << since_tracked << " s (" << why << ")";
             restart_segment(s.str(), predicted, since_tracked, &r);
         } else {
-            r.status = !observable ? FrameStatus::kDegenerate
-                       : lost_     ? FrameStatus::kRecovered
-                                   : FrameStatus::kTracked;
-            if (!observable) {
+            // A direction of the translation the registration could not observe (below
+            // registration.degeneracy_ratio: solution remapping left it at the prediction) makes
+            // the position along it the motion model's: degenerate, never "tracked".
+            const int unobserved = translation_directions(r.degenerate_directions);
+            r.status = !observable || unobserved > 0 ? FrameStatus::kDegenerate
+                       : lost_                       ? FrameStatus::kRecovered
+                                                     : FrameStatus::kTracked;
+            if (observable && unobserved > 0) {
+                std::ostringstream s;
+                s.precision(3);
+                s << "degenerate: the registration could not observe " << unobserved
+                  << " translation direction(s) (information " << r.min_information
+                  << " below registration.degeneracy_ratio "
+                  << config_.registration.degeneracy_ratio
+                  << "): the position along it is the motion model's";
+                r.message = s.str();
+            } else if (!observable) {
                 std::ostringstream s;
                 s.precision(3);
                 s << "degenerate: " << r.constrained_directions
@@ -220,7 +243,11 @@ FrameResult Odometry::register_frame(const common::PointCloud& cloud) {
         }
         lost_ = false;
     }
-    if (prior_ != nullptr && r.registered() && motion_.poses() > 0) {  // the prior where unobserved
+    // The prior where unobserved (a scan degenerate only where the registration could not observe
+    // is a fit everywhere else).
+    if (prior_ != nullptr &&
+        (r.registered() || (r.status == FrameStatus::kDegenerate && !kept_out)) &&
+        motion_.poses() > 0) {
         r.T_odom_lidar = prior_->fill_unobserved(
             motion_.last_pose(), motion_.last_stamp(), cloud.stamp, r.T_odom_lidar,
             r.degenerate_directions, config_.registration.degeneracy_length);
@@ -241,7 +268,9 @@ FrameResult Odometry::register_frame(const common::PointCloud& cloud) {
     // A degenerate scan's position along its weak direction is a guess: it stays out of the map
     // (which the next scans are measured against), but for the first scans of a segment: a map of
     // one scan left the next scans of a turn nothing to fit (SlamSegments).
-    if (r.status != FrameStatus::kDegenerate || segment_scans_ < kYoungSegmentScans) {
+    // (A scan degenerate only where the registration could not observe, the walls of a corridor,
+    // goes in: its position there is the prediction's, the best there is.)
+    if (!kept_out || segment_scans_ < kYoungSegmentScans) {
         integrate(cloud.stamp, &r);
         ++segment_scans_;
     }
@@ -553,7 +582,8 @@ void Odometry::accept(const FrameResult& result) {
     motion_.push(result.stamp, result.T_odom_lidar, scan_.T_stamp_mid);
     if (result.degenerate()) {
         motion_.damp(result.degenerate_directions, config_.registration.degeneracy_length,
-                     config_.tracking.degenerate_velocity_keep);
+                     config_.tracking.degenerate_velocity_keep,
+                     config_.tracking.degenerate_travel_keep);
     }
 }
 

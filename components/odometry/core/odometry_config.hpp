@@ -51,6 +51,10 @@ struct TrackingConfig {
     // tunnel), lower values let a wrong velocity there die out (an open field seen by a narrow
     // view, where the prediction alone would carry a sideways drift for ever).
     double degenerate_velocity_keep = 0.5;
+    // The same along the way the sensor travels (a degenerate direction within ~26 deg of the last
+    // step): 1 goes on at the last speed (down a corridor, where the position along the axis is
+    // then the constant-velocity prediction's and every such scan is reported degenerate).
+    double degenerate_travel_keep = 1.0;
     double yaw_search = 90.0;  // [deg] 0: no yaw search
     double yaw_step = 15.0;    // [deg]
     // The best of those guesses is probed again turned by +-yaw_refine (coarse to fine: a fit's
@@ -130,6 +134,7 @@ void visit_fields(OdometryConfig& c, Visitor&& v) {
     v("tracking.search_after", t.search_after, non_negative);
     v("tracking.recover_inlier_ratio", t.recover_inlier_ratio, unit);
     v("tracking.degenerate_velocity_keep", t.degenerate_velocity_keep, unit);
+    v("tracking.degenerate_travel_keep", t.degenerate_travel_keep, unit);
     v("tracking.yaw_search", t.yaw_search, in_range(0, 180));
     v("tracking.yaw_step", t.yaw_step, in_range(1, 90));
     v("tracking.yaw_refine", t.yaw_refine, in_range(0, 45));

@@ -83,7 +83,7 @@ TEST(OdometryConfig, EveryFieldHasOneKeyAndARule) {
         EXPECT_TRUE(keys.insert(key).second) << "key visited twice: " << key;
         ++fields;
     });
-    EXPECT_EQ(fields, 69);  // 52 (tracking.yaw_refine) + 17 observability.*
+    EXPECT_EQ(fields, 70);  // 53 (tracking.degenerate_travel_keep) + 17 observability.*
 }
 
 }  // namespace
