@@ -39,7 +39,10 @@ TEST_P(SensorPresets, TracksTheSimulatedSensorWithPerPointTime) {
         sim.scan(i, s);
         ASSERT_TRUE(s.cloud.has_time());
         const FrameResult r = odo.register_frame(s.cloud);
-        ASSERT_TRUE(r.registered() || i == 0) << "scan " << i << ": " << r.message;
+        // Registered, or (a narrow view at the start: a direction its registration cannot
+        // observe) degenerate with the motion model's position along it; never lost.
+        ASSERT_TRUE(r.registered() || r.status == FrameStatus::kDegenerate || i == 0)
+            << "scan " << i << ": " << r.message;
         deskewed += r.deskewed;
         est.push_back(r.T_odom_lidar);
         truth.push_back(s.T_world_lidar);
