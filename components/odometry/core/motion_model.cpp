@@ -40,16 +40,19 @@ Eigen::Isometry3d MotionModel::predict(double stamp) const {
 }
 
 void MotionModel::damp(const std::vector<registration::Vector6d>& directions, double lever,
-                       double keep, double travel_keep) {
+                       double keep, double travel_keep, double travel_turn) {
     if (count_ < 2 || directions.empty()) return;
     // The last motion in odometry axes, rotation as displacement at the lever arm.
     registration::Vector6d m;
     m.head<3>() = pose_[1].translation() - pose_[0].translation();
     m.tail<3>() = lever * registration::so3_log(pose_[1].linear() * pose_[0].linear().transpose());
     const Eigen::Vector3d step = m.head<3>();
+    // Turning more than travel_turn a step is not travelling down a corridor (a robot turning on
+    // the spot, whose last walk must not be carried through the spin): no direction is travel.
+    const bool straight = m.tail<3>().norm() <= lever * travel_turn;
     for (const registration::Vector6d& v : directions) {
         const Eigen::Vector3d t = v.head<3>();
-        const bool travel = step.norm() > 1e-6 && t.norm() > 0.9 &&
+        const bool travel = straight && step.norm() > 1e-6 && t.norm() > 0.9 &&
                             std::abs(t.dot(step)) > kTravelCos * t.norm() * step.norm();
         m -= (1.0 - (travel ? travel_keep : keep)) * v.dot(m) * v;
     }

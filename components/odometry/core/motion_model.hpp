@@ -43,9 +43,10 @@ class MotionModel {
     // along an unobservable direction dies out instead of being extrapolated for ever. A direction
     // within ~26 deg of the last step's (the way the sensor travels: down a corridor, a tunnel)
     // keeps `travel_keep` of it instead: a vehicle goes on at its speed, while a sideways velocity
-    // a narrow view over open ground made up still dies out.
+    // a narrow view over open ground made up still dies out. A last step turning more than
+    // `travel_turn` [rad] is no travel (a robot turning on the spot): `keep` everywhere.
     void damp(const std::vector<registration::Vector6d>& directions, double lever, double keep,
-              double travel_keep);
+              double travel_keep, double travel_turn);
 
   private:
     PredictionMode mode_;

@@ -46,7 +46,7 @@ TEST(MotionModel, DampingKeepsTheWayOfTravelAndDampsSideways) {
     MotionModel m;
     m.push(0.0, straight(0, 0));
     m.push(0.1, straight(1.0, 0.1));
-    m.damp({along, side}, 1.0, 0.5, 1.0);
+    m.damp({along, side}, 1.0, 0.5, 1.0, 0.05);
     const Eigen::Vector3d step = m.predict(0.2).translation() - Eigen::Vector3d(1.0, 0.1, 0);
     EXPECT_NEAR(step.x(), 1.0, 1e-9);   // travel: kept
     EXPECT_NEAR(step.y(), 0.05, 1e-9);  // sideways: halved
@@ -54,8 +54,30 @@ TEST(MotionModel, DampingKeepsTheWayOfTravelAndDampsSideways) {
     MotionModel n;
     n.push(0.0, straight(0, 0));
     n.push(0.1, straight(1.0, 0));
-    n.damp({along}, 1.0, 0.5, 0.5);
+    n.damp({along}, 1.0, 0.5, 0.5, 0.05);
     EXPECT_NEAR(n.predict(0.2).translation().x() - 1.0, 0.5, 1e-9);
+}
+
+// A last step that turns (10 deg, a robot turning on the spot while its walk is unobservable) is
+// no travel: the walk along the unobservable direction dies out instead of being carried through
+// the spin.
+TEST(MotionModel, ATurningStepIsNoTravel) {
+    Eigen::Isometry3d a = Eigen::Isometry3d::Identity(), b = a;
+    b.translation() = Eigen::Vector3d(1.0, 0, 0);
+    b.linear() =
+        Eigen::AngleAxisd(10.0 * M_PI / 180.0, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    registration::Vector6d along = registration::Vector6d::Zero();
+    along(0) = 1.0;
+    MotionModel m;
+    m.push(0.0, a);
+    m.push(0.1, b);
+    m.damp({along}, 1.0, 0.5, 1.0, 3.0 * M_PI / 180.0);
+    EXPECT_NEAR(m.velocity()(0) * 0.1, 0.5, 0.02);  // halved, not kept
+    MotionModel n;  // the same with a turn allowed up to 20 deg: travel, kept
+    n.push(0.0, a);
+    n.push(0.1, b);
+    n.damp({along}, 1.0, 0.5, 1.0, 20.0 * M_PI / 180.0);
+    EXPECT_NEAR(n.velocity()(0) * 0.1, 1.0, 0.02);
 }
 
 TEST(MotionModel, VelocityIsTakenBetweenTheMidSweepPoses) {

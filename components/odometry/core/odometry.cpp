@@ -583,7 +583,8 @@ void Odometry::accept(const FrameResult& result) {
     if (result.degenerate()) {
         motion_.damp(result.degenerate_directions, config_.registration.degeneracy_length,
                      config_.tracking.degenerate_velocity_keep,
-                     config_.tracking.degenerate_travel_keep);
+                     config_.tracking.degenerate_travel_keep,
+                     config_.tracking.degenerate_travel_turn * M_PI / 180.0);
     }
 }
 

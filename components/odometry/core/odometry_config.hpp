@@ -55,8 +55,11 @@ struct TrackingConfig {
     // step): 1 goes on at the last speed (down a corridor, where the position along the axis is
     // then the constant-velocity prediction's and every such scan is reported degenerate).
     double degenerate_travel_keep = 1.0;
-    double yaw_search = 90.0;  // [deg] 0: no yaw search
-    double yaw_step = 15.0;    // [deg]
+    // A last step turning more than this is no travel: degenerate_velocity_keep applies along
+    // every direction (a robot turning on the spot does not go on at its last walking speed).
+    double degenerate_travel_turn = 3.0;  // [deg]
+    double yaw_search = 90.0;             // [deg] 0: no yaw search
+    double yaw_step = 15.0;               // [deg]
     // The best of those guesses is probed again turned by +-yaw_refine (coarse to fine: a fit's
     // basin in yaw is a few degrees when its translation is off too). 0: not refined.
     double yaw_refine = 5.0;  // [deg]
@@ -135,6 +138,7 @@ void visit_fields(OdometryConfig& c, Visitor&& v) {
     v("tracking.recover_inlier_ratio", t.recover_inlier_ratio, unit);
     v("tracking.degenerate_velocity_keep", t.degenerate_velocity_keep, unit);
     v("tracking.degenerate_travel_keep", t.degenerate_travel_keep, unit);
+    v("tracking.degenerate_travel_turn", t.degenerate_travel_turn, in_range(0, 180));
     v("tracking.yaw_search", t.yaw_search, in_range(0, 180));
     v("tracking.yaw_step", t.yaw_step, in_range(1, 90));
     v("tracking.yaw_refine", t.yaw_refine, in_range(0, 45));
