@@ -27,9 +27,9 @@
 // Paging (`paging_radius`, `paging_dir`): only the regions near the robot stay in memory, the
 // others wait on disk (maintenance/core/region_pager.hpp; the worker reads them back when a scan
 // or a view reaches them, on its own thread).
-// Memory (issue 28): a scan that finds more than `pack_after` scans waiting (through a pass) is
-// kept packed (maintenance/core/packed_scan.hpp: lossless, about a third of its 12 B a point) until
-// the worker takes it; the log's last line gives the queue's peak in scans and MiB.
+// Memory (issue 28): a scan that finds `pack_after` scans or more waiting (through a pass) is
+// kept packed (maintenance/core/packed_scan.hpp: lossless, about 60 % of its 12 B a point on real
+// scans) until the worker takes it; the log's last line gives the queue's peak in scans and MiB.
 #include <time.h>
 #include <unistd.h>
 
