@@ -27,6 +27,9 @@
 // Paging (`paging_radius`, `paging_dir`): only the regions near the robot stay in memory, the
 // others wait on disk (maintenance/core/region_pager.hpp; the worker reads them back when a scan
 // or a view reaches them, on its own thread).
+// Memory (issue 28): a scan that finds `pack_after` scans or more waiting (through a pass) is
+// kept packed (maintenance/core/packed_scan.hpp: lossless, about 60 % of its 12 B a point on real
+// scans) until the worker takes it; the log's last line gives the queue's peak in scans and MiB.
 #include <time.h>
 #include <unistd.h>
 
@@ -34,6 +37,7 @@
 #include <atomic>
 #include <chrono>
 #include <cstdio>
+#include <deque>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -49,6 +53,7 @@
 #include "maintenance/core/change_report.hpp"
 #include "maintenance/core/cpu_pacer.hpp"
 #include "maintenance/core/long_term_map.hpp"
+#include "maintenance/core/packed_scan.hpp"
 #include "map/core/site_store.hpp"
 #include "runtime/component.hpp"
 #include "runtime/convert/dds_string.hpp"
@@ -87,8 +92,17 @@ double wall_s() {
 
 struct Scan {
     double stamp = 0.0;
-    std::vector<Eigen::Vector3f> points;  // sensor frame
+    std::vector<Eigen::Vector3f> points;  // sensor frame (empty when packed)
+    std::optional<PackedScan> packed;     // the points, packed while they wait
     Eigen::Isometry3d T_world_sensor = Eigen::Isometry3d::Identity();
+
+    std::size_t memory_bytes() const {
+        return sizeof(Scan) + points.capacity() * sizeof(Eigen::Vector3f) +
+               (packed ? packed->memory_bytes() : 0);
+    }
+    std::size_t unpacked_bytes() const {
+        return sizeof(Scan) + (packed ? packed->count : points.size()) * sizeof(Eigen::Vector3f);
+    }
 };
 
 using Points = std::vector<Eigen::Vector3f>;
@@ -166,6 +180,13 @@ class MaintenanceComponent : public runtime::Component {
                         " maintained, " + std::to_string(no_pose_ + pairer_.dropped()) +
                         " without a pose, " + std::to_string(worker_.skipped()) +
                         " dropped while busy; " + std::to_string(passes_) + " passes");
+        char queue[200];
+        std::snprintf(queue, sizeof queue,
+                      "queue: at most %zu scans waiting, %.1f MiB (%.1f MiB unpacked); %llu "
+                      "scans packed",
+                      peak_waiting_, peak_bytes_ / 1048576.0, peak_unpacked_bytes_ / 1048576.0,
+                      static_cast<unsigned long long>(packed_));
+        ctx_.log().info(queue);
     }
 
   private:
@@ -259,14 +280,53 @@ class MaintenanceComponent : public runtime::Component {
 
     // Hands on every waiting scan whose pose came, and drops those whose pose will not come.
     void pair() {
-        pairer_.release(
-            [this](double stamp, Points&& points, std::optional<Eigen::Isometry3d>&& T) {
-                if (!T) {
-                    ++no_pose_;
-                    return;
-                }
-                worker_.push(Scan{stamp, std::move(points), *T});  // offline: waits for room
-            });
+        pairer_.release([this](double stamp, Points&& points,
+                               std::optional<Eigen::Isometry3d>&& T) {
+            if (!T) {
+                ++no_pose_;
+                return;
+            }
+            Scan scan{stamp, std::move(points), std::nullopt, *T};
+            if (config_.pack_after >= 0 && worker_.waiting() >= std::size_t(config_.pack_after)) {
+                scan.packed = pack_points(scan.points);
+                scan.points = Points();
+                ++packed_;
+            }
+            count_in(scan);
+            const std::uint64_t skipped = worker_.skipped();
+            if (!worker_.push(std::move(scan))) {  // offline: waits for room
+                count_out(false);
+            } else if (worker_.skipped() > skipped) {
+                count_out(true);  // the oldest was dropped (live)
+            }
+        });
+    }
+
+    // The bytes of the scans waiting, in queue order (packed, unpacked), and their peak: in on
+    // the component's thread, out of the front when the worker takes a scan or the queue drops
+    // its oldest, out of the back when the queue refused the new one (stopping).
+    void count_in(const Scan& scan) {
+        std::lock_guard<std::mutex> lock(queue_mutex_);
+        waiting_.emplace_back(scan.memory_bytes(), scan.unpacked_bytes());
+        waiting_bytes_.first += waiting_.back().first;
+        waiting_bytes_.second += waiting_.back().second;
+        if (waiting_bytes_.first > peak_bytes_) {
+            peak_bytes_ = waiting_bytes_.first;
+            peak_unpacked_bytes_ = waiting_bytes_.second;
+        }
+        peak_waiting_ = std::max(peak_waiting_, waiting_.size());
+    }
+    void count_out(bool front) {
+        std::lock_guard<std::mutex> lock(queue_mutex_);
+        if (waiting_.empty()) return;
+        const auto bytes = front ? waiting_.front() : waiting_.back();
+        if (front) {
+            waiting_.pop_front();
+        } else {
+            waiting_.pop_back();
+        }
+        waiting_bytes_.first -= bytes.first;
+        waiting_bytes_.second -= bytes.second;
     }
 
     // --- the worker thread: the long-term map, the passes and their outputs ---
@@ -275,7 +335,12 @@ class MaintenanceComponent : public runtime::Component {
     // queue (not the default: it finishes) leaves the pass to the end of the session.
     void work(Scan& scan, const StopToken& stop) {
         stamp_ = scan.stamp;
+        count_out(true);
         try {
+            if (scan.packed) {
+                scan.points = unpack_points(*scan.packed);
+                scan.packed.reset();
+            }
             if (!started_) {
                 map_->begin_session(session_, stamp_);
                 started_ = true;
@@ -388,7 +453,13 @@ class MaintenanceComponent : public runtime::Component {
 
     // The component's thread.
     runtime::StampPairer<Points, Eigen::Isometry3d> pairer_;
-    std::uint64_t scans_ = 0, no_pose_ = 0;
+    std::uint64_t scans_ = 0, no_pose_ = 0, packed_ = 0;
+
+    // The waiting scans' count and bytes (packed, unpacked) and their peak (queue_mutex_).
+    std::mutex queue_mutex_;
+    std::deque<std::pair<std::size_t, std::size_t>> waiting_;
+    std::pair<std::size_t, std::size_t> waiting_bytes_{0, 0};
+    std::size_t peak_waiting_ = 0, peak_bytes_ = 0, peak_unpacked_bytes_ = 0;
 
     // Shared with the worker (under mutex_).
     std::mutex mutex_;

@@ -39,6 +39,8 @@ MaintenanceComponentConfig load_maintenance_params(runtime::Parameters& p) {
     c.max_queue = p.get<int>("max_queue", c.max_queue);
     if (c.max_queue < 1) p.fail("max_queue", "must be >= 1");
     c.skip_while_busy = p.get<bool>("skip_while_busy", c.skip_while_busy);
+    c.pack_after = p.get<int>("pack_after", c.pack_after);
+    if (c.pack_after < -1) p.fail("pack_after", "must be >= 0 (or -1: never packed)");
     c.cpu_share = p.get<double>("cpu_share", c.cpu_share);
     if (!(c.cpu_share > 0.0 && c.cpu_share <= 1.0))
         p.fail("cpu_share", "must be in (0, 1] (1: not paced)");

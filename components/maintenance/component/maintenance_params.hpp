@@ -34,6 +34,9 @@ struct MaintenanceComponentConfig {
     int session = -1;  // this run's session number on the map (-1: the loaded map's last + 1, or 0)
     int max_queue = 50;            // scans waiting for the worker
     bool skip_while_busy = false;  // a full queue drops its oldest scan (live) or waits (offline)
+    // A scan that finds this many or more waiting (a pass runs) waits packed: lossless, 62 % of
+    // the memory on real scans (maintenance/core/packed_scan.hpp); 0: always, -1: never.
+    int pack_after = 10;
     // The worker's CPU at most this share of one core (core/cpu_pacer.hpp, a bucket of 0.1 s):
     // a pass is spread over time between its regions, and the scans after it too, rather than a
     // burst of seconds (live). 1: as fast as it goes (offline).

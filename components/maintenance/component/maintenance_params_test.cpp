@@ -23,7 +23,7 @@ std::string error_of(const std::string& yaml) {
 TEST(MaintenanceParams, DefaultsThenOverrides) {
     runtime::Parameters p = params_of(
         "input: pose\noutput_dir: /tmp/x\nmap_file: /tmp/m.bin\nmaintain_every_s: 5\nsession: "
-        "2\nmax_queue: 9\n"
+        "2\nmax_queue: 9\npack_after: 0\n"
         "skip_while_busy: true\ncpu_share: 0.4\nvoxel_size: 0.3\nchange: {sigma: 2.5, voxel_level: "
         "true}\n"
         "ground: {height: 0.4}\n");
@@ -35,6 +35,7 @@ TEST(MaintenanceParams, DefaultsThenOverrides) {
     EXPECT_DOUBLE_EQ(c.maintain_every_s, 5.0);
     EXPECT_EQ(c.session, 2);
     EXPECT_EQ(c.max_queue, 9);
+    EXPECT_EQ(c.pack_after, 0);
     EXPECT_TRUE(c.skip_while_busy);
     EXPECT_DOUBLE_EQ(c.cpu_share, 0.4);
     EXPECT_DOUBLE_EQ(c.maintenance.voxel_size, 0.3);
@@ -104,8 +105,8 @@ TEST(MaintenanceParams, ABadParameterIsOneLineNamingFileLineAndKey) {
               "test.yaml:1: maintenance.change.min_views: expected an integer, got 'many'");
     EXPECT_NE(error_of("change: {static_spam: 2}").find("static_span"), std::string::npos)
         << error_of("change: {static_spam: 2}");
-    for (const std::string bad :
-         {"input: lidar", "max_queue: 0", "session: -2", "skip_while_busy: maybe", "slot: -1"}) {
+    for (const std::string bad : {"input: lidar", "max_queue: 0", "pack_after: -2", "session: -2",
+                                  "skip_while_busy: maybe", "slot: -1"}) {
         const std::string e = error_of(bad);
         EXPECT_FALSE(e.empty()) << bad;
         EXPECT_EQ(e.find('\n'), std::string::npos) << e;
