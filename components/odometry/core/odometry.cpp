@@ -11,6 +11,16 @@ namespace ltm::odometry {
 constexpr int kEarlyFrames = 10;
 namespace {
 
+// Whether a fit's Hessian constrains a translation direction more than 30 deg from the vertical.
+bool fixes_a_horizontal_direction(const registration::Matrix6d& information,
+                                  const ObservabilityConfig& config) {
+    const Observability o = translation_observability(information, config.weak_information);
+    for (int k = 3 - o.constrained; k < 3; ++k) {
+        if (std::abs(o.directions.col(k).z()) < std::cos(30.0 * M_PI / 180.0)) return true;
+    }
+    return false;
+}
+
 constexpr double kRadToDeg = 180.0 / M_PI;
 constexpr double kUnknownVariance = 1e4;  // covariance diagonal of a pose that is not estimated
 
@@ -198,10 +208,27 @@ FrameResult Odometry::register_frame(const common::PointCloud& cloud) {
             motion_.push(cloud.stamp, predicted, scan_.T_stamp_mid);
             return r;
         }
+        // A run of degenerate scans kept out of the map whose fits fix no horizontal direction
+        // (every direction they constrain is within 30 deg of the vertical: the ground's normal):
+        // the map holds nothing around the robot but ground. It is behind the robot, which went
+        // on across open ground at a speed nothing measured; fits to it say nothing more. (A
+        // corridor's walls fix the position across it and the heading: that map is kept.)
+        const bool ground_only =
+            kept_out && !fixes_a_horizontal_direction(r.information, config_.observability);
+        kept_out_run_ = ground_only && segment_scans_ >= kYoungSegmentScans ? kept_out_run_ + 1 : 0;
+        const bool map_behind = why.empty() && config_.tracking.restart_kept_out > 0 &&
+                                kept_out_run_ >= config_.tracking.restart_kept_out;
         if (!why.empty()) {
             std::ostringstream s;
             s << "lost for " << since_tracked << " s (" << why << ")";
             restart_segment(s.str(), predicted, since_tracked, &r);
+        } else if (map_behind) {
+            std::ostringstream s;
+            s << kept_out_run_ << " degenerate scans in a row kept out of the map, their fits "
+              << "fixing no horizontal direction (tracking.restart_kept_out "
+              << config_.tracking.restart_kept_out << "): the map is behind the robot";
+            restart_segment(s.str(), predicted, since_tracked, &r);
+            kept_out = false;
         } else {
             // A direction of the translation the registration could not observe (below
             // registration.degeneracy_ratio: solution remapping left it at the prediction) makes
@@ -285,6 +312,7 @@ void Odometry::restart_segment(const std::string& why, const Eigen::Isometry3d& 
     maps_.start_new_segment();
     keyframes_.reset();
     segment_scans_ = 0;
+    kept_out_run_ = 0;
     // The new map holds this one scan: the next scans fit it as the first scans of the run fit
     // theirs, not as well as a grown map did. Judged by the grown map's figures, every scan after
     // a kidnap was refused, and the odometry restarted every restart_after.

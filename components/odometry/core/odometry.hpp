@@ -209,7 +209,8 @@ class Odometry {
     double observed_speed_ = 0.0;  // [m/s] of the last registered scan constrained every way
     static constexpr int kYoungSegmentScans = 10;  // scans that enter a new segment's map anyway
     int segment_scans_ = 0;                        // scans integrated since the segment began
-    double last_tracked_stamp_ = 0.0;              // of the last scan with a valid pose
+    int kept_out_run_ = 0;  // degenerate scans kept out of the map in a row (after the young ones)
+    double last_tracked_stamp_ = 0.0;  // of the last scan with a valid pose
     Eigen::Isometry3d last_tracked_pose_ = Eigen::Isometry3d::Identity();
     bool has_stamp_ = false;
     double last_stamp_ = 0.0;

@@ -67,6 +67,12 @@ struct TrackingConfig {
     // the odometry ends its local maps and starts a new one at its best estimate (a new segment,
     // joined to the map later by a loop or by localisation).
     double restart_after = 0.5;  // [s]
+    // Degenerate scans kept out of the map (their position along a weak direction is a guess)
+    // this many in a row, each fit fixing no horizontal direction (what it constrains is within
+    // 30 deg of the vertical: the ground's normal): the map holds nothing around the robot but
+    // ground (it went on across open ground at a speed nothing measured), so its fits say nothing;
+    // the odometry starts a new segment from this scan, as after being lost. 0: never.
+    int restart_kept_out = 10;  // [scans]
     // No scan for longer than this (sensor time between two scans): a new segment at once, not a
     // fit to the old map (the robot may have been carried; a look-alike place of a repetitive site
     // fits as well as the right one). Longer than any gap a scan stream has in normal running
@@ -144,6 +150,7 @@ void visit_fields(OdometryConfig& c, Visitor&& v) {
     v("tracking.yaw_refine", t.yaw_refine, in_range(0, 45));
     v("tracking.restart_after", t.restart_after, non_negative);
     v("tracking.restart_gap", t.restart_gap, non_negative);
+    v("tracking.restart_kept_out", t.restart_kept_out, at_least(0));
     auto& o = c.observability;
     v("observability.weak_information", o.weak_information, unit);
     v("observability.slide_tolerance", o.slide_tolerance, non_negative);
