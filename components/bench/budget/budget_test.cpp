@@ -13,6 +13,7 @@
 #include "bench/budget/launch_variant.hpp"
 #include "bench/budget/memory_figure.hpp"
 #include "bench/budget/proc_stat.hpp"
+#include "bench/budget/scan_sensor.hpp"
 #include "bench/budget/thread_owner.hpp"
 #include "runtime/worker.hpp"
 
@@ -257,6 +258,44 @@ TEST(LaunchVariantTest, ReplacesTheSensorByAPlayerAndAddsTheProbe) {
     EXPECT_EQ(config["components"][0]["type"].as<std::string>(), "simulator");  // untouched
     o.replace = "camera";
     EXPECT_THROW(budget_variant(config, o), std::runtime_error);
+}
+
+TEST(LaunchVariantTest, SetsThePresetOfEveryComponentThatReadsOne) {
+    const auto config = YAML::Load(
+        "components:\n"
+        "  - {name: sensor, type: simulator, params: {scenario: x.yaml}}\n"
+        "  - {name: odometry, type: odometry, params: {preset: vlp32, voxel_size: 0.4}}\n"
+        "  - {name: localisation, type: localisation, params: {preset: vlp32}}\n"
+        "  - {name: slam, type: mapping}\n"
+        "  - {name: digest, type: keyframe_digest, params: {preset: hdl64}}\n"
+        "  - {name: tf, type: tf_publisher, params: {base_to_lidar: [0, 0, 0, 0, 0, 0]}}\n");
+    VariantOptions o;
+    o.preset = "os1-64";
+    const auto v = budget_variant(config, o);
+    for (std::size_t i = 1; i <= 4; ++i)
+        EXPECT_EQ(v["components"][i]["params"]["preset"].as<std::string>(), "os1-64") << i;
+    EXPECT_DOUBLE_EQ(v["components"][1]["params"]["voxel_size"].as<double>(), 0.4);  // kept
+    EXPECT_FALSE(v["components"][0]["params"]["preset"]);
+    EXPECT_FALSE(v["components"][5]["params"]["preset"]);
+    EXPECT_EQ(config["components"][1]["params"]["preset"].as<std::string>(), "vlp32");
+    o.preset = "";  // the config's own
+    EXPECT_EQ(budget_variant(config, o)["components"][1]["params"]["preset"].as<std::string>(),
+              "vlp32");
+}
+
+TEST(ScanSensorTest, ReadsTheModelLtmSimNotedAndFindsItsPreset) {
+    EXPECT_EQ(sim_model_of_note("name: x\n# ltm_sim run: seed 7, session 0, frames 0:10, sensor "
+                                "os1_64, format kitti\n"),
+              "os1_64");
+    EXPECT_EQ(sim_model_of_note("# ltm_sim run: seed 7, session 1, frames 0:5, sensor vlp32c, "
+                                "format kitti"),
+              "vlp32c");
+    EXPECT_EQ(sim_model_of_note("name: x\nsensor: {model: vlp16}\n"), "");
+    EXPECT_EQ(preset_of_sim_model("os1_64"), common::SensorPreset::kOs1_64);
+    EXPECT_EQ(preset_of_sim_model("vlp32c"), common::SensorPreset::kVlp32);
+    EXPECT_EQ(preset_of_sim_model("hdl64e"), common::SensorPreset::kHdl64);
+    EXPECT_THROW(preset_of_sim_model("hdl32"), std::runtime_error);
+    EXPECT_THROW(scans_sim_model("/nonexistent/scans"), std::runtime_error);
 }
 
 TEST(MemoryFigureTest, WritesAPolylinePerHostAndTheBudget) {
