@@ -157,6 +157,33 @@ TEST(BudgetStatsTest, SumsTheRunQueueWaitPerOwner) {
     EXPECT_DOUBLE_EQ(cpu_at(s.at("dds/tev"), 1.0), 0.05);
 }
 
+TEST(BudgetStatsTest, FindsTheWorstWindowsWithoutOverlap) {
+    // 10 s at a quarter of a core, a burst of a whole core over [3, 4.5] and one of half a core
+    // over [7, 8].
+    CpuSeries s;
+    double cpu = 0.0;
+    for (int i = 0; i <= 100; ++i) {
+        const double t = 0.1 * i;
+        s.t.push_back(t);
+        s.cpu_s.push_back(cpu);
+        s.wait_s.push_back(0.0);
+        cpu += 0.1 * ((t >= 3.0 - 1e-9 && t < 4.5 - 1e-9)   ? 1.0
+                      : (t >= 7.0 - 1e-9 && t < 8.0 - 1e-9) ? 0.5
+                                                            : 0.25);
+    }
+    const auto w = worst_windows(s, 0.0, 10.0, 3);
+    ASSERT_EQ(w.size(), 3u);
+    EXPECT_NEAR(w[0].share, 1.0, 1e-9);
+    EXPECT_GE(w[0].start, 3.0 - 1e-9);
+    EXPECT_LE(w[0].start, 3.5 + 1e-9);
+    EXPECT_NEAR(w[1].share, 0.5, 1e-9);
+    EXPECT_NEAR(w[1].start, 7.0, 1e-9);
+    for (std::size_t i = 0; i < w.size(); ++i)
+        for (std::size_t j = i + 1; j < w.size(); ++j)
+            EXPECT_GE(std::abs(w[i].start - w[j].start), 1.0 - 1e-9);
+    EXPECT_TRUE(worst_windows(s, 0.0, 0.5, 3).empty());  // no whole window fits
+}
+
 TEST(BudgetStatsTest, CountsTheSecondsABurstHeldACore) {
     const auto s = cpu_by_owner(two_threads(), {"odometry", "localisation"});
     EXPECT_EQ(busy_seconds(s.at("process"), 10.0, 12.5), 1);  // 11..12: 1.5 cores

@@ -6,6 +6,7 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -107,6 +108,22 @@ void report_host(std::ostream& out, const HostRun& h, double t0, double t1, std:
                 if (key.substr(0, key.rfind('/')) == component) row("&nbsp;&nbsp;" + key, s);
     }
     row("**process** (/proc/PID/stat)", process);
+    // What made the bursts: the threads' CPU in the process's worst windows.
+    out << "\nthe process's worst 1 s windows (s after the first scan: share; the threads with "
+           ">= 5 % of a core in it):\n\n";
+    for (const Window& w : worst_windows(process, t0, t1, 5)) {
+        out << "- +" << fmt("%.1f", w.start - t0) << " s: " << fmt("%.0f %%", 100 * w.share);
+        std::vector<std::pair<double, std::string>> who;
+        for (const auto& [key, s] : series) {
+            if (key == "process") continue;
+            const double share = cpu_at(s, w.start + 1.0) - cpu_at(s, w.start);
+            if (share >= 0.05) who.emplace_back(share, key);
+        }
+        std::sort(who.rbegin(), who.rend());
+        for (std::size_t k = 0; k < who.size(); ++k)
+            out << (k ? ", " : ": ") << who[k].second << " " << fmt("%.0f %%", 100 * who[k].first);
+        out << "\n";
+    }
     const double avg = average_share(process, t0, t1), worst = worst_window_share(process, t0, t1);
     double peak = 0;
     for (const auto& s : h.log.samples) peak = std::max(peak, s.memory.hwm_kb / 1024.0);
