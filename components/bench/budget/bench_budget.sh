@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# ./ltm bench budget [--config C] [--scenario S] [--frames A:B] [--out D] [--no-perf]
+# ./ltm bench budget [--config C] [--scenario S] [--sensor M] [--frames A:B] [--out D] [--no-perf]
 # The robot's mission through the host at the sensor's real rate: a kitti_player plays a
 # scenario's scans (rendered once by ltm_sim, so rendering is not counted) at their own times
 # (10 Hz) into the launch config, while `ltm_budget monitor` samples each host's threads from
@@ -14,6 +14,10 @@
 #   --config base_station_multi  two robot.yaml hosts (/robot1: session 0, /robot2: session 1)
 #                                and base_station_multi.yaml
 #   --config all                 the three in turn (default)
+#   --sensor M                   render the scans with the simulator's sensor M (os1_64, hdl64e,
+#                                vlp32c, vlp16) instead of the scenario's; every component's
+#                                sensor preset follows the scans (`ltm_budget sensor`), and the
+#                                robot's CPU target is 50 % of a core (100 % with 64 beams)
 #   --report-only                the reports again from D's samples and probes (no host runs)
 #   --maintenance-share X        the maintenance worker's CPU at most X of one core (its
 #                                cpu_share: passes spread, not bursts; default 0.35, 1: unpaced)
@@ -28,13 +32,15 @@ ROOT="$(cd "$(dirname "$0")/../../.." && pwd)"
 BIN="${LTM_BUILD_DIR:-$ROOT/build}/bin"
 DOMAIN="${LTM_BENCH_DOMAIN:-66}"
 CONFIG=all; SCENARIO="$ROOT/components/simulator/scenarios/site_loop.yaml"; FRAMES=""; OUT=""; PERF=1
-REPORT_ONLY=0; NICE=""; MAINT_SHARE=0.35
+REPORT_ONLY=0; NICE=""; MAINT_SHARE=0.35; SENSOR=""
+
 usage() {
     echo "The robot's mission at the sensor's rate: CPU, memory, missed scans, latency per component"
     printf 'Usage: ./ltm bench budget [OPTIONS]\n\nOptions:\n'
     printf '  %-22s%s\n' "-h,--help" "Print this help message and exit" \
         "--config C" "lifelong, base_station, base_station_multi or all (default)" \
         "--scenario S" "the scenario (default site_loop); sessions 0 and 1 are played" \
+        "--sensor M" "the simulator's sensor for the scans (os1_64, hdl64e, vlp32c, vlp16; default: the scenario's)" \
         "--frames A:B" "only scans A..B-1 of each session (a short run)" \
         "--out D" "the results (default results/budget-<time>)" \
         "--no-perf" "no perf profile of the robot's host" \
@@ -48,12 +54,12 @@ while [ $# -gt 0 ]; do
         -h|--help) usage; exit 0 ;;
         --no-perf) PERF=0; shift ;;
         --report-only) REPORT_ONLY=1; shift ;;
-        --config|--scenario|--frames|--out|--nice|--maintenance-share)
+        --config|--scenario|--sensor|--frames|--out|--nice|--maintenance-share)
             [ $# -ge 2 ] || fail "$1: needs a value"
             case "$1" in
                 --config) CONFIG="$2" ;; --scenario) SCENARIO="$2" ;;
                 --frames) FRAMES="$2" ;; --out) OUT="$2" ;; --nice) NICE="$2" ;;
-                --maintenance-share) MAINT_SHARE="$2" ;;
+                --maintenance-share) MAINT_SHARE="$2" ;; --sensor) SENSOR="$2" ;;
             esac
             shift 2 ;;
         *) fail "unknown argument '$1' (--help)" ;;
@@ -64,6 +70,7 @@ case "$CONFIG" in lifelong|base_station|base_station_multi|all) ;; *) fail "--co
 SCENARIO="$(cd "$(dirname "$SCENARIO")" && pwd)/$(basename "$SCENARIO")"
 [ -z "$FRAMES" ] || [[ "$FRAMES" =~ ^[0-9]*:[0-9]*$ ]] || fail "--frames: A:B, got '$FRAMES'"
 [ -z "$NICE" ] || [[ "$NICE" =~ ^-?[0-9]+$ ]] || fail "--nice: a whole number, got '$NICE'"
+[ -z "$SENSOR" ] || [[ "$SENSOR" =~ ^[a-z0-9_]+$ ]] || fail "--sensor: a simulator model (os1_64, hdl64e, vlp32c, vlp16), got '$SENSOR'"
 [[ "$MAINT_SHARE" =~ ^[0-9]*\.?[0-9]+$ ]] || fail "--maintenance-share: a number in (0, 1], got '$MAINT_SHARE'"
 for exe in ltm_host ltm_sim ltm_budget; do
     [ -x "$BIN/$exe" ] || fail "$BIN/$exe is not built (ninja -C build ltm_host ltm_sim ltm_budget)"
@@ -76,14 +83,15 @@ OUT="${OUT:-$ROOT/results/budget-$(date +%Y%m%d-%H%M%S)}"
 mkdir -p "$OUT" || fail "--out: cannot create $OUT"
 OUT="$(cd "$OUT" && pwd)"
 NAME="$(basename "$SCENARIO" .yaml)"
-echo "ltm bench budget: $CONFIG on $NAME, domain $DOMAIN, results in $OUT"
+echo "ltm bench budget: $CONFIG on $NAME${SENSOR:+ with a $SENSOR}, domain $DOMAIN, results in $OUT"
 
 # scans N: the folder of session N's scans (rendered once, kept beside the results).
 scans() {
-    local dir="$ROOT/results/budget-scans/$NAME-s$1${FRAMES:+-${FRAMES/:/-}}"
+    local dir="$ROOT/results/budget-scans/$NAME${SENSOR:+-$SENSOR}-s$1${FRAMES:+-${FRAMES/:/-}}"
     if [ ! -f "$dir/times.txt" ]; then
-        echo "  rendering $NAME session $1 ${FRAMES:+(frames $FRAMES) }into $dir" >&2
-        "$BIN/ltm_sim" "$SCENARIO" --session "$1" ${FRAMES:+--frames "$FRAMES"} --quiet \
+        echo "  rendering $NAME session $1 ${SENSOR:+with a $SENSOR }${FRAMES:+(frames $FRAMES) }into $dir" >&2
+        "$BIN/ltm_sim" "$SCENARIO" --session "$1" ${FRAMES:+--frames "$FRAMES"} \
+            ${SENSOR:+--sensor "$SENSOR"} --quiet \
             --out "$dir.tmp" >&2 || fail "ltm_sim failed for session $1"
         rm -rf "$dir"; mv "$dir.tmp" "$dir"
     fi
@@ -150,6 +158,12 @@ perf_summary() {  # DIR: where the robot host's CPU went (self time, by thread a
     } >> "$1/report.md"
     echo "  perf: $1/perf_top.txt (report: perf report -i $1/perf.data)"
 }
+# sensor_note DIR SCANS: the scans' preset, sensor and beams (ltm_budget sensor) into DIR/sensor.txt.
+sensor_note() { "$BIN/ltm_budget" sensor --scans "$2" > "$1/sensor.txt" || fail "ltm_budget sensor: $2"; }
+sensor_name() { cut -f2 "$1/sensor.txt" 2>/dev/null || echo "?"; }
+sensor_preset() { cut -f1 "$1/sensor.txt"; }
+# The robot's CPU target (issue 28): half a core on a VLP-32C, a whole core on a 64-beam sensor.
+target_share() { if [ "$(cut -f3 "$1/sensor.txt" 2>/dev/null || echo 0)" -ge 64 ]; then echo 1.0; else echo 0.5; fi; }
 published() { grep -oE 'published [0-9]+ scans' "$1" | tail -1 | grep -oE '[0-9]+' || echo 0; }
 
 # What the components said of themselves at the end (host.log): the localisation's scans
@@ -166,7 +180,8 @@ report_lifelong_day() {  # DAY SESSION
     [ -f "$dir/samples.txt" ] || { echo "  no $dir/samples.txt: day $day did not run"; return; }
     "$BIN/ltm_budget" report --host "robot:$dir/samples.txt:$dir/launch.yaml" --probe "$dir/probe.csv" \
         --published "$(published "$dir/host.log")" --out "$dir" --with-pose \
-        --title "robot_lifelong.yaml, $NAME session $2 (day $day), VLP-32C at 10 Hz" \
+        --target-share "$(target_share "$dir")" \
+        --title "robot_lifelong.yaml, $NAME session $2 (day $day), $(sensor_name "$dir") at 10 Hz" \
         --note "$(cat "$dir/load.txt" 2>/dev/null)" > /dev/null || echo "  report failed: see above"
     component_lines "$dir/host.log" "$dir/report.md"
     python3 "$ROOT/components/bench/budget/global_during.py" "$dir/host.log" "$dir/probe.csv" \
@@ -179,10 +194,11 @@ run_lifelong_day() {  # DAY SESSION
     local day="$1" dir="$OUT/lifelong/day$1" s mark
     s="$(scans "$2")" || exit 2
     mkdir -p "$dir"
+    sensor_note "$dir" "$s"
     "$BIN/ltm_budget" variant --in "$ROOT/launch_configs/robot_lifelong.yaml" --out "$dir/launch.yaml" \
-        --replace sensor --scans "$s" --wait-for-readers 4 --probe "$dir/probe.csv" \
+        --replace sensor --scans "$s" --presets-of "$s" --wait-for-readers 4 --probe "$dir/probe.csv" \
         --probe-inputs points odometry pose map_changes || exit 2
-    echo "  lifelong day $day: $(wc -l < "$s/times.txt") scans of session $2 at 10 Hz (about $(( $(wc -l < "$s/times.txt") / 600 + 1 )) min)"
+    echo "  lifelong day $day: $(wc -l < "$s/times.txt") scans of session $2 ($(sensor_name "$dir"), preset $(sensor_preset "$dir")) at 10 Hz (about $(( $(wc -l < "$s/times.txt") / 600 + 1 )) min)"
     mark="$(cpu_mark)"
     # Live: a scan that comes while the localiser is busy replaces the waiting one (counted), and
     # its global queries run on their own thread (global_thread, the default when live); the
@@ -207,7 +223,8 @@ report_base_station() {  # ROBOTS
         "$BIN/ltm_budget" report --host "$h:$dir/$h/samples.txt:$dir/$h/launch.yaml" \
             --host "base:$dir/base/samples.txt:$ROOT/launch_configs/$base" --probe "$dir/$h/probe.csv" \
             --published "$(published "$dir/$h/host.log")" --out "$dir/$h" \
-            --title "$base with $n robot(s): $h's host and the base station's, VLP-32C at 10 Hz" \
+            --target-share "$(target_share "$dir/$h")" \
+            --title "$base with $n robot(s): $h's host and the base station's, $(sensor_name "$dir/$h") at 10 Hz" \
             --note "$(cat "$dir/load.txt" 2>/dev/null)" > /dev/null || echo "  report failed: see above"
         component_lines "$dir/$h/host.log" "$dir/$h/report.md"
         [ "$i" = 1 ] && perf_summary "$dir/robot1"
@@ -223,17 +240,20 @@ run_base_station() {  # ROBOTS (1 or 2)
     # robots' data stops, and it started before a robot that was still rendering got none at all.
     for ((i = 1; i <= n; ++i)); do scans $((i - 1)) > /dev/null || exit 2; done
     mark="$(cpu_mark)"
-    # The scans are VLP-32C: every preset says so.
-    start_host base "$dir/base" "$ROOT/launch_configs/$base" -- --set mapping.preset=vlp32
+    # Every preset follows the scans' sensor (the robots' variants, the base station's mapping).
+    s="$(scans 0)" || exit 2
+    mkdir -p "$dir/base"; sensor_note "$dir/base" "$s"
+    start_host base "$dir/base" "$ROOT/launch_configs/$base" -- --set "mapping.preset=$(sensor_preset "$dir/base")"
     for ((i = 1; i <= n; ++i)); do
         s="$(scans $((i - 1)))" || exit 2
         mkdir -p "$dir/robot$i"
+        sensor_note "$dir/robot$i" "$s"
         "$BIN/ltm_budget" variant --in "$ROOT/launch_configs/robot.yaml" --out "$dir/robot$i/launch.yaml" \
-            --probe "$dir/robot$i/probe.csv" --probe-inputs points odometry || exit 2
+            --presets-of "$s" --probe "$dir/robot$i/probe.csv" --probe-inputs points odometry || exit 2
         local ns=/robot; [ "$n" = 1 ] || ns=/robot$i
         echo "  robot$i ($ns): $(wc -l < "$s/times.txt") scans of session $((i - 1)) at 10 Hz"
         start_host "robot$i" "$dir/robot$i" "$dir/robot$i/launch.yaml" LTM_DATA="$s" -- \
-            --set namespace=$ns --set odometry.preset=vlp32 --set keyframe_digest.preset=vlp32
+            --set namespace=$ns
         [ "$i" = 1 ] && profile robot1 "$dir/robot$i"
     done
     wait_hosts

@@ -137,6 +137,25 @@ double worst_window_share(const CpuSeries& s, double t0, double t1, double windo
     return worst;
 }
 
+std::vector<Window> worst_windows(const CpuSeries& s, double t0, double t1, std::size_t n,
+                                  double window_s) {
+    std::vector<Window> all;
+    for (std::size_t i = 0; i < s.t.size(); ++i) {
+        if (s.t[i] < t0 || s.t[i] + window_s > t1) continue;
+        all.push_back({s.t[i], (cpu_at(s, s.t[i] + window_s) - s.cpu_s[i]) / window_s});
+    }
+    std::stable_sort(all.begin(), all.end(),
+                     [](const Window& a, const Window& b) { return a.share > b.share; });
+    std::vector<Window> out;
+    for (const Window& w : all) {
+        if (out.size() >= n) break;
+        bool overlaps = false;
+        for (const Window& o : out) overlaps = overlaps || std::abs(o.start - w.start) < window_s;
+        if (!overlaps) out.push_back(w);
+    }
+    return out;
+}
+
 int busy_seconds(const CpuSeries& s, double t0, double t1, double threshold) {
     int n = 0;
     for (double t = t0; t + 1.0 <= t1 + 1e-9; t += 1.0)

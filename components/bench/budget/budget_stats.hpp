@@ -41,6 +41,13 @@ double wait_at(const CpuSeries& s, double t);  // the same of the run-queue wait
 double average_share(const CpuSeries& s, double t0, double t1);
 // The largest share over windows of `window_s` starting at a sample inside [t0, t1 - window_s].
 double worst_window_share(const CpuSeries& s, double t0, double t1, double window_s = 1.0);
+// The starts of the `n` worst windows of `window_s` in [t0, t1] that do not overlap, worst first
+// (what made the bursts: each one's CPU per owner is then cpu_at(start + window) - cpu_at(start)).
+struct Window {
+    double start = 0, share = 0;
+};
+std::vector<Window> worst_windows(const CpuSeries& s, double t0, double t1, std::size_t n,
+                                  double window_s = 1.0);
 // Whole seconds [t0 + k, t0 + k + 1) inside [t0, t1] in which the share was at least `threshold`
 // (a burst: a maintenance pass holding a core).
 int busy_seconds(const CpuSeries& s, double t0, double t1, double threshold = 0.9);

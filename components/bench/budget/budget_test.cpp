@@ -13,6 +13,7 @@
 #include "bench/budget/launch_variant.hpp"
 #include "bench/budget/memory_figure.hpp"
 #include "bench/budget/proc_stat.hpp"
+#include "bench/budget/scan_sensor.hpp"
 #include "bench/budget/thread_owner.hpp"
 #include "runtime/worker.hpp"
 
@@ -156,6 +157,33 @@ TEST(BudgetStatsTest, SumsTheRunQueueWaitPerOwner) {
     EXPECT_DOUBLE_EQ(cpu_at(s.at("dds/tev"), 1.0), 0.05);
 }
 
+TEST(BudgetStatsTest, FindsTheWorstWindowsWithoutOverlap) {
+    // 10 s at a quarter of a core, a burst of a whole core over [3, 4.5] and one of half a core
+    // over [7, 8].
+    CpuSeries s;
+    double cpu = 0.0;
+    for (int i = 0; i <= 100; ++i) {
+        const double t = 0.1 * i;
+        s.t.push_back(t);
+        s.cpu_s.push_back(cpu);
+        s.wait_s.push_back(0.0);
+        cpu += 0.1 * ((t >= 3.0 - 1e-9 && t < 4.5 - 1e-9)   ? 1.0
+                      : (t >= 7.0 - 1e-9 && t < 8.0 - 1e-9) ? 0.5
+                                                            : 0.25);
+    }
+    const auto w = worst_windows(s, 0.0, 10.0, 3);
+    ASSERT_EQ(w.size(), 3u);
+    EXPECT_NEAR(w[0].share, 1.0, 1e-9);
+    EXPECT_GE(w[0].start, 3.0 - 1e-9);
+    EXPECT_LE(w[0].start, 3.5 + 1e-9);
+    EXPECT_NEAR(w[1].share, 0.5, 1e-9);
+    EXPECT_NEAR(w[1].start, 7.0, 1e-9);
+    for (std::size_t i = 0; i < w.size(); ++i)
+        for (std::size_t j = i + 1; j < w.size(); ++j)
+            EXPECT_GE(std::abs(w[i].start - w[j].start), 1.0 - 1e-9);
+    EXPECT_TRUE(worst_windows(s, 0.0, 0.5, 3).empty());  // no whole window fits
+}
+
 TEST(BudgetStatsTest, CountsTheSecondsABurstHeldACore) {
     const auto s = cpu_by_owner(two_threads(), {"odometry", "localisation"});
     EXPECT_EQ(busy_seconds(s.at("process"), 10.0, 12.5), 1);  // 11..12: 1.5 cores
@@ -257,6 +285,44 @@ TEST(LaunchVariantTest, ReplacesTheSensorByAPlayerAndAddsTheProbe) {
     EXPECT_EQ(config["components"][0]["type"].as<std::string>(), "simulator");  // untouched
     o.replace = "camera";
     EXPECT_THROW(budget_variant(config, o), std::runtime_error);
+}
+
+TEST(LaunchVariantTest, SetsThePresetOfEveryComponentThatReadsOne) {
+    const auto config = YAML::Load(
+        "components:\n"
+        "  - {name: sensor, type: simulator, params: {scenario: x.yaml}}\n"
+        "  - {name: odometry, type: odometry, params: {preset: vlp32, voxel_size: 0.4}}\n"
+        "  - {name: localisation, type: localisation, params: {preset: vlp32}}\n"
+        "  - {name: slam, type: mapping}\n"
+        "  - {name: digest, type: keyframe_digest, params: {preset: hdl64}}\n"
+        "  - {name: tf, type: tf_publisher, params: {base_to_lidar: [0, 0, 0, 0, 0, 0]}}\n");
+    VariantOptions o;
+    o.preset = "os1-64";
+    const auto v = budget_variant(config, o);
+    for (std::size_t i = 1; i <= 4; ++i)
+        EXPECT_EQ(v["components"][i]["params"]["preset"].as<std::string>(), "os1-64") << i;
+    EXPECT_DOUBLE_EQ(v["components"][1]["params"]["voxel_size"].as<double>(), 0.4);  // kept
+    EXPECT_FALSE(v["components"][0]["params"]["preset"]);
+    EXPECT_FALSE(v["components"][5]["params"]["preset"]);
+    EXPECT_EQ(config["components"][1]["params"]["preset"].as<std::string>(), "vlp32");
+    o.preset = "";  // the config's own
+    EXPECT_EQ(budget_variant(config, o)["components"][1]["params"]["preset"].as<std::string>(),
+              "vlp32");
+}
+
+TEST(ScanSensorTest, ReadsTheModelLtmSimNotedAndFindsItsPreset) {
+    EXPECT_EQ(sim_model_of_note("name: x\n# ltm_sim run: seed 7, session 0, frames 0:10, sensor "
+                                "os1_64, format kitti\n"),
+              "os1_64");
+    EXPECT_EQ(sim_model_of_note("# ltm_sim run: seed 7, session 1, frames 0:5, sensor vlp32c, "
+                                "format kitti"),
+              "vlp32c");
+    EXPECT_EQ(sim_model_of_note("name: x\nsensor: {model: vlp16}\n"), "");
+    EXPECT_EQ(preset_of_sim_model("os1_64"), common::SensorPreset::kOs1_64);
+    EXPECT_EQ(preset_of_sim_model("vlp32c"), common::SensorPreset::kVlp32);
+    EXPECT_EQ(preset_of_sim_model("hdl64e"), common::SensorPreset::kHdl64);
+    EXPECT_THROW(preset_of_sim_model("hdl32"), std::runtime_error);
+    EXPECT_THROW(scans_sim_model("/nonexistent/scans"), std::runtime_error);
 }
 
 TEST(MemoryFigureTest, WritesAPolylinePerHostAndTheBudget) {

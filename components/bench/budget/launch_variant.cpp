@@ -38,6 +38,13 @@ YAML::Node budget_variant(const YAML::Node& config, const VariantOptions& o) {
             if (out["topics"].size() == 0) out.remove("topics");
         }
     }
+    if (!o.preset.empty()) {
+        for (std::size_t i = 0; i < components.size(); ++i) {
+            const std::string type = components[i]["type"].as<std::string>("");
+            for (const char* t : kPresetTypes)
+                if (type == t) components[i]["params"]["preset"] = o.preset;
+        }
+    }
     if (!o.probe_file.empty()) {
         YAML::Node probe;
         probe["name"] = "budget_probe";

@@ -2,9 +2,11 @@
 //   ltm_budget monitor --pid P --out SAMPLES      samples a host's threads and memory from /proc
 //   ltm_budget variant --in L.yaml --out V.yaml    a launch config made into the benchmark's
 //   ltm_budget report --host LABEL:SAMPLES:LAUNCH ... [--probe CSV] --out DIR
+//   ltm_budget sensor --scans DIR                  the preset, sensor and beams of DIR's scans
 #include <signal.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -18,6 +20,7 @@
 #include "bench/budget/launch_variant.hpp"
 #include "bench/budget/memory_figure.hpp"
 #include "bench/budget/proc_stat.hpp"
+#include "bench/budget/scan_sensor.hpp"
 #include "bench/budget/thread_owner.hpp"
 #include "common/cli/cli.hpp"
 
@@ -105,6 +108,22 @@ void report_host(std::ostream& out, const HostRun& h, double t0, double t1, std:
                 if (key.substr(0, key.rfind('/')) == component) row("&nbsp;&nbsp;" + key, s);
     }
     row("**process** (/proc/PID/stat)", process);
+    // What made the bursts: the threads' CPU in the process's worst windows.
+    out << "\nthe process's worst 1 s windows (s after the first scan: share; the threads with "
+           ">= 5 % of a core in it):\n\n";
+    for (const Window& w : worst_windows(process, t0, t1, 5)) {
+        out << "- +" << fmt("%.1f", w.start - t0) << " s: " << fmt("%.0f %%", 100 * w.share);
+        std::vector<std::pair<double, std::string>> who;
+        for (const auto& [key, s] : series) {
+            if (key == "process") continue;
+            const double share = cpu_at(s, w.start + 1.0) - cpu_at(s, w.start);
+            if (share >= 0.05) who.emplace_back(share, key);
+        }
+        std::sort(who.rbegin(), who.rend());
+        for (std::size_t k = 0; k < who.size(); ++k)
+            out << (k ? ", " : ": ") << who[k].second << " " << fmt("%.0f %%", 100 * who[k].first);
+        out << "\n";
+    }
     const double avg = average_share(process, t0, t1), worst = worst_window_share(process, t0, t1);
     double peak = 0;
     for (const auto& s : h.log.samples) peak = std::max(peak, s.memory.hwm_kb / 1024.0);
@@ -162,7 +181,7 @@ void report_latency(std::ostream& out, const std::vector<ProbeRecord>& probe,
 
 int report(const std::vector<std::string>& hosts, const std::string& probe_path,
            const std::string& out_dir, const std::string& title, std::size_t published,
-           const std::string& note, bool with_pose) {
+           const std::string& note, bool with_pose, double target_share) {
     std::vector<HostRun> runs;
     for (const auto& spec : hosts) {
         const auto a = spec.find(':'), b = spec.find(':', a + 1);
@@ -184,7 +203,8 @@ int report(const std::vector<std::string>& hosts, const std::string& probe_path,
         probe = read_probe(in);
     }
     const auto scans = of_topic(probe, "points");
-    const Targets targets;
+    Targets targets;
+    targets.avg_share = target_share;
     std::ostringstream out;
     out << "# " << title << "\n\n" << note << "\n";
     for (std::size_t i = 0; i < runs.size(); ++i) {
@@ -232,7 +252,9 @@ int main(int argc, char** argv) {
     app.require_subcommand(1);
     int pid = 0;
     double interval = 0.1;
-    std::string out, in, replace, scans, probe_file, pose_topic, title = "ltm budget", note;
+    std::string out, in, replace, scans, probe_file, pose_topic, title = "ltm budget", note,
+                                                                 presets_of;
+    double target_share = 0.5;
     std::vector<std::string> hosts, probe_inputs;
     int readers = 1;
     bool with_pose = false;
@@ -251,6 +273,11 @@ int main(int argc, char** argv) {
     var->add_option("--probe", probe_file, "the probe's CSV (none: no probe)");
     var->add_option("--probe-inputs", probe_inputs, "points odometry pose map_changes");
     var->add_option("--probe-pose", pose_topic, "the topic the probe's pose input reads");
+    var->add_option("--presets-of", presets_of,
+                    "a folder ltm_sim wrote: every component's sensor preset set to its sensor's");
+    auto* sen = app.add_subcommand(
+        "sensor", "prints the sensor preset, the sensor and its beams of a folder ltm_sim wrote");
+    sen->add_option("--scans", scans, "the folder")->required();
     auto* rep = app.add_subcommand("report", "per component and thread CPU, memory, latency");
     rep->add_option("--host", hosts, "LABEL:SAMPLES:LAUNCH (the first: the robot)")->required();
     rep->add_option("--probe", probe_file, "the probe's CSV");
@@ -258,6 +285,10 @@ int main(int argc, char** argv) {
     rep->add_option("--title", title, "the report's title");
     rep->add_option("--published", published, "scans the player published (its log)");
     rep->add_option("--note", note, "a line for the report (the machine's load)");
+    rep->add_option("--target-share", target_share,
+                    "the average share of one core the robot's host may use (issue 28: 0.5 on a "
+                    "VLP-32C, 1 on a 64-beam sensor)")
+        ->check(cli::positive());
     rep->add_flag("--with-pose", with_pose,
                   "a localisation runs: report its map poses even if none came");
     if (const int code = cli::parse(app, argc, argv); code >= 0) return code;
@@ -271,6 +302,8 @@ int main(int argc, char** argv) {
             o.probe_file = probe_file;
             o.probe_inputs = probe_inputs;
             o.probe_pose_topic = pose_topic;
+            if (!presets_of.empty())
+                o.preset = ltm::common::to_string(preset_of_sim_model(scans_sim_model(presets_of)));
             if (!replace.empty() && scans.empty())
                 throw cli::UsageError("--scans", "needed with --replace");
             YAML::Emitter e;
@@ -279,7 +312,14 @@ int main(int argc, char** argv) {
                                << e.c_str() << "\n";
             return 0;
         }
-        if (*rep) return report(hosts, probe_file, out, title, published, note, with_pose);
+        if (*sen) {
+            const auto preset = preset_of_sim_model(scans_sim_model(scans));
+            const auto& row = ltm::common::sensor_preset_row(preset);
+            std::cout << row.name << "\t" << row.sensor << "\t" << row.rings << "\n";
+            return 0;
+        }
+        if (*rep)
+            return report(hosts, probe_file, out, title, published, note, with_pose, target_share);
     } catch (const cli::UsageError& e) {
         return cli::usage_error(app, e);
     } catch (const std::exception& e) {
