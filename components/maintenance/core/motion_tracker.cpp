@@ -198,17 +198,27 @@ void build(const MotionConfig& config, const Cells& cells, const std::vector<Eig
     for (Acc& a : acc) {
         const Eigen::Vector3f m = a.sum / float(a.n);
         const int cx = int(std::floor(m.x() * inv_col)), cy = int(std::floor(m.y() * inv_col));
-        float low = std::numeric_limits<float>::infinity();
+        // The second lowest of the columns' lowest cells (the lowest when only one has cells):
+        // a reflection below the ground (points metres under the road) is not its level.
+        float low = std::numeric_limits<float>::infinity(), second = low;
         for (int dy = -1; dy <= 1; ++dy)
             for (int dx = -1; dx <= 1; ++dx) {
                 const auto it = lowest.find(column(cx + dx, cy + dy));
-                if (it != lowest.end()) low = std::min(low, it->second);
+                if (it == lowest.end()) continue;
+                if (it->second < low) {
+                    second = low;
+                    low = it->second;
+                } else {
+                    second = std::min(second, it->second);
+                }
             }
+        if (std::isfinite(second)) low = second;
         a.ground = m.z() - low <= float(config.ground_height);
     }
     // Clusters: non-ground cells within `neighbourhood` cells (twice that vertically: the
     // rings of a far object are farther apart than its columns).
     const int n = config.neighbourhood, nz = 2 * config.neighbourhood;
+    const float join2 = float(config.join_distance * config.join_distance);
     std::vector<std::uint32_t> label(acc.size(), 0), stack, members;
     std::uint32_t next = 0;
     std::vector<std::vector<std::uint32_t>> groups;
@@ -230,6 +240,11 @@ void build(const MotionConfig& config, const Cells& cells, const std::vector<Eig
                             index.find(pack(acc[c].coords + Eigen::Vector3i(dx, dy, dz)));
                         if (it == index.end() || acc[it->second].ground || label[it->second])
                             continue;
+                        // Cells' points this far apart across the ground are two objects side
+                        // by side (a walker beside a hedge), not one.
+                        const Eigen::Vector3f gap = acc[c].sum / float(acc[c].n) -
+                                                    acc[it->second].sum / float(acc[it->second].n);
+                        if (gap.head<2>().squaredNorm() > join2) continue;
                         label[it->second] = next;
                         stack.push_back(it->second);
                     }
