@@ -161,7 +161,7 @@ bool seen_empty(const MotionConfig& config, const Seen& s) {
 void build(const MotionConfig& config, const Cells& cells, const std::vector<Eigen::Vector3f>& pts,
            MotionTracker::Scan* scan) {
     struct Acc {
-        Eigen::Vector3f sum = Eigen::Vector3f::Zero();
+        Eigen::Vector3f mean = Eigen::Vector3f::Zero();  // the sum of its points until all are in
         std::uint32_t n = 0;
         Eigen::Vector3i coords;
         bool ground = false;
@@ -177,26 +177,27 @@ void build(const MotionConfig& config, const Cells& cells, const std::vector<Eig
             acc.emplace_back();
             acc.back().coords = c;
         }
-        acc[it->second].sum += pts[i];
+        acc[it->second].mean += pts[i];
         ++acc[it->second].n;
         cell_of[i] = it->second;
     }
+    for (Acc& a : acc) a.mean /= float(a.n);  // the points' mean from here on
     scan->occupied.reserve(index.size());
     for (const auto& [key, i] : index) scan->occupied.insert(key);
-    // Ground: within ground_height of the lowest cell of the 3 x 3 column neighbourhood.
+    // Ground: within ground_height of the ground level of the 3 x 3 column neighbourhood.
     const float inv_col = 1.0f / float(config.ground_column);
     const auto column = [&](int x, int y) {
         return (std::uint64_t(std::uint32_t(x)) << 32) | std::uint64_t(std::uint32_t(y));
     };
     std::unordered_map<std::uint64_t, float> lowest;
     for (const Acc& a : acc) {
-        const Eigen::Vector3f m = a.sum / float(a.n);
+        const Eigen::Vector3f m = a.mean;
         const auto k = column(int(std::floor(m.x() * inv_col)), int(std::floor(m.y() * inv_col)));
         const auto [it, fresh] = lowest.emplace(k, m.z());
         if (!fresh) it->second = std::min(it->second, m.z());
     }
     for (Acc& a : acc) {
-        const Eigen::Vector3f m = a.sum / float(a.n);
+        const Eigen::Vector3f m = a.mean;
         const int cx = int(std::floor(m.x() * inv_col)), cy = int(std::floor(m.y() * inv_col));
         // The second lowest of the columns' lowest cells (the lowest when only one has cells):
         // a reflection below the ground (points metres under the road) is not its level.
@@ -216,7 +217,8 @@ void build(const MotionConfig& config, const Cells& cells, const std::vector<Eig
         a.ground = m.z() - low <= float(config.ground_height);
     }
     // Clusters: non-ground cells within `neighbourhood` cells (twice that vertically: the
-    // rings of a far object are farther apart than its columns).
+    // rings of a far object are farther apart than its columns) whose means are within
+    // join_distance horizontally.
     const int n = config.neighbourhood, nz = 2 * config.neighbourhood;
     const float join2 = float(config.join_distance * config.join_distance);
     std::vector<std::uint32_t> label(acc.size(), 0), stack, members;
@@ -242,8 +244,7 @@ void build(const MotionConfig& config, const Cells& cells, const std::vector<Eig
                             continue;
                         // Cells' points this far apart across the ground are two objects side
                         // by side (a walker beside a hedge), not one.
-                        const Eigen::Vector3f gap = acc[c].sum / float(acc[c].n) -
-                                                    acc[it->second].sum / float(acc[it->second].n);
+                        const Eigen::Vector3f gap = acc[c].mean - acc[it->second].mean;
                         if (gap.head<2>().squaredNorm() > join2) continue;
                         label[it->second] = next;
                         stack.push_back(it->second);
@@ -262,7 +263,7 @@ void build(const MotionConfig& config, const Cells& cells, const std::vector<Eig
         Eigen::Vector3f hi = -lo;
         Cluster c;
         for (std::uint32_t i : groups[g]) {
-            const Eigen::Vector3f m = acc[i].sum / float(acc[i].n);
+            const Eigen::Vector3f m = acc[i].mean;
             lo = lo.cwiseMin(m);
             hi = hi.cwiseMax(m);
             c.index.emplace(pack(acc[i].coords), std::uint32_t(c.cells.size()));
