@@ -210,6 +210,41 @@ TEST(MotionTracker, AWalkerBesideAHedgeIsMovingTheHedgeIsNot) {
     EXPECT_LT(w.walker_reported, w.walker / 10) << w.walker_reported << " of " << w.walker;
 }
 
+TEST(MotionTracker, TheWalkerBesideTheHedgeLeavesTheMapTheHedgeStays) {
+    // Through the long-term map with its defaults: the hedge's voxels are hit in every view and
+    // never in a moving cluster; the walker's leave.
+    MaintenanceConfig config;
+    LongTermMap map(config);
+    std::set<std::tuple<int, int, int>> walker, hedge;
+    const float s = float(config.voxel_size);
+    for (int k = 0; k <= 10; ++k) {
+        const double t = 0.1 * k;
+        const Eigen::Isometry3d T = sensor_at(-10.0 + 5.0 * t, -2.5);
+        std::vector<int> ids;
+        const std::vector<Eigen::Vector3f> pts = cast(hedge_street(t), T, &ids);
+        map.add_scan(pts, T, 100.0 + t);
+        for (std::size_t i = 0; i < pts.size(); ++i) {
+            const Eigen::Vector3f w = T.cast<float>() * pts[i];
+            const std::tuple<int, int, int> c{
+                int(std::floor(w.x() / s)), int(std::floor(w.y() / s)), int(std::floor(w.z() / s))};
+            if (ids[i] == kWalker && w.z() > 0.3f) walker.insert(c);
+            if (ids[i] == kHedge) hedge.insert(c);
+        }
+    }
+    map.end_session();
+    for (const auto& c : walker) hedge.erase(c);  // voxels both touch are neither's
+    const auto kept = [&](const std::set<std::tuple<int, int, int>>& cells) {
+        std::size_t n = 0;
+        for (const auto& [x, y, z] : cells)
+            n += map.keeps({(x + 0.5f) * s, (y + 0.5f) * s, (z + 0.5f) * s}) ? 1 : 0;
+        return n;
+    };
+    ASSERT_GT(walker.size(), 20u);
+    ASSERT_GT(hedge.size(), 300u);
+    EXPECT_LE(kept(walker), walker.size() / 5) << kept(walker) << " of " << walker.size();
+    EXPECT_GE(kept(hedge), hedge.size() * 99 / 100) << kept(hedge) << " of " << hedge.size();
+}
+
 TEST(MotionTracker, BadKeysAreOneLineNamingTheKey) {
     MaintenanceConfig c;
     c.motion.min_lag = 2.0;  // above max_lag
