@@ -279,7 +279,31 @@ void build(const MotionConfig& config, const Cells& cells, const std::vector<Eig
         cluster_of_label[label[groups[g].front()]] = std::int32_t(scan->clusters.size());
         scan->clusters.push_back(std::move(c));
     }
+    // Its feet: the ground cells in the columns of its cells, at most the ground's height (and
+    // a cell) below its lowest cell there. They are not matched, but leave with it (a
+    // motorcycle's wheels, a walker's shoes).
+    std::unordered_map<CellKey, std::pair<std::int32_t, int>> column_of;  // cluster, lowest z
+    for (std::uint32_t g = 0; g < groups.size(); ++g) {
+        if (groups[g].empty()) continue;
+        const std::int32_t k = cluster_of_label[label[groups[g].front()]];
+        if (k < 0) continue;
+        for (std::uint32_t i : groups[g]) {
+            const Eigen::Vector3i& c = acc[i].coords;
+            const auto [it, fresh] =
+                column_of.emplace(pack({c.x(), c.y(), 0}), std::pair{k, c.z()});
+            if (!fresh) it->second.second = std::min(it->second.second, c.z());
+        }
+    }
+    const int feet = int(std::ceil(config.ground_height / config.cell)) + 1;
     for (std::size_t i = 0; i < pts.size(); ++i) {
+        const Acc& a = acc[cell_of[i]];
+        if (a.ground) {
+            const auto it = column_of.find(pack({a.coords.x(), a.coords.y(), 0}));
+            if (it != column_of.end() && a.coords.z() < it->second.second &&
+                a.coords.z() >= it->second.second - feet)
+                scan->clusters[std::size_t(it->second.first)].points.push_back(pts[i]);
+            continue;
+        }
         const std::uint32_t l = label[cell_of[i]];
         if (l == 0 || cluster_of_label[l] < 0) continue;
         scan->clusters[std::size_t(cluster_of_label[l])].points.push_back(pts[i]);

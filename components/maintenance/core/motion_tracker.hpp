@@ -27,7 +27,9 @@
 // occupied (or hidden) in the other scan, never empty. A moving cluster's points are returned,
 // with those of the clusters its chain links it to and of the clusters that link to it later,
 // as far as each link moved at least min_shift / max_lag (a link that stood still ends the
-// chain). The caller flags their voxels (LongTermMap).
+// chain). A cluster's points include its feet: the ground cells in its cells' columns just
+// below it (a motorcycle's wheels are within the ground's height of the road); they are not
+// matched. The caller flags their voxels (LongTermMap; a voxel of the map's ground stays).
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <deque>

@@ -61,8 +61,10 @@ Window run_tracker(double sensor_speed) {
             w.walker += ids[i] == kWalker && (T.cast<float>() * pts[i]).z() > 0.4f ? 1 : 0;
         for (const Eigen::Vector3f& p : tracker.add_scan(pts, T, t)) {
             ++w.reported;
-            // Anywhere the walker was during the second; never on the car or the wall.
-            if (inside(p, {4.0f, 0.0f, 0.0f}, {5.5f, 0.5f, 1.7f}, 0.05f)) {
+            // Anywhere the walker was during the second, or the ground in its cells' columns
+            // (its feet leave with it); never on the car or the wall.
+            const Eigen::Vector3f lo(4.0f, 0.0f, 0.0f), hi(5.5f, 0.5f, 1.7f);
+            if (inside(p, lo, hi, 0.05f) || (p.z() < 0.05f && inside(p, lo, hi, 0.25f))) {
                 ++w.reported_on_walker;
                 w.walker_reported += p.z() > 0.4f ? 1 : 0;
             }
