@@ -110,6 +110,7 @@ struct MotionConfig {
     double session_span = 12.0;
     double cell = 0.2;             // [m] cells of a scan's points
     int neighbourhood = 1;         // cells each way that join a cluster (twice that vertically)
+    double join_distance = 0.3;    // [m] ... when their points' means are this close horizontally
     double ground_column = 1.0;    // [m] columns for the scan's ground
     double ground_height = 0.3;    // [m] cells this close to the local lowest are ground
     int min_cells = 6;             // smaller clusters are not followed
@@ -195,6 +196,7 @@ void visit_fields(MaintenanceConfig& c, const std::string& prefix, Visitor&& v) 
     v(prefix + "motion.session_span", c.motion.session_span, non_negative);
     v(prefix + "motion.cell", c.motion.cell, in_range(0.02, 2.0));
     v(prefix + "motion.neighbourhood", c.motion.neighbourhood, in_range(1, 5));
+    v(prefix + "motion.join_distance", c.motion.join_distance, positive);
     v(prefix + "motion.ground_column", c.motion.ground_column, positive);
     v(prefix + "motion.ground_height", c.motion.ground_height, non_negative);
     v(prefix + "motion.min_cells", c.motion.min_cells, at_least(1));

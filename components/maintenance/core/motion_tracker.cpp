@@ -161,7 +161,7 @@ bool seen_empty(const MotionConfig& config, const Seen& s) {
 void build(const MotionConfig& config, const Cells& cells, const std::vector<Eigen::Vector3f>& pts,
            MotionTracker::Scan* scan) {
     struct Acc {
-        Eigen::Vector3f sum = Eigen::Vector3f::Zero();
+        Eigen::Vector3f mean = Eigen::Vector3f::Zero();  // the sum of its points until all are in
         std::uint32_t n = 0;
         Eigen::Vector3i coords;
         bool ground = false;
@@ -177,38 +177,50 @@ void build(const MotionConfig& config, const Cells& cells, const std::vector<Eig
             acc.emplace_back();
             acc.back().coords = c;
         }
-        acc[it->second].sum += pts[i];
+        acc[it->second].mean += pts[i];
         ++acc[it->second].n;
         cell_of[i] = it->second;
     }
+    for (Acc& a : acc) a.mean /= float(a.n);  // the points' mean from here on
     scan->occupied.reserve(index.size());
     for (const auto& [key, i] : index) scan->occupied.insert(key);
-    // Ground: within ground_height of the lowest cell of the 3 x 3 column neighbourhood.
+    // Ground: within ground_height of the ground level of the 3 x 3 column neighbourhood.
     const float inv_col = 1.0f / float(config.ground_column);
     const auto column = [&](int x, int y) {
         return (std::uint64_t(std::uint32_t(x)) << 32) | std::uint64_t(std::uint32_t(y));
     };
     std::unordered_map<std::uint64_t, float> lowest;
     for (const Acc& a : acc) {
-        const Eigen::Vector3f m = a.sum / float(a.n);
+        const Eigen::Vector3f m = a.mean;
         const auto k = column(int(std::floor(m.x() * inv_col)), int(std::floor(m.y() * inv_col)));
         const auto [it, fresh] = lowest.emplace(k, m.z());
         if (!fresh) it->second = std::min(it->second, m.z());
     }
     for (Acc& a : acc) {
-        const Eigen::Vector3f m = a.sum / float(a.n);
+        const Eigen::Vector3f m = a.mean;
         const int cx = int(std::floor(m.x() * inv_col)), cy = int(std::floor(m.y() * inv_col));
-        float low = std::numeric_limits<float>::infinity();
+        // The second lowest of the columns' lowest cells (the lowest when only one has cells):
+        // a reflection below the ground (points metres under the road) is not its level.
+        float low = std::numeric_limits<float>::infinity(), second = low;
         for (int dy = -1; dy <= 1; ++dy)
             for (int dx = -1; dx <= 1; ++dx) {
                 const auto it = lowest.find(column(cx + dx, cy + dy));
-                if (it != lowest.end()) low = std::min(low, it->second);
+                if (it == lowest.end()) continue;
+                if (it->second < low) {
+                    second = low;
+                    low = it->second;
+                } else {
+                    second = std::min(second, it->second);
+                }
             }
+        if (std::isfinite(second)) low = second;
         a.ground = m.z() - low <= float(config.ground_height);
     }
     // Clusters: non-ground cells within `neighbourhood` cells (twice that vertically: the
-    // rings of a far object are farther apart than its columns).
+    // rings of a far object are farther apart than its columns) whose means are within
+    // join_distance horizontally.
     const int n = config.neighbourhood, nz = 2 * config.neighbourhood;
+    const float join2 = float(config.join_distance * config.join_distance);
     std::vector<std::uint32_t> label(acc.size(), 0), stack, members;
     std::uint32_t next = 0;
     std::vector<std::vector<std::uint32_t>> groups;
@@ -230,6 +242,10 @@ void build(const MotionConfig& config, const Cells& cells, const std::vector<Eig
                             index.find(pack(acc[c].coords + Eigen::Vector3i(dx, dy, dz)));
                         if (it == index.end() || acc[it->second].ground || label[it->second])
                             continue;
+                        // Cells' points this far apart across the ground are two objects side
+                        // by side (a walker beside a hedge), not one.
+                        const Eigen::Vector3f gap = acc[c].mean - acc[it->second].mean;
+                        if (gap.head<2>().squaredNorm() > join2) continue;
                         label[it->second] = next;
                         stack.push_back(it->second);
                     }
@@ -247,7 +263,7 @@ void build(const MotionConfig& config, const Cells& cells, const std::vector<Eig
         Eigen::Vector3f hi = -lo;
         Cluster c;
         for (std::uint32_t i : groups[g]) {
-            const Eigen::Vector3f m = acc[i].sum / float(acc[i].n);
+            const Eigen::Vector3f m = acc[i].mean;
             lo = lo.cwiseMin(m);
             hi = hi.cwiseMax(m);
             c.index.emplace(pack(acc[i].coords), std::uint32_t(c.cells.size()));
@@ -263,7 +279,31 @@ void build(const MotionConfig& config, const Cells& cells, const std::vector<Eig
         cluster_of_label[label[groups[g].front()]] = std::int32_t(scan->clusters.size());
         scan->clusters.push_back(std::move(c));
     }
+    // Its feet: the ground cells in the columns of its cells, at most the ground's height (and
+    // a cell) below its lowest cell there. They are not matched, but leave with it (a
+    // motorcycle's wheels, a walker's shoes).
+    std::unordered_map<CellKey, std::pair<std::int32_t, int>> column_of;  // cluster, lowest z
+    for (std::uint32_t g = 0; g < groups.size(); ++g) {
+        if (groups[g].empty()) continue;
+        const std::int32_t k = cluster_of_label[label[groups[g].front()]];
+        if (k < 0) continue;
+        for (std::uint32_t i : groups[g]) {
+            const Eigen::Vector3i& c = acc[i].coords;
+            const auto [it, fresh] =
+                column_of.emplace(pack({c.x(), c.y(), 0}), std::pair{k, c.z()});
+            if (!fresh) it->second.second = std::min(it->second.second, c.z());
+        }
+    }
+    const int feet = int(std::ceil(config.ground_height / config.cell)) + 1;
     for (std::size_t i = 0; i < pts.size(); ++i) {
+        const Acc& a = acc[cell_of[i]];
+        if (a.ground) {
+            const auto it = column_of.find(pack({a.coords.x(), a.coords.y(), 0}));
+            if (it != column_of.end() && a.coords.z() < it->second.second &&
+                a.coords.z() >= it->second.second - feet)
+                scan->clusters[std::size_t(it->second.first)].points.push_back(pts[i]);
+            continue;
+        }
         const std::uint32_t l = label[cell_of[i]];
         if (l == 0 || cluster_of_label[l] < 0) continue;
         scan->clusters[std::size_t(cluster_of_label[l])].points.push_back(pts[i]);

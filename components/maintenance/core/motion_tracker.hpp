@@ -5,9 +5,13 @@
 // segment cannot leave with its segment. Positive evidence instead: the same shape, displaced.
 //
 // Per scan (world frame): its points in cells of `cell`; the ground (cells within ground_height
-// of the lowest cell of their 3 x 3 column neighbourhood); the other cells clustered (cells
-// within `neighbourhood` cells of each other, twice that vertically); clusters of object size
-// (min_cells..max_cells, at most max_extent wide and max_height tall) are followed.
+// of the ground level of their 3 x 3 column neighbourhood: the second lowest of its columns'
+// lowest cells, so that a reflection metres below the road is not the level); the other cells
+// clustered (cells within `neighbourhood` cells of each other, twice that vertically, whose
+// points' means are within join_distance horizontally: a walker 0.3 m in front of a hedge is
+// on the cells next to the hedge's, and one cluster with it would be 14 m long, not an object);
+// clusters of object size (min_cells..max_cells, at most max_extent wide and max_height tall)
+// are followed.
 // Each cluster is linked to the cluster of the newest of the last scans (up to 0.35 s back)
 // that is it rigidly displaced by the least (similar box and height; after nearest-cell
 // iterations from the centroids' difference, at least min_match of the cells of each within
@@ -23,7 +27,9 @@
 // occupied (or hidden) in the other scan, never empty. A moving cluster's points are returned,
 // with those of the clusters its chain links it to and of the clusters that link to it later,
 // as far as each link moved at least min_shift / max_lag (a link that stood still ends the
-// chain). The caller flags their voxels (LongTermMap).
+// chain). A cluster's points include its feet: the ground cells in its cells' columns just
+// below it (a motorcycle's wheels are within the ground's height of the road); they are not
+// matched. The caller flags their voxels (LongTermMap; a voxel of the map's ground stays).
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <deque>
