@@ -219,6 +219,9 @@ run_base_station() {  # ROBOTS (1 or 2)
     local n="$1" dir base mark i s
     dir="$(base_dir "$n")"; base="$(base_yaml "$n")"
     mkdir -p "$dir"
+    # Every robot's scans rendered first: the base station stops idle_exit_s (10 s) after its
+    # robots' data stops, and it started before a robot that was still rendering got none at all.
+    for ((i = 1; i <= n; ++i)); do scans $((i - 1)) > /dev/null || exit 2; done
     mark="$(cpu_mark)"
     # The scans are VLP-32C: every preset says so.
     start_host base "$dir/base" "$ROOT/launch_configs/$base" -- --set mapping.preset=vlp32
