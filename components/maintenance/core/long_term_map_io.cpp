@@ -1,7 +1,8 @@
 // The maintained map's file: "LTMMAINT", format version, then CRC-checked sections: the header
 // (lattice, clock, sessions) and one section a region (its voxels with their histories).
-// Version 2 stores the compact voxel as it is in memory (43 bytes + 8 a history entry); version 1
-// files (float sums, separate histograms) are read and converted.
+// Version 3 stores a region's voxels as compressed columns (region_columns.hpp, lossless);
+// version 2 files (the compact voxel as it is in memory, 43 bytes + 8 a history entry) are read as
+// they are, version 1 files (float sums, separate histograms) read and converted.
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -13,6 +14,7 @@
 #include "common/core/io_error.hpp"
 #include "common/core/streamed_file.hpp"
 #include "maintenance/core/long_term_map.hpp"
+#include "maintenance/core/region_columns.hpp"
 #include "maintenance/core/region_io.hpp"
 
 namespace ltm::maintenance {
@@ -20,6 +22,7 @@ namespace ltm::maintenance {
 namespace {
 
 constexpr char kMagic[8] = {'L', 'T', 'M', 'M', 'A', 'I', 'N', 'T'};
+// 3: version 2's voxels as compressed columns (issue 26: about a third of the bytes).
 // 2: the compact voxel (fixed-point point sums, ticks, one view history of at most 6 entries).
 // 1: float sums, double times, separate hit and free histograms; still read, converted.
 // (kMaintainedMapVersion and kMaintainedMapVersion1, region_io.hpp)
@@ -139,10 +142,7 @@ void write_region_section(common::ByteWriter& w, const std::pair<int, int>& key,
         s.value(std::int32_t(key.first));
         s.value(std::int32_t(key.second));
         s.value(static_cast<std::uint32_t>(map.size()));
-        for (std::uint32_t i = 0; i < map.size(); ++i) {
-            ObservedVoxel v = map.voxel(i);
-            voxel_io(s, v);
-        }
+        write_region_columns(s, map);
     });
 }
 
@@ -158,6 +158,10 @@ void read_region_voxels(common::ByteReader& s, std::uint32_t version, float voxe
                         ObservationMap& map) {
     const std::uint64_t at = s.offset();
     const auto n = s.get<std::uint32_t>("voxels");
+    if (version == kMaintainedMapVersion) {
+        read_region_columns(s, n, map);
+        return;
+    }
     // A voxel with an empty history: 43 bytes (version 1: 73).
     const std::uint64_t min_voxel_bytes = version == kMaintainedMapVersion1 ? 73 : 43;
     s.check(std::uint64_t(n) * min_voxel_bytes <= s.remaining(), "voxels", at,
@@ -235,10 +239,11 @@ LongTermMap LongTermMap::load(const std::string& path, const MaintenanceConfig& 
             r.fail_at("magic", 0, "not a maintained map (no LTMMAINT signature)");
         const std::uint64_t at_version = r.offset();
         version = r.get<std::uint32_t>("version");
-        r.check(version == kMaintainedMapVersion || version == kMaintainedMapVersion1, "version",
-                at_version, [&] {
+        r.check(version == kMaintainedMapVersion || version == kMaintainedMapVersion2 ||
+                    version == kMaintainedMapVersion1,
+                "version", at_version, [&] {
                     return "format version " + std::to_string(version) +
-                           " is not supported (this build reads 1 and " +
+                           " is not supported (this build reads 1 to " +
                            std::to_string(kMaintainedMapVersion) + ")";
                 });
     }

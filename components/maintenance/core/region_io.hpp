@@ -1,8 +1,9 @@
 #pragma once
 // One region of the maintained map as a checksummed section (long_term_map_io.cpp): the format of
 // a region in the map file, and of a region paged out to disk (region_pager.hpp).
-//   section: int32 x, int32 y, uint32 voxels, then each voxel (key, point sums, times, flags,
-//   view history) as in memory (format version 2).
+//   section: int32 x, int32 y, uint32 voxels, then the voxels (key, point sums, times, flags,
+//   view history) as compressed columns (format version 3, region_columns.hpp); version 2 had
+//   each voxel as in memory, one after another.
 #include <cstdint>
 #include <utility>
 
@@ -11,7 +12,8 @@
 
 namespace ltm::maintenance {
 
-constexpr std::uint32_t kMaintainedMapVersion = 2;   // the file format written
+constexpr std::uint32_t kMaintainedMapVersion = 3;   // the file format written
+constexpr std::uint32_t kMaintainedMapVersion2 = 2;  // still read (voxels as rows)
 constexpr std::uint32_t kMaintainedMapVersion1 = 1;  // still read, converted
 
 // Appends the region's section to w.

@@ -1,15 +1,19 @@
 #include "map/core/map_codec.hpp"
 
-// One file on purpose (525 lines): every section of every map file is described once by a
+// One file on purpose (575 lines): every section of every map file is described once by a
 // template that both encodes and decodes it, and the sections share those field helpers; split
 // apart, a layout change would have to be made in two places.
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <type_traits>
 #include <unordered_set>
 
 #include "common/core/byte_io.hpp"
+#include "common/core/column_block.hpp"
+#include "map/core/local_map_columns.hpp"
+#include "map/core/map_format.hpp"
 
 namespace ltm::map {
 namespace {
@@ -103,8 +107,8 @@ void file_start(IO& io, const char (&magic)[8], const char* what, V& version) {
     const std::uint64_t at = io.offset();
     std::uint32_t v = version;
     io.value(v, "format version");
-    io.check(supported_map_format(v), "format version", at,
-             [&] { return unsupported_map_format(v); });
+    io.check(readable_map_format(v), "format version", at,
+             [&] { return unreadable_map_format(v); });
     if constexpr (IO::kReading) version = v;
 }
 
@@ -188,7 +192,10 @@ void local_map_file(IO& io, M& m, D& d, V& version) {
                 return std::to_string(n_times) + " observation times cannot fit in a file of " +
                        std::to_string(h.source_size()) + " bytes";
             });
-            h.check(n_voxels <= h.source_size() / 74, "voxel_count", at_voxels, [&] {
+            // Format 4: compressed, each voxel takes more than one byte in 16 (about 25 measured).
+            const std::uint64_t max_voxels =
+                version >= 4 ? h.source_size() * 16 : h.source_size() / 74;
+            h.check(n_voxels <= max_voxels, "voxel_count", at_voxels, [&] {
                 return std::to_string(n_voxels) + " voxels cannot fit in a file of " +
                        std::to_string(h.source_size()) + " bytes";
             });
@@ -202,6 +209,17 @@ void local_map_file(IO& io, M& m, D& d, V& version) {
             t.value(d.observation_times[i]);
         }
     });
+    if (version >= 4) {  // one section: the voxels as compressed columns
+        io.section("voxels", [&](auto& s) {
+            if constexpr (IO::kReading) {
+                read_voxel_columns(s, d);
+            } else {
+                write_voxel_columns(s, d);
+            }
+        });
+        io.expect_end("end of file");
+        return;
+    }
     for (std::size_t a = 0; a < n_voxels; a += kChunk) {
         const std::size_t b = std::min<std::size_t>(n_voxels, a + kChunk);
         io.section(range_name("voxels", a, b - 1), [&](auto& s) {
@@ -440,25 +458,58 @@ void keyframes_file(IO& io, S& settings, List& list, std::uint64_t& first, std::
                     "localisation descriptor settings differ from the manifest's");
             const std::size_t bins =
                 std::size_t(settings.loop.rings) * std::size_t(settings.loop.sectors);
-            h.check(count <= h.source_size() / (100 + bins), "count", at_count,
-                    "more keyframes than the file can hold");
+            // Format 4: compressed, at least a byte a keyframe.
+            const std::uint64_t max_count =
+                version >= 4 ? h.source_size() : h.source_size() / (100 + bins);
+            h.check(count <= max_count, "count", at_count, "more keyframes than the file can hold");
             list.reserve(static_cast<std::size_t>(count));
         }
     });
-    for (std::uint64_t j = 0; j < count; ++j) {
-        const std::size_t i = static_cast<std::size_t>(first + j);
-        const std::string name = "keyframes[" + std::to_string(i) + "]";
-        if constexpr (IO::kReading) {
-            auto k = std::make_shared<StoredKeyframe>();
-            io.section(name, [&](auto& s) {
-                s.item("keyframes", i);
-                keyframe(s, *k, settings, version);
-            });
-            list.push_back(std::move(k));
-        } else {
-            io.section(name, [&](auto& s) { keyframe(s, *list[i], settings, version); });
+    // One section a keyframe; format 4: those sections in one zstd frame (one section).
+    const auto keyframe_sections = [&](auto& sub) {
+        for (std::uint64_t j = 0; j < count; ++j) {
+            const std::size_t i = static_cast<std::size_t>(first + j);
+            const std::string name = "keyframes[" + std::to_string(i) + "]";
+            if constexpr (std::decay_t<decltype(sub)>::kReading) {
+                auto k = std::make_shared<StoredKeyframe>();
+                sub.section(name, [&](auto& s) {
+                    s.item("keyframes", i);
+                    keyframe(s, *k, settings, version);
+                });
+                list.push_back(std::move(k));
+            } else {
+                sub.section(name, [&](auto& s) { keyframe(s, *list[i], settings, version); });
+            }
         }
+    };
+    if (version < 4) {
+        keyframe_sections(io);
+        io.expect_end("end of file");
+        return;
     }
+    io.section("keyframes", [&](auto& s) {
+        if constexpr (IO::kReading) {
+            const std::uint64_t at = s.offset();
+            const auto raw = s.template get<std::uint64_t>("keyframes");
+            s.check(raw <= (std::uint64_t(1) << 30), "keyframes", at, "more than 1 GiB unpacked");
+            std::vector<std::uint8_t> frame(std::size_t(s.remaining()));
+            s.raw(frame.data(), frame.size(), "keyframes");
+            const std::vector<std::uint8_t> bytes = common::zstd_decompress(
+                frame.data(), frame.size(), std::size_t(raw), s.source(), "keyframes");
+            // Offsets in errors from here on are in the unpacked bytes.
+            ByteReader unpacked(s.source() + " (unpacked)", bytes.data(), bytes.size());
+            keyframe_sections(unpacked);
+            unpacked.expect_end("end of the keyframes");
+        } else {
+            ByteWriter unpacked;
+            keyframe_sections(unpacked);
+            const std::vector<std::uint8_t>& bytes = unpacked.bytes();
+            s.value(std::uint64_t(bytes.size()));
+            const std::vector<std::uint8_t> frame =
+                common::zstd_compress(bytes.data(), bytes.size(), common::kColumnZstdLevel);
+            s.raw(frame.data(), frame.size());
+        }
+    });
     io.expect_end("end of file");
 }
 
@@ -467,7 +518,7 @@ void keyframes_file(IO& io, S& settings, List& list, std::uint64_t& first, std::
 std::uint32_t map_format_for(const places::ScanContextConfig& localisation_descriptor_config,
                              bool records_sessions) {
     if (!has_localisation_descriptors(localisation_descriptor_config)) return 1u;
-    return records_sessions ? 3u : 2u;
+    return records_sessions ? kCompactMapFormatVersion : 2u;
 }
 
 std::string encode_local_map(const StoredLocalMap& map, std::uint32_t version) {

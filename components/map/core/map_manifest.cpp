@@ -8,6 +8,7 @@
 #include <type_traits>
 
 #include "map/core/map_codec.hpp"
+#include "map/core/map_format.hpp"
 
 namespace ltm::map {
 namespace {
@@ -225,7 +226,7 @@ void manifest(IO& io, M& m) {
     // Written: the format the localisation descriptors and the sessions call for (map_data.hpp).
     std::uint32_t version = map_format_for(m.localisation_descriptor, !m.sessions.empty());
     io.line("ltm_map <version>", version);
-    io.check(supported_map_format(version), [&] { return unsupported_map_format(version); });
+    io.check(readable_map_format(version), [&] { return unreadable_map_format(version); });
     io.line("revision <n>", m.revision);
     descriptor_line(
         io, "descriptor <kind 0|1> <rings> <sectors> <max_range> <min_range> <sensor_height>",

@@ -126,12 +126,12 @@ TEST(MapManifest, Format3ListsTheSessionsThatBuiltTheMap) {
     m.localisation_descriptor = default_localisation_descriptor_for_test();
     m.sessions = {{0, 12.5, 1180.25, 53, 0}, {2, 86400.0, 87000.5, 1, 40}};
     const std::string text = write_manifest(m);
-    EXPECT_NE(text.find("ltm_map 3\n"), std::string::npos) << text;
+    EXPECT_NE(text.find("ltm_map 4\n"), std::string::npos) << text;
     EXPECT_NE(text.find("\nsession 0 12.5 1180.25 53 0\nsession 2 86400 87000.5 1 40\ngraph "),
               std::string::npos)
         << text;
     const Manifest back = parse_manifest(text);
-    EXPECT_EQ(back.version, 3u);
+    EXPECT_EQ(back.version, 4u);
     ASSERT_EQ(back.sessions.size(), 2u);
     EXPECT_EQ(back.sessions[1].id, 2u);
     EXPECT_EQ(back.sessions[1].first_stamp, 86400.0);
@@ -150,7 +150,9 @@ TEST(MapManifest, Format3ListsTheSessionsThatBuiltTheMap) {
     EXPECT_EQ(error_of(replaced("86400 87000.5", "87001 87000.5")),
               "manifest.txt: line 6 at byte 118: session stamps must be finite, the first not "
               "after the last");
-    EXPECT_EQ(error_of(replaced("ltm_map 3", "ltm_map 2")),
+    // A format-3 manifest (the same lines; its files are rows, not compressed) still reads.
+    EXPECT_EQ(parse_manifest(replaced("ltm_map 4", "ltm_map 3")).version, 3u);
+    EXPECT_EQ(error_of(replaced("ltm_map 4", "ltm_map 2")),
               "manifest.txt: line 5 at byte 90: 'session' out of place");
     // Without sessions the map stays in format 2.
     m.sessions.clear();
@@ -169,12 +171,12 @@ TEST(MapManifest, DamageIsNamedByLineAndOffset) {
         "manifest.txt: line 2 at byte 10: unknown entry 'revisoin' (expected 'revision <n>')");
     EXPECT_EQ(error_of(replaced("revision 12", "end 3")),
               "manifest.txt: line 2 at byte 10: 'end' out of place (expected 'revision <n>')");
-    EXPECT_EQ(error_of(replaced("ltm_map 1", "ltm_map 4")),
-              "manifest.txt: line 1 at byte 0: format version 4 is not supported (this build "
-              "reads versions 1 to 3)");
+    EXPECT_EQ(error_of(replaced("ltm_map 1", "ltm_map 5")),
+              "manifest.txt: line 1 at byte 0: format version 5 is not supported (this build "
+              "reads versions 1 to 4)");
     EXPECT_EQ(error_of(replaced("ltm_map 1", "ltm_map 0")),
               "manifest.txt: line 1 at byte 0: format version 0 is not supported (this build "
-              "reads versions 1 to 3)");
+              "reads versions 1 to 4)");
     EXPECT_EQ(error_of(replaced(" 1567 ", " 15x7 ")),
               "manifest.txt: line 4 at byte 51: expected 'graph <file> <size> <hash>'");
     EXPECT_EQ(error_of(replaced("00000000000000ff\n", "00000000000000FF\n")),
