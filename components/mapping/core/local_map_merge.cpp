@@ -72,6 +72,43 @@ void remap_seen(std::vector<std::uint16_t>* seen, const std::vector<std::uint32_
     *seen = std::move(out);
 }
 
+// The voxel of `into` (out[0, n_into)) whose surface patch a voxel landing in a fresh cell lies
+// on (see same_surface in the header), or -1: a neighbouring cell's voxel with a normal, the
+// fresh voxel's centre within tol of its plane, its normal (if any) within 30 deg of it, and the
+// centre's foot on the plane inside that cell (widened by a tenth of an edge); the nearest plane.
+long same_surface_voxel(const std::vector<common::VoxelData>& out, std::size_t n_into,
+                        const std::unordered_map<Eigen::Vector3i, std::size_t, CellHash>& cell,
+                        const common::VoxelData& v, double g, double tol) {
+    long best = -1;
+    double best_d = tol;
+    const Eigen::Vector3d c = v.centre.cast<double>();
+    const bool has_normal = v.normal.squaredNorm() > 0.0f;
+    for (int dx = -1; dx <= 1; ++dx) {
+        for (int dy = -1; dy <= 1; ++dy) {
+            for (int dz = -1; dz <= 1; ++dz) {
+                if (dx == 0 && dy == 0 && dz == 0) continue;
+                const auto it = cell.find(v.index + Eigen::Vector3i(dx, dy, dz));
+                if (it == cell.end() || it->second >= n_into) continue;
+                const common::VoxelData& w = out[it->second];
+                if (w.normal.squaredNorm() == 0.0f) continue;
+                if (has_normal && std::abs(w.normal.dot(v.normal)) < 0.866f) continue;
+                const Eigen::Vector3d n = w.normal.cast<double>();
+                const double d = n.dot(c - w.centre.cast<double>());
+                if (std::abs(d) > best_d) continue;
+                const Eigen::Vector3d foot = c - d * n;
+                const Eigen::Vector3d lo = w.index.cast<double>() * g;
+                const double margin = 0.1 * g;
+                if (((foot - lo).array() < -margin).any() ||
+                    ((lo.array() + g + margin - foot.array()) < 0.0).any())
+                    continue;
+                best_d = std::abs(d);
+                best = long(it->second);
+            }
+        }
+    }
+    return best;
+}
+
 }  // namespace
 
 std::vector<std::uint32_t> bound_observation_times(const std::vector<double>& times,
@@ -115,7 +152,8 @@ std::vector<std::uint32_t> bound_observation_times(const std::vector<double>& ti
 common::LocalMapData merge_local_maps(const common::LocalMapData& into,
                                       const common::LocalMapData& add,
                                       const Eigen::Isometry3d& T_into_add,
-                                      std::size_t max_observation_times) {
+                                      std::size_t max_observation_times, double same_surface,
+                                      std::size_t* absorbed_count) {
     common::LocalMapData out;
     out.id = into.id;
     out.revision = into.revision + 1;
@@ -163,6 +201,8 @@ common::LocalMapData merge_local_maps(const common::LocalMapData& into,
             merge_voxel(out.voxels[it->second], copy);
         }
     }
+    const std::size_t n_into = out.voxels.size();  // `into`'s voxels, merged among themselves
+    std::size_t absorbed = 0;
     for (const common::VoxelData& v : add.voxels) {
         common::VoxelData moved = v;
         const Eigen::Vector3d p = T_grid * v.centre.cast<double>();
@@ -175,6 +215,24 @@ common::LocalMapData merge_local_maps(const common::LocalMapData& into,
         moved.normal = R * v.normal;
         if (moved.normal.squaredNorm() > 0.0f) moved.normal.normalize();
         remap_seen(&moved.life.seen, map_add);
+        if (same_surface > 0.0 && cell.find(moved.index) == cell.end()) {
+            // Seen again across a cell face: the existing voxel of that patch takes it, its centre
+            // moved onto that voxel's plane and into its cell.
+            const long j = same_surface_voxel(out.voxels, n_into, cell, moved, g, same_surface * g);
+            if (j >= 0) {
+                common::VoxelData& w = out.voxels[std::size_t(j)];
+                const Eigen::Vector3d n = w.normal.cast<double>();
+                Eigen::Vector3d foot = moved.centre.cast<double>();
+                foot -= n.dot(foot - w.centre.cast<double>()) * n;
+                const Eigen::Vector3d wlo = w.index.cast<double>() * g;
+                moved.centre =
+                    foot.cwiseMax(wlo).cwiseMin(wlo + Eigen::Vector3d::Constant(g)).cast<float>();
+                moved.index = w.index;
+                merge_voxel(w, moved);
+                ++absorbed;
+                continue;
+            }
+        }
         const auto [it, fresh] = cell.emplace(moved.index, out.voxels.size());
         if (fresh) {
             out.voxels.push_back(std::move(moved));
@@ -183,6 +241,7 @@ common::LocalMapData merge_local_maps(const common::LocalMapData& into,
         }
     }
 
+    if (absorbed_count) *absorbed_count = absorbed;
     out.voxels.shrink_to_fit();  // reserved for both: a merged map is kept for long
     // The box: `into`'s and the corners of `add`'s, in `into`'s grid frame.
     out.bbox_min = into.bbox_min;

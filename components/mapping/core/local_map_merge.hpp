@@ -13,6 +13,14 @@
 //     life.created = min, life.last_seen = max, life.seen: the union of both, as indices into the
 //     merged observation_times
 //   observation_times: the sorted union of both maps' stamps, bounded (bound_observation_times).
+// A surface seen again lands partly in cells next to the ones it filled before (a few cm of
+// another day's pose, another viewpoint): with same_surface > 0, a voxel of `add` whose cell is
+// empty in `into` but lies on the surface patch of a voxel of `into` in a neighbouring cell (its
+// centre within same_surface x voxel_size of that voxel's plane, normals within 30 deg, the
+// centre's foot on the plane inside that voxel's cell widened by a tenth of an edge) is merged
+// into that voxel (centre: its foot, clamped into the cell) instead of adding a voxel; a surface
+// that extends beyond the patch (its foot outside the cell) still adds voxels. So a place driven
+// again grows with what is new there, not with the days (issue 26, repeated ground).
 // The result keeps `into`'s id, segment, anchor, grid, voxel size and finished flag; its revision
 // is `into`'s + 1 and its box covers both.
 #include <Eigen/Geometry>
@@ -37,10 +45,12 @@ std::vector<std::uint32_t> bound_observation_times(const std::vector<double>& ti
 
 // `into` with the voxels of `add` folded in (see above). T_into_add: `add`'s anchor in `into`'s
 // anchor frame. max_observation_times: see bound_observation_times (at most 65536: life.seen
-// holds 16-bit indices).
+// holds 16-bit indices). same_surface: see above (0: off). *absorbed_count (if given): the voxels
+// of `add` merged so into a neighbouring cell's voxel.
 common::LocalMapData merge_local_maps(const common::LocalMapData& into,
                                       const common::LocalMapData& add,
                                       const Eigen::Isometry3d& T_into_add,
-                                      std::size_t max_observation_times);
+                                      std::size_t max_observation_times, double same_surface = 0.0,
+                                      std::size_t* absorbed_count = nullptr);
 
 }  // namespace ltm::mapping

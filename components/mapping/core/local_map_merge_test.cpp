@@ -161,5 +161,65 @@ TEST(LocalMapMerge, ObservationTimesStayBoundedKeepingTheRecentOnesAndAnEvenSamp
     EXPECT_EQ(m.voxels[0].life.seen.size(), 64u);
 }
 
+// Another day sees the same ground 3 cm higher (its pose), just across the cells' top faces: with
+// same_surface the existing voxels take those observations (no voxel added, every point counted,
+// the centres on the old plane and in their own cells); ground beyond the old patch still adds
+// voxels. Without it the map doubles (issue 26: a place driven again grew every day).
+TEST(LocalMapMerge, ASurfaceSeenAgainAcrossACellFaceUpdatesTheVoxelsThereInsteadOfAddingSome) {
+    common::LocalMapData a, b;
+    a.voxel_size = b.voxel_size = 1.0f;
+    a.observation_times = {1.0};
+    b.observation_times = {86401.0};
+    for (int x = 0; x < 5; ++x) {
+        for (int y = 0; y < 5; ++y) {
+            common::VoxelData va = voxel({x, y, 0}, {x + 0.5f, y + 0.5f, 0.98f}, {0, 0, 1}, 10);
+            va.life = {1.0, 1.0, 1, 1.0f, {}};
+            a.voxels.push_back(va);
+        }
+    }
+    // b: the same patch, and two more rows east of it (x = 5, 6), all at z = 1.01.
+    for (int x = 0; x < 7; ++x) {
+        for (int y = 0; y < 5; ++y) {
+            common::VoxelData vb = voxel({x, y, 1}, {x + 0.5f, y + 0.5f, 1.01f}, {0, 0, -1}, 6);
+            vb.life = {86401.0, 86401.0, 1, 1.0f, {}};
+            b.voxels.push_back(vb);
+        }
+    }
+    const Eigen::Isometry3d I = Eigen::Isometry3d::Identity();
+    EXPECT_EQ(merge_local_maps(a, b, I, 1024).voxels.size(), 60u);  // without: 25 + 35
+
+    std::size_t absorbed = 0;
+    const common::LocalMapData m = merge_local_maps(a, b, I, 1024, 0.2, &absorbed);
+    EXPECT_EQ(absorbed, 25u);
+    ASSERT_EQ(m.voxels.size(), 35u);  // the old patch, and the ground beyond it
+    std::uint64_t points = 0;
+    for (const common::VoxelData& v : m.voxels) {
+        points += v.point_count;
+        const Eigen::Vector3f lo = v.index.cast<float>();
+        EXPECT_TRUE(((v.centre - lo).array() >= 0.0f).all()) << v.index.transpose();
+        EXPECT_TRUE(((v.centre - lo).array() <= 1.0f).all()) << v.index.transpose();
+        if (v.index.z() == 0) {
+            EXPECT_LT(v.index.x(), 5);
+            EXPECT_NEAR(v.centre.z(), 0.98f, 1e-5f);  // on the old plane
+            EXPECT_EQ(v.point_count, 16u);
+            EXPECT_EQ(v.life.observations, 2u);
+            EXPECT_EQ(v.life.last_seen, 86401.0);
+        } else {
+            EXPECT_GE(v.index.x(), 5);  // beyond the patch: its own voxel
+            EXPECT_EQ(v.life.created, 86401.0);
+        }
+    }
+    EXPECT_EQ(points, 25u * 10u + 35u * 6u);
+
+    // Not the same surface: a wall (normal along x) 0.3 m above the ground's cells stays its own.
+    common::LocalMapData wall;
+    wall.voxel_size = 1.0f;
+    wall.observation_times = {86401.0};
+    wall.voxels = {voxel({2, 2, 1}, {2.5f, 2.5f, 1.3f}, {1, 0, 0}, 6)};
+    EXPECT_EQ(merge_local_maps(a, wall, I, 1024, 0.2).voxels.size(), 26u);
+    wall.voxels = {voxel({2, 2, 1}, {2.5f, 2.5f, 1.3f}, {0, 0, 1}, 6)};  // 0.32 m above the plane
+    EXPECT_EQ(merge_local_maps(a, wall, I, 1024, 0.2).voxels.size(), 26u);
+}
+
 }  // namespace
 }  // namespace ltm::mapping

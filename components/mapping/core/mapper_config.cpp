@@ -30,6 +30,9 @@ MapperConfig mapper_preset(common::SensorPreset preset) {
     c.verification.coarse_factor = r.verify_coarse_factor;
     c.verification.max_correction_translation = r.loop_max_correction_translation;
     c.loop_cooldown_keyframes = r.loop_cooldown_keyframes;
+    // A spinning sensor's keyframe stands for a revisit whatever its heading (issue 26: a road
+    // driven both ways stored two sets of keyframes, +4.3 MB on site_week's day 1).
+    if (row.horizontal_fov_deg >= 360.0) c.long_term.keyframe_angle = 180.0;
     // Both descriptors see the same part of the scan.
     c.localisation_descriptor.max_range = c.scan_context.max_range;
     c.localisation_descriptor.min_range = c.scan_context.min_range;

@@ -55,8 +55,11 @@ struct LongTermConfig {
     // A keyframe whose world pose is within this distance and angle of a stored keyframe of an
     // earlier lap or session is not stored (its loops are still searched and verified, named by
     // the stored keyframe that stands for it); only where the graph's pose is tied by a loop.
+    // A 360 deg sensor's keyframe stands for every heading (its descriptors are searched over
+    // all column shifts, its points verify a loop from either way): mapper_preset() sets 180 for
+    // spinning sensors, so a road driven both ways keeps one set of keyframes.
     double keyframe_distance = 1.0;  // [m]
-    double keyframe_angle = 15.0;    // [deg]
+    double keyframe_angle = 15.0;    // [deg] (180: any heading)
     // A verified loop between places already joined by loops that agrees with the graph's
     // estimate to within these is added as an edge without making an optimisation due.
     double agree_translation = 0.1;  // [m]
@@ -64,6 +67,11 @@ struct LongTermConfig {
     // A merged local map's observation times are bounded (local_map_merge.hpp: the newest half
     // kept, the older ones thinned evenly); at most 65536 (16-bit indices in the life records).
     int max_observation_times = 1024;
+    // A folded map's voxel landing in a cell next to an existing voxel, on that voxel's surface
+    // patch (within this fraction of the voxel size of its plane, local_map_merge.hpp), is merged
+    // into it instead of adding a voxel: a place driven again does not grow by the few cm another
+    // day's pose and view move its surfaces across cell faces. 0: off.
+    double same_surface = 0.2;  // [voxel sizes]
 };
 
 // Joining two robots' sessions (open in one Mapper at once) that no loop has placed together yet.
@@ -200,6 +208,7 @@ void visit_own_fields(MapperConfig& c, Visitor&& v) {
     v("long_term.agree_translation", l.agree_translation, non_negative);
     v("long_term.agree_rotation", l.agree_rotation, non_negative);
     v("long_term.max_observation_times", l.max_observation_times, in_range(2, 65536));
+    v("long_term.same_surface", l.same_surface, in_range(0.0, 0.5));
     auto& j = c.session_join;
     v("session_join.loops", j.loops, at_least(1));
     v("session_join.agree_translation", j.agree_translation, positive);

@@ -24,14 +24,17 @@ struct Drive {
     double t0 = 0.0;
     std::uint64_t first_map = 0;  // local map ids first_map .. first_map + 3
 
-    // Keyframe i at x = x0 + 3 i, y = y0 in the world; the odometry frame is T_odom_world and,
-    // from keyframe `jump_at` on, off by `jump` more (an odometry error at a map switch).
+    // Keyframe i at x = x0 + 3 i, y = y0 in the world (westward: x = x0 - 3 i, heading west);
+    // the odometry frame is T_odom_world and, from keyframe `jump_at` on, off by `jump` more (an
+    // odometry error at a map switch).
     Drive(const std::vector<Eigen::Vector3f>& s, double x0, double y0,
           const Eigen::Isometry3d& T_odom_world, double start, std::size_t jump_at = 1000,
-          const Eigen::Isometry3d& jump = Eigen::Isometry3d::Identity(), std::uint64_t map0 = 0)
+          const Eigen::Isometry3d& jump = Eigen::Isometry3d::Identity(), std::uint64_t map0 = 0,
+          bool westward = false)
         : scene(s), t0(start), first_map(map0) {
         for (std::size_t i = 0; i < 16; ++i) {
-            truth.push_back(registration::test::xy_yaw(x0 + 3.0 * double(i), y0, 0.0));
+            truth.push_back(registration::test::xy_yaw(x0 + (westward ? -3.0 : 3.0) * double(i), y0,
+                                                       westward ? 180.0 : 0.0));
             odom.push_back((i >= jump_at ? jump : Eigen::Isometry3d::Identity()) * T_odom_world *
                            truth.back());
             points.push_back(registration::test::view(scene, truth.back(), 50.0));
@@ -169,6 +172,47 @@ TEST(MapperLongTerm, ASecondSessionOverAMappedSiteAddsNoLocalMapWhereItDrivesOve
     EXPECT_EQ(sessions[1].local_maps_updated, into.size());
     EXPECT_EQ(sessions[1].first_stamp, 86400.0);
     EXPECT_EQ(sessions[1].last_stamp, 86415.0);
+}
+
+// The road driven the other way a day later (a 360 deg sensor): with a spinning sensor's preset
+// (keyframe_angle 180) a stored keyframe stands for a revisit whatever its heading, so the
+// reversed drive stores (almost) no keyframe; with 15 deg it stored a second set (issue 26).
+TEST(MapperLongTerm, ARoadDrivenTheOtherWayStoresNoSecondSetOfKeyframesForASpinningSensor) {
+    const std::vector<Eigen::Vector3f> scene =
+        registration::test::with_dense_ground(registration::test::synthetic_scene(71));
+    EXPECT_EQ(mapper_preset(common::SensorPreset::kVlp32).long_term.keyframe_angle, 180.0);
+    EXPECT_EQ(mapper_preset(common::SensorPreset::kNarrow).long_term.keyframe_angle, 15.0);
+    std::size_t kept_at[2] = {0, 0};
+    for (const double angle : {15.0, 180.0}) {
+        MapperConfig config = test_config();
+        config.long_term.keyframe_angle = angle;
+        Mapper first(config);
+        replay(Drive(scene, 0.0, 0.0, Eigen::Isometry3d::Identity(), 0.0), first);
+        ASSERT_TRUE(first.optimise().solved);
+        // Westwards from the far end, 0.3 m aside, in another odometry frame.
+        const Drive back(scene, 45.2, 0.3, registration::test::xy_yaw(-20.0, 7.0, 35.0), 86400.0,
+                         1000, Eigen::Isometry3d::Identity(), 0, true);
+        Mapper next(config, first.snapshot());
+        std::vector<LocalMapResult> results;
+        const std::vector<KeyframeResult> kf = replay(back, next, &results);
+        std::size_t kept = 0, looped = 0;
+        for (const KeyframeResult& r : kf) {
+            kept += r.kept;
+            looped += !r.loops.empty();
+        }
+        EXPECT_GT(looped, 2u) << "angle " << angle;  // the loops are still found both ways
+        EXPECT_EQ(next.keyframes().size(), 16u + kept);
+        kept_at[angle > 90.0] = kept;
+        // The second session's poses are where it really was.
+        for (std::size_t i = 0; i < 16; ++i) {
+            const std::optional<Eigen::Isometry3d> T = next.T_world_lidar(i / 4, back.odom[i]);
+            ASSERT_TRUE(T);
+            EXPECT_LT((T->translation() - back.truth[i].translation()).norm(), 0.15)
+                << "keyframe " << i << ", angle " << angle;
+        }
+    }
+    EXPECT_GT(kept_at[0], 10u);  // 15 deg: a second set
+    EXPECT_LT(kept_at[1], 4u);   // 180 deg: the first day's keyframes stand for them
 }
 
 // Laps of one session: the second lap over the road folds its maps into the first lap's, and the
