@@ -105,6 +105,7 @@ FrameResult Odometry::register_frame(const common::PointCloud& cloud) {
     const double gap = has_stamp_ ? cloud.stamp - last_stamp_ : 0.0;
     const bool gap_break = has_stamp_ && cadence_.is_break(gap, config_.tracking.restart_gap,
                                                            config_.tracking.restart_gap_cadence);
+    const double usual_interval = cadence_.usual();  // for the message, before this interval
     if (has_stamp_) cadence_.add(gap);
 
     registration::Vector6d velocity = motion_.velocity();
@@ -166,7 +167,7 @@ FrameResult Odometry::register_frame(const common::PointCloud& cloud) {
           << config_.tracking.restart_gap << " s";
         if (config_.tracking.restart_gap_cadence > 0.0)
             s << " and " << config_.tracking.restart_gap_cadence << " x the usual "
-              << cadence_.usual() << " s";
+              << usual_interval << " s";
         s << ": the robot may have been moved)";
         restart_segment(s.str(), predicted, since_tracked, &r);
     } else {
