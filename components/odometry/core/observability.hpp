@@ -46,6 +46,19 @@ struct ObservabilityConfig {
     // The first step of a run in a scene constrained every way (not weak): searched along the
     // sensor's forward axis from the prediction, a peak this distinct moves it.
     double first_step_contrast = 1.3;
+    // A weak direction whose search found no distinct peak (or whose peak's fit was no better)
+    // is still observed when the fit has a basin there: fits started `offset` either side of it
+    // along the direction both come back to within basin_tolerance of it. The offset is the
+    // fit's disagreement with the prediction, at least basin_offset, and after a degenerate scan
+    // (the prediction a guess) at least weak_sigma_fraction of the expected step (which needs a
+    // speed measured in a scan constrained every way); over basin_max_offset, or on the first
+    // step of a run, it is not tried. A fit that stays where it started (a corridor; the ground
+    // and roadsides of a tree-lined road) fails it; a narrow sensor's fit among the few surfaces
+    // that see the direction passes (hku-avia handheld: information 0.01-0.04 along it, fits
+    // back to within 0-6 mm from 0.5 m, corridor fits stay 0.2-0.5 m off). basin_offset 0: off.
+    double basin_offset = 0.5;      // [m]
+    double basin_max_offset = 1.5;  // [m]
+    double basin_tolerance = 0.1;   // [m]
     // The published covariance is inflated along every weak direction by a standard deviation
     // of a fraction of the expected step (the larger of the predicted step and the speed last
     // measured in a scene constrained every way, times the time since the last scan): along a

@@ -111,6 +111,12 @@ FrameResult Odometry::register_frame(const common::PointCloud& cloud) {
     r.T_odom_lidar = motion_.poses() ? motion_.last_pose() : initial_pose_;
     if (!maps_.empty()) r.local_map_id = maps_.current().id();
     if (stamp_refused(cloud, &r)) return r;
+    // The interval since the last scan, against the stream's own cadence.
+    const double gap = has_stamp_ ? cloud.stamp - last_stamp_ : 0.0;
+    const bool gap_break = has_stamp_ && cadence_.is_break(gap, config_.tracking.restart_gap,
+                                                           config_.tracking.restart_gap_cadence);
+    const double usual_interval = cadence_.usual();  // for the message, before this interval
+    if (has_stamp_) cadence_.add(gap);
 
     registration::Vector6d velocity = motion_.velocity();
     if (prior_ != nullptr) prior_->deskew_velocity(cloud, &velocity);
@@ -160,16 +166,19 @@ FrameResult Odometry::register_frame(const common::PointCloud& cloud) {
     if (maps_.empty()) {
         r.status = FrameStatus::kInitialised;
         r.covariance.setZero();  // the first pose defines the odometry frame
-    } else if (const double gap = cloud.stamp - last_stamp_; has_stamp_ &&
-                                                             config_.tracking.restart_gap > 0.0 &&
-                                                             gap > config_.tracking.restart_gap) {
+    } else if (gap_break) {
         // No scan for a while: whatever happened meanwhile (the robot carried, a long stop of the
         // sensor) the motion model cannot bridge, and a fit of this scan to the old map can be a
         // look-alike place (a repetitive yard). A new segment, joined later by a loop or the
-        // localisation.
+        // localisation. Judged against the stream's cadence: a keyframe stream pauses while the
+        // robot stands (scan_cadence.hpp).
         std::ostringstream s;
         s << "a gap of " << gap << " s between scans (more than tracking.restart_gap "
-          << config_.tracking.restart_gap << " s: the robot may have been moved)";
+          << config_.tracking.restart_gap << " s";
+        if (config_.tracking.restart_gap_cadence > 0.0)
+            s << " and " << config_.tracking.restart_gap_cadence << " x the usual "
+              << usual_interval << " s";
+        s << ": the robot may have been moved)";
         restart_segment(s.str(), predicted, since_tracked, &r);
     } else {
         // From the prediction first. When that is refused or doubtful, a search from other

@@ -15,6 +15,7 @@
 #include "odometry/core/motion_prior.hpp"
 #include "odometry/core/observability.hpp"
 #include "odometry/core/odometry_config.hpp"
+#include "odometry/core/scan_cadence.hpp"
 #include "registration/core/parallel.hpp"
 #include "registration/core/preprocess.hpp"
 #include "registration/core/registration.hpp"
@@ -177,6 +178,10 @@ class Odometry {
     // along it and a fit again from the best position. False when the search cannot fix the
     // position there: it is then the prediction's (the caller reports kDegenerate).
     bool check_observability(const Eigen::Isometry3d& predicted, double dt, FrameResult* r);
+    // Whether fits of the current scan started `offset` either side of the fit `r` along `v`
+    // (odometry axes, unit) both come back to it (observability.basin_tolerance): the fit's
+    // position along v is then observed even where the information there is weak.
+    bool fit_has_basin(const FrameResult& r, const Eigen::Vector3d& v, double offset, double dt);
     // The published covariance of an accepted fit widened along its weak directions
     // (observability.hpp: the expected step from the prediction and the speed last measured).
     void inflate_covariance(const Eigen::Isometry3d& predicted, double dt, FrameResult* r) const;
@@ -214,6 +219,7 @@ class Odometry {
     Eigen::Isometry3d last_tracked_pose_ = Eigen::Isometry3d::Identity();
     bool has_stamp_ = false;
     double last_stamp_ = 0.0;
+    ScanCadence cadence_;  // the stream's usual interval between scans (tracking.restart_gap)
     registration::PreprocessedScan scan_;         // reused buffers
     std::vector<Eigen::Vector3f> coarse_points_;  // every other registration point of scan_
 };

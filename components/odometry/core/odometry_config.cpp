@@ -29,6 +29,8 @@ std::optional<common::ConfigProblem> validate(const OdometryConfig& config) {
               "must be smaller than local_map.half_extent");
     k.require(m.half_extent / c.voxel_size < 500000.0, "local_map.half_extent",
               "must be under 500000 voxels (voxel_size) for the voxel keys");
+    k.require(c.observability.basin_max_offset >= c.observability.basin_offset,
+              "observability.basin_max_offset", "must be at least observability.basin_offset");
     return k.problem();
 }
 

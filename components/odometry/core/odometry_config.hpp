@@ -78,6 +78,11 @@ struct TrackingConfig {
     // fits as well as the right one). Longer than any gap a scan stream has in normal running
     // (keyframe streams of a fast car: 1-1.5 s). 0: off.
     double restart_gap = 2.0;  // [s]
+    // ... and longer than this many times the stream's usual interval (the median of the last 10;
+    // the first 3 intervals of a run are never a gap): a keyframe stream's pause while the robot
+    // stands (hku-avia: 7.3 s before its second keyframe) or every 5th keyframe (2-3.4 s apart)
+    // is no gap. 0: restart_gap alone decides.
+    double restart_gap_cadence = 5.0;
 };
 
 // Local maps (Eq. 9): a box around an anchor; a new map starts when the sensor leaves the
@@ -150,6 +155,7 @@ void visit_fields(OdometryConfig& c, Visitor&& v) {
     v("tracking.yaw_refine", t.yaw_refine, in_range(0, 45));
     v("tracking.restart_after", t.restart_after, non_negative);
     v("tracking.restart_gap", t.restart_gap, non_negative);
+    v("tracking.restart_gap_cadence", t.restart_gap_cadence, non_negative);
     v("tracking.restart_kept_out", t.restart_kept_out, at_least(0));
     auto& o = c.observability;
     v("observability.weak_information", o.weak_information, unit);
@@ -163,6 +169,9 @@ void visit_fields(OdometryConfig& c, Visitor&& v) {
     v("observability.min_contrast", o.min_contrast, at_least(1));
     v("observability.peak_width", o.peak_width, positive);
     v("observability.first_step_contrast", o.first_step_contrast, at_least(1));
+    v("observability.basin_offset", o.basin_offset, non_negative);
+    v("observability.basin_max_offset", o.basin_max_offset, non_negative);
+    v("observability.basin_tolerance", o.basin_tolerance, non_negative);
     v("observability.degenerate_sigma_fraction", o.degenerate_sigma_fraction, non_negative);
     v("observability.degenerate_min_sigma", o.degenerate_min_sigma, non_negative);
     v("observability.weak_sigma_fraction", o.weak_sigma_fraction, non_negative);

@@ -83,7 +83,7 @@ TEST(OdometryConfig, EveryFieldHasOneKeyAndARule) {
         EXPECT_TRUE(keys.insert(key).second) << "key visited twice: " << key;
         ++fields;
     });
-    EXPECT_EQ(fields, 71);  // 54 (tracking.degenerate_travel_keep, _turn) + 17 observability.*
+    EXPECT_EQ(fields, 76);  // 56 (tracking.restart_gap_cadence, restart_kept_out) + 20 observability.*
 }
 
 }  // namespace

@@ -116,7 +116,28 @@ bool Odometry::check_observability(const Eigen::Isometry3d& predicted, double dt
         }
         return false;  // inflate_covariance widens the covariance along the weak directions
     };
-    if (!observable) return degenerate("fit (weak)");
+    // No distinct peak, or one whose fit is no better: does the fit itself have a basin along v?
+    // Then its position there is observed (the support profile is a coarse proxy: among a
+    // narrow view's few surfaces that see v it is flat while the fit converges).
+    const auto basin = [&] {
+        if (c.basin_offset <= 0.0 || first_step) return false;
+        double offset = std::max(std::abs(d), c.basin_offset);
+        if (guessed) {
+            // After a degenerate scan the prediction along v is a guess: the basin has to cover
+            // half the expected step, which needs a speed measured in a scan constrained every
+            // way (a road whose every scan is weak never measured one: its fits can sit in a
+            // basin a whole step short).
+            if (observed_speed_ <= 0.0) return false;
+            const double expected = std::max(std::abs(s_pred), observed_speed_ * dt);
+            offset = std::max(offset, c.weak_sigma_fraction * expected);
+        }
+        if (offset > c.basin_max_offset || !fit_has_basin(*r, v, offset, dt)) return false;
+        r->attempts += 2;
+        r->weak_direction = v;
+        r->search_used = "fit (converges)";
+        return true;
+    };
+    if (!observable) return basin() || degenerate("fit (weak)");
     if (std::abs(p.best_offset) <= 0.5 * q.spacing && o.weak()) {
         r->search_used = "along (fit confirmed)";
         return true;
@@ -138,7 +159,7 @@ bool Odometry::check_observability(const Eigen::Isometry3d& predicted, double dt
             r->search_used = "along (fit kept)";
             return true;
         }
-        return degenerate("along (fit kept, weak)");
+        return basin() || degenerate("along (fit kept, weak)");
     }
     const int attempts = r->attempts;
     *r = again;
@@ -146,6 +167,21 @@ bool Odometry::check_observability(const Eigen::Isometry3d& predicted, double dt
     r->profile_shift = p.best_offset;
     r->weak_direction = v;
     r->search_used = "along";
+    return true;
+}
+
+bool Odometry::fit_has_basin(const FrameResult& r, const Eigen::Vector3d& v, double offset,
+                             double dt) {
+    const double tolerance = config_.observability.basin_tolerance;
+    for (const double side : {-offset, offset}) {
+        Eigen::Isometry3d guess = r.T_odom_lidar;
+        guess.translation() += side * v;
+        FrameResult again = r;
+        if (!try_register(guess, dt, &again).empty()) return false;
+        const double off =
+            std::abs(v.dot(again.T_odom_lidar.translation() - r.T_odom_lidar.translation()));
+        if (off > tolerance) return false;
+    }
     return true;
 }
 
@@ -162,7 +198,8 @@ void Odometry::inflate_covariance(const Eigen::Isometry3d& predicted, double dt,
                    : std::max(c.weak_min_sigma, c.weak_sigma_fraction * expected);
     // A position the search along the weak direction found (a distinct peak) is measured.
     const std::string used = r->search_used;
-    const bool found = !degenerate && (used == "along" || used == "along (fit confirmed)");
+    const bool found = !degenerate && (used == "along" || used == "along (fit confirmed)" ||
+                                       used == "fit (converges)");
     inflate_weak(o, maps_.current().T_odom_map().linear(),
                  found ? r->weak_direction : Eigen::Vector3d::Zero(), sigma, &r->covariance);
 }

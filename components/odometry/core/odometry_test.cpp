@@ -10,6 +10,7 @@
 
 #include "common/core/kitti_io.hpp"
 #include "common/core/trajectory_io.hpp"
+#include "odometry/core/scan_cadence.hpp"
 #include "registration/core/test_scenes.hpp"
 
 namespace ltm::odometry {
@@ -171,6 +172,44 @@ TEST_F(StreetOdometry, ALongGapBetweenScansStartsANewSegment) {
         ASSERT_TRUE(other.register_frame(street_scan(scene(), i)).pose_valid());
     carried.stamp = 0.3 + 2.5;
     EXPECT_EQ(other.register_frame(carried).segment, 0u);
+}
+
+// A keyframe stream pauses while the robot stands (hku-avia: 7.3 s before the second keyframe),
+// and every few keyframes are seconds apart: no gap in the stream, no new segment. Before the
+// cadence check the second scan restarted (a one-scan segment, the next at the first's pose).
+TEST_F(StreetOdometry, AKeyframeStreamsPausesAreNoGap) {
+    Odometry odo(OdometryConfig{}, street_pose(0));
+    const double stamps[] = {0.0, 7.3, 9.8, 12.6, 14.9, 17.5};  // a stand, then ~2.5 s apart
+    for (int i = 0; i < 6; ++i) {
+        common::PointCloud c = street_scan(scene(), i);
+        c.stamp = stamps[i];
+        const FrameResult r = odo.register_frame(c);
+        ASSERT_TRUE(r.pose_valid()) << i << ": " << r.message;
+        EXPECT_NE(r.status, FrameStatus::kRestarted) << i << ": " << r.message;
+        EXPECT_EQ(r.segment, 0u) << i;
+    }
+    // Then 15 s without a scan (over 5 x its usual 2.6 s): the robot may have been carried.
+    common::PointCloud c = street_scan(scene(), 9);
+    c.stamp = stamps[5] + 15.0;
+    const FrameResult r = odo.register_frame(c);
+    EXPECT_EQ(r.status, FrameStatus::kRestarted) << r.message;
+    EXPECT_NE(r.message.find("the usual 2.6 s"), std::string::npos) << r.message;
+}
+
+TEST(ScanCadence, AGapIsJudgedAgainstTheStreamsUsualInterval) {
+    ScanCadence cadence;
+    EXPECT_FALSE(cadence.is_break(7.3, 2.0, 5.0));  // nothing known yet: never a break
+    EXPECT_TRUE(cadence.is_break(7.3, 2.0, 0.0));   // factor 0: the gap alone
+    EXPECT_FALSE(cadence.is_break(7.3, 0.0, 0.0));  // gap 0: off
+    for (double dt : {0.1, 0.1, std::nan(""), -1.0, 0.1}) cadence.add(dt);  // bad ones ignored
+    EXPECT_TRUE(cadence.known());
+    EXPECT_DOUBLE_EQ(cadence.usual(), 0.1);
+    EXPECT_TRUE(cadence.is_break(2.2, 2.0, 5.0));   // a 10 Hz stream's 2.2 s pause: a gap
+    EXPECT_FALSE(cadence.is_break(1.9, 2.0, 5.0));  // under restart_gap
+    for (int i = 0; i < 10; ++i) cadence.add(2.4);  // now keyframes 2.4 s apart (the last 10)
+    EXPECT_DOUBLE_EQ(cadence.usual(), 2.4);
+    EXPECT_FALSE(cadence.is_break(3.4, 2.0, 5.0));
+    EXPECT_TRUE(cadence.is_break(12.1, 2.0, 5.0));
 }
 
 TEST_F(StreetOdometry, StampsThatDoNotAdvanceAreRejected) {
