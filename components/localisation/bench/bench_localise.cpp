@@ -307,7 +307,10 @@ int run(const Args& a) {
             for (int k = 0; k < 5; ++k) step_times[k].push_back(steps[k]);
             has_pose = g.localised;
             pose = g.T_map_lidar;
-            if (std::getenv("LTM_BENCH_VERBOSE")) std::printf("  %zu: %s\n", i, g.reason.c_str());
+            if (std::getenv("LTM_BENCH_VERBOSE"))
+                std::printf("  %zu: cpu %.3f s (probes %.3f, verification %.3f, checks %.3f): %s\n",
+                            i, cpu_s, g.steps.probes, g.steps.verification, g.steps.checks,
+                            g.reason.c_str());
             if (a.verify_reference && have_ref) {
                 const localisation::GlobalLocalisation v = global.verify(scan.map_points, truth);
                 std::printf(

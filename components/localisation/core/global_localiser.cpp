@@ -107,6 +107,15 @@ std::string too_few_points(std::size_t points, int min_inliers) {
            ")";
 }
 
+std::string poor_search_fit(double inlier_fraction) {
+    std::ostringstream why;
+    why.precision(3);
+    why << "not localised: the best fit is one the translation search found, itself poor "
+           "(inlier fraction "
+        << inlier_fraction << ")";
+    return why.str();
+}
+
 std::string ambiguous_places(double second_inliers_ratio) {
     std::ostringstream why;
     why.precision(2);
@@ -144,8 +153,33 @@ GlobalLocaliser::GlobalLocaliser(std::shared_ptr<const LocalisationMap> map,
       verifier_(config.verification),
       fine_(config.verification.fine, map_->voxel_size()),
       probe_(probe_config(config.verification.coarse, config.probe_iterations),
-             map_->target().coarse ? map_->target().coarse->voxel_size() : map_->voxel_size()) {
+             map_->target().coarse ? map_->target().coarse->voxel_size() : map_->voxel_size()),
+      settle_(probe_config(config.verification.coarse, std::max(1, config.rival_settle_iterations)),
+              map_->target().coarse ? map_->target().coarse->voxel_size() : map_->voxel_size()) {
     if (auto problem = validate(config)) throw common::ConfigError("localisation.global", *problem);
+}
+
+std::vector<std::uint32_t> GlobalLocaliser::ring_key_candidates(
+    const places::ScanContext& query) const {
+    const LocalisationMap& map = *map_;
+    const std::size_t want = std::size_t(config_.candidates);
+    const std::size_t pool = std::max(want, std::size_t(config_.candidate_pool));
+    const double r2 = config_.candidate_separation * config_.candidate_separation;
+    std::vector<std::uint32_t> kept;
+    for (const places::RingKeyNeighbour& n : map.nearest_keyframes(query, pool)) {
+        const Eigen::Vector3d p = map.keyframes()[n.item].T_map_lidar.translation();
+        bool clumped = false;
+        for (std::uint32_t k : kept) {
+            if ((map.keyframes()[k].T_map_lidar.translation() - p).head<2>().squaredNorm() < r2) {
+                clumped = true;
+                break;
+            }
+        }
+        if (clumped) continue;
+        kept.push_back(n.item);
+        if (kept.size() >= want) break;
+    }
+    return kept;
 }
 
 std::vector<GlobalLocaliser::Place> GlobalLocaliser::rank_places(
@@ -156,10 +190,7 @@ std::vector<GlobalLocaliser::Place> GlobalLocaliser::rank_places(
         const double r = hint->radius > 0.0 ? hint->radius : config_.hint_radius;
         candidates = map.keyframes_near(hint->T_map_lidar.translation(), r);
     } else {
-        for (const places::RingKeyNeighbour& n :
-             map.nearest_keyframes(query, std::size_t(config_.candidates))) {
-            candidates.push_back(n.item);
-        }
+        candidates = ring_key_candidates(query);
     }
     std::vector<Place> scored;
     for (std::uint32_t k : candidates) {
@@ -278,6 +309,10 @@ GlobalLocalisation GlobalLocaliser::localise(const std::vector<Eigen::Vector3f>&
     }
     out.steps.verification = lap(&t);
     if (accepted.empty()) return finished(out, start);
+    if (accepted.front().poor_search) {
+        out.reason = poor_search_fit(accepted.front().v.inlier_fraction);
+        return finished(out, start);
+    }
     const registration::LoopVerification& best = accepted.front().v;
     const Guess& from = guesses[std::size_t(accepted.front().guess)];
     out.second_inliers_ratio = rival_ratio(accepted);
@@ -382,6 +417,19 @@ double GlobalLocaliser::probe_share_on_surface(const Eigen::Isometry3d& T_map_li
     return double(on) / double(probe_points_.size());
 }
 
+bool GlobalLocaliser::settles_at_answer(const Guess& guess, const std::vector<Verified>& accepted) {
+    const registration::RegistrationTarget& target = map_->target();
+    const registration::VoxelGrid& coarse = target.coarse ? *target.coarse : target.fine;
+    const registration::RegistrationResult r =
+        settle_.align(probe_points_, coarse, guess.T_map_lidar);
+    if (!r.ok() || !r.T_map_lidar.matrix().allFinite()) return false;
+    for (const Verified& a : accepted) {
+        const auto [dt, dr] = pose_distance(a.v.T_anchor_lidar, r.T_map_lidar);
+        if (dt < config_.distinct_translation && dr < config_.distinct_rotation) return true;
+    }
+    return false;
+}
+
 std::vector<GlobalLocaliser::Verified> GlobalLocaliser::verify_guesses(
     const std::vector<Eigen::Vector3f>& finite, const Guesses& guesses,
     const std::vector<std::size_t>& order, GlobalLocalisation* out) {
@@ -397,6 +445,17 @@ std::vector<GlobalLocaliser::Verified> GlobalLocaliser::verify_guesses(
                 known = true;
         }
         if (known) continue;
+        if (!accepted.empty() &&
+            guesses[g].probe_share < config_.rival_answer_probe_ratio *
+                                         guesses[std::size_t(accepted.front().guess)].probe_share) {
+            ++out->outprobed;
+            continue;
+        }
+        if (!accepted.empty() && config_.rival_settle_iterations > 0 &&
+            settles_at_answer(guesses[g], accepted)) {
+            ++out->settled;
+            continue;
+        }
         // A well-probed guess is verified by the fine pass alone; refused so, or accepted with a
         // weak fit, it gets both passes too and the better result is kept.
         const registration::GuessList start{guesses[g].T_map_lidar};
@@ -436,7 +495,8 @@ void GlobalLocaliser::search_around(const std::vector<Eigen::Vector3f>& finite,
                                guesses[g].T_map_lidar, config_.search);
         ++out->searched;
         // At the guess itself (or next to it) the verification has started already.
-        if (r.offset < 0.5 * config_.search.step || r.share <= r.share_at_start) continue;
+        if ((r.offset < 0.5 * config_.search.step && r.yaw == 0.0) || r.share <= r.share_at_start)
+            continue;
         bool known = false;
         for (const Verified& a : *accepted) {
             const auto [dt, dr] = pose_distance(a.v.T_anchor_lidar, r.T_map_lidar);
@@ -454,7 +514,9 @@ void GlobalLocaliser::search_around(const std::vector<Eigen::Vector3f>& finite,
             if (dt < 0.5 * config_.distinct_translation && dr < config_.distinct_rotation)
                 same = true;
         }
-        if (!same) accepted->push_back({std::move(v), int(g)});
+        if (same) continue;
+        const bool poor = v.inlier_fraction < config_.search.below_inlier_fraction;
+        accepted->push_back({std::move(v), int(g), poor});
     }
     std::sort(accepted->begin(), accepted->end(),
               [](const Verified& a, const Verified& b) { return a.v.inliers > b.v.inliers; });
@@ -529,6 +591,8 @@ std::string GlobalLocaliser::describe(const Guess& from, const std::vector<Place
         << structure_ratio(best) << ", unmatched "
         << (best.points ? double(best.unmatched) / double(best.points) : 0.0) << ", rival "
         << out.second_inliers_ratio << ", weakest share " << out.weakest_share;
+    if (out.settled) how << ", settled at it " << out.settled;
+    if (out.outprobed) how << ", outprobed " << out.outprobed;
     if (out.searched) how << ", searched around " << out.searched;
     if (out.slide_tested) how << ", slide rival " << out.slide_inliers_ratio;
     how << ", verified " << out.verified;

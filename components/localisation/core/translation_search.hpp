@@ -22,6 +22,10 @@ struct TranslationSearchConfig {
     double radius = 5.0;  // offsets within this of the pose, horizontal [m] (0: no search)
     double step = 1.0;    // grid of the offsets [m]; a point is on a surface within 0.75 step
     int points = 300;     // scan points scored (evenly thinned)
+    // Yaws tried about the pose at every offset [deg]: a guess from a descriptor is a few degrees
+    // off too, and at 20 m a degree moves the structure by a third of a metre (site_loop, 3 laps,
+    // another day's scans turned: refusals whose best guess was 3.9-5.6 m and 3-4 deg off).
+    std::vector<double> yaw_offsets = {0.0};
     // Run when no initial pose verified, or the best verified one has an inlier fraction below
     // this (a fit with many points off is the sign of a neighbouring minimum).
     double below_inlier_fraction = 0.8;
@@ -33,6 +37,7 @@ void visit_fields(TranslationSearchConfig& c, const std::string& prefix, Visitor
     v(prefix + "radius", c.radius, non_negative);
     v(prefix + "step", c.step, positive);
     v(prefix + "points", c.points, at_least(10));
+    v(prefix + "yaw_offsets", c.yaw_offsets, not_empty);
     v(prefix + "below_inlier_fraction", c.below_inlier_fraction, unit);
 }
 
@@ -41,6 +46,7 @@ struct TranslationSearchResult {
     double share = 0.0;           // of the points on a surface there
     double share_at_start = 0.0;  // ... and at the pose itself
     double offset = 0.0;          // [m]
+    double yaw = 0.0;             // of the best offset [deg]
     EIGEN_MAKE_ALIGNED_OPERATOR_NEW
 };
 

@@ -41,6 +41,29 @@ TEST(TranslationSearch, FindsTheOffsetOfAPoseMetresOffWhereTheStructureFits) {
     EXPECT_LT(error_of(none.T_map_lidar, far).translation, 1e-9);
 }
 
+TEST(TranslationSearch, TurnsAGuessThatIsDegreesOffAsWellAsMetres) {
+    const SceneMap& s = scene_map();
+    const Eigen::Isometry3d truth = mt::xy_yaw(-3.0, -0.6, 25.0);
+    const std::vector<Eigen::Vector3f> scan = mt::view(s.scene, truth, 60.0);
+    const registration::ImlsParams imls;
+    // 3 m off and turned 3 deg about the LiDAR.
+    Eigen::Isometry3d start = truth;
+    start.linear() = Eigen::AngleAxisd(3.0 * kDeg, Eigen::Vector3d::UnitZ()) * truth.linear();
+    start.translation() += Eigen::Vector3d(2.0, -2.0, 0.0);
+    TranslationSearchConfig config;  // no yaws: the offset alone, the rotation stays 3 deg off
+    const TranslationSearchResult plain =
+        search_translation(scan, s.map->target().fine, imls, start, config);
+    EXPECT_EQ(plain.yaw, 0.0);
+    EXPECT_NEAR(error_of(plain.T_map_lidar, truth).rotation_deg, 3.0, 1e-6);
+    config.yaw_offsets = {-3.0, 0.0, 3.0};
+    const TranslationSearchResult r =
+        search_translation(scan, s.map->target().fine, imls, start, config);
+    EXPECT_EQ(r.yaw, -3.0);
+    EXPECT_LT(error_of(r.T_map_lidar, truth).rotation_deg, 0.01);
+    EXPECT_LT(error_of(r.T_map_lidar, truth).translation, 0.75);
+    EXPECT_GT(r.share, plain.share);
+}
+
 TEST(TranslationSearch, ItsKeysAreCheckedWithTheGlobalLocalisers) {
     GlobalLocaliserConfig c;
     EXPECT_FALSE(validate(c));
@@ -50,6 +73,10 @@ TEST(TranslationSearch, ItsKeysAreCheckedWithTheGlobalLocalisers) {
     c = GlobalLocaliserConfig();
     c.search.below_inlier_fraction = 1.5;
     EXPECT_EQ(validate(c)->key, "search.below_inlier_fraction");
+    c = GlobalLocaliserConfig();
+    EXPECT_EQ(c.search.yaw_offsets.size(), 3u);  // the global localiser's: -3, 0, 3 deg
+    c.search.yaw_offsets.clear();
+    EXPECT_EQ(validate(c)->key, "search.yaw_offsets");
 }
 
 }  // namespace
