@@ -42,6 +42,9 @@ using Clock = std::chrono::steady_clock;
 struct Args {
     std::vector<std::string> sessions, poses, set;
     std::string calib, out, preset = "default";
+    std::string map;  // a saved maintained map to start from (the sessions continue it)
+    double pass_every =
+        0.0;  // [s] of scan time: a pass this often, as the component (0: at the end)
     std::vector<float> inspect;  // x y z: print the histories of the voxels there
     std::size_t first = 0, count = 0, every = 1;
     bool save = false;  // save the map after every session (OUT/long_term_map.bin)
@@ -55,6 +58,25 @@ maintenance::MaintenanceConfig make_config(const Args& a) {
     maintenance::MaintenanceConfig c;
     common::cli::apply_config_sets(c, a.set, "MaintenanceConfig", "change.sigma");
     return c;
+}
+
+// The histories and verdicts of the voxels within 0.4 m of `at`, as the next pass judges them.
+void print_voxels_at(const maintenance::LongTermMap& map, const std::vector<float>& at_xyz) {
+    const Eigen::Vector3f at(at_xyz[0], at_xyz[1], at_xyz[2]);
+    for (const Eigen::Vector3f& p : map.voxel_centres()) {
+        if ((p - at).norm() > 0.4f) continue;
+        const maintenance::ObservedVoxel& v = *map.voxel_at(p);
+        const maintenance::VoxelJudgement j =
+            maintenance::judge_voxel(map.decision_config().change, map.config().slot, v);
+        std::printf(
+            "voxel %.2f %.2f %.2f: verdict %d score %.2f views %u hits %u recent %u/%u\n  hits:",
+            p.x(), p.y(), p.z(), int(j.verdict), j.score, j.views, j.hits, j.recent_hits,
+            j.recent_views);
+        for (const auto& e : v.hit_histogram()) std::printf(" %d:%d", e.slot, e.count);
+        std::printf("\n  free:");
+        for (const auto& e : v.free_histogram()) std::printf(" %d:%d", e.slot, e.count);
+        std::printf("\n");
+    }
 }
 
 // After a pass: the voxels kept within 0.4 m of `at` and the segment each belongs to (its
@@ -89,7 +111,13 @@ void print_segments_at(const maintenance::LongTermMap& map, const std::vector<fl
 
 int run(const Args& a) {
     const maintenance::MaintenanceConfig config = make_config(a);
-    maintenance::LongTermMap map(config);
+    maintenance::LongTermMap map = a.map.empty() ? maintenance::LongTermMap(config)
+                                                 : maintenance::LongTermMap::load(a.map, config);
+    // A loaded map's sessions go on: this run's first session is the next one.
+    const std::uint32_t first_session = map.sessions().empty() ? 0 : map.sessions().back() + 1;
+    if (!a.map.empty())
+        std::printf("map %s: %zu voxels of %zu sessions\n", a.map.c_str(), map.stats().voxels,
+                    map.sessions().size());
     if (!a.poses.empty() && a.poses.size() != a.sessions.size())
         throw common::cli::UsageError(std::to_string(a.poses.size()) + " --poses for " +
                                       std::to_string(a.sessions.size()) + " --sessions");
@@ -119,41 +147,39 @@ int run(const Args& a) {
 
     std::ofstream changes(std::filesystem::path(a.out) / "changes.txt");
     const auto t_all = Clock::now();
-    std::size_t scans = 0;
+    std::size_t scans = 0, passes = 0;
     for (std::size_t s = 0; s < folders.size(); ++s) {
         const sources::ScanFolder& f = folders[s];
         const auto t0 = Clock::now();
-        map.begin_session(std::uint32_t(s), f.size() ? f.stamp(0) : 0.0);
+        map.begin_session(first_session + std::uint32_t(s), f.size() ? f.stamp(0) : 0.0);
         common::Progress progress("session " + std::to_string(s), f.size(), "scans");
+        double last_pass = f.size() ? f.stamp(0) : 0.0;
+        std::size_t removed_in_passes = 0;
         for (std::size_t i = 0; i < f.size(); ++i) {
             const common::PointCloud cloud = f.load(i);
             map.add_scan(cloud.points, poses[s][a.first + i], f.stamp(i));
             progress.update(i + 1);
+            if (a.pass_every > 0.0 && f.stamp(i) - last_pass >= a.pass_every) {
+                // as the component: a pass over the regions judged so far, views still pending
+                last_pass = f.stamp(i);
+                if (a.inspect.size() == 3) print_voxels_at(map, a.inspect);
+                const maintenance::ChangeSet c = map.maintain();
+                removed_in_passes += c.voxels_removed;
+                maintenance::write_change_summary(changes, c, passes++);
+            }
         }
         progress.finish();
         const double add_s = std::chrono::duration<double>(Clock::now() - t0).count();
         if (a.inspect.size() == 3) {
             map.flush_views();
-            const Eigen::Vector3f at(a.inspect[0], a.inspect[1], a.inspect[2]);
-            for (const Eigen::Vector3f& p : map.voxel_centres()) {
-                if ((p - at).norm() > 0.4f) continue;
-                const maintenance::ObservedVoxel& v = *map.voxel_at(p);
-                const maintenance::VoxelJudgement j =
-                    maintenance::judge_voxel(map.decision_config().change, config.slot, v);
-                std::printf(
-                    "voxel %.2f %.2f %.2f: verdict %d score %.2f views %u hits %u "
-                    "recent %u/%u\n  hits:",
-                    p.x(), p.y(), p.z(), int(j.verdict), j.score, j.views, j.hits, j.recent_hits,
-                    j.recent_views);
-                for (const auto& e : v.hit_histogram()) std::printf(" %d:%d", e.slot, e.count);
-                std::printf("\n  free:");
-                for (const auto& e : v.free_histogram()) std::printf(" %d:%d", e.slot, e.count);
-                std::printf("\n");
-            }
+            print_voxels_at(map, a.inspect);
         }
         const maintenance::MaintenanceConfig used = map.decision_config();
         const maintenance::ChangeSet c = map.end_session();
         scans += f.size();
+        if (a.pass_every > 0.0)
+            std::printf("session %zu: the passes during the session removed %zu voxels\n", s,
+                        removed_in_passes);
         if (a.inspect.size() == 3) print_segments_at(map, a.inspect);
         std::printf(
             "session %zu thresholds (from its span and views unless --set): view_spacing %.3f s "
@@ -192,7 +218,7 @@ int run(const Args& a) {
                         double(bytes) / double(std::max<std::size_t>(1, st.voxels)), save_s);
         }
         std::printf("\n");
-        maintenance::write_change_summary(changes, c, s);
+        maintenance::write_change_summary(changes, c, passes++);
         maintenance::write_change_ply(
             (std::filesystem::path(a.out) / ("changes_s" + std::to_string(s) + ".ply")).string(),
             c);
@@ -259,6 +285,13 @@ int main(int argc, char** argv) {
                    "default; short is the same (kept for old command lines: the thresholds follow "
                    "each session's span and views)")
         ->check(common::cli::one_of({"default", "short"}));
+    app.add_option("--map", a.map,
+                   "a saved maintained map (long_term_map.bin) to start from: the sessions "
+                   "continue it");
+    app.add_option("--pass-every", a.pass_every,
+                   "[s] of scan time: a maintenance pass this often during a session, as the "
+                   "component's maintain_every_s (default 0: one pass at the session's end)")
+        ->check(common::cli::at_least(0.0));
     app.add_option("--set", a.set, "KEY=VALUE overriding a maintenance key (repeatable)");
     app.add_option("--out", a.out, "output folder")->required();
     app.add_flag("--save", a.save,

@@ -116,6 +116,7 @@ struct RegionJudgement {
     std::vector<VoxelJudgement> judged;  // by voxel
     std::vector<bool> stale;             // by voxel
     std::vector<bool> tracked;           // by voxel: seen moving by the motion tracker
+    std::vector<bool> through;           // by voxel: gone, hit before, seen through this session
     std::vector<Tally> tally;            // by segment
     std::size_t voxels_judged = 0;
 };
@@ -141,6 +142,16 @@ std::uint32_t label_segments(const SegmentationConfig& config, ObservationMap& m
     return seg.segments;
 }
 
+// Gone, hit by an earlier session and never by this one, which saw through it in at least
+// through_views recent views, none a hit: the place is empty now, whatever the segment it was
+// joined to (a fence segment taken down beside the fence left standing).
+bool seen_through_now(const ChangeConfig& config, const ObservedVoxel& v, const VoxelJudgement& j,
+                      double session_start) {
+    return config.through_views > 0 && j.verdict == Verdict::kVanished && j.recent_hits == 0 &&
+           j.recent_views >= std::uint32_t(config.through_views) && j.hits > 0 &&
+           v.last_point() < session_start;
+}
+
 // Verdicts of the voxels, tallied per segment.
 RegionJudgement judge_region(const MaintenanceConfig& config, const ObservationMap& map,
                              std::uint32_t segments, double session_start) {
@@ -161,8 +172,10 @@ RegionJudgement judge_region(const MaintenanceConfig& config, const ObservationM
     for (std::int32_t l : latest) region_latest = std::max(region_latest, l);
     out.stale.assign(map.size(), false);
     out.tracked.assign(map.size(), false);
+    out.through.assign(map.size(), false);
     for (std::uint32_t i = 0; i < map.size(); ++i) {
         VoxelJudgement& j = judged[i];
+        out.through[i] = seen_through_now(config.change, map.voxel(i), j, session_start);
         // Seen moving (motion_tracker.hpp), not ground, and not hit for long: moving, whatever
         // its history says (a walker's voxels are hit in nearly every view of a second).
         const ObservedVoxel& v = map.voxel(i);
@@ -264,6 +277,7 @@ RegionChanges decide_voxels(const ChangeConfig& config, ObservationMap& map,
         if (!is_ground && ((segment_gone && (voxel_gone || verdict == Verdict::kUnjudged ||
                                              (judgement.stale[i] && vanished_segment))) ||
                            (voxel_gone && (config.voxel_level || s == 0 || judgement.tracked[i] ||
+                                           judgement.through[i] ||
                                            judgement.judged[i].score >= config.voxel_score)))) {
             out.remove[i] = true;
             note(map, i, out.gone[s]);
