@@ -27,13 +27,14 @@ namespace ltm::map {
 std::uint32_t map_format_for(const places::ScanContextConfig& localisation_descriptor_config,
                              bool records_sessions = false);
 
-std::string encode_local_map(const StoredLocalMap& map, std::uint32_t version = kMapFormatVersion);
+std::string encode_local_map(const StoredLocalMap& map,
+                             std::uint32_t version = kRowMapFormatVersion);
 StoredLocalMap decode_local_map(const std::string& bytes, const std::string& file,
                                 std::uint32_t* version = nullptr);
 
 std::string encode_graph(std::uint64_t revision, const std::vector<PoseGraphNode>& nodes,
                          const std::vector<PoseGraphEdge>& edges,
-                         std::uint32_t version = kMapFormatVersion);
+                         std::uint32_t version = kRowMapFormatVersion);
 void decode_graph(const std::string& bytes, const std::string& file, std::uint64_t* revision,
                   std::vector<PoseGraphNode>* nodes, std::vector<PoseGraphEdge>* edges,
                   std::uint32_t* version = nullptr);

@@ -23,19 +23,11 @@
 
 namespace ltm::map {
 
-constexpr std::uint32_t kMapFormatVersion = 3;  // the newest: what a map with every part takes
+// Formats 1 to 3 store a local map's voxels as rows; format 4 (map_format.hpp:
+// kNewestMapFormatVersion, what a map that records sessions is saved as) stores them as compressed
+// columns. What a build can read is map_format.hpp's readable_map_format.
+constexpr std::uint32_t kRowMapFormatVersion = 3;  // the newest row format
 constexpr std::uint32_t kOldestMapFormatVersion = 1;
-
-inline bool supported_map_format(std::uint32_t version) {
-    return version >= kOldestMapFormatVersion && version <= kMapFormatVersion;
-}
-// "format version 4 is not supported (this build reads versions 1 to 3)"
-inline std::string unsupported_map_format(std::uint32_t version) {
-    return "format version " + std::to_string(version) +
-           " is not supported (this build reads versions " +
-           std::to_string(kOldestMapFormatVersion) + " to " + std::to_string(kMapFormatVersion) +
-           ")";
-}
 
 // A damaged map file: what() is "file: field at byte N: problem" (one line).
 using MapFormatError = common::FormatError;

@@ -3,9 +3,8 @@
 // is format 3 with a local map's voxels as compressed columns (local_map_columns.hpp) and a
 // keyframe file's keyframe sections in one zstd frame; the manifest and the graph are format 3's.
 // A map that records sessions (every Mapper snapshot) is saved as format 4 (map_format_for).
-// Kept apart from map_data.hpp so that the many files including that one need no rebuild; read
-// kNewestMapFormatVersion where map_data.hpp's kMapFormatVersion (3, the newest row format) says
-// "newest".
+// Kept apart from map_data.hpp so that the many files including that one need no rebuild; "newest"
+// is kNewestMapFormatVersion here (map_data.hpp's kRowMapFormatVersion is the newest row format).
 #include <cstdint>
 #include <string>
 

@@ -37,7 +37,7 @@ struct ManifestEntry {
 struct Manifest {
     // Parsed: 1, 2 or 3. Written: 1 without localisation descriptors, else 3 with sessions, else 2
     // (map_data.hpp).
-    std::uint32_t version = kMapFormatVersion;
+    std::uint32_t version = kRowMapFormatVersion;
     std::uint64_t revision = 0;
     places::ScanContextConfig descriptor;
     // Written in format 2 only; a format-1 manifest parses as no_localisation_descriptors().
