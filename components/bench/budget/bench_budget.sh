@@ -23,6 +23,8 @@
 #                                after-change day 1 without playing day 0 again
 #   --day0-only                  lifelong: day 0 only (e.g. with --frames: a 64-beam sensor's
 #                                scans are 2-3x a VLP-32C's on disk)
+#   --set NAME.KEY=VALUE         lifelong: passed on to the robot's host (repeatable; e.g. a
+#                                before/after of one setting with the same build)
 #   --report-only                the reports again from D's samples and probes (no host runs)
 #   --maintenance-share X        the maintenance worker's CPU at most X of one core (its
 #                                cpu_share: passes spread, not bursts; default 0.35, 1: unpaced)
@@ -37,7 +39,7 @@ ROOT="$(cd "$(dirname "$0")/../../.." && pwd)"
 BIN="${LTM_BUILD_DIR:-$ROOT/build}/bin"
 DOMAIN="${LTM_BENCH_DOMAIN:-66}"
 CONFIG=all; SCENARIO="$ROOT/components/simulator/scenarios/site_loop.yaml"; FRAMES=""; OUT=""; PERF=1
-REPORT_ONLY=0; NICE=""; MAINT_SHARE=0.35; SENSOR=""; SITE_FROM=""; DAY0_ONLY=0
+REPORT_ONLY=0; NICE=""; MAINT_SHARE=0.35; SENSOR=""; SITE_FROM=""; DAY0_ONLY=0; EXTRA_SETS=()
 
 usage() {
     echo "The robot's mission at the sensor's rate: CPU, memory, missed scans, latency per component"
@@ -51,6 +53,7 @@ usage() {
         "--no-perf" "no perf profile of the robot's host" \
         "--site-from S" "lifelong: day 1 only, on a copy of site S (day 0's version)" \
         "--day0-only" "lifelong: day 0 only" \
+        "--set NAME.KEY=VALUE" "lifelong: a parameter of the robot's host (repeatable)" \
         "--report-only" "write the reports again from D's samples and probes (needs --out D)" \
         "--nice N" "run the hosts at nice N (negative: ahead of the machine's other work; root)" \
         "--maintenance-share X" "the maintenance worker's CPU share of a core (default 0.35; 1: unpaced)"
@@ -62,6 +65,7 @@ while [ $# -gt 0 ]; do
         --no-perf) PERF=0; shift ;;
         --report-only) REPORT_ONLY=1; shift ;;
         --day0-only) DAY0_ONLY=1; shift ;;
+        --set) [ $# -ge 2 ] || fail "--set: needs NAME.KEY=VALUE"; EXTRA_SETS+=(--set "$2"); shift 2 ;;
         --config|--scenario|--sensor|--frames|--out|--nice|--maintenance-share|--site-from)
             [ $# -ge 2 ] || fail "$1: needs a value"
             case "$1" in
@@ -215,7 +219,8 @@ run_lifelong_day() {  # DAY SESSION
     # its global queries run on their own thread (global_thread, the default when live); the
     # maintenance worker paced to a share of a core (cpu_share).
     start_host robot "$dir" "$dir/launch.yaml" LTM_SITE="$OUT/lifelong/site" -- \
-        --set localisation.skip_while_busy=true --set "maintenance.cpu_share=$MAINT_SHARE"
+        --set localisation.skip_while_busy=true --set "maintenance.cpu_share=$MAINT_SHARE" \
+        "${EXTRA_SETS[@]}"
     profile robot "$dir"
     wait_hosts
     load_note "$mark" > "$dir/load.txt"
