@@ -109,10 +109,13 @@ void MapEditInputs::on_changes(const msg::MapChangeSet& m) {
     mapper_.keep_cells(c.added, c.cell_size);
     if (c.removed.empty()) return;
     if (!pacer_) {  // all at once
+        const double cpu0 = thread_cpu_s();
         const std::size_t cleared = mapper_.remove_cells(c.removed, c.cell_size);
+        char cpu[64];
+        std::snprintf(cpu, sizeof cpu, " (%.2f s of CPU at once)", thread_cpu_s() - cpu0);
         ctx_.log().info("map maintenance pass " + std::to_string(m.pass) + ": " +
                         std::to_string(c.removed_segments) + " segment(s) gone, " +
-                        std::to_string(cleared) + " voxels cleared from the local maps");
+                        std::to_string(cleared) + " voxels cleared from the local maps" + cpu);
         return;
     }
     // Recorded now (local maps that arrive are cleared of the cells at once); the local maps
@@ -132,7 +135,9 @@ void MapEditInputs::clear_some() {
         const double cpu0 = thread_cpu_s();
         std::size_t removed = 0;
         const bool more = mapper_.clear_removed_step(&removed);
-        clear_cpu_s_ += thread_cpu_s() - cpu0;
+        const double cpu = thread_cpu_s() - cpu0;
+        clear_cpu_s_ += cpu;
+        clearing_->cpu_s += cpu;
         clearing_->voxels += removed;
         if (!more) {
             clearing_done();
@@ -149,17 +154,20 @@ void MapEditInputs::clear_some() {
 void MapEditInputs::finish_clearing() {
     if (!clearing_) return;
     std::size_t removed = 0;
+    const double cpu0 = thread_cpu_s();
     for (bool more = true; more;) {
         more = mapper_.clear_removed_step(&removed);
         clearing_->voxels += removed;
     }
+    clearing_->cpu_s += thread_cpu_s() - cpu0;
     clearing_done();
 }
 
 void MapEditInputs::clearing_done() {
     if (!clearing_) return;
-    char took[64];
-    std::snprintf(took, sizeof took, " (over %.1f s)", wall_s() - clearing_->started_s);
+    char took[96];
+    std::snprintf(took, sizeof took, " (%.2f s of CPU over %.1f s)", clearing_->cpu_s,
+                  wall_s() - clearing_->started_s);
     const bool several = clearing_->passes.find(',') != std::string::npos;
     ctx_.log().info("map maintenance pass" + std::string(several ? "es " : " ") +
                     clearing_->passes + ": " + std::to_string(clearing_->segments) +

@@ -37,7 +37,7 @@ class MapEditInputs {
         std::vector<std::string> change_topics = {"map_changes"};
         std::string frame_id = "map";
         // Clearing a pass's cells: at most this share of one core (1: all at once, on arrival).
-        double clear_share = 0.25;
+        double clear_share = 0.15;
     };
     // `placed` is told when a fix placed a part on the loaded map; `optimise` when one made an
     // optimisation due.
@@ -72,11 +72,12 @@ class MapEditInputs {
     MapFixPairer pairer_;
     std::size_t refused_ = 0;
     bool warned_frame_ = false;
-    // The clearing under way: the passes it holds, their segments, voxels cleared, when it began.
+    // The clearing under way: the passes it holds, their segments, voxels cleared, when it began,
+    // its CPU so far [s].
     struct Clearing {
         std::string passes;
         std::size_t segments = 0, voxels = 0;
-        double started_s = 0.0;
+        double started_s = 0.0, cpu_s = 0.0;
     };
     std::optional<Clearing> clearing_;
     std::optional<common::CpuPacer> pacer_;  // clear_share < 1
