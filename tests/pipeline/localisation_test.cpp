@@ -137,7 +137,8 @@ class LocalisationPipeline : public ltm::tests::TempDirTest {
     }
 
     // Session 1 of the site (its first `count` scans, 0: all) localised on `map` through the test
-    // host; `probe` adds probe parameters. Offline (skip_while_busy: false) unless `live`.
+    // host; `probe` adds probe parameters. Offline (skip_while_busy: false) unless `live` (then the
+    // map is loaded on the worker while the host runs: `map_load: worker`, not the default).
     std::string localise(int domain, const std::string& map, const std::string& probe = "",
                          int count = 0, bool live = false) {
         return write(
@@ -153,7 +154,7 @@ class LocalisationPipeline : public ltm::tests::TempDirTest {
   - name: localisation
     type: localisation
     params: {map: )" + map + R"(, preset: vlp16, skip_while_busy: )" +
-                                 (live ? "true" : "false") + R"(}
+                                 (live ? "true, map_load: worker" : "false") + R"(}
   - name: probe
     type: test_localisation_probe
     params: {file: )" + path("probe.txt") +
@@ -257,8 +258,8 @@ TEST_F(LocalisationPipeline, SecondSessionIsLocalisedOnTheSavedMap) {
 }
 
 // A map that is not there does not stop the robot: one line in the log, the reason on `status`
-// and in every scan's status, no pose, and the host runs to the end. Live: the map is loaded on
-// the component's worker once it runs.
+// and in every scan's status, no pose, and the host runs to the end. Live with `map_load:
+// worker`: the map is loaded on the component's worker once it runs.
 TEST_F(LocalisationPipeline, MissingMapIsOneLineAndTheHostRunsOn) {
     const std::string missing = path("no_such_map");
     Process host({kTestHost, localise(203, missing, "", 5, true)}, path("host"));

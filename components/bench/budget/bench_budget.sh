@@ -18,6 +18,13 @@
 #                                vlp32c, vlp16) instead of the scenario's; every component's
 #                                sensor preset follows the scans (`ltm_budget sensor`), and the
 #                                robot's CPU target is 50 % of a core (100 % with 64 beams)
+#   --site-from S                lifelong: day 1 only, on a copy of the site S (a site folder with
+#                                day 0's version, e.g. an earlier run's D/lifelong/site): an
+#                                after-change day 1 without playing day 0 again
+#   --day0-only                  lifelong: day 0 only (e.g. with --frames: a 64-beam sensor's
+#                                scans are 2-3x a VLP-32C's on disk)
+#   --set NAME.KEY=VALUE         lifelong: passed on to the robot's host (repeatable; e.g. a
+#                                before/after of one setting with the same build)
 #   --report-only                the reports again from D's samples and probes (no host runs)
 #   --maintenance-share X        the maintenance worker's CPU at most X of one core (its
 #                                cpu_share: passes spread, not bursts; default 0.35, 1: unpaced)
@@ -32,7 +39,7 @@ ROOT="$(cd "$(dirname "$0")/../../.." && pwd)"
 BIN="${LTM_BUILD_DIR:-$ROOT/build}/bin"
 DOMAIN="${LTM_BENCH_DOMAIN:-66}"
 CONFIG=all; SCENARIO="$ROOT/components/simulator/scenarios/site_loop.yaml"; FRAMES=""; OUT=""; PERF=1
-REPORT_ONLY=0; NICE=""; MAINT_SHARE=0.35; SENSOR=""
+REPORT_ONLY=0; NICE=""; MAINT_SHARE=0.35; SENSOR=""; SITE_FROM=""; DAY0_ONLY=0; EXTRA_SETS=()
 
 usage() {
     echo "The robot's mission at the sensor's rate: CPU, memory, missed scans, latency per component"
@@ -44,6 +51,9 @@ usage() {
         "--frames A:B" "only scans A..B-1 of each session (a short run)" \
         "--out D" "the results (default results/budget-<time>)" \
         "--no-perf" "no perf profile of the robot's host" \
+        "--site-from S" "lifelong: day 1 only, on a copy of site S (day 0's version)" \
+        "--day0-only" "lifelong: day 0 only" \
+        "--set NAME.KEY=VALUE" "lifelong: a parameter of the robot's host (repeatable)" \
         "--report-only" "write the reports again from D's samples and probes (needs --out D)" \
         "--nice N" "run the hosts at nice N (negative: ahead of the machine's other work; root)" \
         "--maintenance-share X" "the maintenance worker's CPU share of a core (default 0.35; 1: unpaced)"
@@ -54,12 +64,15 @@ while [ $# -gt 0 ]; do
         -h|--help) usage; exit 0 ;;
         --no-perf) PERF=0; shift ;;
         --report-only) REPORT_ONLY=1; shift ;;
-        --config|--scenario|--sensor|--frames|--out|--nice|--maintenance-share)
+        --day0-only) DAY0_ONLY=1; shift ;;
+        --set) [ $# -ge 2 ] || fail "--set: needs NAME.KEY=VALUE"; EXTRA_SETS+=(--set "$2"); shift 2 ;;
+        --config|--scenario|--sensor|--frames|--out|--nice|--maintenance-share|--site-from)
             [ $# -ge 2 ] || fail "$1: needs a value"
             case "$1" in
                 --config) CONFIG="$2" ;; --scenario) SCENARIO="$2" ;;
                 --frames) FRAMES="$2" ;; --out) OUT="$2" ;; --nice) NICE="$2" ;;
                 --maintenance-share) MAINT_SHARE="$2" ;; --sensor) SENSOR="$2" ;;
+                --site-from) SITE_FROM="$2" ;;
             esac
             shift 2 ;;
         *) fail "unknown argument '$1' (--help)" ;;
@@ -71,6 +84,8 @@ SCENARIO="$(cd "$(dirname "$SCENARIO")" && pwd)/$(basename "$SCENARIO")"
 [ -z "$FRAMES" ] || [[ "$FRAMES" =~ ^[0-9]*:[0-9]*$ ]] || fail "--frames: A:B, got '$FRAMES'"
 [ -z "$NICE" ] || [[ "$NICE" =~ ^-?[0-9]+$ ]] || fail "--nice: a whole number, got '$NICE'"
 [ -z "$SENSOR" ] || [[ "$SENSOR" =~ ^[a-z0-9_]+$ ]] || fail "--sensor: a simulator model (os1_64, hdl64e, vlp32c, vlp16), got '$SENSOR'"
+[ -z "$SITE_FROM" ] || [ "$DAY0_ONLY" = 0 ] || fail "--site-from and --day0-only: one or the other"
+[ -z "$SITE_FROM" ] || [ -d "$SITE_FROM/versions" ] || fail "--site-from: $SITE_FROM is not a site (no versions/ in it)"
 [[ "$MAINT_SHARE" =~ ^[0-9]*\.?[0-9]+$ ]] || fail "--maintenance-share: a number in (0, 1], got '$MAINT_SHARE'"
 for exe in ltm_host ltm_sim ltm_budget; do
     [ -x "$BIN/$exe" ] || fail "$BIN/$exe is not built (ninja -C build ltm_host ltm_sim ltm_budget)"
@@ -204,7 +219,8 @@ run_lifelong_day() {  # DAY SESSION
     # its global queries run on their own thread (global_thread, the default when live); the
     # maintenance worker paced to a share of a core (cpu_share).
     start_host robot "$dir" "$dir/launch.yaml" LTM_SITE="$OUT/lifelong/site" -- \
-        --set localisation.skip_while_busy=true --set "maintenance.cpu_share=$MAINT_SHARE"
+        --set localisation.skip_while_busy=true --set "maintenance.cpu_share=$MAINT_SHARE" \
+        "${EXTRA_SETS[@]}"
     profile robot "$dir"
     wait_hosts
     load_note "$mark" > "$dir/load.txt"
@@ -268,8 +284,14 @@ if [ "$REPORT_ONLY" = 1 ]; then
 else
     if [ "$CONFIG" = lifelong ] || [ "$CONFIG" = all ]; then
         rm -rf "$OUT/lifelong/site"   # a fresh site: day 0 maps it
-        run_lifelong_day 0 0
-        run_lifelong_day 1 1
+        if [ -n "$SITE_FROM" ]; then   # or day 0's site as given: day 1 only
+            mkdir -p "$OUT/lifelong" && cp -a "$SITE_FROM" "$OUT/lifelong/site" ||
+                fail "--site-from: cannot copy $SITE_FROM"
+            echo "  lifelong: day 1 on a copy of $SITE_FROM"
+        else
+            run_lifelong_day 0 0
+        fi
+        [ "$DAY0_ONLY" = 1 ] || run_lifelong_day 1 1
     fi
     if [ "$CONFIG" = base_station ] || [ "$CONFIG" = all ]; then run_base_station 1; fi
     if [ "$CONFIG" = base_station_multi ] || [ "$CONFIG" = all ]; then run_base_station 2; fi

@@ -124,6 +124,14 @@ void report_host(std::ostream& out, const HostRun& h, double t0, double t1, std:
             out << (k ? ", " : ": ") << who[k].second << " " << fmt("%.0f %%", 100 * who[k].first);
         out << "\n";
     }
+    // The start-up (the components loading the site) and the end (last passes, saves) are outside
+    // the mission span: their worst second too, so that a burst moved there is seen.
+    const double r0 = h.log.samples.front().t, r1 = h.log.samples.back().t;
+    for (const Window& w : worst_windows(process, r0, r1, 1))
+        out << "\nover the whole run (start-up and the end included): worst 1 s window "
+            << fmt("%.0f %%", 100 * w.share) << " at " << fmt("%+.1f", w.start - t0)
+            << " s from the first scan (whole run: " << fmt("%.1f", r0 - t0) << " .. "
+            << fmt("%+.1f", r1 - t0) << " s)\n";
     const double avg = average_share(process, t0, t1), worst = worst_window_share(process, t0, t1);
     double peak = 0;
     for (const auto& s : h.log.samples) peak = std::max(peak, s.memory.hwm_kb / 1024.0);

@@ -12,7 +12,7 @@
 // oldest is dropped (skip_while_busy, a live sensor) or the component's thread waits (offline:
 // back-pressure on the sensor, nothing dropped). With `cpu_share` below 1 the worker spreads its
 // work: after each scan and between the regions of a pass it waits as long as keeps its CPU time
-// within that share of one core (maintenance/core/cpu_pacer.hpp), so a pass of seconds becomes a
+// within that share of one core (common/core/cpu_pacer.hpp), so a pass of seconds becomes a
 // slower pass at a bounded load instead of a burst; the scans wait in the queue meanwhile, and the
 // decisions are the same (nothing enters the map during a pass). Not while shutting down.
 //
@@ -45,13 +45,13 @@
 #include <optional>
 #include <thread>
 
+#include "common/core/cpu_pacer.hpp"
 #include "common/core/io_error.hpp"
 #include "common/core/one_line.hpp"
 #include "maintenance/component/maintenance_params.hpp"
 #include "maintenance/component/map_change_messages.hpp"
 #include "maintenance/core/change_record.hpp"
 #include "maintenance/core/change_report.hpp"
-#include "maintenance/core/cpu_pacer.hpp"
 #include "maintenance/core/long_term_map.hpp"
 #include "maintenance/core/packed_scan.hpp"
 #include "map/core/site_store.hpp"
@@ -473,7 +473,7 @@ class MaintenanceComponent : public runtime::Component {
     double last_pass_ = 0.0, stamp_ = 0.0;
     std::uint64_t used_ = 0;
     std::uint32_t passes_ = 0;
-    std::optional<CpuPacer> pacer_;  // cpu_share < 1
+    std::optional<common::CpuPacer> pacer_;  // cpu_share < 1
     std::atomic<bool> stopping_{false};
     ChangeSet all_;  // every change of the run (the PLY)
     std::ofstream summary_;

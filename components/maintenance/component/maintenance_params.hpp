@@ -37,8 +37,8 @@ struct MaintenanceComponentConfig {
     // A scan that finds this many or more waiting (a pass runs) waits packed: lossless, 62 % of
     // the memory on real scans (maintenance/core/packed_scan.hpp); 0: always, -1: never.
     int pack_after = 10;
-    // The worker's CPU at most this share of one core (core/cpu_pacer.hpp, a bucket of 0.1 s):
-    // a pass is spread over time between its regions, and the scans after it too, rather than a
+    // The worker's CPU at most this share of one core (common/core/cpu_pacer.hpp, a bucket of 0.1
+    // s): a pass is spread over time between its regions, and the scans after it too, rather than a
     // burst of seconds (live). 1: as fast as it goes (offline).
     double cpu_share = 1.0;
     // Paging (maintenance/core/region_pager.hpp): regions of the maintained map farther than

@@ -332,8 +332,11 @@ void number_changes(const Eigen::Vector2i& region, std::vector<SegmentChange>* c
 
 ChangeSet maintain_region(const MaintenanceConfig& config, ObservationMap& map,
                           std::uint32_t session, double map_time, double session_start,
-                          std::uint64_t* next_id) {
+                          std::uint64_t* next_id, const std::function<void()>& between) {
     const auto t0 = std::chrono::steady_clock::now();
+    const auto pause = [&between] {
+        if (between) between();
+    };
     ChangeSet out;
     out.session = session;
     out.map_time = map_time;
@@ -341,9 +344,12 @@ ChangeSet maintain_region(const MaintenanceConfig& config, ObservationMap& map,
     out.voxels_before = map.size();
     if (map.empty()) return out;
     out.ground_voxels = mark_ground(config.ground, map);
+    pause();
     const std::uint32_t segments = label_segments(config.segmentation, map);
     out.segments = segments;
+    pause();
     const RegionJudgement judgement = judge_region(config, map, segments, session_start);
+    pause();
     out.voxels_judged = judgement.voxels_judged;
     const std::vector<bool> appeared =
         appeared_segments(config.ground, map, segments, session_start, judgement.tally);

@@ -23,6 +23,7 @@
 // motion_tracker.hpp) that is not ground and was hit over at most motion.max_hit_span is moving,
 // whatever its history, and leaves even an unchanged segment (a motorcyclist joined to the road).
 #include <cstdint>
+#include <functional>
 
 #include "maintenance/core/change_set.hpp"
 #include "maintenance/core/observation_map.hpp"
@@ -44,9 +45,12 @@ VoxelJudgement judge_voxel(const ChangeConfig& config, double slot, const Observ
 // One maintenance pass over a region: ground, segments, verdicts; the voxels that are gone are
 // erased from the map and returned as changes (with new segments). A gone segment first seen
 // before `session_start` (map time) vanished, else it moved. Segment ids start at *next_id, which
-// is advanced.
+// is advanced. `between` (optional) runs between the pass's steps (ground, segments, verdicts,
+// decisions): the caller's chance to spread a region's pass over time (issue 28: one region's
+// pass in one piece was up to 0.2-0.5 s of a core); the result is the same as long as it does
+// not touch the map.
 ChangeSet maintain_region(const MaintenanceConfig& config, ObservationMap& map,
                           std::uint32_t session, double map_time, double session_start,
-                          std::uint64_t* next_id);
+                          std::uint64_t* next_id, const std::function<void()>& between = {});
 
 }  // namespace ltm::maintenance

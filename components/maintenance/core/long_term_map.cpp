@@ -211,7 +211,7 @@ ChangeSet LongTermMap::maintain(const std::function<void()>& between) {
         if (!first && between) between();
         first = false;
         all.append(maintain_region(decision, region({key.first, key.second}), session_, now_,
-                                   session_offset_, &next_change_));
+                                   session_offset_, &next_change_, between));
     }
     dirty_.clear();
     return all;

@@ -74,9 +74,9 @@ class LongTermMap {
     // Every pending view judges the voxels now.
     void flush_views();
     // Change decisions over the regions views judged since the last pass (after flush_views()); the
-    // gone voxels are erased. `between` (optional) runs after each region but the last: the
-    // caller's chance to spread a pass over time (cpu_pacer.hpp); the result is the same as long
-    // as it does not touch the map.
+    // gone voxels are erased. `between` (optional) runs after each region but the last and
+    // between a region's steps (maintain_region): the caller's chance to spread a pass over time
+    // (common/core/cpu_pacer.hpp); the result is the same as long as it does not touch the map.
     ChangeSet maintain(const std::function<void()>& between = {});
     // End of a session: flush_views() then maintain().
     ChangeSet end_session();

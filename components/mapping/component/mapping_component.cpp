@@ -74,6 +74,9 @@ class MappingComponent : public runtime::Component {
         if (edits.fix_after < 1)
             p.fail("localisation_fix_after", "must be >= 1 (scans tracked in a row)");
         edits.apply_changes = p.get<bool>("apply_map_changes", true);
+        edits.clear_share = p.get<double>("map_changes_cpu_share", edits.clear_share);
+        if (!(edits.clear_share > 0.0 && edits.clear_share <= 1.0))
+            p.fail("map_changes_cpu_share", "must be in (0, 1] (1: a pass's edits all at once)");
         edits.frame_id = frame_id_;
         const MapperConfig config = load_mapper_config(p, "", "hdl64");
         // The robots' link packets this map holds (map/core/link_applied.hpp): the loaded map's,
@@ -147,6 +150,7 @@ class MappingComponent : public runtime::Component {
     }
 
     void on_shutdown() override {
+        edits_->finish_clearing();  // every edit taken is in the saved map
         if (loops_since_optimise_ > 0) optimise();
         for (const auto& r : robots_) {
             publish_path(*r);
@@ -303,6 +307,7 @@ class MappingComponent : public runtime::Component {
     // Saves the map to `dir`; logs the outcome and appends it to `outcome` (one line a step).
     bool save(const std::string& dir, std::string* outcome) {
         if (dir.empty()) return true;
+        edits_->finish_clearing();  // a saved map never lacks an edit it acknowledged
         try {
             map::SaveStats st;
             if (writer_ && dir == map_dir_) {
@@ -326,6 +331,7 @@ class MappingComponent : public runtime::Component {
 
     bool write_global_map(const std::string& file, std::string* outcome) {
         if (file.empty()) return true;
+        edits_->finish_clearing();
         try {
             common::write_ply(file, mapper_->global_map());
             return report(true, "global voxel map written to " + file, outcome);

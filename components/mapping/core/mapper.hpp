@@ -47,6 +47,7 @@
 // T_world_anchor * T_odom_anchor^-1 * T_odom_lidar. Voxels never move inside their local map.
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <deque>
 #include <map>
 #include <memory>
 #include <optional>
@@ -178,6 +179,14 @@ class Mapper {
     // arrive later in this Mapper's life (snapshots of a map still being built hold them again).
     // The local maps' voxels removed.
     std::size_t remove_cells(const std::vector<Eigen::Vector3f>& centres, float cell_size);
+    // The same in steps (issue 28: a pass's edits spread, not a burst on the mapping's thread):
+    // records the cells now (local maps that arrive later are cleared of them at once) and lists
+    // the local maps near them, which clear_removed_step() clears one at a time (true while more
+    // wait; *removed: its voxels removed). The result is remove_cells' once all steps ran.
+    // Local maps waiting to be cleared.
+    std::size_t remove_cells_in_steps(const std::vector<Eigen::Vector3f>& centres, float cell_size);
+    bool clear_removed_step(std::size_t* removed = nullptr);
+    std::size_t removal_waiting() const { return removal_waiting_.size(); }
     // New objects found there: their cells are no longer cleared in maps that arrive later.
     void keep_cells(const std::vector<Eigen::Vector3f>& centres, float cell_size);
     std::size_t removed_voxels() const { return removed_voxels_; }
@@ -273,6 +282,7 @@ class Mapper {
     bool fixes_expected_ = false;
     RemovedCells removed_;  // what maintenance found gone
     std::size_t removed_voxels_ = 0;
+    std::deque<std::uint64_t> removal_waiting_;  // local maps to clear (remove_cells_in_steps)
 };
 
 }  // namespace ltm::mapping

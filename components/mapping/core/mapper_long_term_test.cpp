@@ -412,6 +412,56 @@ TEST(MapperLongTerm, RemovedCellsLeaveTheLocalMapsNowAndLater) {
     EXPECT_FALSE(voxels_in(mapper, box).empty());
 }
 
+// The same edits in steps (issue 28: spread over the mapping's thread, one local map a step)
+// end as the edits at once: the same voxels left, the same count; until then the maps not yet
+// cleared still hold theirs, and a map that arrives meanwhile is cleared as it arrives.
+TEST(MapperLongTerm, RemovedCellsInStepsEndAsAtOnce) {
+    const std::vector<Eigen::Vector3f> scene =
+        registration::test::with_dense_ground(registration::test::synthetic_scene(71));
+    const Drive d(scene, 0.0, 0.0, Eigen::Isometry3d::Identity(), 0.0);
+    Mapper at_once(test_config()), stepped(test_config());
+    replay(d, at_once);
+    replay(d, stepped);
+    const Eigen::AlignedBox3f box(Eigen::Vector3f(8.0f, -10.0f, 0.5f),
+                                  Eigen::Vector3f(30.0f, 10.0f, 5.0f));
+    const Eigen::AlignedBox3f far_box(Eigen::Vector3f(-100.0f, -100.0f, -100.0f),
+                                      Eigen::Vector3f(100.0f, 100.0f, 100.0f));
+    const std::vector<Eigen::Vector3f> gone = voxels_in(at_once, box);
+    ASSERT_GT(gone.size(), 20u);
+    const std::size_t cleared = at_once.remove_cells(gone, 0.25f);
+
+    const std::size_t waiting = stepped.remove_cells_in_steps(gone, 0.25f);
+    ASSERT_GE(waiting, 2u) << "the box spans several local maps";
+    EXPECT_EQ(stepped.removal_waiting(), waiting);
+    EXPECT_EQ(stepped.removed_voxels(), 0u);  // nothing cleared before a step
+    EXPECT_EQ(voxels_in(stepped, box).size(), gone.size());
+    std::size_t steps = 0, sum = 0, removed = 0, arrived = 0;
+    bool more = true;
+    while (more) {
+        more = stepped.clear_removed_step(&removed);
+        sum += removed;
+        ++steps;
+        if (steps == 1) {
+            // One map cleared, the others not yet.
+            EXPECT_GT(voxels_in(stepped, box).size(), 0u);
+            EXPECT_LT(voxels_in(stepped, box).size(), gone.size());
+            // A map arriving meanwhile is cleared as it arrives (the cells are recorded).
+            common::LocalMapData again = d.maps[2];
+            again.revision += 1;
+            const std::size_t before = stepped.removed_voxels();
+            ASSERT_TRUE(stepped.add_local_map(again).added);
+            arrived = stepped.removed_voxels() - before;
+        }
+    }
+    EXPECT_EQ(steps, waiting);
+    EXPECT_FALSE(stepped.clear_removed_step());
+    EXPECT_EQ(stepped.removal_waiting(), 0u);
+    EXPECT_EQ(sum + arrived, stepped.removed_voxels());
+    EXPECT_TRUE(voxels_in(stepped, box).empty());
+    EXPECT_EQ(voxels_in(stepped, far_box).size(), voxels_in(at_once, far_box).size());
+    EXPECT_EQ(at_once.removed_voxels(), cleared);
+}
+
 // A map folded into a node that is itself folded later names the node it went into, with its
 // anchor composed: nothing may name a node that left the graph.
 TEST(LongTermFolding, MapsFoldedIntoAFoldedNodeFollowIt) {

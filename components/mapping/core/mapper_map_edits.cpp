@@ -3,6 +3,7 @@
 // emptied cleared from the local maps (remove_cells, keep_cells). One concept: what the map
 // learns from the rest of the robot, beside its own odometry and loops.
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -151,15 +152,23 @@ bool Mapper::on_reference_part(std::uint64_t node) const {
 }
 
 std::size_t Mapper::remove_cells(const std::vector<Eigen::Vector3f>& centres, float cell_size) {
-    if (removed_.add(centres, cell_size) == 0) return 0;
+    const std::size_t before = removed_voxels_;
+    remove_cells_in_steps(centres, cell_size);
+    while (clear_removed_step()) {
+    }
+    return removed_voxels_ - before;
+}
+
+std::size_t Mapper::remove_cells_in_steps(const std::vector<Eigen::Vector3f>& centres,
+                                          float cell_size) {
+    if (removed_.add(centres, cell_size) == 0) return removal_waiting_.size();
     Eigen::AlignedBox3f box;
     for (const Eigen::Vector3f& c : centres) {
         if (c.allFinite()) box.extend(c);
     }
     box.min().array() -= cell_size;
     box.max().array() += cell_size;
-    std::size_t total = 0;
-    for (auto& [id, entry] : maps_) {
+    for (const auto& [id, entry] : maps_) {
         const map::PoseGraphNode* n = graph_.find(id);
         if (!n || !on_reference_part(id)) continue;  // unplaced parts: not where the cells are
         const common::LocalMapData& m = *entry.stored.data;
@@ -173,16 +182,32 @@ std::size_t Mapper::remove_cells(const std::vector<Eigen::Vector3f>& centres, fl
             world.extend((T * corner).cast<float>());
         }
         if (!world.intersects(box)) continue;
-        std::size_t removed = 0;
-        if (auto out = without_removed(m, n->T_world_anchor, &removed)) {
-            entry.stored.data = std::move(out);
-            entry.serial = next_serial_++;
-            total += removed;
+        // Cleared once of every cell recorded by then, however many passes listed it.
+        if (std::find(removal_waiting_.begin(), removal_waiting_.end(), id) ==
+            removal_waiting_.end())
+            removal_waiting_.push_back(id);
+    }
+    return removal_waiting_.size();
+}
+
+bool Mapper::clear_removed_step(std::size_t* removed) {
+    if (removed) *removed = 0;
+    if (removal_waiting_.empty()) return false;
+    const std::uint64_t id = removal_waiting_.front();
+    removal_waiting_.pop_front();
+    const auto it = maps_.find(id);
+    const map::PoseGraphNode* n = graph_.find(id);
+    if (it != maps_.end() && n) {  // (a map folded away since: nothing left to clear)
+        std::size_t count = 0;
+        if (auto out = without_removed(*it->second.stored.data, n->T_world_anchor, &count)) {
+            it->second.stored.data = std::move(out);
+            it->second.serial = next_serial_++;
+            ++revision_;
+            removed_voxels_ += count;
+            if (removed) *removed = count;
         }
     }
-    if (total > 0) ++revision_;
-    removed_voxels_ += total;
-    return total;
+    return !removal_waiting_.empty();
 }
 
 void Mapper::keep_cells(const std::vector<Eigen::Vector3f>& centres, float /*cell_size*/) {

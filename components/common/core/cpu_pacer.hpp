@@ -1,11 +1,11 @@
 #pragma once
-// A bound on the CPU share of long work (issue 28: maintenance passes spread, not bursts): a token
-// bucket of CPU time, filled at `share` of one core while wall time passes, at most `burst_s`
-// deep. After each piece of work the caller reports its thread's CPU time and the wall time; the
-// answer is how long to wait before the next piece so that, over any window of W seconds, the
-// work used at most share * W + burst_s of CPU. Pure arithmetic (no clock, no thread): the
-// component reads the clocks and waits.
-namespace ltm::maintenance {
+// A bound on the CPU share of long work (issue 28: maintenance passes and the mapping's edits
+// spread, not bursts): a token bucket of CPU time, filled at `share` of one core while wall time
+// passes, at most `burst_s` deep. After each piece of work the caller reports its thread's CPU time
+// and the wall time; the answer is how long to wait before the next piece so that, over any window
+// of W seconds, the work used at most share * W + burst_s of CPU. Pure arithmetic (no clock, no
+// thread): the component reads the clocks and waits.
+namespace ltm::common {
 
 class CpuPacer {
   public:
@@ -29,4 +29,4 @@ class CpuPacer {
     double tokens_ = 0.0, last_cpu_ = 0.0, last_wall_ = 0.0;
 };
 
-}  // namespace ltm::maintenance
+}  // namespace ltm::common

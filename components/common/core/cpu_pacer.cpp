@@ -1,8 +1,8 @@
-#include "maintenance/core/cpu_pacer.hpp"
+#include "common/core/cpu_pacer.hpp"
 
 #include <algorithm>
 
-namespace ltm::maintenance {
+namespace ltm::common {
 
 CpuPacer::CpuPacer(double share, double burst_s)
     : share_(std::clamp(share, 1e-3, 1.0)), burst_s_(std::max(0.0, burst_s)), tokens_(burst_s_) {}
@@ -30,4 +30,4 @@ void CpuPacer::waited(double wall_s) {
     if (started_) fill(wall_s);
 }
 
-}  // namespace ltm::maintenance
+}  // namespace ltm::common

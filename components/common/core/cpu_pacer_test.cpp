@@ -1,9 +1,9 @@
 // The CPU pacer's arithmetic on made-up clocks (no real time: deterministic).
-#include "maintenance/core/cpu_pacer.hpp"
+#include "common/core/cpu_pacer.hpp"
 
 #include <gtest/gtest.h>
 
-namespace ltm::maintenance {
+namespace ltm::common {
 namespace {
 
 // Work of `cpu` seconds a piece, each piece taking as long in wall time, then the pacer's wait:
@@ -64,4 +64,4 @@ TEST(CpuPacer, WorkWithinItsShareDoesNotWait) {
 }
 
 }  // namespace
-}  // namespace ltm::maintenance
+}  // namespace ltm::common
