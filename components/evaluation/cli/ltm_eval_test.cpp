@@ -304,6 +304,10 @@ TEST(LtmEvalCli, LifelongScoresEachDayInOneAlignment) {
     EXPECT_NE(r.output.find("  1    40   75.0  0.000"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("1.0s"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("no " + (dir / "day1/next_map").string()), std::string::npos);
+    // The same with one scale fitted: exact poses, scale 1.
+    EXPECT_NE(r.output.find("0.000 % against the truth, keyframes rmse 0.000 m"), std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("  1  0.000  0.000   0.00      0"), std::string::npos) << r.output;
     const std::string json = read(out / "metrics.json");
     EXPECT_NE(json.find("\"scans_with_map_pose\": 30"), std::string::npos) << json;
     EXPECT_NE(json.find("\"new_ground_m\": 39"), std::string::npos) << json;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "evaluation/core/alignment.hpp"
 #include "evaluation/core/frames.hpp"
 #include "evaluation/core/stats.hpp"
 
@@ -17,6 +18,27 @@ MapAlignment fit_map_alignment(const common::Trajectory& keyframes, const common
     out.ate = detail.stats;
     out.matched = paired.estimate.size();
     out.unmatched = paired.unmatched;
+    return out;
+}
+
+MapSimilarity fit_map_similarity(const common::Trajectory& keyframes,
+                                 const common::Trajectory& truth, double max_dt) {
+    const PairedPoses paired = pair_by_stamp(keyframes, truth, max_dt);
+    const std::vector<Eigen::Vector3d> est = positions(paired.estimate),
+                                       ref = positions(paired.reference);
+    MapSimilarity out;
+    out.matched = est.size();
+    out.T_world_map = umeyama_sim3(est, ref, &out.scale);
+    double sum = 0.0;
+    for (std::size_t i = 0; i < est.size(); ++i)
+        sum += (out.T_world_map * (out.scale * est[i]) - ref[i]).squaredNorm();
+    out.rmse = est.empty() ? 0.0 : std::sqrt(sum / static_cast<double>(est.size()));
+    return out;
+}
+
+common::Trajectory scaled_positions(const common::Trajectory& poses, double scale) {
+    common::Trajectory out = poses;
+    for (common::StampedPose& p : out) p.pose.translation() *= scale;
     return out;
 }
 

@@ -23,6 +23,24 @@ struct MapAlignment {
 MapAlignment fit_map_alignment(const common::Trajectory& keyframes, const common::Trajectory& truth,
                                double max_dt = 0.02);
 
+// The same alignment with one scale fitted too (Umeyama with scale): a diagnostic, not the
+// benchmark's alignment. A map's scale is what no loop observes (an odometry that measures
+// distances a little short makes a map that closes every loop and is uniformly small); scoring a
+// day in this alignment tells that scale from the error loops and ties can remove. World
+// positions are T_world_map * (scale * p_map).
+struct MapSimilarity {
+    Eigen::Isometry3d T_world_map = Eigen::Isometry3d::Identity();
+    double scale = 1.0;  // world metres per map metre
+    double rmse = 0.0;   // [m] the keyframes in this fit
+    std::size_t matched = 0;
+    EIGEN_MAKE_ALIGNED_OPERATOR_NEW
+};
+MapSimilarity fit_map_similarity(const common::Trajectory& keyframes,
+                                 const common::Trajectory& truth, double max_dt = 0.02);
+// The poses with their positions multiplied by `scale` (about the map frame's origin), so that
+// score_day_poses(scaled_positions(poses, s.scale), truth, s.T_world_map, ...) scores them in s.
+common::Trajectory scaled_positions(const common::Trajectory& poses, double scale);
+
 struct DayPoseConfig {
     double max_dt = 0.02;  // [s] a published pose belongs to the scan with this stamp
     double wrong = 0.5;    // [m] a pose farther than this from the truth is wrong

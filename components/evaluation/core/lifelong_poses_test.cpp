@@ -44,6 +44,33 @@ TEST(LifelongPoses, AlignmentFromKeyframesRecoversTheMapFrame) {
     EXPECT_TRUE(a.T_world_map.isApprox(T_map_world().inverse(), 1e-9));
 }
 
+TEST(LifelongPoses, SimilarityTellsTheMapsScaleFromItsShape) {
+    // A map 0.5 % short of the truth (an odometry that measures distances short): its keyframes
+    // close every loop, and no rigid alignment fits them; the similarity fit finds the scale,
+    // and a day's poses scored in it are right.
+    const common::Trajectory truth = truth_path();
+    const double short_by = 0.995;
+    common::Trajectory keyframes;
+    for (std::size_t i = 0; i < truth.size(); i += 2) {
+        common::StampedPose k = truth[i];
+        k.pose.translation() *= short_by;
+        k.pose = T_map_world() * k.pose;
+        keyframes.push_back(k);
+    }
+    const MapAlignment rigid = fit_map_alignment(keyframes, truth);
+    EXPECT_GT(rigid.ate.rmse, 0.01);
+    const MapSimilarity sim = fit_map_similarity(keyframes, truth);
+    EXPECT_EQ(sim.matched, 20u);
+    EXPECT_NEAR(sim.scale, 1.0 / short_by, 1e-9);
+    EXPECT_LT(sim.rmse, 1e-9);
+    const DayPoseScore in_sim =
+        score_day_poses(scaled_positions(keyframes, sim.scale), truth, sim.T_world_map, {});
+    EXPECT_EQ(in_sim.with_pose, 20u);
+    EXPECT_LT(in_sim.max, 1e-9);
+    const DayPoseScore in_rigid = score_day_poses(keyframes, truth, rigid.T_world_map, {});
+    EXPECT_GT(in_rigid.max, 0.01);
+}
+
 TEST(LifelongPoses, CountsPosesErrorsAndKidnapRecovery) {
     const common::Trajectory truth = truth_path();
     const Eigen::Isometry3d T_world_map = T_map_world().inverse();
