@@ -44,12 +44,17 @@ std::uint32_t ObservationMap::insert(registration::VoxelKey key, double map_time
     return i;
 }
 
-void ObservationMap::add_points(const std::vector<Eigen::Vector3f>& points, double map_time) {
+void ObservationMap::add_points(const std::vector<Eigen::Vector3f>& points, double map_time,
+                                bool create) {
     const std::uint32_t ticks = to_ticks(map_time);
     for (const Eigen::Vector3f& p : points) {
         Eigen::Vector3i c;
         if (!p.allFinite() || !registration::voxel_coords(p, inv_voxel_size_, &c)) continue;
-        const std::uint32_t i = insert(registration::pack_key(c.x(), c.y(), c.z()), map_time);
+        const registration::VoxelKey key = registration::pack_key(c.x(), c.y(), c.z());
+        const std::uint32_t i =
+            create ? insert(key, map_time)
+                   : index_.find(key, [this](std::uint32_t j) { return voxels_[j].key(); });
+        if (i == kNone) continue;
         ObservedVoxel& v = voxels_[i];
         const Eigen::Vector3f q =
             p - (c.cast<float>() + Eigen::Vector3f::Constant(0.5f)) * voxel_size_;

@@ -77,7 +77,9 @@ class ObservationMap {
     bool empty() const { return voxels_.empty(); }
 
     // Points (world frame) of a scan at `map_time`: their voxels are created or updated.
-    void add_points(const std::vector<Eigen::Vector3f>& points, double map_time);
+    // With create false, only points in voxels that exist count (the others are dropped).
+    void add_points(const std::vector<Eigen::Vector3f>& points, double map_time,
+                    bool create = true);
 
     // What `view` says about every voxel within max_range of its sensor: a hit or a free time
     // in the voxel's histories (nothing when occluded or unseen).
