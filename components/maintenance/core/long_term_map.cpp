@@ -120,7 +120,8 @@ void LongTermMap::add_scan(const std::vector<Eigen::Vector3f>& points,
     const Eigen::Isometry3f T = T_world_sensor.cast<float>();
     const float max_range_sq = float(config_.max_range * config_.max_range);
     const float min_range_sq = float(config_.range_image.min_range * config_.range_image.min_range);
-    // Per region: the points that may create voxels, and (create_range) the far ones that may not.
+    // Per region: the points that may create voxels anywhere, and (create_range) the far ones
+    // that create none beside a voxel of an earlier session.
     const float create_range_sq = float(config_.create_range * config_.create_range);
     std::map<std::pair<int, int>, std::vector<Eigen::Vector3f>> by_region, far_by_region;
     for (const Eigen::Vector3f& p : points) {
@@ -136,7 +137,7 @@ void LongTermMap::add_scan(const std::vector<Eigen::Vector3f>& points,
     }
     for (auto& [key, pts] : by_region) region({key.first, key.second}).add_points(pts, t);
     for (auto& [key, pts] : far_by_region)
-        region({key.first, key.second}).add_points(pts, t, /*create=*/false);
+        region({key.first, key.second}).add_points(pts, t, session_offset_);
     if (config_.motion.enabled && t - session_offset_ < config_.motion.session_span) {
         follow_motion(points, T_world_sensor, t);
     } else if (motion_.memory_bytes() > 0) {

@@ -26,8 +26,10 @@ std::vector<test::Box> scene(double x0) {
 
 // A drive of `scans` scans 1 m apart along x from x0, with a lateral offset and a heading (another
 // day's pose).
-void drive(LongTermMap& map, double x0, double dy, double yaw_deg, double stamp, int scans = 12) {
-    const std::vector<test::Box> boxes = scene(0.0);
+void drive(LongTermMap& map, double x0, double dy, double yaw_deg, double stamp, int scans = 12,
+           const std::vector<test::Box>& extra = {}) {
+    std::vector<test::Box> boxes = scene(0.0);
+    boxes.insert(boxes.end(), extra.begin(), extra.end());
     for (int k = 0; k < scans; ++k) {
         const Eigen::Isometry3d T = pose_at(x0 + 1.0 * k, dy, yaw_deg);
         map.add_scan(test::cast(boxes, T), T, stamp + 0.1 * k);
@@ -88,6 +90,33 @@ TEST(LongTermMapGrowth, NewGroundCreatesEverywhere) {
     const std::size_t off = run(0.0), on = run(15.0);
     EXPECT_GT(off, 1000u);
     EXPECT_EQ(on, off);
+}
+
+TEST(LongTermMapGrowth, ANewObjectFarAwayIsCreatedAboveTheGround) {
+    // Day 1 a 2 m box stands 17-20 m from the route on ground day 0 mapped: the cells beside
+    // day 0's ground (its lowest 0.5 m) wait for a nearer view, the rest are created as without
+    // the bound.
+    const test::Box box{Eigen::Vector3f(3.0f, 17.0f, 0.0f), Eigen::Vector3f(6.0f, 20.0f, 2.0f), 3};
+    auto run = [&](double create_range) {
+        MaintenanceConfig c;
+        c.view_spacing = 1000.0;
+        c.create_range = create_range;
+        LongTermMap map(c);
+        map.begin_session(0, 0.0);
+        drive(map, 0.0, 0.0, 0.0, 0.0);
+        map.begin_session(1, 100.0);
+        drive(map, 0.03, 0.07, 0.3, 100.0, 12, {box});
+        std::size_t above = 0, low = 0;
+        for (const Eigen::Vector3f& p : map.voxel_centres()) {
+            if (p.x() < 2.9f || p.x() > 6.1f || p.y() < 16.9f || p.y() > 20.1f) continue;
+            (p.z() > 0.5f ? above : low)++;
+        }
+        return std::make_pair(above, low);
+    };
+    const auto off = run(0.0), on = run(15.0);
+    EXPECT_GT(off.first, 100u);
+    EXPECT_EQ(on.first, off.first);
+    EXPECT_LE(on.second, off.second);
 }
 
 TEST(LongTermMapGrowth, FarPointsStillAddToTheirVoxels) {

@@ -142,11 +142,13 @@ struct MaintenanceConfig {
     int max_slots = 6;          // entries a voxel keeps of its view history (older ones merge);
                                 // at most VoxelHistory::kCapacity (6: the compact voxel state)
     double max_range = 50.0;    // [m] a view judges voxels within this range
-    // [m] In a region an earlier session mapped, points farther than this from the sensor only
-    // add to voxels that exist; nearer points, and every point of a region first seen in this
-    // session, create voxels (0: every point creates). Repeated ground: another day's sparse far
-    // rings land between the cells the earlier days filled, so the map would grow every day with
-    // no new ground (issue 26 item 4; components/maintenance/README.md, "Repeated ground").
+    // [m] In a region an earlier session mapped, a point farther than this from the sensor that
+    // lands in an empty cell next to a voxel of an earlier session creates no voxel (it adds to
+    // voxels that exist; a cell with no such neighbour, a new object, is created); nearer points,
+    // and every point of a region first seen in this session, create voxels (0: every point
+    // creates). Repeated ground: another day's sparse far rings land between and beside the
+    // cells the earlier days filled, so the map would grow every day with no new ground (issue
+    // 26 item 4; components/maintenance/README.md, "Repeated ground").
     double create_range = 0.0;
     double free_margin = 0.3;  // [m] a return this much beyond a cube (plus half its diagonal)
     double free_margin_per_m = 0.01;  // [m/m] ... plus this per metre of range: seen through
