@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <map>
 #include <unordered_map>
@@ -137,7 +136,6 @@ void print_growth(const std::string& before, const std::string& after,
         auto [it, fresh] = column_floor.emplace(column(c), c.z());
         if (!fresh) it->second = std::min(it->second, c.z());
     }
-    FILE* dump = std::getenv("RG_DUMP") ? std::fopen(std::getenv("RG_DUMP"), "w") : nullptr;
     std::size_t added = 0, kept = 0, created_now = 0, ground = 0;
     std::size_t by_hits[4] = {0, 0, 0, 0};  // 0-1, 2-4, 5-19, 20+
     std::size_t by_height[3] = {0, 0, 0};   // < 0.5 m, 0.5-2.5 m, above
@@ -147,7 +145,6 @@ void print_growth(const std::string& before, const std::string& after,
             continue;
         }
         ++added;
-        if (dump) std::fprintf(dump, "%.2f %.2f %.2f\n", c.x(), c.y(), c.z());
         const auto* v = B.voxel_at(c);
         if (!v) continue;
         std::uint32_t hits = 0;
