@@ -4,6 +4,9 @@
 // robot's start-up). With --out, the version is saved again in this build's formats under D
 // (D/map, D/maintenance/long_term_map.bin), its sizes and load times printed beside the original's,
 // and every local map, keyframe and maintained voxel compared bit for bit (exit 1 if one differs).
+// With --against PREV (the version before it), where the growth went (issue 26, repeated ground):
+// keyframes by session, voxels of each local map before and after, and the maintained voxels
+// added and gone (the added ones by hits, height and the session that created them).
 #include <unistd.h>
 
 #include <algorithm>
@@ -20,6 +23,7 @@
 #include "maintenance/core/long_term_map.hpp"
 #include "map/core/map_codec.hpp"
 #include "map/core/map_store.hpp"
+#include "version_growth.hpp"
 
 namespace fs = std::filesystem;
 using ltm::maintenance::LongTermMap;
@@ -128,6 +132,11 @@ int main(int argc, char** argv) {
         ->required()
         ->check(CLI::ExistingDirectory);
     app.add_option("--out", out, "save the version again here (this build's formats)");
+    std::string against;
+    app.add_option("--against", against,
+                   "the version before it: where the growth went (keyframes, local maps, "
+                   "maintained voxels)")
+        ->check(CLI::ExistingDirectory);
     app.add_option("--repeat", repeat, "loads timed (the median is printed)")
         ->check(ltm::common::cli::at_least(1));
     if (const int code = ltm::common::cli::parse(app, argc, argv); code >= 0) return code;
@@ -142,6 +151,7 @@ int main(int argc, char** argv) {
         if (has_maint) maint_voxels = LongTermMap::load(maint, config).stats().voxels;
         print(version.c_str(), sizes_of(version), load_times(version, repeat, config),
               voxels_of(loaded.map), loaded.map.keyframes.size(), maint_voxels);
+        if (!against.empty()) ltm::bench::print_growth(against, version, config);
         if (out.empty()) return 0;
 
         fs::create_directories(out + "/maintenance");

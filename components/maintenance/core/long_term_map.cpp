@@ -43,6 +43,11 @@ void LongTermMap::begin_session(std::uint32_t session, double first_stamp) {
     last_view_time_ = -1e300;
     session_views_ = 0;
     motion_.clear();
+    mapped_before_.clear();
+    for (const auto& [key, r] : regions_)
+        if (!r->empty()) mapped_before_.insert(key);
+    if (pager_)
+        for (const auto& entry : pager_->regions()) mapped_before_.insert(entry.first);
 }
 
 double LongTermMap::map_time_of(double stamp) const {
@@ -115,16 +120,24 @@ void LongTermMap::add_scan(const std::vector<Eigen::Vector3f>& points,
     const Eigen::Isometry3f T = T_world_sensor.cast<float>();
     const float max_range_sq = float(config_.max_range * config_.max_range);
     const float min_range_sq = float(config_.range_image.min_range * config_.range_image.min_range);
-    std::map<std::pair<int, int>, std::vector<Eigen::Vector3f>> by_region;
+    // Per region: the points that may create voxels anywhere, and (create_range) the far ones
+    // that create none beside a voxel of an earlier session.
+    const float create_range_sq = float(config_.create_range * config_.create_range);
+    std::map<std::pair<int, int>, std::vector<Eigen::Vector3f>> by_region, far_by_region;
     for (const Eigen::Vector3f& p : points) {
         if (!p.allFinite()) continue;
         const float r2 = p.squaredNorm();
         if (r2 > max_range_sq || r2 < min_range_sq) continue;
         const Eigen::Vector3f q = T * p;
         const Eigen::Vector2i r = region_of(q);
-        by_region[{r.x(), r.y()}].push_back(q);
+        const std::pair<int, int> key{r.x(), r.y()};
+        const bool far =
+            config_.create_range > 0.0 && r2 > create_range_sq && mapped_before_.count(key) > 0;
+        (far ? far_by_region : by_region)[key].push_back(q);
     }
     for (auto& [key, pts] : by_region) region({key.first, key.second}).add_points(pts, t);
+    for (auto& [key, pts] : far_by_region)
+        region({key.first, key.second}).add_points(pts, t, session_offset_);
     if (config_.motion.enabled && t - session_offset_ < config_.motion.session_span) {
         follow_motion(points, T_world_sensor, t);
     } else if (motion_.memory_bytes() > 0) {

@@ -131,6 +131,9 @@ class LongTermMap {
     MotionTracker motion_;
     std::size_t flagged_moving_ = 0;
     std::vector<std::uint32_t> sessions_;
+    // Regions that held voxels when the session began (in memory or paged): create_range acts
+    // there (config.create_range).
+    std::set<std::pair<int, int>> mapped_before_;
 };
 
 }  // namespace ltm::maintenance

@@ -142,7 +142,15 @@ struct MaintenanceConfig {
     int max_slots = 6;          // entries a voxel keeps of its view history (older ones merge);
                                 // at most VoxelHistory::kCapacity (6: the compact voxel state)
     double max_range = 50.0;    // [m] a view judges voxels within this range
-    double free_margin = 0.3;   // [m] a return this much beyond a cube (plus half its diagonal)
+    // [m] In a region an earlier session mapped, a point farther than this from the sensor that
+    // lands in an empty cell next to a voxel of an earlier session creates no voxel (it adds to
+    // voxels that exist; a cell with no such neighbour, a new object, is created); nearer points,
+    // and every point of a region first seen in this session, create voxels (0: every point
+    // creates). Repeated ground: another day's sparse far rings land between and beside the
+    // cells the earlier days filled, so the map would grow every day with no new ground (issue
+    // 26 item 4; components/maintenance/README.md, "Repeated ground").
+    double create_range = 0.0;
+    double free_margin = 0.3;  // [m] a return this much beyond a cube (plus half its diagonal)
     double free_margin_per_m = 0.01;  // [m/m] ... plus this per metre of range: seen through
     // [s] scans become views at most this often (unset: min(0.2, T/50), T so far)
     std::optional<double> view_spacing;
@@ -163,6 +171,7 @@ void visit_fields(MaintenanceConfig& c, const std::string& prefix, Visitor&& v) 
     v(prefix + "slot", c.slot, positive);
     v(prefix + "max_slots", c.max_slots, in_range(2, 6));  // VoxelHistory::kCapacity
     v(prefix + "max_range", c.max_range, positive);
+    v(prefix + "create_range", c.create_range, non_negative);
     v(prefix + "free_margin", c.free_margin, non_negative);
     v(prefix + "free_margin_per_m", c.free_margin_per_m, non_negative);
     v(prefix + "view_spacing", c.view_spacing, non_negative);

@@ -44,12 +44,33 @@ std::uint32_t ObservationMap::insert(registration::VoxelKey key, double map_time
     return i;
 }
 
-void ObservationMap::add_points(const std::vector<Eigen::Vector3f>& points, double map_time) {
+void ObservationMap::add_points(const std::vector<Eigen::Vector3f>& points, double map_time,
+                                double established_before) {
     const std::uint32_t ticks = to_ticks(map_time);
+    const auto key_of = [this](std::uint32_t j) { return voxels_[j].key(); };
+    // A cell next to a voxel created before `established_before` (ticks) is a surface already
+    // there: a point there adds nothing new (established_before < 0: every cell may be created).
+    const bool guarded = established_before >= 0.0;
+    const std::uint32_t before = guarded ? to_ticks(established_before) : 0;
+    const auto beside_established = [&](const Eigen::Vector3i& c) {
+        for (int d = 0; d < 27; ++d) {
+            if (d == 13) continue;  // the cell itself
+            const Eigen::Vector3i n = c + Eigen::Vector3i(d % 3 - 1, d / 3 % 3 - 1, d / 9 - 1);
+            const std::uint32_t j =
+                index_.find(registration::pack_key(n.x(), n.y(), n.z()), key_of);
+            if (j != kNone && voxels_[j].created_ticks < before) return true;
+        }
+        return false;
+    };
     for (const Eigen::Vector3f& p : points) {
         Eigen::Vector3i c;
         if (!p.allFinite() || !registration::voxel_coords(p, inv_voxel_size_, &c)) continue;
-        const std::uint32_t i = insert(registration::pack_key(c.x(), c.y(), c.z()), map_time);
+        const registration::VoxelKey key = registration::pack_key(c.x(), c.y(), c.z());
+        std::uint32_t i = index_.find(key, key_of);
+        if (i == kNone) {
+            if (guarded && beside_established(c)) continue;
+            i = insert(key, map_time);
+        }
         ObservedVoxel& v = voxels_[i];
         const Eigen::Vector3f q =
             p - (c.cast<float>() + Eigen::Vector3f::Constant(0.5f)) * voxel_size_;

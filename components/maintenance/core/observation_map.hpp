@@ -77,7 +77,12 @@ class ObservationMap {
     bool empty() const { return voxels_.empty(); }
 
     // Points (world frame) of a scan at `map_time`: their voxels are created or updated.
-    void add_points(const std::vector<Eigen::Vector3f>& points, double map_time);
+    // With established_before >= 0 (map time), a point in an empty cell next to a voxel created
+    // before then (one of the 26 neighbouring cells of this region) is dropped: a surface the map
+    // has, seen again a little across a cell face or between an earlier session's rings. Cells
+    // with no such neighbour are created (a new object, new ground).
+    void add_points(const std::vector<Eigen::Vector3f>& points, double map_time,
+                    double established_before = -1.0);
 
     // What `view` says about every voxel within max_range of its sensor: a hit or a free time
     // in the voxel's histories (nothing when occluded or unseen).
