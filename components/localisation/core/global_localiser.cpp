@@ -489,11 +489,17 @@ void GlobalLocaliser::search_around(const std::vector<Eigen::Vector3f>& finite,
                                     const Guesses& guesses, const std::vector<std::size_t>& order,
                                     std::vector<Verified>* accepted, GlobalLocalisation* out) {
     const bool none_before = accepted->empty();
+    // Turned too (search.yaw_offsets) only when no guess verified: a descriptor's guess a few
+    // degrees off. Around a verified answer the search looks for a neighbouring minimum of the
+    // same heading: the KITTI 04 snippet's answers (75-80 % inliers: the scans see beyond the
+    // snippet's map) paid for three yaws on every scan, median CPU 0.121 -> 0.172 s.
+    TranslationSearchConfig search = config_.search;
+    if (!none_before) search.yaw_offsets = {0.0};
     for (std::size_t g : order) {
-        const TranslationSearchResult r =
-            search_translation(finite, map_->target().fine, fine_.imls_params(),
-                               guesses[g].T_map_lidar, config_.search);
+        const TranslationSearchResult r = search_translation(
+            finite, map_->target().fine, fine_.imls_params(), guesses[g].T_map_lidar, search);
         ++out->searched;
+        out->search_scored += r.scored;
         // At the guess itself (or next to it) the verification has started already.
         if ((r.offset < 0.5 * config_.search.step && r.yaw == 0.0) || r.share <= r.share_at_start)
             continue;
