@@ -300,6 +300,8 @@ class GlobalLocaliser {
     registration::Registration probe_;
     registration::Registration settle_;  // a probe continued (rival_settle_iterations)
     std::vector<Eigen::Vector3f> probe_points_;
+    // Of this query's guesses: verified, or ended where an answer is (verify_guesses).
+    std::vector<bool> at_answer_;
 };
 
 }  // namespace ltm::localisation
