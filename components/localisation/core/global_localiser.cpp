@@ -436,6 +436,7 @@ std::vector<GlobalLocaliser::Verified> GlobalLocaliser::verify_guesses(
     std::vector<Verified> accepted;
     std::string best_refusal;
     std::size_t best_refused_inliers = 0;
+    at_answer_.assign(guesses.size(), false);
     for (std::size_t g : order) {
         // A guess that lands where an accepted answer already is adds nothing.
         bool known = false;
@@ -444,7 +445,10 @@ std::vector<GlobalLocaliser::Verified> GlobalLocaliser::verify_guesses(
             if (dt < 0.5 * config_.distinct_translation && dr < config_.distinct_rotation)
                 known = true;
         }
-        if (known) continue;
+        if (known) {
+            at_answer_[g] = true;
+            continue;
+        }
         if (!accepted.empty() &&
             guesses[g].probe_share < config_.rival_answer_probe_ratio *
                                          guesses[std::size_t(accepted.front().guess)].probe_share) {
@@ -454,6 +458,7 @@ std::vector<GlobalLocaliser::Verified> GlobalLocaliser::verify_guesses(
         if (!accepted.empty() && config_.rival_settle_iterations > 0 &&
             settles_at_answer(guesses[g], accepted)) {
             ++out->settled;
+            at_answer_[g] = true;
             continue;
         }
         // A well-probed guess is verified by the fine pass alone; refused so, or accepted with a
@@ -470,6 +475,7 @@ std::vector<GlobalLocaliser::Verified> GlobalLocaliser::verify_guesses(
         }
         ++out->verified;
         if (v.accepted) {
+            at_answer_[g] = true;
             accepted.push_back({std::move(v), int(g)});
         } else if (best_refusal.empty() || v.inliers > best_refused_inliers) {
             best_refusal = v.reason;
@@ -489,11 +495,22 @@ void GlobalLocaliser::search_around(const std::vector<Eigen::Vector3f>& finite,
                                     const Guesses& guesses, const std::vector<std::size_t>& order,
                                     std::vector<Verified>* accepted, GlobalLocalisation* out) {
     const bool none_before = accepted->empty();
+    // Turned too (search.yaw_offsets) only around a guess that did not reach an answer: a
+    // descriptor's guess a few degrees off. Around one that verified, or that settled at an
+    // answer (its fine fit has set the heading), the search looks for a neighbouring minimum of
+    // the same heading: the KITTI 04 snippet's answers (75-80 % inliers: the scans see beyond
+    // the snippet's map) paid for three yaws around every guess, median CPU 0.121 -> 0.172 s.
+    // (Turning only when no guess verified at all lost site_loop's 3-lap seed 3 scan 1200: a
+    // poor answer verified, and the right pose came from another guess, turned.)
+    TranslationSearchConfig same_heading = config_.search;
+    same_heading.yaw_offsets = {0.0};
     for (std::size_t g : order) {
+        const bool at_answer = g < at_answer_.size() && at_answer_[g];
         const TranslationSearchResult r =
             search_translation(finite, map_->target().fine, fine_.imls_params(),
-                               guesses[g].T_map_lidar, config_.search);
+                               guesses[g].T_map_lidar, at_answer ? same_heading : config_.search);
         ++out->searched;
+        out->search_scored += r.scored;
         // At the guess itself (or next to it) the verification has started already.
         if ((r.offset < 0.5 * config_.search.step && r.yaw == 0.0) || r.share <= r.share_at_start)
             continue;

@@ -52,6 +52,14 @@ LocaliserConfig localiser_preset(common::SensorPreset preset) {
     // A narrow view's probe can end in a poorer minimum beside the right pose that the fine pass
     // alone accepts (GlobalLocaliserConfig::fine_only): both passes there.
     c.global.fine_only = row.horizontal_fov_deg >= 360.0;
+    // ... and its keyframes a few metres apart or turned see different things: the ring keys'
+    // neighbours are compared with the full descriptor as they come, none skipped as a clump
+    // of one place (GlobalLocaliserConfig::candidate_separation), 25 of them as before the
+    // separation came.
+    if (row.horizontal_fov_deg < 360.0) {
+        c.global.candidate_separation = 0.0;
+        c.global.candidates = 25;
+    }
     c.off_map_margin = row.localisation.off_map_margin;
     return c;
 }

@@ -38,6 +38,7 @@ TranslationSearchResult search_translation(const std::vector<Eigen::Vector3f>& p
     };
     turn(T_map_lidar.linear());
     best.share_at_start = best.share = share_at(Eigen::Vector3f::Zero());
+    best.scored = 1;
     const int n = int(std::floor(config.radius / config.step));
     for (const double yaw_deg : config.yaw_offsets) {
         const Eigen::Matrix3d R =
@@ -50,6 +51,7 @@ TranslationSearchResult search_translation(const std::vector<Eigen::Vector3f>& p
                 const double offset = std::hypot(dx, dy);
                 if (offset > config.radius + 1e-9 || (offset == 0.0 && yaw_deg == 0.0)) continue;
                 const double share = share_at(Eigen::Vector3f(float(dx), float(dy), 0.0f));
+                ++best.scored;
                 // Ties go to the smaller change: the smaller offset, then the smaller yaw.
                 const bool smaller =
                     offset < best.offset ||

@@ -25,6 +25,8 @@ struct TranslationSearchConfig {
     // Yaws tried about the pose at every offset [deg]: a guess from a descriptor is a few degrees
     // off too, and at 20 m a degree moves the structure by a third of a metre (site_loop, 3 laps,
     // another day's scans turned: refusals whose best guess was 3.9-5.6 m and 3-4 deg off).
+    // The global localiser turns the guesses so only when none of them verified
+    // (GlobalLocaliser::search_around).
     std::vector<double> yaw_offsets = {0.0};
     // Run when no initial pose verified, or the best verified one has an inlier fraction below
     // this (a fit with many points off is the sign of a neighbouring minimum).
@@ -47,6 +49,7 @@ struct TranslationSearchResult {
     double share_at_start = 0.0;  // ... and at the pose itself
     double offset = 0.0;          // [m]
     double yaw = 0.0;             // of the best offset [deg]
+    int scored = 0;               // poses scored (offsets x yaws, the start included)
     EIGEN_MAKE_ALIGNED_OPERATOR_NEW
 };
 
