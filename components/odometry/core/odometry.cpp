@@ -162,8 +162,9 @@ FrameResult Odometry::register_frame(const common::PointCloud& cloud) {
     // A sparse stream (scans further apart than tracking.search_after) whose turns the constant
     // turn rate has predicted worse than the held heading: the heading is held (heading_skill.hpp).
     const Eigen::Isometry3d extrapolated = predicted;
-    const bool sparse =
-        motion_.poses() >= 2 && cloud.stamp - motion_.last_stamp() > config_.tracking.search_after;
+    const bool far_apart =
+        motion_.poses() >= 1 && cloud.stamp - motion_.last_stamp() > config_.tracking.search_after;
+    const bool sparse = far_apart && motion_.poses() >= 2;
     if (sparse && heading_.hold()) {
         predicted = motion_.predict_heading_held(cloud.stamp);
         r.heading_held = true;
@@ -274,8 +275,9 @@ FrameResult Odometry::register_frame(const common::PointCloud& cloud) {
             // Where the registration could not observe, the position is the prediction's: the
             // start of the last registration may have slid there (a search guess's coarse probe,
             // the early iterations before the direction went flat: hku-avia session 2 every 5th
-            // keyframe, 20-27 m along a direction the fit reported unobserved).
-            if (unobserved > 0) keep_unobserved_at(predicted, &r);
+            // keyframe, 20-27 m along a direction the fit reported unobserved). Only on a sparse
+            // stream: at the sensor's rate the fit starts at the prediction and stays near it.
+            if (unobserved > 0 && far_apart) keep_unobserved_at(predicted, &r);
             r.status = !observable || unobserved > 0 ? FrameStatus::kDegenerate
                        : lost_                       ? FrameStatus::kRecovered
                                                      : FrameStatus::kTracked;
