@@ -39,6 +39,20 @@ Eigen::Isometry3d MotionModel::predict(double stamp) const {
     return normalised(pose_[1] * registration::scale_motion(delta, dt / dt_prev));
 }
 
+Eigen::Isometry3d MotionModel::predict_heading_held(double stamp) const {
+    Eigen::Isometry3d out = predict(stamp);
+    if (count_ < 2 || mode_ == PredictionMode::kNone) return out;
+    const double dt_prev = stamp_[1] - stamp_[0];
+    const double dt = stamp - stamp_[1];
+    const double scale = mode_ == PredictionMode::kFrame ? 1.0
+                         : (dt_prev > 0.0 && dt >= 0.0)  ? dt / dt_prev
+                                                         : 0.0;
+    out.linear() = pose_[1].linear();
+    out.translation() =
+        pose_[1].translation() + scale * (pose_[1].translation() - pose_[0].translation());
+    return out;
+}
+
 void MotionModel::damp(const std::vector<registration::Vector6d>& directions, double lever,
                        double keep, double travel_keep, double travel_turn) {
     if (count_ < 2 || directions.empty()) return;

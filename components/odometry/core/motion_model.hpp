@@ -29,6 +29,9 @@ class MotionModel {
               const Eigen::Isometry3d& T_stamp_mid = Eigen::Isometry3d::Identity());
     // The pose at `stamp` (identity before the first pose, the last pose with only one).
     Eigen::Isometry3d predict(double stamp) const;
+    // The same holding the last heading: the last step's translation in odometry axes scaled to
+    // the time (not turned with the turn rate), the last pose's rotation.
+    Eigen::Isometry3d predict_heading_held(double stamp) const;
     // Body-frame twist per second [v; w] between the last two poses (zero with fewer), taken at
     // the middle of their sweeps: that is where registration fixes a de-skewed scan, whatever the
     // velocity it was de-skewed with. Between the poses at the stamps, which move with that

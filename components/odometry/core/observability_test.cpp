@@ -161,9 +161,16 @@ TEST(Observability, APlainCorridorIsNeverTracked) {
         drive(registration::test::corridor_scene(), c, 6, 1.0, &truth);
     for (std::size_t i = 1; i < r.size(); ++i) {
         ASSERT_TRUE(r[i].pose_valid()) << i << ": " << r[i].message;
-        EXPECT_EQ(r[i].status, FrameStatus::kDegenerate) << i << ": " << r[i].search_used;
+        // Degenerate, or (scans 0.5 s apart, the position along the axis held at the prediction
+        // while the fit had slid toward the truth) a new segment at the prediction: either way the
+        // position along the corridor is published as a guess, never as tracked.
+        EXPECT_TRUE(r[i].status == FrameStatus::kDegenerate ||
+                    r[i].status == FrameStatus::kRestarted)
+            << i << ": " << r[i].search_used << " " << r[i].message;
         EXPECT_FALSE(r[i].registered());
-        EXPECT_TRUE(r[i].degenerate());
+        if (r[i].status == FrameStatus::kDegenerate) {
+            EXPECT_TRUE(r[i].degenerate());
+        }
         // The covariance along the corridor says the position there is a guess.
         EXPECT_GE(r[i].covariance(0, 0),
                   c.observability.degenerate_min_sigma * c.observability.degenerate_min_sigma);

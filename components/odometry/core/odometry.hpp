@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "common/core/point_cloud.hpp"
+#include "odometry/core/heading_skill.hpp"
 #include "odometry/core/keyframe_selector.hpp"
 #include "odometry/core/local_map_set.hpp"
 #include "odometry/core/motion_model.hpp"
@@ -86,6 +87,9 @@ struct FrameResult {
     int iterations = 0;            // Gauss-Newton iterations on the fine grid
     int coarse_iterations = 0;     // ... and on the coarse grid (0 without one)
     int attempts = 0;              // registrations run (more than 1: retried, see search)
+    // The prediction held the last heading instead of the constant turn rate (a sparse stream
+    // whose turns that predicts better: tracking.heading_hold_ratio).
+    bool heading_held = false;
     bool searched = false;  // the prediction failed or was doubtful: search from other guesses
     bool converged = false;
     bool deskewed = false;      // per-point times used to de-skew (at least for the map update)
@@ -219,7 +223,8 @@ class Odometry {
     Eigen::Isometry3d last_tracked_pose_ = Eigen::Isometry3d::Identity();
     bool has_stamp_ = false;
     double last_stamp_ = 0.0;
-    ScanCadence cadence_;  // the stream's usual interval between scans (tracking.restart_gap)
+    HeadingSkill heading_;  // constant turn rate or held heading, for sparse streams
+    ScanCadence cadence_;   // the stream's usual interval between scans (tracking.restart_gap)
     registration::PreprocessedScan scan_;         // reused buffers
     std::vector<Eigen::Vector3f> coarse_points_;  // every other registration point of scan_
 };

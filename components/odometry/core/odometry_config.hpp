@@ -63,6 +63,12 @@ struct TrackingConfig {
     // The best of those guesses is probed again turned by +-yaw_refine (coarse to fine: a fit's
     // basin in yaw is a few degrees when its translation is off too). 0: not refined.
     double yaw_refine = 5.0;  // [deg]
+    // Scans further apart than search_after are predicted holding the last heading (the last
+    // step's translation in odometry axes, not turned with the turn rate) when, over the recent
+    // scans that measured their rotation, the held heading's mean error was at most this times
+    // the constant turn rate's (heading_skill.hpp: a handheld sensor's sparse keyframes swing
+    // left and right). 0: always the constant turn rate.
+    double heading_hold_ratio = 0.8;
     // Lost (no acceptable registration) for this long since the last tracked scan, sensor time:
     // the odometry ends its local maps and starts a new one at its best estimate (a new segment,
     // joined to the map later by a loop or by localisation).
@@ -153,6 +159,7 @@ void visit_fields(OdometryConfig& c, Visitor&& v) {
     v("tracking.yaw_search", t.yaw_search, in_range(0, 180));
     v("tracking.yaw_step", t.yaw_step, in_range(1, 90));
     v("tracking.yaw_refine", t.yaw_refine, in_range(0, 45));
+    v("tracking.heading_hold_ratio", t.heading_hold_ratio, unit);
     v("tracking.restart_after", t.restart_after, non_negative);
     v("tracking.restart_gap", t.restart_gap, non_negative);
     v("tracking.restart_gap_cadence", t.restart_gap_cadence, non_negative);

@@ -83,8 +83,8 @@ TEST(OdometryConfig, EveryFieldHasOneKeyAndARule) {
         EXPECT_TRUE(keys.insert(key).second) << "key visited twice: " << key;
         ++fields;
     });
-    EXPECT_EQ(fields,
-              76);  // 56 (tracking.restart_gap_cadence, restart_kept_out) + 20 observability.*
+    EXPECT_EQ(fields, 77);  // 57 (tracking.restart_gap_cadence, restart_kept_out,
+                            // heading_hold_ratio) + 20 observability.*
 }
 
 }  // namespace
