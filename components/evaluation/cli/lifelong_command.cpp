@@ -369,7 +369,8 @@ Run add_lifelong(CLI::App& parent) {
     app->add_option("--min-health", o->min_health, "map voxels counted [0..1]");
     app->add_option("--out", o->out,
                     "write metrics.txt, metrics.json, table.txt, dayN.svg, dayN_scans.txt (each "
-                    "scan's error) here");
+                    "scan's error), dayN_objects.txt (each changed object's place) and "
+                    "dayN_kept.txt (the voxels kept in those places) here");
     return [o] { return run_lifelong(*o); };
 }
 
