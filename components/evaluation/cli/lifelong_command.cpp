@@ -1,5 +1,6 @@
 // ltm_eval lifelong: every day of a lifelong benchmark run scored against the simulator's truth,
 // one row a day (the layout of a run's folder: components/bench/lifelong/README.md).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -78,6 +79,48 @@ std::string objects_text(const std::vector<ObjectAccount>& accounts) {
                       a.route_distance, a.before, a.at_start, a.kept, a.kept_median_height);
         out << line;
     }
+    return out.str();
+}
+
+// Every voxel of a left place (a removed object's, a moved object's first place: in its box grown
+// by the margin, at least the ground clearance above its base) that the later map has
+// (dayN_kept.txt): where it is (world and map frame), how high above the object's base and above
+// the lowest voxel of the later map within 0.5 m horizontally (0: the lowest there, the ground as
+// the map has it), whether day 0's map had a voxel within 0.2 m, and which object standing on the
+// day has it in its grown box (-: none). Which voxels stay, and where.
+std::string kept_text(const ObjectChanges& changes, const std::vector<SiteObject>& today,
+                      const std::vector<Eigen::Vector3d>& first,
+                      const std::vector<Eigen::Vector3d>& later,
+                      const Eigen::Isometry3d& T_world_map, const MapChangeConfig& config) {
+    std::ostringstream out;
+    out << "# id what x y z (world) mx my mz (map frame) above_base above_lowest_near in_day0 "
+           "standing [m]\n";
+    const Eigen::Isometry3d T_map_world = T_world_map.inverse();
+    auto place = [&](const SiteObject& o, const char* what) {
+        for (const auto& p : later) {
+            if (p.z() < o.base_z + config.ground_clearance || !o.contains(p, config.box_margin))
+                continue;
+            double lowest = p.z();
+            for (const auto& q : later)
+                if (std::hypot(q.x() - p.x(), q.y() - p.y()) <= 0.5)
+                    lowest = std::min(lowest, q.z());
+            const bool in_first = std::any_of(first.begin(), first.end(),
+                                              [&](const auto& q) { return (q - p).norm() <= 0.2; });
+            std::string standing = "-";
+            for (const auto& s : today)
+                if (s.id != o.id && s.contains(p, config.box_margin))
+                    standing = std::to_string(s.id);
+            const Eigen::Vector3d m = T_map_world * p;
+            char line[240];
+            std::snprintf(line, sizeof line,
+                          "%u %s %.2f %.2f %.2f %.2f %.2f %.2f %.2f %.2f %d %s\n", o.id, what,
+                          p.x(), p.y(), p.z(), m.x(), m.y(), m.z(), p.z() - o.base_z,
+                          p.z() - lowest, in_first ? 1 : 0, standing.c_str());
+            out << line;
+        }
+    };
+    for (const auto& o : changes.removed) place(o, "removed");
+    for (const auto& o : changes.moved_from) place(o, "moved");
     return out.str();
 }
 
@@ -288,9 +331,13 @@ int run_lifelong(const LifelongOptions& o) {
                 scans << line;
             }
             write_text_file(o.out + "/day" + std::to_string(d) + "_scans.txt", scans.str());
-            if (!accounts.empty())
+            if (!accounts.empty()) {
                 write_text_file(o.out + "/day" + std::to_string(d) + "_objects.txt",
                                 objects_text(accounts));
+                write_text_file(o.out + "/day" + std::to_string(d) + "_kept.txt",
+                                kept_text(changes, objects[static_cast<std::size_t>(d)], first_map,
+                                          later, align.T_world_map, o.changes));
+            }
         }
         // Every few scans is plenty for "more than 10 m from every earlier path".
         for (std::size_t i = 0; i < path.size(); i += 5) earlier.push_back(path[i]);
@@ -347,7 +394,8 @@ Run add_lifelong(CLI::App& parent) {
     app->add_option("--min-health", o->min_health, "map voxels counted [0..1]");
     app->add_option("--out", o->out,
                     "write metrics.txt, metrics.json, table.txt, dayN.svg, dayN_scans.txt (each "
-                    "scan's error) here");
+                    "scan's error), dayN_objects.txt (each changed object's place) and "
+                    "dayN_kept.txt (the voxels kept in those places) here");
     return [o] { return run_lifelong(*o); };
 }
 

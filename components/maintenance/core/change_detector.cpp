@@ -7,6 +7,7 @@
 #include <unordered_set>
 
 #include "maintenance/core/ground.hpp"
+#include "maintenance/core/reach_down.hpp"
 #include "maintenance/core/segmentation.hpp"
 
 namespace ltm::maintenance {
@@ -354,6 +355,8 @@ ChangeSet maintain_region(const MaintenanceConfig& config, ObservationMap& map,
     const std::vector<bool> appeared =
         appeared_segments(config.ground, map, segments, session_start, judgement.tally);
     RegionChanges changes = decide_voxels(config.change, map, judgement, appeared);
+    for (const std::uint32_t b : reach_down(config, map, session_start, &changes.remove))
+        note(map, b, changes.gone[map.voxel(b).segment]);
     collect_changes(judgement.tally, session_start, &changes, &out);
     number_changes(map.region(), &out.changes, next_id);
     map.erase(changes.remove);

@@ -102,6 +102,14 @@ struct ChangeConfig {
     // under voxel_score; site_week day 4 kept 195 of 210 voxels of fence 6). A static surface in
     // the cube returns at it to some beam of a session that sees it that often. 0 turns it off.
     int through_views = 10;
+    // [m] A voxel under one this pass removes (gone, there before this session), in the same
+    // column and down to this far below it, goes with it when this session neither hit nor
+    // viewed it and an earlier one made it: an object's lowest part, which the session's rays
+    // near the ground never reached past what stands in between (site_week day 2: the lower
+    // side of a car that left, 28 m from the route, kept under its removed upper side). Ground
+    // voxels and voxels this session saw stay (a static voxel seen today keeps its own verdict).
+    // 0 turns it off.
+    double reach_down = 1.5;
 };
 
 // Motion of objects across the scans of a short window (motion_tracker.hpp states the rule):
@@ -209,6 +217,7 @@ void visit_fields(MaintenanceConfig& c, const std::string& prefix, Visitor&& v) 
     v(prefix + "change.voxel_score", c.change.voxel_score, unit);
     v(prefix + "change.voxel_level", c.change.voxel_level, unchecked);
     v(prefix + "change.through_views", c.change.through_views, non_negative);
+    v(prefix + "change.reach_down", c.change.reach_down, non_negative);
     v(prefix + "motion.enabled", c.motion.enabled, unchecked);
     v(prefix + "motion.session_span", c.motion.session_span, non_negative);
     v(prefix + "motion.cell", c.motion.cell, in_range(0.02, 2.0));
