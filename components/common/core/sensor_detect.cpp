@@ -45,12 +45,27 @@ std::vector<std::size_t> elevation_clusters(const std::vector<double>& elevation
     return clusters;
 }
 
+// Scan lines in the points' order: a cloud stored ring by ring (KITTI's, the simulator's) sweeps
+// the azimuth once a ring, so each ring has one jump of nearly a full turn (at its +-180 deg
+// crossing or where the next ring starts). Populations of the lines; one line: not ring by ring.
+std::vector<std::size_t> scan_lines(const std::vector<double>& azimuths) {
+    std::vector<std::size_t> lines(azimuths.empty() ? 0 : 1, 0);
+    for (std::size_t i = 0; i < azimuths.size(); ++i) {
+        if (i > 0 && std::abs(azimuths[i] - azimuths[i - 1]) > 270.0) lines.push_back(0);
+        ++lines.back();
+    }
+    return lines;
+}
+
 std::string describe(const ScanShape& s) {
     char text[240];
     std::snprintf(text, sizeof text,
                   "%zu points, %d rings%s, elevation %+.1f to %+.1f deg, %.0f deg around, "
                   "ranges median %.1f max %.0f m",
-                  s.points, s.rings, s.rings_from_field ? " (ring field)" : "",
+                  s.points, s.rings,
+                  s.rings_from_field   ? " (ring field)"
+                  : s.rings_from_order ? " (scan lines)"
+                                       : " (elevations)",
                   s.min_elevation_deg, s.max_elevation_deg, s.horizontal_fov_deg, s.median_range,
                   s.max_range);
     return text;
@@ -61,7 +76,7 @@ std::string describe(const ScanShape& s) {
 ScanShape measure_scan(const PointCloud& cloud, const std::vector<std::uint16_t>* rings) {
     ScanShape s;
     if (rings && rings->size() != cloud.size()) rings = nullptr;  // not one per point: unused
-    std::vector<double> elevations, ranges, far_elevations;
+    std::vector<double> elevations, ranges, far_elevations, azimuths;
     std::vector<char> azimuth(static_cast<std::size_t>(360.0 / kAzimuthBin), 0);
     std::set<std::uint16_t> ring_values;
     std::vector<std::size_t> ring_counts;
@@ -81,6 +96,7 @@ ScanShape measure_scan(const PointCloud& cloud, const std::vector<std::uint16_t>
         elevations.push_back(e);
         if (r >= kRingMinRange) far_elevations.push_back(e);
         const double a = std::atan2(double(p.y()), double(p.x())) * kRad + 180.0;  // [0, 360]
+        azimuths.push_back(a);
         azimuth[std::min(azimuth.size() - 1, static_cast<std::size_t>(a / kAzimuthBin))] = 1;
         if (rings) {
             const std::uint16_t ring = (*rings)[i];
@@ -105,6 +121,12 @@ ScanShape measure_scan(const PointCloud& cloud, const std::vector<std::uint16_t>
         s.rings = int(ring_values.size());
         s.rings_from_field = true;
         s.fullest_ring = *std::max_element(ring_counts.begin(), ring_counts.end());
+    } else if (const std::vector<std::size_t> lines = scan_lines(azimuths); lines.size() >= 8) {
+        // Stored ring by ring: the lines are the rings (elevations merge the HDL-64E's 1/3 deg
+        // rings, whose beams start 0.1-0.14 m apart in height: KITTI's 64 looked like 17).
+        s.rings = int(lines.size());
+        s.rings_from_order = true;
+        s.fullest_ring = *std::max_element(lines.begin(), lines.end());
     } else {
         const std::vector<std::size_t> clusters = elevation_clusters(far_elevations);
         s.rings = int(clusters.size());
@@ -133,7 +155,12 @@ SensorGuess classify_scan(const ScanShape& s) {
         return pick(SensorPreset::kNarrow, "under 180 deg around: a narrow (Livox type) view");
     }
     if (s.horizontal_fov_deg < 270.0) return refuse("neither narrow nor spinning (180-270 deg)");
-    if (s.rings >= 12 && s.rings <= 24) return pick(SensorPreset::kVlp16, "12-24 rings");
+    // The lowest beams: a VLP-16's -15 deg, the others' -22.5 to -25 deg (4 deg for a tilt).
+    if (s.rings >= 12 && s.rings <= 24) {
+        if (s.min_elevation_deg < -19.0)
+            return refuse("12-24 rings but down to below -19 deg (a VLP-16 reaches -15 deg)");
+        return pick(SensorPreset::kVlp16, "12-24 rings");
+    }
     if (s.rings >= 25 && s.rings <= 44) return pick(SensorPreset::kVlp32, "25-44 rings");
     if (s.rings >= 45 && s.rings <= 80) {
         if (s.max_elevation_deg > 8.0)

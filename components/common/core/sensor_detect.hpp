@@ -4,7 +4,7 @@
 // reason in one line. What fits no preset is refused, not guessed: the detector then names the
 // fallback it uses ("unknown sensor (...), using hdl64"). No I/O, no middleware.
 //   The rules (classify_scan): a horizontal field under 180 deg is a narrow (Livox type) sensor;
-// a spinning one (270 deg or more) is told by its rings: 12-24 a VLP-16, 25-44 a VLP-32C, 45-80 a
+// a spinning one (270 deg or more) is told by its rings: 12-24 a VLP-16 (none below -19 deg), 25-44 a VLP-32C, 45-80 a
 // 64-beam sensor, an Ouster OS1-64 when it sees above +8 deg (an HDL-64E's top beam is +2 deg) or
 // its fullest ring has under 1,400 points (1,024 columns against the HDL-64E's ~2,000), else an
 // HDL-64E. Rings come from the scan's ring field when it has one, else from the elevation
@@ -33,6 +33,7 @@ struct ScanShape {
     std::size_t non_finite = 0;   // NaN or infinite points (ignored)
     int rings = 0;                // beams: distinct ring values, or elevation clusters
     bool rings_from_field = false;
+    bool rings_from_order = false;  // counted as scan lines in the points' order
     std::size_t fullest_ring = 0;   // points of the most populated ring
     double min_elevation_deg = 0;   // 0.5 % and 99.5 % quantiles of the points' elevations
     double max_elevation_deg = 0;
@@ -41,8 +42,9 @@ struct ScanShape {
 };
 
 // The shape of one scan (sensor frame). `rings`: the scan's ring field (one per point) when it has
-// one, else null: rings are then counted as clusters of the elevations of the points 2 m or more
-// away (0.05 deg bins; a bin counts with at least 0.1 % of those points, or 3).
+// one, else null: rings are then the scan lines of a cloud stored ring by ring (8 or more azimuth
+// jumps of over 270 deg in the points' order), else clusters of the elevations of the points 2 m
+// or more away (0.05 deg bins; a bin counts with at least 0.1 % of those points, or 3).
 ScanShape measure_scan(const PointCloud& cloud, const std::vector<std::uint16_t>* rings = nullptr);
 
 struct SensorGuess {

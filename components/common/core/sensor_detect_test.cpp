@@ -6,7 +6,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <algorithm>
 #include <filesystem>
+#include <iostream>
+#include <random>
 #include <limits>
 
 #include "common/core/kitti_io.hpp"
@@ -100,8 +103,18 @@ TEST(SensorDetect, RealKittiHdl64eScansAreHdl64) {
     if (!std::filesystem::exists(dir + "/000000.bin"))
         GTEST_SKIP() << "KITTI 00 not found under ../shared/data/kitti";
     for (const char* f : {"000000.bin", "000007.bin", "000015.bin"}) {
-        const SensorGuess g = classify_scan(measure_scan(read_kitti_bin(dir + "/" + f)));
+        const PointCloud scan = read_kitti_bin(dir + "/" + f);
+        const SensorGuess g = classify_scan(measure_scan(scan));
         EXPECT_EQ(g.preset, SensorPreset::kHdl64) << f << ": " << g.reason;
+        std::cout << f << ": " << g.reason << "\n";
+        // Without the order (points shuffled) the elevations merge the HDL-64E's rings: refused
+        // (too low for a VLP-16), not taken for a VLP-16.
+        PointCloud shuffled = scan;
+        std::mt19937 rng(5);
+        std::shuffle(shuffled.points.begin(), shuffled.points.end(), rng);
+        const SensorGuess s = classify_scan(measure_scan(shuffled));
+        EXPECT_NE(s.preset, SensorPreset::kVlp16) << f << " shuffled: " << s.reason;
+        std::cout << f << " shuffled: " << s.reason << "\n";
     }
 }
 
@@ -113,6 +126,7 @@ TEST(SensorDetect, RealLivoxAviaScansAreNarrow) {
         for (const char* f : {"000000.pcd", "000100.pcd"}) {
             const SensorGuess g = classify_scan(measure_scan(load_cloud_file(dir + "/" + f)));
             EXPECT_EQ(g.preset, SensorPreset::kNarrow) << session << " " << f << ": " << g.reason;
+            std::cout << session << " " << f << ": " << g.reason << "\n";
         }
     }
 }

@@ -24,6 +24,7 @@
 #include <optional>
 #include <set>
 
+#include "common/core/sensor_detect.hpp"
 #include "common/core/io_error.hpp"
 #include "common/core/ply_io.hpp"
 #include "map/core/link_applied.hpp"
@@ -75,7 +76,11 @@ class MappingComponent : public runtime::Component {
             p.fail("localisation_fix_after", "must be >= 1 (scans tracked in a row)");
         edits.apply_changes = p.get<bool>("apply_map_changes", true);
         edits.frame_id = frame_id_;
-        const MapperConfig config = load_mapper_config(p, "", "hdl64");
+        const MapperConfig config = load_mapper_config(p, "", common::kAutoPreset);
+        if (p.get<std::string>("preset", common::kAutoPreset) == common::kAutoPreset)
+            ctx.log().info(
+                "preset auto: the spinning sensors' settings (hdl64, vlp32, vlp16 and os1-64 share "
+                "them); a narrow (Livox type) sensor needs preset: narrow");
         // The robots' link packets this map holds (map/core/link_applied.hpp): the loaded map's,
         // then what the downlinks hand on and this component takes; written beside every save.
         delivery_ = map::DeliveryTracker(edits.apply_changes);
