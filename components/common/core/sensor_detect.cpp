@@ -140,8 +140,8 @@ SensorGuess classify_scan(const ScanShape& s) {
     const std::string figures = describe(s);
     auto pick = [&](SensorPreset p, const std::string& rule) {
         g.preset = p;
-        g.reason = std::string(to_string(p)) + " (" + sensor_preset_row(p).sensor + "): " +
-                   figures + "; " + rule;
+        g.reason = std::string(to_string(p)) + " (" + sensor_preset_row(p).sensor +
+                   "): " + figures + "; " + rule;
         return g;
     };
     auto refuse = [&](const std::string& why) {

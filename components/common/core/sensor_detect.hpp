@@ -4,11 +4,11 @@
 // reason in one line. What fits no preset is refused, not guessed: the detector then names the
 // fallback it uses ("unknown sensor (...), using hdl64"). No I/O, no middleware.
 //   The rules (classify_scan): a horizontal field under 180 deg is a narrow (Livox type) sensor;
-// a spinning one (270 deg or more) is told by its rings: 12-24 a VLP-16 (none below -19 deg), 25-44 a VLP-32C, 45-80 a
-// 64-beam sensor, an Ouster OS1-64 when it sees above +8 deg (an HDL-64E's top beam is +2 deg) or
-// its fullest ring has under 1,400 points (1,024 columns against the HDL-64E's ~2,000), else an
-// HDL-64E. Rings come from the scan's ring field when it has one, else from the elevation
-// histogram (see measure_scan).
+// a spinning one (270 deg or more) is told by its rings: 12-24 a VLP-16 (none below -19 deg), 25-44
+// a VLP-32C, 45-80 a 64-beam sensor, an Ouster OS1-64 when it sees above +8 deg (an HDL-64E's top
+// beam is +2 deg) or its fullest ring has under 1,400 points (1,024 columns against the HDL-64E's
+// ~2,000), else an HDL-64E. Rings come from the scan's ring field when it has one, else from the
+// elevation histogram (see measure_scan).
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -29,15 +29,15 @@ inline constexpr const char* kAutoPreset = "auto";
 inline constexpr SensorPreset kAutoSpinningPreset = SensorPreset::kHdl64;
 
 struct ScanShape {
-    std::size_t points = 0;       // finite points
-    std::size_t non_finite = 0;   // NaN or infinite points (ignored)
-    int rings = 0;                // beams: distinct ring values, or elevation clusters
+    std::size_t points = 0;      // finite points
+    std::size_t non_finite = 0;  // NaN or infinite points (ignored)
+    int rings = 0;               // beams: distinct ring values, or elevation clusters
     bool rings_from_field = false;
     bool rings_from_order = false;  // counted as scan lines in the points' order
     std::size_t fullest_ring = 0;   // points of the most populated ring
     double min_elevation_deg = 0;   // 0.5 % and 99.5 % quantiles of the points' elevations
     double max_elevation_deg = 0;
-    double horizontal_fov_deg = 0;  // 360 minus the widest azimuth gap (0.5 deg bins)
+    double horizontal_fov_deg = 0;           // 360 minus the widest azimuth gap (0.5 deg bins)
     double median_range = 0, max_range = 0;  // [m]
 };
 

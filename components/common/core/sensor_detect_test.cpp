@@ -5,12 +5,12 @@
 
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <iostream>
-#include <random>
 #include <limits>
+#include <random>
 
 #include "common/core/kitti_io.hpp"
 #include "common/core/pcl_cloud_io.hpp"
@@ -26,7 +26,8 @@ void add_ring(PointCloud& c, double e, int columns, double around_deg = 360.0) {
     for (int i = 0; i < columns; ++i) {
         const double a = (-around_deg / 2 + around_deg * i / columns) * k;
         c.points.emplace_back(float(20 * std::cos(e * k) * std::cos(a)),
-                              float(20 * std::cos(e * k) * std::sin(a)), float(20 * std::sin(e * k)));
+                              float(20 * std::cos(e * k) * std::sin(a)),
+                              float(20 * std::sin(e * k)));
     }
 }
 

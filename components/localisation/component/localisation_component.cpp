@@ -113,8 +113,8 @@ std::optional<odometry::OdometryConfig> odometry_in_use(
         const std::optional<common::SensorPreset> preset = own ? own : detected;
         if (!preset) return std::nullopt;
         oc = odometry::preset_config(*preset);
-        from = std::string("preset ") + common::to_string(*preset) + (own ? "" : " (auto)") +
-               " (" + (found.empty() ? "no" : std::to_string(found.size())) +
+        from = std::string("preset ") + common::to_string(*preset) + (own ? "" : " (auto)") + " (" +
+               (found.empty() ? "no" : std::to_string(found.size())) +
                " odometry components in this host)";
     }
     char text[240];
@@ -733,7 +733,7 @@ class LocalisationComponent : public runtime::Component {
     double odometry_wait_s_ = 1.0;
     HintRadius hint_radius_;
     common::SensorPreset preset_ = common::SensorPreset::kHdl64;  // the settings' (auto: spinning)
-    std::optional<common::SensorPreset> named_preset_;             // empty: auto
+    std::optional<common::SensorPreset> named_preset_;            // empty: auto
     common::SensorDetector detector_;
     LocaliserConfig config_;
     std::string map_dir_;

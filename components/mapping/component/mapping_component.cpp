@@ -24,9 +24,9 @@
 #include <optional>
 #include <set>
 
-#include "common/core/sensor_detect.hpp"
 #include "common/core/io_error.hpp"
 #include "common/core/ply_io.hpp"
+#include "common/core/sensor_detect.hpp"
 #include "map/core/link_applied.hpp"
 #include "map/core/map_store.hpp"
 #include "map/core/site_store.hpp"

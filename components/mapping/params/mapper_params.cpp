@@ -28,7 +28,7 @@ MapperConfig load_mapper_config(runtime::Parameters& params, const std::string& 
         // auto: the spinning sensors' settings (every spinning preset's are these; the mapping
         // sees keyframes, not scans).
         config = mapper_preset(preset == common::kAutoPreset ? common::kAutoSpinningPreset
-                                                              : common::parse_sensor_preset(preset));
+                                                             : common::parse_sensor_preset(preset));
     } catch (const std::exception& e) {
         params.fail(pre + "preset", std::string(e.what()) + ", or auto (a spinning sensor)");
     }

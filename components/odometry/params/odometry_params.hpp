@@ -15,9 +15,9 @@ namespace ltm::odometry {
 
 // The preset `params` names at `prefix.preset` (default `default_preset`); empty for `auto`.
 // Throws common::ConfigError at the key when it names no preset.
-std::optional<common::SensorPreset> load_odometry_preset(runtime::Parameters& params,
-                                                         const std::string& prefix = "",
-                                                         const std::string& default_preset = "hdl64");
+std::optional<common::SensorPreset> load_odometry_preset(
+    runtime::Parameters& params, const std::string& prefix = "",
+    const std::string& default_preset = "hdl64");
 
 // `preset`'s config with every odometry key of `params` applied (under `prefix.` when not empty),
 // whatever `params` names as the preset. Throws common::ConfigError naming file, line and key.
