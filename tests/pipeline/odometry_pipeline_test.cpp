@@ -64,6 +64,8 @@ components:
                 fs::exists(dir_ / "maps" / "local_map_1.ply"));
 }
 
+// The odometry's default preset (auto): the VLP-16 of tiny_loop told from the first scan, said in
+// one line, every scan tracked.
 TEST_F(OdometryPipeline, SimulatedWorldThroughTheHost) {
     const std::string scenario =
         std::string(LTM_SOURCE_DIR) + "/components/simulator/scenarios/tiny_loop.yaml";
@@ -76,7 +78,6 @@ components:
     params: {scenario: )" + scenario + R"(, mode: fast}
   - name: odometry
     type: odometry
-    params: {preset: vlp16}
   - name: traj
     type: trajectory_writer
     params: {kitti_file: )" + (dir_ / "odometry.txt").string() +
@@ -93,6 +94,8 @@ components:
     const common::PoseList truth = common::read_kitti_poses((dir_ / "truth.txt").string());
     ASSERT_GT(est.size(), 30u);
     ASSERT_EQ(truth.size(), est.size()) << "every scan tracked";
+    EXPECT_NE(host.err().find("sensor preset vlp16 (Velodyne VLP-16)"), std::string::npos)
+        << host.err();
     // Relative to the first scan, the end of the loop is where the truth says (loose: a test,
     // not a benchmark; ./ltm bench odometry measures accuracy).
     const Eigen::Isometry3d rel_est = est.front().inverse() * est.back();

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# ./ltm bench lifelong --scenario S --days N [--out D] [--config lifelong|legacy] [--resume]
+# ./ltm bench lifelong --scenario S --days N [--out D] [--config lifelong|legacy] [--sensor M] [--resume]
 # A robot's week on one site: every day (session d of the scenario) runs through a launch config
 # and the host (./ltm run, the real components), under /usr/bin/time -v; then `ltm_eval lifelong`
 # scores each day against the simulator's truth (ltm_sim --truth-only of the same session) and
@@ -10,13 +10,15 @@
 # and a figure per day (D/score/dayN.svg).
 #   --config lifelong  launch_configs/robot_lifelong.yaml every day (LTM_SITE=D/site): the site's
 #                      newest version after day d (D/site/versions/vNNNN/map) is the next map
+#   --sensor M         the scans of the simulator's sensor M (os1_64, hdl64e, vlp32c, vlp16,
+#                      livox_avia) instead of the scenario's; the presets follow the scans (auto)
 #   --config legacy    what a user does today: day 0 robot_maintain.yaml (maps), later days
 #                      robot_localise_maintain.yaml on day 0's map, the maintained map carried
 #                      from day to day (each day starts from a copy of the day before's)
 set -uo pipefail
 ROOT="$(cd "$(dirname "$0")/../../.." && pwd)"
 BIN="${LTM_BUILD_DIR:-$ROOT/build}/bin"
-SCENARIO=""; DAYS=""; OUT=""; CONFIG=""; RESUME=0
+SCENARIO=""; DAYS=""; OUT=""; CONFIG=""; RESUME=0; SENSOR=""
 # [s] after the sensor's last scan, for the final maintenance pass and every save (the launch
 # configs' 60 s was too short on a shared 2-core machine: site_sessions' day 0, exit 3).
 FINISH_S=600
@@ -28,6 +30,7 @@ usage() {
         "--days N" "days to run (sessions 0..N-1)" \
         "--out D" "the run's folder (default results/lifelong-<time>)" \
         "--config C" "lifelong (default when launch_configs/robot_lifelong.yaml exists) or legacy" \
+        "--sensor M" "the simulator's sensor for the scans (os1_64, hdl64e, vlp32c, vlp16, livox_avia)" \
         "--resume" "keep the days of D that ran to the end (D/dayN/exit_status 0)"
 }
 fail() { echo "ltm bench lifelong: $*" >&2; exit 2; }
@@ -35,13 +38,14 @@ while [ $# -gt 0 ]; do
     case "$1" in
         -h|--help) usage; exit 0 ;;
         --resume) RESUME=1; shift ;;
-        --scenario|--days|--out|--config)
+        --scenario|--days|--out|--config|--sensor)
             [ $# -ge 2 ] || fail "$1: needs a value"
             case "$1" in
                 --scenario) SCENARIO="$2" ;;
                 --days) DAYS="$2" ;;
                 --out) OUT="$2" ;;
                 --config) CONFIG="$2" ;;
+                --sensor) SENSOR="$2" ;;
             esac
             shift 2 ;;
         *) fail "unknown argument '$1' (--help)" ;;
@@ -50,6 +54,7 @@ done
 [ -n "$SCENARIO" ] || fail "--scenario: required"
 [ -f "$SCENARIO" ] || fail "--scenario: no such file: $SCENARIO"
 SCENARIO="$(cd "$(dirname "$SCENARIO")" && pwd)/$(basename "$SCENARIO")"
+[ -z "$SENSOR" ] || [[ "$SENSOR" =~ ^[a-z0-9_]+$ ]] || fail "--sensor: a simulator model (os1_64, hdl64e, vlp32c, vlp16, livox_avia), got '$SENSOR'"
 [[ "$DAYS" =~ ^[1-9][0-9]*$ ]] || fail "--days: a positive whole number, got '$DAYS'"
 LIFELONG_YAML="$ROOT/launch_configs/robot_lifelong.yaml"
 if [ -z "$CONFIG" ]; then
@@ -72,7 +77,7 @@ for exe in ltm_host ltm_sim ltm_eval; do
 done
 SESSIONS=$(grep -cE '^  - name:' "$SCENARIO")
 [ "$DAYS" -le "$SESSIONS" ] || fail "--days $DAYS: $SCENARIO has $SESSIONS sessions"
-echo "ltm bench lifelong: $DAYS days of $(basename "$SCENARIO"), config $CONFIG, results in $OUT"
+echo "ltm bench lifelong: $DAYS days of $(basename "$SCENARIO")${SENSOR:+ with a $SENSOR}, config $CONFIG, results in $OUT"
 
 # run_day D: the host for day D under /usr/bin/time -v; links what the scoring reads.
 run_day() {
@@ -98,7 +103,8 @@ run_day() {
     # A DDS domain of this run's own (LTM_BENCH_DOMAIN): two runs on one machine stay apart.
     env "${env_vars[@]}" /usr/bin/time -v -o "$dir/time.txt" "$ROOT/ltm" run "$launch" \
         --set domain_id="${LTM_BENCH_DOMAIN:-$((100 + $$ % 100))}" \
-        --set sensor.session="$d" --set finish_timeout_s="$FINISH_S" --out "$dir" > "$dir/host.log" 2>&1
+        --set sensor.session="$d" ${SENSOR:+--set sensor.sensor="$SENSOR"} \
+        --set finish_timeout_s="$FINISH_S" --out "$dir" > "$dir/host.log" 2>&1
     rc=$?
     echo "$rc" > "$dir/exit_status"
     echo "  day $d: host exit $rc after $((SECONDS - start)) s ($(basename "$launch")); log $dir/host.log"
@@ -133,7 +139,8 @@ for ((d = 0; d < DAYS; d++)); do
         mkdir -p "$dir"
         run_day "$d" || { echo "ltm bench lifelong: day $d failed: $dir/host.log" >&2; break; }
     fi
-    "$BIN/ltm_sim" "$SCENARIO" --session "$d" --truth-only --quiet --out "$dir/truth" ||
+    "$BIN/ltm_sim" "$SCENARIO" --session "$d" --truth-only ${SENSOR:+--sensor "$SENSOR"} --quiet \
+        --out "$dir/truth" ||
         { echo "ltm bench lifelong: ltm_sim --truth-only failed for day $d" >&2; break; }
     ran=$((d + 1))
 done

@@ -72,5 +72,30 @@ TEST(SensorPresetTable, UnknownNamesAreRefusedWithTheKnownOnes) {
     }
 }
 
+// `preset: auto` gives components that see no scans the spinning sensors' place, loop and
+// localisation settings (common/core/sensor_detect.hpp, kAutoSpinningPreset): every spinning
+// preset must have the same ones, or auto would be a guess between them.
+TEST(SensorPresetTable, SpinningPresetsShareWhatAutoGivesComponentsWithoutScans) {
+    const SensorPresetRow& a = sensor_preset_row(SensorPreset::kHdl64);
+    for (SensorPreset p : kSensorPresets) {
+        const SensorPresetRow& r = sensor_preset_row(p);
+        if (r.horizontal_fov_deg < 360.0) continue;
+        SCOPED_TRACE(r.name);
+        EXPECT_EQ(r.descriptor_height, a.descriptor_height);
+        EXPECT_EQ(r.places.descriptor_max_range, a.places.descriptor_max_range);
+        EXPECT_EQ(r.places.loop_exclude_recent_s, a.places.loop_exclude_recent_s);
+        EXPECT_EQ(r.places.loop_exclude_recent_keyframes, a.places.loop_exclude_recent_keyframes);
+        EXPECT_EQ(r.places.loop_max_distance, a.places.loop_max_distance);
+        EXPECT_EQ(r.places.loop_cooldown_keyframes, a.places.loop_cooldown_keyframes);
+        EXPECT_EQ(r.places.verify_downsample, a.places.verify_downsample);
+        EXPECT_EQ(r.places.verify_min_inliers, a.places.verify_min_inliers);
+        EXPECT_EQ(r.places.verify_coarse_factor, a.places.verify_coarse_factor);
+        EXPECT_EQ(r.places.loop_max_correction_translation,
+                  a.places.loop_max_correction_translation);
+        EXPECT_EQ(r.localisation.off_map_margin, a.localisation.off_map_margin);
+        EXPECT_EQ(r.localisation.feature_max_range, a.localisation.feature_max_range);
+    }
+}
+
 }  // namespace
 }  // namespace ltm::common

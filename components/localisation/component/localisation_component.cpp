@@ -56,6 +56,7 @@
 #include <stdexcept>
 
 #include "common/core/one_line.hpp"
+#include "common/core/sensor_detect.hpp"
 #include "localisation/component/localisation_messages.hpp"
 #include "localisation/component/localiser_params.hpp"
 #include "localisation/component/version_loader.hpp"
@@ -91,23 +92,35 @@ constexpr std::uint64_t kNoMapRepeat = 100;  // the no-map line again on `status
 
 // The odometry's settings as this host's odometry component runs them (its preset and every key it
 // is given: an `odometry.voxel_size` override reaches the localisation's preprocessing too), else
-// the localisation preset's (no odometry component here, or more than one). Says which in the log.
-odometry::OdometryConfig odometry_in_use(runtime::ComponentContext& ctx,
-                                         common::SensorPreset preset) {
+// the localisation preset's (no odometry component here, or more than one). A preset `auto` (the
+// odometry's or, without one, the localisation's) is the one the scans told (`detected`); none
+// yet: empty (asked again on the first scans). Says which in the log.
+std::optional<odometry::OdometryConfig> odometry_in_use(
+    runtime::ComponentContext& ctx, std::optional<common::SensorPreset> own,
+    std::optional<common::SensorPreset> detected) {
     const runtime::LaunchConfig& launch = ctx.launch_config();
     std::vector<const runtime::ComponentSpec*> found;
     for (const runtime::ComponentSpec& c : launch.components)
         if (c.type == "odometry") found.push_back(&c);
-    odometry::OdometryConfig oc = odometry::preset_config(preset);
-    std::string from = std::string("preset ") + common::to_string(preset) + " (" +
-                       (found.empty() ? "no" : std::to_string(found.size())) +
-                       " odometry components in this host)";
+    odometry::OdometryConfig oc;
+    std::string from;
     if (found.size() == 1) {
         runtime::Parameters params(found[0]->params, launch.file, found[0]->name);
-        oc = odometry::load_odometry_config(params);  // as the odometry component reads them
-        from = "odometry component '" + found[0]->name + "'";
+        // As the odometry component reads them (its preset's default: auto).
+        const auto preset = odometry::load_odometry_preset(params, "", common::kAutoPreset);
+        if (!preset && !detected) return std::nullopt;
+        oc = odometry::load_odometry_config_for(params, "", preset ? *preset : *detected);
+        from = "odometry component '" + found[0]->name + "'" +
+               (preset ? "" : std::string(" (preset auto: ") + to_string(*detected) + ")");
+    } else {
+        const std::optional<common::SensorPreset> preset = own ? own : detected;
+        if (!preset) return std::nullopt;
+        oc = odometry::preset_config(*preset);
+        from = std::string("preset ") + common::to_string(*preset) + (own ? "" : " (auto)") + " (" +
+               (found.empty() ? "no" : std::to_string(found.size())) +
+               " odometry components in this host)";
     }
-    char text[200];
+    char text[240];
     std::snprintf(text, sizeof text, "scans preprocessed as by the %s: voxel_size %.3g m",
                   from.c_str(), oc.voxel_size);
     ctx.log().info(text);
@@ -138,10 +151,16 @@ class LocalisationComponent : public runtime::Component {
         hint_radius_.min_radius = p.get<double>("initial_pose.min_radius", hint_radius_.min_radius);
         if (!(hint_radius_.sigmas > 0)) p.fail("initial_pose.sigmas", "must be > 0");
         if (!(hint_radius_.min_radius > 0)) p.fail("initial_pose.min_radius", "must be > 0");
-        preset_ = load_sensor_preset(p);
+        named_preset_ = load_sensor_preset_or_auto(p, common::kAutoPreset);
+        preset_ = named_preset_.value_or(common::kAutoSpinningPreset);
+        if (!named_preset_)
+            ctx.log().info(
+                "preset auto: the localiser's and the map's settings of the spinning sensors "
+                "(hdl64, vlp32, vlp16 and os1-64 share them; a narrow sensor needs preset: "
+                "narrow); the scans' preprocessing as the first scans tell");
         config_ = load_localiser_config(p, preset_);
-        const odometry::OdometryConfig oc = odometry_in_use(ctx, preset_);
-        preprocessor_.emplace(oc.preprocess, oc.voxel_size);
+        if (const auto oc = odometry_in_use(ctx, named_preset_, std::nullopt))
+            preprocessor_.emplace(oc->preprocess, oc->voxel_size);
         map_dir_ = p.path("map", "", PathCheck::kNone);
         site_poll_s_ = p.get<double>("site_poll_s", 0.0);
         if (!(site_poll_s_ >= 0)) p.fail("site_poll_s", "must be >= 0 (0: the start version only)");
@@ -376,10 +395,29 @@ class LocalisationComponent : public runtime::Component {
                   scan.cloud.stamp);
             return;
         }
+        if (!preprocessor_ && !sensor_known(scan.cloud)) return;  // the next scan decides
         newest_scan_ = scan.cloud.stamp;
         const double stamp = scan.cloud.stamp;
         pairer_->add_scan(stamp, std::move(scan));
         pair();
+    }
+
+    // A preset `auto`: the scans' preprocessing made on the first scan that tells the sensor
+    // (before any scan reaches the worker). A narrow sensor under the spinning sensors' settings
+    // is said as an error: the localiser and its map were made for a spinning one.
+    bool sensor_known(const common::PointCloud& cloud) {
+        if (!detector_.add(cloud)) return false;
+        const common::SensorPreset detected = detector_.preset();
+        ctx_.log().info(detector_.line());
+        const auto oc = odometry_in_use(ctx_, named_preset_, detected);
+        preprocessor_.emplace(oc->preprocess, oc->voxel_size);
+        const bool narrow = common::sensor_preset_row(detected).horizontal_fov_deg < 360.0;
+        if (!named_preset_ && narrow && detector_.detected())
+            ctx_.log().error(
+                "the scans are a narrow sensor's but preset auto gave the localiser the spinning "
+                "sensors' settings: set the localisation's preset: " +
+                std::string(common::to_string(detected)));
+        return true;
     }
 
     void on_odometry(const msg::Odometry& m) {
@@ -702,7 +740,9 @@ class LocalisationComponent : public runtime::Component {
     bool global_thread_ = true;  // global localisation on `localisation/global`
     double odometry_wait_s_ = 1.0;
     HintRadius hint_radius_;
-    common::SensorPreset preset_ = common::SensorPreset::kHdl64;
+    common::SensorPreset preset_ = common::SensorPreset::kHdl64;  // the settings' (auto: spinning)
+    std::optional<common::SensorPreset> named_preset_;            // empty: auto
+    common::SensorDetector detector_;
     LocaliserConfig config_;
     std::string map_dir_;
     enum MapState : int { kLoading, kReady, kFailed };
@@ -734,7 +774,7 @@ class LocalisationComponent : public runtime::Component {
 
     // The worker's.
     std::unique_ptr<Localiser> localiser_;
-    std::optional<registration::Preprocessor> preprocessor_;
+    std::optional<registration::Preprocessor> preprocessor_;  // auto: made on the first scans
     registration::PreprocessedScan preprocessed_;
     LocalisationState last_state_ = LocalisationState::kInitialising;
     std::uint64_t processed_ = 0, valid_ = 0;

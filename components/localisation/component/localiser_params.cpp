@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include "common/core/sensor_detect.hpp"
+
 namespace ltm::localisation {
 
 common::SensorPreset load_sensor_preset(runtime::Parameters& params,
@@ -11,6 +13,17 @@ common::SensorPreset load_sensor_preset(runtime::Parameters& params,
         return common::parse_sensor_preset(name);
     } catch (const std::invalid_argument& e) {
         params.fail("preset", e.what());
+    }
+}
+
+std::optional<common::SensorPreset> load_sensor_preset_or_auto(runtime::Parameters& params,
+                                                               const std::string& default_preset) {
+    const std::string name = params.get<std::string>("preset", default_preset);
+    if (name == common::kAutoPreset) return std::nullopt;
+    try {
+        return common::parse_sensor_preset(name);
+    } catch (const std::invalid_argument& e) {
+        params.fail("preset", std::string(e.what()) + ", or auto: told from the scans");
     }
 }
 

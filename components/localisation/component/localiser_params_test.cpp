@@ -52,5 +52,14 @@ TEST(LocaliserParams, RejectsWhatItDoesNotKnowNamingFileLineAndKey) {
         << error_of("preset: hdl32");
 }
 
+TEST(LocaliserParams, AutoIsTheDefaultAndANameWins) {
+    runtime::Parameters none(YAML::Node(), "test.yaml", "localisation");
+    EXPECT_FALSE(load_sensor_preset_or_auto(none, "auto").has_value());
+    runtime::Parameters named = params_of("preset: os1-64\n");
+    EXPECT_EQ(load_sensor_preset_or_auto(named, "auto"), common::SensorPreset::kOs1_64);
+    runtime::Parameters wrong = params_of("preset: velodyne\n");
+    EXPECT_THROW(load_sensor_preset_or_auto(wrong, "auto"), runtime::ConfigError);
+}
+
 }  // namespace
 }  // namespace ltm::localisation

@@ -6,6 +6,7 @@
 // and any `scan_context.*`, `localisation_descriptor.*`, `verification.*` it sets; the others are
 // accepted and not used): a mapping whose descriptors are made otherwise says so and makes them
 // again from the points it gets. robot.yaml puts it between the odometry and the uplink.
+#include "common/core/sensor_detect.hpp"
 #include "mapping/component/place_descriptor_msg.hpp"
 #include "mapping/core/keyframe_digest.hpp"
 #include "mapping/params/mapper_params.hpp"
@@ -21,7 +22,7 @@ using runtime::TopicRole;
 class KeyframeDigestComponent : public runtime::Component {
   public:
     explicit KeyframeDigestComponent(runtime::ComponentContext& ctx)
-        : ctx_(ctx), digester_(load_mapper_config(ctx.params(), "", "hdl64")) {
+        : ctx_(ctx), digester_(load_mapper_config(ctx.params(), "", common::kAutoPreset)) {
         out_ = ctx.advertise<msg::Keyframe>("digest/keyframe", TopicRole::kState);
         ctx.subscribe<msg::Keyframe>("keyframe", TopicRole::kState,
                                      [this](const msg::Keyframe& m) { on_keyframe(m); });

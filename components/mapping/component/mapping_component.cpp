@@ -26,6 +26,7 @@
 
 #include "common/core/io_error.hpp"
 #include "common/core/ply_io.hpp"
+#include "common/core/sensor_detect.hpp"
 #include "map/core/link_applied.hpp"
 #include "map/core/map_store.hpp"
 #include "map/core/site_store.hpp"
@@ -78,7 +79,11 @@ class MappingComponent : public runtime::Component {
         if (!(edits.clear_share > 0.0 && edits.clear_share <= 1.0))
             p.fail("map_changes_cpu_share", "must be in (0, 1] (1: a pass's edits all at once)");
         edits.frame_id = frame_id_;
-        const MapperConfig config = load_mapper_config(p, "", "hdl64");
+        const MapperConfig config = load_mapper_config(p, "", common::kAutoPreset);
+        if (p.get<std::string>("preset", common::kAutoPreset) == common::kAutoPreset)
+            ctx.log().info(
+                "preset auto: the spinning sensors' settings (hdl64, vlp32, vlp16 and os1-64 share "
+                "them); a narrow (Livox type) sensor needs preset: narrow");
         // The robots' link packets this map holds (map/core/link_applied.hpp): the loaded map's,
         // then what the downlinks hand on and this component takes; written beside every save.
         delivery_ = map::DeliveryTracker(edits.apply_changes);

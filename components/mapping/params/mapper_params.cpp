@@ -1,5 +1,7 @@
 #include "mapping/params/mapper_params.hpp"
 
+#include "common/core/sensor_detect.hpp"
+
 namespace ltm::mapping {
 namespace {
 
@@ -23,9 +25,12 @@ MapperConfig load_mapper_config(runtime::Parameters& params, const std::string& 
     const std::string preset = params.get<std::string>(pre + "preset", default_preset);
     MapperConfig config;
     try {
-        config = mapper_preset(common::parse_sensor_preset(preset));
+        // auto: the spinning sensors' settings (every spinning preset's are these; the mapping
+        // sees keyframes, not scans).
+        config = mapper_preset(preset == common::kAutoPreset ? common::kAutoSpinningPreset
+                                                             : common::parse_sensor_preset(preset));
     } catch (const std::exception& e) {
-        params.fail(pre + "preset", e.what());
+        params.fail(pre + "preset", std::string(e.what()) + ", or auto (a spinning sensor)");
     }
     config.scan_context.kind = parse_kind(params, pre + kKindKey, config.scan_context.kind);
     visit_fields(config, [&](const std::string& key, auto& field, const auto& /*rule*/) {

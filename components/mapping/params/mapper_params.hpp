@@ -1,8 +1,9 @@
 #pragma once
 // MapperConfig from parameters (the mapping component's `params:`, or a YAML file given to the
-// SLAM benchmark): an optional `preset` (hdl64, vlp32, vlp16, narrow) picks the base, every other
-// key mirrors the struct (`scan_context.rings`, `verification.fine.max_iterations`, ...). Unknown
-// keys, wrong types and invalid values fail with file, line and key (the keys and rules:
+// SLAM benchmark): an optional `preset` (hdl64, vlp32, vlp16, narrow, os1-64; `auto`: the
+// spinning sensors' settings, which hdl64, vlp32, vlp16 and os1-64 share) picks the base, every
+// other key mirrors the struct (`scan_context.rings`, `verification.fine.max_iterations`, ...).
+// Unknown keys, wrong types and invalid values fail with file, line and key (the keys and rules:
 // visit_fields in mapper_config.hpp and the parts' headers).
 #include <string>
 

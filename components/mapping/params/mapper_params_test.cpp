@@ -213,5 +213,25 @@ TEST(MapperParams, FileWithOrWithoutTheMappingSection) {
     std::remove(path.c_str());
 }
 
+// `preset: auto` (the mapping component's default): the spinning sensors' settings, the same as
+// every spinning preset's (the mapping sees keyframes, not scans).
+TEST(MapperParams, AutoIsEverySpinningPresetsSettings) {
+    runtime::Parameters p = params_of("preset: auto\n");
+    const MapperConfig c = load_mapper_config(p);
+    for (const common::SensorPreset s :
+         {common::SensorPreset::kHdl64, common::SensorPreset::kVlp32, common::SensorPreset::kVlp16,
+          common::SensorPreset::kOs1_64}) {
+        const MapperConfig m = mapper_preset(s);
+        EXPECT_EQ(c.scan_context.max_range, m.scan_context.max_range);
+        EXPECT_EQ(c.scan_context.sensor_height, m.scan_context.sensor_height);
+        EXPECT_EQ(c.loop_detection.max_distance, m.loop_detection.max_distance);
+        EXPECT_EQ(c.verification.min_inliers, m.verification.min_inliers);
+        EXPECT_EQ(c.long_term.keyframe_angle, m.long_term.keyframe_angle);
+    }
+    EXPECT_NE(c.verification.min_inliers,
+              mapper_preset(common::SensorPreset::kNarrow).verification.min_inliers);
+    EXPECT_NE(error_of("preset: vlp64\n").find("or auto"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace ltm::mapping

@@ -3,13 +3,19 @@
 // observation times: the hand-over policy of odometry/core/map_handover.hpp, the same as the
 // offline pipeline's) and `status` (skipped, rejected or diverged scans) out. Parameters: the
 // odometry's (preset and keys, see odometry/params) plus the frames and the snapshot period.
+// `preset: auto` (the default): the sensor preset is told from the first scans
+// (common/core/sensor_detect.hpp) before the first is registered, and said in one line; nothing
+// is published before. The keys given apply to whichever preset it is (checked against every
+// preset at the start).
 // Optional inputs, a motion prior from the robot (odometry/core/motion_prior.hpp): `imu`
 // (sensor_msgs/Imu, gyro) and `wheel_odometry` (nav_msgs/Odometry of the base frame), with the
 // `prior.*` parameters (the extrinsics `prior.imu_extrinsic`, `prior.wheel_extrinsic` as
 // [x, y, z, roll, pitch, yaw] in m and deg: the sensor's frame in the LiDAR frame; noise, gate).
 // Without samples on them nothing changes.
 #include <memory>
+#include <optional>
 
+#include "common/core/sensor_detect.hpp"
 #include "odometry/core/map_handover.hpp"
 #include "odometry/core/odometry.hpp"
 #include "odometry/params/odometry_params.hpp"
@@ -84,9 +90,15 @@ class OdometryComponent : public runtime::Component {
         if (handover.snapshot_every_keyframes < 0)
             p.fail("snapshot_every_keyframes", "must be >= 0 (0: finished maps only)");
         handover_ = MapHandover(handover);
-        odometry_ = std::make_unique<Odometry>(load_odometry_config(p));
         prior_ = std::make_unique<MotionPrior>(load_prior_config(p));
-        odometry_->set_prior(prior_.get());
+        named_preset_ = load_odometry_preset(p, "", common::kAutoPreset);
+        if (named_preset_) {
+            start(load_odometry_config_for(p, "", *named_preset_));
+        } else {
+            // Every key must suit whichever preset the scans turn out to need: tried on each now.
+            for (const common::SensorPreset each : common::kSensorPresets)
+                load_odometry_config_for(p, "", each);
+        }
         ctx.subscribe<msg::Imu>("imu", TopicRole::kSensor, [this](const msg::Imu& m) {
             convert::ImuData d;
             if (!convert::from_msg(m, &d).empty()) return;
@@ -109,6 +121,12 @@ class OdometryComponent : public runtime::Component {
 
     void on_shutdown() override {
         // Hand every map on: the active ones are finished here, nothing built is lost.
+        if (!odometry_) {
+            ctx_.log().warn(std::to_string(frames_) + " scans, none registered: " +
+                            (detector_.scans_seen() ? detector_.line() : "no scan came") +
+                            " (preset auto)");
+            return;
+        }
         for (const common::LocalMapData& m : handover_.finish(*odometry_)) publish_local_map(m);
         ctx_.log().info(std::to_string(frames_) + " scans, " + std::to_string(tracked_) +
                         " tracked, " + std::to_string(degenerate_) +
@@ -126,6 +144,31 @@ class OdometryComponent : public runtime::Component {
     }
 
   private:
+    void start(const OdometryConfig& config) {
+        odometry_ = std::make_unique<Odometry>(config);
+        odometry_->set_prior(prior_.get());
+    }
+
+    // `preset: auto`: true once the preset is known (the odometry then made with it). A named
+    // preset the first scans contradict is said as a warning (it is kept: it was asked for).
+    bool sensor_known() {
+        if (detector_.decided() || !detector_.add(cloud_)) return odometry_ != nullptr;
+        if (named_preset_) {
+            if (detector_.detected() && detector_.preset() != *named_preset_)
+                ctx_.log().warn("preset " + std::string(common::to_string(*named_preset_)) +
+                                " as configured, but the scans look like another sensor's: " +
+                                detector_.line());
+            return true;
+        }
+        start(load_odometry_config_for(ctx_.params(), "", detector_.preset()));
+        if (detector_.detected()) {
+            ctx_.log().info(detector_.line());
+        } else {
+            ctx_.log().warn(detector_.line());
+        }
+        return true;
+    }
+
     void on_points(const msg::PointCloud2& m) {
         const std::uint64_t index = frames_++;
         const std::string err = convert::from_pointcloud2(m, cloud_);
@@ -134,6 +177,7 @@ class OdometryComponent : public runtime::Component {
                    "scan " + std::to_string(index) + ": " + err, cloud_.stamp);
             return;
         }
+        if (!sensor_known()) return;  // an unclassifiable scan: the next one decides
         const FrameResult r = odometry_->register_frame(cloud_);
         if (r.pose_valid()) {
             ++(r.status == FrameStatus::kDegenerate ? degenerate_ : tracked_);
@@ -197,7 +241,9 @@ class OdometryComponent : public runtime::Component {
 
     runtime::ComponentContext& ctx_;
     std::unique_ptr<MotionPrior> prior_;  // declared first: the odometry points to it
-    std::unique_ptr<Odometry> odometry_;
+    std::unique_ptr<Odometry> odometry_;  // null until the preset is known (preset: auto)
+    std::optional<common::SensorPreset> named_preset_;  // empty: auto
+    common::SensorDetector detector_;
     MapHandover handover_;
     std::string odom_frame_, child_frame_;
     common::PointCloud cloud_;

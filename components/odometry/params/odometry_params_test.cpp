@@ -86,5 +86,20 @@ TEST(OdometryParams, UnderAPrefixAsInALaunchConfig) {
     EXPECT_DOUBLE_EQ(c.voxel_size, preset_config(SensorPreset::kVlp16).voxel_size);
 }
 
+// `preset: auto` (the odometry component's default): no preset yet, the keys applied to the one
+// the scans tell; a tool that wants a config now refuses it, naming the key.
+TEST(OdometryParams, AutoIsDecidedLaterAndItsKeysApplyToThePresetTold) {
+    runtime::Parameters p = params_of("preset: auto\nvoxel_size: 0.45\n");
+    EXPECT_FALSE(load_odometry_preset(p, "", "hdl64").has_value());
+    runtime::Parameters q(YAML::Node(), "test.yaml", "odometry");
+    EXPECT_FALSE(load_odometry_preset(q, "", "auto").has_value());  // the component's default
+    const OdometryConfig c = load_odometry_config_for(p, "", SensorPreset::kVlp16);
+    EXPECT_DOUBLE_EQ(c.voxel_size, 0.45);
+    EXPECT_DOUBLE_EQ(c.preprocess.max_range,
+                     preset_config(SensorPreset::kVlp16).preprocess.max_range);
+    EXPECT_NE(error_of("preset: auto\n").find("odometry.preset"), std::string::npos);
+    EXPECT_NE(error_of("preset: vlp64\n").find("or auto"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace ltm::odometry
