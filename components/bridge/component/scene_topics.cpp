@@ -1,11 +1,10 @@
 #include "bridge/component/scene_topics.hpp"
 
-#include <time.h>
-
 #include <chrono>
 
 #include "bridge/core/ros2msg_schemas.hpp"
 #include "bridge/core/scene_messages.hpp"
+#include "common/core/thread_clock.hpp"
 #include "runtime/convert/dds_string.hpp"
 #include "runtime/convert/geometry.hpp"
 
@@ -13,13 +12,6 @@ namespace ltm::bridge {
 namespace {
 
 using runtime::TopicRole;
-
-// This thread's CPU time [s] (the machine's load does not inflate it, unlike the wall clock).
-double thread_cpu_s() {
-    timespec t{};
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-    return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
 
 Stamp stamp_of(const msg::Time& t) { return Stamp{t.sec, t.nanosec}; }
 
@@ -106,11 +98,11 @@ void SceneTopics::on_graph(const msg::PoseGraph& g) {
 void SceneTopics::refresh_map() {
     if (!cloud_.dirty() || map_watchers_.load() == 0) return;
     const auto start = std::chrono::steady_clock::now();
-    const double cpu_start = thread_cpu_s();
+    const double cpu_start = common::thread_cpu_s();
     const MapCloud::Cloud c = cloud_.build();
     auto cdr = std::make_shared<const std::vector<std::uint8_t>>(
         point_cloud2_cdr(c.points, c.in_map_frame ? map_frame_ : odom_frame_, now_stamp()));
-    const double cpu_ms = 1000.0 * (thread_cpu_s() - cpu_start);
+    const double cpu_ms = 1000.0 * (common::thread_cpu_s() - cpu_start);
     const double now = std::chrono::duration<double>(start.time_since_epoch()).count();
     if (now - last_report_s_ >= 30.0) {
         last_report_s_ = now;

@@ -30,7 +30,6 @@
 // Memory (issue 28): a scan that finds `pack_after` scans or more waiting (through a pass) is
 // kept packed (maintenance/core/packed_scan.hpp: lossless, about 60 % of its 12 B a point on real
 // scans) until the worker takes it; the log's last line gives the queue's peak in scans and MiB.
-#include <time.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -48,6 +47,7 @@
 #include "common/core/cpu_pacer.hpp"
 #include "common/core/io_error.hpp"
 #include "common/core/one_line.hpp"
+#include "common/core/thread_clock.hpp"
 #include "maintenance/component/maintenance_params.hpp"
 #include "maintenance/component/map_change_messages.hpp"
 #include "maintenance/core/change_record.hpp"
@@ -78,17 +78,6 @@ constexpr std::size_t kMaxPoses = 400;   // poses kept for pairing
 constexpr std::size_t kMaxWaiting = 50;  // scans waiting for their pose
 constexpr double kPaceBurst = 0.1;       // [s] of CPU the worker may use at once (cpu_share)
 constexpr double kPaceSlice = 0.05;      // [s] a wait is cut into (a stop ends it)
-
-double thread_cpu_s() {
-    timespec t{};
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-    return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
-}
-
-double wall_s() {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
-        .count();
-}
 
 struct Scan {
     double stamp = 0.0;
@@ -364,13 +353,13 @@ class MaintenanceComponent : public runtime::Component {
     // comment); at once when stopping.
     void pace(const StopToken& stop) {
         if (!pacer_) return;
-        double wait = pacer_->wait_after(thread_cpu_s(), wall_s());
+        double wait = pacer_->wait_after(common::thread_cpu_s(), common::steady_wall_s());
         while (wait > 0.0 && !stopping_ && !stop.stop_requested()) {
             const double slice = std::min(wait, kPaceSlice);
             std::this_thread::sleep_for(std::chrono::duration<double>(slice));
             wait -= slice;
         }
-        pacer_->waited(wall_s());
+        pacer_->waited(common::steady_wall_s());
     }
 
     // The session's last pass and the map saved (after the worker stopped).

@@ -1,11 +1,9 @@
 #include "mapping/component/map_edit_inputs.hpp"
 
-#include <time.h>
-
-#include <chrono>
 #include <cstdio>
 #include <utility>
 
+#include "common/core/thread_clock.hpp"
 #include "mapping/component/map_change_cells.hpp"
 #include "runtime/convert/geometry.hpp"
 
@@ -14,17 +12,6 @@ namespace {
 
 constexpr double kClearTick = 0.05;   // [s] the clearing timer's period
 constexpr double kClearBurst = 0.05;  // [s] of CPU the clearing may use at once
-
-double thread_cpu_s() {
-    timespec t{};
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-    return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
-}
-
-double wall_s() {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
-        .count();
-}
 
 }  // namespace
 
@@ -58,7 +45,7 @@ MapEditInputs::MapEditInputs(runtime::ComponentContext& ctx, Mapper& mapper, std
     }
     if (options_.apply_changes && options_.clear_share < 1.0) {
         pacer_.emplace(options_.clear_share, kClearBurst);
-        pacer_->wait_after(0.0, wall_s());  // starts its clocks
+        pacer_->wait_after(0.0, common::steady_wall_s());  // starts its clocks
         ctx.add_timer(kClearTick, [this] { clear_some(); });
     }
     if (options_.apply_changes)
@@ -109,10 +96,10 @@ void MapEditInputs::on_changes(const msg::MapChangeSet& m) {
     mapper_.keep_cells(c.added, c.cell_size);
     if (c.removed.empty()) return;
     if (!pacer_) {  // all at once
-        const double cpu0 = thread_cpu_s();
+        const double cpu0 = common::thread_cpu_s();
         const std::size_t cleared = mapper_.remove_cells(c.removed, c.cell_size);
         char cpu[64];
-        std::snprintf(cpu, sizeof cpu, " (%.2f s of CPU at once)", thread_cpu_s() - cpu0);
+        std::snprintf(cpu, sizeof cpu, " (%.2f s of CPU at once)", common::thread_cpu_s() - cpu0);
         ctx_.log().info("map maintenance pass " + std::to_string(m.pass) + ": " +
                         std::to_string(c.removed_segments) + " segment(s) gone, " +
                         std::to_string(cleared) + " voxels cleared from the local maps" + cpu);
@@ -120,7 +107,7 @@ void MapEditInputs::on_changes(const msg::MapChangeSet& m) {
     }
     // Recorded now (local maps that arrive are cleared of the cells at once); the local maps
     // present are cleared by the timer, a few at a time.
-    if (!clearing_) clearing_.emplace(Clearing{"", 0, 0, wall_s()});
+    if (!clearing_) clearing_.emplace(Clearing{"", 0, 0, common::steady_wall_s()});
     clearing_->passes += (clearing_->passes.empty() ? "" : ", ") + std::to_string(m.pass);
     clearing_->segments += c.removed_segments;
     if (mapper_.remove_cells_in_steps(c.removed, c.cell_size) == 0) clearing_done();
@@ -128,14 +115,14 @@ void MapEditInputs::on_changes(const msg::MapChangeSet& m) {
 
 void MapEditInputs::clear_some() {
     if (!clearing_) return;
-    const double now = wall_s();
+    const double now = common::steady_wall_s();
     if (now < resume_at_s_) return;
     pacer_->waited(now);
     for (;;) {
-        const double cpu0 = thread_cpu_s();
+        const double cpu0 = common::thread_cpu_s();
         std::size_t removed = 0;
         const bool more = mapper_.clear_removed_step(&removed);
-        const double cpu = thread_cpu_s() - cpu0;
+        const double cpu = common::thread_cpu_s() - cpu0;
         clear_cpu_s_ += cpu;
         clearing_->cpu_s += cpu;
         clearing_->voxels += removed;
@@ -143,9 +130,9 @@ void MapEditInputs::clear_some() {
             clearing_done();
             break;
         }
-        const double wait = pacer_->wait_after(clear_cpu_s_, wall_s());
+        const double wait = pacer_->wait_after(clear_cpu_s_, common::steady_wall_s());
         if (wait > 0.0) {
-            resume_at_s_ = wall_s() + wait;
+            resume_at_s_ = common::steady_wall_s() + wait;
             break;
         }
     }
@@ -154,12 +141,12 @@ void MapEditInputs::clear_some() {
 void MapEditInputs::finish_clearing() {
     if (!clearing_) return;
     std::size_t removed = 0;
-    const double cpu0 = thread_cpu_s();
+    const double cpu0 = common::thread_cpu_s();
     for (bool more = true; more;) {
         more = mapper_.clear_removed_step(&removed);
         clearing_->voxels += removed;
     }
-    clearing_->cpu_s += thread_cpu_s() - cpu0;
+    clearing_->cpu_s += common::thread_cpu_s() - cpu0;
     clearing_done();
 }
 
@@ -167,7 +154,7 @@ void MapEditInputs::clearing_done() {
     if (!clearing_) return;
     char took[96];
     std::snprintf(took, sizeof took, " (%.2f s of CPU over %.1f s)", clearing_->cpu_s,
-                  wall_s() - clearing_->started_s);
+                  common::steady_wall_s() - clearing_->started_s);
     const bool several = clearing_->passes.find(',') != std::string::npos;
     ctx_.log().info("map maintenance pass" + std::string(several ? "es " : " ") +
                     clearing_->passes + ": " + std::to_string(clearing_->segments) +
