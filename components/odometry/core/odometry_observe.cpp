@@ -19,7 +19,10 @@ bool Odometry::check_observability(const Eigen::Isometry3d& predicted, double dt
     r->weak_direction = T_odom_map.linear() * o.weakest();
     // No velocity yet after a gap (tracking.search_after; at 10 Hz a first step stays within the
     // basin), or the last scan was degenerate: the prediction is a guess.
-    const bool guessed = unobserved_ || (motion_.poses() < 2 && dt > config_.tracking.search_after);
+    // A restart's first step is a run's first step: the new segment's map holds one scan, and the
+    // velocity is the one carried through the loss (the restart scan's pose is a prediction).
+    const bool fresh = motion_.poses() < 2 || segment_scans_ < 2;
+    const bool guessed = unobserved_ || (fresh && dt > config_.tracking.search_after);
     unobserved_ = false;
     // The first step of a run predicts no motion: a fit of a scan taken several metres on can
     // stay where it started even in a well constrained street (its basin is a few voxels), and
@@ -27,7 +30,9 @@ bool Odometry::check_observability(const Eigen::Isometry3d& predicted, double dt
     // (Doing the same after a degenerate scan, whose velocity is also a guess, made the
     // kitti00_path every-10th case worse: 41 m ATE instead of 32 m, wrong peaks at corners.)
     // Only after a gap (tracking.search_after): at 10 Hz a first step stays within the basin.
-    const bool first_step = motion_.poses() < 2 && dt > config_.tracking.search_after;
+    // The same after a restart (tree_road VLP-16 every 10th scan: scan 2 of a new segment slid
+    // more than 1 m fitting its one-scan map from the carried velocity).
+    const bool first_step = fresh && dt > config_.tracking.search_after;
     const Eigen::Vector3d last = motion_.last_pose().translation();
     const Eigen::Vector3d step =
         first_step ? Eigen::Vector3d::Zero() : Eigen::Vector3d(predicted.translation() - last);
