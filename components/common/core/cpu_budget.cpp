@@ -10,14 +10,24 @@ namespace ltm::common {
 CpuBudget::CpuBudget(double share, double burst_s)
     : share_(std::clamp(share, 1e-3, 1.0)), burst_s_(std::max(0.0, burst_s)), tokens_(burst_s_) {}
 
-double CpuBudget::charge(double cpu_s, double wall_s) {
-    std::lock_guard<std::mutex> lock(mutex_);
+void CpuBudget::fill_locked(double wall_s) {
     if (!started_) {
         started_ = true;
         last_wall_ = wall_s;
     }
     tokens_ = std::min(burst_s_, tokens_ + share_ * std::max(0.0, wall_s - last_wall_));
     last_wall_ = std::max(last_wall_, wall_s);
+}
+
+double CpuBudget::tokens(double wall_s) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    fill_locked(wall_s);
+    return share_ >= 1.0 ? burst_s_ : tokens_;
+}
+
+double CpuBudget::charge(double cpu_s, double wall_s) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    fill_locked(wall_s);
     if (share_ >= 1.0) return 0.0;
     tokens_ -= std::max(0.0, cpu_s);
     return tokens_ >= 0.0 ? 0.0 : -tokens_ / share_;

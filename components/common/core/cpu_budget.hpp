@@ -24,10 +24,15 @@ class CpuBudget {
     // (any caller) starts the budget's clock.
     double charge(double cpu_s, double wall_s);
 
+    // The CPU [s] it holds at wall_s (negative: in debt), nothing charged.
+    double tokens(double wall_s);
+
     double share() const { return share_; }
     double burst_s() const { return burst_s_; }
 
   private:
+    void fill_locked(double wall_s);
+
     const double share_, burst_s_;
     std::mutex mutex_;
     bool started_ = false;

@@ -23,6 +23,8 @@ double CpuPacer::wait_after(double cpu_s, double wall_s) {
     return budget_->charge(piece, wall_s);
 }
 
+double CpuPacer::wait_now(double wall_s) { return budget_->charge(0.0, wall_s); }
+
 void CpuPacer::waited(double wall_s) {
     if (started_) budget_->charge(0.0, wall_s);
 }

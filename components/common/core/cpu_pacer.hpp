@@ -28,6 +28,15 @@ class CpuPacer {
     double wait_after(double cpu_s, double wall_s);
     // The wait happened (or not): the wall time now [s].
     void waited(double wall_s);
+    // The wait the budget asks for now, nothing charged (0: free to start a piece). Starts the
+    // clocks as wait_after's first call when it comes first.
+    double wait_now(double wall_s);
+
+    // The budget full at wall_s: no work drew from it for a while (a piece that cannot be cut,
+    // a save say, waits for this, so that it does not add to the others' in the same second).
+    bool budget_full(double wall_s) const {
+        return budget_->tokens(wall_s) >= budget_->burst_s() - 1e-9;
+    }
 
     double share() const { return budget_->share(); }
     bool shared() const { return budget_.use_count() > 1; }
