@@ -31,7 +31,8 @@
 #                                with --background-share 0
 #   --background-share X         lifelong: the background work (maintenance worker, the mapping's
 #                                clearing of a pass's cells and its periodic saves) together at
-#                                most X of one core, one budget (cpu_budget: background); default
+#                                most X of one core, one budget (cpu_budget: background; the
+#                                localisation's global queries charged to it too); default
 #                                0.4; 0: each its own (maintenance --maintenance-share, clearing
 #                                0.15, saves unpaced: before issue 28's budget-peaks)
 #   --nice N                     the hosts at nice N (e.g. -5, root: the mission ahead of the
@@ -230,7 +231,8 @@ run_lifelong_day() {  # DAY SESSION
     local pace=(--set "maintenance.cpu_share=$MAINT_SHARE")
     if [ "$BACKGROUND_SHARE" != 0 ]; then
         pace=(--set "maintenance.cpu_share=$BACKGROUND_SHARE" --set maintenance.cpu_budget=background
-              --set "mapping.map_changes_cpu_share=$BACKGROUND_SHARE" --set mapping.cpu_budget=background)
+              --set "mapping.map_changes_cpu_share=$BACKGROUND_SHARE" --set mapping.cpu_budget=background
+              --set localisation.global_cpu_budget=background)
     fi
     start_host robot "$dir" "$dir/launch.yaml" LTM_SITE="$OUT/lifelong/site" -- \
         --set localisation.skip_while_busy=true "${pace[@]}" "${EXTRA_SETS[@]}"
