@@ -94,7 +94,8 @@ TEST(CpuPacer, PacersOfASharedBudgetTogetherKeepItsShare) {
     double worst = 0.0;
     for (double t = 0.0; t < wall; t += 0.01) {
         double used = 0.0;
-        for (const auto& [s, e] : work) used += std::max(0.0, std::min(e, t + 1.0) - std::max(s, t));
+        for (const auto& [s, e] : work)
+            used += std::max(0.0, std::min(e, t + 1.0) - std::max(s, t));
         worst = std::max(worst, used);
     }
     EXPECT_LE(worst, 0.4 + 0.1 + 0.02 + 1e-9);
@@ -116,6 +117,21 @@ TEST(CpuPacer, AGlobalQueryOnTheSharedBudgetMakesTheOthersWait) {
     EXPECT_NEAR(worker.wait_after(0.0, 0.7 + 1e-9), 0.0, 1e-9);
 }
 
+TEST(CpuPacer, APieceThatCannotBeCutWaitsForAFullBudget) {
+    // The mapping's save (one piece of ~0.3 s) waits until the maintenance's work left the
+    // shared budget full: nothing paced drew from it for burst / share seconds.
+    auto budget = std::make_shared<CpuBudget>(0.4, 0.1);
+    CpuPacer worker(budget), save(budget);
+    worker.wait_after(0.0, 0.0);
+    save.wait_after(0.0, 0.0);
+    EXPECT_TRUE(save.budget_full(0.0));
+    EXPECT_EQ(worker.wait_after(0.05, 0.05), 0.0);  // within the burst: no wait, but not full
+    EXPECT_FALSE(save.budget_full(0.05));
+    EXPECT_EQ(save.wait_now(0.05), 0.0);  // not in debt either
+    EXPECT_FALSE(save.budget_full(0.05 + 0.03 / 0.4));
+    EXPECT_TRUE(save.budget_full(0.05 + 0.05 / 0.4 + 1e-9));
+}
+
 TEST(CpuBudget, ANamedBudgetIsSharedWithTheSameShareOnly) {
     std::string error;
     EXPECT_EQ(shared_cpu_budget("test-b", 0.0, 0.1, &error), nullptr);
@@ -125,8 +141,9 @@ TEST(CpuBudget, ANamedBudgetIsSharedWithTheSameShareOnly) {
     EXPECT_EQ(shared_cpu_budget("test-b", 0.4, 0.2, &error), first);
     EXPECT_EQ(shared_cpu_budget("test-b", 0.0, 0.2, &error), first);  // whatever it has
     EXPECT_EQ(shared_cpu_budget("test-b", 0.3, 0.1, &error), nullptr);
-    EXPECT_EQ(error, "the CPU budget 'test-b' is 0.4 of a core (set by the first to declare it), "
-                     "not 0.3");
+    EXPECT_EQ(error,
+              "the CPU budget 'test-b' is 0.4 of a core (set by the first to declare it), "
+              "not 0.3");
     EXPECT_NE(shared_cpu_budget("test-c", 0.3, 0.1, &error), first);
     first.reset();  // nobody holds it: the next one starts anew
     auto again = shared_cpu_budget("test-b", 0.3, 0.1, &error);
