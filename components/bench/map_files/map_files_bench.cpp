@@ -170,7 +170,8 @@ int main(int argc, char** argv) {
         std::size_t maint_voxels = 0;
         if (has_maint) maint_voxels = LongTermMap::load(maint, config).stats().voxels;
         print(version.c_str(), sizes_of(version), load_times(version, repeat, config),
-              voxels_of(loaded.map), loaded.map.keyframes.size(), maint_voxels, seen_of(loaded.map));
+              voxels_of(loaded.map), loaded.map.keyframes.size(), maint_voxels,
+              seen_of(loaded.map));
         if (!against.empty()) ltm::bench::print_growth(against, version, config);
         if (out.empty()) return 0;
 
