@@ -117,6 +117,30 @@ long same_surface_voxel(const std::vector<common::VoxelData>& out, std::size_t n
     return best;
 }
 
+// Whether `index` lies between voxels of `into` (out[0, n_into)): both cells of some opposite pair
+// of its 26 neighbours hold one. Such an empty cell is a hole in an old surface (a cell
+// maintenance emptied, or one an earlier day's sparse returns missed), not its edge: the
+// beside_surface rule leaves it to be filled.
+bool inside_old_voxels(const std::unordered_map<Eigen::Vector3i, std::size_t, CellHash>& cell,
+                       std::size_t n_into, const Eigen::Vector3i& index) {
+    const auto old = [&](const Eigen::Vector3i& c) {
+        const auto it = cell.find(c);
+        return it != cell.end() && it->second < n_into;
+    };
+    for (int dx = -1; dx <= 1; ++dx) {
+        for (int dy = -1; dy <= 1; ++dy) {
+            for (int dz = -1; dz <= 1; ++dz) {
+                const Eigen::Vector3i d(dx, dy, dz);
+                // Each opposite pair once: the first nonzero component positive.
+                const int first = dx != 0 ? dx : (dy != 0 ? dy : dz);
+                if (first <= 0) continue;
+                if (old(index + d) && old(index - d)) return true;
+            }
+        }
+    }
+    return false;
+}
+
 }  // namespace
 
 std::vector<std::uint32_t> bound_observation_times(const std::vector<double>& times,
@@ -243,6 +267,7 @@ common::LocalMapData merge_local_maps(const common::LocalMapData& into,
             }
         }
         if (beside_surface > 0.0 && cell.find(moved.index) == cell.end() &&
+            !inside_old_voxels(cell, n_into, moved.index) &&
             same_surface_voxel(out.voxels, n_into, cell, moved, g, beside_surface * g, false) >=
                 0) {
             ++beside;  // the old surface one cell on: adds nothing

@@ -26,11 +26,12 @@
 // beside_surface x voxel_size of that voxel's plane and its normal (if any) within 30 deg of it,
 // adds nothing: the old surface one cell beyond the old patch, as another day's slightly
 // different view shows it (on repeat_week 85-90 % of the voxels a revisit added were beside an
-// old voxel). A really new surface loses only its cells that touch the old one on its plane: a new
-// object standing on old ground (its faces off the ground's plane) enters whole, new ground beyond
-// the old keeps all but its first ring.
-// The result keeps `into`'s id, segment, anchor, grid, voxel size and finished flag; its revision
-// is `into`'s + 1 and its box covers both.
+// old voxel). An empty cell between voxels of `into` (both cells of an opposite pair of its
+// neighbours hold one: a hole maintenance emptied or earlier days' returns missed) is not an
+// edge and is filled as before. A really new surface loses only its cells that touch the old one on
+// its plane: a new object standing on old ground (its faces off the ground's plane) enters whole,
+// new ground beyond the old keeps all but its first ring. The result keeps `into`'s id, segment,
+// anchor, grid, voxel size and finished flag; its revision is `into`'s + 1 and its box covers both.
 #include <Eigen/Geometry>
 #include <cstddef>
 #include <cstdint>

@@ -224,7 +224,7 @@ TEST(LocalMapMerge, ASurfaceSeenAgainAcrossACellFaceUpdatesTheVoxelsThereInstead
 // Another day's view shows the old ground one cell beyond its patch (a ring of cells around it, on
 // its plane but the foot outside every old cell): with beside_surface those voxels add nothing,
 // while ground two cells on, a box standing on the old ground (its top 1 m over the ground's plane,
-// its sides upright) and a wall beside the ground enter as before.
+// its sides upright) and a wall beside the ground enter as before, and so does a hole in the patch.
 TEST(LocalMapMerge, TheOldSurfaceOneCellBeyondItsPatchAddsNothingNewSurfacesStillEnter) {
     common::LocalMapData a, b;
     a.voxel_size = b.voxel_size = 1.0f;
@@ -262,6 +262,15 @@ TEST(LocalMapMerge, TheOldSurfaceOneCellBeyondItsPatchAddsNothingNewSurfacesStil
     EXPECT_TRUE(cells.count({1, 2, 1}));
     EXPECT_FALSE(cells.count({5, 2, 0}));
     EXPECT_FALSE(cells.count({-1, -1, 0}));
+
+    // A hole in the old patch (a cell maintenance emptied): seen again, it is filled.
+    common::LocalMapData holed = a;
+    holed.voxels.erase(holed.voxels.begin() + 12);  // cell (2, 2, 0)
+    common::LocalMapData again = b;
+    again.voxels = {voxel({2, 2, 0}, {2.5f, 2.5f, 0.55f}, {0, 0, 1}, 6)};
+    const common::LocalMapData filled = merge_local_maps(holed, again, I, 1024, 0.2, nullptr, 0.5);
+    EXPECT_EQ(filled.voxels.size(), 25u);
+    EXPECT_TRUE(by_cell(filled).count({2, 2, 0}));
 
     // Off the plane by more than the tolerance (0.6 m over it): a new surface, it enters.
     common::LocalMapData raised = b;
