@@ -127,6 +127,25 @@ std::optional<odometry::OdometryConfig> odometry_in_use(
     return oc;
 }
 
+// The preset this host's one odometry component is named (not auto): the sensor its user told. Empty
+// with none, several, or one under auto.
+std::optional<common::SensorPreset> odometry_named_preset(runtime::ComponentContext& ctx) {
+    const runtime::LaunchConfig& launch = ctx.launch_config();
+    const runtime::ComponentSpec* found = nullptr;
+    for (const runtime::ComponentSpec& c : launch.components) {
+        if (c.type != "odometry") continue;
+        if (found) return std::nullopt;
+        found = &c;
+    }
+    if (!found) return std::nullopt;
+    runtime::Parameters params(found->params, launch.file, found->name);
+    return odometry::load_odometry_preset(params, "", common::kAutoPreset);
+}
+
+bool narrow(common::SensorPreset preset) {
+    return common::sensor_preset_row(preset).horizontal_fov_deg < 360.0;
+}
+
 // A scan on its way to the worker, with the odometry's pose and twist when they came in time.
 struct Scan {
     std::uint64_t index = 0;
@@ -152,12 +171,22 @@ class LocalisationComponent : public runtime::Component {
         if (!(hint_radius_.sigmas > 0)) p.fail("initial_pose.sigmas", "must be > 0");
         if (!(hint_radius_.min_radius > 0)) p.fail("initial_pose.min_radius", "must be > 0");
         named_preset_ = load_sensor_preset_or_auto(p, common::kAutoPreset);
-        preset_ = named_preset_.value_or(common::kAutoSpinningPreset);
-        if (!named_preset_)
+        // auto: the sensor this host's odometry was named, else the one the first scans tell.
+        const std::optional<common::SensorPreset> told =
+            named_preset_ ? named_preset_ : odometry_named_preset(ctx);
+        sensor_told_ = told.has_value();
+        preset_ = told.value_or(common::kAutoSpinningPreset);
+        if (!named_preset_ && told) {
+            ctx.log().info(std::string("preset auto: the odometry component's preset ") +
+                           common::to_string(*told));
+        } else if (!named_preset_) {
             ctx.log().info(
                 "preset auto: the localiser's and the map's settings of the spinning sensors "
-                "(hdl64, vlp32, vlp16 and os1-64 share them; a narrow sensor needs preset: "
-                "narrow); the scans' preprocessing as the first scans tell");
+                "(hdl64, vlp32, vlp16 and os1-64 share them) until the first scans tell the "
+                "sensor: a narrow one's then (preset narrow), the map reloaded with them before "
+                "the first scan is localised");
+            narrow_config_ = load_localiser_config(p, common::SensorPreset::kNarrow);
+        }
         config_ = load_localiser_config(p, preset_);
         if (const auto oc = odometry_in_use(ctx, named_preset_, std::nullopt))
             preprocessor_.emplace(oc->preprocess, oc->voxel_size);
@@ -376,14 +405,22 @@ class LocalisationComponent : public runtime::Component {
 
     void on_points(const msg::PointCloud2& m) {
         const std::uint64_t index = scans_++;
-        if (new_site_) return;  // the SLAM's poses are published as they come (on_slam_pose)
-        if (map_state_ == kFailed) {
-            publish_no_map(convert::to_seconds(m.header.stamp));
+        // Under auto, every scan until one tells the sensor (a new site's too: the versions that
+        // arrive later are loaded with its settings).
+        const bool go_on = !new_site_ && map_state_ != kFailed;
+        if (!go_on && sensor_told_) {
+            // A new site: the SLAM's poses are published as they come (on_slam_pose).
+            if (!new_site_) publish_no_map(convert::to_seconds(m.header.stamp));
             return;
         }
         Scan scan;
         scan.index = index;
         const std::string err = convert::from_pointcloud2(m, scan.cloud);
+        if (!go_on) {
+            if (err.empty()) sensor_known(scan.cloud);
+            if (!new_site_) publish_no_map(convert::to_seconds(m.header.stamp));
+            return;
+        }
         if (!err.empty()) {
             event(StatusLevel::kError, StatusCode::kBadCloud,
                   "scan " + std::to_string(index) + ": " + err, scan.cloud.stamp);
@@ -395,29 +432,51 @@ class LocalisationComponent : public runtime::Component {
                   scan.cloud.stamp);
             return;
         }
-        if (!preprocessor_ && !sensor_known(scan.cloud)) return;  // the next scan decides
+        if ((!sensor_told_ || !preprocessor_) && !sensor_known(scan.cloud))
+            return;  // the next scan decides
         newest_scan_ = scan.cloud.stamp;
         const double stamp = scan.cloud.stamp;
         pairer_->add_scan(stamp, std::move(scan));
         pair();
     }
 
-    // A preset `auto`: the scans' preprocessing made on the first scan that tells the sensor
-    // (before any scan reaches the worker). A narrow sensor under the spinning sensors' settings
-    // is said as an error: the localiser and its map were made for a spinning one.
+    // A preset `auto` that no name told: the scans' preprocessing made on the first scan that
+    // tells the sensor (before any scan reaches the worker). A narrow one's: the localiser's and
+    // the map's settings become the narrow preset's (the worker reloads the map with them before
+    // its first scan, and the site's versions are loaded with them).
     bool sensor_known(const common::PointCloud& cloud) {
         if (!detector_.add(cloud)) return false;
+        sensor_told_ = true;
         const common::SensorPreset detected = detector_.preset();
         ctx_.log().info(detector_.line());
-        const auto oc = odometry_in_use(ctx_, named_preset_, detected);
-        preprocessor_.emplace(oc->preprocess, oc->voxel_size);
-        const bool narrow = common::sensor_preset_row(detected).horizontal_fov_deg < 360.0;
-        if (!named_preset_ && narrow && detector_.detected())
-            ctx_.log().error(
-                "the scans are a narrow sensor's but preset auto gave the localiser the spinning "
-                "sensors' settings: set the localisation's preset: " +
-                std::string(common::to_string(detected)));
+        if (!preprocessor_) {
+            const auto oc = odometry_in_use(ctx_, named_preset_, detected);
+            preprocessor_.emplace(oc->preprocess, oc->voxel_size);
+        }
+        if (!narrow_config_ || !narrow(detected) || !detector_.detected()) return true;
+        {
+            std::lock_guard<std::mutex> lock(mutex_);
+            retune_ = detected;
+        }
+        if (loader_) loader_->retune(localisation_map_preset(detected), *narrow_config_);
+        ctx_.log().info(std::string("preset auto: the scans are a narrow sensor's: the "
+                                    "localiser's and the map's settings of preset ") +
+                        common::to_string(detected));
         return true;
+    }
+
+    // The worker, before a scan: the settings the scans told (sensor_known), the map in use
+    // loaded again with them (no scan was localised yet: the detection comes first).
+    void apply_retune() {
+        std::optional<common::SensorPreset> retune;
+        {
+            std::lock_guard<std::mutex> lock(mutex_);
+            retune.swap(retune_);
+        }
+        if (!retune) return;
+        preset_ = *retune;
+        config_ = *narrow_config_;
+        if (map_state_ == kReady && !map_dir_.empty()) load_map();
     }
 
     void on_odometry(const msg::Odometry& m) {
@@ -467,6 +526,7 @@ class LocalisationComponent : public runtime::Component {
             pending_ = std::move(n->localiser);
             pending_global_ = std::move(n->global);
             pending_name_ = n->version.name;
+            pending_dir_ = n->version.map_dir();
         }
         event(StatusLevel::kOk, StatusCode::kOnMap, text, newest_scan_ > 0 ? newest_scan_ : 0.0);
         if (map_state_ != kReady) {
@@ -487,6 +547,7 @@ class LocalisationComponent : public runtime::Component {
             next = std::move(pending_);
             global = std::move(pending_global_);
             name = pending_name_;
+            map_dir_ = pending_dir_;  // the map a retune loads again
         }
         // The version's global localiser answers the next query (one out on the old map finishes
         // there: the old one lives until then, and its answer holds in the same map frame).
@@ -595,6 +656,7 @@ class LocalisationComponent : public runtime::Component {
         const std::optional<Scan>& scan = step.item;
         try {
             swap_in_pending();
+            apply_retune();
             if (step.latest && localiser_) localiser_->set_initial_pose(*step.latest);
             if (scan) process(*scan);
         } catch (const std::exception& e) {
@@ -743,7 +805,9 @@ class LocalisationComponent : public runtime::Component {
     common::SensorPreset preset_ = common::SensorPreset::kHdl64;  // the settings' (auto: spinning)
     std::optional<common::SensorPreset> named_preset_;            // empty: auto
     common::SensorDetector detector_;
+    bool sensor_told_ = false;  // named (here or the odometry's), or the scans told it (auto)
     LocaliserConfig config_;
+    std::optional<LocaliserConfig> narrow_config_;  // auto, none named: for a narrow sensor
     std::string map_dir_;
     enum MapState : int { kLoading, kReady, kFailed };
     std::atomic<int> map_state_{kLoading};
@@ -769,6 +833,8 @@ class LocalisationComponent : public runtime::Component {
     std::mutex mutex_;
     std::unique_ptr<Localiser> pending_;  // a newer version's, until the worker swaps it in
     std::string pending_name_;
+    std::string pending_dir_;
+    std::optional<common::SensorPreset> retune_;  // the scans told a narrow sensor (auto)
     StatusCounters counters_;  // but skipped_scans: the worker's count
     std::string odom_frame_ = "odom";
 

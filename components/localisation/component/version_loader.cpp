@@ -25,6 +25,7 @@ std::optional<VersionLoader::Loaded> VersionLoader::poll() {
         if (next_.wait_for(std::chrono::seconds(0)) != std::future_status::ready)
             return std::nullopt;
         Result r = next_.get();
+        if (r.settings != settings_) return std::nullopt;  // retuned meanwhile: looked at again
         for (const std::string& note : r.notes)
             say_(true, "site " + follower_.site_dir() + ": " + note);
         if (!r.version) return std::nullopt;
@@ -43,8 +44,16 @@ std::optional<VersionLoader::Loaded> VersionLoader::poll() {
     return std::nullopt;
 }
 
+void VersionLoader::retune(LocalisationMapConfig map_config, LocaliserConfig config) {
+    if (next_.valid()) next_.wait();  // look() reads the settings
+    map_config_ = std::move(map_config);
+    config_ = std::move(config);
+    ++settings_;
+}
+
 VersionLoader::Result VersionLoader::look() {
     Result r;
+    r.settings = settings_;
     r.version = follower_.newer(&r.notes);
     if (!r.version) return r;
     const auto t0 = std::chrono::steady_clock::now();
