@@ -127,8 +127,8 @@ std::optional<odometry::OdometryConfig> odometry_in_use(
     return oc;
 }
 
-// The preset this host's one odometry component is named (not auto): the sensor its user told. Empty
-// with none, several, or one under auto.
+// The preset this host's one odometry component is named (not auto): the sensor its user told.
+// Empty with none, several, or one under auto.
 std::optional<common::SensorPreset> odometry_named_preset(runtime::ComponentContext& ctx) {
     const runtime::LaunchConfig& launch = ctx.launch_config();
     const runtime::ComponentSpec* found = nullptr;
@@ -835,7 +835,7 @@ class LocalisationComponent : public runtime::Component {
     std::string pending_name_;
     std::string pending_dir_;
     std::optional<common::SensorPreset> retune_;  // the scans told a narrow sensor (auto)
-    StatusCounters counters_;  // but skipped_scans: the worker's count
+    StatusCounters counters_;                     // but skipped_scans: the worker's count
     std::string odom_frame_ = "odom";
 
     // The worker's.
