@@ -56,15 +56,13 @@
 #include <stdexcept>
 
 #include "common/core/one_line.hpp"
-#include "common/core/sensor_detect.hpp"
 #include "localisation/component/localisation_messages.hpp"
 #include "localisation/component/localiser_params.hpp"
+#include "localisation/component/scan_sensor.hpp"
 #include "localisation/component/version_loader.hpp"
 #include "localisation/core/new_site_pose.hpp"
 #include "map/core/site_anchor.hpp"
 #include "map/core/site_store.hpp"
-#include "odometry/core/odometry_config.hpp"
-#include "odometry/params/odometry_params.hpp"
 #include "registration/core/preprocess.hpp"
 #include "runtime/component.hpp"
 #include "runtime/convert/dds_string.hpp"
@@ -90,62 +88,6 @@ constexpr double kSameStamp = 1e-4;          // a scan and its odometry pose [s]
 constexpr std::size_t kMaxOdometry = 200;    // odometry poses kept for pairing
 constexpr std::uint64_t kNoMapRepeat = 100;  // the no-map line again on `status` every N scans
 
-// The odometry's settings as this host's odometry component runs them (its preset and every key it
-// is given: an `odometry.voxel_size` override reaches the localisation's preprocessing too), else
-// the localisation preset's (no odometry component here, or more than one). A preset `auto` (the
-// odometry's or, without one, the localisation's) is the one the scans told (`detected`); none
-// yet: empty (asked again on the first scans). Says which in the log.
-std::optional<odometry::OdometryConfig> odometry_in_use(
-    runtime::ComponentContext& ctx, std::optional<common::SensorPreset> own,
-    std::optional<common::SensorPreset> detected) {
-    const runtime::LaunchConfig& launch = ctx.launch_config();
-    std::vector<const runtime::ComponentSpec*> found;
-    for (const runtime::ComponentSpec& c : launch.components)
-        if (c.type == "odometry") found.push_back(&c);
-    odometry::OdometryConfig oc;
-    std::string from;
-    if (found.size() == 1) {
-        runtime::Parameters params(found[0]->params, launch.file, found[0]->name);
-        // As the odometry component reads them (its preset's default: auto).
-        const auto preset = odometry::load_odometry_preset(params, "", common::kAutoPreset);
-        if (!preset && !detected) return std::nullopt;
-        oc = odometry::load_odometry_config_for(params, "", preset ? *preset : *detected);
-        from = "odometry component '" + found[0]->name + "'" +
-               (preset ? "" : std::string(" (preset auto: ") + to_string(*detected) + ")");
-    } else {
-        const std::optional<common::SensorPreset> preset = own ? own : detected;
-        if (!preset) return std::nullopt;
-        oc = odometry::preset_config(*preset);
-        from = std::string("preset ") + common::to_string(*preset) + (own ? "" : " (auto)") + " (" +
-               (found.empty() ? "no" : std::to_string(found.size())) +
-               " odometry components in this host)";
-    }
-    char text[240];
-    std::snprintf(text, sizeof text, "scans preprocessed as by the %s: voxel_size %.3g m",
-                  from.c_str(), oc.voxel_size);
-    ctx.log().info(text);
-    return oc;
-}
-
-// The preset this host's one odometry component is named (not auto): the sensor its user told.
-// Empty with none, several, or one under auto.
-std::optional<common::SensorPreset> odometry_named_preset(runtime::ComponentContext& ctx) {
-    const runtime::LaunchConfig& launch = ctx.launch_config();
-    const runtime::ComponentSpec* found = nullptr;
-    for (const runtime::ComponentSpec& c : launch.components) {
-        if (c.type != "odometry") continue;
-        if (found) return std::nullopt;
-        found = &c;
-    }
-    if (!found) return std::nullopt;
-    runtime::Parameters params(found->params, launch.file, found->name);
-    return odometry::load_odometry_preset(params, "", common::kAutoPreset);
-}
-
-bool narrow(common::SensorPreset preset) {
-    return common::sensor_preset_row(preset).horizontal_fov_deg < 360.0;
-}
-
 // A scan on its way to the worker, with the odometry's pose and twist when they came in time.
 struct Scan {
     std::uint64_t index = 0;
@@ -170,26 +112,9 @@ class LocalisationComponent : public runtime::Component {
         hint_radius_.min_radius = p.get<double>("initial_pose.min_radius", hint_radius_.min_radius);
         if (!(hint_radius_.sigmas > 0)) p.fail("initial_pose.sigmas", "must be > 0");
         if (!(hint_radius_.min_radius > 0)) p.fail("initial_pose.min_radius", "must be > 0");
-        named_preset_ = load_sensor_preset_or_auto(p, common::kAutoPreset);
-        // auto: the sensor this host's odometry was named, else the one the first scans tell.
-        const std::optional<common::SensorPreset> told =
-            named_preset_ ? named_preset_ : odometry_named_preset(ctx);
-        sensor_told_ = told.has_value();
-        preset_ = told.value_or(common::kAutoSpinningPreset);
-        if (!named_preset_ && told) {
-            ctx.log().info(std::string("preset auto: the odometry component's preset ") +
-                           common::to_string(*told));
-        } else if (!named_preset_) {
-            ctx.log().info(
-                "preset auto: the localiser's and the map's settings of the spinning sensors "
-                "(hdl64, vlp32, vlp16 and os1-64 share them) until the first scans tell the "
-                "sensor: a narrow one's then (preset narrow), the map reloaded with them before "
-                "the first scan is localised");
-            narrow_config_ = load_localiser_config(p, common::SensorPreset::kNarrow);
-        }
-        config_ = load_localiser_config(p, preset_);
-        if (const auto oc = odometry_in_use(ctx, named_preset_, std::nullopt))
-            preprocessor_.emplace(oc->preprocess, oc->voxel_size);
+        sensor_.emplace(ctx);
+        preset_ = sensor_->preset();
+        config_ = sensor_->config();
         map_dir_ = p.path("map", "", PathCheck::kNone);
         site_poll_s_ = p.get<double>("site_poll_s", 0.0);
         if (!(site_poll_s_ >= 0)) p.fail("site_poll_s", "must be >= 0 (0: the start version only)");
@@ -408,7 +333,7 @@ class LocalisationComponent : public runtime::Component {
         // Under auto, every scan until one tells the sensor (a new site's too: the versions that
         // arrive later are loaded with its settings).
         const bool go_on = !new_site_ && map_state_ != kFailed;
-        if (!go_on && sensor_told_) {
+        if (!go_on && sensor_->ready()) {
             // A new site: the SLAM's poses are published as they come (on_slam_pose).
             if (!new_site_) publish_no_map(convert::to_seconds(m.header.stamp));
             return;
@@ -432,8 +357,7 @@ class LocalisationComponent : public runtime::Component {
                   scan.cloud.stamp);
             return;
         }
-        if ((!sensor_told_ || !preprocessor_) && !sensor_known(scan.cloud))
-            return;  // the next scan decides
+        if (!sensor_->ready() && !sensor_known(scan.cloud)) return;  // the next scan decides
         newest_scan_ = scan.cloud.stamp;
         const double stamp = scan.cloud.stamp;
         pairer_->add_scan(stamp, std::move(scan));
@@ -445,37 +369,26 @@ class LocalisationComponent : public runtime::Component {
     // the map's settings become the narrow preset's (the worker reloads the map with them before
     // its first scan, and the site's versions are loaded with them).
     bool sensor_known(const common::PointCloud& cloud) {
-        if (!detector_.add(cloud)) return false;
-        sensor_told_ = true;
-        const common::SensorPreset detected = detector_.preset();
-        ctx_.log().info(detector_.line());
-        if (!preprocessor_) {
-            const auto oc = odometry_in_use(ctx_, named_preset_, detected);
-            preprocessor_.emplace(oc->preprocess, oc->voxel_size);
-        }
-        if (!narrow_config_ || !narrow(detected) || !detector_.detected()) return true;
-        {
-            std::lock_guard<std::mutex> lock(mutex_);
-            retune_ = detected;
-        }
-        if (loader_) loader_->retune(localisation_map_preset(detected), *narrow_config_);
-        ctx_.log().info(std::string("preset auto: the scans are a narrow sensor's: the "
-                                    "localiser's and the map's settings of preset ") +
-                        common::to_string(detected));
+        std::optional<ScanSensor::Retune> retune;
+        if (!sensor_->add(cloud, &retune)) return false;
+        if (!retune) return true;
+        if (loader_) loader_->retune(localisation_map_preset(retune->preset), retune->config);
+        std::lock_guard<std::mutex> lock(mutex_);
+        retune_ = std::move(retune);
         return true;
     }
 
     // The worker, before a scan: the settings the scans told (sensor_known), the map in use
     // loaded again with them (no scan was localised yet: the detection comes first).
     void apply_retune() {
-        std::optional<common::SensorPreset> retune;
+        std::optional<ScanSensor::Retune> retune;
         {
             std::lock_guard<std::mutex> lock(mutex_);
             retune.swap(retune_);
         }
         if (!retune) return;
-        preset_ = *retune;
-        config_ = *narrow_config_;
+        preset_ = retune->preset;
+        config_ = retune->config;
         if (map_state_ == kReady && !map_dir_.empty()) load_map();
     }
 
@@ -730,7 +643,8 @@ class LocalisationComponent : public runtime::Component {
             publish_no_map(scan.cloud.stamp);
             return;
         }
-        preprocessor_->run(scan.cloud, scan.odometry ? &scan.velocity : nullptr, &preprocessed_);
+        sensor_->preprocessor().run(scan.cloud, scan.odometry ? &scan.velocity : nullptr,
+                                    &preprocessed_);
         if (global_) {
             std::lock_guard<std::mutex> lock(answer_mutex_);
             if (answer_) localiser_->give_answer(std::move(*answer_));
@@ -803,11 +717,8 @@ class LocalisationComponent : public runtime::Component {
     double odometry_wait_s_ = 1.0;
     HintRadius hint_radius_;
     common::SensorPreset preset_ = common::SensorPreset::kHdl64;  // the settings' (auto: spinning)
-    std::optional<common::SensorPreset> named_preset_;            // empty: auto
-    common::SensorDetector detector_;
-    bool sensor_told_ = false;  // named (here or the odometry's), or the scans told it (auto)
+    std::optional<ScanSensor> sensor_;  // the component's thread (its preprocessor: the worker's)
     LocaliserConfig config_;
-    std::optional<LocaliserConfig> narrow_config_;  // auto, none named: for a narrow sensor
     std::string map_dir_;
     enum MapState : int { kLoading, kReady, kFailed };
     std::atomic<int> map_state_{kLoading};
@@ -834,13 +745,12 @@ class LocalisationComponent : public runtime::Component {
     std::unique_ptr<Localiser> pending_;  // a newer version's, until the worker swaps it in
     std::string pending_name_;
     std::string pending_dir_;
-    std::optional<common::SensorPreset> retune_;  // the scans told a narrow sensor (auto)
-    StatusCounters counters_;                     // but skipped_scans: the worker's count
+    std::optional<ScanSensor::Retune> retune_;  // the scans told a narrow sensor (auto)
+    StatusCounters counters_;                   // but skipped_scans: the worker's count
     std::string odom_frame_ = "odom";
 
     // The worker's.
     std::unique_ptr<Localiser> localiser_;
-    std::optional<registration::Preprocessor> preprocessor_;  // auto: made on the first scans
     registration::PreprocessedScan preprocessed_;
     LocalisationState last_state_ = LocalisationState::kInitialising;
     std::uint64_t processed_ = 0, valid_ = 0;
