@@ -56,13 +56,13 @@
 #include <stdexcept>
 
 #include "common/core/one_line.hpp"
+#include "localisation/component/loaded_localiser.hpp"
 #include "localisation/component/localisation_messages.hpp"
 #include "localisation/component/localiser_params.hpp"
 #include "localisation/component/scan_sensor.hpp"
+#include "localisation/component/site_start.hpp"
 #include "localisation/component/version_loader.hpp"
 #include "localisation/core/new_site_pose.hpp"
-#include "map/core/site_anchor.hpp"
-#include "map/core/site_store.hpp"
 #include "registration/core/preprocess.hpp"
 #include "runtime/component.hpp"
 #include "runtime/convert/dds_string.hpp"
@@ -260,28 +260,19 @@ class LocalisationComponent : public runtime::Component {
         on_site_ = true;
         site_dir_ = site;
         if (!map_dir_.empty()) p.fail("map", "give either map or site_dir, not both");
-        map::SiteSession session;
-        try {
-            session = map::resolve_site(site, version);
-        } catch (const common::IoError& e) {
-            p.fail(version.empty() ? "site_dir" : "site_version", e.what());
+        const SiteStart start = resolve_site_start(p, site, version);
+        for (const std::string& note : start.notes) ctx_.log().warn(note);
+        if (start.T_site_map) {
+            T_site_map_ = start.T_site_map;
+            site_pose_out_ =
+                ctx_.advertise<msg::PoseWithCovarianceStamped>("site_pose", TopicRole::kState);
+            ctx_.log().info("site " + site + ": anchored (" + start.anchor_file +
+                            "): the pose in frame `site` on site_pose too");
         }
-        for (const std::string& note : session.notes) ctx_.log().warn(note);
-        try {
-            if (const auto anchor = map::read_anchor(site)) {
-                T_site_map_ = anchor->T_site_map;
-                site_pose_out_ =
-                    ctx_.advertise<msg::PoseWithCovarianceStamped>("site_pose", TopicRole::kState);
-                ctx_.log().info("site " + site + ": anchored (" + map::anchor_file(site) +
-                                "): the pose in frame `site` on site_pose too");
-            }
-        } catch (const common::IoError& e) {
-            p.fail("site_dir", e.what());
-        }
-        if (session.start) {
-            map_dir_ = session.start->map_dir();
-            in_use_ = session.start->number;
-            ctx_.log().info("site " + site + ": localising on " + session.describe());
+        if (!start.map_dir.empty()) {
+            map_dir_ = start.map_dir;
+            in_use_ = start.in_use;
+            ctx_.log().info("site " + site + ": localising on " + start.describe);
             return;
         }
         new_site_ = true;
@@ -294,36 +285,25 @@ class LocalisationComponent : public runtime::Component {
     // The worker's first job: the map, or why there is none (no_map_): the component then runs
     // and localises nothing.
     void load_map() {
-        const auto t0 = std::chrono::steady_clock::now();
-        const std::string& dir = map_dir_;
-        ctx_.log().info("loading the map " + dir);
-        std::shared_ptr<const LocalisationMap> map;
+        ctx_.log().info("loading the map " + map_dir_);
+        LoadedLocaliser l;
         try {
-            std::vector<std::string> refused;
-            map = load_localisation_map(dir, localisation_map_preset(preset_), &refused);
-            for (const std::string& r : refused) ctx_.log().warn("map: " + r + " (left out)");
-            localiser_ = std::make_unique<Localiser>(map, config_);
-            if (global_) {
-                // The query's own (it keeps scratch state): never shared with tracking.
-                std::lock_guard<std::mutex> lock(global_mutex_);
-                global_localiser_ = std::make_shared<GlobalLocaliser>(map, config_.global);
-                localiser_->set_global_elsewhere(true);
-            }
+            l = load_localiser(map_dir_, localisation_map_preset(preset_), config_,
+                               global_.has_value());
         } catch (const std::exception& e) {
             no_map_ = "no map to localise on: " + common::one_line(e.what());
             ctx_.log().error(no_map_ + " (the component runs and localises nothing)");
             map_state_ = kFailed;
             return;
         }
+        for (const std::string& r : l.refused) ctx_.log().warn("map: " + r + " (left out)");
+        localiser_ = std::move(l.localiser);
+        if (l.global) {
+            std::lock_guard<std::mutex> lock(global_mutex_);
+            global_localiser_ = std::move(l.global);
+        }
         map_state_ = kReady;
-        const double s =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        char text[300];
-        std::snprintf(text, sizeof text,
-                      "map %s: %zu keyframes, %zu local maps, %zu voxels, loaded in %.2f s",
-                      dir.c_str(), map->keyframes().size(), map->local_maps(),
-                      map->voxels().voxels.size(), s);
-        ctx_.log().info(text);
+        ctx_.log().info(l.line());
     }
 
     // --- the component's thread: inputs, pairing ---
