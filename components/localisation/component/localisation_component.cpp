@@ -56,6 +56,7 @@
 #include <stdexcept>
 
 #include "common/core/one_line.hpp"
+#include "localisation/component/global_answers.hpp"
 #include "localisation/component/loaded_localiser.hpp"
 #include "localisation/component/localisation_messages.hpp"
 #include "localisation/component/localiser_params.hpp"
@@ -152,7 +153,9 @@ class LocalisationComponent : public runtime::Component {
             global_.emplace(
                 runtime::WorkerOptions{ctx.name(), "global", 1, runtime::BusyPolicy::kDropOldest,
                                        runtime::StopPolicy::kAbandon},
-                [this](GlobalWorker::Step& step, const StopToken&) { answer_query(*step.item); },
+                [this](GlobalWorker::Step& step, const StopToken&) {
+                    ctx_.log().info(answers_.answer(*step.item));
+                },
                 [this](const std::string& what) {
                     event(StatusLevel::kError, StatusCode::kLocalisationFailed,
                           common::one_line(what), 0.0);
@@ -298,10 +301,7 @@ class LocalisationComponent : public runtime::Component {
         }
         for (const std::string& r : l.refused) ctx_.log().warn("map: " + r + " (left out)");
         localiser_ = std::move(l.localiser);
-        if (l.global) {
-            std::lock_guard<std::mutex> lock(global_mutex_);
-            global_localiser_ = std::move(l.global);
-        }
+        if (l.global) answers_.use(std::move(l.global));
         map_state_ = kReady;
         ctx_.log().info(l.line());
     }
@@ -444,10 +444,7 @@ class LocalisationComponent : public runtime::Component {
         }
         // The version's global localiser answers the next query (one out on the old map finishes
         // there: the old one lives until then, and its answer holds in the same map frame).
-        if (global) {
-            std::lock_guard<std::mutex> lock(global_mutex_);
-            global_localiser_ = std::move(global);
-        }
+        if (global) answers_.use(std::move(global));
         if (localiser_) next->take_track(*localiser_);
         localiser_ = std::move(next);
         ctx_.log().info("now on " + name + " (" + to_string(localiser_->state()) + ")");
@@ -559,35 +556,6 @@ class LocalisationComponent : public runtime::Component {
         }
     }
 
-    // --- the global thread: one query, its answer left for the worker's next scan ---
-
-    // Each query in the log with its wall-clock span (`./ltm bench budget` sets the poses
-    // published meanwhile against it).
-    void answer_query(const GlobalRequest& request) {
-        const double t0 = wall_clock_s();
-        std::shared_ptr<GlobalLocaliser> global;
-        {
-            std::lock_guard<std::mutex> lock(global_mutex_);
-            global = global_localiser_;
-        }
-        // A localiser asks only with its version's global localiser swapped in with it.
-        if (!global) throw std::logic_error("a global query without a map to answer it on");
-        GlobalAnswer a = answer(*global, request);
-        char text[400];
-        std::snprintf(text, sizeof text,
-                      "global query for the scan at %.3f s: %.3f s (wall %.3f to %.3f): %s",
-                      request.stamp, a.result.time_s, t0, wall_clock_s(),
-                      a.result.localised ? "localised" : a.result.reason.c_str());
-        ctx_.log().info(text);
-        std::lock_guard<std::mutex> lock(answer_mutex_);
-        answer_ = std::move(a);
-    }
-
-    static double wall_clock_s() {
-        return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch())
-            .count();
-    }
-
     // A new site: the SLAM's pose of a scan is its map pose (state OFF_MAP: not registered to a
     // saved map; the map is the one being made).
     void on_slam_pose(const msg::Odometry& m) {
@@ -625,11 +593,7 @@ class LocalisationComponent : public runtime::Component {
         }
         sensor_->preprocessor().run(scan.cloud, scan.odometry ? &scan.velocity : nullptr,
                                     &preprocessed_);
-        if (global_) {
-            std::lock_guard<std::mutex> lock(answer_mutex_);
-            if (answer_) localiser_->give_answer(std::move(*answer_));
-            answer_.reset();
-        }
+        if (global_) answers_.give(*localiser_);
         const LocalisationUpdate u =
             localiser_->process(scan.cloud.stamp, preprocessed_.map_points, scan.odometry);
         if (global_)
@@ -741,14 +705,10 @@ class LocalisationComponent : public runtime::Component {
     runtime::Publisher<msg::PoseWithCovarianceStamped> site_pose_out_;
     runtime::Publisher<msg::TransformStamped> correction_out_;
     runtime::Publisher<msg::Status> events_out_;
-    // The global thread's, and its answer for the worker (under answer_mutex_).
-    // The global thread's (a query keeps scratch state in it: never shared with tracking); the
-    // worker swaps a newer version's in (global_mutex_).
-    std::shared_ptr<GlobalLocaliser> global_localiser_;
-    std::shared_ptr<GlobalLocaliser> pending_global_;  // with pending_
-    std::mutex global_mutex_;
-    std::mutex answer_mutex_;
-    std::optional<GlobalAnswer> answer_;
+    // The global thread's global localiser (the worker swaps a newer version's in) and its answer
+    // for the worker.
+    GlobalAnswers answers_;
+    std::shared_ptr<GlobalLocaliser> pending_global_;  // with pending_ (under mutex_)
 
     std::optional<GlobalWorker> global_;
     std::optional<Worker> worker_;  // last: stopped before the members it uses go
