@@ -62,6 +62,7 @@
 #include "localisation/component/localiser_params.hpp"
 #include "localisation/component/scan_sensor.hpp"
 #include "localisation/component/site_start.hpp"
+#include "localisation/component/version_handoff.hpp"
 #include "localisation/component/version_loader.hpp"
 #include "localisation/core/new_site_pose.hpp"
 #include "registration/core/preprocess.hpp"
@@ -414,13 +415,7 @@ class LocalisationComponent : public runtime::Component {
         char text[300];
         std::snprintf(text, sizeof text, "site %s: %s arrived (loaded in %.2f s): localising on it",
                       site_dir_.c_str(), n->version.name.c_str(), n->load_s);
-        {
-            std::lock_guard<std::mutex> lock(mutex_);
-            pending_ = std::move(n->localiser);
-            pending_global_ = std::move(n->global);
-            pending_name_ = n->version.name;
-            pending_dir_ = n->version.map_dir();
-        }
+        handoff_.offer(std::move(*n));
         event(StatusLevel::kOk, StatusCode::kOnMap, text, newest_scan_ > 0 ? newest_scan_ : 0.0);
         if (map_state_ != kReady) {
             no_map_.clear();
@@ -431,23 +426,16 @@ class LocalisationComponent : public runtime::Component {
 
     // The worker, before a scan: a newer version's localiser takes over the running one's track.
     void swap_in_pending() {
-        std::unique_ptr<Localiser> next;
-        std::shared_ptr<GlobalLocaliser> global;
-        std::string name;
-        {
-            std::lock_guard<std::mutex> lock(mutex_);
-            if (!pending_) return;
-            next = std::move(pending_);
-            global = std::move(pending_global_);
-            name = pending_name_;
-            map_dir_ = pending_dir_;  // the map a retune loads again
-        }
+        std::optional<VersionLoader::Loaded> next = handoff_.take();
+        if (!next) return;
+        map_dir_ = next->version.map_dir();  // the map a retune loads again
         // The version's global localiser answers the next query (one out on the old map finishes
         // there: the old one lives until then, and its answer holds in the same map frame).
-        if (global) answers_.use(std::move(global));
-        if (localiser_) next->take_track(*localiser_);
-        localiser_ = std::move(next);
-        ctx_.log().info("now on " + name + " (" + to_string(localiser_->state()) + ")");
+        if (next->global) answers_.use(std::move(next->global));
+        if (localiser_) next->localiser->take_track(*localiser_);
+        localiser_ = std::move(next->localiser);
+        ctx_.log().info("now on " + next->version.name + " (" + to_string(localiser_->state()) +
+                        ")");
     }
 
     // Hands on every waiting scan whose odometry came (with its pose and twist), or will not come
@@ -686,9 +674,6 @@ class LocalisationComponent : public runtime::Component {
 
     // Shared with the worker (under mutex_).
     std::mutex mutex_;
-    std::unique_ptr<Localiser> pending_;  // a newer version's, until the worker swaps it in
-    std::string pending_name_;
-    std::string pending_dir_;
     std::optional<ScanSensor::Retune> retune_;  // the scans told a narrow sensor (auto)
     StatusCounters counters_;                   // but skipped_scans: the worker's count
     std::string odom_frame_ = "odom";
@@ -708,7 +693,7 @@ class LocalisationComponent : public runtime::Component {
     // The global thread's global localiser (the worker swaps a newer version's in) and its answer
     // for the worker.
     GlobalAnswers answers_;
-    std::shared_ptr<GlobalLocaliser> pending_global_;  // with pending_ (under mutex_)
+    VersionHandoff handoff_;  // a newer site version, from the component's thread to the worker
 
     std::optional<GlobalWorker> global_;
     std::optional<Worker> worker_;  // last: stopped before the members it uses go
