@@ -60,6 +60,7 @@
 #include "localisation/component/loaded_localiser.hpp"
 #include "localisation/component/localisation_messages.hpp"
 #include "localisation/component/localiser_params.hpp"
+#include "localisation/component/scan_pairing.hpp"
 #include "localisation/component/scan_sensor.hpp"
 #include "localisation/component/site_start.hpp"
 #include "localisation/component/version_handoff.hpp"
@@ -74,7 +75,6 @@
 #include "runtime/convert/status.hpp"
 #include "runtime/convert/transform.hpp"
 #include "runtime/link_messages.hpp"
-#include "runtime/stamp_pairer.hpp"
 #include "runtime/worker.hpp"
 
 namespace ltm::localisation {
@@ -86,17 +86,7 @@ using runtime::PathCheck;
 using runtime::StopToken;
 using runtime::TopicRole;
 
-constexpr double kSameStamp = 1e-4;          // a scan and its odometry pose [s]
-constexpr std::size_t kMaxOdometry = 200;    // odometry poses kept for pairing
 constexpr std::uint64_t kNoMapRepeat = 100;  // the no-map line again on `status` every N scans
-
-// A scan on its way to the worker, with the odometry's pose and twist when they came in time.
-struct Scan {
-    std::uint64_t index = 0;
-    common::PointCloud cloud;
-    std::optional<OdometryInput> odometry;
-    registration::Vector6d velocity = registration::Vector6d::Zero();  // [v; w], LiDAR frame
-};
 
 using Worker = runtime::Worker<Scan, PoseHint>;
 using GlobalWorker = runtime::Worker<GlobalRequest>;
@@ -135,8 +125,7 @@ class LocalisationComponent : public runtime::Component {
         if (map_load == "worker" && !skip_while_busy_)
             p.fail("map_load", "worker needs skip_while_busy (offline, every scan waits anyway)");
         if (map_load == "start" && map_state_ == kLoading) load_map();
-        pairer_.emplace(runtime::StampPairerOptions{kSameStamp, kMaxOdometry, 0, kMaxOdometry,
-                                                    odometry_wait_s_});
+        pairing_.emplace(odometry_wait_s_);
         // Live: a scan that comes while the worker is busy replaces the one waiting for it.
         worker_.emplace(
             runtime::WorkerOptions{
@@ -235,10 +224,7 @@ class LocalisationComponent : public runtime::Component {
 
     void on_shutdown() override {
         // Scans still waiting for their odometry go without it.
-        if (worker_->started())
-            pairer_->release_all([this](double, Scan&& s, std::optional<convert::OdometryData>&&) {
-                submit(std::move(s));
-            });
+        if (worker_->started()) pairing_->release_all([this](Scan&& s) { submit(std::move(s)); });
         worker_->stop(ctx_.work_deadline());
         if (global_) global_->stop();
         const StatusCounters c = counters();
@@ -340,8 +326,7 @@ class LocalisationComponent : public runtime::Component {
         }
         if (!sensor_->ready() && !sensor_known(scan.cloud)) return;  // the next scan decides
         newest_scan_ = scan.cloud.stamp;
-        const double stamp = scan.cloud.stamp;
-        pairer_->add_scan(stamp, std::move(scan));
+        pairing_->add_scan(std::move(scan));
         pair();
     }
 
@@ -387,7 +372,7 @@ class LocalisationComponent : public runtime::Component {
                 publish_new_site(*u);
             return;
         }
-        pairer_->add_pose(stamp, std::move(o));
+        pairing_->add_pose(std::move(o));
         pair();
     }
 
@@ -441,41 +426,15 @@ class LocalisationComponent : public runtime::Component {
     // Hands on every waiting scan whose odometry came (with its pose and twist), or will not come
     // (see the file comment).
     void pair() {
-        // While an odometry runs (its writer matched), its pose of each scan, a newer one or its
-        // "no pose" status will come: wait for it, however late (a loaded machine's odometry was
-        // more than odometry_wait_s behind and scans went on without their poses: tracking from
-        // a guess, wrong fixes). Without one, odometry_wait_s of wall time.
-        pairer_->set_wait_s(ctx_.matched_publishers("odometry") > 0
-                                ? std::numeric_limits<double>::infinity()
-                                : odometry_wait_s_);
-        pairer_->release([this](double stamp, Scan&& s, std::optional<convert::OdometryData>&& o) {
-            if (o) {
-                s.odometry = OdometryInput{o->T_parent_child, segment_at(stamp)};
-                s.velocity << o->linear_velocity, o->angular_velocity;
-            }
-            submit(std::move(s));
-        });
-    }
-
-    // The odometry segment of a scan: the one its newest restart up to the scan started.
-    std::uint32_t segment_at(double stamp) const {
-        std::uint32_t segment = 0;
-        for (const auto& [restart, number] : restarts_)
-            if (restart <= stamp + kSameStamp) segment = std::max(segment, number);
-        return segment;
+        pairing_->release(ctx_.matched_publishers("odometry") > 0,
+                          [this](Scan&& s) { submit(std::move(s)); });
     }
 
     // The odometry's status lines: restarts (a new segment), and scans it has no pose for.
     void on_status(const msg::Status& m) {
         const convert::StatusData s = convert::from_msg(m);
         if (s.component == ctx_.name()) return;
-        const double stamp = convert::to_seconds(s.stamp);
-        if (s.code == StatusCode::kRestarted) {
-            restarts_.emplace_back(stamp, s.segment);
-        } else if (common::says_no_pose(s.code)) {  // lost, skipped, rejected, bad cloud
-            pairer_->add_no_pose(stamp);
-            pair();
-        }
+        if (pairing_->status(s)) pair();
     }
 
     void on_initial_pose(const msg::PoseWithCovarianceStamped& m) {
@@ -666,8 +625,7 @@ class LocalisationComponent : public runtime::Component {
     std::atomic<std::uint64_t> no_map_scans_{0};
 
     // The component's thread.
-    std::optional<runtime::StampPairer<Scan, convert::OdometryData>> pairer_;
-    std::vector<std::pair<double, std::uint32_t>> restarts_;  // the odometry's: stamp, segment
+    std::optional<ScanPairing> pairing_;  // scans with their odometry poses
     double newest_scan_ = -1e300;
     std::string odom_frame_seen_;
     std::uint64_t scans_ = 0;
