@@ -5,22 +5,17 @@
 #include <stdexcept>
 
 namespace ltm::localisation {
-namespace {
-
-double wall_clock_s() {
+double GlobalAnswers::wall_clock_s() {
     return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch())
         .count();
 }
-
-}  // namespace
 
 void GlobalAnswers::use(std::shared_ptr<GlobalLocaliser> global) {
     std::lock_guard<std::mutex> lock(global_mutex_);
     global_ = std::move(global);
 }
 
-std::string GlobalAnswers::answer(const GlobalRequest& request) {
-    const double t0 = wall_clock_s();
+std::string GlobalAnswers::answer(const GlobalRequest& request, double t0) {
     std::shared_ptr<GlobalLocaliser> global;
     {
         std::lock_guard<std::mutex> lock(global_mutex_);

@@ -22,11 +22,14 @@ class GlobalAnswers {
 
     // The global thread: answers `request` and keeps the answer; the log line with its
     // wall-clock span (`./ltm bench budget` sets the poses published meanwhile against it).
-    // Throws std::logic_error without a global localiser (a localiser asks only with one).
-    std::string answer(const GlobalRequest& request);
+    // `t0`: when the query was taken (wall_clock_s). Throws std::logic_error without a global
+    // localiser (a localiser asks only with one).
+    std::string answer(const GlobalRequest& request, double t0);
 
     // The worker, before a scan: the answer waiting, given to `localiser`.
     void give(Localiser& localiser);
+
+    static double wall_clock_s();  // the system clock [s]
 
   private:
     std::mutex global_mutex_;

@@ -46,6 +46,7 @@
 // (`odometry`: no SLAM on it) the same under the base station's map_to_odom, only while the base
 // station's mapping says it belongs to no version (`slam_map_version`, "": a new site there too)
 // and no version is offered (`site/offer`); otherwise only the status goes out ("no map yet ...").
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -54,8 +55,12 @@
 #include <mutex>
 #include <optional>
 #include <stdexcept>
+#include <thread>
 
+#include "common/core/cpu_budget.hpp"
+#include "common/core/cpu_pacer.hpp"
 #include "common/core/one_line.hpp"
+#include "common/core/thread_clock.hpp"
 #include "localisation/component/global_answers.hpp"
 #include "localisation/component/loaded_localiser.hpp"
 #include "localisation/component/localisation_messages.hpp"
@@ -98,6 +103,13 @@ class LocalisationComponent : public runtime::Component {
         frame_id_ = p.get<std::string>("frame_id", "map");
         skip_while_busy_ = p.get<bool>("skip_while_busy", true);
         global_thread_ = p.get<bool>("global_thread", skip_while_busy_);
+        // Issue 28: the global queries (on their thread) charged to the process's background CPU
+        // budget (common/core/cpu_budget.hpp, declared by the maintenance's or the mapping's
+        // `cpu_budget`): a query waits while it is in debt (at most kGlobalWaitMax), and the
+        // paced workers wait for what a query used. Tracking is never paced.
+        global_budget_ = p.get<std::string>("global_cpu_budget", "");
+        if (!global_budget_.empty() && !global_thread_)
+            p.fail("global_cpu_budget", "needs global_thread (the queries on their own thread)");
         odometry_wait_s_ = p.get<double>("odometry_wait_s", 1.0);
         if (!(odometry_wait_s_ >= 0)) p.fail("odometry_wait_s", "must be >= 0 (0: do not wait)");
         hint_radius_.sigmas = p.get<double>("initial_pose.sigmas", hint_radius_.sigmas);
@@ -143,9 +155,7 @@ class LocalisationComponent : public runtime::Component {
             global_.emplace(
                 runtime::WorkerOptions{ctx.name(), "global", 1, runtime::BusyPolicy::kDropOldest,
                                        runtime::StopPolicy::kAbandon},
-                [this](GlobalWorker::Step& step, const StopToken&) {
-                    ctx_.log().info(answers_.answer(*step.item));
-                },
+                [this](GlobalWorker::Step& step, const StopToken&) { answer_query(*step.item); },
                 [this](const std::string& what) {
                     event(StatusLevel::kError, StatusCode::kLocalisationFailed,
                           common::one_line(what), 0.0);
@@ -503,6 +513,42 @@ class LocalisationComponent : public runtime::Component {
         }
     }
 
+    // --- the global thread ---
+
+    // One query, its answer left for the worker's next scan; the log line with its wall-clock
+    // span (`./ltm bench budget` sets the poses published meanwhile against it). With
+    // global_cpu_budget it waits for the budget first and is charged to it.
+    void answer_query(const GlobalRequest& request) {
+        const double t0 = GlobalAnswers::wall_clock_s();
+        pace_query();
+        const double cpu0 = common::thread_cpu_s();
+        const std::string line = answers_.answer(request, t0);
+        if (global_pacer_)
+            global_pacer_->wait_after(global_cpu_s_ += common::thread_cpu_s() - cpu0,
+                                      common::steady_wall_s());
+        ctx_.log().info(line);
+    }
+
+    // global_cpu_budget: joins the budget at the first query (the components declaring it are all
+    // configured by then) and waits while it is in debt, at most kGlobalWaitMax.
+    void pace_query() {
+        if (global_budget_.empty()) return;
+        if (!global_pacer_) {
+            std::string error;
+            auto budget = common::shared_cpu_budget(global_budget_, 0.0, 0.0, &error);
+            if (!budget) {
+                ctx_.log().warn("global_cpu_budget: " + error + ": the queries are not paced");
+                global_budget_.clear();
+                return;
+            }
+            global_pacer_.emplace(std::move(budget));
+            global_pacer_->wait_after(0.0, common::steady_wall_s());
+        }
+        const double wait =
+            std::min(global_pacer_->wait_now(common::steady_wall_s()), kGlobalWaitMax);
+        if (wait > 0.0) std::this_thread::sleep_for(std::chrono::duration<double>(wait));
+    }
+
     // A new site: the SLAM's pose of a scan is its map pose (state OFF_MAP: not registered to a
     // saved map; the map is the one being made).
     void on_slam_pose(const msg::Odometry& m) {
@@ -654,6 +700,11 @@ class LocalisationComponent : public runtime::Component {
     VersionHandoff handoff_;  // a newer site version, from the component's thread to the worker
 
     std::optional<GlobalWorker> global_;
+    // global_cpu_budget (the global thread's).
+    static constexpr double kGlobalWaitMax = 0.5;  // [s] a query waits for the budget at most
+    std::string global_budget_;
+    std::optional<common::CpuPacer> global_pacer_;
+    double global_cpu_s_ = 0.0;
     std::optional<Worker> worker_;  // last: stopped before the members it uses go
 };
 
