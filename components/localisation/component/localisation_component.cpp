@@ -60,16 +60,17 @@
 #include "common/core/cpu_budget.hpp"
 #include "common/core/cpu_pacer.hpp"
 #include "common/core/one_line.hpp"
-#include "common/core/sensor_detect.hpp"
 #include "common/core/thread_clock.hpp"
+#include "localisation/component/global_answers.hpp"
+#include "localisation/component/loaded_localiser.hpp"
 #include "localisation/component/localisation_messages.hpp"
 #include "localisation/component/localiser_params.hpp"
+#include "localisation/component/scan_pairing.hpp"
+#include "localisation/component/scan_sensor.hpp"
+#include "localisation/component/site_start.hpp"
+#include "localisation/component/version_handoff.hpp"
 #include "localisation/component/version_loader.hpp"
 #include "localisation/core/new_site_pose.hpp"
-#include "map/core/site_anchor.hpp"
-#include "map/core/site_store.hpp"
-#include "odometry/core/odometry_config.hpp"
-#include "odometry/params/odometry_params.hpp"
 #include "registration/core/preprocess.hpp"
 #include "runtime/component.hpp"
 #include "runtime/convert/dds_string.hpp"
@@ -79,7 +80,6 @@
 #include "runtime/convert/status.hpp"
 #include "runtime/convert/transform.hpp"
 #include "runtime/link_messages.hpp"
-#include "runtime/stamp_pairer.hpp"
 #include "runtime/worker.hpp"
 
 namespace ltm::localisation {
@@ -91,54 +91,7 @@ using runtime::PathCheck;
 using runtime::StopToken;
 using runtime::TopicRole;
 
-constexpr double kSameStamp = 1e-4;          // a scan and its odometry pose [s]
-constexpr std::size_t kMaxOdometry = 200;    // odometry poses kept for pairing
 constexpr std::uint64_t kNoMapRepeat = 100;  // the no-map line again on `status` every N scans
-
-// The odometry's settings as this host's odometry component runs them (its preset and every key it
-// is given: an `odometry.voxel_size` override reaches the localisation's preprocessing too), else
-// the localisation preset's (no odometry component here, or more than one). A preset `auto` (the
-// odometry's or, without one, the localisation's) is the one the scans told (`detected`); none
-// yet: empty (asked again on the first scans). Says which in the log.
-std::optional<odometry::OdometryConfig> odometry_in_use(
-    runtime::ComponentContext& ctx, std::optional<common::SensorPreset> own,
-    std::optional<common::SensorPreset> detected) {
-    const runtime::LaunchConfig& launch = ctx.launch_config();
-    std::vector<const runtime::ComponentSpec*> found;
-    for (const runtime::ComponentSpec& c : launch.components)
-        if (c.type == "odometry") found.push_back(&c);
-    odometry::OdometryConfig oc;
-    std::string from;
-    if (found.size() == 1) {
-        runtime::Parameters params(found[0]->params, launch.file, found[0]->name);
-        // As the odometry component reads them (its preset's default: auto).
-        const auto preset = odometry::load_odometry_preset(params, "", common::kAutoPreset);
-        if (!preset && !detected) return std::nullopt;
-        oc = odometry::load_odometry_config_for(params, "", preset ? *preset : *detected);
-        from = "odometry component '" + found[0]->name + "'" +
-               (preset ? "" : std::string(" (preset auto: ") + to_string(*detected) + ")");
-    } else {
-        const std::optional<common::SensorPreset> preset = own ? own : detected;
-        if (!preset) return std::nullopt;
-        oc = odometry::preset_config(*preset);
-        from = std::string("preset ") + common::to_string(*preset) + (own ? "" : " (auto)") + " (" +
-               (found.empty() ? "no" : std::to_string(found.size())) +
-               " odometry components in this host)";
-    }
-    char text[240];
-    std::snprintf(text, sizeof text, "scans preprocessed as by the %s: voxel_size %.3g m",
-                  from.c_str(), oc.voxel_size);
-    ctx.log().info(text);
-    return oc;
-}
-
-// A scan on its way to the worker, with the odometry's pose and twist when they came in time.
-struct Scan {
-    std::uint64_t index = 0;
-    common::PointCloud cloud;
-    std::optional<OdometryInput> odometry;
-    registration::Vector6d velocity = registration::Vector6d::Zero();  // [v; w], LiDAR frame
-};
 
 using Worker = runtime::Worker<Scan, PoseHint>;
 using GlobalWorker = runtime::Worker<GlobalRequest>;
@@ -163,16 +116,9 @@ class LocalisationComponent : public runtime::Component {
         hint_radius_.min_radius = p.get<double>("initial_pose.min_radius", hint_radius_.min_radius);
         if (!(hint_radius_.sigmas > 0)) p.fail("initial_pose.sigmas", "must be > 0");
         if (!(hint_radius_.min_radius > 0)) p.fail("initial_pose.min_radius", "must be > 0");
-        named_preset_ = load_sensor_preset_or_auto(p, common::kAutoPreset);
-        preset_ = named_preset_.value_or(common::kAutoSpinningPreset);
-        if (!named_preset_)
-            ctx.log().info(
-                "preset auto: the localiser's and the map's settings of the spinning sensors "
-                "(hdl64, vlp32, vlp16 and os1-64 share them; a narrow sensor needs preset: "
-                "narrow); the scans' preprocessing as the first scans tell");
-        config_ = load_localiser_config(p, preset_);
-        if (const auto oc = odometry_in_use(ctx, named_preset_, std::nullopt))
-            preprocessor_.emplace(oc->preprocess, oc->voxel_size);
+        sensor_.emplace(ctx);
+        preset_ = sensor_->preset();
+        config_ = sensor_->config();
         map_dir_ = p.path("map", "", PathCheck::kNone);
         site_poll_s_ = p.get<double>("site_poll_s", 0.0);
         if (!(site_poll_s_ >= 0)) p.fail("site_poll_s", "must be >= 0 (0: the start version only)");
@@ -191,8 +137,7 @@ class LocalisationComponent : public runtime::Component {
         if (map_load == "worker" && !skip_while_busy_)
             p.fail("map_load", "worker needs skip_while_busy (offline, every scan waits anyway)");
         if (map_load == "start" && map_state_ == kLoading) load_map();
-        pairer_.emplace(runtime::StampPairerOptions{kSameStamp, kMaxOdometry, 0, kMaxOdometry,
-                                                    odometry_wait_s_});
+        pairing_.emplace(odometry_wait_s_);
         // Live: a scan that comes while the worker is busy replaces the one waiting for it.
         worker_.emplace(
             runtime::WorkerOptions{
@@ -289,10 +234,7 @@ class LocalisationComponent : public runtime::Component {
 
     void on_shutdown() override {
         // Scans still waiting for their odometry go without it.
-        if (worker_->started())
-            pairer_->release_all([this](double, Scan&& s, std::optional<convert::OdometryData>&&) {
-                submit(std::move(s));
-            });
+        if (worker_->started()) pairing_->release_all([this](Scan&& s) { submit(std::move(s)); });
         worker_->stop(ctx_.work_deadline());
         if (global_) global_->stop();
         const StatusCounters c = counters();
@@ -318,28 +260,19 @@ class LocalisationComponent : public runtime::Component {
         on_site_ = true;
         site_dir_ = site;
         if (!map_dir_.empty()) p.fail("map", "give either map or site_dir, not both");
-        map::SiteSession session;
-        try {
-            session = map::resolve_site(site, version);
-        } catch (const common::IoError& e) {
-            p.fail(version.empty() ? "site_dir" : "site_version", e.what());
+        const SiteStart start = resolve_site_start(p, site, version);
+        for (const std::string& note : start.notes) ctx_.log().warn(note);
+        if (start.T_site_map) {
+            T_site_map_ = start.T_site_map;
+            site_pose_out_ =
+                ctx_.advertise<msg::PoseWithCovarianceStamped>("site_pose", TopicRole::kState);
+            ctx_.log().info("site " + site + ": anchored (" + start.anchor_file +
+                            "): the pose in frame `site` on site_pose too");
         }
-        for (const std::string& note : session.notes) ctx_.log().warn(note);
-        try {
-            if (const auto anchor = map::read_anchor(site)) {
-                T_site_map_ = anchor->T_site_map;
-                site_pose_out_ =
-                    ctx_.advertise<msg::PoseWithCovarianceStamped>("site_pose", TopicRole::kState);
-                ctx_.log().info("site " + site + ": anchored (" + map::anchor_file(site) +
-                                "): the pose in frame `site` on site_pose too");
-            }
-        } catch (const common::IoError& e) {
-            p.fail("site_dir", e.what());
-        }
-        if (session.start) {
-            map_dir_ = session.start->map_dir();
-            in_use_ = session.start->number;
-            ctx_.log().info("site " + site + ": localising on " + session.describe());
+        if (!start.map_dir.empty()) {
+            map_dir_ = start.map_dir;
+            in_use_ = start.in_use;
+            ctx_.log().info("site " + site + ": localising on " + start.describe);
             return;
         }
         new_site_ = true;
@@ -352,50 +285,44 @@ class LocalisationComponent : public runtime::Component {
     // The worker's first job: the map, or why there is none (no_map_): the component then runs
     // and localises nothing.
     void load_map() {
-        const auto t0 = std::chrono::steady_clock::now();
-        const std::string& dir = map_dir_;
-        ctx_.log().info("loading the map " + dir);
-        std::shared_ptr<const LocalisationMap> map;
+        ctx_.log().info("loading the map " + map_dir_);
+        LoadedLocaliser l;
         try {
-            std::vector<std::string> refused;
-            map = load_localisation_map(dir, localisation_map_preset(preset_), &refused);
-            for (const std::string& r : refused) ctx_.log().warn("map: " + r + " (left out)");
-            localiser_ = std::make_unique<Localiser>(map, config_);
-            if (global_) {
-                // The query's own (it keeps scratch state): never shared with tracking.
-                std::lock_guard<std::mutex> lock(global_mutex_);
-                global_localiser_ = std::make_shared<GlobalLocaliser>(map, config_.global);
-                localiser_->set_global_elsewhere(true);
-            }
+            l = load_localiser(map_dir_, localisation_map_preset(preset_), config_,
+                               global_.has_value());
         } catch (const std::exception& e) {
             no_map_ = "no map to localise on: " + common::one_line(e.what());
             ctx_.log().error(no_map_ + " (the component runs and localises nothing)");
             map_state_ = kFailed;
             return;
         }
+        for (const std::string& r : l.refused) ctx_.log().warn("map: " + r + " (left out)");
+        localiser_ = std::move(l.localiser);
+        if (l.global) answers_.use(std::move(l.global));
         map_state_ = kReady;
-        const double s =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        char text[300];
-        std::snprintf(text, sizeof text,
-                      "map %s: %zu keyframes, %zu local maps, %zu voxels, loaded in %.2f s",
-                      dir.c_str(), map->keyframes().size(), map->local_maps(),
-                      map->voxels().voxels.size(), s);
-        ctx_.log().info(text);
+        ctx_.log().info(l.line());
     }
 
     // --- the component's thread: inputs, pairing ---
 
     void on_points(const msg::PointCloud2& m) {
         const std::uint64_t index = scans_++;
-        if (new_site_) return;  // the SLAM's poses are published as they come (on_slam_pose)
-        if (map_state_ == kFailed) {
-            publish_no_map(convert::to_seconds(m.header.stamp));
+        // Under auto, every scan until one tells the sensor (a new site's too: the versions that
+        // arrive later are loaded with its settings).
+        const bool go_on = !new_site_ && map_state_ != kFailed;
+        if (!go_on && sensor_->ready()) {
+            // A new site: the SLAM's poses are published as they come (on_slam_pose).
+            if (!new_site_) publish_no_map(convert::to_seconds(m.header.stamp));
             return;
         }
         Scan scan;
         scan.index = index;
         const std::string err = convert::from_pointcloud2(m, scan.cloud);
+        if (!go_on) {
+            if (err.empty()) sensor_known(scan.cloud);
+            if (!new_site_) publish_no_map(convert::to_seconds(m.header.stamp));
+            return;
+        }
         if (!err.empty()) {
             event(StatusLevel::kError, StatusCode::kBadCloud,
                   "scan " + std::to_string(index) + ": " + err, scan.cloud.stamp);
@@ -407,29 +334,38 @@ class LocalisationComponent : public runtime::Component {
                   scan.cloud.stamp);
             return;
         }
-        if (!preprocessor_ && !sensor_known(scan.cloud)) return;  // the next scan decides
+        if (!sensor_->ready() && !sensor_known(scan.cloud)) return;  // the next scan decides
         newest_scan_ = scan.cloud.stamp;
-        const double stamp = scan.cloud.stamp;
-        pairer_->add_scan(stamp, std::move(scan));
+        pairing_->add_scan(std::move(scan));
         pair();
     }
 
-    // A preset `auto`: the scans' preprocessing made on the first scan that tells the sensor
-    // (before any scan reaches the worker). A narrow sensor under the spinning sensors' settings
-    // is said as an error: the localiser and its map were made for a spinning one.
+    // A preset `auto` that no name told: the scans' preprocessing made on the first scan that
+    // tells the sensor (before any scan reaches the worker). A narrow one's: the localiser's and
+    // the map's settings become the narrow preset's (the worker reloads the map with them before
+    // its first scan, and the site's versions are loaded with them).
     bool sensor_known(const common::PointCloud& cloud) {
-        if (!detector_.add(cloud)) return false;
-        const common::SensorPreset detected = detector_.preset();
-        ctx_.log().info(detector_.line());
-        const auto oc = odometry_in_use(ctx_, named_preset_, detected);
-        preprocessor_.emplace(oc->preprocess, oc->voxel_size);
-        const bool narrow = common::sensor_preset_row(detected).horizontal_fov_deg < 360.0;
-        if (!named_preset_ && narrow && detector_.detected())
-            ctx_.log().error(
-                "the scans are a narrow sensor's but preset auto gave the localiser the spinning "
-                "sensors' settings: set the localisation's preset: " +
-                std::string(common::to_string(detected)));
+        std::optional<ScanSensor::Retune> retune;
+        if (!sensor_->add(cloud, &retune)) return false;
+        if (!retune) return true;
+        if (loader_) loader_->retune(localisation_map_preset(retune->preset), retune->config);
+        std::lock_guard<std::mutex> lock(mutex_);
+        retune_ = std::move(retune);
         return true;
+    }
+
+    // The worker, before a scan: the settings the scans told (sensor_known), the map in use
+    // loaded again with them (no scan was localised yet: the detection comes first).
+    void apply_retune() {
+        std::optional<ScanSensor::Retune> retune;
+        {
+            std::lock_guard<std::mutex> lock(mutex_);
+            retune.swap(retune_);
+        }
+        if (!retune) return;
+        preset_ = retune->preset;
+        config_ = retune->config;
+        if (map_state_ == kReady && !map_dir_.empty()) load_map();
     }
 
     void on_odometry(const msg::Odometry& m) {
@@ -446,7 +382,7 @@ class LocalisationComponent : public runtime::Component {
                 publish_new_site(*u);
             return;
         }
-        pairer_->add_pose(stamp, std::move(o));
+        pairing_->add_pose(std::move(o));
         pair();
     }
 
@@ -474,12 +410,7 @@ class LocalisationComponent : public runtime::Component {
         char text[300];
         std::snprintf(text, sizeof text, "site %s: %s arrived (loaded in %.2f s): localising on it",
                       site_dir_.c_str(), n->version.name.c_str(), n->load_s);
-        {
-            std::lock_guard<std::mutex> lock(mutex_);
-            pending_ = std::move(n->localiser);
-            pending_global_ = std::move(n->global);
-            pending_name_ = n->version.name;
-        }
+        handoff_.offer(std::move(*n));
         event(StatusLevel::kOk, StatusCode::kOnMap, text, newest_scan_ > 0 ? newest_scan_ : 0.0);
         if (map_state_ != kReady) {
             no_map_.clear();
@@ -490,65 +421,30 @@ class LocalisationComponent : public runtime::Component {
 
     // The worker, before a scan: a newer version's localiser takes over the running one's track.
     void swap_in_pending() {
-        std::unique_ptr<Localiser> next;
-        std::shared_ptr<GlobalLocaliser> global;
-        std::string name;
-        {
-            std::lock_guard<std::mutex> lock(mutex_);
-            if (!pending_) return;
-            next = std::move(pending_);
-            global = std::move(pending_global_);
-            name = pending_name_;
-        }
+        std::optional<VersionLoader::Loaded> next = handoff_.take();
+        if (!next) return;
+        map_dir_ = next->version.map_dir();  // the map a retune loads again
         // The version's global localiser answers the next query (one out on the old map finishes
         // there: the old one lives until then, and its answer holds in the same map frame).
-        if (global) {
-            std::lock_guard<std::mutex> lock(global_mutex_);
-            global_localiser_ = std::move(global);
-        }
-        if (localiser_) next->take_track(*localiser_);
-        localiser_ = std::move(next);
-        ctx_.log().info("now on " + name + " (" + to_string(localiser_->state()) + ")");
+        if (next->global) answers_.use(std::move(next->global));
+        if (localiser_) next->localiser->take_track(*localiser_);
+        localiser_ = std::move(next->localiser);
+        ctx_.log().info("now on " + next->version.name + " (" + to_string(localiser_->state()) +
+                        ")");
     }
 
     // Hands on every waiting scan whose odometry came (with its pose and twist), or will not come
     // (see the file comment).
     void pair() {
-        // While an odometry runs (its writer matched), its pose of each scan, a newer one or its
-        // "no pose" status will come: wait for it, however late (a loaded machine's odometry was
-        // more than odometry_wait_s behind and scans went on without their poses: tracking from
-        // a guess, wrong fixes). Without one, odometry_wait_s of wall time.
-        pairer_->set_wait_s(ctx_.matched_publishers("odometry") > 0
-                                ? std::numeric_limits<double>::infinity()
-                                : odometry_wait_s_);
-        pairer_->release([this](double stamp, Scan&& s, std::optional<convert::OdometryData>&& o) {
-            if (o) {
-                s.odometry = OdometryInput{o->T_parent_child, segment_at(stamp)};
-                s.velocity << o->linear_velocity, o->angular_velocity;
-            }
-            submit(std::move(s));
-        });
-    }
-
-    // The odometry segment of a scan: the one its newest restart up to the scan started.
-    std::uint32_t segment_at(double stamp) const {
-        std::uint32_t segment = 0;
-        for (const auto& [restart, number] : restarts_)
-            if (restart <= stamp + kSameStamp) segment = std::max(segment, number);
-        return segment;
+        pairing_->release(ctx_.matched_publishers("odometry") > 0,
+                          [this](Scan&& s) { submit(std::move(s)); });
     }
 
     // The odometry's status lines: restarts (a new segment), and scans it has no pose for.
     void on_status(const msg::Status& m) {
         const convert::StatusData s = convert::from_msg(m);
         if (s.component == ctx_.name()) return;
-        const double stamp = convert::to_seconds(s.stamp);
-        if (s.code == StatusCode::kRestarted) {
-            restarts_.emplace_back(stamp, s.segment);
-        } else if (common::says_no_pose(s.code)) {  // lost, skipped, rejected, bad cloud
-            pairer_->add_no_pose(stamp);
-            pair();
-        }
+        if (pairing_->status(s)) pair();
     }
 
     void on_initial_pose(const msg::PoseWithCovarianceStamped& m) {
@@ -607,6 +503,7 @@ class LocalisationComponent : public runtime::Component {
         const std::optional<Scan>& scan = step.item;
         try {
             swap_in_pending();
+            apply_retune();
             if (step.latest && localiser_) localiser_->set_initial_pose(*step.latest);
             if (scan) process(*scan);
         } catch (const std::exception& e) {
@@ -616,33 +513,20 @@ class LocalisationComponent : public runtime::Component {
         }
     }
 
-    // --- the global thread: one query, its answer left for the worker's next scan ---
+    // --- the global thread ---
 
-    // Each query in the log with its wall-clock span (`./ltm bench budget` sets the poses
-    // published meanwhile against it).
+    // One query, its answer left for the worker's next scan; the log line with its wall-clock
+    // span (`./ltm bench budget` sets the poses published meanwhile against it). With
+    // global_cpu_budget it waits for the budget first and is charged to it.
     void answer_query(const GlobalRequest& request) {
-        const double t0 = wall_clock_s();
-        std::shared_ptr<GlobalLocaliser> global;
-        {
-            std::lock_guard<std::mutex> lock(global_mutex_);
-            global = global_localiser_;
-        }
-        // A localiser asks only with its version's global localiser swapped in with it.
-        if (!global) throw std::logic_error("a global query without a map to answer it on");
+        const double t0 = GlobalAnswers::wall_clock_s();
         pace_query();
         const double cpu0 = common::thread_cpu_s();
-        GlobalAnswer a = answer(*global, request);
+        const std::string line = answers_.answer(request, t0);
         if (global_pacer_)
             global_pacer_->wait_after(global_cpu_s_ += common::thread_cpu_s() - cpu0,
                                       common::steady_wall_s());
-        char text[400];
-        std::snprintf(text, sizeof text,
-                      "global query for the scan at %.3f s: %.3f s (wall %.3f to %.3f): %s",
-                      request.stamp, a.result.time_s, t0, wall_clock_s(),
-                      a.result.localised ? "localised" : a.result.reason.c_str());
-        ctx_.log().info(text);
-        std::lock_guard<std::mutex> lock(answer_mutex_);
-        answer_ = std::move(a);
+        ctx_.log().info(line);
     }
 
     // global_cpu_budget: joins the budget at the first query (the components declaring it are all
@@ -663,11 +547,6 @@ class LocalisationComponent : public runtime::Component {
         const double wait =
             std::min(global_pacer_->wait_now(common::steady_wall_s()), kGlobalWaitMax);
         if (wait > 0.0) std::this_thread::sleep_for(std::chrono::duration<double>(wait));
-    }
-
-    static double wall_clock_s() {
-        return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch())
-            .count();
     }
 
     // A new site: the SLAM's pose of a scan is its map pose (state OFF_MAP: not registered to a
@@ -705,12 +584,9 @@ class LocalisationComponent : public runtime::Component {
             publish_no_map(scan.cloud.stamp);
             return;
         }
-        preprocessor_->run(scan.cloud, scan.odometry ? &scan.velocity : nullptr, &preprocessed_);
-        if (global_) {
-            std::lock_guard<std::mutex> lock(answer_mutex_);
-            if (answer_) localiser_->give_answer(std::move(*answer_));
-            answer_.reset();
-        }
+        sensor_->preprocessor().run(scan.cloud, scan.odometry ? &scan.velocity : nullptr,
+                                    &preprocessed_);
+        if (global_) answers_.give(*localiser_);
         const LocalisationUpdate u =
             localiser_->process(scan.cloud.stamp, preprocessed_.map_points, scan.odometry);
         if (global_)
@@ -778,8 +654,7 @@ class LocalisationComponent : public runtime::Component {
     double odometry_wait_s_ = 1.0;
     HintRadius hint_radius_;
     common::SensorPreset preset_ = common::SensorPreset::kHdl64;  // the settings' (auto: spinning)
-    std::optional<common::SensorPreset> named_preset_;            // empty: auto
-    common::SensorDetector detector_;
+    std::optional<ScanSensor> sensor_;  // the component's thread (its preprocessor: the worker's)
     LocaliserConfig config_;
     std::string map_dir_;
     enum MapState : int { kLoading, kReady, kFailed };
@@ -796,22 +671,19 @@ class LocalisationComponent : public runtime::Component {
     std::atomic<std::uint64_t> no_map_scans_{0};
 
     // The component's thread.
-    std::optional<runtime::StampPairer<Scan, convert::OdometryData>> pairer_;
-    std::vector<std::pair<double, std::uint32_t>> restarts_;  // the odometry's: stamp, segment
+    std::optional<ScanPairing> pairing_;  // scans with their odometry poses
     double newest_scan_ = -1e300;
     std::string odom_frame_seen_;
     std::uint64_t scans_ = 0;
 
     // Shared with the worker (under mutex_).
     std::mutex mutex_;
-    std::unique_ptr<Localiser> pending_;  // a newer version's, until the worker swaps it in
-    std::string pending_name_;
-    StatusCounters counters_;  // but skipped_scans: the worker's count
+    std::optional<ScanSensor::Retune> retune_;  // the scans told a narrow sensor (auto)
+    StatusCounters counters_;                   // but skipped_scans: the worker's count
     std::string odom_frame_ = "odom";
 
     // The worker's.
     std::unique_ptr<Localiser> localiser_;
-    std::optional<registration::Preprocessor> preprocessor_;  // auto: made on the first scans
     registration::PreprocessedScan preprocessed_;
     LocalisationState last_state_ = LocalisationState::kInitialising;
     std::uint64_t processed_ = 0, valid_ = 0;
@@ -822,14 +694,10 @@ class LocalisationComponent : public runtime::Component {
     runtime::Publisher<msg::PoseWithCovarianceStamped> site_pose_out_;
     runtime::Publisher<msg::TransformStamped> correction_out_;
     runtime::Publisher<msg::Status> events_out_;
-    // The global thread's, and its answer for the worker (under answer_mutex_).
-    // The global thread's (a query keeps scratch state in it: never shared with tracking); the
-    // worker swaps a newer version's in (global_mutex_).
-    std::shared_ptr<GlobalLocaliser> global_localiser_;
-    std::shared_ptr<GlobalLocaliser> pending_global_;  // with pending_
-    std::mutex global_mutex_;
-    std::mutex answer_mutex_;
-    std::optional<GlobalAnswer> answer_;
+    // The global thread's global localiser (the worker swaps a newer version's in) and its answer
+    // for the worker.
+    GlobalAnswers answers_;
+    VersionHandoff handoff_;  // a newer site version, from the component's thread to the worker
 
     std::optional<GlobalWorker> global_;
     // global_cpu_budget (the global thread's).

@@ -3,6 +3,7 @@
 #include <utility>
 
 #include "common/core/one_line.hpp"
+#include "localisation/component/loaded_localiser.hpp"
 
 namespace ltm::localisation {
 
@@ -25,6 +26,7 @@ std::optional<VersionLoader::Loaded> VersionLoader::poll() {
         if (next_.wait_for(std::chrono::seconds(0)) != std::future_status::ready)
             return std::nullopt;
         Result r = next_.get();
+        if (r.settings != settings_) return std::nullopt;  // retuned meanwhile: looked at again
         for (const std::string& note : r.notes)
             say_(true, "site " + follower_.site_dir() + ": " + note);
         if (!r.version) return std::nullopt;
@@ -43,24 +45,28 @@ std::optional<VersionLoader::Loaded> VersionLoader::poll() {
     return std::nullopt;
 }
 
+void VersionLoader::retune(LocalisationMapConfig map_config, LocaliserConfig config) {
+    if (next_.valid()) next_.wait();  // look() reads the settings
+    map_config_ = std::move(map_config);
+    config_ = std::move(config);
+    ++settings_;
+}
+
 VersionLoader::Result VersionLoader::look() {
     Result r;
+    r.settings = settings_;
     r.version = follower_.newer(&r.notes);
     if (!r.version) return r;
-    const auto t0 = std::chrono::steady_clock::now();
     try {
-        std::vector<std::string> refused;
-        auto map = load_localisation_map(r.version->map_dir(), map_config_, &refused);
-        for (const std::string& s : refused) r.notes.push_back("map: " + s + " (left out)");
-        r.localiser = std::make_unique<Localiser>(map, config_);
-        if (with_global_) {
-            r.global = std::make_shared<GlobalLocaliser>(map, config_.global);
-            r.localiser->set_global_elsewhere(true);
-        }
+        LoadedLocaliser l =
+            load_localiser(r.version->map_dir(), map_config_, config_, with_global_);
+        for (const std::string& s : l.refused) r.notes.push_back("map: " + s + " (left out)");
+        r.localiser = std::move(l.localiser);
+        r.global = std::move(l.global);
+        r.load_s = l.load_s;
     } catch (const std::exception& e) {
         r.error = common::one_line(e.what());
     }
-    r.load_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return r;
 }
 

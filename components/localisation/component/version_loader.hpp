@@ -43,6 +43,11 @@ class VersionLoader {
     // last call, once.
     std::optional<Loaded> poll();
 
+    // New settings for the versions loaded from now on (`preset: auto` once the scans told a
+    // sensor whose settings differ). A look under way is waited for and its version, loaded with
+    // the old ones, looked at again. The component's thread (as poll).
+    void retune(LocalisationMapConfig map_config, LocaliserConfig config);
+
   private:
     struct Result {
         std::optional<map::SiteVersion> version;
@@ -51,6 +56,7 @@ class VersionLoader {
         std::vector<std::string> notes;
         std::string error;
         double load_s = 0.0;
+        int settings = 0;  // settings_ when the look started
     };
     Result look();  // on the loader's thread
 
@@ -58,6 +64,7 @@ class VersionLoader {
     double poll_s_;
     LocalisationMapConfig map_config_;
     LocaliserConfig config_;
+    int settings_ = 0;  // retunes so far
     std::function<void(bool, const std::string&)> say_;
     bool with_global_;
     std::future<Result> next_;

@@ -1,0 +1,33 @@
+#include "localisation/component/loaded_localiser.hpp"
+
+#include <chrono>
+#include <cstdio>
+
+namespace ltm::localisation {
+
+LoadedLocaliser load_localiser(const std::string& dir, const LocalisationMapConfig& map_config,
+                               const LocaliserConfig& config, bool with_global) {
+    const auto t0 = std::chrono::steady_clock::now();
+    LoadedLocaliser l;
+    l.dir = dir;
+    l.map = load_localisation_map(dir, map_config, &l.refused);
+    l.localiser = std::make_unique<Localiser>(l.map, config);
+    if (with_global) {
+        // The query's own (it keeps scratch state): never shared with tracking.
+        l.global = std::make_shared<GlobalLocaliser>(l.map, config.global);
+        l.localiser->set_global_elsewhere(true);
+    }
+    l.load_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return l;
+}
+
+std::string LoadedLocaliser::line() const {
+    char text[300];
+    std::snprintf(text, sizeof text,
+                  "map %s: %zu keyframes, %zu local maps, %zu voxels, loaded in %.2f s",
+                  dir.c_str(), map->keyframes().size(), map->local_maps(),
+                  map->voxels().voxels.size(), load_s);
+    return text;
+}
+
+}  // namespace ltm::localisation
