@@ -149,6 +149,17 @@ class Worker {
         return true;
     }
 
+    // Drops the oldest waiting item (counted in skipped()): a producer's own bound on the queue
+    // (its items' memory, say) beside the capacity. False when nothing waits.
+    bool drop_oldest() {
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (queue_.empty()) return false;
+        queue_.pop_front();
+        ++skipped_;
+        room_cv_.notify_all();
+        return true;
+    }
+
     // Replaces the latest value (never dropped, never waits).
     void set_latest(Latest value) {
         std::lock_guard<std::mutex> lock(mutex_);

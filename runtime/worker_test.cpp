@@ -105,6 +105,29 @@ TEST(WorkerTest, DropOldestKeepsTheNewest) {
     EXPECT_EQ(seen, (std::vector<int>{0, 4, 5}));
 }
 
+TEST(WorkerTest, DropOldestOnRequestCountsItAsSkipped) {
+    // A producer's own bound (bytes, say): it drops the oldest waiting item itself.
+    Gate gate;
+    std::vector<int> seen;
+    IntWorker w(options(10, BusyPolicy::kBlock),
+                [&](IntWorker::Step& s, const StopToken&) {
+                    gate.wait();
+                    seen.push_back(*s.item);
+                },
+                {});
+    EXPECT_FALSE(w.drop_oldest());  // nothing waits
+    w.start();
+    w.push(0);
+    gate.wait_entered(1);  // 0 in work
+    for (int i = 1; i <= 3; ++i) w.push(i);
+    EXPECT_TRUE(w.drop_oldest());
+    EXPECT_EQ(w.waiting(), 2u);
+    EXPECT_EQ(w.skipped(), 1u);
+    gate.release();
+    w.stop();
+    EXPECT_EQ(seen, (std::vector<int>{0, 2, 3}));
+}
+
 TEST(WorkerTest, SkipWhileBusyDropsTheNewItem) {
     Gate gate;
     std::vector<int> seen;

@@ -73,10 +73,10 @@ YAML
     cat "$log"
 }
 off="$(secure_bridge false)"
-echo "$off" | grep -q "the Foxglove bridge is off: this site runs DDS Security" ||
+grep -q "the Foxglove bridge is off: this site runs DDS Security" <<< "$off" ||
     { echo "FAIL: under DDS Security the bridge did not say it is off"; echo "$off"; exit 1; }
-echo "$off" | grep -q "Foxglove: connect to" && { echo "FAIL: under DDS Security the bridge served"; exit 1; }
+grep -q "Foxglove: connect to" <<< "$off" && { echo "FAIL: under DDS Security the bridge served"; exit 1; }
 on="$(secure_bridge true)"
-echo "$on" | grep -q "Foxglove: connect to ws://127.0.0.1:$port" ||
+grep -q "Foxglove: connect to ws://127.0.0.1:$port" <<< "$on" ||
     { echo "FAIL: enable_with_security: true did not serve"; echo "$on"; exit 1; }
 echo "PASS"

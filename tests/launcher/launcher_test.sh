@@ -121,7 +121,7 @@ bench_list_names_every_benchmark() {
     local list name
     list="$("$LTM" bench list)" || return 1
     for name in dds odometry slam localise localise_real mcap sim sim_compare hard_cases stop site lifelong; do
-        echo "$list" | grep -q "^  $name " || { echo "  '$name' missing from: $list"; return 1; }
+        grep -q "^  $name " <<< "$list" || { echo "  '$name' missing from: $list"; return 1; }
     done
     local err rc
     err="$("$LTM" bench nosuch 2>&1)"

@@ -57,9 +57,9 @@ outage_and_restart_lose_nothing() {
         --require local_map --require keyframe --require-same-map 2>&1)"; rc=$?
     echo "$out"
     [ "$rc" = 0 ] || return 1
-    echo "$out" | grep -q 'base station killed (SIGKILL)' || return 1
+    grep -q 'base station killed (SIGKILL)' <<< "$out" || return 1
     echo "$out" | grep -Eq 'replayed from the journal' || return 1
-    echo "$out" | grep -q '^   same map$'
+    grep -q '^   same map$' <<< "$out"
 }
 
 # DDS Security on the link: an intruder on a link of its own, without the site's credentials,

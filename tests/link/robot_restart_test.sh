@@ -67,7 +67,7 @@ grep -q "numbered on from" "$T/run2.log" || fail "run 2 did not number on"
 line=$(grep "\[downlink\] final:" "$T/base.log" | tail -n 1)
 echo "$line" | grep -Eq "$((n1 + n2)) messages delivered" \
     || fail "expected $n1 + $n2 messages delivered: $line"
-echo "$line" | grep -q " 0 lost" || fail "lost packets: $line"
+grep -q " 0 lost" <<< "$line" || fail "lost packets: $line"
 if grep -q "not added" "$T/base.log"; then fail "the mapping refused messages"; fi
 grep -Eq "\[mapping\] segment 1 .*joined to the map by a loop" "$T/base.log" \
     || fail "the second run was not joined to the map as segment 1"

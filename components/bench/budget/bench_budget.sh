@@ -27,7 +27,14 @@
 #                                before/after of one setting with the same build)
 #   --report-only                the reports again from D's samples and probes (no host runs)
 #   --maintenance-share X        the maintenance worker's CPU at most X of one core (its
-#                                cpu_share: passes spread, not bursts; default 0.35, 1: unpaced)
+#                                cpu_share: passes spread, not bursts; default 0.35, 1: unpaced),
+#                                with --background-share 0
+#   --background-share X         lifelong: the background work (maintenance worker, the mapping's
+#                                clearing of a pass's cells and its periodic saves) together at
+#                                most X of one core, one budget (cpu_budget: background; the
+#                                localisation's global queries charged to it too); default
+#                                0.4; 0: each its own (maintenance --maintenance-share, clearing
+#                                0.15, saves unpaced: before issue 28's budget-peaks)
 #   --nice N                     the hosts at nice N (e.g. -5, root: the mission ahead of the
 #                                machine's other work, as on a robot's own computer; said in the
 #                                report)
@@ -39,7 +46,7 @@ ROOT="$(cd "$(dirname "$0")/../../.." && pwd)"
 BIN="${LTM_BUILD_DIR:-$ROOT/build}/bin"
 DOMAIN="${LTM_BENCH_DOMAIN:-66}"
 CONFIG=all; SCENARIO="$ROOT/components/simulator/scenarios/site_loop.yaml"; FRAMES=""; OUT=""; PERF=1
-REPORT_ONLY=0; NICE=""; MAINT_SHARE=0.35; SENSOR=""; SITE_FROM=""; DAY0_ONLY=0; EXTRA_SETS=()
+REPORT_ONLY=0; NICE=""; MAINT_SHARE=0.35; BACKGROUND_SHARE=0.4; SENSOR=""; SITE_FROM=""; DAY0_ONLY=0; EXTRA_SETS=()
 
 usage() {
     echo "The robot's mission at the sensor's rate: CPU, memory, missed scans, latency per component"
@@ -56,7 +63,8 @@ usage() {
         "--set NAME.KEY=VALUE" "lifelong: a parameter of the robot's host (repeatable)" \
         "--report-only" "write the reports again from D's samples and probes (needs --out D)" \
         "--nice N" "run the hosts at nice N (negative: ahead of the machine's other work; root)" \
-        "--maintenance-share X" "the maintenance worker's CPU share of a core (default 0.35; 1: unpaced)"
+        "--maintenance-share X" "the maintenance worker's CPU share of a core (default 0.35; 1: unpaced), with --background-share 0" \
+        "--background-share X" "lifelong: maintenance + the mapping's clearing and saves together at most X of a core (default 0.4; 0: each its own)"
 }
 fail() { echo "ltm bench budget: $*" >&2; exit 2; }
 while [ $# -gt 0 ]; do
@@ -66,13 +74,13 @@ while [ $# -gt 0 ]; do
         --report-only) REPORT_ONLY=1; shift ;;
         --day0-only) DAY0_ONLY=1; shift ;;
         --set) [ $# -ge 2 ] || fail "--set: needs NAME.KEY=VALUE"; EXTRA_SETS+=(--set "$2"); shift 2 ;;
-        --config|--scenario|--sensor|--frames|--out|--nice|--maintenance-share|--site-from)
+        --config|--scenario|--sensor|--frames|--out|--nice|--maintenance-share|--site-from|--background-share)
             [ $# -ge 2 ] || fail "$1: needs a value"
             case "$1" in
                 --config) CONFIG="$2" ;; --scenario) SCENARIO="$2" ;;
                 --frames) FRAMES="$2" ;; --out) OUT="$2" ;; --nice) NICE="$2" ;;
                 --maintenance-share) MAINT_SHARE="$2" ;; --sensor) SENSOR="$2" ;;
-                --site-from) SITE_FROM="$2" ;;
+                --site-from) SITE_FROM="$2" ;; --background-share) BACKGROUND_SHARE="$2" ;;
             esac
             shift 2 ;;
         *) fail "unknown argument '$1' (--help)" ;;
@@ -87,6 +95,7 @@ SCENARIO="$(cd "$(dirname "$SCENARIO")" && pwd)/$(basename "$SCENARIO")"
 [ -z "$SITE_FROM" ] || [ "$DAY0_ONLY" = 0 ] || fail "--site-from and --day0-only: one or the other"
 [ -z "$SITE_FROM" ] || [ -d "$SITE_FROM/versions" ] || fail "--site-from: $SITE_FROM is not a site (no versions/ in it)"
 [[ "$MAINT_SHARE" =~ ^[0-9]*\.?[0-9]+$ ]] || fail "--maintenance-share: a number in (0, 1], got '$MAINT_SHARE'"
+[[ "$BACKGROUND_SHARE" =~ ^[0-9]*\.?[0-9]+$ ]] || fail "--background-share: a number in [0, 1] (0: each its own), got '$BACKGROUND_SHARE'"
 for exe in ltm_host ltm_sim ltm_budget; do
     [ -x "$BIN/$exe" ] || fail "$BIN/$exe is not built (ninja -C build ltm_host ltm_sim ltm_budget)"
 done
@@ -217,10 +226,16 @@ run_lifelong_day() {  # DAY SESSION
     mark="$(cpu_mark)"
     # Live: a scan that comes while the localiser is busy replaces the waiting one (counted), and
     # its global queries run on their own thread (global_thread, the default when live); the
-    # maintenance worker paced to a share of a core (cpu_share).
+    # maintenance worker paced to a share of a core (cpu_share); with --background-share (the
+    # default) it, the mapping's clearing and the mapping's periodic saves draw from one budget.
+    local pace=(--set "maintenance.cpu_share=$MAINT_SHARE")
+    if [ "$BACKGROUND_SHARE" != 0 ]; then
+        pace=(--set "maintenance.cpu_share=$BACKGROUND_SHARE" --set maintenance.cpu_budget=background
+              --set "mapping.map_changes_cpu_share=$BACKGROUND_SHARE" --set mapping.cpu_budget=background
+              --set localisation.global_cpu_budget=background)
+    fi
     start_host robot "$dir" "$dir/launch.yaml" LTM_SITE="$OUT/lifelong/site" -- \
-        --set localisation.skip_while_busy=true --set "maintenance.cpu_share=$MAINT_SHARE" \
-        "${EXTRA_SETS[@]}"
+        --set localisation.skip_while_busy=true "${pace[@]}" "${EXTRA_SETS[@]}"
     profile robot "$dir"
     wait_hosts
     load_note "$mark" > "$dir/load.txt"

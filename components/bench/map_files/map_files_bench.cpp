@@ -90,8 +90,14 @@ Loads load_times(const std::string& version, int repeat,
     return l;
 }
 
+// What a local map's voxels record of their views: life.seen entries (indices into the map's
+// observation times) over all voxels, and the maps' observation times.
+struct SeenStats {
+    std::size_t seen = 0, times = 0, maps = 0;
+};
+
 void print(const char* what, const Sizes& s, const Loads& l, std::size_t lm_voxels,
-           std::size_t keyframes, std::size_t maint_voxels) {
+           std::size_t keyframes, std::size_t maint_voxels, const SeenStats& seen) {
     const auto mb = [](std::uint64_t b) { return double(b) / 1e6; };
     std::uint64_t total = 0;
     for (const auto& [k, b] : s.bytes) total += b;
@@ -99,7 +105,10 @@ void print(const char* what, const Sizes& s, const Loads& l, std::size_t lm_voxe
     for (const auto& [k, b] : s.bytes) {
         std::printf("  %-11s %8.3f MB  %4zu files", k.c_str(), mb(b), s.files.at(k));
         if (k == "local_maps" && lm_voxels)
-            std::printf("  %zu voxels, %.1f B a voxel", lm_voxels, double(b) / double(lm_voxels));
+            std::printf("  %zu voxels, %.1f B a voxel, %.1f seen entries a voxel, %.0f times a map",
+                        lm_voxels, double(b) / double(lm_voxels),
+                        double(seen.seen) / double(lm_voxels),
+                        seen.maps ? double(seen.times) / double(seen.maps) : 0.0);
         if (k == "keyframes" && keyframes)
             std::printf("  %zu keyframes, %.0f B a keyframe", keyframes,
                         double(b) / double(keyframes));
@@ -110,6 +119,17 @@ void print(const char* what, const Sizes& s, const Loads& l, std::size_t lm_voxe
     }
     std::printf("  load: map %.3f s, maintained %.3f s (paged: %.3f s)\n", l.map_s, l.maintained_s,
                 l.maintained_paged_s);
+}
+
+SeenStats seen_of(const ltm::map::MapData& m) {
+    SeenStats s;
+    for (const auto& lm : m.local_maps) {
+        if (!lm.data) continue;
+        ++s.maps;
+        s.times += lm.data->observation_times.size();
+        for (const auto& v : lm.data->voxels) s.seen += v.life.seen.size();
+    }
+    return s;
 }
 
 std::size_t voxels_of(const ltm::map::MapData& m) {
@@ -150,7 +170,8 @@ int main(int argc, char** argv) {
         std::size_t maint_voxels = 0;
         if (has_maint) maint_voxels = LongTermMap::load(maint, config).stats().voxels;
         print(version.c_str(), sizes_of(version), load_times(version, repeat, config),
-              voxels_of(loaded.map), loaded.map.keyframes.size(), maint_voxels);
+              voxels_of(loaded.map), loaded.map.keyframes.size(), maint_voxels,
+              seen_of(loaded.map));
         if (!against.empty()) ltm::bench::print_growth(against, version, config);
         if (out.empty()) return 0;
 
@@ -160,7 +181,7 @@ int main(int argc, char** argv) {
             LongTermMap::load(maint, config).save(out + "/maintenance/long_term_map.bin");
         const ltm::map::LoadedMap again = ltm::map::load_map(out + "/map");
         print(out.c_str(), sizes_of(out), load_times(out, repeat, config), voxels_of(again.map),
-              again.map.keyframes.size(), maint_voxels);
+              again.map.keyframes.size(), maint_voxels, seen_of(again.map));
 
         // Bit for bit: every record encoded in one format (3) from both loads.
         std::size_t differ = 0;

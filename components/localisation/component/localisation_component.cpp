@@ -46,6 +46,7 @@
 // (`odometry`: no SLAM on it) the same under the base station's map_to_odom, only while the base
 // station's mapping says it belongs to no version (`slam_map_version`, "": a new site there too)
 // and no version is offered (`site/offer`); otherwise only the status goes out ("no map yet ...").
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -54,9 +55,13 @@
 #include <mutex>
 #include <optional>
 #include <stdexcept>
+#include <thread>
 
+#include "common/core/cpu_budget.hpp"
+#include "common/core/cpu_pacer.hpp"
 #include "common/core/one_line.hpp"
 #include "common/core/sensor_detect.hpp"
+#include "common/core/thread_clock.hpp"
 #include "localisation/component/localisation_messages.hpp"
 #include "localisation/component/localiser_params.hpp"
 #include "localisation/component/version_loader.hpp"
@@ -145,6 +150,13 @@ class LocalisationComponent : public runtime::Component {
         frame_id_ = p.get<std::string>("frame_id", "map");
         skip_while_busy_ = p.get<bool>("skip_while_busy", true);
         global_thread_ = p.get<bool>("global_thread", skip_while_busy_);
+        // Issue 28: the global queries (on their thread) charged to the process's background CPU
+        // budget (common/core/cpu_budget.hpp, declared by the maintenance's or the mapping's
+        // `cpu_budget`): a query waits while it is in debt (at most kGlobalWaitMax), and the
+        // paced workers wait for what a query used. Tracking is never paced.
+        global_budget_ = p.get<std::string>("global_cpu_budget", "");
+        if (!global_budget_.empty() && !global_thread_)
+            p.fail("global_cpu_budget", "needs global_thread (the queries on their own thread)");
         odometry_wait_s_ = p.get<double>("odometry_wait_s", 1.0);
         if (!(odometry_wait_s_ >= 0)) p.fail("odometry_wait_s", "must be >= 0 (0: do not wait)");
         hint_radius_.sigmas = p.get<double>("initial_pose.sigmas", hint_radius_.sigmas);
@@ -617,7 +629,12 @@ class LocalisationComponent : public runtime::Component {
         }
         // A localiser asks only with its version's global localiser swapped in with it.
         if (!global) throw std::logic_error("a global query without a map to answer it on");
+        pace_query();
+        const double cpu0 = common::thread_cpu_s();
         GlobalAnswer a = answer(*global, request);
+        if (global_pacer_)
+            global_pacer_->wait_after(global_cpu_s_ += common::thread_cpu_s() - cpu0,
+                                      common::steady_wall_s());
         char text[400];
         std::snprintf(text, sizeof text,
                       "global query for the scan at %.3f s: %.3f s (wall %.3f to %.3f): %s",
@@ -626,6 +643,26 @@ class LocalisationComponent : public runtime::Component {
         ctx_.log().info(text);
         std::lock_guard<std::mutex> lock(answer_mutex_);
         answer_ = std::move(a);
+    }
+
+    // global_cpu_budget: joins the budget at the first query (the components declaring it are all
+    // configured by then) and waits while it is in debt, at most kGlobalWaitMax.
+    void pace_query() {
+        if (global_budget_.empty()) return;
+        if (!global_pacer_) {
+            std::string error;
+            auto budget = common::shared_cpu_budget(global_budget_, 0.0, 0.0, &error);
+            if (!budget) {
+                ctx_.log().warn("global_cpu_budget: " + error + ": the queries are not paced");
+                global_budget_.clear();
+                return;
+            }
+            global_pacer_.emplace(std::move(budget));
+            global_pacer_->wait_after(0.0, common::steady_wall_s());
+        }
+        const double wait =
+            std::min(global_pacer_->wait_now(common::steady_wall_s()), kGlobalWaitMax);
+        if (wait > 0.0) std::this_thread::sleep_for(std::chrono::duration<double>(wait));
     }
 
     static double wall_clock_s() {
@@ -795,6 +832,11 @@ class LocalisationComponent : public runtime::Component {
     std::optional<GlobalAnswer> answer_;
 
     std::optional<GlobalWorker> global_;
+    // global_cpu_budget (the global thread's).
+    static constexpr double kGlobalWaitMax = 0.5;  // [s] a query waits for the budget at most
+    std::string global_budget_;
+    std::optional<common::CpuPacer> global_pacer_;
+    double global_cpu_s_ = 0.0;
     std::optional<Worker> worker_;  // last: stopped before the members it uses go
 };
 

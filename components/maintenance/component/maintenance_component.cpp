@@ -11,10 +11,19 @@
 // passes) and the last one at shutdown. At most `max_queue` scans wait for the worker: then the
 // oldest is dropped (skip_while_busy, a live sensor) or the component's thread waits (offline:
 // back-pressure on the sensor, nothing dropped). With `cpu_share` below 1 the worker spreads its
-// work: after each scan and between the regions of a pass it waits as long as keeps its CPU time
+// work: after each scan, between the regions a scan's view pages in, judges and pages out, and
+// between the regions of a pass and their steps, it waits as long as keeps its CPU time
 // within that share of one core (common/core/cpu_pacer.hpp), so a pass of seconds becomes a
 // slower pass at a bounded load instead of a burst; the scans wait in the queue meanwhile, and the
-// decisions are the same (nothing enters the map during a pass). Not while shutting down.
+// decisions are the same (nothing enters the map during a pass). Not while shutting down. With
+// `cpu_budget` the worker draws from a budget the process's other background work shares
+// (common/core/cpu_budget.hpp: the mapping's clearing and saves), so that together they stay
+// within cpu_share of one core; the log's last lines give the longest piece of work between two
+// waits (what can pass the share in a second) and the time waited.
+// The queue is bounded by its memory too (`max_queue_mb`, the scans as they wait, packed or not):
+// a scan that would pass it does what one past max_queue does (live: the oldest waiting scan is
+// dropped; offline: the component's thread waits for room); each time the queue fills, by either
+// bound, the log says so (once until it has room again), and the last lines count the drops.
 //
 // With `map_file`, the maintained map is loaded from it when it exists (this run is the next
 // session on it; a damaged file refuses the component with one line and stays as it is) and saved
@@ -35,8 +44,8 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <condition_variable>
 #include <cstdio>
-#include <deque>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -44,12 +53,14 @@
 #include <optional>
 #include <thread>
 
+#include "common/core/cpu_budget.hpp"
 #include "common/core/cpu_pacer.hpp"
 #include "common/core/io_error.hpp"
 #include "common/core/one_line.hpp"
 #include "common/core/thread_clock.hpp"
 #include "maintenance/component/maintenance_params.hpp"
 #include "maintenance/component/map_change_messages.hpp"
+#include "maintenance/component/waiting_scans.hpp"
 #include "maintenance/core/change_record.hpp"
 #include "maintenance/core/change_report.hpp"
 #include "maintenance/core/long_term_map.hpp"
@@ -103,6 +114,7 @@ class MaintenanceComponent : public runtime::Component {
         : ctx_(ctx),
           config_(load_maintenance_params(ctx.params())),
           pairer_({kSameStamp, kMaxPoses, kMaxWaiting}),
+          waiting_(std::size_t(config_.max_queue), std::size_t(config_.max_queue_mb * 1048576.0)),
           worker_(
               {ctx.name(), "work", std::size_t(config_.max_queue),
                config_.skip_while_busy ? runtime::BusyPolicy::kDropOldest
@@ -113,7 +125,15 @@ class MaintenanceComponent : public runtime::Component {
                         stamp_);
               }) {
         auto& p = ctx.params();
-        if (config_.cpu_share < 1.0) pacer_.emplace(config_.cpu_share, kPaceBurst);
+        if (!config_.cpu_budget.empty()) {
+            std::string error;
+            auto budget = common::shared_cpu_budget(config_.cpu_budget, config_.cpu_share,
+                                                    kPaceBurst, &error);
+            if (!budget) p.fail("cpu_budget", error);
+            pacer_.emplace(std::move(budget));
+        } else if (config_.cpu_share < 1.0) {
+            pacer_.emplace(config_.cpu_share, kPaceBurst);
+        }
         load_map(p);
         if (!config_.output_dir.empty()) {
             std::error_code ec;
@@ -162,20 +182,38 @@ class MaintenanceComponent : public runtime::Component {
         // Scans still waiting for their poses: those will not come now.
         pairer_.release_all(
             [this](double, Points&&, std::optional<Eigen::Isometry3d>&&) { ++no_pose_; });
-        stopping_ = true;                    // no pacing: what waits is finished at full speed
+        stopping_ = true;  // no pacing: what waits is finished at full speed
+        room_cv_.notify_all();
         worker_.stop(ctx_.work_deadline());  // finishes the scans it has, within the deadline
         end_session();
         ctx_.log().info(std::to_string(scans_) + " scans: " + std::to_string(used_) +
                         " maintained, " + std::to_string(no_pose_ + pairer_.dropped()) +
                         " without a pose, " + std::to_string(worker_.skipped()) +
                         " dropped while busy; " + std::to_string(passes_) + " passes");
-        char queue[200];
+        char queue[300];
         std::snprintf(queue, sizeof queue,
                       "queue: at most %zu scans waiting, %.1f MiB (%.1f MiB unpacked); %llu "
-                      "scans packed",
-                      peak_waiting_, peak_bytes_ / 1048576.0, peak_unpacked_bytes_ / 1048576.0,
-                      static_cast<unsigned long long>(packed_));
+                      "scans packed; full %llu time(s) (max_queue %d, max_queue_mb %.0f): %llu "
+                      "scans dropped for its memory, %.1f s waited for room",
+                      waiting_.peak_count(), waiting_.peak_bytes() / 1048576.0,
+                      waiting_.peak_unpacked_bytes() / 1048576.0,
+                      static_cast<unsigned long long>(packed_),
+                      static_cast<unsigned long long>(waiting_.full_times()), config_.max_queue,
+                      config_.max_queue_mb, static_cast<unsigned long long>(dropped_for_bytes_),
+                      waited_for_room_s_);
         ctx_.log().info(queue);
+        if (pacer_) {
+            char pace[200];
+            std::snprintf(pace, sizeof pace,
+                          "paced at %.2f of a core (%s): longest piece of work between two waits "
+                          "%.0f ms of CPU, %.1f s waited in all",
+                          pacer_->share(),
+                          config_.cpu_budget.empty()
+                              ? "its own budget"
+                              : ("the budget '" + config_.cpu_budget + "'").c_str(),
+                          pacer_->longest_piece_s() * 1e3, paced_wait_s_);
+            ctx_.log().info(pace);
+        }
     }
 
   private:
@@ -281,6 +319,8 @@ class MaintenanceComponent : public runtime::Component {
                 scan.points = Points();
                 ++packed_;
             }
+            if (worker_.waiting() >= std::size_t(config_.max_queue)) note_full("max_queue");
+            make_room(scan.memory_bytes());
             count_in(scan);
             const std::uint64_t skipped = worker_.skipped();
             if (!worker_.push(std::move(scan))) {  // offline: waits for room
@@ -291,31 +331,64 @@ class MaintenanceComponent : public runtime::Component {
         });
     }
 
-    // The bytes of the scans waiting, in queue order (packed, unpacked), and their peak: in on
-    // the component's thread, out of the front when the worker takes a scan or the queue drops
-    // its oldest, out of the back when the queue refused the new one (stopping).
+    // max_queue_mb: a scan that would take the waiting scans past it waits for room (offline) or
+    // makes room by dropping the oldest (live).
+    void make_room(std::size_t bytes) {
+        std::unique_lock<std::mutex> lock(queue_mutex_);
+        if (!waiting_.over_bytes(bytes)) return;
+        note_full_locked("max_queue_mb");
+        if (config_.skip_while_busy) {
+            while (waiting_.over_bytes(bytes)) {
+                lock.unlock();
+                const bool dropped = worker_.drop_oldest();
+                lock.lock();
+                if (!dropped) break;  // the worker took it meanwhile
+                waiting_.remove_front();
+                ++dropped_for_bytes_;
+            }
+            return;
+        }
+        const double t0 = common::steady_wall_s();
+        while (waiting_.over_bytes(bytes) && !stopping_)
+            room_cv_.wait_for(lock, std::chrono::milliseconds(50));
+        waited_for_room_s_ += common::steady_wall_s() - t0;
+    }
+
+    // The first time the queue is full since it last had room: one line (never silently).
+    void note_full(const char* bound) {
+        std::lock_guard<std::mutex> lock(queue_mutex_);
+        note_full_locked(bound);
+    }
+    void note_full_locked(const char* bound) {
+        if (!waiting_.mark_full()) return;
+        char text[240];
+        std::snprintf(text, sizeof text,
+                      "queue full (%s: %zu scans waiting, %.1f MiB; max_queue %d, max_queue_mb "
+                      "%.0f): %s",
+                      bound, waiting_.count(), waiting_.bytes() / 1048576.0, config_.max_queue,
+                      config_.max_queue_mb,
+                      config_.skip_while_busy ? "the oldest scans are dropped until it has room"
+                                              : "the scans wait for room (the sensor is held)");
+        ctx_.log().warn(text);
+    }
+
+    // The scans waiting, in queue order, with their bytes (waiting_scans.hpp): in on the
+    // component's thread, out of the front when the worker takes a scan or the queue drops its
+    // oldest, out of the back when the queue refused the new one (stopping).
     void count_in(const Scan& scan) {
         std::lock_guard<std::mutex> lock(queue_mutex_);
-        waiting_.emplace_back(scan.memory_bytes(), scan.unpacked_bytes());
-        waiting_bytes_.first += waiting_.back().first;
-        waiting_bytes_.second += waiting_.back().second;
-        if (waiting_bytes_.first > peak_bytes_) {
-            peak_bytes_ = waiting_bytes_.first;
-            peak_unpacked_bytes_ = waiting_bytes_.second;
-        }
-        peak_waiting_ = std::max(peak_waiting_, waiting_.size());
+        waiting_.add(scan.memory_bytes(), scan.unpacked_bytes());
     }
     void count_out(bool front) {
-        std::lock_guard<std::mutex> lock(queue_mutex_);
-        if (waiting_.empty()) return;
-        const auto bytes = front ? waiting_.front() : waiting_.back();
-        if (front) {
-            waiting_.pop_front();
-        } else {
-            waiting_.pop_back();
+        {
+            std::lock_guard<std::mutex> lock(queue_mutex_);
+            if (front) {
+                waiting_.remove_front();
+            } else {
+                waiting_.remove_back();
+            }
         }
-        waiting_bytes_.first -= bytes.first;
-        waiting_bytes_.second -= bytes.second;
+        room_cv_.notify_all();
     }
 
     // --- the worker thread: the long-term map, the passes and their outputs ---
@@ -335,7 +408,9 @@ class MaintenanceComponent : public runtime::Component {
                 started_ = true;
                 last_pass_ = stamp_;
             }
-            map_->add_scan(scan.points, scan.T_world_sensor, stamp_);
+            // Paced between the regions a scan's view pages in and judges, too (a kidnap's first
+            // view: a dozen regions).
+            map_->add_scan(scan.points, scan.T_world_sensor, stamp_, [&] { pace(stop); });
             ++used_;
             pace(stop);
             if (config_.maintain_every_s > 0 && stamp_ - last_pass_ >= config_.maintain_every_s &&
@@ -358,6 +433,7 @@ class MaintenanceComponent : public runtime::Component {
             const double slice = std::min(wait, kPaceSlice);
             std::this_thread::sleep_for(std::chrono::duration<double>(slice));
             wait -= slice;
+            paced_wait_s_ += slice;
         }
         pacer_->waited(common::steady_wall_s());
     }
@@ -444,11 +520,12 @@ class MaintenanceComponent : public runtime::Component {
     runtime::StampPairer<Points, Eigen::Isometry3d> pairer_;
     std::uint64_t scans_ = 0, no_pose_ = 0, packed_ = 0;
 
-    // The waiting scans' count and bytes (packed, unpacked) and their peak (queue_mutex_).
+    // The waiting scans, their bytes and peaks (queue_mutex_).
     std::mutex queue_mutex_;
-    std::deque<std::pair<std::size_t, std::size_t>> waiting_;
-    std::pair<std::size_t, std::size_t> waiting_bytes_{0, 0};
-    std::size_t peak_waiting_ = 0, peak_bytes_ = 0, peak_unpacked_bytes_ = 0;
+    WaitingScans waiting_;
+    std::uint64_t dropped_for_bytes_ = 0;
+    double waited_for_room_s_ = 0.0;  // the component's thread (offline)
+    std::condition_variable room_cv_;
 
     // Shared with the worker (under mutex_).
     std::mutex mutex_;
@@ -462,7 +539,8 @@ class MaintenanceComponent : public runtime::Component {
     double last_pass_ = 0.0, stamp_ = 0.0;
     std::uint64_t used_ = 0;
     std::uint32_t passes_ = 0;
-    std::optional<common::CpuPacer> pacer_;  // cpu_share < 1
+    std::optional<common::CpuPacer> pacer_;  // cpu_share < 1, or cpu_budget
+    double paced_wait_s_ = 0.0;
     std::atomic<bool> stopping_{false};
     ChangeSet all_;  // every change of the run (the PLY)
     std::ofstream summary_;

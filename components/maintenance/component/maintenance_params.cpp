@@ -44,6 +44,9 @@ MaintenanceComponentConfig load_maintenance_params(runtime::Parameters& p) {
     c.cpu_share = p.get<double>("cpu_share", c.cpu_share);
     if (!(c.cpu_share > 0.0 && c.cpu_share <= 1.0))
         p.fail("cpu_share", "must be in (0, 1] (1: not paced)");
+    c.cpu_budget = p.get<std::string>("cpu_budget", c.cpu_budget);
+    c.max_queue_mb = p.get<double>("max_queue_mb", c.max_queue_mb);
+    if (!(c.max_queue_mb >= 0.0)) p.fail("max_queue_mb", "must be >= 0 (0: only max_queue bounds)");
     c.paging_radius = p.get<double>("paging_radius", c.paging_radius);
     if (!(c.paging_radius >= 0.0)) p.fail("paging_radius", "must be >= 0 (0: no paging)");
     c.paging_dir = p.path("paging_dir", "", runtime::PathCheck::kNone);

@@ -41,6 +41,15 @@ struct MaintenanceComponentConfig {
     // s): a pass is spread over time between its regions, and the scans after it too, rather than a
     // burst of seconds (live). 1: as fast as it goes (offline).
     double cpu_share = 1.0;
+    // A CPU budget shared with the process's other background work (common/core/cpu_budget.hpp:
+    // e.g. the mapping's `cpu_budget`, the same name): the worker draws from it, cpu_share being
+    // its share of one core (every component naming it gives the same). "": a budget of its own.
+    std::string cpu_budget;
+    // The waiting scans' memory at most this [MiB] besides max_queue scans (a 64-beam scan waits
+    // in ~0.9 MiB packed: 300 of them ~270 MiB); a VLP-32C's 300 scans take ~105 MiB. A full queue
+    // does what max_queue does (the oldest dropped live, the sensor waits offline), logged. 0: no
+    // bound but the count.
+    double max_queue_mb = 128.0;
     // Paging (maintenance/core/region_pager.hpp): regions of the maintained map farther than
     // paging_radius [m] from the robot wait on disk in paging_dir until the robot comes back
     // (a loaded map's regions all start there). 0: the whole map in memory. paging_dir "":

@@ -24,7 +24,8 @@ TEST(MaintenanceParams, DefaultsThenOverrides) {
     runtime::Parameters p = params_of(
         "input: pose\noutput_dir: /tmp/x\nmap_file: /tmp/m.bin\nmaintain_every_s: 5\nsession: "
         "2\nmax_queue: 9\npack_after: 0\n"
-        "skip_while_busy: true\ncpu_share: 0.4\nvoxel_size: 0.3\nchange: {sigma: 2.5, voxel_level: "
+        "skip_while_busy: true\ncpu_share: 0.4\ncpu_budget: background\nmax_queue_mb: "
+        "64\nvoxel_size: 0.3\nchange: {sigma: 2.5, voxel_level: "
         "true}\n"
         "ground: {height: 0.4}\n");
     const MaintenanceComponentConfig c = load_maintenance_params(p);
@@ -38,6 +39,8 @@ TEST(MaintenanceParams, DefaultsThenOverrides) {
     EXPECT_EQ(c.pack_after, 0);
     EXPECT_TRUE(c.skip_while_busy);
     EXPECT_DOUBLE_EQ(c.cpu_share, 0.4);
+    EXPECT_EQ(c.cpu_budget, "background");
+    EXPECT_DOUBLE_EQ(c.max_queue_mb, 64.0);
     EXPECT_DOUBLE_EQ(c.maintenance.voxel_size, 0.3);
     ASSERT_TRUE(c.maintenance.change.sigma.has_value());
     EXPECT_DOUBLE_EQ(*c.maintenance.change.sigma, 2.5);
@@ -59,6 +62,8 @@ TEST(MaintenanceParams, DefaultsThenOverrides) {
     EXPECT_TRUE(n.map_file.empty());
     EXPECT_EQ(n.session, -1);
     EXPECT_DOUBLE_EQ(n.cpu_share, 1.0);        // not paced
+    EXPECT_TRUE(n.cpu_budget.empty());         // its own
+    EXPECT_DOUBLE_EQ(n.max_queue_mb, 128.0);   // a VLP-32C's 300 scans fit
     EXPECT_DOUBLE_EQ(n.paging_radius, 100.0);  // paged: the neighbourhood in memory
     EXPECT_TRUE(n.paging_dir.empty());
 
@@ -92,6 +97,8 @@ TEST(MaintenanceParams, ABadParameterIsOneLineNamingFileLineAndKey) {
               "test.yaml:1: maintenance.map_file: give either map_file or site_dir, not both");
     EXPECT_EQ(error_of("cpu_share: 0"),
               "test.yaml:1: maintenance.cpu_share: must be in (0, 1] (1: not paced)");
+    EXPECT_EQ(error_of("max_queue_mb: -1"),
+              "test.yaml:1: maintenance.max_queue_mb: must be >= 0 (0: only max_queue bounds)");
     EXPECT_EQ(error_of("paging_radius: -5"),
               "test.yaml:1: maintenance.paging_radius: must be >= 0 (0: no paging)");
     EXPECT_EQ(error_of("site_version: v0003"),

@@ -143,7 +143,7 @@ TEST(ChangeDetector, SpreadPassesKeepTheSameMap) {
     config.region_size = 10.0;  // several regions in view at once
     LongTermMap burst(config), spread(config);
     std::vector<ChangeSet> burst_passes, spread_passes;
-    std::size_t betweens = 0;
+    std::size_t betweens = 0, scan_betweens = 0;
     double stamp = 0.0;
     burst.begin_session(0, stamp);
     spread.begin_session(0, stamp);
@@ -153,7 +153,7 @@ TEST(ChangeDetector, SpreadPassesKeepTheSameMap) {
         const Eigen::Isometry3d T = at(-6.0 + 0.2 * k, 0.0);
         const std::vector<Eigen::Vector3f> pts = cast({wall, shed, car}, T);
         burst.add_scan(pts, T, stamp);
-        spread.add_scan(pts, T, stamp);
+        spread.add_scan(pts, T, stamp, [&] { ++scan_betweens; });
         stamp += 0.2;
         if (k % 15 == 14) {  // a pass every 3 s
             burst_passes.push_back(burst.maintain());
@@ -164,6 +164,8 @@ TEST(ChangeDetector, SpreadPassesKeepTheSameMap) {
     spread_passes.push_back(spread.end_session());
     // Between the regions and between each region's steps (ground, segments, verdicts).
     EXPECT_GE(betweens, 3u * (spread_passes.size() - 1)) << "passes over several regions";
+    // And between the regions each scan's view judged (issue 28: a scan's work spread too).
+    EXPECT_GE(scan_betweens, 60u) << "views over several regions";
     ASSERT_EQ(burst_passes.size(), spread_passes.size());
     std::size_t removed = 0;
     for (std::size_t i = 0; i < burst_passes.size(); ++i) {

@@ -43,8 +43,12 @@ MapEditInputs::MapEditInputs(runtime::ComponentContext& ctx, Mapper& mapper, std
                                    convert::to_isometry(m.pose.pose)));
             });
     }
-    if (options_.apply_changes && options_.clear_share < 1.0) {
-        pacer_.emplace(options_.clear_share, kClearBurst);
+    if (options_.apply_changes && (options_.clear_share < 1.0 || options_.budget)) {
+        if (options_.budget) {
+            pacer_.emplace(options_.budget);
+        } else {
+            pacer_.emplace(options_.clear_share, kClearBurst);
+        }
         pacer_->wait_after(0.0, common::steady_wall_s());  // starts its clocks
         ctx.add_timer(kClearTick, [this] { clear_some(); });
     }
@@ -117,7 +121,11 @@ void MapEditInputs::clear_some() {
     if (!clearing_) return;
     const double now = common::steady_wall_s();
     if (now < resume_at_s_) return;
-    pacer_->waited(now);
+    // A shared budget may be in debt from the others' work: wait for it before a piece.
+    if (const double wait = pacer_->wait_now(now); wait > 1e-6) {
+        resume_at_s_ = now + wait;
+        return;
+    }
     for (;;) {
         const double cpu0 = common::thread_cpu_s();
         std::size_t removed = 0;

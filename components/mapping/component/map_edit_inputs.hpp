@@ -13,6 +13,7 @@
 // end everything waiting is cleared at once (a saved map never lacks an edit it acknowledged).
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -38,6 +39,9 @@ class MapEditInputs {
         std::string frame_id = "map";
         // Clearing a pass's cells: at most this share of one core (1: all at once, on arrival).
         double clear_share = 0.15;
+        // Or drawing from this budget, shared with the process's other background work
+        // (common/core/cpu_budget.hpp; its share is clear_share).
+        std::shared_ptr<common::CpuBudget> budget;
     };
     // `placed` is told when a fix placed a part on the loaded map; `optimise` when one made an
     // optimisation due.
@@ -80,7 +84,7 @@ class MapEditInputs {
         double started_s = 0.0, cpu_s = 0.0;
     };
     std::optional<Clearing> clearing_;
-    std::optional<common::CpuPacer> pacer_;  // clear_share < 1
+    std::optional<common::CpuPacer> pacer_;  // clear_share < 1, or a shared budget
     double clear_cpu_s_ = 0.0;               // CPU spent clearing so far (the pacer's clock)
     double resume_at_s_ = 0.0;               // wall clock: the pacer's wait ends
 };

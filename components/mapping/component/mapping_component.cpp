@@ -24,9 +24,12 @@
 #include <optional>
 #include <set>
 
+#include "common/core/cpu_budget.hpp"
+#include "common/core/cpu_pacer.hpp"
 #include "common/core/io_error.hpp"
 #include "common/core/ply_io.hpp"
 #include "common/core/sensor_detect.hpp"
+#include "common/core/thread_clock.hpp"
 #include "map/core/link_applied.hpp"
 #include "map/core/map_store.hpp"
 #include "map/core/site_store.hpp"
@@ -78,6 +81,16 @@ class MappingComponent : public runtime::Component {
         edits.clear_share = p.get<double>("map_changes_cpu_share", edits.clear_share);
         if (!(edits.clear_share > 0.0 && edits.clear_share <= 1.0))
             p.fail("map_changes_cpu_share", "must be in (0, 1] (1: a pass's edits all at once)");
+        // A CPU budget shared with the process's other background work (the maintenance's
+        // `cpu_budget`, the same name; common/core/cpu_budget.hpp): the clearing draws from it and
+        // the periodic saves wait until it is full (at most kSaveLate), then are charged to it.
+        if (const std::string name = p.get<std::string>("cpu_budget", ""); !name.empty()) {
+            std::string error;
+            edits.budget = common::shared_cpu_budget(name, edits.clear_share, kBudgetBurst, &error);
+            if (!edits.budget) p.fail("cpu_budget", error);
+            save_pacer_.emplace(edits.budget);
+            save_pacer_->wait_after(0.0, common::steady_wall_s());  // starts its clocks
+        }
         edits.frame_id = frame_id_;
         const MapperConfig config = load_mapper_config(p, "", common::kAutoPreset);
         if (p.get<std::string>("preset", common::kAutoPreset) == common::kAutoPreset)
@@ -97,6 +110,10 @@ class MappingComponent : public runtime::Component {
         // Saving as it goes keeps the save at shutdown small (only what changed is rewritten),
         // and a crash loses at most one period.
         if (writer_ && save_period > 0) ctx.add_timer(save_period, [this] { save(); });
+        if (writer_ && save_period > 0 && save_pacer_)
+            ctx.add_timer(kSaveRetry, [this] {
+                if (save_due_) save();
+            });
         // One robot (relative topic names, the mapper's default session), or one a robot.
         for (const std::string& name : robots.empty() ? std::vector<std::string>{""} : robots) {
             auto robot = std::make_unique<Robot>();
@@ -152,6 +169,10 @@ class MappingComponent : public runtime::Component {
         graph_out_ = ctx.advertise<msg::PoseGraph>("pose_graph", TopicRole::kMap);
         loop_out_ = ctx.advertise<msg::LoopClosure>("loop_closure", TopicRole::kState);
         status_out_ = ctx.advertise<msg::Status>("status", TopicRole::kState);
+        // cpu_budget: the first periodic save (its timer fires as the host starts) now, while the
+        // host is configured, alone on the machine's clock like the components' loads, rather
+        // than in the mission's first second beside the first scans.
+        if (save_pacer_ && writer_ && save_period > 0) save(map_dir_, nullptr);
     }
 
     void on_shutdown() override {
@@ -165,6 +186,10 @@ class MappingComponent : public runtime::Component {
                         std::to_string(mapper_->local_map_count()) + " local maps, " +
                         std::to_string(mapper_->loops().size()) + " loops closed");
         if (const std::string edits = edits_->summary(); !edits.empty()) ctx_.log().info(edits);
+        if (save_pacer_)
+            ctx_.log().info("cpu_budget: " + std::to_string(saves_late_) +
+                            " periodic save(s) waited for the background budget, " +
+                            std::to_string(int(save_cpu_s_ * 1e3)) + " ms of CPU in saves");
         // The host lists the outputs: what a saved one holds (the parenthesis of the log line),
         // why one was not saved.
         auto detail = [](const std::string& line) {
@@ -304,9 +329,28 @@ class MappingComponent : public runtime::Component {
         return mapper_->revision() + mapper_->keyframes().size() + mapper_->local_map_count();
     }
 
-    // The periodic save: only when something changed.
+    // The periodic save: only when something changed. With a shared CPU budget it waits (on a
+    // timer of kSaveRetry) until the budget is full, at most kSaveLate, and is charged to it: a
+    // save (~0.3 s of CPU in one piece) then does not meet a maintenance pass in the same second.
     void save() {
-        if (writer_ && state() != saved_state_) save(map_dir_, nullptr);
+        if (!writer_ || state() == saved_state_) {
+            save_due_ = false;
+            return;
+        }
+        const double now = common::steady_wall_s();
+        if (save_pacer_) {
+            if (!save_due_) save_due_since_ = now;
+            save_due_ = true;
+            if (!save_pacer_->budget_full(now) && now - save_due_since_ < kSaveLate) return;
+            if (now - save_due_since_ > kSaveRetry) ++saves_late_;
+        }
+        save_due_ = false;
+        const double cpu0 = common::thread_cpu_s();
+        save(map_dir_, nullptr);
+        if (save_pacer_) {
+            save_cpu_s_ += common::thread_cpu_s() - cpu0;
+            save_pacer_->wait_after(save_cpu_s_, common::steady_wall_s());
+        }
     }
 
     // Saves the map to `dir`; logs the outcome and appends it to `outcome` (one line a step).
@@ -567,6 +611,14 @@ class MappingComponent : public runtime::Component {
     std::vector<std::unique_ptr<Robot>> robots_;  // callbacks hold their robot's address
     std::unique_ptr<map::MapWriter> writer_;
     std::uint64_t saved_state_ = 0;
+    // cpu_budget: the periodic saves' share of it (a save due waits for the budget to be full).
+    static constexpr double kBudgetBurst = 0.1;  // [s] of CPU, when this component creates it
+    static constexpr double kSaveRetry = 0.1;    // [s] a due save looks at the budget again
+    static constexpr double kSaveLate = 15.0;    // [s] at most a save waits for it
+    std::optional<common::CpuPacer> save_pacer_;
+    bool save_due_ = false;
+    double save_due_since_ = 0.0, save_cpu_s_ = 0.0;
+    std::uint64_t saves_late_ = 0;          // saves that waited for the budget
     std::string site_dir_, start_version_;  // site_dir; the version continued ("": none)
     map::DeliveryTracker delivery_;
     std::unique_ptr<MapEditInputs> edits_;            // holds the mapper: declared after it

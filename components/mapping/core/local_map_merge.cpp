@@ -76,9 +76,12 @@ void remap_seen(std::vector<std::uint16_t>* seen, const std::vector<std::uint32_
 // on (see same_surface in the header), or -1: a neighbouring cell's voxel with a normal, the
 // fresh voxel's centre within tol of its plane, its normal (if any) within 30 deg of it, and the
 // centre's foot on the plane inside that cell (widened by a tenth of an edge); the nearest plane.
+// With foot_in_cell false, any neighbouring cell's voxel whose plane the centre is within tol of
+// (the beside_surface rule: the same surface one cell beyond the old patch).
 long same_surface_voxel(const std::vector<common::VoxelData>& out, std::size_t n_into,
                         const std::unordered_map<Eigen::Vector3i, std::size_t, CellHash>& cell,
-                        const common::VoxelData& v, double g, double tol) {
+                        const common::VoxelData& v, double g, double tol,
+                        bool foot_in_cell = true) {
     long best = -1;
     double best_d = tol;
     const Eigen::Vector3d c = v.centre.cast<double>();
@@ -95,6 +98,11 @@ long same_surface_voxel(const std::vector<common::VoxelData>& out, std::size_t n
                 const Eigen::Vector3d n = w.normal.cast<double>();
                 const double d = n.dot(c - w.centre.cast<double>());
                 if (std::abs(d) > best_d) continue;
+                if (!foot_in_cell) {
+                    best_d = std::abs(d);
+                    best = long(it->second);
+                    continue;
+                }
                 const Eigen::Vector3d foot = c - d * n;
                 const Eigen::Vector3d lo = w.index.cast<double>() * g;
                 const double margin = 0.1 * g;
@@ -107,6 +115,30 @@ long same_surface_voxel(const std::vector<common::VoxelData>& out, std::size_t n
         }
     }
     return best;
+}
+
+// Whether `index` lies between voxels of `into` (out[0, n_into)): both cells of some opposite pair
+// of its 26 neighbours hold one. Such an empty cell is a hole in an old surface (a cell
+// maintenance emptied, or one an earlier day's sparse returns missed), not its edge: the
+// beside_surface rule leaves it to be filled.
+bool inside_old_voxels(const std::unordered_map<Eigen::Vector3i, std::size_t, CellHash>& cell,
+                       std::size_t n_into, const Eigen::Vector3i& index) {
+    const auto old = [&](const Eigen::Vector3i& c) {
+        const auto it = cell.find(c);
+        return it != cell.end() && it->second < n_into;
+    };
+    for (int dx = -1; dx <= 1; ++dx) {
+        for (int dy = -1; dy <= 1; ++dy) {
+            for (int dz = -1; dz <= 1; ++dz) {
+                const Eigen::Vector3i d(dx, dy, dz);
+                // Each opposite pair once: the first nonzero component positive.
+                const int first = dx != 0 ? dx : (dy != 0 ? dy : dz);
+                if (first <= 0) continue;
+                if (old(index + d) && old(index - d)) return true;
+            }
+        }
+    }
+    return false;
 }
 
 }  // namespace
@@ -153,7 +185,8 @@ common::LocalMapData merge_local_maps(const common::LocalMapData& into,
                                       const common::LocalMapData& add,
                                       const Eigen::Isometry3d& T_into_add,
                                       std::size_t max_observation_times, double same_surface,
-                                      std::size_t* absorbed_count) {
+                                      std::size_t* absorbed_count, double beside_surface,
+                                      std::size_t* beside_count) {
     common::LocalMapData out;
     out.id = into.id;
     out.revision = into.revision + 1;
@@ -202,7 +235,7 @@ common::LocalMapData merge_local_maps(const common::LocalMapData& into,
         }
     }
     const std::size_t n_into = out.voxels.size();  // `into`'s voxels, merged among themselves
-    std::size_t absorbed = 0;
+    std::size_t absorbed = 0, beside = 0;
     for (const common::VoxelData& v : add.voxels) {
         common::VoxelData moved = v;
         const Eigen::Vector3d p = T_grid * v.centre.cast<double>();
@@ -233,6 +266,13 @@ common::LocalMapData merge_local_maps(const common::LocalMapData& into,
                 continue;
             }
         }
+        if (beside_surface > 0.0 && cell.find(moved.index) == cell.end() &&
+            !inside_old_voxels(cell, n_into, moved.index) &&
+            same_surface_voxel(out.voxels, n_into, cell, moved, g, beside_surface * g, false) >=
+                0) {
+            ++beside;  // the old surface one cell on: adds nothing
+            continue;
+        }
         const auto [it, fresh] = cell.emplace(moved.index, out.voxels.size());
         if (fresh) {
             out.voxels.push_back(std::move(moved));
@@ -242,6 +282,7 @@ common::LocalMapData merge_local_maps(const common::LocalMapData& into,
     }
 
     if (absorbed_count) *absorbed_count = absorbed;
+    if (beside_count) *beside_count = beside;
     out.voxels.shrink_to_fit();  // reserved for both: a merged map is kept for long
     // The box: `into`'s and the corners of `add`'s, in `into`'s grid frame.
     out.bbox_min = into.bbox_min;

@@ -221,5 +221,65 @@ TEST(LocalMapMerge, ASurfaceSeenAgainAcrossACellFaceUpdatesTheVoxelsThereInstead
     EXPECT_EQ(merge_local_maps(a, wall, I, 1024, 0.2).voxels.size(), 26u);
 }
 
+// Another day's view shows the old ground one cell beyond its patch (a ring of cells around it, on
+// its plane but the foot outside every old cell): with beside_surface those voxels add nothing,
+// while ground two cells on, a box standing on the old ground (its top 1 m over the ground's plane,
+// its sides upright) and a wall beside the ground enter as before, and so does a hole in the patch.
+TEST(LocalMapMerge, TheOldSurfaceOneCellBeyondItsPatchAddsNothingNewSurfacesStillEnter) {
+    common::LocalMapData a, b;
+    a.voxel_size = b.voxel_size = 1.0f;
+    a.observation_times = {1.0};
+    b.observation_times = {86401.0};
+    for (int x = 0; x < 5; ++x)
+        for (int y = 0; y < 5; ++y)
+            a.voxels.push_back(voxel({x, y, 0}, {x + 0.5f, y + 0.5f, 0.5f}, {0, 0, 1}, 10));
+    // The ring around the patch (x or y = -1 or 5) on the ground's plane, 5 cm higher.
+    int ring = 0;
+    for (int x = -1; x <= 5; ++x)
+        for (int y = -1; y <= 5; ++y)
+            if (x < 0 || x > 4 || y < 0 || y > 4) {
+                b.voxels.push_back(voxel({x, y, 0}, {x + 0.5f, y + 0.5f, 0.55f}, {0, 0, 1}, 6));
+                ++ring;
+            }
+    // Ground two cells beyond the patch (x = 6): not beside an old voxel.
+    for (int y = 0; y < 5; ++y)
+        b.voxels.push_back(voxel({6, y, 0}, {6.5f, y + 0.5f, 0.55f}, {0, 0, 1}, 6));
+    // A box on the old ground: top at z = 1.5 (1 m over the plane), a side face upright.
+    b.voxels.push_back(voxel({2, 2, 1}, {2.5f, 2.5f, 1.5f}, {0, 0, 1}, 6));
+    b.voxels.push_back(voxel({1, 2, 1}, {1.9f, 2.5f, 1.2f}, {1, 0, 0}, 6));
+    const Eigen::Isometry3d I = Eigen::Isometry3d::Identity();
+    const std::size_t all = 25 + b.voxels.size();
+    EXPECT_EQ(merge_local_maps(a, b, I, 1024, 0.2).voxels.size(), all);  // without: every one
+
+    std::size_t absorbed = 0, beside = 0;
+    const common::LocalMapData m = merge_local_maps(a, b, I, 1024, 0.2, &absorbed, 0.5, &beside);
+    EXPECT_EQ(absorbed, 0u);
+    EXPECT_EQ(beside, std::size_t(ring));
+    EXPECT_EQ(m.voxels.size(), 25u + 5u + 2u);
+    const auto cells = by_cell(m);
+    for (int y = 0; y < 5; ++y) EXPECT_TRUE(cells.count({6, y, 0})) << y;
+    EXPECT_TRUE(cells.count({2, 2, 1}));
+    EXPECT_TRUE(cells.count({1, 2, 1}));
+    EXPECT_FALSE(cells.count({5, 2, 0}));
+    EXPECT_FALSE(cells.count({-1, -1, 0}));
+
+    // A hole in the old patch (a cell maintenance emptied): seen again, it is filled.
+    common::LocalMapData holed = a;
+    holed.voxels.erase(holed.voxels.begin() + 12);  // cell (2, 2, 0)
+    common::LocalMapData again = b;
+    again.voxels = {voxel({2, 2, 0}, {2.5f, 2.5f, 0.55f}, {0, 0, 1}, 6)};
+    const common::LocalMapData filled = merge_local_maps(holed, again, I, 1024, 0.2, nullptr, 0.5);
+    EXPECT_EQ(filled.voxels.size(), 25u);
+    EXPECT_TRUE(by_cell(filled).count({2, 2, 0}));
+
+    // Off the plane by more than the tolerance (0.6 m over it): a new surface, it enters.
+    common::LocalMapData raised = b;
+    raised.voxels = {voxel({5, 2, 1}, {5.5f, 2.5f, 1.1f}, {0, 0, 1}, 6)};
+    EXPECT_EQ(merge_local_maps(a, raised, I, 1024, 0.2, nullptr, 0.5).voxels.size(), 26u);
+    // Beside the patch but upright (normal along x): another surface, it enters.
+    raised.voxels = {voxel({5, 2, 0}, {5.1f, 2.5f, 0.5f}, {1, 0, 0}, 6)};
+    EXPECT_EQ(merge_local_maps(a, raised, I, 1024, 0.2, nullptr, 0.5).voxels.size(), 26u);
+}
+
 }  // namespace
 }  // namespace ltm::mapping

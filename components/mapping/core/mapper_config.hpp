@@ -72,6 +72,11 @@ struct LongTermConfig {
     // into it instead of adding a voxel: a place driven again does not grow by the few cm another
     // day's pose and view move its surfaces across cell faces. 0: off.
     double same_surface = 0.2;  // [voxel sizes]
+    // A folded map's voxel landing in an empty cell next to an existing voxel, within this
+    // fraction of the voxel size of that voxel's plane (normals within 30 deg), adds nothing: the
+    // old surface one cell beyond its patch, as another day's view shows it (local_map_merge.hpp;
+    // a new object's faces off the old planes still enter). 0: off (robot_lifelong.yaml: 0.5).
+    double beside_surface = 0.0;  // [voxel sizes]
 };
 
 // Joining two robots' sessions (open in one Mapper at once) that no loop has placed together yet.
@@ -209,6 +214,7 @@ void visit_own_fields(MapperConfig& c, Visitor&& v) {
     v("long_term.agree_rotation", l.agree_rotation, non_negative);
     v("long_term.max_observation_times", l.max_observation_times, in_range(2, 65536));
     v("long_term.same_surface", l.same_surface, in_range(0.0, 0.5));
+    v("long_term.beside_surface", l.beside_surface, in_range(0.0, 1.0));
     auto& j = c.session_join;
     v("session_join.loops", j.loops, at_least(1));
     v("session_join.agree_translation", j.agree_translation, positive);

@@ -114,7 +114,8 @@ void Mapper::fold(std::uint64_t n, std::uint64_t into) {
     MapEntry& e = maps_.at(into);
     auto merged = std::make_shared<common::LocalMapData>(merge_local_maps(
         *e.stored.data, *maps_.at(n).stored.data, T_into_n,
-        std::size_t(config_.long_term.max_observation_times), config_.long_term.same_surface));
+        std::size_t(config_.long_term.max_observation_times), config_.long_term.same_surface,
+        nullptr, config_.long_term.beside_surface));
     e.stored.data = std::move(merged);
     e.serial = next_serial_++;
 
