@@ -11,22 +11,22 @@
 #include <regex>
 
 #include "common/core/kitti_io.hpp"
+#include "host/launch_paths.hpp"
 #include "host/process.hpp"
 #include "host/temp_dir_test.hpp"
 
 namespace fs = std::filesystem;
+using ltm::tests::kHost;
+using ltm::tests::kTestHost;
 using ltm::tests::Process;
 
 namespace {
 
-const std::string kHost = std::string(LTM_BINARY_DIR) + "/bin/ltm_host";
-const std::string kTestHost = std::string(LTM_BINARY_DIR) + "/tests/ltm_test_host";
 const std::string kFixture = std::string(LTM_SOURCE_DIR) + "/tests/fixtures/kitti00_mini";
 
 // Loopback only, unicast discovery, a domain of the test's own: tests may run in parallel.
 std::string dds_section(int domain) {
-    return "domain_id: " + std::to_string(domain) +
-           "\ndds: {interfaces: [lo], multicast: false, peers: [127.0.0.1]}\n";
+    return "domain_id: " + std::to_string(domain) + "\ndds: " + ltm::tests::kLoopbackDds + "\n";
 }
 
 class HostTest : public ltm::tests::TempDirTest {
@@ -124,8 +124,7 @@ components:
 }
 
 TEST_F(HostTest, SimulatorStreamsLiveThroughTheHost) {
-    const std::string scenario =
-        std::string(LTM_SOURCE_DIR) + "/components/simulator/scenarios/tiny_loop.yaml";
+    const std::string scenario = ltm::tests::scenario("tiny_loop.yaml");
     const std::string launch = write("sim.yaml", dds_section(161) + R"(
 topics: {points: stream, ground_truth: stream}
 components:
@@ -153,9 +152,7 @@ components:
 TEST_F(HostTest, EveryShippedLaunchConfigIsValid) {
     setenv("LTM_DATA", kFixture.c_str(), 1);
     setenv("LTM_OUT", path("out").c_str(), 1);
-    setenv("LTM_SCENARIO",
-           (std::string(LTM_SOURCE_DIR) + "/components/simulator/scenarios/tiny_loop.yaml").c_str(),
-           1);
+    setenv("LTM_SCENARIO", (ltm::tests::scenario("tiny_loop.yaml")).c_str(), 1);
     std::size_t checked = 0;
     for (const auto& e : fs::directory_iterator(std::string(LTM_SOURCE_DIR) + "/launch_configs")) {
         if (e.path().extension() != ".yaml") continue;

@@ -20,6 +20,7 @@
 #include <thread>
 
 #include "common/core/file_io.hpp"
+#include "host/launch_paths.hpp"
 #include "host/process.hpp"
 #include "host/temp_dir_test.hpp"
 #include "map/core/link_applied.hpp"
@@ -27,15 +28,14 @@
 #include "map/core/site_store.hpp"
 
 namespace fs = std::filesystem;
+using ltm::tests::kConfigs;
+using ltm::tests::kHost;
 using ltm::tests::Process;
 using namespace ltm;
 
 namespace {
 
-const std::string kHost = std::string(LTM_BINARY_DIR) + "/bin/ltm_host";
-const std::string kConfigs = std::string(LTM_SOURCE_DIR) + "/launch_configs/";
-const std::string kScenario =
-    std::string(LTM_SOURCE_DIR) + "/components/simulator/scenarios/tiny_week.yaml";
+const std::string kScenario = ltm::tests::scenario("tiny_week.yaml");
 const std::string kDds = "dds={interfaces: [lo], multicast: false, peers: [127.0.0.1]}";
 
 // Bytes of the segment files under a journal folder (every run).

@@ -11,6 +11,7 @@
 
 #include "common/core/trajectory_io.hpp"
 #include "evaluation/core/alignment.hpp"
+#include "host/launch_paths.hpp"
 #include "host/process.hpp"
 #include "host/stamped_poses.hpp"
 #include "host/temp_dir_test.hpp"
@@ -21,15 +22,14 @@
 #include "simulator/core/simulator.hpp"
 
 namespace fs = std::filesystem;
+using ltm::tests::kHost;
 using ltm::tests::Process;
 using namespace ltm;
 
 namespace {
 
-const std::string kHost = std::string(LTM_BINARY_DIR) + "/bin/ltm_host";
 const std::string kConfig = std::string(LTM_SOURCE_DIR) + "/launch_configs/robot_lifelong.yaml";
-const std::string kScenario =
-    std::string(LTM_SOURCE_DIR) + "/components/simulator/scenarios/tiny_week.yaml";
+const std::string kScenario = ltm::tests::scenario("tiny_week.yaml");
 
 class LifelongPipeline : public ltm::tests::TempDirTest {
   protected:

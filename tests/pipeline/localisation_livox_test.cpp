@@ -10,25 +10,23 @@
 #include <map>
 
 #include "common/core/trajectory_io.hpp"
+#include "host/launch_paths.hpp"
 #include "host/process.hpp"
 #include "host/temp_dir_test.hpp"
 #include "map/core/map_store.hpp"
 
 namespace fs = std::filesystem;
+using ltm::tests::kHost;
 using ltm::tests::Process;
 using namespace ltm;
 
 namespace {
 
-const std::string kHost = std::string(LTM_BINARY_DIR) + "/bin/ltm_host";
-const std::string kScenario =
-    std::string(LTM_SOURCE_DIR) + "/components/simulator/scenarios/tiny_loop.yaml";
+const std::string kScenario = ltm::tests::scenario("tiny_loop.yaml");
 
 std::string header(int domain) {
-    return "domain_id: " + std::to_string(domain) +
-           "\ndds: {interfaces: [lo], multicast: false, peers: [127.0.0.1]}\nnamespace: /robot\n"
-           "topics: {points: stream, ground_truth: stream}\n"
-           "qos: {stream: {max_blocking_s: 2.0}}\ncomponents:\n";
+    return ltm::tests::launch_header(domain, "/robot", "points: stream, ground_truth: stream",
+                                     "stream: {max_blocking_s: 2.0}");
 }
 
 std::string sensor(int session) {

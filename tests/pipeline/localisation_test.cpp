@@ -11,27 +11,25 @@
 #include <sstream>
 
 #include "common/core/trajectory_io.hpp"
+#include "host/launch_paths.hpp"
 #include "host/process.hpp"
 #include "host/temp_dir_test.hpp"
 #include "map/core/map_store.hpp"
 
 namespace fs = std::filesystem;
+using ltm::tests::kHost;
+using ltm::tests::kTestHost;
 using ltm::tests::Process;
 using namespace ltm;
 
 namespace {
 
-const std::string kHost = std::string(LTM_BINARY_DIR) + "/bin/ltm_host";
-const std::string kTestHost = std::string(LTM_BINARY_DIR) + "/tests/ltm_test_host";
-const std::string kScenario =
-    std::string(LTM_SOURCE_DIR) + "/components/simulator/scenarios/tiny_loop.yaml";
+const std::string kScenario = ltm::tests::scenario("tiny_loop.yaml");
 
 std::string header(int domain) {
-    return "domain_id: " + std::to_string(domain) +
-           "\ndds: {interfaces: [lo], multicast: false, peers: [127.0.0.1]}\nnamespace: /robot\n"
-           "topics: {points: stream, ground_truth: stream}\n"
-           // A global localisation holds the scans back: the sensor's write waits in one piece.
-           "qos: {stream: {max_blocking_s: 2.0}}\ncomponents:\n";
+    // A global localisation holds the scans back: the sensor's write waits in one piece.
+    return ltm::tests::launch_header(domain, "/robot", "points: stream, ground_truth: stream",
+                                     "stream: {max_blocking_s: 2.0}");
 }
 
 // What the probe wrote.

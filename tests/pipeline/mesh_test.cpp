@@ -13,21 +13,21 @@
 #include <regex>
 #include <thread>
 
+#include "host/launch_paths.hpp"
 #include "host/process.hpp"
 #include "host/temp_dir_test.hpp"
 
 namespace fs = std::filesystem;
+using ltm::tests::kHost;
 using ltm::tests::Process;
 
 namespace {
 
-const std::string kHost = std::string(LTM_BINARY_DIR) + "/bin/ltm_host";
-const std::string kScenario =
-    std::string(LTM_SOURCE_DIR) + "/components/simulator/scenarios/tiny_loop.yaml";
+const std::string kScenario = ltm::tests::scenario("tiny_loop.yaml");
 
 std::string header(int domain) {
-    return "domain_id: " + std::to_string(domain) +
-           "\ndds: {interfaces: [lo], multicast: false, peers: [127.0.0.1]}\nnamespace: /robot\n";
+    return "domain_id: " + std::to_string(domain) + "\ndds: " + ltm::tests::kLoopbackDds +
+           "\nnamespace: /robot\n";
 }
 
 struct Counts {

@@ -8,20 +8,20 @@
 #include <filesystem>
 
 #include "common/core/file_io.hpp"
+#include "host/launch_paths.hpp"
 #include "host/process.hpp"
 #include "host/temp_dir_test.hpp"
 #include "map/core/map_store.hpp"
 #include "map/core/site_store.hpp"
 
 namespace fs = std::filesystem;
+using ltm::tests::kHost;
 using ltm::tests::Process;
 using namespace ltm;
 
 namespace {
 
-const std::string kHost = std::string(LTM_BINARY_DIR) + "/bin/ltm_host";
-const std::string kScenario =
-    std::string(LTM_SOURCE_DIR) + "/components/simulator/scenarios/tiny_loop.yaml";
+const std::string kScenario = ltm::tests::scenario("tiny_loop.yaml");
 
 class MultiRobotSite : public ltm::tests::TempDirTest {
   protected:

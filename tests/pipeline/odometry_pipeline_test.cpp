@@ -6,17 +6,18 @@
 
 #include "common/core/kitti_io.hpp"
 #include "common/core/trajectory_io.hpp"
+#include "host/launch_paths.hpp"
 #include "host/process.hpp"
 #include "host/temp_dir_test.hpp"
 #include "map/core/map_store.hpp"
 
 namespace fs = std::filesystem;
+using ltm::tests::kHost;
 using ltm::tests::Process;
 using namespace ltm;
 
 namespace {
 
-const std::string kHost = std::string(LTM_BINARY_DIR) + "/bin/ltm_host";
 const std::string kFixture = std::string(LTM_SOURCE_DIR) + "/tests/fixtures/kitti00_mini";
 
 class OdometryPipeline : public ltm::tests::TempDirTest {
@@ -67,8 +68,7 @@ components:
 // The odometry's default preset (auto): the VLP-16 of tiny_loop told from the first scan, said in
 // one line, every scan tracked.
 TEST_F(OdometryPipeline, SimulatedWorldThroughTheHost) {
-    const std::string scenario =
-        std::string(LTM_SOURCE_DIR) + "/components/simulator/scenarios/tiny_loop.yaml";
+    const std::string scenario = ltm::tests::scenario("tiny_loop.yaml");
     const std::string cfg = write("sim.yaml", R"(domain_id: 192
 dds: {interfaces: [lo], multicast: false, peers: [127.0.0.1]}
 topics: {points: stream, ground_truth: stream}
@@ -107,8 +107,7 @@ components:
 // sent by the map_request component while the mission runs), corrected full-rate odometry, and a
 // second session continuing the saved map.
 TEST_F(OdometryPipeline, SlamBackEndSavesItsMapAndASecondSessionContinuesIt) {
-    const std::string scenario =
-        std::string(LTM_SOURCE_DIR) + "/components/simulator/scenarios/tiny_loop.yaml";
+    const std::string scenario = ltm::tests::scenario("tiny_loop.yaml");
     auto config = [&](int session, const std::string& extra_mapping, const std::string& tag) {
         return write("slam" + tag + ".yaml",
                      R"(domain_id: 193

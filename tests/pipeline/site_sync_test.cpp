@@ -12,18 +12,19 @@
 #include <filesystem>
 #include <thread>
 
+#include "host/launch_paths.hpp"
 #include "host/process.hpp"
 #include "host/temp_dir_test.hpp"
 #include "site/core/incoming_version.hpp"
 #include "site/core/sync_test_sites.hpp"
 
 namespace fs = std::filesystem;
+using ltm::tests::kHost;
 using ltm::tests::Process;
 using namespace ltm;
 
 namespace {
 
-const std::string kHost = std::string(LTM_BINARY_DIR) + "/bin/ltm_host";
 constexpr int kDomain = 64;
 
 class SiteSyncPipeline : public ltm::tests::TempDirTest {

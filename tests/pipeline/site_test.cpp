@@ -12,6 +12,7 @@
 #include <fstream>
 #include <thread>
 
+#include "host/launch_paths.hpp"
 #include "host/process.hpp"
 #include "host/temp_dir_test.hpp"
 #include "map/core/map_store.hpp"
@@ -20,12 +21,11 @@
 #include "map/core/site_test_maps.hpp"
 
 namespace fs = std::filesystem;
+using ltm::tests::kHost;
 using ltm::tests::Process;
 using namespace ltm;
 
 namespace {
-
-const std::string kHost = std::string(LTM_BINARY_DIR) + "/bin/ltm_host";
 
 class SitePipeline : public ltm::tests::TempDirTest {
   protected:

@@ -10,21 +10,21 @@
 
 #include "common/core/cdr_cursor.hpp"
 #include "common/core/trajectory_io.hpp"
+#include "host/launch_paths.hpp"
 #include "host/process.hpp"
 #include "host/stamped_poses.hpp"
 #include "host/temp_dir_test.hpp"
 #include "recorder/core/mcap_reader.hpp"
 
 namespace fs = std::filesystem;
+using ltm::tests::kHost;
 using ltm::tests::Process;
 using namespace ltm;
 
 namespace {
 
-const std::string kHost = std::string(LTM_BINARY_DIR) + "/bin/ltm_host";
 const std::string kConfig = std::string(LTM_SOURCE_DIR) + "/launch_configs/robot_lifelong.yaml";
-const std::string kScenario =
-    std::string(LTM_SOURCE_DIR) + "/components/simulator/scenarios/tiny_loop.yaml";
+const std::string kScenario = ltm::tests::scenario("tiny_loop.yaml");
 
 struct Tf {
     long long stamp_ms = 0;

@@ -8,22 +8,22 @@
 #include <fstream>
 #include <sstream>
 
+#include "host/launch_paths.hpp"
 #include "host/process.hpp"
 #include "host/temp_dir_test.hpp"
 
 namespace fs = std::filesystem;
+using ltm::tests::kHost;
 using ltm::tests::Process;
 
 namespace {
 
-const std::string kHost = std::string(LTM_BINARY_DIR) + "/bin/ltm_host";
 const std::string kMcap = std::string(LTM_BINARY_DIR) + "/bin/ltm_mcap";
 const std::string kFixture = std::string(LTM_SOURCE_DIR) + "/tests/fixtures/kitti00_mini";
 
 std::string dds(int domain) {
-    return "domain_id: " + std::to_string(domain) +
-           "\ndds: {interfaces: [lo], multicast: false, peers: [127.0.0.1]}\nnamespace: /robot\n"
-           "topics: {points: stream, ground_truth: stream}\n";
+    return "domain_id: " + std::to_string(domain) + "\ndds: " + ltm::tests::kLoopbackDds +
+           "\nnamespace: /robot\ntopics: {points: stream, ground_truth: stream}\n";
 }
 
 std::string read_file(const fs::path& p) {
