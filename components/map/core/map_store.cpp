@@ -67,7 +67,7 @@ MapWriter::MapWriter(std::string dir, SaveOptions options)
     if (options_.keyframes_per_file == 0) options_.keyframes_per_file = 1;
 }
 
-SaveStats MapWriter::save(const MapData& map) {
+SaveStats MapWriter::save(const MapData& map, const std::function<void()>& between) {
     SaveStats stats;
     std::error_code ec;
     fs::create_directories(fs::path(dir_) / "local_maps", ec);
@@ -129,6 +129,7 @@ SaveStats MapWriter::save(const MapData& map) {
                 ++stats.files_written;
                 stats.bytes_written += bytes.size();
             }
+            if (between) between();
         }
         stats.bytes_total += e.size;
         if (!from.empty()) cache[key] = Written{{from.begin(), from.end()}, e.file, e.size, e.hash};

@@ -17,6 +17,7 @@
 // or keyframe file is refused, named with the field and the byte offset of the damage, and the
 // rest of the map loads.
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <unordered_map>
@@ -47,8 +48,10 @@ struct SaveStats {
 class MapWriter {
   public:
     explicit MapWriter(std::string dir, SaveOptions options = {});
-    // Throws common::IoError (naming the file) when a file cannot be written.
-    SaveStats save(const MapData& map);
+    // Throws common::IoError (naming the file) when a file cannot be written. `between` (when
+    // given) is called after each file encoded, before the next: a caller that paces its CPU
+    // waits there (the pieces of a save are single files; the manifest is written last).
+    SaveStats save(const MapData& map, const std::function<void()>& between = {});
     const std::string& dir() const { return dir_; }
 
   private:

@@ -267,6 +267,32 @@ TEST(MapStore, OnlyChangedFilesAreWrittenAndStaleOnesRemoved) {
     expect_same(map, load_map(dir.string()).map);
 }
 
+// A save in pieces (issue 28): `between` after each file encoded, none for what is kept, and
+// the manifest (written last) after the last piece.
+TEST(MapStore, BetweenComesAfterEachFileEncoded) {
+    const fs::path dir = fresh_dir("between");
+    MapData map = sample_map();
+    MapWriter writer(dir.string(), SaveOptions{2});
+    std::size_t calls = 0;
+    bool manifest_before_last = false;
+    const auto between = [&] {
+        ++calls;
+        manifest_before_last = manifest_before_last || fs::exists(dir / "manifest.txt");
+    };
+    EXPECT_EQ(writer.save(map, between).files_written, 8u);
+    EXPECT_EQ(calls, 7u);  // graph, 3 keyframe chunks, 3 maps: not the manifest
+    EXPECT_FALSE(manifest_before_last);
+    calls = 0;
+    writer.save(map, between);
+    EXPECT_EQ(calls, 1u);  // the graph (encoded to compare, not written again); nothing else
+    map.local_maps[1].data = random_local_map(1, 99, 10);
+    map.revision = 6;
+    calls = 0;
+    writer.save(map, between);
+    EXPECT_EQ(calls, 2u);  // that map and the graph
+    expect_same(map, load_map(dir.string()).map);
+}
+
 TEST(MapStore, AKeyframeReplacedInTheMiddleOfAChunkIsWritten) {
     // The long-term folding moves a folded map's keyframes to the node it went into: new objects
     // in the middle of a chunk whose first and last stay. A writer that compared only those kept

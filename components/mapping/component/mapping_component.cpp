@@ -34,6 +34,7 @@
 #include "map/core/map_store.hpp"
 #include "map/core/site_store.hpp"
 #include "mapping/component/map_edit_inputs.hpp"
+#include "mapping/component/map_saver.hpp"
 #include "mapping/component/mapper_messages.hpp"
 #include "mapping/component/place_descriptor_msg.hpp"
 #include "mapping/core/mapper.hpp"
@@ -83,13 +84,11 @@ class MappingComponent : public runtime::Component {
             p.fail("map_changes_cpu_share", "must be in (0, 1] (1: a pass's edits all at once)");
         // A CPU budget shared with the process's other background work (the maintenance's
         // `cpu_budget`, the same name; common/core/cpu_budget.hpp): the clearing draws from it and
-        // the periodic saves wait until it is full (at most kSaveLate), then are charged to it.
+        // the periodic saves (on their own thread, map_saver.hpp) draw from it file by file.
         if (const std::string name = p.get<std::string>("cpu_budget", ""); !name.empty()) {
             std::string error;
             edits.budget = common::shared_cpu_budget(name, edits.clear_share, kBudgetBurst, &error);
             if (!edits.budget) p.fail("cpu_budget", error);
-            save_pacer_.emplace(edits.budget);
-            save_pacer_->wait_after(0.0, common::steady_wall_s());  // starts its clocks
         }
         edits.frame_id = frame_id_;
         const MapperConfig config = load_mapper_config(p, "", common::kAutoPreset);
@@ -105,15 +104,13 @@ class MappingComponent : public runtime::Component {
         if (!map_dir_.empty()) {
             map::SaveOptions options;
             options.link_from = link_from_;  // unchanged files of the start version: hard links
-            writer_ = std::make_unique<map::MapWriter>(map_dir_, options);
+            saver_ = std::make_unique<MapSaver>(
+                ctx.name(), map_dir_, options, edits.budget,
+                [this](bool ok, const std::string& line) { report(ok, line, nullptr); });
         }
         // Saving as it goes keeps the save at shutdown small (only what changed is rewritten),
         // and a crash loses at most one period.
-        if (writer_ && save_period > 0) ctx.add_timer(save_period, [this] { save(); });
-        if (writer_ && save_period > 0 && save_pacer_)
-            ctx.add_timer(kSaveRetry, [this] {
-                if (save_due_) save();
-            });
+        if (saver_ && save_period > 0) ctx.add_timer(save_period, [this] { save(); });
         // One robot (relative topic names, the mapper's default session), or one a robot.
         for (const std::string& name : robots.empty() ? std::vector<std::string>{""} : robots) {
             auto robot = std::make_unique<Robot>();
@@ -169,14 +166,19 @@ class MappingComponent : public runtime::Component {
         graph_out_ = ctx.advertise<msg::PoseGraph>("pose_graph", TopicRole::kMap);
         loop_out_ = ctx.advertise<msg::LoopClosure>("loop_closure", TopicRole::kState);
         status_out_ = ctx.advertise<msg::Status>("status", TopicRole::kState);
-        // cpu_budget: the first periodic save (its timer fires as the host starts) now, while the
-        // host is configured, alone on the machine's clock like the components' loads, rather
-        // than in the mission's first second beside the first scans.
-        if (save_pacer_ && writer_ && save_period > 0) save(map_dir_, nullptr);
+        // The first periodic save (its timer fires as the host starts) now, while the host is
+        // configured, alone on the machine's clock like the components' loads, rather than in
+        // the mission's first second beside the first scans.
+        if (saver_ && save_period > 0) save(map_dir_, nullptr);
+    }
+
+    void on_activate() override {
+        if (saver_) saver_->start();
     }
 
     void on_shutdown() override {
-        edits_->finish_clearing();  // every edit taken is in the saved map
+        if (saver_) saver_->stop();  // the periodic save under way, unpaced; the last one below
+        edits_->finish_clearing();   // every edit taken is in the saved map
         if (loops_since_optimise_ > 0) optimise();
         for (const auto& r : robots_) {
             publish_path(*r);
@@ -186,10 +188,15 @@ class MappingComponent : public runtime::Component {
                         std::to_string(mapper_->local_map_count()) + " local maps, " +
                         std::to_string(mapper_->loops().size()) + " loops closed");
         if (const std::string edits = edits_->summary(); !edits.empty()) ctx_.log().info(edits);
-        if (save_pacer_)
-            ctx_.log().info("cpu_budget: " + std::to_string(saves_late_) +
-                            " periodic save(s) waited for the background budget, " +
-                            std::to_string(int(save_cpu_s_ * 1e3)) + " ms of CPU in saves");
+        if (saver_ && saver_->background_saves() > 0) {
+            char line[200];
+            std::snprintf(line, sizeof line,
+                          "periodic saves: %llu on mapping/save, %.0f ms of CPU, the longest piece "
+                          "between two budget checks %.0f ms",
+                          static_cast<unsigned long long>(saver_->background_saves()),
+                          saver_->background_cpu_s() * 1e3, saver_->longest_piece_s() * 1e3);
+            ctx_.log().info(line);
+        }
         // The host lists the outputs: what a saved one holds (the parenthesis of the log line),
         // why one was not saved.
         auto detail = [](const std::string& line) {
@@ -329,28 +336,13 @@ class MappingComponent : public runtime::Component {
         return mapper_->revision() + mapper_->keyframes().size() + mapper_->local_map_count();
     }
 
-    // The periodic save: only when something changed. With a shared CPU budget it waits (on a
-    // timer of kSaveRetry) until the budget is full, at most kSaveLate, and is charged to it: a
-    // save (~0.3 s of CPU in one piece) then does not meet a maintenance pass in the same second.
+    // The periodic save: only when something changed (or the last one failed), on the saver's
+    // thread (map_saver.hpp), within the CPU budget when there is one. Every edit taken is in it.
     void save() {
-        if (!writer_ || state() == saved_state_) {
-            save_due_ = false;
-            return;
-        }
-        const double now = common::steady_wall_s();
-        if (save_pacer_) {
-            if (!save_due_) save_due_since_ = now;
-            save_due_ = true;
-            if (!save_pacer_->budget_full(now) && now - save_due_since_ < kSaveLate) return;
-            if (now - save_due_since_ > kSaveRetry) ++saves_late_;
-        }
-        save_due_ = false;
-        const double cpu0 = common::thread_cpu_s();
-        save(map_dir_, nullptr);
-        if (save_pacer_) {
-            save_cpu_s_ += common::thread_cpu_s() - cpu0;
-            save_pacer_->wait_after(save_cpu_s_, common::steady_wall_s());
-        }
+        if (!saver_ || (state() == saved_state_ && !saver_->take_failed())) return;
+        edits_->finish_clearing();  // a saved map never lacks an edit it acknowledged
+        saved_state_ = state();
+        saver_->save_in_background(mapper_->snapshot(), delivery_.applied());
     }
 
     // Saves the map to `dir`; logs the outcome and appends it to `outcome` (one line a step).
@@ -359,20 +351,16 @@ class MappingComponent : public runtime::Component {
         edits_->finish_clearing();  // a saved map never lacks an edit it acknowledged
         try {
             map::SaveStats st;
-            if (writer_ && dir == map_dir_) {
-                st = writer_->save(mapper_->snapshot());
+            if (saver_ && dir == map_dir_) {
+                st = saver_->save_now(mapper_->snapshot(), delivery_.applied());
                 saved_state_ = state();
             } else {
                 st = map::save_map(dir, mapper_->snapshot());
+                // After the manifest: a version committed from this save holds both (the site
+                // component commits only once a save is done), so its record is never ahead.
+                if (!delivery_.applied().empty()) map::save_link_applied(dir, delivery_.applied());
             }
-            // After the manifest: a version committed from this save holds both (the site
-            // component commits only once a save is done), so its record is never ahead of it.
-            if (!delivery_.applied().empty()) map::save_link_applied(dir, delivery_.applied());
-            return report(true,
-                          "map saved to " + dir + " (" + std::to_string(st.files_written) +
-                              " files written, " + std::to_string(st.bytes_total >> 20) +
-                              " MiB in all)",
-                          outcome);
+            return report(true, MapSaver::describe(dir, st), outcome);
         } catch (const common::IoError& e) {
             return report(false, std::string("map not saved: ") + e.what(), outcome);
         }
@@ -609,17 +597,10 @@ class MappingComponent : public runtime::Component {
     std::string map_dir_, global_map_file_, frame_id_, link_from_;
     std::size_t loops_since_optimise_ = 0;
     std::vector<std::unique_ptr<Robot>> robots_;  // callbacks hold their robot's address
-    std::unique_ptr<map::MapWriter> writer_;
+    std::unique_ptr<MapSaver> saver_;             // map_dir's saves
     std::uint64_t saved_state_ = 0;
-    // cpu_budget: the periodic saves' share of it (a save due waits for the budget to be full).
     static constexpr double kBudgetBurst = 0.1;  // [s] of CPU, when this component creates it
-    static constexpr double kSaveRetry = 0.1;    // [s] a due save looks at the budget again
-    static constexpr double kSaveLate = 15.0;    // [s] at most a save waits for it
-    std::optional<common::CpuPacer> save_pacer_;
-    bool save_due_ = false;
-    double save_due_since_ = 0.0, save_cpu_s_ = 0.0;
-    std::uint64_t saves_late_ = 0;          // saves that waited for the budget
-    std::string site_dir_, start_version_;  // site_dir; the version continued ("": none)
+    std::string site_dir_, start_version_;       // site_dir; the version continued ("": none)
     map::DeliveryTracker delivery_;
     std::unique_ptr<MapEditInputs> edits_;            // holds the mapper: declared after it
     static constexpr std::size_t kMaxWaiting = 1000;  // 100 s at 10 Hz
