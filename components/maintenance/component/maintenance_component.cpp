@@ -189,7 +189,8 @@ class MaintenanceComponent : public runtime::Component {
         ctx_.log().info(std::to_string(scans_) + " scans: " + std::to_string(used_) +
                         " maintained, " + std::to_string(no_pose_ + pairer_.dropped()) +
                         " without a pose, " + std::to_string(worker_.skipped()) +
-                        " dropped while busy; " + std::to_string(passes_) + " passes");
+                        " dropped while busy" + spacing_note() + "; " + std::to_string(passes_) +
+                        " passes");
         char queue[300];
         std::snprintf(queue, sizeof queue,
                       "queue: at most %zu scans waiting, %.1f MiB (%.1f MiB unpacked); %llu "
@@ -313,6 +314,7 @@ class MaintenanceComponent : public runtime::Component {
                 ++no_pose_;
                 return;
             }
+            if (!views_.take(stamp, *T)) return;  // too near the last scan taken
             Scan scan{stamp, std::move(points), std::nullopt, *T};
             if (config_.pack_after >= 0 && worker_.waiting() >= std::size_t(config_.pack_after)) {
                 scan.packed = pack_points(scan.points);
@@ -506,6 +508,15 @@ class MaintenanceComponent : public runtime::Component {
         return frame_id_;
     }
 
+    // ", N left out (a scan every D m)" with view_distance, else "".
+    std::string spacing_note() const {
+        if (config_.views.distance <= 0.0) return "";
+        char text[120];
+        std::snprintf(text, sizeof text, ", %llu left out (a scan every %g m)",
+                      static_cast<unsigned long long>(views_.left_out()), config_.views.distance);
+        return text;
+    }
+
     // Thread-safe: the publisher and the logger are.
     void event(StatusLevel level, StatusCode code, const std::string& text, double stamp) {
         convert::log_status(ctx_.log(), level, text);
@@ -518,6 +529,7 @@ class MaintenanceComponent : public runtime::Component {
 
     // The component's thread.
     runtime::StampPairer<Points, Eigen::Isometry3d> pairer_;
+    ViewSpacing views_{config_.views};  // which scans are taken (view_distance)
     std::uint64_t scans_ = 0, no_pose_ = 0, packed_ = 0;
 
     // The waiting scans, their bytes and peaks (queue_mutex_).

@@ -50,6 +50,13 @@ MaintenanceComponentConfig load_maintenance_params(runtime::Parameters& p) {
     c.paging_radius = p.get<double>("paging_radius", c.paging_radius);
     if (!(c.paging_radius >= 0.0)) p.fail("paging_radius", "must be >= 0 (0: no paging)");
     c.paging_dir = p.path("paging_dir", "", runtime::PathCheck::kNone);
+    c.views.distance = p.get<double>("view_distance", c.views.distance);
+    c.views.angle_deg = p.get<double>("view_angle", c.views.angle_deg);
+    c.views.interval_s = p.get<double>("view_interval_s", c.views.interval_s);
+    if (const auto problem = validate(c.views)) {
+        const auto colon = problem->find(':');
+        p.fail(problem->substr(0, colon), problem->substr(colon + 2));
+    }
     visit_fields(c.maintenance, "", [&](const std::string& key, auto& field, const auto& /*rule*/) {
         using T = std::decay_t<decltype(field)>;
         if constexpr (is_optional<T>::value) {

@@ -72,6 +72,15 @@ TEST(MaintenanceParams, DefaultsThenOverrides) {
     EXPECT_NO_THROW(paged.check_all_used());
     EXPECT_DOUBLE_EQ(g.paging_radius, 0.0);
     EXPECT_EQ(g.paging_dir, "/tmp/pages");
+    EXPECT_DOUBLE_EQ(n.views.distance, 0.0);  // every scan
+
+    runtime::Parameters spaced =
+        params_of("view_distance: 0.4\nview_angle: 5\nview_interval_s: 2\n");
+    const MaintenanceComponentConfig v = load_maintenance_params(spaced);
+    EXPECT_NO_THROW(spaced.check_all_used());
+    EXPECT_DOUBLE_EQ(v.views.distance, 0.4);
+    EXPECT_DOUBLE_EQ(v.views.angle_deg, 5.0);
+    EXPECT_DOUBLE_EQ(v.views.interval_s, 2.0);
 }
 
 TEST(MaintenanceParams, ABadParameterIsOneLineNamingFileLineAndKey) {
@@ -101,6 +110,10 @@ TEST(MaintenanceParams, ABadParameterIsOneLineNamingFileLineAndKey) {
               "test.yaml:1: maintenance.max_queue_mb: must be >= 0 (0: only max_queue bounds)");
     EXPECT_EQ(error_of("paging_radius: -5"),
               "test.yaml:1: maintenance.paging_radius: must be >= 0 (0: no paging)");
+    EXPECT_EQ(error_of("view_distance: -0.4"),
+              "test.yaml:1: maintenance.view_distance: must be >= 0 (0: every scan)");
+    EXPECT_EQ(error_of("view_interval_s: 0"),
+              "test.yaml:1: maintenance.view_interval_s: must be > 0 [s]");
     EXPECT_EQ(error_of("site_version: v0003"),
               "test.yaml:1: maintenance.site_version: needs site_dir");
     // An optional key is checked when given, and named among the known keys of a misspelt one.
