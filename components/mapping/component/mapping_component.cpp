@@ -91,6 +91,7 @@ class MappingComponent : public runtime::Component {
             if (!edits.budget) p.fail("cpu_budget", error);
         }
         edits.frame_id = frame_id_;
+        const bool edits_budget = edits.budget != nullptr;
         const MapperConfig config = load_mapper_config(p, "", common::kAutoPreset);
         if (p.get<std::string>("preset", common::kAutoPreset) == common::kAutoPreset)
             ctx.log().info(
@@ -166,10 +167,10 @@ class MappingComponent : public runtime::Component {
         graph_out_ = ctx.advertise<msg::PoseGraph>("pose_graph", TopicRole::kMap);
         loop_out_ = ctx.advertise<msg::LoopClosure>("loop_closure", TopicRole::kState);
         status_out_ = ctx.advertise<msg::Status>("status", TopicRole::kState);
-        // The first periodic save (its timer fires as the host starts) now, while the host is
-        // configured, alone on the machine's clock like the components' loads, rather than in
-        // the mission's first second beside the first scans.
-        if (saver_ && save_period > 0) save(map_dir_, nullptr);
+        // cpu_budget: the first periodic save (its timer fires as the host starts) now, while the
+        // host is configured, alone on the machine's clock like the components' loads, rather
+        // than in the mission's first second beside the first scans.
+        if (saver_ && save_period > 0 && edits_budget) save(map_dir_, nullptr);
     }
 
     void on_activate() override {
