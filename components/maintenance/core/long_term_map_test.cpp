@@ -57,6 +57,22 @@ Counts repeated_ground(double create_range) {
     return n;
 }
 
+// A view every view_spacing (0.2 s) of a 10 Hz stream whose stamps jitter by a few ms, as a
+// driver's do: every second scan, not every second or third as the jitter fell.
+TEST(LongTermMapViews, A10HzStreamGivesAViewEveryTwoScans) {
+    MaintenanceConfig c;
+    c.view_spacing = 0.2;
+    LongTermMap map(c);
+    map.begin_session(0, 0.0);
+    const std::vector<test::Box> boxes = scene(0.0);
+    for (int k = 0; k < 60; ++k) {
+        const double jitter = 0.002 * double((k * 7) % 3 - 1);  // +-2 ms, a driver's
+        const Eigen::Isometry3d T = pose_at(0.2 * k, 0.0, 0.0);
+        map.add_scan(test::cast(boxes, T), T, 1000.0 + 0.1 * k + jitter);
+    }
+    EXPECT_EQ(map.stats().views + map.stats().views_pending, 30u);
+}
+
 TEST(LongTermMapGrowth, RepeatedGroundAddsOnlyNearVoxels) {
     const Counts off = repeated_ground(0.0);
     const Counts on = repeated_ground(15.0);

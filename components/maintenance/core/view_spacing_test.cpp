@@ -25,7 +25,7 @@ TEST(ViewSpacing, ByDefaultEveryScanIsTaken) {
 TEST(ViewSpacing, AScanEveryDistanceDriven) {
     ViewSpacing s({0.4, 10.0, 1.0});
     int taken = 0;
-    for (int i = 0; i < 100; ++i) taken += s.take(0.1 * i, at(0.2 * i + 1e-6 * i));
+    for (int i = 0; i < 100; ++i) taken += s.take(0.1 * i, at(0.2 * i - 1e-4 * (i % 3)));
     EXPECT_EQ(taken, 50);
     EXPECT_EQ(s.left_out(), 50u);
 }
