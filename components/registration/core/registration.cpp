@@ -116,6 +116,19 @@ void Registration::linearise(const std::vector<Eigen::Vector3f>& points, const V
     for (const Accumulator& a : partial_) total->add(a);
 }
 
+bool Registration::imls_after_align(std::size_t i, const VoxelGrid& grid, const Eigen::Vector3f& x,
+                                    ImlsResult* result) {
+    VoxelKey key;
+    if (!grid.key_of(x, &key)) return false;
+    if (i >= cache_.size()) return imls_distance(grid, x, imls_, result);
+    NeighbourCache& c = cache_[i];
+    if (key != c.key) {
+        c.key = key;
+        c.count = usable_neighbours(grid, x, c.index);
+    }
+    return imls_from_neighbours(grid.surfels(), c.index, c.count, x, imls_, result);
+}
+
 // Normalised Hessian: rotation as displacement at the lever arm L, divided by the total weight,
 // so that an eigenvalue is the weighted mean of (J.v)^2 (1/3 per axis for isotropic normals).
 Registration::Spectrum Registration::spectrum(const Accumulator& acc) const {

@@ -90,6 +90,40 @@ TEST(Registration, ParallelLoopGivesTheSameResult) {
     EXPECT_LT((a.T_map_lidar.matrix() - b.T_map_lidar.matrix()).norm(), 1e-9);
 }
 
+// A check after align() (the localisation's structure check) with the neighbours align() found:
+// the same IMLS distance as a fresh look-up, at the result, at a pose 0.7 m away (other voxels),
+// and for an index beyond the last align's points.
+TEST(Registration, ImlsAfterAlignEqualsAFreshLookUp) {
+    const test::Scene scene = test::room_scene();
+    test::ScanPattern pattern;
+    const Isometry3d A = test::make_pose(1, 2, 1.5, 0, 0, 0);
+    const Isometry3d B = test::make_pose(1.5, 2.2, 1.5, 0, 0, 5);
+    const VoxelGrid map =
+        make_map(to_world(test::scan_scene(scene, pattern, A, A, 1), A), Vector3f(1, 2, 1.5), 0.5);
+    const auto scan = test::scan_scene(scene, pattern, B, B, 2).points;
+    Registration registration({}, 0.5);
+    const RegistrationResult r = registration.align(scan, map, A);
+    ASSERT_TRUE(r.ok());
+    Isometry3d moved = r.T_map_lidar;
+    moved.translation() += Vector3d(0.7, -0.3, 0.1);
+    std::size_t found = 0;
+    for (const Isometry3d& T : {r.T_map_lidar, moved, r.T_map_lidar}) {
+        for (std::size_t i = 0; i < scan.size() + 3; ++i) {
+            const Vector3f x = (T * scan[i % scan.size()].cast<double>()).cast<float>();
+            ImlsResult fresh, cached;
+            const bool a = imls_distance(map, x, registration.imls_params(), &fresh);
+            const bool b = registration.imls_after_align(i, map, x, &cached);
+            ASSERT_EQ(a, b) << i;
+            if (!a) continue;
+            ++found;
+            EXPECT_EQ(fresh.distance, cached.distance) << i;
+            EXPECT_EQ(fresh.nearest, cached.nearest) << i;
+            EXPECT_EQ(fresh.neighbours, cached.neighbours) << i;
+        }
+    }
+    EXPECT_GT(found, scan.size());
+}
+
 TEST(Registration, CorridorReportsTheDegenerateDirection) {
     const test::Scene scene = test::corridor_scene();
     test::ScanPattern pattern;
