@@ -108,6 +108,10 @@ class Registration {
         double weight;  // total weight
         Eigen::SelfAdjointEigenSolver<Matrix6d> eig;
     };
+    // The IMLS distance at x with the usable neighbours of x's voxel, looked up only when x left
+    // the voxel `c` holds them for.
+    bool cached_imls(NeighbourCache& c, const VoxelGrid& grid, const Eigen::Vector3f& x,
+                     ImlsResult* result) const;
     void for_chunks(std::size_t n,
                     const std::function<void(std::size_t, std::size_t, std::size_t)>& f);
     void linearise(const std::vector<Eigen::Vector3f>& points, const VoxelGrid& grid,
