@@ -2,6 +2,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace ltm::maintenance {
@@ -62,20 +63,37 @@ void ObservationMap::add_points(const std::vector<Eigen::Vector3f>& points, doub
         }
         return false;
     };
+    // A scan's points come many to a cell: the answers of recent cells are kept (a small
+    // direct-mapped table), and a point in a cell whose voxel is full (PointSums::kMaxPoints)
+    // and already stamped by this call touches nothing. Within this call a cell's answer cannot
+    // change: a voxel keeps its index, and a cell left out beside an established voxel stays
+    // out (voxels made now are not established).
+    struct Recent {
+        registration::VoxelKey key = ~registration::VoxelKey(0);  // never a packed key
+        std::uint32_t index = kNone;
+        bool done = false;  // full and stamped: nothing left for this call to do
+    };
+    constexpr std::size_t kRecent = 256;
+    std::array<Recent, kRecent> recent{};
     for (const Eigen::Vector3f& p : points) {
         Eigen::Vector3i c;
         if (!p.allFinite() || !registration::voxel_coords(p, inv_voxel_size_, &c)) continue;
         const registration::VoxelKey key = registration::pack_key(c.x(), c.y(), c.z());
-        std::uint32_t i = index_.find(key, key_of);
-        if (i == kNone) {
-            if (guarded && beside_established(c)) continue;
-            i = insert(key, map_time);
+        Recent& r = recent[std::size_t((key * 0x9E3779B97F4A7C15ull) >> 56)];
+        if (r.key != key) {
+            r.key = key;
+            r.index = index_.find(key, key_of);
+            if (r.index == kNone && !(guarded && beside_established(c)))
+                r.index = insert(key, map_time);
+            r.done = false;
         }
-        ObservedVoxel& v = voxels_[i];
+        if (r.index == kNone || r.done) continue;  // beside an established voxel, or full
+        ObservedVoxel& v = voxels_[r.index];
         const Eigen::Vector3f q =
             p - (c.cast<float>() + Eigen::Vector3f::Constant(0.5f)) * voxel_size_;
         v.points.add(q, voxel_size_);  // up to PointSums::kMaxPoints: a centre and a normal
         v.last_point_ticks = std::max(v.last_point_ticks, ticks);
+        r.done = v.points.count >= PointSums::kMaxPoints;
     }
 }
 

@@ -124,7 +124,7 @@ Visibility RangeImage::classify(const Eigen::Vector3f& p, float size, float marg
     if (n_rows == 0) return Visibility::kUnseen;
     const int row_step = std::max(1, (n_rows + max_samples - 1) / max_samples);
     const int col_step = std::max(1, (c1 - c0 + max_samples - 1) / max_samples);
-    int surface = 0, beyond = 0, before = 0, sky = 0;
+    int beyond = 0, before = 0, sky = 0;
     for (int k = 0; k < n_rows; k += row_step) {
         const int row = rows[k];
         for (int c = c0; c <= c1; c += col_step) {
@@ -140,11 +140,10 @@ Visibility RangeImage::classify(const Eigen::Vector3f& p, float size, float marg
             } else if (range < r - margin) {
                 ++before;
             } else {
-                ++surface;
+                return Visibility::kSurface;  // a surface return wins over every other sample
             }
         }
     }
-    if (surface > 0) return Visibility::kSurface;
     if (beyond > 0) return Visibility::kFree;
     if (before > 0) return Visibility::kOccluded;
     // Only beams to the sky through the cube: free when it is within their range and nothing

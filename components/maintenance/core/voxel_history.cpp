@@ -1,6 +1,7 @@
 #include "maintenance/core/voxel_history.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace ltm::maintenance {
@@ -86,12 +87,17 @@ void VoxelHistory::assign(Entries h) {
 void merge_closest(VoxelHistory::Entries& h, int max_entries) {
     max_entries = std::clamp(max_entries, 2, VoxelHistory::kCapacity);
     while (h.n > max_entries) {
-        const auto cost = [&](int j) {
+        // Each entry's hit fraction once (each is in two neighbours' costs).
+        std::array<double, VoxelHistory::kCapacity + 1> fraction;
+        for (int j = 0; j < h.n; ++j) {
             const VoxelHistory::Entry& a = h.e[std::size_t(j)];
-            const VoxelHistory::Entry& b = h.e[std::size_t(j + 1)];
-            const double ra = double(a.hits) / std::max(1.0, double(a.hits) + a.free);
-            const double rb = double(b.hits) / std::max(1.0, double(b.hits) + b.free);
-            return (double(b.slot) - double(a.slot)) * (1.0 + kFractionWeight * std::abs(ra - rb));
+            fraction[std::size_t(j)] = double(a.hits) / std::max(1.0, double(a.hits) + a.free);
+        }
+        const auto cost = [&](int j) {
+            const double gap =
+                double(h.e[std::size_t(j + 1)].slot) - double(h.e[std::size_t(j)].slot);
+            return gap * (1.0 + kFractionWeight * std::abs(fraction[std::size_t(j)] -
+                                                           fraction[std::size_t(j + 1)]));
         };
         int k = 0;
         double best = cost(0);
