@@ -27,14 +27,16 @@
 #                                before/after of one setting with the same build)
 #   --report-only                the reports again from D's samples and probes (no host runs)
 #   --maintenance-share X        the maintenance worker's CPU at most X of one core (its
-#                                cpu_share: passes spread, not bursts; default 0.35, 1: unpaced),
-#                                with --background-share 0
+#                                cpu_share: passes spread, not bursts; 1: unpaced; default: the
+#                                launch config's), with --background-share 0 (then default 0.35)
 #   --background-share X         lifelong: the background work (maintenance worker, the mapping's
 #                                clearing of a pass's cells and its periodic saves) together at
 #                                most X of one core, one budget (cpu_budget: background; the
-#                                localisation's global queries charged to it too); default
-#                                0.4; 0: each its own (maintenance --maintenance-share, clearing
-#                                0.15, saves unpaced: before issue 28's budget-peaks)
+#                                localisation's global queries charged to it too); default: the
+#                                launch config's (robot_lifelong.yaml: 0.4, robot.yaml: the
+#                                maintenance 0.35); 0: each its own (maintenance
+#                                --maintenance-share, clearing 0.15, saves unpaced: before issue
+#                                28's budget-peaks)
 #   --nice N                     the hosts at nice N (e.g. -5, root: the mission ahead of the
 #                                machine's other work, as on a robot's own computer; said in the
 #                                report)
@@ -46,7 +48,7 @@ ROOT="$(cd "$(dirname "$0")/../../.." && pwd)"
 BIN="${LTM_BUILD_DIR:-$ROOT/build}/bin"
 DOMAIN="${LTM_BENCH_DOMAIN:-66}"
 CONFIG=all; SCENARIO="$ROOT/components/simulator/scenarios/site_loop.yaml"; FRAMES=""; OUT=""; PERF=1
-REPORT_ONLY=0; NICE=""; MAINT_SHARE=0.35; BACKGROUND_SHARE=0.4; SENSOR=""; SITE_FROM=""; DAY0_ONLY=0; EXTRA_SETS=()
+REPORT_ONLY=0; NICE=""; MAINT_SHARE=""; BACKGROUND_SHARE=""; SENSOR=""; SITE_FROM=""; DAY0_ONLY=0; EXTRA_SETS=()
 
 usage() {
     echo "The robot's mission at the sensor's rate: CPU, memory, missed scans, latency per component"
@@ -63,8 +65,8 @@ usage() {
         "--set NAME.KEY=VALUE" "lifelong: a parameter of the robot's host (repeatable)" \
         "--report-only" "write the reports again from D's samples and probes (needs --out D)" \
         "--nice N" "run the hosts at nice N (negative: ahead of the machine's other work; root)" \
-        "--maintenance-share X" "the maintenance worker's CPU share of a core (default 0.35; 1: unpaced), with --background-share 0" \
-        "--background-share X" "lifelong: maintenance + the mapping's clearing and saves together at most X of a core (default 0.4; 0: each its own)"
+        "--maintenance-share X" "the maintenance worker's CPU share of a core (default: the launch config's; 1: unpaced), with --background-share 0" \
+        "--background-share X" "lifelong: maintenance + the mapping's clearing and saves together at most X of a core (default: the launch config's, 0.4; 0: each its own)"
 }
 fail() { echo "ltm bench budget: $*" >&2; exit 2; }
 while [ $# -gt 0 ]; do
@@ -94,8 +96,8 @@ SCENARIO="$(cd "$(dirname "$SCENARIO")" && pwd)/$(basename "$SCENARIO")"
 [ -z "$SENSOR" ] || [[ "$SENSOR" =~ ^[a-z0-9_]+$ ]] || fail "--sensor: a simulator model (os1_64, hdl64e, vlp32c, vlp16), got '$SENSOR'"
 [ -z "$SITE_FROM" ] || [ "$DAY0_ONLY" = 0 ] || fail "--site-from and --day0-only: one or the other"
 [ -z "$SITE_FROM" ] || [ -d "$SITE_FROM/versions" ] || fail "--site-from: $SITE_FROM is not a site (no versions/ in it)"
-[[ "$MAINT_SHARE" =~ ^[0-9]*\.?[0-9]+$ ]] || fail "--maintenance-share: a number in (0, 1], got '$MAINT_SHARE'"
-[[ "$BACKGROUND_SHARE" =~ ^[0-9]*\.?[0-9]+$ ]] || fail "--background-share: a number in [0, 1] (0: each its own), got '$BACKGROUND_SHARE'"
+[ -z "$MAINT_SHARE" ] || [[ "$MAINT_SHARE" =~ ^[0-9]*\.?[0-9]+$ ]] || fail "--maintenance-share: a number in (0, 1], got '$MAINT_SHARE'"
+[ -z "$BACKGROUND_SHARE" ] || [[ "$BACKGROUND_SHARE" =~ ^[0-9]*\.?[0-9]+$ ]] || fail "--background-share: a number in [0, 1] (0: each its own), got '$BACKGROUND_SHARE'"
 for exe in ltm_host ltm_sim ltm_budget; do
     [ -x "$BIN/$exe" ] || fail "$BIN/$exe is not built (ninja -C build ltm_host ltm_sim ltm_budget)"
 done
@@ -228,11 +230,19 @@ run_lifelong_day() {  # DAY SESSION
     # its global queries run on their own thread (global_thread, the default when live); the
     # maintenance worker paced to a share of a core (cpu_share); with --background-share (the
     # default) it, the mapping's clearing and the mapping's periodic saves draw from one budget.
-    local pace=(--set "maintenance.cpu_share=$MAINT_SHARE")
-    if [ "$BACKGROUND_SHARE" != 0 ]; then
+    # Neither given: the launch config's own pacing (robot_lifelong.yaml: one budget of 0.4),
+    # as a user runs it.
+    local pace=()
+    if [ "$BACKGROUND_SHARE" = 0 ]; then  # each its own: no shared budget
+        pace=(--set "maintenance.cpu_share=${MAINT_SHARE:-0.35}" --set 'maintenance.cpu_budget=""'
+              --set mapping.map_changes_cpu_share=0.15 --set 'mapping.cpu_budget=""'
+              --set 'localisation.global_cpu_budget=""')
+    elif [ -n "$BACKGROUND_SHARE" ]; then
         pace=(--set "maintenance.cpu_share=$BACKGROUND_SHARE" --set maintenance.cpu_budget=background
               --set "mapping.map_changes_cpu_share=$BACKGROUND_SHARE" --set mapping.cpu_budget=background
               --set localisation.global_cpu_budget=background)
+    elif [ -n "$MAINT_SHARE" ]; then
+        pace=(--set "maintenance.cpu_share=$MAINT_SHARE")
     fi
     start_host robot "$dir" "$dir/launch.yaml" LTM_SITE="$OUT/lifelong/site" -- \
         --set localisation.skip_while_busy=true "${pace[@]}" "${EXTRA_SETS[@]}"
