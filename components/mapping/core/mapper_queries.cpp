@@ -42,9 +42,13 @@ common::PlyCloud Mapper::global_map(map::GlobalMapStats* stats) const {
     for (const auto& [node, entry] : maps_) ordered[node] = &entry;
     std::vector<map::PlacedLocalMap> placed;
     placed.reserve(ordered.size());
+    std::vector<std::shared_ptr<const common::LocalMapData>> read;  // paged out: for this map
     for (const auto& [node, entry] : ordered) {
         map::PlacedLocalMap p;
-        p.map = entry->stored.data.get();
+        std::shared_ptr<const common::LocalMapData> data = content(node, *entry);
+        if (!data) continue;
+        p.map = data.get();
+        read.push_back(std::move(data));
         p.T_world_anchor = graph_.find(node)->T_world_anchor;
         placed.push_back(p);
     }
@@ -70,6 +74,10 @@ std::size_t Mapper::memory_bytes() const {
     std::size_t n = graph_.nodes().capacity() * sizeof(map::PoseGraphNode) +
                     graph_.edges().capacity() * sizeof(map::PoseGraphEdge);
     for (const auto& [node, entry] : maps_) {
+        if (!entry.stored.data) {  // paged out
+            n += sizeof(common::LocalMapData) + sizeof(map::LocalMapFile);
+            continue;
+        }
         const common::LocalMapData& d = *entry.stored.data;
         n += sizeof(common::LocalMapData) + d.voxels.capacity() * sizeof(common::VoxelData) +
              d.observation_times.capacity() * sizeof(double);
