@@ -199,10 +199,11 @@ class MappingComponent : public runtime::Component {
         if (const std::string edits = edits_->summary(); !edits.empty()) ctx_.log().info(edits);
         if (saver_ && !site_dir_.empty()) {
             for (const std::string& line : mapper_->take_paging_problems()) ctx_.log().warn(line);
-            ctx_.log().info("paging: " + std::to_string(mapper_->paged_out()) + " of " +
-                            std::to_string(mapper_->local_map_count()) +
-                            " local maps on disk at the end, " +
-                            std::to_string(mapper_->paged_in()) + " loaded back");
+            ctx_.log().info(
+                "paging: " + std::to_string(mapper_->paged_out()) + " of " +
+                std::to_string(mapper_->local_map_count()) + " local maps on disk at the end, " +
+                std::to_string(mapper_->paged_in()) + " loaded back; the mapper holds " +
+                mib(mapper_->memory_bytes()) + " MiB");
         }
         if (saver_ && saver_->background_saves() > 0) {
             char line[200];
@@ -362,14 +363,22 @@ class MappingComponent : public runtime::Component {
         saver_->save_in_background(mapper_->snapshot(), delivery_.applied());
     }
 
+    static std::string mib(std::size_t bytes) {
+        char text[32];
+        std::snprintf(text, sizeof text, "%.1f", double(bytes) / 1048576.0);
+        return text;
+    }
+
     // Pages out the local maps far from the robots that the last save holds unchanged, and logs
     // the loads back that failed since.
     void page() {
         const std::size_t went = mapper_->page_out(saver_->written_local_maps());
         if (went > 0)
-            ctx_.log().debug("paged out " + std::to_string(went) + " local maps (" +
-                             std::to_string(mapper_->paged_out()) + " on disk, " +
-                             std::to_string(mapper_->paged_in()) + " loaded back so far)");
+            ctx_.log().info("paged out " + std::to_string(went) + " local maps (" +
+                            std::to_string(mapper_->paged_out()) + " of " +
+                            std::to_string(mapper_->local_map_count()) + " on disk, " +
+                            std::to_string(mapper_->paged_in()) + " loaded back so far; " +
+                            mib(mapper_->memory_bytes()) + " MiB held)");
         for (const std::string& line : mapper_->take_paging_problems()) ctx_.log().warn(line);
     }
 
