@@ -339,3 +339,35 @@ TEST_F(LocalisationPipeline, OdometryVoxelSizeOverrideReachesTheLocalisation) {
               std::string::npos)
         << host.err();
 }
+
+// Live with the map loaded at the start (`map_load: start`, the default, as in
+// robot_lifelong.yaml): the global queries are asked of their own thread (`localisation/global`),
+// not run on the tracking worker. The first scan asks and is not relocalised by itself; every
+// relocalisation is the answer of a query for an earlier scan. (The map was loaded before the
+// global thread existed, and every query ran on the worker in one piece: issue 28.)
+TEST_F(LocalisationPipeline, LiveQueriesRunOnTheirThreadWithTheMapLoadedAtTheStart) {
+    const std::string map = map_dir();
+    ASSERT_FALSE(HasFailure());
+    std::string launch = localise(208, map, "", 30, true);
+    {
+        std::ifstream in(launch);
+        std::stringstream text;
+        text << in.rdbuf();
+        std::string yaml = text.str();
+        const std::size_t at = yaml.find("map_load: worker");
+        ASSERT_NE(at, std::string::npos);
+        yaml.replace(at, std::string("map_load: worker").size(), "map_load: start");
+        std::ofstream(launch) << yaml;
+    }
+    Process host({kTestHost, launch}, path("host"));
+    ASSERT_EQ(host.wait(300), 0) << host.err();
+    const Probe probe = read_probe(dir_ / "probe.txt");
+    ASSERT_FALSE(probe.status.empty());
+    EXPECT_FALSE(probe.status.front().global_ran) << probe.status.front().message;
+    EXPECT_NE(probe.status.front().state, 3) << probe.status.front().message;
+    for (const StatusLine& s : probe.status) {
+        if (s.state == 3) {
+            EXPECT_NE(s.message.find("(the scan at "), std::string::npos) << s.message;
+        }
+    }
+}

@@ -199,7 +199,9 @@ class FoxgloveBridge : public runtime::Component {
         if (it == clients_.end()) return;
         if (scene_ && it->second.subscription_by_channel.count(scene_->map_channel()))
             --scene_->map_watchers();
+        const std::map<std::uint32_t, std::uint32_t> left = it->second.subscription_by_channel;
         clients_.erase(it);
+        for (const auto& [channel, subscription] : left) watch(channel);
         --open_clients_;
     }
 
@@ -216,6 +218,7 @@ class FoxgloveBridge : public runtime::Component {
                     it->second.subscription_by_channel.insert_or_assign(s.channel_id, s.id).second;
                 if (added && scene_ && s.channel_id == scene_->map_channel())
                     ++scene_->map_watchers();
+                watch(s.channel_id);
                 // What a latching channel sent before: the map cloud, every mesh chunk.
                 const auto l = latched_.find(s.channel_id);
                 if (l == latched_.end()) continue;
@@ -230,11 +233,32 @@ class FoxgloveBridge : public runtime::Component {
                         continue;
                     }
                     if (scene_ && s->first == scene_->map_channel()) --scene_->map_watchers();
+                    const std::uint32_t channel = s->first;
                     s = it->second.subscription_by_channel.erase(s);
+                    watch(channel);
                 }
                 it->second.policy.forget(id);
             }
         }
+    }
+
+    // io thread: whether any client subscribes to `channel` now, for the DDS handlers.
+    void watch(std::uint32_t channel) {
+        bool any = false;
+        for (const auto& [h, client] : clients_)
+            any = any || client.subscription_by_channel.count(channel);
+        std::lock_guard<std::mutex> lock(watched_mutex_);
+        if (any) {
+            watched_.insert(channel);
+        } else {
+            watched_.erase(channel);
+        }
+    }
+    // component thread: a sample of a channel no client subscribes to is not copied (a robot's
+    // bridge with no Foxglove open copied every scan, ~1 ms of CPU a scan: issue 28).
+    bool watched(std::uint32_t channel) {
+        std::lock_guard<std::mutex> lock(watched_mutex_);
+        return watched_.count(channel) > 0;
     }
 
     struct Latched {
@@ -334,6 +358,9 @@ class FoxgloveBridge : public runtime::Component {
         ctx_.subscribe_raw(
             topic.substr(2), info->descriptor, qos,
             [this, id, latch](const std::vector<std::uint8_t>& cdr, const dds_sample_info_t& i) {
+                // Latched samples are kept for a client that subscribes later; the others go
+                // only to the clients subscribed now.
+                if (!latch && !watched(id)) return;
                 auto shared = std::make_shared<const std::vector<std::uint8_t>>(cdr);
                 // The message's time: its DDS source timestamp (the writer's clock, this host's
                 // in one process), so a client reads the delivery latency; the bridge's receipt
@@ -405,6 +432,8 @@ class FoxgloveBridge : public runtime::Component {
     std::map<std::uint32_t, std::map<std::string, Latched>> latched_;  // io thread only
     std::atomic<std::uint64_t> sent_{0}, dropped_{0}, connections_{0};
     std::atomic<int> open_clients_{0};
+    std::mutex watched_mutex_;
+    std::set<std::uint32_t> watched_;  // channels some client subscribes to (io thread writes)
     std::uint64_t reported_dropped_ = 0, reported_connections_ = 0;
 };
 

@@ -136,7 +136,6 @@ class LocalisationComponent : public runtime::Component {
             p.fail("map_load", "start or worker, not '" + map_load + "'");
         if (map_load == "worker" && !skip_while_busy_)
             p.fail("map_load", "worker needs skip_while_busy (offline, every scan waits anyway)");
-        if (map_load == "start" && map_state_ == kLoading) load_map();
         pairing_.emplace(odometry_wait_s_);
         // Live: a scan that comes while the worker is busy replaces the one waiting for it.
         worker_.emplace(
@@ -160,6 +159,9 @@ class LocalisationComponent : public runtime::Component {
                     event(StatusLevel::kError, StatusCode::kLocalisationFailed,
                           common::one_line(what), 0.0);
                 });
+        // Loaded at the start after the global thread exists: the localiser asks its queries there
+        // (a map loaded before it ran every global query on the tracking worker, in one piece).
+        if (map_load == "start" && map_state_ == kLoading) load_map();
         ctx.subscribe<msg::PointCloud2>("points", TopicRole::kSensor,
                                         [this](const msg::PointCloud2& m) { on_points(m); });
         ctx.subscribe<msg::Odometry>("odometry", TopicRole::kState,

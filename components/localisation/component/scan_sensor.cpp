@@ -90,6 +90,8 @@ ScanSensor::ScanSensor(runtime::ComponentContext& ctx) : ctx_(ctx) {
     config_ = load_localiser_config(p, preset_);
     if (const auto oc = odometry_in_use(ctx, named_, std::nullopt))
         preprocessor_.emplace(oc->preprocess, oc->voxel_size);
+    // Tracking and global queries take their own samples of the map points.
+    if (preprocessor_) preprocessor_->set_map_points_only(true);
 }
 
 bool ScanSensor::add(const common::PointCloud& cloud, std::optional<Retune>* retune) {
@@ -100,6 +102,7 @@ bool ScanSensor::add(const common::PointCloud& cloud, std::optional<Retune>* ret
     if (!preprocessor_) {
         const auto oc = odometry_in_use(ctx_, named_, detected);
         preprocessor_.emplace(oc->preprocess, oc->voxel_size);
+        preprocessor_->set_map_points_only(true);
     }
     if (!narrow_config_ || !narrow(detected) || !detector_.detected()) return true;
     *retune = Retune{detected, *narrow_config_};

@@ -168,11 +168,11 @@ bool Localiser::track(const Eigen::Isometry3d& predicted, LocalisationUpdate* u)
         } else {
             const Eigen::Matrix3f R = r.T_map_lidar.linear().cast<float>();
             const Eigen::Vector3f t = r.T_map_lidar.translation().cast<float>();
-            const registration::ImlsParams imls = tracker_.imls_params();
             registration::ImlsResult res;
             std::size_t structure = 0, on = 0;
-            for (const Eigen::Vector3f& p : sampled_) {
-                if (!registration::imls_distance(map_->target().fine, R * p + t, imls, &res) ||
+            // With the neighbours the registration found (most points stayed in their voxel).
+            for (std::size_t i = 0; i < sampled_.size(); ++i) {
+                if (!tracker_.imls_after_align(i, map_->target().fine, R * sampled_[i] + t, &res) ||
                     std::abs(res.normal.z()) >= 0.8f)
                     continue;
                 ++structure;

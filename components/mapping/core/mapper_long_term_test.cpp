@@ -3,7 +3,9 @@
 // stored already, and loops that agree with the graph make no optimisation due.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <random>
 #include <set>
 
 #include "mapping/core/map_fix_pairer.hpp"
@@ -432,6 +434,54 @@ TEST(MapFixPairer, PairsAKeyframeWithATrackedPoseInAnyOrderAfterARunOfTracking) 
     EXPECT_FALSE(pairer.state(0.5, true));
     EXPECT_FALSE(pairer.pose(0.5, T));
     EXPECT_FALSE(pairer.keyframe(0.5, kf));
+}
+
+// The blocks' pre-check answers as the cells alone: every probe near and far from the cells
+// (both signs, across block edges), with and without a radius, after adds and erases, against a
+// brute force over the cells recorded.
+TEST(RemovedCells, AnswersAsABruteForceOverTheCells) {
+    const float size = 0.25f;
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> u(-6.0f, 6.0f);
+    std::vector<Eigen::Vector3f> centres;
+    for (int i = 0; i < 120; ++i) centres.emplace_back(u(rng), u(rng), u(rng) / 4);
+    RemovedCells cells;
+    cells.add(centres, size);
+    std::vector<Eigen::Vector3f> erased(centres.begin(), centres.begin() + 40);
+    cells.erase(erased);
+    std::set<std::array<int, 3>> kept;
+    for (std::size_t i = 40; i < centres.size(); ++i) {
+        const Eigen::Vector3i c = (centres[i] / size).array().floor().cast<int>();
+        kept.insert({c.x(), c.y(), c.z()});
+    }
+    for (const Eigen::Vector3f& e : erased) {  // a cell erased after another centre put it back
+        const Eigen::Vector3i c = (e / size).array().floor().cast<int>();
+        kept.erase({c.x(), c.y(), c.z()});
+    }
+    ASSERT_EQ(cells.size(), kept.size());
+    const auto brute = [&](const Eigen::Vector3f& p, float radius) {
+        const Eigen::Vector3f q = p / size;
+        for (const auto& k : kept) {
+            const Eigen::Vector3f cell = Eigen::Vector3i(k[0], k[1], k[2]).cast<float>();
+            const Eigen::Vector3f centre = (cell.array() + 0.5f) * size;
+            // The 2x2x2 cells nearest to p: each axis within one cell of p's cell centre.
+            bool near = true;
+            for (int a = 0; a < 3; ++a) near = near && std::abs(q[a] - (float(k[a]) + 0.5f)) < 1.0f;
+            if (near) return true;
+            if (radius > 0.0f && (centre - p).squaredNorm() <= radius * radius) return true;
+        }
+        return false;
+    };
+    std::size_t hits = 0;
+    for (int i = 0; i < 4000; ++i) {
+        const Eigen::Vector3f p(u(rng), u(rng), u(rng) / 4);
+        const bool a = cells.covers(p), b = cells.covers(p, 0.3f);
+        EXPECT_EQ(a, brute(p, 0.0f)) << p.transpose();
+        EXPECT_EQ(b, brute(p, 0.3f)) << p.transpose();
+        hits += b;
+    }
+    EXPECT_GT(hits, 50u);
+    EXPECT_LT(hits, 3950u);
 }
 
 TEST(RemovedCells, CoversTheCellAndHalfACellAround) {

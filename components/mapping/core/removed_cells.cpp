@@ -14,6 +14,21 @@ Eigen::Vector3i RemovedCells::cell(const Eigen::Vector3f& p) const {
     return (p / size_).array().floor().cast<int>();
 }
 
+Eigen::Vector3i RemovedCells::block(const Eigen::Vector3i& c) {
+    Eigen::Vector3i b;
+    for (int a = 0; a < 3; ++a) b[a] = c[a] >= 0 ? c[a] / kBlock : -((-c[a] - 1) / kBlock) - 1;
+    return b;
+}
+
+bool RemovedCells::may_hold(const Eigen::Vector3i& lo, const Eigen::Vector3i& hi) const {
+    const Eigen::Vector3i a = block(lo), b = block(hi);
+    for (int x = a.x(); x <= b.x(); ++x)
+        for (int y = a.y(); y <= b.y(); ++y)
+            for (int z = a.z(); z <= b.z(); ++z)
+                if (blocks_.count(key(Eigen::Vector3i(x, y, z)))) return true;
+    return false;
+}
+
 std::size_t RemovedCells::add(const std::vector<Eigen::Vector3f>& centres, float cell_size) {
     if (!(cell_size > 0.0f) || !std::isfinite(cell_size)) return 0;
     if (size_ == 0.0f) size_ = cell_size;
@@ -24,7 +39,11 @@ std::size_t RemovedCells::add(const std::vector<Eigen::Vector3f>& centres, float
             full_ = true;
             break;
         }
-        added += cells_.insert(key(cell(c))).second;
+        const Eigen::Vector3i k = cell(c);
+        if (cells_.insert(key(k)).second) {
+            ++added;
+            ++blocks_[key(block(k))];
+        }
     }
     return added;
 }
@@ -32,7 +51,11 @@ std::size_t RemovedCells::add(const std::vector<Eigen::Vector3f>& centres, float
 void RemovedCells::erase(const std::vector<Eigen::Vector3f>& centres) {
     if (size_ == 0.0f) return;
     for (const Eigen::Vector3f& c : centres) {
-        if (c.allFinite() && c.cwiseAbs().maxCoeff() <= 2.0e5f) cells_.erase(key(cell(c)));
+        if (!c.allFinite() || c.cwiseAbs().maxCoeff() > 2.0e5f) continue;
+        const Eigen::Vector3i k = cell(c);
+        if (cells_.erase(key(k)) == 0) continue;
+        const auto b = blocks_.find(key(block(k)));
+        if (b != blocks_.end() && --b->second == 0) blocks_.erase(b);
     }
 }
 
@@ -43,6 +66,7 @@ bool RemovedCells::covers(const Eigen::Vector3f& p) const {
     // The neighbour on the side of p along each axis (p is within half a cell of it).
     Eigen::Vector3i side;
     for (int a = 0; a < 3; ++a) side[a] = q[a] - float(c[a]) < 0.5f ? -1 : 1;
+    if (!may_hold(c.cwiseMin(c + side), c.cwiseMax(c + side))) return false;
     for (int i = 0; i < 8; ++i) {
         Eigen::Vector3i n = c;
         for (int a = 0; a < 3; ++a) {
@@ -59,6 +83,7 @@ bool RemovedCells::covers(const Eigen::Vector3f& p, float radius) const {
         return false;
     const Eigen::Vector3i lo = ((p.array() - radius) / size_).floor().cast<int>();
     const Eigen::Vector3i hi = ((p.array() + radius) / size_).floor().cast<int>();
+    if (!may_hold(lo, hi)) return false;
     const float r2 = radius * radius;
     for (int x = lo.x(); x <= hi.x(); ++x)
         for (int y = lo.y(); y <= hi.y(); ++y)

@@ -4,8 +4,13 @@
 // local maps that arrive later (a snapshot of a map still being built holds them again). A hash set
 // of cells of one edge length (the first one given); bounded: beyond `capacity` cells new ones are
 // not recorded (the maps present are still cleared) and full() says so.
+//
+// Most voxels looked at (every voxel of a local map near a pass's cells, every snapshot the
+// odometry sends) are nowhere near a removed cell: a coarse count of the cells in blocks of
+// kBlock^3 answers those with one look-up before the cells' own 8 to ~130 (issue 28).
 #include <Eigen/Core>
 #include <cstdint>
+#include <unordered_map>
 #include <unordered_set>
 #include <vector>
 
@@ -33,13 +38,19 @@ class RemovedCells {
     float cell_size() const { return size_; }
 
   private:
+    static constexpr int kBlock = 8;  // cells a block's edge
     static std::uint64_t key(const Eigen::Vector3i& c);
+    static Eigen::Vector3i block(const Eigen::Vector3i& c);
     Eigen::Vector3i cell(const Eigen::Vector3f& p) const;
+    // Whether any recorded cell lies in the cells lo..hi (inclusive) may be true: false when no
+    // block they touch holds a cell.
+    bool may_hold(const Eigen::Vector3i& lo, const Eigen::Vector3i& hi) const;
 
     std::size_t capacity_;
     float size_ = 0.0f;
     bool full_ = false;
     std::unordered_set<std::uint64_t> cells_;
+    std::unordered_map<std::uint64_t, std::uint32_t> blocks_;  // cells recorded in each block
 };
 
 }  // namespace ltm::mapping

@@ -97,7 +97,7 @@ void Preprocessor::run(const common::PointCloud& cloud, const Vector6d* velocity
     raw_map_points_.clear();
     mid_time_ = 0.0;
     if (with_time && config_.deskew && !map_times_.empty()) {
-        raw_map_points_ = out->map_points;
+        if (!map_points_only_) raw_map_points_ = out->map_points;
         const auto [lo, hi] = std::minmax_element(map_times_.begin(), map_times_.end());
         mid_time_ = 0.5 * (double(*lo) + double(*hi));
     }
@@ -107,6 +107,10 @@ void Preprocessor::run(const common::PointCloud& cloud, const Vector6d* velocity
         out->deskewed = true;
     }
 
+    if (map_points_only_) {
+        out->registration_points.clear();
+        return;
+    }
     registration_sampler_.run(out->map_points, registration_cell_, &out->registration_points);
     const std::size_t cap = std::size_t(config_.max_registration_points);
     auto& reg = out->registration_points;

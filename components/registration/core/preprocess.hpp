@@ -52,6 +52,10 @@ class Preprocessor {
     // (the motion estimated by registration, better than the prediction), and sets T_stamp_mid
     // for it. No-op without times.
     void redeskew_map_points(const Vector6d& velocity, PreprocessedScan* out);
+    // Only the map points (a user that registers its own sample of them, as the localisation's
+    // tracking): run() leaves registration_points empty and keeps no raw copy for
+    // redeskew_map_points.
+    void set_map_points_only(bool on) { map_points_only_ = on; }
 
   private:
     void deskew(const std::vector<float>& kept_times, const Vector6d& velocity,
@@ -66,6 +70,7 @@ class Preprocessor {
     std::vector<VoxelKey> keys_;                   // map-grid key of each cropped point
     VoxelHash cells_;
     VoxelDownsampler registration_sampler_;
+    bool map_points_only_ = false;
 };
 
 }  // namespace ltm::registration

@@ -145,6 +145,33 @@ TEST(Preprocess, DeskewMovesPointsToTheScanStampFrame) {
     EXPECT_FALSE(out.deskewed);
 }
 
+// Map points only (the localisation's): the same map points and mid-sweep pose, de-skewed as
+// before, no registration points.
+TEST(Preprocess, MapPointsOnlyGivesTheSameMapPoints) {
+    const test::Scene scene = test::room_scene();
+    test::ScanPattern pattern;
+    pattern.rings = 16;
+    pattern.azimuths = 360;
+    const Eigen::Isometry3d start = test::make_pose(-5, 0, 1.5, 0, 0, 0);
+    const Eigen::Isometry3d end = test::make_pose(-4, 0, 1.5, 0, 0, 6);
+    const common::PointCloud raw = test::scan_scene(scene, pattern, start, end, 1, true, false);
+    const Vector6d velocity = se3_log(start.inverse() * end) / pattern.period;
+    PreprocessConfig config;
+    Preprocessor full(config, 0.5), only(config, 0.5);
+    only.set_map_points_only(true);
+    PreprocessedScan a, b;
+    full.run(raw, &velocity, &a);
+    only.run(raw, &velocity, &b);
+    ASSERT_TRUE(a.deskewed);
+    EXPECT_TRUE(b.deskewed);
+    EXPECT_FALSE(a.registration_points.empty());
+    EXPECT_TRUE(b.registration_points.empty());
+    ASSERT_EQ(a.map_points.size(), b.map_points.size());
+    for (std::size_t i = 0; i < a.map_points.size(); ++i)
+        ASSERT_EQ(a.map_points[i], b.map_points[i]) << i;
+    EXPECT_TRUE(a.T_stamp_mid.isApprox(b.T_stamp_mid, 0.0));
+}
+
 TEST(Preprocess, DeskewReportsTheMidSweepPoseItAssumed) {
     // Points of a sweep over 0.1 s, each in the sensor frame of its own time, taken while moving
     // at `truth`; de-skewed with a velocity 0.5 m/s and 3 deg/s off. In the frame at the stamp the

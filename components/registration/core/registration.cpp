@@ -61,14 +61,7 @@ void Registration::linearise(const std::vector<Eigen::Vector3f>& points, const V
             out.weight = 0.0f;
             const Eigen::Vector3f q = R * points[i];  // the point relative to the sensor
             const Eigen::Vector3f x = q + t;
-            NeighbourCache& c = cache_[i];
-            VoxelKey key;
-            if (!grid.key_of(x, &key)) continue;
-            if (key != c.key) {
-                c.key = key;
-                c.count = usable_neighbours(grid, x, c.index);
-            }
-            if (!imls_from_neighbours(grid.surfels(), c.index, c.count, x, imls_, &r)) continue;
+            if (!cached_imls(cache_[i], grid, x, &r)) continue;
             out.error = r.distance;
             const float s = stability ? std::max(r.stability, min_stability) : 1.0f;
             out.weight = s * s;
@@ -114,6 +107,23 @@ void Registration::linearise(const std::vector<Eigen::Vector3f>& points, const V
     });
     *total = Accumulator();
     for (const Accumulator& a : partial_) total->add(a);
+}
+
+bool Registration::cached_imls(NeighbourCache& c, const VoxelGrid& grid, const Eigen::Vector3f& x,
+                               ImlsResult* result) const {
+    VoxelKey key;
+    if (!grid.key_of(x, &key)) return false;
+    if (key != c.key) {
+        c.key = key;
+        c.count = usable_neighbours(grid, x, c.index);
+    }
+    return imls_from_neighbours(grid.surfels(), c.index, c.count, x, imls_, result);
+}
+
+bool Registration::imls_after_align(std::size_t i, const VoxelGrid& grid, const Eigen::Vector3f& x,
+                                    ImlsResult* result) {
+    if (i >= cache_.size()) return imls_distance(grid, x, imls_, result);
+    return cached_imls(cache_[i], grid, x, result);
 }
 
 // Normalised Hessian: rotation as displacement at the lever arm L, divided by the total weight,

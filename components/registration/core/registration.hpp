@@ -65,6 +65,14 @@ class Registration {
     const RegistrationConfig& config() const { return config_; }
     ImlsParams imls_params() const { return imls_; }
 
+    // The IMLS distance at x of points[i] of the last align() on `grid` (the same points and
+    // grid: a check of the result), with the neighbours that align() found for that point's
+    // voxel; a point now in another voxel (or an index beyond the last align's points) is looked
+    // up in the grid. Equal to imls_distance(grid, x, imls_params(), result), without the 27
+    // look-ups a point that stayed in its voxel.
+    bool imls_after_align(std::size_t i, const VoxelGrid& grid, const Eigen::Vector3f& x,
+                          ImlsResult* result);
+
   private:
     struct Accumulator {
         Matrix6d H = Matrix6d::Zero();
@@ -100,6 +108,10 @@ class Registration {
         double weight;  // total weight
         Eigen::SelfAdjointEigenSolver<Matrix6d> eig;
     };
+    // The IMLS distance at x with the usable neighbours of x's voxel, looked up only when x left
+    // the voxel `c` holds them for.
+    bool cached_imls(NeighbourCache& c, const VoxelGrid& grid, const Eigen::Vector3f& x,
+                     ImlsResult* result) const;
     void for_chunks(std::size_t n,
                     const std::function<void(std::size_t, std::size_t, std::size_t)>& f);
     void linearise(const std::vector<Eigen::Vector3f>& points, const VoxelGrid& grid,

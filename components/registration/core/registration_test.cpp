@@ -47,6 +47,16 @@ std::vector<Vector3f> to_world(const common::PointCloud& cloud, const Isometry3d
     return out;
 }
 
+// The room mapped from A (0.5 m voxels) and scanned from B, 0.5 m and 5 deg on.
+std::pair<VoxelGrid, std::vector<Vector3f>> room_pair(const Isometry3d& A) {
+    const test::Scene scene = test::room_scene();
+    test::ScanPattern pattern;
+    const Isometry3d B = test::make_pose(1.5, 2.2, 1.5, 0, 0, 5);
+    return {
+        make_map(to_world(test::scan_scene(scene, pattern, A, A, 1), A), Vector3f(1, 2, 1.5), 0.5),
+        test::scan_scene(scene, pattern, B, B, 2).points};
+}
+
 TEST(Registration, RecoversKnownTransformsFromPerturbedStartsSynthetic) {
     const test::Scene scene = test::room_scene();
     test::ScanPattern pattern;
@@ -76,18 +86,42 @@ TEST(Registration, RecoversKnownTransformsFromPerturbedStartsSynthetic) {
 }
 
 TEST(Registration, ParallelLoopGivesTheSameResult) {
-    const test::Scene scene = test::room_scene();
-    test::ScanPattern pattern;
     const Isometry3d A = test::make_pose(1, 2, 1.5, 0, 0, 0);
-    const Isometry3d B = test::make_pose(1.5, 2.2, 1.5, 0, 0, 5);
-    const VoxelGrid map =
-        make_map(to_world(test::scan_scene(scene, pattern, A, A, 1), A), Vector3f(1, 2, 1.5), 0.5);
-    const auto scan = test::scan_scene(scene, pattern, B, B, 2).points;
+    const auto [map, scan] = room_pair(A);
     ParallelFor serial(1), two(2);
     const RegistrationResult a = Registration({}, 0.5, &serial).align(scan, map, A);
     const RegistrationResult b = Registration({}, 0.5, &two).align(scan, map, A);
     EXPECT_EQ(a.iterations, b.iterations);
     EXPECT_LT((a.T_map_lidar.matrix() - b.T_map_lidar.matrix()).norm(), 1e-9);
+}
+
+// A check after align() (the localisation's structure check) with the neighbours align() found:
+// the same IMLS distance as a fresh look-up, at the result, at a pose 0.7 m away (other voxels),
+// and for an index beyond the last align's points.
+TEST(Registration, ImlsAfterAlignEqualsAFreshLookUp) {
+    const Isometry3d A = test::make_pose(1, 2, 1.5, 0, 0, 0);
+    const auto [map, scan] = room_pair(A);
+    Registration registration({}, 0.5);
+    const RegistrationResult r = registration.align(scan, map, A);
+    ASSERT_TRUE(r.ok());
+    Isometry3d moved = r.T_map_lidar;
+    moved.translation() += Vector3d(0.7, -0.3, 0.1);
+    std::size_t found = 0;
+    for (const Isometry3d& T : {r.T_map_lidar, moved, r.T_map_lidar}) {
+        for (std::size_t i = 0; i < scan.size() + 3; ++i) {
+            const Vector3f x = (T * scan[i % scan.size()].cast<double>()).cast<float>();
+            ImlsResult fresh, cached;
+            const bool a = imls_distance(map, x, registration.imls_params(), &fresh);
+            const bool b = registration.imls_after_align(i, map, x, &cached);
+            ASSERT_EQ(a, b) << i;
+            if (!a) continue;
+            ++found;
+            EXPECT_EQ(fresh.distance, cached.distance) << i;
+            EXPECT_EQ(fresh.nearest, cached.nearest) << i;
+            EXPECT_EQ(fresh.neighbours, cached.neighbours) << i;
+        }
+    }
+    EXPECT_GT(found, scan.size());
 }
 
 TEST(Registration, CorridorReportsTheDegenerateDirection) {
