@@ -6,10 +6,12 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <set>
 #include <string>
 
 #include "common/core/file_io.hpp"
+#include "map/core/map_codec.hpp"
 #include "map/core/map_store.hpp"
 #include "mapping/core/mapper.hpp"
 #include "mapping/core/mapper_test_drive.hpp"
@@ -149,6 +151,91 @@ TEST(MapperPaging, ASaveElsewhereReadsThePagedOutMapsBack) {
     Mapper whole(config);
     replay(Drive(scene, 0.0, 0.0, Eigen::Isometry3d::Identity(), 0.0), whole);
     EXPECT_EQ(mapper.global_map().points.size(), whole.global_map().points.size());
+}
+
+// Maintenance edits that reach paged-out local maps (issue 28 item 3: the open miss of the first
+// day-1 runs): cells recorded while the maps they cover are on disk, a page-out while the clearing
+// waits, a save between the steps, cells kept again, a second lap whose snapshots are cleared on
+// arrival and fold into maps read back, one-shot edits after; every local map ends bit for bit as
+// the Mapper that kept them all has it (encoded, the lossless row format), with the same count of
+// voxels cleared. Deterministic: the calls are the same, only the paging differs.
+struct EditOutcome {
+    std::map<std::uint64_t, std::string> local_maps;  // node -> encoded
+    std::map<std::uint64_t, std::size_t> voxels;      // node -> voxel count (readable failures)
+    std::size_t removed = 0, loops = 0, paged_out = 0, paged_in = 0;
+};
+
+void edits_on_paged_maps(const fs::path& dir, bool paging, EditOutcome* result) {
+    EditOutcome& out = *result;
+    const std::vector<Eigen::Vector3f> scene =
+        registration::test::with_dense_ground(registration::test::synthetic_scene(71));
+    MapperConfig config = test_config();
+    config.paging.radius = 20.0;
+    Mapper mapper(config);
+    if (paging) {
+        mapper.set_local_map_loader([dir](const map::LocalMapFile& f) {
+            return map::load_local_map(dir.string(), f).data;
+        });
+    }
+    map::MapWriter writer(dir.string());
+    const auto cells = [](float x0, float x1, float y0, float y1, float z) {
+        std::vector<Eigen::Vector3f> c;
+        for (float x = x0; x <= x1; x += 0.5f)
+            for (float y = y0; y <= y1; y += 0.5f) c.emplace_back(x, y, z);
+        return c;
+    };
+    replay(Drive(scene, 0.0, 0.0, Eigen::Isometry3d::Identity(), 0.0), mapper);
+    writer.save(mapper.snapshot());
+    out.paged_out += mapper.page_out(writer.written_local_maps());
+    // Recorded while nodes 0-2 are on disk; a page-out before the steps (the waiting maps stay).
+    mapper.remove_cells_in_steps(cells(2.0f, 30.0f, -12.0f, 12.0f, 0.25f), 0.5f);
+    out.paged_out += mapper.page_out(writer.written_local_maps());
+    ASSERT_TRUE(mapper.clear_removed_step());  // one map cleared, the rest wait over a save
+    writer.save(mapper.snapshot());
+    out.paged_out += mapper.page_out(writer.written_local_maps());
+    while (mapper.clear_removed_step()) {
+    }
+    writer.save(mapper.snapshot());
+    out.paged_out += mapper.page_out(writer.written_local_maps());
+    // New objects where some cells were: kept; then cells elsewhere, at once.
+    mapper.keep_cells(cells(10.0f, 14.0f, -12.0f, 12.0f, 0.25f), 0.5f);
+    mapper.remove_cells(cells(0.0f, 20.0f, -12.0f, 12.0f, 1.25f), 0.5f);
+    // As the component pages, before its next save: the maps this edit changed are not on disk
+    // as they are now and stay.
+    out.paged_out += mapper.page_out(writer.written_local_maps());
+    writer.save(mapper.snapshot());
+    out.paged_out += mapper.page_out(writer.written_local_maps());
+    // The second lap: snapshots cleared on arrival, folded into the first lap's maps.
+    const Drive lap2(scene, 0.5, 0.3, registration::test::xy_yaw(0.3, -0.2, 1.0), 100.0, 1000,
+                     Eigen::Isometry3d::Identity(), 4);
+    replay(lap2, mapper);
+    out.paged_out += mapper.page_out(writer.written_local_maps());
+    mapper.remove_cells(cells(20.0f, 45.0f, -12.0f, 12.0f, 0.75f), 0.5f);
+    out.paged_out += mapper.page_out(writer.written_local_maps());
+    writer.save(mapper.snapshot());
+    out.paged_out += mapper.page_out(writer.written_local_maps());
+    for (const map::StoredLocalMap& m : mapper.complete_snapshot().local_maps) {
+        out.local_maps[m.node] = map::encode_local_map(m);
+        out.voxels[m.node] = m.data->voxels.size();
+    }
+    out.removed = mapper.removed_voxels();
+    out.loops = mapper.loops().size();
+    out.paged_in = mapper.paged_in();
+    EXPECT_TRUE(mapper.take_paging_problems().empty());
+}
+
+TEST(MapperPaging, EditsReachingPagedOutMapsLeaveTheSameVoxelsAsWithoutPaging) {
+    EditOutcome whole, paged;
+    ASSERT_NO_FATAL_FAILURE(edits_on_paged_maps(fresh_dir("edits_whole"), false, &whole));
+    ASSERT_NO_FATAL_FAILURE(edits_on_paged_maps(fresh_dir("edits_paged"), true, &paged));
+    EXPECT_EQ(whole.paged_out, 0u);
+    EXPECT_GE(paged.paged_out, 4u);  // the first lap's far maps, and again after their edits
+    EXPECT_GE(paged.paged_in, 3u);   // read back by the edits and the second lap
+    EXPECT_GT(whole.removed, 0u);
+    EXPECT_EQ(paged.removed, whole.removed);
+    EXPECT_EQ(paged.loops, whole.loops);
+    EXPECT_EQ(paged.voxels, whole.voxels);
+    EXPECT_TRUE(paged.local_maps == whole.local_maps);  // bit for bit
 }
 
 TEST(MapperPaging, RadiusIsValidated) {
