@@ -4,8 +4,10 @@
 // (T_world_anchor * T_anchor_grid); voxels of overlapping maps that land in the same cell of a
 // world grid are fused (centres and sign-aligned normals averaged, weighted by point count).
 #include <Eigen/Geometry>
+#include <cstdint>
 #include <optional>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "common/core/config_check.hpp"
@@ -50,5 +52,29 @@ struct GlobalMapStats {
 // which the cells were first met (input order), so the result is deterministic.
 common::PlyCloud build_global_map(const std::vector<PlacedLocalMap>& maps,
                                   const GlobalMapConfig& config, GlobalMapStats* stats = nullptr);
+
+// The same one local map at a time (a caller that reads paged-out local maps keeps one in
+// memory): add() in the order build_global_map takes them gives its result. `grid` is the fusion
+// grid [m]: config.voxel_size, or when 0 the largest local-map voxel size (1 when none).
+class GlobalMapBuilder {
+  public:
+    GlobalMapBuilder(const GlobalMapConfig& config, double grid);
+    void add(const common::LocalMapData& map, const Eigen::Isometry3d& T_world_anchor);
+    common::PlyCloud finish(GlobalMapStats* stats = nullptr) const;
+
+  private:
+    struct Cell {
+        double weight = 0.0;
+        Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+        Eigen::Vector3d normal_sum = Eigen::Vector3d::Zero();
+        Eigen::Vector3d reference = Eigen::Vector3d::Zero();  // first normal: sign reference
+        bool has_normal = false;
+    };
+    GlobalMapConfig config_;
+    double inv_ = 1.0;
+    std::unordered_map<std::uint64_t, std::size_t> index_;  // registration::VoxelKey -> cell
+    std::vector<Cell> cells_;
+    std::size_t input_voxels_ = 0;
+};
 
 }  // namespace ltm::map

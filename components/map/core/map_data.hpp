@@ -42,10 +42,21 @@ struct StoredKeyframe {
     places::ScanContext localisation_descriptor;
 };
 
+// A local map's file in a map directory, as a save wrote it (name relative to the directory).
+struct LocalMapFile {
+    std::uint64_t node = 0;
+    std::uint32_t format = 0;  // the format version it was written in
+    std::string file;
+    std::uint64_t size = 0, hash = 0;  // bytes, FNV-1a 64 of them
+};
+
 struct StoredLocalMap {
     std::uint64_t node = 0;  // graph node (its anchor)
     std::uint32_t session = 0;
     std::shared_ptr<const common::LocalMapData> data;
+    // Paged out (data == nullptr): the local map is this file of the directory being saved,
+    // unchanged since a save wrote it; a save keeps the file (MapWriter::save).
+    std::shared_ptr<const LocalMapFile> paged{};
 };
 
 // The localisation_descriptor_config of a map without localisation descriptors (format 1):

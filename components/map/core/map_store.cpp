@@ -152,19 +152,46 @@ SaveStats MapWriter::save(const MapData& map, const std::function<void()>& betwe
         e.count = n;
         manifest.files.push_back(e);
     }
+    std::unordered_map<std::uint64_t, WrittenLocalMap> written_local_maps;
     for (const StoredLocalMap& m : map.local_maps) {
+        if (!m.data && m.paged) {  // paged out: its file as a save wrote it
+            // Named as written even when damaged since (a load refuses that one file, by name):
+            // a save never drops a local map nor writes another over it.
+            const LocalMapFile& f = *m.paged;
+            if (f.format != version || f.node != m.node) {
+                throw common::IoError(f.file, "the paged-out local map of node " +
+                                                  std::to_string(m.node) + " is of format " +
+                                                  std::to_string(f.format) + ", this save's is " +
+                                                  std::to_string(version));
+            }
+            ManifestEntry e;
+            e.kind = "local_map";
+            e.file = f.file;
+            e.size = f.size;
+            e.hash = f.hash;
+            e.node = m.node;
+            ++stats.files_kept;
+            stats.bytes_total += e.size;
+            manifest.files.push_back(e);
+            written_local_maps[m.node] = WrittenLocalMap{{}, m.paged};
+            continue;
+        }
         if (!m.data) continue;
         ManifestEntry e = emit(v + "lm:" + std::to_string(m.node), "local_map",
                                "local_maps/lm_" + padded(m.node, 8) + "_", {m.data},
                                [&] { return encode_local_map(m, version); });
         e.node = m.node;
         manifest.files.push_back(e);
+        written_local_maps[m.node] =
+            WrittenLocalMap{m.data, std::make_shared<const LocalMapFile>(
+                                        LocalMapFile{m.node, version, e.file, e.size, e.hash})};
     }
     const std::string text = write_manifest(manifest);
     common::write_file_atomic((fs::path(dir_) / kManifestFile).string(), text);
     ++stats.files_written;
     stats.bytes_written += text.size();
     cache_.swap(cache);
+    written_local_maps_.swap(written_local_maps);
 
     // Files of earlier saves that the new manifest does not name.
     std::unordered_set<std::string> keep;
@@ -186,6 +213,25 @@ SaveStats MapWriter::save(const MapData& map, const std::function<void()>& betwe
         }
     }
     return stats;
+}
+
+StoredLocalMap load_local_map(const std::string& dir, const LocalMapFile& file) {
+    const std::string bytes = common::read_file((fs::path(dir) / file.file).string(), file.file);
+    ManifestEntry e;
+    e.file = file.file;
+    e.size = file.size;
+    e.hash = file.hash;
+    e.node = file.node;
+    std::uint32_t version = 0;
+    StoredLocalMap m = decode_local_map(bytes, e.file, &version);
+    check_entry(e, bytes);
+    check_version(e, version, file.format);
+    if (m.node != file.node) {
+        throw MapFormatError(
+            e.file, "header.node", kFirstHeaderField,
+            "node " + std::to_string(m.node) + ", expected " + std::to_string(file.node));
+    }
+    return m;
 }
 
 SaveStats save_map(const std::string& dir, const MapData& map, const SaveOptions& options) {

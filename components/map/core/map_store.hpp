@@ -51,8 +51,21 @@ class MapWriter {
     // Throws common::IoError (naming the file) when a file cannot be written. `between` (when
     // given) is called after each file encoded, before the next: a caller that paces its CPU
     // waits there (the pieces of a save are single files; the manifest is written last).
+    // A paged-out local map (StoredLocalMap::paged, no data) keeps its file as written (the
+    // manifest names it; a save never leaves a local map out); IoError when it is of another
+    // format than this save's.
     SaveStats save(const MapData& map, const std::function<void()>& between = {});
     const std::string& dir() const { return dir_; }
+
+    // What the last save wrote or kept of each local map (by node), with the data it was made
+    // from (expired when that data is gone; empty for a paged-out map kept as it was).
+    struct WrittenLocalMap {
+        std::weak_ptr<const common::LocalMapData> data;
+        std::shared_ptr<const LocalMapFile> file;
+    };
+    const std::unordered_map<std::uint64_t, WrittenLocalMap>& written_local_maps() const {
+        return written_local_maps_;
+    }
 
   private:
     struct Written {
@@ -66,6 +79,7 @@ class MapWriter {
     std::string dir_;
     SaveOptions options_;
     std::unordered_map<std::string, Written> cache_;
+    std::unordered_map<std::uint64_t, WrittenLocalMap> written_local_maps_;
 };
 
 // One-off save.
@@ -81,5 +95,9 @@ struct LoadedMap {
 // common::IoError when one of them cannot be read. A format-1 map loads with empty localisation
 // descriptors and localisation_descriptor_config == no_localisation_descriptors().
 LoadedMap load_map(const std::string& dir);
+
+// One local map file of a map directory, checked as load_map checks it (size, checksum, format
+// version, node). Throws MapFormatError (damaged) or common::IoError (unreadable), one line.
+StoredLocalMap load_local_map(const std::string& dir, const LocalMapFile& file);
 
 }  // namespace ltm::map

@@ -42,6 +42,12 @@ void MapSaver::stop() {
     worker_.stop();
 }
 
+std::unordered_map<std::uint64_t, map::MapWriter::WrittenLocalMap> MapSaver::written_local_maps()
+    const {
+    std::lock_guard<std::mutex> lock(written_mutex_);
+    return written_;
+}
+
 std::string MapSaver::describe(const std::string& dir, const map::SaveStats& st) {
     return "map saved to " + dir + " (" + std::to_string(st.files_written) + " files written, " +
            std::to_string(st.bytes_total >> 20) + " MiB in all)";
@@ -64,6 +70,10 @@ map::SaveStats MapSaver::save_now(const map::MapData& map, const map::LinkApplie
 map::SaveStats MapSaver::write(const map::MapData& map, const map::LinkApplied& applied,
                                const std::function<void()>& between) {
     const map::SaveStats st = writer_.save(map, between);
+    {
+        std::lock_guard<std::mutex> lock(written_mutex_);
+        written_ = writer_.written_local_maps();
+    }
     // After the manifest: a version committed from this save holds both (the site component
     // commits only once a save is done), so its record is never ahead of it.
     if (!applied.empty()) map::save_link_applied(dir_, applied);

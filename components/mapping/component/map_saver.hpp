@@ -19,6 +19,7 @@
 #include <memory>
 #include <mutex>
 #include <string>
+#include <unordered_map>
 
 #include "common/core/cpu_budget.hpp"
 #include "map/core/link_applied.hpp"
@@ -54,6 +55,10 @@ class MapSaver {
     std::uint64_t skipped() const { return skipped_.load(); }  // older than one written
     double longest_piece_s() const { return longest_piece_s_.load(); }
 
+    // What the newest save written holds of each local map (map::MapWriter::written_local_maps):
+    // a local map whose data is still the one written can leave memory (paged out).
+    std::unordered_map<std::uint64_t, map::MapWriter::WrittenLocalMap> written_local_maps() const;
+
     static std::string describe(const std::string& dir, const map::SaveStats& st);
 
   private:
@@ -70,7 +75,9 @@ class MapSaver {
     map::MapWriter writer_;
     std::shared_ptr<common::CpuBudget> budget_;
     std::function<void(bool, const std::string&)> log_;
-    std::mutex writer_mutex_;                 // held while the directory is written
+    std::mutex writer_mutex_;           // held while the directory is written
+    mutable std::mutex written_mutex_;  // guards written_
+    std::unordered_map<std::uint64_t, map::MapWriter::WrittenLocalMap> written_;
     std::uint64_t written_seq_ = 0;           // the newest save written (under writer_mutex_)
     std::atomic<std::uint64_t> next_seq_{0};  // numbers the saves as they are asked for
     std::atomic<bool> hurry_{false};          // a save now waits: the background one stops pacing

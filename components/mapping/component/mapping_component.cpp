@@ -111,6 +111,14 @@ class MappingComponent : public runtime::Component {
         }
         // Saving as it goes keeps the save at shutdown small (only what changed is rewritten),
         // and a crash loses at most one period.
+        // On a site, the local maps far from the robots leave memory once a save holds them
+        // unchanged, and are read back from the session's map directory when needed (mapper.hpp,
+        // PagingConfig); a plain map_dir run keeps them all.
+        if (saver_ && !site_dir_.empty()) {
+            mapper_->set_local_map_loader([dir = map_dir_](const map::LocalMapFile& f) {
+                return map::load_local_map(dir, f).data;
+            });
+        }
         if (saver_ && save_period > 0) ctx.add_timer(save_period, [this] { save(); });
         // One robot (relative topic names, the mapper's default session), or one a robot.
         for (const std::string& name : robots.empty() ? std::vector<std::string>{""} : robots) {
@@ -189,6 +197,14 @@ class MappingComponent : public runtime::Component {
                         std::to_string(mapper_->local_map_count()) + " local maps, " +
                         std::to_string(mapper_->loops().size()) + " loops closed");
         if (const std::string edits = edits_->summary(); !edits.empty()) ctx_.log().info(edits);
+        if (saver_ && !site_dir_.empty()) {
+            for (const std::string& line : mapper_->take_paging_problems()) ctx_.log().warn(line);
+            ctx_.log().info(
+                "paging: " + std::to_string(mapper_->paged_out()) + " of " +
+                std::to_string(mapper_->local_map_count()) + " local maps on disk at the end, " +
+                std::to_string(mapper_->paged_in()) + " loaded back; the mapper holds " +
+                mib(mapper_->memory_bytes()) + " MiB");
+        }
         if (saver_ && saver_->background_saves() > 0) {
             char line[200];
             std::snprintf(line, sizeof line,
@@ -340,10 +356,30 @@ class MappingComponent : public runtime::Component {
     // The periodic save: only when something changed (or the last one failed), on the saver's
     // thread (map_saver.hpp), within the CPU budget when there is one. Every edit taken is in it.
     void save() {
+        if (saver_) page();
         if (!saver_ || (state() == saved_state_ && !saver_->take_failed())) return;
         edits_->finish_clearing();  // a saved map never lacks an edit it acknowledged
         saved_state_ = state();
         saver_->save_in_background(mapper_->snapshot(), delivery_.applied());
+    }
+
+    static std::string mib(std::size_t bytes) {
+        char text[32];
+        std::snprintf(text, sizeof text, "%.1f", double(bytes) / 1048576.0);
+        return text;
+    }
+
+    // Pages out the local maps far from the robots that the last save holds unchanged, and logs
+    // the loads back that failed since.
+    void page() {
+        const std::size_t went = mapper_->page_out(saver_->written_local_maps());
+        if (went > 0)
+            ctx_.log().info("paged out " + std::to_string(went) + " local maps (" +
+                            std::to_string(mapper_->paged_out()) + " of " +
+                            std::to_string(mapper_->local_map_count()) + " on disk, " +
+                            std::to_string(mapper_->paged_in()) + " loaded back so far; " +
+                            mib(mapper_->memory_bytes()) + " MiB held)");
+        for (const std::string& line : mapper_->take_paging_problems()) ctx_.log().warn(line);
     }
 
     // Saves the map to `dir`; logs the outcome and appends it to `outcome` (one line a step).
@@ -356,7 +392,7 @@ class MappingComponent : public runtime::Component {
                 st = saver_->save_now(mapper_->snapshot(), delivery_.applied());
                 saved_state_ = state();
             } else {
-                st = map::save_map(dir, mapper_->snapshot());
+                st = map::save_map(dir, mapper_->complete_snapshot());
                 // After the manifest: a version committed from this save holds both (the site
                 // component commits only once a save is done), so its record is never ahead.
                 if (!delivery_.applied().empty()) map::save_link_applied(dir, delivery_.applied());

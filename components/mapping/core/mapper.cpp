@@ -222,10 +222,10 @@ LocalMapResult Mapper::add_local_map(std::shared_ptr<const common::LocalMapData>
     }
     r.node = ensure_node(session, map->id, map->T_odom_anchor, map->segment);
     const auto it = maps_.find(r.node);
-    if (it != maps_.end() && it->second.stored.data->revision > map->revision) {
+    if (it != maps_.end() && meta(it->second).revision > map->revision) {
         r.message = "local map " + std::to_string(map->id) + ": revision " +
                     std::to_string(map->revision) + " is older than the stored " +
-                    std::to_string(it->second.stored.data->revision);
+                    std::to_string(meta(it->second).revision);
         return r;
     }
     // What maintenance found gone stays gone in newer snapshots (on placed parts only: an
@@ -241,6 +241,9 @@ LocalMapResult Mapper::add_local_map(std::shared_ptr<const common::LocalMapData>
     e.stored.node = r.node;
     e.stored.session = session;
     e.stored.data = std::move(map);
+    e.stored.paged.reset();  // a newer snapshot replaces a paged-out one
+    e.header.reset();
+    e.unavailable = false;
     e.serial = next_serial_++;
     r.added = true;
     if (e.stored.data->finished) {
@@ -320,6 +323,7 @@ KeyframeResult Mapper::add_keyframe(const common::KeyframeData& input, std::uint
     r.candidates = candidates.size();
     if (own.keyframes_seen == 0) own.record.first_stamp = own.record.last_stamp = keyframe.stamp;
     ++own.keyframes_seen;
+    own.position = (graph_.find(node)->T_world_anchor * keyframe.T_anchor_lidar).translation();
     own.record.first_stamp = std::min(own.record.first_stamp, keyframe.stamp);
     own.record.last_stamp = std::max(own.record.last_stamp, keyframe.stamp);
     if (own.cooldown > 0) {

@@ -48,6 +48,7 @@
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -61,6 +62,7 @@
 #include "common/core/local_map_data.hpp"
 #include "common/core/ply_io.hpp"
 #include "map/core/map_data.hpp"
+#include "map/core/map_store.hpp"
 #include "mapping/core/keyframe_digest.hpp"
 #include "mapping/core/long_term_folding.hpp"
 #include "mapping/core/loop_detector.hpp"
@@ -191,9 +193,30 @@ class Mapper {
     void keep_cells(const std::vector<Eigen::Vector3f>& centres, float cell_size);
     std::size_t removed_voxels() const { return removed_voxels_; }
 
+    // Paging (PagingConfig, mapper_paging.cpp). `loader` reads a paged-out local map's file back
+    // (map::load_local_map from the directory the saves go to) and throws on failure; without
+    // one (a plain mapping run, tests) nothing is paged.
+    using LocalMapLoader =
+        std::function<std::shared_ptr<const common::LocalMapData>(const map::LocalMapFile&)>;
+    void set_local_map_loader(LocalMapLoader loader) { loader_ = std::move(loader); }
+    // Pages out the local maps far from every open session's newest keyframe whose data is the
+    // one the last save wrote (`written`: map::MapWriter::written_local_maps). How many went.
+    std::size_t page_out(
+        const std::unordered_map<std::uint64_t, map::MapWriter::WrittenLocalMap>& written);
+    std::size_t paged_out() const;                      // local maps on disk only, now
+    std::size_t paged_in() const { return paged_in_; }  // loads back so far
+    // The loads that failed since the last call, one line each (the local map stays on disk as it
+    // was and is "unavailable": no loop is verified against it, nothing folds into it).
+    std::vector<std::string> take_paging_problems();
+
+    // Paged-out local maps are read for it (not kept); an unavailable one is left out.
     common::PlyCloud global_map(map::GlobalMapStats* stats = nullptr) const;
-    // Everything a saved map holds (local maps and keyframes shared, not copied).
+    // Everything a saved map holds (local maps and keyframes shared, not copied); a paged-out
+    // local map as its file (for a save into the directory it was paged from).
     map::MapData snapshot() const;
+    // The same with every paged-out local map read back (not kept), for a save elsewhere; throws
+    // common::IoError (one line) when one cannot be read.
+    map::MapData complete_snapshot() const;
     std::size_t local_map_count() const { return maps_.size(); }
     // The sessions that built the map, the open ones last (each when it added anything), by id.
     std::vector<map::SessionRecord> sessions() const;
@@ -203,14 +226,28 @@ class Mapper {
     struct MapEntry {
         map::StoredLocalMap stored;
         std::uint64_t serial = 0;  // changes with every stored snapshot (verification cache key)
+        // Paged out (stored.data == nullptr): the map's fields without its voxels, and whether
+        // its file failed to load.
+        std::shared_ptr<const common::LocalMapData> header{};
+        bool unavailable = false;
     };
+    // The local map's fields (its voxels only when in memory).
+    static const common::LocalMapData& meta(const MapEntry& e) {
+        return e.stored.data ? *e.stored.data : *e.header;
+    }
+    // Loads a paged-out local map back (kept); false when it is unavailable.
+    bool page_in(std::uint64_t node, MapEntry& e);
+    // Its content, read for the moment when paged out (nullptr: unavailable).
+    std::shared_ptr<const common::LocalMapData> content(std::uint64_t node,
+                                                        const MapEntry& e) const;
     using Folded = LongTermFolding::Folded;
     // What an open session holds of its own.
     struct Live {
         std::string robot;
         int cooldown = 0;
-        map::SessionRecord record;       // stamps
-        std::size_t keyframes_seen = 0;  // stored or not
+        map::SessionRecord record;                // stamps
+        std::size_t keyframes_seen = 0;           // stored or not
+        std::optional<Eigen::Vector3d> position;  // of the newest keyframe, world (paging)
     };
     int loops_between(std::uint64_t a, std::uint64_t b) const;  // active loop edges, either way
     using ChainAnchor = OdometryChains::Anchor;
@@ -283,6 +320,9 @@ class Mapper {
     RemovedCells removed_;  // what maintenance found gone
     std::size_t removed_voxels_ = 0;
     std::deque<std::uint64_t> removal_waiting_;  // local maps to clear (remove_cells_in_steps)
+    LocalMapLoader loader_;                      // paging: none, nothing is paged
+    std::size_t paged_in_ = 0;
+    mutable std::vector<std::string> paging_problems_;
 };
 
 }  // namespace ltm::mapping

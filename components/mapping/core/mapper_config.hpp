@@ -142,6 +142,16 @@ struct MapEdgeConfig {
     double overlap = 0.0;  // inlier fraction in the keyframe's worst-explained direction
 };
 
+// Paging the local maps (issue 28 item 3, mapper_paging.cpp): when the Mapper is given a loader
+// (the mapping component does with a site directory), a local map that a save wrote and that has
+// not changed since leaves memory once it lies farther than `radius` from the newest keyframe of
+// every open session (by its anchor); it is loaded back when a loop's
+// verification, a fold, a maintenance edit, the global map or a save elsewhere needs it.
+// 0: never. 150 m: beyond a loop candidate's search and a revisit's fold on any of our data.
+struct PagingConfig {
+    double radius = 150.0;  // [m]
+};
+
 struct MapperConfig {
     places::ScanContextConfig scan_context;  // loop closure
     places::ScanContextConfig localisation_descriptor = default_localisation_descriptor();
@@ -157,6 +167,7 @@ struct MapperConfig {
     PlaceCandidateConfig place_candidates;
     MapFixConfig map_fix;
     MapEdgeConfig map_edge;
+    PagingConfig paging;
     int max_loops_per_keyframe = 1;  // verified loops kept a keyframe (best candidates first)
     // After a keyframe closes a loop, this many following keyframes are not verified (their
     // descriptors are still kept): a revisit is closed every few keyframes, not at each one.
@@ -201,6 +212,7 @@ void visit_own_fields(MapperConfig& c, Visitor&& v) {
     v("loop_consistency.rotation_per_m", k.rotation_per_m, non_negative);
     v("max_loops_per_keyframe", c.max_loops_per_keyframe, at_least(1));
     v("loop_cooldown_keyframes", c.loop_cooldown_keyframes, non_negative);
+    v("paging.radius", c.paging.radius, non_negative);
     v("verify_from_graph", c.verify_from_graph, unchecked);
     v("max_loops_per_anchor_pair", c.max_loops_per_anchor_pair, non_negative);
     v("keep_keyframe_points", c.keep_keyframe_points, unchecked);

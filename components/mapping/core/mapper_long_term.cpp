@@ -79,11 +79,11 @@ std::optional<std::uint64_t> Mapper::try_fold(std::uint64_t n) {
     double best_d = lt.merge_distance;
     for (const auto& [id, e] : maps_) {
         const map::PoseGraphNode* other = graph_.find(id);
-        if (id == n || !other || e.stored.data->voxel_size != data.voxel_size) continue;
+        if (id == n || !other || meta(e).voxel_size != data.voxel_size) continue;
         // Not a map still being built by an open session, this one or another robot's (its next
         // snapshot would replace the merge); an earlier session's map gets no newer snapshot,
         // finished or not.
-        if (is_open(other->session) && !e.stored.data->finished) continue;
+        if (is_open(other->session) && !meta(e).finished) continue;
         // An earlier lap: not a neighbour on this drive (anchors of consecutive maps can be
         // closer than merge_distance after a turn).
         if (other->session == session) {
@@ -100,6 +100,7 @@ std::optional<std::uint64_t> Mapper::try_fold(std::uint64_t n) {
         }
     }
     if (!best) return std::nullopt;
+    if (!page_in(*best, maps_.at(*best))) return std::nullopt;  // unavailable: kept apart
     fold(n, *best);
     return best;
 }

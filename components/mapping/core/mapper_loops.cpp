@@ -90,6 +90,8 @@ void Mapper::verify(std::uint32_t session, const common::KeyframeData& keyframe,
             rejection.reason = "candidate is in the same local map";
         } else if (entry == maps_.end()) {
             rejection.reason = "the candidate's local map was not received";
+        } else if (!page_in(match.node, entry->second)) {
+            rejection.reason = "the candidate's local map is unavailable (paged out, unreadable)";
         } else if (config_.max_loops_per_anchor_pair > 0 &&
                    loops_between(match.node, node) >= config_.max_loops_per_anchor_pair) {
             // Local maps are rigid: another loop between the same two anchors measures the same

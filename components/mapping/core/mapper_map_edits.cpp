@@ -170,8 +170,8 @@ std::size_t Mapper::remove_cells_in_steps(const std::vector<Eigen::Vector3f>& ce
     box.max().array() += cell_size;
     for (const auto& [id, entry] : maps_) {
         const map::PoseGraphNode* n = graph_.find(id);
-        if (!n || !on_reference_part(id)) continue;  // unplaced parts: not where the cells are
-        const common::LocalMapData& m = *entry.stored.data;
+        if (!n || !on_reference_part(id)) continue;   // unplaced parts: not where the cells are
+        const common::LocalMapData& m = meta(entry);  // (paged out: its box; loaded to clear)
         // The map's box in the world frame: skip maps nowhere near the cells.
         const Eigen::Isometry3d T = n->T_world_anchor * m.T_anchor_grid;
         Eigen::AlignedBox3f world;
@@ -197,7 +197,8 @@ bool Mapper::clear_removed_step(std::size_t* removed) {
     removal_waiting_.pop_front();
     const auto it = maps_.find(id);
     const map::PoseGraphNode* n = graph_.find(id);
-    if (it != maps_.end() && n) {  // (a map folded away since: nothing left to clear)
+    // (a map folded away since: nothing left to clear; an unavailable one stays as on disk)
+    if (it != maps_.end() && n && page_in(id, it->second)) {
         std::size_t count = 0;
         if (auto out = without_removed(*it->second.stored.data, n->T_world_anchor, &count)) {
             it->second.stored.data = std::move(out);

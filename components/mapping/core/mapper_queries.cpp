@@ -1,5 +1,6 @@
 // The Mapper's queries: world poses of odometry frames and keyframes, the global map, the
 // snapshot a save takes, memory (mapper.hpp; split from mapper.cpp, which adds and optimises).
+#include <algorithm>
 #include <cmath>
 
 #include "map/core/global_map.hpp"
@@ -40,15 +41,20 @@ Eigen::Isometry3d Mapper::keyframe_pose(std::uint32_t index) const {
 common::PlyCloud Mapper::global_map(map::GlobalMapStats* stats) const {
     std::map<std::uint64_t, const MapEntry*> ordered;
     for (const auto& [node, entry] : maps_) ordered[node] = &entry;
-    std::vector<map::PlacedLocalMap> placed;
-    placed.reserve(ordered.size());
-    for (const auto& [node, entry] : ordered) {
-        map::PlacedLocalMap p;
-        p.map = entry->stored.data.get();
-        p.T_world_anchor = graph_.find(node)->T_world_anchor;
-        placed.push_back(p);
+    double grid = config_.global_map.voxel_size;
+    if (!(grid > 0.0)) {
+        grid = 0.0;
+        for (const auto& [node, entry] : ordered)
+            grid = std::max(grid, double(meta(*entry).voxel_size));
     }
-    return map::build_global_map(placed, config_.global_map, stats);
+    // One at a time: a paged-out local map is read for it and let go (an unavailable one is
+    // left out).
+    map::GlobalMapBuilder builder(config_.global_map, grid);
+    for (const auto& [node, entry] : ordered) {
+        if (const std::shared_ptr<const common::LocalMapData> data = content(node, *entry))
+            builder.add(*data, graph_.find(node)->T_world_anchor);
+    }
+    return builder.finish(stats);
 }
 
 map::MapData Mapper::snapshot() const {
@@ -70,6 +76,10 @@ std::size_t Mapper::memory_bytes() const {
     std::size_t n = graph_.nodes().capacity() * sizeof(map::PoseGraphNode) +
                     graph_.edges().capacity() * sizeof(map::PoseGraphEdge);
     for (const auto& [node, entry] : maps_) {
+        if (!entry.stored.data) {  // paged out
+            n += sizeof(common::LocalMapData) + sizeof(map::LocalMapFile);
+            continue;
+        }
         const common::LocalMapData& d = *entry.stored.data;
         n += sizeof(common::LocalMapData) + d.voxels.capacity() * sizeof(common::VoxelData) +
              d.observation_times.capacity() * sizeof(double);
