@@ -235,17 +235,19 @@ run_lifelong_day() {  # DAY SESSION
     local pace=()
     if [ "$BACKGROUND_SHARE" = 0 ]; then  # each its own: no shared budget
         pace=(--set "maintenance.cpu_share=${MAINT_SHARE:-0.35}" --set 'maintenance.cpu_budget=""'
-              --set mapping.map_changes_cpu_share=0.15 --set 'mapping.cpu_budget=""'
-              --set 'localisation.global_cpu_budget=""')
+              --set mapping.map_changes_cpu_share=0.15 --set 'mapping.cpu_budget=""')
     elif [ -n "$BACKGROUND_SHARE" ]; then
         pace=(--set "maintenance.cpu_share=$BACKGROUND_SHARE" --set maintenance.cpu_budget=background
-              --set "mapping.map_changes_cpu_share=$BACKGROUND_SHARE" --set mapping.cpu_budget=background
-              --set localisation.global_cpu_budget=background)
+              --set "mapping.map_changes_cpu_share=$BACKGROUND_SHARE" --set mapping.cpu_budget=background)
     elif [ -n "$MAINT_SHARE" ]; then
         pace=(--set "maintenance.cpu_share=$MAINT_SHARE")
     fi
+    # Live: the localisation skips while busy, its global queries on their own thread charged to
+    # the background budget (robot_lifelong.yaml's, offline: in-line).
+    local live=(--set localisation.skip_while_busy=true)
+    [ "$BACKGROUND_SHARE" = 0 ] || live+=(--set localisation.global_cpu_budget=background)
     start_host robot "$dir" "$dir/launch.yaml" LTM_SITE="$OUT/lifelong/site" -- \
-        --set localisation.skip_while_busy=true "${pace[@]}" "${EXTRA_SETS[@]}"
+        "${live[@]}" "${pace[@]}" "${EXTRA_SETS[@]}"
     profile robot "$dir"
     wait_hosts
     load_note "$mark" > "$dir/load.txt"
