@@ -286,7 +286,12 @@ run_base_station() {  # ROBOTS (1 or 2)
     # Every preset follows the scans' sensor (the robots' variants, the base station's mapping).
     s="$(scans 0)" || exit 2
     mkdir -p "$dir/base"; sensor_note "$dir/base" "$s"
-    start_host base "$dir/base" "$ROOT/launch_configs/$base" -- --set "mapping.preset=$(sensor_preset "$dir/base")"
+    # Each host its own site folder, new (robot.yaml's and the base station's default,
+    # results/site under the working directory, was one folder for all the hosts of a run and
+    # stayed there for the next run: a robot started on an earlier run's version).
+    rm -rf "$dir/base/site"
+    start_host base "$dir/base" "$ROOT/launch_configs/$base" LTM_SITE="$dir/base/site" -- \
+        --set "mapping.preset=$(sensor_preset "$dir/base")"
     for ((i = 1; i <= n; ++i)); do
         s="$(scans $((i - 1)))" || exit 2
         mkdir -p "$dir/robot$i"
@@ -295,7 +300,9 @@ run_base_station() {  # ROBOTS (1 or 2)
             --presets-of "$s" --probe "$dir/robot$i/probe.csv" --probe-inputs points odometry || exit 2
         local ns=/robot; [ "$n" = 1 ] || ns=/robot$i
         echo "  robot$i ($ns): $(wc -l < "$s/times.txt") scans of session $((i - 1)) at 10 Hz"
-        start_host "robot$i" "$dir/robot$i" "$dir/robot$i/launch.yaml" LTM_DATA="$s" -- \
+        rm -rf "$dir/robot$i/site"
+        start_host "robot$i" "$dir/robot$i" "$dir/robot$i/launch.yaml" LTM_DATA="$s" \
+            LTM_SITE="$dir/robot$i/site" -- \
             --set namespace=$ns
         [ "$i" = 1 ] && profile robot1 "$dir/robot$i"
     done
