@@ -49,20 +49,27 @@ struct Outcome {
     std::vector<std::string> problems;
 };
 
+// Paging beyond 20 m (the test drives are a few tens of metres long).
+MapperConfig paging_config() {
+    MapperConfig config = test_config();
+    config.paging.radius = 20.0;
+    return config;
+}
+
+// Paging on: a paged-out local map is read back from its file in `dir`.
+void read_back_from(Mapper& mapper, const fs::path& dir) {
+    mapper.set_local_map_loader(
+        [dir](const map::LocalMapFile& f) { return map::load_local_map(dir.string(), f).data; });
+}
+
 // A lap east, a save, (paging with a 20 m radius), a second lap back over the first (loops
 // verified against its maps and folds into them), an edit on the first lap's maps, a save.
 // `damage` flips a byte of node 0's file once it is paged out.
 Outcome run(const fs::path& dir, bool paging, bool damage = false) {
     const std::vector<Eigen::Vector3f> scene =
         registration::test::with_dense_ground(registration::test::synthetic_scene(71));
-    MapperConfig config = test_config();
-    config.paging.radius = 20.0;
-    Mapper mapper(config);
-    if (paging) {
-        mapper.set_local_map_loader([dir](const map::LocalMapFile& f) {
-            return map::load_local_map(dir.string(), f).data;
-        });
-    }
+    Mapper mapper(paging_config());
+    if (paging) read_back_from(mapper, dir);
     map::MapWriter writer(dir.string());
     Outcome out;
     replay(Drive(scene, 0.0, 0.0, Eigen::Isometry3d::Identity(), 0.0), mapper);
@@ -127,12 +134,9 @@ TEST(MapperPaging, ADamagedFileOnTheWayBackIsOneLineAndTheMapOnDiskKeepsIt) {
 TEST(MapperPaging, ASaveElsewhereReadsThePagedOutMapsBack) {
     const std::vector<Eigen::Vector3f> scene =
         registration::test::with_dense_ground(registration::test::synthetic_scene(71));
-    MapperConfig config = test_config();
-    config.paging.radius = 20.0;
-    Mapper mapper(config);
+    Mapper mapper(paging_config());
     const fs::path dir = fresh_dir("elsewhere");
-    mapper.set_local_map_loader(
-        [dir](const map::LocalMapFile& f) { return map::load_local_map(dir.string(), f).data; });
+    read_back_from(mapper, dir);
     replay(Drive(scene, 0.0, 0.0, Eigen::Isometry3d::Identity(), 0.0), mapper);
     map::MapWriter writer(dir.string());
     writer.save(mapper.snapshot());
@@ -148,7 +152,7 @@ TEST(MapperPaging, ASaveElsewhereReadsThePagedOutMapsBack) {
     EXPECT_EQ(files_of(other), before);
     EXPECT_EQ(mapper.paged_out(), 3u);  // read for the save, not kept
     // The global map is the same with the maps paged out.
-    Mapper whole(config);
+    Mapper whole(paging_config());
     replay(Drive(scene, 0.0, 0.0, Eigen::Isometry3d::Identity(), 0.0), whole);
     EXPECT_EQ(mapper.global_map().points.size(), whole.global_map().points.size());
 }
@@ -169,14 +173,8 @@ void edits_on_paged_maps(const fs::path& dir, bool paging, EditOutcome* result) 
     EditOutcome& out = *result;
     const std::vector<Eigen::Vector3f> scene =
         registration::test::with_dense_ground(registration::test::synthetic_scene(71));
-    MapperConfig config = test_config();
-    config.paging.radius = 20.0;
-    Mapper mapper(config);
-    if (paging) {
-        mapper.set_local_map_loader([dir](const map::LocalMapFile& f) {
-            return map::load_local_map(dir.string(), f).data;
-        });
-    }
+    Mapper mapper(paging_config());
+    if (paging) read_back_from(mapper, dir);
     map::MapWriter writer(dir.string());
     const auto cells = [](float x0, float x1, float y0, float y1, float z) {
         std::vector<Eigen::Vector3f> c;
