@@ -120,16 +120,19 @@ bool Localiser::run_global(double stamp, const std::vector<Eigen::Vector3f>& poi
     return true;
 }
 
+const registration::VoxelGrid& Localiser::tracking_grid() const {
+    return neighbourhood_ ? neighbourhood_->current()->target->fine : map_->target().fine;
+}
+
 registration::SectorOverlap Localiser::weakest_sector(const Eigen::Isometry3d& T_map_lidar) const {
     if (!(config_.edge_sector_overlap > 0.0)) return {};
-    return registration::sector_overlap(sampled_, map_->target().fine, T_map_lidar,
+    return registration::sector_overlap(sampled_, tracking_grid(), T_map_lidar,
                                         tracker_.imls_params(), config_.inlier_distance,
                                         config_.edge_sectors, 0.1);
 }
 
 bool Localiser::track(const Eigen::Isometry3d& predicted, LocalisationUpdate* u) {
-    const registration::RegistrationResult r =
-        tracker_.align(sampled_, map_->target().fine, predicted);
+    const registration::RegistrationResult r = tracker_.align(sampled_, tracking_grid(), predicted);
     std::ostringstream why;
     why.precision(3);
     if (!r.ok() || !r.T_map_lidar.matrix().allFinite()) {
@@ -172,7 +175,7 @@ bool Localiser::track(const Eigen::Isometry3d& predicted, LocalisationUpdate* u)
             registration::ImlsResult res;
             std::size_t structure = 0, on = 0;
             for (const Eigen::Vector3f& p : sampled_) {
-                if (!registration::imls_distance(map_->target().fine, R * p + t, imls, &res) ||
+                if (!registration::imls_distance(tracking_grid(), R * p + t, imls, &res) ||
                     std::abs(res.normal.z()) >= 0.8f)
                     continue;
                 ++structure;
@@ -344,6 +347,7 @@ void Localiser::finish(double stamp, LocalisationUpdate* u) {
     u->lost_for = stamp - last_good_;
     u->since_fix = have_fix_ ? stamp - last_fix_ : 0.0;
     if (u->state == LocalisationState::kOffMap) u->confidence = 0.0;
+    if (neighbourhood_ && u->pose_valid) neighbourhood_->update(u->T_map_lidar.translation());
 }
 
 }  // namespace ltm::localisation
