@@ -38,7 +38,13 @@ std::optional<common::ConfigProblem> validate(const LocaliserConfig& config) {
     visit_fields(c, k);
     k.include(validate(config.global), "global.");
     k.include(registration::validate(config.tracking), "tracking.");
-    return k.problem();
+    if (const auto problem = k.problem()) return problem;
+    try {
+        validate(config.neighbourhood);
+    } catch (const common::ConfigError& e) {
+        return common::ConfigProblem{e.key(), e.problem()};
+    }
+    return std::nullopt;
 }
 
 LocaliserConfig localiser_preset(common::SensorPreset preset) {

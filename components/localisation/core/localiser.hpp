@@ -74,6 +74,9 @@ struct LocaliserConfig {
     // Gap between scans (sensor time) after which the odometry's motion is not trusted and
     // global localisation checks the pose [s].
     double max_gap = 1.0;
+    // Tracking on the paged map's neighbourhood of the pose (neighbourhood_builder.hpp), used
+    // by load_localiser (component/loaded_localiser.hpp); radius 0: the whole map.
+    NeighbourhoodConfig neighbourhood;
 };
 
 template <class Visitor>
@@ -97,6 +100,8 @@ void visit_fields(LocaliserConfig& c, Visitor&& v) {
     v("edge_sector_overlap", c.edge_sector_overlap, unit);
     v("edge_sectors", c.edge_sectors, in_range(1, 36));
     v("max_gap", c.max_gap, positive);
+    v("neighbourhood.radius", c.neighbourhood.radius, non_negative);
+    v("neighbourhood.rebuild_distance", c.neighbourhood.rebuild_distance, positive);
 }
 
 std::optional<common::ConfigProblem> validate(const LocaliserConfig& config);

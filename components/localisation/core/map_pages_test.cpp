@@ -270,6 +270,19 @@ TEST(NeighbourhoodConfig, OutOfRangeValuesAreRejectedWithOneLine) {
     EXPECT_THROW(validate(c), common::ConfigError);
     c.radius = 0.0;  // no paging: rebuild_distance unused
     EXPECT_NO_THROW(validate(c));
+    // The localiser's keys: neighbourhood.radius, neighbourhood.rebuild_distance.
+    LocaliserConfig lc;
+    EXPECT_FALSE(validate(lc).has_value());
+    EXPECT_EQ(lc.neighbourhood.radius, 0.0);  // off by default
+    lc.neighbourhood.radius = 50.0;
+    lc.neighbourhood.rebuild_distance = 60.0;
+    const auto problem = validate(lc);
+    ASSERT_TRUE(problem.has_value());
+    EXPECT_EQ(problem->key, "neighbourhood.rebuild_distance");
+    lc.neighbourhood.radius = -5.0;
+    ASSERT_TRUE(validate(lc).has_value());
+    EXPECT_EQ(validate(lc)->key, "neighbourhood.radius");
+    EXPECT_THROW(Localiser(std::shared_ptr<const LocalisationMap>(), lc), common::ConfigError);
 }
 
 }  // namespace

@@ -19,9 +19,10 @@
 namespace ltm::localisation {
 
 struct NeighbourhoodConfig {
-    // Local maps anchored within this (horizontal) of the pose are held [m]; 0: the whole map in
-    // memory (no paging).
-    double radius = 150.0;
+    // Local maps anchored within this (horizontal) of the pose are held for tracking [m]; 0: no
+    // paging, tracking registers to the whole map's voxels (the default: global localisation
+    // still holds the whole map, so paging adds the neighbourhood's grids; see the README).
+    double radius = 0.0;
     // A new neighbourhood is asked for when the pose is this far (horizontal) from the current
     // one's centre [m]; below radius, so that the pose stays well inside what is held.
     double rebuild_distance = 40.0;
