@@ -307,6 +307,14 @@ LocalisationUpdate Localiser::process(double stamp, const std::vector<Eigen::Vec
             u.T_map_lidar = predicted;
             u.message = "beyond the map: following the odometry";
             last_good_ = stamp;
+        } else if (neighbourhood_ && !neighbourhood_->holds(predicted.translation())) {
+            // A fix far from the neighbourhood in use (a relocalisation elsewhere): its build
+            // was asked for; until it is in, the pose follows the odometry (not lost).
+            state_ = LocalisationState::kOffMap;
+            T_map_lidar_ = predicted;
+            u.T_map_lidar = predicted;
+            u.message = "the map around the pose is loading: following the odometry";
+            last_good_ = stamp;
         } else if (track(predicted, &u)) {
             const registration::SectorOverlap sector = weakest_sector(u.T_map_lidar);
             if (u.overlap < config_.edge_overlap ||

@@ -258,6 +258,38 @@ TEST(LocaliserOnAPagedMap, TrackingAlongTheMapSwapsNeighbourhoodsAndKeepsThePose
     EXPECT_EQ(seen.back(), (std::vector<std::uint64_t>{14, 15, 16}));
 }
 
+// A fix far from the neighbourhood in use (here: the builder started at the map's other end): the
+// pose follows the odometry while the build asked for is pending (off the map, not lost), and
+// tracking resumes on the new neighbourhood.
+TEST(LocaliserOnAPagedMap, AFixFarFromTheNeighbourhoodWaitsForItsBuildNotLost) {
+    const LongMap& lm = long_map();
+    auto whole = std::make_shared<const LocalisationMap>(map::load_map(lm.dir).map);
+    NeighbourhoodConfig nc;
+    nc.radius = 100.0;
+    nc.rebuild_distance = 20.0;
+    auto builder = std::make_shared<NeighbourhoodBuilder>(std::make_shared<const MapPages>(lm.dir),
+                                                          nc, Eigen::Vector3d(300, 0, 0));
+    Localiser paged(whole);
+    paged.set_neighbourhood(builder);
+    EXPECT_FALSE(builder->holds(Eigen::Vector3d(0, 0, 0)));
+    std::vector<LocalisationUpdate> u;
+    for (int i = 0; i < 4; ++i) {
+        const Eigen::Isometry3d truth = mt::xy_yaw(1.0 * i, 0.0, 0.0);
+        if (i == 0) paged.set_initial_pose({truth, 5.0});
+        u.push_back(
+            paged.process(0.1 * i, mt::view(lm.scene, truth, kReach), OdometryInput{truth, 0}));
+        if (i == 1) builder->settle();
+        EXPECT_LT(test_scene::error_of(u.back().T_map_lidar, truth).translation, 0.3) << i;
+    }
+    EXPECT_EQ(u[0].state, LocalisationState::kRelocalised);  // global: the whole map
+    EXPECT_EQ(u[1].state, LocalisationState::kOffMap) << u[1].message;
+    EXPECT_NE(u[1].message.find("loading"), std::string::npos) << u[1].message;
+    EXPECT_TRUE(u[1].pose_valid);
+    EXPECT_TRUE(builder->holds(Eigen::Vector3d(2, 0, 0)));
+    EXPECT_EQ(u[2].state, LocalisationState::kTracking) << u[2].message;
+    EXPECT_EQ(u[3].state, LocalisationState::kTracking) << u[3].message;
+}
+
 TEST(NeighbourhoodConfig, OutOfRangeValuesAreRejectedWithOneLine) {
     NeighbourhoodConfig c;
     EXPECT_NO_THROW(validate(c));

@@ -75,6 +75,11 @@ bool NeighbourhoodBuilder::update(const Eigen::Vector3d& pose) {
     return swapped;
 }
 
+bool NeighbourhoodBuilder::holds(const Eigen::Vector3d& p) const {
+    return current_->complete ||
+           (p - current_->centre).head<2>().norm() <= config_.radius - config_.rebuild_distance;
+}
+
 void NeighbourhoodBuilder::settle() {
     std::unique_lock<std::mutex> lock(mutex_);
     idle_.wait(lock, [this] { return !busy_ && !request_; });

@@ -47,6 +47,10 @@ class NeighbourhoodBuilder {
     // (true when it did) and asks for a new one when the pose has moved rebuild_distance from the
     // current (or pending) centre. Never waits for a build.
     bool update(const Eigen::Vector3d& pose);
+    // Whether the neighbourhood in use holds the map around p: the whole map, or p within
+    // radius - rebuild_distance of its centre (after a relocalisation elsewhere it does not until
+    // the build asked for arrives).
+    bool holds(const Eigen::Vector3d& p) const;
     // Waits until no build is pending or running (tests and benches that must be reproducible;
     // never on the tracking thread), then swaps in the last one.
     void settle();
