@@ -1,6 +1,7 @@
 #include "localisation/core/map_pages.hpp"
 
 #include <algorithm>
+#include <optional>
 #include <unordered_map>
 
 #include "common/core/io_error.hpp"
@@ -42,22 +43,49 @@ std::shared_ptr<const Neighbourhood> MapPages::build(const Eigen::Vector3d& cent
     auto n = std::make_shared<Neighbourhood>();
     n->centre = centre;
     n->radius = radius;
-    map::MapData part;
-    part.nodes = skeleton_.nodes;
+    // One local map in memory at a time: each is merged and freed before the next is read. The
+    // lattice is the largest voxel size of those held (merge_voxels'): a larger one met later
+    // starts the merge again on its lattice (maps are made with one voxel size: never, in
+    // practice).
+    std::unordered_map<std::uint64_t, Eigen::Isometry3d> anchors;
+    for (const map::PoseGraphNode& node : skeleton_.nodes) anchors[node.id] = node.T_world_anchor;
     const double r2 = radius * radius;
-    for (const File& f : files_) {
-        if ((f.anchor - centre).head<2>().squaredNorm() > r2) continue;
-        try {
-            part.local_maps.push_back(
-                map::load_local_map(dir_, f.entry, format_version_, graph_nodes_));
+    float voxel_size = 0.0f;
+    std::optional<map::VoxelMerger> merger;
+    std::vector<std::string> failed;
+    for (bool again = true; again;) {
+        again = false;
+        n->nodes.clear();
+        failed.clear();
+        merger.emplace(voxel_size,
+                       map::MergedVoxelsFilter{config_.min_health, config_.min_planarity});
+        for (const File& f : files_) {
+            if ((f.anchor - centre).head<2>().squaredNorm() > r2) continue;
+            map::StoredLocalMap lm;
+            try {
+                lm = map::load_local_map(dir_, f.entry, format_version_, graph_nodes_);
+            } catch (const common::IoError& e) {  // unreadable or damaged: the rest is used
+                failed.push_back(e.what());
+                continue;
+            }
+            if (!lm.data) continue;
+            if (lm.data->voxel_size > voxel_size) {
+                const bool first = voxel_size == 0.0f;
+                voxel_size = lm.data->voxel_size;
+                if (!first) {
+                    again = true;
+                    break;
+                }
+                merger.emplace(voxel_size,
+                               map::MergedVoxelsFilter{config_.min_health, config_.min_planarity});
+            }
+            merger->add(lm, anchors.at(f.entry.node));
             n->nodes.push_back(f.entry.node);
-        } catch (const common::IoError& e) {  // unreadable or damaged: the rest is used
-            if (refused) refused->push_back(e.what());
         }
     }
+    if (refused) refused->insert(refused->end(), failed.begin(), failed.end());
     n->complete = n->nodes.size() == files_.size();
-    map::MergedVoxels merged = map::merge_voxels(part, {config_.min_health, config_.min_planarity});
-    part.local_maps.clear();  // the files' voxels go; the merged ones stay
+    map::MergedVoxels merged = merger->finish();
     n->target = std::make_shared<const registration::RegistrationTarget>(
         registration::make_registration_target(*merged.voxels, config_.min_planarity,
                                                config_.coarse_factor));
