@@ -32,9 +32,11 @@ struct LongMap {
     std::string dir;
     std::vector<Eigen::Vector3f> scene;
     std::vector<Eigen::Isometry3d, Eigen::aligned_allocator<Eigen::Isometry3d>> anchors;
-    LongMap() {
-        dir =
-            (fs::temp_directory_path() / ("ltm_map_pages_" + std::to_string(::getpid()))).string();
+    // mixed: the fourth local map on a coarser lattice (1.5 m voxels; the others 1 m).
+    explicit LongMap(bool mixed = false) {
+        dir = (fs::temp_directory_path() /
+               ("ltm_map_pages_" + std::string(mixed ? "mixed_" : "") + std::to_string(::getpid())))
+                  .string();
         fs::remove_all(dir);
         for (int s = 0; s < 4; ++s) {
             const auto part = mt::synthetic_scene(21 + s, 60.0);
@@ -56,8 +58,8 @@ struct LongMap {
                 poses.push_back(mt::xy_yaw(kSpacing * i + 4.0 * k, 0.5 * k, 3.0 * k));
                 scans.push_back(mt::view(scene, poses.back(), kReach));
             }
-            auto data = std::make_shared<common::LocalMapData>(
-                mt::build_local_map(node.id, anchor, scans, poses, 1.0, kReach));
+            auto data = std::make_shared<common::LocalMapData>(mt::build_local_map(
+                node.id, anchor, scans, poses, mixed && i == 3 ? 1.5 : 1.0, kReach));
             m.local_maps.push_back({node.id, 0, data});
             for (std::size_t k = 0; k < scans.size(); ++k) {
                 auto kf = std::make_shared<map::StoredKeyframe>();
@@ -136,6 +138,20 @@ TEST(MapPages, ANeighbourhoodHoldsTheLocalMapsWithinItsRadiusAndTheirVoxelsUncha
         ++checked;
     }
     EXPECT_GT(checked, 100u);
+}
+
+// Local maps of two voxel sizes: the merge is on the larger lattice, as merge_voxels' (the build
+// met the 1.5 m map after 1 m ones and merged again on its lattice).
+TEST(MapPages, LocalMapsOfTwoVoxelSizesMergeAsTheLoadedMap) {
+    static const LongMap lm(true);
+    const LocalisationMap full(map::load_map(lm.dir).map);
+    EXPECT_FLOAT_EQ(float(full.voxel_size()), 1.5f);
+    const auto n = MapPages(lm.dir).build(Eigen::Vector3d(150, 0, 0), 1000.0);
+    EXPECT_FLOAT_EQ(n->voxels->voxel_size, 1.5f);
+    ASSERT_EQ(n->voxel_count(), full.voxels().voxels.size());
+    for (std::size_t i = 0; i < n->voxels->voxels.size(); ++i) {
+        EXPECT_EQ(n->voxels->voxels[i].centre, full.voxels().voxels[i].centre);
+    }
 }
 
 TEST(MapPages, ADamagedLocalMapIsLeftOutAndNamedTheRestIsUsed) {
