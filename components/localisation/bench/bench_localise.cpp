@@ -28,6 +28,8 @@
 #include "common/core/trajectory_io.hpp"
 #include "localisation/component/localiser_params.hpp"
 #include "localisation/core/localiser.hpp"
+#include "localisation/core/map_pages.hpp"
+#include "localisation/core/neighbourhood_builder.hpp"
 #include "map/core/map_store.hpp"
 #include "odometry/core/odometry.hpp"
 #include "odometry/params/odometry_params.hpp"
@@ -52,6 +54,9 @@ struct Args {
     double near = 10.0;
     double revisit = 5.0, exclude_seconds = 60.0;
     bool no_features = false, verify_reference = false;
+    // Track mode: tracking on the paged map's neighbourhood (map_pages.hpp; 0: the whole map).
+    double neighbourhood_radius = 0.0, rebuild_distance = 40.0;
+    bool settle = false;  // wait for each neighbourhood build (reproducible runs)
 };
 
 // CPU time of the whole process [s]: on a shared, loaded machine the wall time of a scan is
@@ -251,6 +256,17 @@ int run(const Args& a) {
     odometry::Odometry odom(oc);
     localisation::Localiser localiser(map, lc);
     localisation::GlobalLocaliser global(map, lc.global);
+    std::shared_ptr<localisation::NeighbourhoodBuilder> builder;
+    std::size_t held_max = 0, held_sum = 0, held_n = 0;
+    if (a.mode == "track" && a.neighbourhood_radius > 0.0) {
+        localisation::NeighbourhoodConfig nc;
+        nc.radius = a.neighbourhood_radius;
+        nc.rebuild_distance = a.rebuild_distance;
+        const Eigen::Vector3d start = map->keyframes().front().T_map_lidar.translation();
+        builder = std::make_shared<localisation::NeighbourhoodBuilder>(
+            std::make_shared<const localisation::MapPages>(a.map, mc), nc, start);
+        localiser.set_neighbourhood(builder);
+    }
 
     std::size_t ok = 0, right = 0, wrong = 0, none = 0, scored = 0;
     std::size_t near = 0, near_right = 0;  // scans within --near of a map keyframe
@@ -334,6 +350,13 @@ int run(const Args& a) {
             localise_s += std::chrono::duration<double>(Clock::now() - t1).count();
             has_pose = u.pose_valid;
             pose = u.T_map_lidar;
+            if (builder) {
+                if (a.settle) builder->settle();
+                const std::size_t held = builder->current()->voxel_count();
+                held_max = std::max(held_max, held);
+                held_sum += held;
+                ++held_n;
+            }
             relocalisations += u.state == localisation::LocalisationState::kRelocalised;
             lost_scans += u.state == localisation::LocalisationState::kLost;
             off_map += u.state == localisation::LocalisationState::kOffMap;
@@ -429,6 +452,16 @@ int run(const Args& a) {
             off_map);
         std::printf("track: the localiser alone (tracking and its global queries) %.1f scans/s\n",
                     localise_s > 0 ? double(frames.size()) / localise_s : 0.0);
+        if (builder) {
+            std::printf(
+                "track: neighbourhood radius %.0f m: %zu builds, voxels held for tracking mean "
+                "%.0f, max %zu (the whole map %zu)\n",
+                a.neighbourhood_radius, builder->builds(),
+                held_n ? double(held_sum) / double(held_n) : 0.0, held_max,
+                map->voxels().voxels.size());
+            for (const std::string& r : builder->refused())
+                std::printf("  refused: %s\n", r.c_str());
+        }
         if (!track_err.empty()) {
             double sq = 0.0;
             for (double e : track_err) sq += e * e;
@@ -495,6 +528,12 @@ int main(int argc, char** argv) {
     app.add_flag("--verify-reference", a.verify_reference,
                  "global mode: also verify each scan at its reference pose (is the map consistent "
                  "with the reference there?)");
+    app.add_option("--neighbourhood-radius", a.neighbourhood_radius,
+                   "track mode: track on the local maps anchored within this of the pose, read "
+                   "from the map directory as the robot moves [m] (0: the whole map)");
+    app.add_option("--rebuild-distance", a.rebuild_distance,
+                   "track mode: a new neighbourhood when the pose moved this far [m]");
+    app.add_flag("--settle", a.settle, "track mode: wait for each neighbourhood build");
     app.add_flag("--no-features", a.no_features, "initial poses from the descriptors only");
     if (const int code = common::cli::parse(app, argc, argv); code >= 0) return code;
     if (a.dir.empty() && a.mode != "recall") {

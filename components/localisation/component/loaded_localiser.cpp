@@ -3,6 +3,8 @@
 #include <chrono>
 #include <cstdio>
 
+#include "localisation/core/map_pages.hpp"
+
 namespace ltm::localisation {
 
 LoadedLocaliser load_localiser(const std::string& dir, const LocalisationMapConfig& map_config,
@@ -12,6 +14,13 @@ LoadedLocaliser load_localiser(const std::string& dir, const LocalisationMapConf
     l.dir = dir;
     l.map = load_localisation_map(dir, map_config, &l.refused);
     l.localiser = std::make_unique<Localiser>(l.map, config);
+    if (config.neighbourhood.radius > 0.0) {
+        // Tracking on the local maps near the pose, read from `dir` as the robot moves (the
+        // first neighbourhood around the map's first keyframe; the pose's once it has one).
+        l.localiser->set_neighbourhood(std::make_shared<NeighbourhoodBuilder>(
+            std::make_shared<const MapPages>(dir, map_config), config.neighbourhood,
+            l.map->keyframes().front().T_map_lidar.translation()));
+    }
     if (with_global) {
         // The query's own (it keeps scratch state): never shared with tracking.
         l.global = std::make_shared<GlobalLocaliser>(l.map, config.global);

@@ -38,7 +38,13 @@ std::optional<common::ConfigProblem> validate(const LocaliserConfig& config) {
     visit_fields(c, k);
     k.include(validate(config.global), "global.");
     k.include(registration::validate(config.tracking), "tracking.");
-    return k.problem();
+    if (const auto problem = k.problem()) return problem;
+    try {
+        validate(config.neighbourhood);
+    } catch (const common::ConfigError& e) {
+        return common::ConfigProblem{e.key(), e.problem()};
+    }
+    return std::nullopt;
 }
 
 LocaliserConfig localiser_preset(common::SensorPreset preset) {
@@ -120,16 +126,19 @@ bool Localiser::run_global(double stamp, const std::vector<Eigen::Vector3f>& poi
     return true;
 }
 
+const registration::VoxelGrid& Localiser::tracking_grid() const {
+    return neighbourhood_ ? neighbourhood_->current()->target->fine : map_->target().fine;
+}
+
 registration::SectorOverlap Localiser::weakest_sector(const Eigen::Isometry3d& T_map_lidar) const {
     if (!(config_.edge_sector_overlap > 0.0)) return {};
-    return registration::sector_overlap(sampled_, map_->target().fine, T_map_lidar,
+    return registration::sector_overlap(sampled_, tracking_grid(), T_map_lidar,
                                         tracker_.imls_params(), config_.inlier_distance,
                                         config_.edge_sectors, 0.1);
 }
 
 bool Localiser::track(const Eigen::Isometry3d& predicted, LocalisationUpdate* u) {
-    const registration::RegistrationResult r =
-        tracker_.align(sampled_, map_->target().fine, predicted);
+    const registration::RegistrationResult r = tracker_.align(sampled_, tracking_grid(), predicted);
     std::ostringstream why;
     why.precision(3);
     if (!r.ok() || !r.T_map_lidar.matrix().allFinite()) {
@@ -172,7 +181,7 @@ bool Localiser::track(const Eigen::Isometry3d& predicted, LocalisationUpdate* u)
             std::size_t structure = 0, on = 0;
             // With the neighbours the registration found (most points stayed in their voxel).
             for (std::size_t i = 0; i < sampled_.size(); ++i) {
-                if (!tracker_.imls_after_align(i, map_->target().fine, R * sampled_[i] + t, &res) ||
+                if (!tracker_.imls_after_align(i, tracking_grid(), R * sampled_[i] + t, &res) ||
                     std::abs(res.normal.z()) >= 0.8f)
                     continue;
                 ++structure;
@@ -298,6 +307,14 @@ LocalisationUpdate Localiser::process(double stamp, const std::vector<Eigen::Vec
             u.T_map_lidar = predicted;
             u.message = "beyond the map: following the odometry";
             last_good_ = stamp;
+        } else if (neighbourhood_ && !neighbourhood_->holds(predicted.translation())) {
+            // A fix far from the neighbourhood in use (a relocalisation elsewhere): its build
+            // was asked for; until it is in, the pose follows the odometry (not lost).
+            state_ = LocalisationState::kOffMap;
+            T_map_lidar_ = predicted;
+            u.T_map_lidar = predicted;
+            u.message = "the map around the pose is loading: following the odometry";
+            last_good_ = stamp;
         } else if (track(predicted, &u)) {
             const registration::SectorOverlap sector = weakest_sector(u.T_map_lidar);
             if (u.overlap < config_.edge_overlap ||
@@ -344,6 +361,7 @@ void Localiser::finish(double stamp, LocalisationUpdate* u) {
     u->lost_for = stamp - last_good_;
     u->since_fix = have_fix_ ? stamp - last_fix_ : 0.0;
     if (u->state == LocalisationState::kOffMap) u->confidence = 0.0;
+    if (neighbourhood_ && u->pose_valid) neighbourhood_->update(u->T_map_lidar.translation());
 }
 
 }  // namespace ltm::localisation

@@ -19,6 +19,7 @@
 #include "localisation/core/global_localiser.hpp"
 #include "localisation/core/global_query.hpp"
 #include "localisation/core/localisation_map.hpp"
+#include "localisation/core/neighbourhood_builder.hpp"
 #include "registration/core/registration.hpp"
 #include "registration/core/registration_config.hpp"
 #include "registration/core/sector_overlap.hpp"
@@ -73,6 +74,9 @@ struct LocaliserConfig {
     // Gap between scans (sensor time) after which the odometry's motion is not trusted and
     // global localisation checks the pose [s].
     double max_gap = 1.0;
+    // Tracking on the paged map's neighbourhood of the pose (neighbourhood_builder.hpp), used
+    // by load_localiser (component/loaded_localiser.hpp); radius 0: the whole map.
+    NeighbourhoodConfig neighbourhood;
 };
 
 template <class Visitor>
@@ -96,6 +100,8 @@ void visit_fields(LocaliserConfig& c, Visitor&& v) {
     v("edge_sector_overlap", c.edge_sector_overlap, unit);
     v("edge_sectors", c.edge_sectors, in_range(1, 36));
     v("max_gap", c.max_gap, positive);
+    v("neighbourhood.radius", c.neighbourhood.radius, non_negative);
+    v("neighbourhood.rebuild_distance", c.neighbourhood.rebuild_distance, positive);
 }
 
 std::optional<common::ConfigProblem> validate(const LocaliserConfig& config);
@@ -172,6 +178,15 @@ class Localiser {
     void take_track(const Localiser& from);
     LocalisationState state() const { return state_; }
     const LocalisationMap& map() const { return *map_; }
+
+    // A paged map (issue 28 item 3): tracking registers to the builder's neighbourhood of the pose
+    // instead of the whole map's voxels, and after each scan with a valid pose tells the builder
+    // where it is (a finished neighbourhood is swapped in, a new one asked for off this thread).
+    // Null (the default): the whole map's voxels.
+    void set_neighbourhood(std::shared_ptr<NeighbourhoodBuilder> builder) {
+        neighbourhood_ = std::move(builder);
+    }
+    const std::shared_ptr<NeighbourhoodBuilder>& neighbourhood() const { return neighbourhood_; }
     const LocaliserConfig& config() const { return config_; }
 
   private:
@@ -187,8 +202,11 @@ class Localiser {
     // The weakest direction of the sampled scan at T_map_lidar (edge_sector_overlap; off: none).
     registration::SectorOverlap weakest_sector(const Eigen::Isometry3d& T_map_lidar) const;
     void thin(const std::vector<Eigen::Vector3f>& points);
+    // What tracking registers to: the neighbourhood's fine grid, or the whole map's.
+    const registration::VoxelGrid& tracking_grid() const;
 
     std::shared_ptr<const LocalisationMap> map_;
+    std::shared_ptr<NeighbourhoodBuilder> neighbourhood_;
     LocaliserConfig config_;
     GlobalLocaliser global_;
     registration::Registration tracker_;

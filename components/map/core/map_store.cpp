@@ -215,6 +215,37 @@ SaveStats MapWriter::save(const MapData& map, const std::function<void()>& betwe
     return stats;
 }
 
+namespace {
+
+// A local-map file's bytes checked against its manifest entry and the graph's nodes.
+StoredLocalMap check_local_map(const ManifestEntry& e, const std::string& bytes,
+                               std::uint32_t manifest_version,
+                               const std::unordered_set<std::uint64_t>& nodes) {
+    std::uint32_t version = 0;
+    StoredLocalMap m = decode_local_map(bytes, e.file, &version);
+    check_entry(e, bytes);
+    check_version(e, version, manifest_version);
+    if (m.node != e.node) {
+        throw MapFormatError(
+            e.file, "header.node", kFirstHeaderField,
+            "node " + std::to_string(m.node) + ", the manifest says " + std::to_string(e.node));
+    }
+    if (!nodes.count(m.node)) {
+        throw MapFormatError(e.file, "header.node", kFirstHeaderField,
+                             "node " + std::to_string(m.node) + " is not in the graph");
+    }
+    return m;
+}
+
+}  // namespace
+
+StoredLocalMap load_local_map(const std::string& dir, const ManifestEntry& entry,
+                              std::uint32_t format_version,
+                              const std::unordered_set<std::uint64_t>& nodes) {
+    const std::string bytes = common::read_file((fs::path(dir) / entry.file).string(), entry.file);
+    return check_local_map(entry, bytes, format_version, nodes);
+}
+
 StoredLocalMap load_local_map(const std::string& dir, const LocalMapFile& file) {
     const std::string bytes = common::read_file((fs::path(dir) / file.file).string(), file.file);
     ManifestEntry e;
@@ -222,24 +253,16 @@ StoredLocalMap load_local_map(const std::string& dir, const LocalMapFile& file) 
     e.size = file.size;
     e.hash = file.hash;
     e.node = file.node;
-    std::uint32_t version = 0;
-    StoredLocalMap m = decode_local_map(bytes, e.file, &version);
-    check_entry(e, bytes);
-    check_version(e, version, file.format);
-    if (m.node != file.node) {
-        throw MapFormatError(
-            e.file, "header.node", kFirstHeaderField,
-            "node " + std::to_string(m.node) + ", expected " + std::to_string(file.node));
-    }
-    return m;
+    return check_local_map(e, bytes, file.format, {file.node});
 }
 
 SaveStats save_map(const std::string& dir, const MapData& map, const SaveOptions& options) {
     return MapWriter(dir, options).save(map);
 }
 
-LoadedMap load_map(const std::string& dir) {
+LoadedMap load_map(const std::string& dir, bool with_local_maps) {
     LoadedMap out;
+    out.format_version = 0;
     const fs::path root(dir);
     if (!fs::is_directory(root)) throw MapFormatError(dir, "not a directory");
     const Manifest manifest =
@@ -248,6 +271,7 @@ LoadedMap load_map(const std::string& dir) {
     map.descriptor_config = manifest.descriptor;
     map.localisation_descriptor_config = manifest.localisation_descriptor;
     map.sessions = manifest.sessions;
+    out.format_version = manifest.version;
     const DescriptorSettings expected{manifest.descriptor, manifest.localisation_descriptor};
 
     // The graph first: without it nothing can be placed.
@@ -271,6 +295,10 @@ LoadedMap load_map(const std::string& dir) {
 
     for (const ManifestEntry& e : manifest.files) {
         if (e.kind == "graph") continue;
+        if (e.kind != "keyframes" && !with_local_maps) {  // left on disk (load_local_map)
+            out.local_map_files.push_back(e);
+            continue;
+        }
         try {
             const std::string bytes = common::read_file((root / e.file).string(), e.file);
             if (e.kind == "keyframes") {
@@ -296,19 +324,7 @@ LoadedMap load_map(const std::string& dir) {
                 }
                 map.keyframes.insert(map.keyframes.end(), keyframes.begin(), keyframes.end());
             } else {
-                std::uint32_t version = 0;
-                StoredLocalMap m = decode_local_map(bytes, e.file, &version);
-                check_entry(e, bytes);
-                check_version(e, version, manifest.version);
-                if (m.node != e.node) {
-                    throw MapFormatError(e.file, "header.node", kFirstHeaderField,
-                                         "node " + std::to_string(m.node) + ", the manifest says " +
-                                             std::to_string(e.node));
-                }
-                if (!nodes.count(m.node)) {
-                    throw MapFormatError(e.file, "header.node", kFirstHeaderField,
-                                         "node " + std::to_string(m.node) + " is not in the graph");
-                }
+                StoredLocalMap m = check_local_map(e, bytes, manifest.version, nodes);
                 map.local_maps.push_back(std::move(m));
             }
         } catch (const common::IoError& error) {  // unreadable or damaged (MapFormatError)

@@ -21,9 +21,11 @@
 #include <memory>
 #include <string>
 #include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 #include "map/core/map_data.hpp"
+#include "map/core/map_manifest.hpp"
 
 namespace ltm::map {
 
@@ -89,12 +91,25 @@ struct LoadedMap {
     MapData map;
     // One line a refused file: "local_maps/lm_...bin: voxels[17].normal at byte 1290: ...".
     std::vector<std::string> refused;
+    // load_map(dir, false): the local-map files the manifest names, not read (map.local_maps
+    // empty); load_local_map reads one of them.
+    std::vector<ManifestEntry> local_map_files;
+    std::uint32_t format_version = 0;  // the manifest's
 };
 
 // Throws MapFormatError when the manifest or the graph is damaged or of an unknown format version,
 // common::IoError when one of them cannot be read. A format-1 map loads with empty localisation
 // descriptors and localisation_descriptor_config == no_localisation_descriptors().
-LoadedMap load_map(const std::string& dir);
+// with_local_maps false: the graph, keyframes and manifest only; the local maps stay on disk
+// (listed in local_map_files, unchecked until read).
+LoadedMap load_map(const std::string& dir, bool with_local_maps = true);
+
+// One local-map file of a map directory (an entry of LoadedMap::local_map_files), checked as
+// load_map checks it (size, hash, format version, node in `nodes`, the graph's). Throws
+// common::IoError / MapFormatError with one line naming the file.
+StoredLocalMap load_local_map(const std::string& dir, const ManifestEntry& entry,
+                              std::uint32_t format_version,
+                              const std::unordered_set<std::uint64_t>& nodes);
 
 // One local map file of a map directory, checked as load_map checks it (size, checksum, format
 // version, node). Throws MapFormatError (damaged) or common::IoError (unreadable), one line.

@@ -5,8 +5,12 @@
 // of the largest local-map voxel size. Where local maps overlap, a cell keeps the voxel of the
 // local map anchored nearest to it (built while the sensor was closest), so neighbouring cells
 // come from the same local map, whose surfaces agree with each other.
+#include <Eigen/Geometry>
 #include <cstddef>
+#include <cstdint>
 #include <memory>
+#include <unordered_map>
+#include <vector>
 
 #include "common/core/local_map_data.hpp"
 #include "map/core/map_data.hpp"
@@ -28,5 +32,24 @@ struct MergedVoxels {
 
 // A voxel is kept when it has points, a unit normal, a finite centre and passes the filter.
 MergedVoxels merge_voxels(const MapData& map, const MergedVoxelsFilter& filter);
+
+// The same merge fed one local map at a time (a paged map reads them one by one, each freed once
+// added): local maps added in merge_voxels' order (the map's, by node) with the lattice it would
+// use (the largest of their voxel sizes) give its result voxel for voxel.
+class VoxelMerger {
+  public:
+    VoxelMerger(float voxel_size, const MergedVoxelsFilter& filter);
+    void add(const StoredLocalMap& local_map, const Eigen::Isometry3d& T_world_anchor);
+    MergedVoxels finish();
+
+  private:
+    MergedVoxelsFilter filter_;
+    float inv_ = 1.0f;
+    MergedVoxels out_;
+    std::unordered_map<std::uint64_t, std::uint32_t> slot_;  // packed cell -> voxel index
+    std::vector<float> anchor_distance_;                     // per merged voxel
+    std::vector<std::uint32_t> sessions_;
+    Eigen::Vector3d lo_ = Eigen::Vector3d::Constant(1e300), hi_ = -lo_;
+};
 
 }  // namespace ltm::map

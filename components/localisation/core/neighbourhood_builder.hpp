@@ -1,0 +1,78 @@
+#pragma once
+// Builds the neighbourhoods of a paged map (map_pages.hpp) on a thread of its own, so that the
+// tracking thread never waits for the disk or a merge: it asks for the neighbourhood of its pose
+// when it has moved far enough from the current one's centre (request, returns at once), keeps
+// registering to the current one while the build runs, and swaps the new one in between scans
+// (take, returns at once). A request made while a build runs replaces any request still waiting:
+// only the latest pose is built.
+#include <Eigen/Geometry>
+#include <condition_variable>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "localisation/core/map_pages.hpp"
+
+namespace ltm::localisation {
+
+struct NeighbourhoodConfig {
+    // Local maps anchored within this (horizontal) of the pose are held for tracking [m]; 0: no
+    // paging, tracking registers to the whole map's voxels (the default: global localisation
+    // still holds the whole map, so paging adds the neighbourhood's grids; see the README).
+    double radius = 0.0;
+    // A new neighbourhood is asked for when the pose is this far (horizontal) from the current
+    // one's centre [m]; below radius, so that the pose stays well inside what is held.
+    double rebuild_distance = 40.0;
+};
+
+// Throws common::ConfigError (one line) when a value is out of range.
+void validate(const NeighbourhoodConfig& config);
+
+class NeighbourhoodBuilder {
+  public:
+    // Builds the first neighbourhood around `start` before returning (nothing to track against
+    // before it).
+    NeighbourhoodBuilder(std::shared_ptr<const MapPages> pages, const NeighbourhoodConfig& config,
+                         const Eigen::Vector3d& start);
+    ~NeighbourhoodBuilder();
+    NeighbourhoodBuilder(const NeighbourhoodBuilder&) = delete;
+    NeighbourhoodBuilder& operator=(const NeighbourhoodBuilder&) = delete;
+
+    // The neighbourhood in use (never null).
+    const std::shared_ptr<const Neighbourhood>& current() const { return current_; }
+    // Called by the tracking thread with its pose after each scan: swaps in a finished build
+    // (true when it did) and asks for a new one when the pose has moved rebuild_distance from the
+    // current (or pending) centre. Never waits for a build.
+    bool update(const Eigen::Vector3d& pose);
+    // Whether the neighbourhood in use holds the map around p: the whole map, or p within
+    // radius - rebuild_distance of its centre (after a relocalisation elsewhere it does not until
+    // the build asked for arrives).
+    bool holds(const Eigen::Vector3d& p) const;
+    // Waits until no build is pending or running (tests and benches that must be reproducible;
+    // never on the tracking thread), then swaps in the last one.
+    void settle();
+
+    std::size_t builds() const;                // finished builds, the first included
+    std::vector<std::string> refused() const;  // damaged local maps met so far, one line each
+
+  private:
+    void run();
+
+    std::shared_ptr<const MapPages> pages_;
+    NeighbourhoodConfig config_;
+    std::shared_ptr<const Neighbourhood> current_;
+    Eigen::Vector3d asked_ = Eigen::Vector3d::Zero();  // centre of the latest request
+    mutable std::mutex mutex_;
+    std::condition_variable wake_, idle_;
+    std::optional<Eigen::Vector3d> request_;  // waiting for the thread
+    bool busy_ = false, stop_ = false;
+    std::shared_ptr<const Neighbourhood> ready_;  // built, not yet swapped in
+    std::size_t builds_ = 0;
+    std::vector<std::string> refused_;
+    std::thread thread_;
+};
+
+}  // namespace ltm::localisation
