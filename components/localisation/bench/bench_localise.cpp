@@ -200,13 +200,14 @@ int run(const Args& a) {
     mc.local_features = !a.no_features;
     const auto t_load = Clock::now();
     std::vector<std::string> refused;
-    const auto map = localisation::load_localisation_map(a.map, mc, &refused);
+    const auto map =
+        localisation::load_localisation_map(a.map, mc, &refused, a.neighbourhood_radius);
     for (const std::string& r : refused) std::fprintf(stderr, "map: refused %s\n", r.c_str());
     std::printf(
         "map %s: %zu keyframes, %zu local maps, %zu voxels,  %zu session(s), path %.0f m, %zu "
         "local features%s, "
         "loaded in %.2f s\n",
-        a.map.c_str(), map->keyframes().size(), map->local_maps(), map->voxels().voxels.size(),
+        a.map.c_str(), map->keyframes().size(), map->local_maps(), map->voxel_count(),
         map->sessions(), map->path_length(), map->feature_count(),
         map->descriptors_computed() ? " (format 1: descriptors computed from the voxels)" : "",
         std::chrono::duration<double>(Clock::now() - t_load).count());
@@ -258,13 +259,12 @@ int run(const Args& a) {
     localisation::GlobalLocaliser global(map, lc.global);
     std::shared_ptr<localisation::NeighbourhoodBuilder> builder;
     std::size_t held_max = 0, held_sum = 0, held_n = 0;
-    if (a.mode == "track" && a.neighbourhood_radius > 0.0) {
+    if (map->paged()) {
         localisation::NeighbourhoodConfig nc;
         nc.radius = a.neighbourhood_radius;
         nc.rebuild_distance = a.rebuild_distance;
         const Eigen::Vector3d start = map->keyframes().front().T_map_lidar.translation();
-        builder = std::make_shared<localisation::NeighbourhoodBuilder>(
-            std::make_shared<const localisation::MapPages>(a.map, mc), nc, start);
+        builder = std::make_shared<localisation::NeighbourhoodBuilder>(map->pages(), nc, start);
         localiser.set_neighbourhood(builder);
     }
 
@@ -457,8 +457,7 @@ int run(const Args& a) {
                 "track: neighbourhood radius %.0f m: %zu builds, voxels held for tracking mean "
                 "%.0f, max %zu (the whole map %zu)\n",
                 a.neighbourhood_radius, builder->builds(),
-                held_n ? double(held_sum) / double(held_n) : 0.0, held_max,
-                map->voxels().voxels.size());
+                held_n ? double(held_sum) / double(held_n) : 0.0, held_max, map->voxel_count());
             for (const std::string& r : builder->refused())
                 std::printf("  refused: %s\n", r.c_str());
         }
@@ -529,8 +528,9 @@ int main(int argc, char** argv) {
                  "global mode: also verify each scan at its reference pose (is the map consistent "
                  "with the reference there?)");
     app.add_option("--neighbourhood-radius", a.neighbourhood_radius,
-                   "track mode: track on the local maps anchored within this of the pose, read "
-                   "from the map directory as the robot moves [m] (0: the whole map)");
+                   "the map paged: track on the local maps anchored within this of the pose, "
+                   "read from the map directory as the robot moves, and verify a global query "
+                   "on those within this of its initial poses [m] (0: the whole map in memory)");
     app.add_option("--rebuild-distance", a.rebuild_distance,
                    "track mode: a new neighbourhood when the pose moved this far [m]");
     app.add_flag("--settle", a.settle, "track mode: wait for each neighbourhood build");

@@ -12,13 +12,14 @@ LoadedLocaliser load_localiser(const std::string& dir, const LocalisationMapConf
     const auto t0 = std::chrono::steady_clock::now();
     LoadedLocaliser l;
     l.dir = dir;
-    l.map = load_localisation_map(dir, map_config, &l.refused);
+    // Paged (neighbourhood.radius > 0): the voxels stay in `dir`; tracking registers to the local
+    // maps near the pose, read as the robot moves (the first neighbourhood around the map's first
+    // keyframe; the pose's once it has one), a global query to those near its initial poses.
+    l.map = load_localisation_map(dir, map_config, &l.refused, config.neighbourhood.radius);
     l.localiser = std::make_unique<Localiser>(l.map, config);
-    if (config.neighbourhood.radius > 0.0) {
-        // Tracking on the local maps near the pose, read from `dir` as the robot moves (the
-        // first neighbourhood around the map's first keyframe; the pose's once it has one).
+    if (l.map->paged()) {
         l.localiser->set_neighbourhood(std::make_shared<NeighbourhoodBuilder>(
-            std::make_shared<const MapPages>(dir, map_config), config.neighbourhood,
+            l.map->pages(), config.neighbourhood,
             l.map->keyframes().front().T_map_lidar.translation()));
     }
     if (with_global) {
@@ -32,10 +33,9 @@ LoadedLocaliser load_localiser(const std::string& dir, const LocalisationMapConf
 
 std::string LoadedLocaliser::line() const {
     char text[300];
-    std::snprintf(text, sizeof text,
-                  "map %s: %zu keyframes, %zu local maps, %zu voxels, loaded in %.2f s",
-                  dir.c_str(), map->keyframes().size(), map->local_maps(),
-                  map->voxels().voxels.size(), load_s);
+    std::snprintf(
+        text, sizeof text, "map %s: %zu keyframes, %zu local maps, %zu voxels, loaded in %.2f s",
+        dir.c_str(), map->keyframes().size(), map->local_maps(), map->voxel_count(), load_s);
     return text;
 }
 

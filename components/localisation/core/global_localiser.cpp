@@ -153,9 +153,9 @@ GlobalLocaliser::GlobalLocaliser(std::shared_ptr<const LocalisationMap> map,
       verifier_(config.verification),
       fine_(config.verification.fine, map_->voxel_size()),
       probe_(probe_config(config.verification.coarse, config.probe_iterations),
-             map_->target().coarse ? map_->target().coarse->voxel_size() : map_->voxel_size()),
+             map_->coarse_voxel_size()),
       settle_(probe_config(config.verification.coarse, std::max(1, config.rival_settle_iterations)),
-              map_->target().coarse ? map_->target().coarse->voxel_size() : map_->voxel_size()) {
+              map_->coarse_voxel_size()) {
     if (auto problem = validate(config)) throw common::ConfigError("localisation.global", *problem);
 }
 
@@ -265,11 +265,28 @@ void GlobalLocaliser::feature_guesses(const std::vector<Eigen::Vector3f>& points
     }
 }
 
+bool GlobalLocaliser::take_target(const std::vector<Eigen::Vector3d>& positions) {
+    try {
+        target_ = map_->target_around(positions);
+    } catch (const std::exception& e) {
+        target_problem_ = std::string("the map around the initial poses: ") + e.what();
+        target_.reset();
+    }
+    return target_ != nullptr;
+}
+
 GlobalLocalisation GlobalLocaliser::verify(const std::vector<Eigen::Vector3f>& points,
                                            const Eigen::Isometry3d& guess) {
     const auto start = std::chrono::steady_clock::now();
+    const TargetRelease release{&target_};
+    if (!take_target({guess.translation()})) {
+        GlobalLocalisation out;
+        out.reason = "not verified: " + target_problem_;
+        return out;
+    }
     const registration::LoopVerification v =
-        verifier_.verify(points, map_->target(), registration::GuessList{guess});
+        verifier_.verify(points, target(), registration::GuessList{guess});
+
     GlobalLocalisation out = from_verification(v);
     out.verified = 1;
     out.reason = v.accepted ? "verified" : "not verified: " + v.reason;
@@ -280,6 +297,7 @@ GlobalLocalisation GlobalLocaliser::verify(const std::vector<Eigen::Vector3f>& p
 GlobalLocalisation GlobalLocaliser::localise(const std::vector<Eigen::Vector3f>& points,
                                              const std::optional<PoseHint>& hint) {
     const auto start = std::chrono::steady_clock::now();
+    const TargetRelease release{&target_};
     GlobalLocalisation out;
     const std::vector<Eigen::Vector3f> finite = finite_points(points);
     out.points = finite.size();
@@ -297,6 +315,13 @@ GlobalLocalisation GlobalLocaliser::localise(const std::vector<Eigen::Vector3f>&
     out.steps.features = lap(&t);
     if (guesses.empty()) {
         out.reason = "no place of the map resembles the scan";
+        return finished(out, start);
+    }
+    // The map around every initial pose (paged: read from its directory).
+    std::vector<Eigen::Vector3d> around;
+    for (const Guess& g : guesses) around.push_back(g.T_map_lidar.translation());
+    if (!take_target(around)) {
+        out.reason = "not localised: " + target_problem_;
         return finished(out, start);
     }
     const std::vector<std::size_t> order = probe(finite, &guesses);
@@ -379,8 +404,9 @@ std::vector<std::size_t> GlobalLocaliser::probe(const std::vector<Eigen::Vector3
     for (double i = 0.0; i < double(finite.size()); i += step) {
         probe_points_.push_back(finite[std::size_t(i)]);
     }
-    const registration::RegistrationTarget& target = map_->target();
-    const registration::VoxelGrid& coarse = target.coarse ? *target.coarse : target.fine;
+    const registration::RegistrationTarget& map_target = target();
+    const registration::VoxelGrid& coarse =
+        map_target.coarse ? *map_target.coarse : map_target.fine;
     std::vector<std::pair<double, std::size_t>> order;
     for (std::size_t g = 0; g < guesses->size(); ++g) {
         const registration::RegistrationResult r =
@@ -410,7 +436,7 @@ double GlobalLocaliser::probe_share_on_surface(const Eigen::Isometry3d& T_map_li
     std::size_t on = 0;
     registration::ImlsResult res;
     for (const Eigen::Vector3f& p : probe_points_) {
-        if (registration::imls_distance(map_->target().fine, R * p + t, imls, &res) &&
+        if (registration::imls_distance(target().fine, R * p + t, imls, &res) &&
             std::abs(res.distance) <= config_.verification.inlier_distance)
             ++on;
     }
@@ -418,8 +444,9 @@ double GlobalLocaliser::probe_share_on_surface(const Eigen::Isometry3d& T_map_li
 }
 
 bool GlobalLocaliser::settles_at_answer(const Guess& guess, const std::vector<Verified>& accepted) {
-    const registration::RegistrationTarget& target = map_->target();
-    const registration::VoxelGrid& coarse = target.coarse ? *target.coarse : target.fine;
+    const registration::RegistrationTarget& map_target = target();
+    const registration::VoxelGrid& coarse =
+        map_target.coarse ? *map_target.coarse : map_target.fine;
     const registration::RegistrationResult r =
         settle_.align(probe_points_, coarse, guess.T_map_lidar);
     if (!r.ok() || !r.T_map_lidar.matrix().allFinite()) return false;
@@ -466,11 +493,11 @@ std::vector<GlobalLocaliser::Verified> GlobalLocaliser::verify_guesses(
         const registration::GuessList start{guesses[g].T_map_lidar};
         registration::LoopVerification v;
         if (config_.fine_only && guesses[g].probe_share >= config_.fine_only_probe_share) {
-            v = verifier_.verify(finite, map_->target(), start,
+            v = verifier_.verify(finite, target(), start,
                                  registration::LoopVerifier::Passes::kFineOnly);
         }
         if (!v.accepted || v.inlier_fraction < config_.fine_only_min_inlier_fraction) {
-            registration::LoopVerification both = verifier_.verify(finite, map_->target(), start);
+            registration::LoopVerification both = verifier_.verify(finite, target(), start);
             if (!v.accepted || (both.accepted && both.inliers > v.inliers)) v = std::move(both);
         }
         ++out->verified;
@@ -507,8 +534,8 @@ void GlobalLocaliser::search_around(const std::vector<Eigen::Vector3f>& finite,
     for (std::size_t g : order) {
         const bool at_answer = g < at_answer_.size() && at_answer_[g];
         const TranslationSearchResult r =
-            search_translation(finite, map_->target().fine, fine_.imls_params(),
-                               guesses[g].T_map_lidar, at_answer ? same_heading : config_.search);
+            search_translation(finite, target().fine, fine_.imls_params(), guesses[g].T_map_lidar,
+                               at_answer ? same_heading : config_.search);
         ++out->searched;
         out->search_scored += r.scored;
         // At the guess itself (or next to it) the verification has started already.
@@ -522,7 +549,7 @@ void GlobalLocaliser::search_around(const std::vector<Eigen::Vector3f>& finite,
         }
         if (known) continue;
         registration::LoopVerification v =
-            verifier_.verify(finite, map_->target(), registration::GuessList{r.T_map_lidar});
+            verifier_.verify(finite, target(), registration::GuessList{r.T_map_lidar});
         ++out->verified;
         if (!v.accepted) continue;
         bool same = false;  // the search led back to an answer already there
@@ -581,7 +608,7 @@ double GlobalLocaliser::slide_rival(const std::vector<Eigen::Vector3f>& finite,
         Eigen::Isometry3d moved = best.T_anchor_lidar;
         moved.translation() += sign * config_.slide_distance * directions[k / 2];
         const registration::LoopVerification v =
-            verifier_.verify(finite, map_->target(), registration::GuessList{moved});
+            verifier_.verify(finite, target(), registration::GuessList{moved});
         ++*verified;
         if (!v.accepted) continue;
         const auto [dt, dr] = pose_distance(best.T_anchor_lidar, v.T_anchor_lidar);

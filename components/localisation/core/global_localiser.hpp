@@ -293,7 +293,18 @@ class GlobalLocaliser {
                                 const registration::LoopVerification& best,
                                 const GlobalLocalisation& out);
 
+    // The map a query verifies against (LocalisationMap::target_around its initial poses), held
+    // for the query only: false (target_problem_ says why) when it cannot be read.
+    bool take_target(const std::vector<Eigen::Vector3d>& positions);
+    const registration::RegistrationTarget& target() const { return *target_; }
+    struct TargetRelease {
+        std::shared_ptr<const registration::RegistrationTarget>* target;
+        ~TargetRelease() { target->reset(); }
+    };
+
     std::shared_ptr<const LocalisationMap> map_;
+    std::shared_ptr<const registration::RegistrationTarget> target_;
+    std::string target_problem_;
     GlobalLocaliserConfig config_;
     registration::LoopVerifier verifier_;
     registration::Registration fine_;  // its IMLS settings score the probes

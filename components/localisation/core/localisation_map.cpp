@@ -5,6 +5,8 @@
 #include <unordered_map>
 
 #include "common/core/config_check.hpp"
+#include "common/core/io_error.hpp"
+#include "localisation/core/map_pages.hpp"
 #include "map/core/map_store.hpp"
 #include "map/core/merged_voxels.hpp"
 
@@ -12,7 +14,8 @@ namespace ltm::localisation {
 
 namespace {
 
-constexpr double kColumnSize = 8.0;  // [m] cell of the 2-D index of voxel centres
+constexpr double kColumnSize = 8.0;    // [m] cell of the 2-D index of voxel centres
+constexpr double kCoverageCell = 2.0;  // [m] cell of a paged map's coverage grid
 
 std::uint64_t column_key(double x, double y) {
     const auto cx = std::int64_t(std::floor(x / kColumnSize));
@@ -52,7 +55,8 @@ struct LocalisationMap::Columns {
     }
 };
 
-LocalisationMap::LocalisationMap(const map::MapData& map, const LocalisationMapConfig& config)
+LocalisationMap::LocalisationMap(const map::MapData& map, const LocalisationMapConfig& config,
+                                 std::shared_ptr<const MapPages> pages, double page_radius)
     : index_(1) {
     if (map.keyframes.empty()) {
         throw common::ConfigError("map", "has no keyframes: nothing to localise against");
@@ -71,8 +75,62 @@ LocalisationMap::LocalisationMap(const map::MapData& map, const LocalisationMapC
     place_keyframes(map);
     feature_config_ = config.features;
     if (config.local_features) make_features(config);
+    voxel_size_ = voxels_->voxel_size;
+    coarse_voxel_size_ = target_->coarse ? target_->coarse->voxel_size() : voxel_size_;
+    voxel_count_ = voxels_->voxels.size();
+    if (pages && page_radius > 0.0) {
+        // The site's index stays; the voxels go back to the map directory.
+        pages_ = std::move(pages);
+        page_radius_ = page_radius;
+        index_coverage();
+        voxels_.reset();
+        columns_.reset();
+        target_.reset();
+    }
 }
 
+LocalisationMap::~LocalisationMap() = default;
+
+std::uint64_t LocalisationMap::coverage_key(double x, double y) const {
+    const auto cx = std::int64_t(std::floor(x / kCoverageCell));
+    const auto cy = std::int64_t(std::floor(y / kCoverageCell));
+    return (std::uint64_t(cx + (1 << 30)) << 32) | std::uint64_t(cy + (1 << 30));
+}
+
+void LocalisationMap::index_coverage() {
+    for (const common::VoxelData& v : voxels_->voxels) {
+        coverage_.insert(coverage_key(v.centre.x(), v.centre.y()));
+    }
+}
+
+const common::LocalMapData& LocalisationMap::voxels() const {
+    if (!voxels_) throw common::ConfigError("map", "is paged: its voxels are on disk");
+    return *voxels_;
+}
+
+const registration::RegistrationTarget& LocalisationMap::target() const {
+    if (!target_) throw common::ConfigError("map", "is paged: its voxels are on disk");
+    return *target_;
+}
+
+std::shared_ptr<const registration::RegistrationTarget> LocalisationMap::target_around(
+    const std::vector<Eigen::Vector3d>& positions) const {
+    if (!pages_) return target_;
+    const std::vector<std::uint64_t> want = pages_->nodes_near(positions, page_radius_);
+    std::lock_guard<std::mutex> lock(around_mutex_);
+    if (around_ &&
+        std::includes(around_->nodes.begin(), around_->nodes.end(), want.begin(), want.end()))
+        return around_->target;
+    around_.reset();  // one at a time in memory
+    std::vector<std::string> refused;
+    auto n = pages_->build(positions, page_radius_, &refused);
+    if (n->nodes.empty() && !want.empty()) {
+        throw common::IoError(pages_->dir(),
+                              refused.empty() ? "no local map could be read" : refused.front());
+    }
+    around_ = std::move(n);
+    return around_->target;
+}
 void LocalisationMap::make_features(const LocalisationMapConfig& config) {
     // Samples lie on a lattice anchored at the frame's origin: a sample found from two cells is
     // the same sample (same lattice point), kept once.
@@ -209,6 +267,7 @@ std::vector<std::uint32_t> LocalisationMap::keyframes_near(const Eigen::Vector3d
 
 std::vector<Eigen::Vector3f> LocalisationMap::centres_near(const Eigen::Vector3d& p,
                                                            double radius) const {
+    if (!columns_) throw common::ConfigError("map", "is paged: its voxels are on disk");
     std::vector<Eigen::Vector3f> out;
     columns_->for_each_near(voxels_->voxels, p, radius,
                             [&](std::uint32_t i) { out.push_back(voxels_->voxels[i].centre); });
@@ -216,6 +275,26 @@ std::vector<Eigen::Vector3f> LocalisationMap::centres_near(const Eigen::Vector3d
 }
 
 bool LocalisationMap::covers(const Eigen::Vector3d& p, double radius) const {
+    if (!columns_) {
+        // Any cell holding a voxel whose square reaches within radius of p.
+        const int reach = int(std::ceil(radius / kCoverageCell)) + 1;
+        const auto cx = std::int64_t(std::floor(p.x() / kCoverageCell));
+        const auto cy = std::int64_t(std::floor(p.y() / kCoverageCell));
+        const double r2 = radius * radius;
+        for (int dx = -reach; dx <= reach; ++dx) {
+            for (int dy = -reach; dy <= reach; ++dy) {
+                const double x0 = double(cx + dx) * kCoverageCell;
+                const double y0 = double(cy + dy) * kCoverageCell;
+                const double ex = std::max({x0 - p.x(), 0.0, p.x() - (x0 + kCoverageCell)});
+                const double ey = std::max({y0 - p.y(), 0.0, p.y() - (y0 + kCoverageCell)});
+                if (ex * ex + ey * ey > r2) continue;
+                if (coverage_.count(
+                        coverage_key(x0 + 0.5 * kCoverageCell, y0 + 0.5 * kCoverageCell)))
+                    return true;
+            }
+        }
+        return false;
+    }
     bool any = false;
     columns_->for_each_near(voxels_->voxels, p, radius, [&](std::uint32_t) { any = true; });
     return any;
@@ -223,10 +302,16 @@ bool LocalisationMap::covers(const Eigen::Vector3d& p, double radius) const {
 
 std::shared_ptr<const LocalisationMap> load_localisation_map(const std::string& dir,
                                                              const LocalisationMapConfig& config,
-                                                             std::vector<std::string>* refused) {
+                                                             std::vector<std::string>* refused,
+                                                             double page_radius) {
     map::LoadedMap loaded = map::load_map(dir);
     if (refused) *refused = loaded.refused;
     try {
+        if (page_radius > 0.0) {
+            auto pages = std::make_shared<const MapPages>(dir, config);
+            return std::make_shared<const LocalisationMap>(loaded.map, config, std::move(pages),
+                                                           page_radius);
+        }
         return std::make_shared<const LocalisationMap>(loaded.map, config);
     } catch (const common::ConfigError& e) {
         throw common::ConfigError(dir, e.problem());

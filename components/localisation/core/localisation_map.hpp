@@ -9,11 +9,20 @@
 // descriptors: they are computed on load from the merged voxel centres within the descriptor's
 // range of each keyframe (a rendered view of the map, not the keyframe's own scan: retrieval is
 // weaker on such maps).
+//
+// Paged (issue 28 item 3; made with a MapPages and a radius): after the load the merged voxels,
+// their registration grids and their column index are let go. What stays is the site's index:
+// the keyframes with their descriptors, the local features and a coverage grid (2 m cells that
+// hold a voxel, for covers()). Tracking registers to a neighbourhood of the pose
+// (neighbourhood_builder.hpp) and a global query to the local maps within the radius of its
+// initial poses (target_around: read from the map directory, the last one kept).
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
+#include <unordered_set>
 #include <vector>
 
 #include "common/core/local_map_data.hpp"
@@ -55,11 +64,17 @@ struct MapKeyframe {
     EIGEN_MAKE_ALIGNED_OPERATOR_NEW
 };
 
+class MapPages;
+struct Neighbourhood;
+
 class LocalisationMap {
   public:
     // Throws common::ConfigError when the map holds nothing to localise against (no keyframe or
-    // no voxel), with one line saying so.
-    LocalisationMap(const map::MapData& map, const LocalisationMapConfig& config = {});
+    // no voxel), with one line saying so. With `pages` (the same map directory, opened paged) and
+    // page_radius > 0 the map is paged once loaded (above).
+    LocalisationMap(const map::MapData& map, const LocalisationMapConfig& config = {},
+                    std::shared_ptr<const MapPages> pages = nullptr, double page_radius = 0.0);
+    ~LocalisationMap();
 
     const places::ScanContextConfig& descriptor_config() const { return descriptor_config_; }
     bool descriptors_computed() const { return descriptors_computed_; }  // format-1 map
@@ -72,12 +87,21 @@ class LocalisationMap {
     // Keyframes whose position is within `radius` of p (horizontal distance), any order.
     std::vector<std::uint32_t> keyframes_near(const Eigen::Vector3d& p, double radius) const;
 
+    bool paged() const { return pages_ != nullptr; }
+    double page_radius() const { return page_radius_; }
+    const std::shared_ptr<const MapPages>& pages() const { return pages_; }
     // Every usable voxel of the map in the map frame (grid frame = map frame, T_anchor_grid = I).
-    const common::LocalMapData& voxels() const { return *voxels_; }
-    std::shared_ptr<const common::LocalMapData> voxels_ptr() const { return voxels_; }
-    // The merged voxels as registration grids (fine and coarse), in the map frame.
-    const registration::RegistrationTarget& target() const { return *target_; }
-    // The voxel centres within `radius` (horizontal) of p, in the map frame.
+    // Not paged only (common::ConfigError, one line, on a paged map).
+    const common::LocalMapData& voxels() const;
+    // The merged voxels as registration grids (fine and coarse), in the map frame. Not paged only.
+    const registration::RegistrationTarget& target() const;
+    // What a global query around these map-frame positions verifies against: the whole map's
+    // target, or (paged) the local maps anchored within page_radius of any of them, merged (the
+    // last one is kept and given again while it holds every local map asked for). Thread-safe.
+    // Throws common::IoError when no local map can be read.
+    std::shared_ptr<const registration::RegistrationTarget> target_around(
+        const std::vector<Eigen::Vector3d>& positions) const;
+    // The voxel centres within `radius` (horizontal) of p, in the map frame. Not paged only.
     std::vector<Eigen::Vector3f> centres_near(const Eigen::Vector3d& p, double radius) const;
     // The map's local features within `radius` (horizontal) of p (empty without local features).
     places::LocalFeatures features_near(const Eigen::Vector3d& p, double radius) const;
@@ -89,7 +113,9 @@ class LocalisationMap {
     // Whether any map voxel is within `radius` (horizontal) of p.
     bool covers(const Eigen::Vector3d& p, double radius) const;
 
-    double voxel_size() const { return voxels_->voxel_size; }
+    double voxel_size() const { return voxel_size_; }
+    double coarse_voxel_size() const { return coarse_voxel_size_; }  // = voxel_size(): no coarse
+    std::size_t voxel_count() const { return voxel_count_; }         // merged, on load
     std::size_t local_maps() const { return local_maps_; }
     std::size_t sessions() const { return sessions_; }
     // Horizontal extent of the keyframe path [m] (sum of distances between consecutive ones).
@@ -100,6 +126,8 @@ class LocalisationMap {
     void index_voxels(const map::MapData& map, const LocalisationMapConfig& config);
     void place_keyframes(const map::MapData& map);
     void make_features(const LocalisationMapConfig& config);
+    void index_coverage();
+    std::uint64_t coverage_key(double x, double y) const;
 
     places::ScanContextConfig descriptor_config_;
     bool descriptors_computed_ = false;
@@ -112,13 +140,22 @@ class LocalisationMap {
     places::LocalFeatures features_;  // every sample of the map, map frame
     std::size_t local_maps_ = 0, sessions_ = 0;
     double path_length_ = 0.0;
+    double voxel_size_ = 0.0, coarse_voxel_size_ = 0.0;
+    std::size_t voxel_count_ = 0;
+    // Paged: the map directory, the query radius, the cells holding a voxel, the last query's.
+    std::shared_ptr<const MapPages> pages_;
+    double page_radius_ = 0.0;
+    std::unordered_set<std::uint64_t> coverage_;
+    mutable std::mutex around_mutex_;
+    mutable std::shared_ptr<const Neighbourhood> around_;
 };
 
 // Loads a map directory (map::load_map) for localisation. Throws common::IoError /
 // map::MapFormatError / common::ConfigError with one line when it cannot be used; files the
 // loader refused (a damaged local map) are reported in *refused and the rest is used.
+// With page_radius > 0 the map is paged (above) on the directory's MapPages.
 std::shared_ptr<const LocalisationMap> load_localisation_map(
     const std::string& dir, const LocalisationMapConfig& config = {},
-    std::vector<std::string>* refused = nullptr);
+    std::vector<std::string>* refused = nullptr, double page_radius = 0.0);
 
 }  // namespace ltm::localisation

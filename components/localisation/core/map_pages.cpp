@@ -28,20 +28,43 @@ MapPages::MapPages(std::string dir, const LocalisationMapConfig& config)
               [](const File& a, const File& b) { return a.entry.node < b.entry.node; });
 }
 
+namespace {
+
+bool near_any(const Eigen::Vector3d& anchor, const std::vector<Eigen::Vector3d>& centres,
+              double r2) {
+    for (const Eigen::Vector3d& c : centres) {
+        if ((anchor - c).head<2>().squaredNorm() <= r2) return true;
+    }
+    return false;
+}
+
+}  // namespace
+
 std::vector<std::uint64_t> MapPages::nodes_near(const Eigen::Vector3d& centre,
+                                                double radius) const {
+    return nodes_near(std::vector<Eigen::Vector3d>{centre}, radius);
+}
+
+std::vector<std::uint64_t> MapPages::nodes_near(const std::vector<Eigen::Vector3d>& centres,
                                                 double radius) const {
     std::vector<std::uint64_t> out;
     const double r2 = radius * radius;
     for (const File& f : files_) {
-        if ((f.anchor - centre).head<2>().squaredNorm() <= r2) out.push_back(f.entry.node);
+        if (near_any(f.anchor, centres, r2)) out.push_back(f.entry.node);
     }
     return out;
 }
 
 std::shared_ptr<const Neighbourhood> MapPages::build(const Eigen::Vector3d& centre, double radius,
                                                      std::vector<std::string>* refused) const {
+    return build(std::vector<Eigen::Vector3d>{centre}, radius, refused);
+}
+
+std::shared_ptr<const Neighbourhood> MapPages::build(const std::vector<Eigen::Vector3d>& centres,
+                                                     double radius,
+                                                     std::vector<std::string>* refused) const {
     auto n = std::make_shared<Neighbourhood>();
-    n->centre = centre;
+    n->centre = centres.empty() ? Eigen::Vector3d::Zero() : centres.front();
     n->radius = radius;
     // One local map in memory at a time: each is merged and freed before the next is read. The
     // lattice is the largest voxel size of those held (merge_voxels'): a larger one met later
@@ -60,7 +83,7 @@ std::shared_ptr<const Neighbourhood> MapPages::build(const Eigen::Vector3d& cent
         merger.emplace(voxel_size,
                        map::MergedVoxelsFilter{config_.min_health, config_.min_planarity});
         for (const File& f : files_) {
-            if ((f.anchor - centre).head<2>().squaredNorm() > r2) continue;
+            if (!near_any(f.anchor, centres, r2)) continue;
             map::StoredLocalMap lm;
             try {
                 lm = map::load_local_map(dir_, f.entry, format_version_, graph_nodes_);

@@ -46,9 +46,16 @@ class MapPages {
     // another thread than the one using earlier neighbourhoods (they are immutable).
     std::shared_ptr<const Neighbourhood> build(const Eigen::Vector3d& centre, double radius,
                                                std::vector<std::string>* refused = nullptr) const;
+    // The local maps anchored within `radius` of any of `centres` (a global query's initial
+    // poses), merged as one neighbourhood (its centre: the first).
+    std::shared_ptr<const Neighbourhood> build(const std::vector<Eigen::Vector3d>& centres,
+                                               double radius,
+                                               std::vector<std::string>* refused = nullptr) const;
 
     // The local maps anchored within `radius` of `centre` (graph nodes, ascending).
     std::vector<std::uint64_t> nodes_near(const Eigen::Vector3d& centre, double radius) const;
+    std::vector<std::uint64_t> nodes_near(const std::vector<Eigen::Vector3d>& centres,
+                                          double radius) const;
     std::size_t local_maps() const { return files_.size(); }
     // The map without its local maps (graph, keyframes, descriptor settings).
     const map::MapData& skeleton() const { return skeleton_; }

@@ -9,6 +9,7 @@
 #include <tuple>
 
 #include "common/core/config_check.hpp"
+#include "localisation/core/global_localiser.hpp"
 #include "localisation/core/localisation_map.hpp"
 #include "localisation/core/localiser.hpp"
 #include "localisation/core/localiser_test_scene.hpp"
@@ -304,6 +305,115 @@ TEST(LocaliserOnAPagedMap, AFixFarFromTheNeighbourhoodWaitsForItsBuildNotLost) {
     EXPECT_TRUE(builder->holds(Eigen::Vector3d(2, 0, 0)));
     EXPECT_EQ(u[2].state, LocalisationState::kTracking) << u[2].message;
     EXPECT_EQ(u[3].state, LocalisationState::kTracking) << u[3].message;
+}
+
+// A paged map keeps the site's index (keyframes, descriptors, local features) and a coverage
+// grid, and lets its voxels go: they are read back from the directory where a query needs them.
+TEST(PagedLocalisationMap, KeepsTheSiteIndexAndLetsTheVoxelsGo) {
+    const LongMap& lm = long_map();
+    const auto whole = load_localisation_map(lm.dir);
+    const auto paged = load_localisation_map(lm.dir, {}, nullptr, 100.0);
+    EXPECT_FALSE(whole->paged());
+    ASSERT_TRUE(paged->paged());
+    EXPECT_THROW(paged->voxels(), common::ConfigError);
+    EXPECT_THROW(paged->target(), common::ConfigError);
+    EXPECT_EQ(paged->voxel_count(), whole->voxel_count());
+    EXPECT_EQ(paged->voxel_size(), whole->voxel_size());
+    EXPECT_EQ(paged->coarse_voxel_size(), whole->target().coarse->voxel_size());
+    ASSERT_EQ(paged->keyframes().size(), whole->keyframes().size());
+    ASSERT_EQ(paged->feature_count(), whole->feature_count());
+    EXPECT_GT(paged->feature_count(), 0u);
+    for (std::size_t i = 0; i < paged->feature_count(); ++i)
+        EXPECT_EQ(paged->features().positions[i], whole->features().positions[i]);
+    // covers(): the same answers on the map, beside it and far from it (the coverage grid's 2 m
+    // cells may say yes up to a cell's diagonal farther: none of these points is that close).
+    for (const Eigen::Vector3d& p :
+         {Eigen::Vector3d(10, 0, 0), Eigen::Vector3d(150, 5, 0), Eigen::Vector3d(300, -5, 0),
+          Eigen::Vector3d(150, 200, 0), Eigen::Vector3d(-200, 0, 0), Eigen::Vector3d(500, 0, 0)}) {
+        for (double r : {1.0, 5.0, 20.0})
+            EXPECT_EQ(paged->covers(p, r), whole->covers(p, r)) << p.transpose() << " r " << r;
+    }
+    // A query's target: the local maps near its initial poses only.
+    const auto near_start = paged->target_around({Eigen::Vector3d(0, 0, 0)});
+    ASSERT_TRUE(near_start);
+    EXPECT_LT(near_start->fine.usable_voxels(), whole->target().fine.usable_voxels());
+    EXPECT_EQ(whole->target_around({Eigen::Vector3d(0, 0, 0)}).get(), &whole->target());
+}
+
+// Global queries on a paged map verify on the local maps near their initial poses: where those
+// hold everything the scan sees (scans reach 30 m, local maps 30 m, radius 100 m) the answers
+// are the whole map's.
+TEST(PagedLocalisationMap, GlobalQueriesAnswerAsOnTheWholeMap) {
+    const LongMap& lm = long_map();
+    const auto whole = load_localisation_map(lm.dir);
+    const auto paged = load_localisation_map(lm.dir, {}, nullptr, 100.0);
+    GlobalLocaliser a(whole), b(paged);
+    int localised = 0;
+    for (double x : {20.0, 95.0, 160.0, 230.0, 290.0}) {
+        const Eigen::Isometry3d truth = mt::xy_yaw(x, 1.5, 40.0);
+        const auto scan = mt::view(lm.scene, truth, kReach);
+        const GlobalLocalisation ra = a.localise(scan);
+        const GlobalLocalisation rb = b.localise(scan);
+        ASSERT_EQ(ra.localised, rb.localised) << x << ": " << ra.reason << " / " << rb.reason;
+        EXPECT_EQ(ra.verified, rb.verified) << x;
+        if (!ra.localised) continue;
+        ++localised;
+        EXPECT_LT((ra.T_map_lidar.matrix() - rb.T_map_lidar.matrix()).cwiseAbs().maxCoeff(), 1e-6)
+            << x;
+        EXPECT_LT(test_scene::error_of(rb.T_map_lidar, truth).translation, 0.3) << x;
+        const GlobalLocalisation va = a.verify(scan, truth), vb = b.verify(scan, truth);
+        EXPECT_EQ(va.localised, vb.localised) << x;
+        EXPECT_EQ(va.inliers, vb.inliers) << x;
+    }
+    EXPECT_GE(localised, 4);
+}
+
+// The whole mission on a paged map: tracking on the neighbourhood, a kidnap to the map's other
+// end relocalised by a global query on the pages there, then tracked there (the pose follows
+// the odometry until that neighbourhood is in).
+TEST(LocaliserOnAPagedMap, AKidnapAcrossTheMapIsRelocalisedFromThePages) {
+    const LongMap& lm = long_map();
+    const auto paged = load_localisation_map(lm.dir, {}, nullptr, 100.0);
+    NeighbourhoodConfig nc;
+    nc.radius = 100.0;
+    nc.rebuild_distance = 20.0;
+    auto builder =
+        std::make_shared<NeighbourhoodBuilder>(paged->pages(), nc, Eigen::Vector3d::Zero());
+    LocaliserConfig config;
+    config.lost_after = 0.25;
+    Localiser localiser(paged, config);
+    localiser.set_neighbourhood(builder);
+    localiser.set_initial_pose({mt::xy_yaw(0, 0, 0), 5.0});
+    double stamp = 0.0;
+    int tracked_after = 0;
+    bool relocalised = false;
+    for (int i = 0; i < 40; ++i) {
+        // 10 scans near the start, then the robot is carried to x = 270 (the odometry does not
+        // know: its pose goes on from where it was).
+        const Eigen::Isometry3d truth =
+            i < 10 ? mt::xy_yaw(0.5 * i, 0, 0) : mt::xy_yaw(270.0 + 0.5 * (i - 10), 1.0, 30.0);
+        const Eigen::Isometry3d odom = mt::xy_yaw(0.5 * i, 0, 0);
+        const LocalisationUpdate u =
+            localiser.process(stamp, mt::view(lm.scene, truth, kReach), OdometryInput{odom, 0});
+        stamp += 0.1;
+        builder->settle();
+        if (i < 10) {
+            if (i > 0) {
+                EXPECT_EQ(u.state, LocalisationState::kTracking) << i << ": " << u.message;
+            }
+            continue;
+        }
+        if (u.state == LocalisationState::kRelocalised) relocalised = true;
+        if (relocalised && u.pose_valid) {
+            // From the relocalisation on, every pose is at the new place.
+            EXPECT_LT(test_scene::error_of(u.T_map_lidar, truth).translation, 0.5)
+                << i << ": " << u.message;
+        }
+        if (relocalised && u.state == LocalisationState::kTracking) ++tracked_after;
+    }
+    EXPECT_TRUE(relocalised);
+    EXPECT_GE(tracked_after, 15);
+    EXPECT_TRUE(builder->holds(Eigen::Vector3d(280, 0, 0)));
 }
 
 TEST(NeighbourhoodConfig, OutOfRangeValuesAreRejectedWithOneLine) {
