@@ -56,36 +56,42 @@ struct LocalisationMap::Columns {
 };
 
 LocalisationMap::LocalisationMap(const map::MapData& map, const LocalisationMapConfig& config,
-                                 std::shared_ptr<const MapPages> pages, double page_radius)
+                                 std::shared_ptr<const MapPages> pages, double page_radius,
+                                 std::vector<std::string>* refused)
     : index_(1) {
     if (map.keyframes.empty()) {
         throw common::ConfigError("map", "has no keyframes: nothing to localise against");
     }
-    index_voxels(map, config);
+    const bool paging = pages && page_radius > 0.0;
+    // Paged: the local maps read from the directory one at a time (map holds none).
+    index_voxels(paging ? pages->merge_all(refused)
+                        : map::merge_voxels(map, {config.min_health, config.min_planarity}));
     if (voxels_->voxels.empty()) {
         throw common::ConfigError("map", "has no usable voxels: nothing to register against");
     }
     const bool stored =
         map.localisation_descriptor_config.rings > 0 &&
         map.localisation_descriptor_config.kind == places::ScanContextKind::kMeanVariance;
-    target_ = std::make_shared<const registration::RegistrationTarget>(
-        registration::make_registration_target(*voxels_, config.min_planarity,
-                                               config.coarse_factor));
+    voxel_size_ = voxels_->voxel_size;
+    coarse_voxel_size_ =
+        config.coarse_factor >= 2 ? voxel_size_ * config.coarse_factor : voxel_size_;
+    voxel_count_ = voxels_->voxels.size();
+    if (!paging) {
+        target_ = std::make_shared<const registration::RegistrationTarget>(
+            registration::make_registration_target(*voxels_, config.min_planarity,
+                                                   config.coarse_factor));
+    }
     descriptor_config_ = stored ? map.localisation_descriptor_config : config.descriptor;
     place_keyframes(map);
     feature_config_ = config.features;
     if (config.local_features) make_features(config);
-    voxel_size_ = voxels_->voxel_size;
-    coarse_voxel_size_ = target_->coarse ? target_->coarse->voxel_size() : voxel_size_;
-    voxel_count_ = voxels_->voxels.size();
-    if (pages && page_radius > 0.0) {
+    if (paging) {
         // The site's index stays; the voxels go back to the map directory.
         pages_ = std::move(pages);
         page_radius_ = page_radius;
         index_coverage();
         voxels_.reset();
         columns_.reset();
-        target_.reset();
     }
 }
 
@@ -189,8 +195,7 @@ places::LocalFeatures LocalisationMap::features_near(const Eigen::Vector3d& p,
     return out;
 }
 
-void LocalisationMap::index_voxels(const map::MapData& map, const LocalisationMapConfig& config) {
-    map::MergedVoxels merged = map::merge_voxels(map, {config.min_health, config.min_planarity});
+void LocalisationMap::index_voxels(map::MergedVoxels merged) {
     voxels_ = std::move(merged.voxels);
     local_maps_ = merged.local_maps;
     sessions_ = merged.sessions;
@@ -304,14 +309,23 @@ std::shared_ptr<const LocalisationMap> load_localisation_map(const std::string& 
                                                              const LocalisationMapConfig& config,
                                                              std::vector<std::string>* refused,
                                                              double page_radius) {
+    if (page_radius > 0.0) {
+        // The graph and keyframes only; the local maps are read one at a time.
+        const map::LoadedMap skeleton = map::load_map(dir, false);
+        auto pages = std::make_shared<const MapPages>(dir, skeleton, config);
+        std::vector<std::string> failed = skeleton.refused;
+        try {
+            auto map = std::make_shared<const LocalisationMap>(
+                skeleton.map, config, std::move(pages), page_radius, &failed);
+            if (refused) *refused = failed;
+            return map;
+        } catch (const common::ConfigError& e) {
+            throw common::ConfigError(dir, e.problem());
+        }
+    }
     map::LoadedMap loaded = map::load_map(dir);
     if (refused) *refused = loaded.refused;
     try {
-        if (page_radius > 0.0) {
-            auto pages = std::make_shared<const MapPages>(dir, config);
-            return std::make_shared<const LocalisationMap>(loaded.map, config, std::move(pages),
-                                                           page_radius);
-        }
         return std::make_shared<const LocalisationMap>(loaded.map, config);
     } catch (const common::ConfigError& e) {
         throw common::ConfigError(dir, e.problem());

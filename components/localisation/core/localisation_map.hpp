@@ -27,6 +27,7 @@
 
 #include "common/core/local_map_data.hpp"
 #include "map/core/map_data.hpp"
+#include "map/core/merged_voxels.hpp"
 #include "places/core/local_features.hpp"
 #include "places/core/ring_key_index.hpp"
 #include "places/core/scan_context.hpp"
@@ -72,8 +73,11 @@ class LocalisationMap {
     // Throws common::ConfigError when the map holds nothing to localise against (no keyframe or
     // no voxel), with one line saying so. With `pages` (the same map directory, opened paged) and
     // page_radius > 0 the map is paged once loaded (above).
+    // Paged, `map` need not hold its local maps: they are read from pages (a damaged one is left
+    // out and named in *refused).
     LocalisationMap(const map::MapData& map, const LocalisationMapConfig& config = {},
-                    std::shared_ptr<const MapPages> pages = nullptr, double page_radius = 0.0);
+                    std::shared_ptr<const MapPages> pages = nullptr, double page_radius = 0.0,
+                    std::vector<std::string>* refused = nullptr);
     ~LocalisationMap();
 
     const places::ScanContextConfig& descriptor_config() const { return descriptor_config_; }
@@ -123,7 +127,7 @@ class LocalisationMap {
 
   private:
     struct Columns;  // 2-D grid of voxel centres for range queries
-    void index_voxels(const map::MapData& map, const LocalisationMapConfig& config);
+    void index_voxels(map::MergedVoxels merged);
     void place_keyframes(const map::MapData& map);
     void make_features(const LocalisationMapConfig& config);
     void index_coverage();

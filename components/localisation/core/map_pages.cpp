@@ -10,19 +10,25 @@
 namespace ltm::localisation {
 
 MapPages::MapPages(std::string dir, const LocalisationMapConfig& config)
+    : MapPages(dir, map::load_map(dir, false), config) {}
+
+MapPages::MapPages(std::string dir, const map::LoadedMap& loaded,
+                   const LocalisationMapConfig& config)
     : dir_(std::move(dir)), config_(config) {
-    map::LoadedMap loaded = map::load_map(dir_, false);
-    skeleton_ = std::move(loaded.map);
     format_version_ = loaded.format_version;
-    std::unordered_map<std::uint64_t, Eigen::Vector3d> anchors;
-    for (const map::PoseGraphNode& n : skeleton_.nodes) {
+    std::unordered_map<std::uint64_t, Eigen::Isometry3d> anchors;
+    for (const map::PoseGraphNode& n : loaded.map.nodes) {
         graph_nodes_.insert(n.id);
-        anchors[n.id] = n.T_world_anchor.translation();
+        anchors[n.id] = n.T_world_anchor;
     }
     for (const map::ManifestEntry& e : loaded.local_map_files) {
         const auto a = anchors.find(e.node);
         if (a == anchors.end()) continue;  // not placed: merge_voxels leaves it out as well
-        files_.push_back({e, a->second});
+        File f;
+        f.entry = e;
+        f.T_world_anchor = a->second;
+        f.anchor = a->second.translation();
+        files_.push_back(std::move(f));
     }
     std::sort(files_.begin(), files_.end(),
               [](const File& a, const File& b) { return a.entry.node < b.entry.node; });
@@ -60,30 +66,24 @@ std::shared_ptr<const Neighbourhood> MapPages::build(const Eigen::Vector3d& cent
     return build(std::vector<Eigen::Vector3d>{centre}, radius, refused);
 }
 
-std::shared_ptr<const Neighbourhood> MapPages::build(const std::vector<Eigen::Vector3d>& centres,
-                                                     double radius,
-                                                     std::vector<std::string>* refused) const {
-    auto n = std::make_shared<Neighbourhood>();
-    n->centre = centres.empty() ? Eigen::Vector3d::Zero() : centres.front();
-    n->radius = radius;
+template <class Take>
+map::MergedVoxels MapPages::merge(Take&& take, std::vector<std::uint64_t>* nodes,
+                                  std::vector<std::string>* refused) const {
     // One local map in memory at a time: each is merged and freed before the next is read. The
     // lattice is the largest voxel size of those held (merge_voxels'): a larger one met later
     // starts the merge again on its lattice (maps are made with one voxel size: never, in
     // practice).
-    std::unordered_map<std::uint64_t, Eigen::Isometry3d> anchors;
-    for (const map::PoseGraphNode& node : skeleton_.nodes) anchors[node.id] = node.T_world_anchor;
-    const double r2 = radius * radius;
     float voxel_size = 0.0f;
     std::optional<map::VoxelMerger> merger;
     std::vector<std::string> failed;
     for (bool again = true; again;) {
         again = false;
-        n->nodes.clear();
+        nodes->clear();
         failed.clear();
         merger.emplace(voxel_size,
                        map::MergedVoxelsFilter{config_.min_health, config_.min_planarity});
         for (const File& f : files_) {
-            if (!near_any(f.anchor, centres, r2)) continue;
+            if (!take(f)) continue;
             map::StoredLocalMap lm;
             try {
                 lm = map::load_local_map(dir_, f.entry, format_version_, graph_nodes_);
@@ -102,13 +102,29 @@ std::shared_ptr<const Neighbourhood> MapPages::build(const std::vector<Eigen::Ve
                 merger.emplace(voxel_size,
                                map::MergedVoxelsFilter{config_.min_health, config_.min_planarity});
             }
-            merger->add(lm, anchors.at(f.entry.node));
-            n->nodes.push_back(f.entry.node);
+            merger->add(lm, f.T_world_anchor);
+            nodes->push_back(f.entry.node);
         }
     }
     if (refused) refused->insert(refused->end(), failed.begin(), failed.end());
+    return merger->finish();
+}
+
+map::MergedVoxels MapPages::merge_all(std::vector<std::string>* refused) const {
+    std::vector<std::uint64_t> nodes;
+    return merge([](const File&) { return true; }, &nodes, refused);
+}
+
+std::shared_ptr<const Neighbourhood> MapPages::build(const std::vector<Eigen::Vector3d>& centres,
+                                                     double radius,
+                                                     std::vector<std::string>* refused) const {
+    auto n = std::make_shared<Neighbourhood>();
+    n->centre = centres.empty() ? Eigen::Vector3d::Zero() : centres.front();
+    n->radius = radius;
+    const double r2 = radius * radius;
+    map::MergedVoxels merged =
+        merge([&](const File& f) { return near_any(f.anchor, centres, r2); }, &n->nodes, refused);
     n->complete = n->nodes.size() == files_.size();
-    map::MergedVoxels merged = merger->finish();
     n->target = std::make_shared<const registration::RegistrationTarget>(
         registration::make_registration_target(*merged.voxels, config_.min_planarity,
                                                config_.coarse_factor));

@@ -19,6 +19,7 @@
 #include "common/core/local_map_data.hpp"
 #include "localisation/core/localisation_map.hpp"
 #include "map/core/map_store.hpp"
+#include "map/core/merged_voxels.hpp"
 #include "registration/core/registration_target.hpp"
 
 namespace ltm::localisation {
@@ -40,6 +41,8 @@ class MapPages {
     // Reads the manifest, graph and keyframes of `dir` (map::load_map without the local maps).
     // Throws as load_map does, with one line.
     MapPages(std::string dir, const LocalisationMapConfig& config = {});
+    // The same from a load_map(dir, false) of it already made.
+    MapPages(std::string dir, const map::LoadedMap& skeleton, const LocalisationMapConfig& config);
 
     // The neighbourhood of `centre` (horizontal distance of the anchors <= radius). Reads the
     // local maps it needs; a damaged one is left out and named in *refused. Safe to call from
@@ -52,26 +55,36 @@ class MapPages {
                                                double radius,
                                                std::vector<std::string>* refused = nullptr) const;
 
+    // Every local map merged (as map::merge_voxels merges a whole map), read one at a time; a
+    // damaged one is left out and named in *refused.
+    map::MergedVoxels merge_all(std::vector<std::string>* refused = nullptr) const;
+
     // The local maps anchored within `radius` of `centre` (graph nodes, ascending).
     std::vector<std::uint64_t> nodes_near(const Eigen::Vector3d& centre, double radius) const;
     std::vector<std::uint64_t> nodes_near(const std::vector<Eigen::Vector3d>& centres,
                                           double radius) const;
     std::size_t local_maps() const { return files_.size(); }
-    // The map without its local maps (graph, keyframes, descriptor settings).
-    const map::MapData& skeleton() const { return skeleton_; }
     const std::string& dir() const { return dir_; }
 
   private:
+    // The local maps for which `take` says yes, merged; their nodes in *nodes.
+    template <class Take>
+    map::MergedVoxels merge(Take&& take, std::vector<std::uint64_t>* nodes,
+                            std::vector<std::string>* refused) const;
+
     struct File {
         map::ManifestEntry entry;
-        Eigen::Vector3d anchor = Eigen::Vector3d::Zero();  // map frame
+        Eigen::Isometry3d T_world_anchor = Eigen::Isometry3d::Identity();  // the graph's
+        Eigen::Vector3d anchor = Eigen::Vector3d::Zero();                  // map frame
+        EIGEN_MAKE_ALIGNED_OPERATOR_NEW
     };
     std::string dir_;
     LocalisationMapConfig config_;
-    map::MapData skeleton_;
     std::uint32_t format_version_ = 0;
     std::unordered_set<std::uint64_t> graph_nodes_;
-    std::vector<File> files_;  // placed in the graph, by node
+    // Placed in the graph, by node (the graph's poses are all that is kept of it: the keyframes
+    // are the LocalisationMap's).
+    std::vector<File, Eigen::aligned_allocator<File>> files_;
 };
 
 }  // namespace ltm::localisation

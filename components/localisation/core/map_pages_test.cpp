@@ -102,8 +102,6 @@ TEST(MapPages, AWholeMapRadiusIsTheLoadedMapVoxelForVoxel) {
     const LocalisationMap full(map::load_map(lm.dir).map);
     MapPages pages(lm.dir);
     EXPECT_EQ(pages.local_maps(), std::size_t(kLocalMaps));
-    EXPECT_TRUE(pages.skeleton().local_maps.empty());  // nothing read before a build
-    EXPECT_EQ(pages.skeleton().keyframes.size(), std::size_t(3 * kLocalMaps));
     const auto n = pages.build(Eigen::Vector3d(150, 0, 0), 1000.0);
     EXPECT_TRUE(n->complete);
     ASSERT_EQ(n->voxel_count(), full.voxels().voxels.size());
@@ -112,6 +110,11 @@ TEST(MapPages, AWholeMapRadiusIsTheLoadedMapVoxelForVoxel) {
         EXPECT_EQ(n->voxels->voxels[i].normal, full.voxels().voxels[i].normal);
     }
     EXPECT_EQ(n->target->fine.usable_voxels(), full.target().fine.usable_voxels());
+    // merge_all: the same voxels.
+    const map::MergedVoxels all = pages.merge_all();
+    ASSERT_EQ(all.voxels->voxels.size(), full.voxels().voxels.size());
+    for (std::size_t i = 0; i < all.voxels->voxels.size(); ++i)
+        EXPECT_EQ(all.voxels->voxels[i].centre, full.voxels().voxels[i].centre);
 }
 
 TEST(MapPages, ANeighbourhoodHoldsTheLocalMapsWithinItsRadiusAndTheirVoxelsUnchanged) {

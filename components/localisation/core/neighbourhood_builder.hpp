@@ -18,10 +18,16 @@
 
 namespace ltm::localisation {
 
+// The localisation component's radius on a site (its versions never change once written) when
+// the launch config gives none: the local maps of site_loop within 100 m of day 1's poses track
+// within 5 mm of the whole map (localisation README, "The map paged").
+constexpr double kSiteNeighbourhoodRadius = 100.0;  // [m]
+
 struct NeighbourhoodConfig {
-    // Local maps anchored within this (horizontal) of the pose are held for tracking [m]; 0: no
-    // paging, tracking registers to the whole map's voxels (the default: global localisation
-    // still holds the whole map, so paging adds the neighbourhood's grids; see the README).
+    // Local maps anchored within this (horizontal) of the pose are held for tracking, and within
+    // this of a global query's initial poses for its verification [m]; 0: no paging, the whole
+    // map's voxels in memory (the default of the core and of a `map` directory; on a site the
+    // component pages with kSiteNeighbourhoodRadius).
     double radius = 0.0;
     // A new neighbourhood is asked for when the pose is this far (horizontal) from the current
     // one's centre [m]; below radius, so that the pose stays well inside what is held.

@@ -56,25 +56,34 @@ void VoxelMerger::add(const StoredLocalMap& lm, const Eigen::Isometry3d& T_world
     const float inv = inv_;
     for (const common::VoxelData& v : lm.data->voxels) {
         if (!usable(v, filter_)) continue;
-        common::VoxelData w = v;
-        w.centre = R * v.centre + t;
-        w.normal = (R * v.normal).normalized();
-        const Eigen::Vector3f cell = (w.centre * inv).array().floor();
+        const Eigen::Vector3f centre = R * v.centre + t;
+        const Eigen::Vector3f cell = (centre * inv).array().floor();
         if (!(cell.cwiseAbs().maxCoeff() < float((1 << 20) - 1))) continue;
-        w.index = cell.cast<int>();
-        w.life.seen.clear();
-        w.stability *= std::clamp(w.life.health, 0.0f, 1.0f);  // established voxels weigh more
-        const std::uint64_t key = (std::uint64_t(w.index.x() + (1 << 20)) << 42) |
-                                  (std::uint64_t(w.index.y() + (1 << 20)) << 21) |
-                                  std::uint64_t(w.index.z() + (1 << 20));
-        const float d = (w.centre - anchor).head<2>().norm();
+        const Eigen::Vector3i index = cell.cast<int>();
+        const std::uint64_t key = (std::uint64_t(index.x() + (1 << 20)) << 42) |
+                                  (std::uint64_t(index.y() + (1 << 20)) << 21) |
+                                  std::uint64_t(index.z() + (1 << 20));
+        const float d = (centre - anchor).head<2>().norm();
         const auto [it, fresh] = slot_.emplace(key, std::uint32_t(merged.voxels.size()));
+        if (!fresh && !(d < anchor_distance_[it->second])) continue;  // a nearer map's is kept
+        // The voxel in the map frame; its life record keeps no observation indices (not copied).
+        common::VoxelData w;
+        w.index = index;
+        w.centre = centre;
+        w.normal = (R * v.normal).normalized();
+        w.point_count = v.point_count;
+        w.planarity = v.planarity;
+        w.stability = v.stability * std::clamp(v.life.health, 0.0f, 1.0f);  // established: more
+        w.life.created = v.life.created;
+        w.life.last_seen = v.life.last_seen;
+        w.life.observations = v.life.observations;
+        w.life.health = v.life.health;
         if (fresh) {
             merged.voxels.push_back(std::move(w));
             anchor_distance_.push_back(d);
             lo_ = lo_.cwiseMin(merged.voxels.back().centre.cast<double>());
             hi_ = hi_.cwiseMax(merged.voxels.back().centre.cast<double>());
-        } else if (d < anchor_distance_[it->second]) {
+        } else {
             merged.voxels[it->second] = std::move(w);
             anchor_distance_[it->second] = d;
         }
