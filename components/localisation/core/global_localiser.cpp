@@ -5,6 +5,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "localisation/core/map_pages.hpp"
 #include "registration/core/se3.hpp"
 
 namespace ltm::localisation {
@@ -267,10 +268,16 @@ void GlobalLocaliser::feature_guesses(const std::vector<Eigen::Vector3f>& points
 
 bool GlobalLocaliser::take_target(const std::vector<Eigen::Vector3d>& positions) {
     try {
-        target_ = map_->target_around(positions);
+        if (map_->paged()) {
+            around_ = map_->neighbourhood_around(positions);
+            target_ = around_->target;
+        } else {
+            target_ = map_->target_around(positions);
+        }
     } catch (const std::exception& e) {
         target_problem_ = std::string("the map around the initial poses: ") + e.what();
         target_.reset();
+        around_.reset();
     }
     return target_ != nullptr;
 }
@@ -278,7 +285,7 @@ bool GlobalLocaliser::take_target(const std::vector<Eigen::Vector3d>& positions)
 GlobalLocalisation GlobalLocaliser::verify(const std::vector<Eigen::Vector3f>& points,
                                            const Eigen::Isometry3d& guess) {
     const auto start = std::chrono::steady_clock::now();
-    const TargetRelease release{&target_};
+    const TargetRelease release{this};
     if (!take_target({guess.translation()})) {
         GlobalLocalisation out;
         out.reason = "not verified: " + target_problem_;
@@ -297,7 +304,7 @@ GlobalLocalisation GlobalLocaliser::verify(const std::vector<Eigen::Vector3f>& p
 GlobalLocalisation GlobalLocaliser::localise(const std::vector<Eigen::Vector3f>& points,
                                              const std::optional<PoseHint>& hint) {
     const auto start = std::chrono::steady_clock::now();
-    const TargetRelease release{&target_};
+    const TargetRelease release{this};
     GlobalLocalisation out;
     const std::vector<Eigen::Vector3f> finite = finite_points(points);
     out.points = finite.size();
@@ -372,6 +379,7 @@ GlobalLocalisation GlobalLocaliser::localise(const std::vector<Eigen::Vector3f>&
     out.confidence *= 1.0 - out.second_inliers_ratio;
     out.reason = describe(from, places, best, out);
     out.localised = true;
+    out.around = around_;
     out.steps.checks = lap(&t);
     return finished(out, start);
 }

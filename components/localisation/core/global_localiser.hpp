@@ -213,6 +213,9 @@ struct GlobalLocalisation {
     bool slide_tested = false;          // the slide test ran
     double slide_inliers_ratio = 0.0;   // its best distinct pose's inliers / the answer's
     double time_s = 0.0;                // wall time of the query
+    // A paged map's local maps the answer was verified on (map_pages.hpp; null when the map is
+    // in memory): tracking may adopt them rather than wait for its own build there.
+    std::shared_ptr<const Neighbourhood> around;
     // Wall time of each step [s]: descriptor and retrieval, local features + RANSAC, probes,
     // full verifications of the guesses, the answer's checks (covariance, slide test).
     struct StepTimes {
@@ -298,12 +301,16 @@ class GlobalLocaliser {
     bool take_target(const std::vector<Eigen::Vector3d>& positions);
     const registration::RegistrationTarget& target() const { return *target_; }
     struct TargetRelease {
-        std::shared_ptr<const registration::RegistrationTarget>* target;
-        ~TargetRelease() { target->reset(); }
+        GlobalLocaliser* of;
+        ~TargetRelease() {
+            of->target_.reset();
+            of->around_.reset();
+        }
     };
 
     std::shared_ptr<const LocalisationMap> map_;
     std::shared_ptr<const registration::RegistrationTarget> target_;
+    std::shared_ptr<const Neighbourhood> around_;  // paged: what target_ is of
     std::string target_problem_;
     GlobalLocaliserConfig config_;
     registration::LoopVerifier verifier_;

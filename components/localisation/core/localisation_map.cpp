@@ -122,21 +122,27 @@ const registration::RegistrationTarget& LocalisationMap::target() const {
 std::shared_ptr<const registration::RegistrationTarget> LocalisationMap::target_around(
     const std::vector<Eigen::Vector3d>& positions) const {
     if (!pages_) return target_;
+    return neighbourhood_around(positions)->target;
+}
+
+std::shared_ptr<const Neighbourhood> LocalisationMap::neighbourhood_around(
+    const std::vector<Eigen::Vector3d>& positions) const {
+    if (!pages_) return nullptr;
     const std::vector<std::uint64_t> want = pages_->nodes_near(positions, page_radius_);
     std::lock_guard<std::mutex> lock(around_mutex_);
-    if (around_ &&
-        std::includes(around_->nodes.begin(), around_->nodes.end(), want.begin(), want.end()))
-        return around_->target;
-    around_.reset();  // one at a time in memory
+    if (auto held = around_.lock();
+        held && std::includes(held->nodes.begin(), held->nodes.end(), want.begin(), want.end()))
+        return held;
     std::vector<std::string> refused;
-    auto n = pages_->build(positions, page_radius_, &refused);
+    std::shared_ptr<const Neighbourhood> n = pages_->build(positions, page_radius_, &refused);
     if (n->nodes.empty() && !want.empty()) {
         throw common::IoError(pages_->dir(),
                               refused.empty() ? "no local map could be read" : refused.front());
     }
-    around_ = std::move(n);
-    return around_->target;
+    around_ = n;
+    return n;
 }
+
 void LocalisationMap::make_features(const LocalisationMapConfig& config) {
     // Samples lie on a lattice anchored at the frame's origin: a sample found from two cells is
     // the same sample (same lattice point), kept once.

@@ -105,6 +105,12 @@ class LocalisationMap {
     // Throws common::IoError when no local map can be read.
     std::shared_ptr<const registration::RegistrationTarget> target_around(
         const std::vector<Eigen::Vector3d>& positions) const;
+    // Paged: the same as a neighbourhood (its local maps, voxels and target); null when not
+    // paged. A neighbourhood still held elsewhere that has every local map asked for is given
+    // again; none is kept here (a query's map lives as long as the query, or the tracking that
+    // adopts it).
+    std::shared_ptr<const Neighbourhood> neighbourhood_around(
+        const std::vector<Eigen::Vector3d>& positions) const;
     // The voxel centres within `radius` (horizontal) of p, in the map frame. Not paged only.
     std::vector<Eigen::Vector3f> centres_near(const Eigen::Vector3d& p, double radius) const;
     // The map's local features within `radius` (horizontal) of p (empty without local features).
@@ -151,7 +157,7 @@ class LocalisationMap {
     double page_radius_ = 0.0;
     std::unordered_set<std::uint64_t> coverage_;
     mutable std::mutex around_mutex_;
-    mutable std::shared_ptr<const Neighbourhood> around_;
+    mutable std::weak_ptr<const Neighbourhood> around_;
 };
 
 // Loads a map directory (map::load_map) for localisation. Throws common::IoError /

@@ -114,6 +114,8 @@ bool Localiser::run_global(double stamp, const std::vector<Eigen::Vector3f>& poi
         return false;
     }
     hint_.reset();
+    // Paged: tracking goes on at once on the local maps the answer was verified on.
+    if (neighbourhood_) neighbourhood_->adopt(g.around, g.T_map_lidar.translation());
     T_map_odom_ = g.T_map_lidar * T_odom_lidar.inverse();
     T_map_lidar_ = g.T_map_lidar;
     u->T_map_lidar = g.T_map_lidar;

@@ -56,6 +56,8 @@ bool Localiser::apply_answer(double stamp, const Eigen::Isometry3d& T_odom_lidar
     // scan (tracking): the pose of now, never the answer's from the past.
     T_map_odom_ = answer_T_map_odom(a);
     const Eigen::Isometry3d carried = carry_forward(a, T_odom_lidar);
+    // Paged: tracking goes on at once on the local maps the answer was verified on.
+    if (neighbourhood_) neighbourhood_->adopt(g.around, carried.translation());
     LocalisationUpdate refined = *u;
     if (track(carried, &refined)) {
         *u = refined;

@@ -372,8 +372,8 @@ TEST(PagedLocalisationMap, GlobalQueriesAnswerAsOnTheWholeMap) {
 }
 
 // The whole mission on a paged map: tracking on the neighbourhood, a kidnap to the map's other
-// end relocalised by a global query on the pages there, then tracked there (the pose follows
-// the odometry until that neighbourhood is in).
+// end relocalised by a global query on the pages there, then tracked there at once on the local
+// maps the query read (NeighbourhoodBuilder::adopt), no build of its own.
 TEST(LocaliserOnAPagedMap, AKidnapAcrossTheMapIsRelocalisedFromThePages) {
     const LongMap& lm = long_map();
     const auto paged = load_localisation_map(lm.dir, {}, nullptr, 100.0);
@@ -413,10 +413,16 @@ TEST(LocaliserOnAPagedMap, AKidnapAcrossTheMapIsRelocalisedFromThePages) {
                 << i << ": " << u.message;
         }
         if (relocalised && u.state == LocalisationState::kTracking) ++tracked_after;
+        if (relocalised) {
+            // Tracked at once on the local maps the answer was verified on: never off the map
+            // waiting for a build.
+            EXPECT_NE(u.state, LocalisationState::kOffMap) << i << ": " << u.message;
+        }
     }
     EXPECT_TRUE(relocalised);
-    EXPECT_GE(tracked_after, 15);
+    EXPECT_GE(tracked_after, 25);
     EXPECT_TRUE(builder->holds(Eigen::Vector3d(280, 0, 0)));
+    EXPECT_EQ(builder->builds(), 1u);  // the start's only: the kidnap's place was adopted
 }
 
 TEST(NeighbourhoodConfig, OutOfRangeValuesAreRejectedWithOneLine) {

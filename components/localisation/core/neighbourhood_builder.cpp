@@ -1,5 +1,6 @@
 #include "localisation/core/neighbourhood_builder.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "common/core/config_check.hpp"
@@ -58,14 +59,19 @@ void NeighbourhoodBuilder::run() {
     }
 }
 
-bool NeighbourhoodBuilder::update(const Eigen::Vector3d& pose) {
-    bool swapped = false;
-    std::lock_guard<std::mutex> lock(mutex_);
-    if (ready_) {
+void NeighbourhoodBuilder::take_ready() {
+    if (!ready_) return;
+    const double now = (current_->centre - asked_).head<2>().norm();
+    if (ready_->complete || (ready_->centre - asked_).head<2>().norm() <= now)
         current_ = std::move(ready_);
-        ready_.reset();
-        swapped = true;
-    }
+    ready_.reset();
+}
+
+bool NeighbourhoodBuilder::update(const Eigen::Vector3d& pose) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const std::shared_ptr<const Neighbourhood> before = current_;
+    take_ready();
+    const bool swapped = current_ != before;
     if (current_->complete || config_.radius <= 0.0) return swapped;  // the whole map is held
     if ((pose - asked_).head<2>().norm() >= config_.rebuild_distance) {
         asked_ = pose;
@@ -75,18 +81,34 @@ bool NeighbourhoodBuilder::update(const Eigen::Vector3d& pose) {
     return swapped;
 }
 
-bool NeighbourhoodBuilder::holds(const Eigen::Vector3d& p) const {
+bool NeighbourhoodBuilder::holds(const Eigen::Vector3d& p) const { return holds_locked(p); }
+
+bool NeighbourhoodBuilder::holds_locked(const Eigen::Vector3d& p) const {
     return current_->complete ||
            (p - current_->centre).head<2>().norm() <= config_.radius - config_.rebuild_distance;
+}
+
+bool NeighbourhoodBuilder::adopt(const std::shared_ptr<const Neighbourhood>& n,
+                                 const Eigen::Vector3d& pose) {
+    if (!n || !n->target) return false;
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (holds_locked(pose)) return false;
+    const std::vector<std::uint64_t> want = pages_->nodes_near(pose, config_.radius);
+    if (!std::includes(n->nodes.begin(), n->nodes.end(), want.begin(), want.end())) return false;
+    // The same local maps (or more), centred where tracking goes on.
+    auto here = std::make_shared<Neighbourhood>(*n);
+    here->centre = pose;
+    here->radius = config_.radius;
+    current_ = std::move(here);
+    asked_ = pose;
+    request_.reset();
+    return true;
 }
 
 void NeighbourhoodBuilder::settle() {
     std::unique_lock<std::mutex> lock(mutex_);
     idle_.wait(lock, [this] { return !busy_ && !request_; });
-    if (ready_) {
-        current_ = std::move(ready_);
-        ready_.reset();
-    }
+    take_ready();
 }
 
 std::size_t NeighbourhoodBuilder::builds() const {

@@ -57,6 +57,10 @@ class NeighbourhoodBuilder {
     // radius - rebuild_distance of its centre (after a relocalisation elsewhere it does not until
     // the build asked for arrives).
     bool holds(const Eigen::Vector3d& p) const;
+    // A neighbourhood built elsewhere (a global query's, around its answer at `pose`) in use from
+    // now when the one in use does not hold `pose` and it has every local map within radius of
+    // `pose`: tracking goes on there at once instead of waiting for a build (true when taken).
+    bool adopt(const std::shared_ptr<const Neighbourhood>& n, const Eigen::Vector3d& pose);
     // Waits until no build is pending or running (tests and benches that must be reproducible;
     // never on the tracking thread), then swaps in the last one.
     void settle();
@@ -66,6 +70,10 @@ class NeighbourhoodBuilder {
 
   private:
     void run();
+    bool holds_locked(const Eigen::Vector3d& p) const;
+    // A finished build is swapped in when it is nearer the latest pose asked for than the one in
+    // use (a build asked for before an adoption elsewhere is not).
+    void take_ready();
 
     std::shared_ptr<const MapPages> pages_;
     NeighbourhoodConfig config_;
