@@ -6,6 +6,8 @@
 // With --reference (KITTI poses of the scans; --reference-transform maps them into the map's
 // frame) it prints the success rate, confident wrong answers and time, and in track mode the
 // tracking ATE and how long each start and jump (kidnap) took to be re-localised.
+#include <malloc.h>
+
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <chrono>
@@ -283,7 +285,14 @@ int run(const Args& a) {
     std::size_t relocalisations = 0, lost_scans = 0, off_map = 0;
     double process_s = 0.0, localise_s = 0.0;  // track mode: all, and the localiser alone
     common::Progress progress(a.mode, frames.size(), "scans");
+    std::size_t heap_peak = 0;  // bytes in use (mallinfo2), sampled every 100 scans
     for (std::size_t n = 0; n < frames.size(); ++n) {
+        if (n % 100 == 0) {
+            // As the host gives the heap's free pages back (runtime/heap_trim.hpp), so that the
+            // resident size says what is held.
+            heap_peak = std::max(heap_peak, mallinfo2().uordblks);
+            malloc_trim(0);
+        }
         const std::size_t i = frames[n];
         Eigen::Isometry3d T_pert = Eigen::Isometry3d::Identity();
         const bool perturbed = a.perturb_yaw > 0 || a.perturb_shift > 0;
@@ -444,6 +453,8 @@ int run(const Args& a) {
             percentile(step_times[2], 0.5), percentile(step_times[3], 0.5),
             percentile(step_times[4], 0.5));
     }
+    std::printf("heap in use: %.1f MiB at the end, %.1f MiB at most (sampled every 100 scans)\n",
+                double(mallinfo2().uordblks) / 1048576.0, double(heap_peak) / 1048576.0);
     if (a.mode == "track") {
         std::printf(
             "track: %.1f scans/s (odometry + localisation, one thread), relocalisations "

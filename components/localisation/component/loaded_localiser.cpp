@@ -12,10 +12,12 @@ LoadedLocaliser load_localiser(const std::string& dir, const LocalisationMapConf
     const auto t0 = std::chrono::steady_clock::now();
     LoadedLocaliser l;
     l.dir = dir;
-    // Paged (neighbourhood.radius > 0): the voxels stay in `dir`; tracking registers to the local
+    // Paged (neighbourhood.radius > 0, a map above neighbourhood.page_above_mb): the voxels stay
+    // in `dir`; tracking registers to the local
     // maps near the pose, read as the robot moves (the first neighbourhood around the map's first
     // keyframe; the pose's once it has one), a global query to those near its initial poses.
-    l.map = load_localisation_map(dir, map_config, &l.refused, config.neighbourhood.radius);
+    l.map = load_localisation_map(dir, map_config, &l.refused, config.neighbourhood.radius,
+                                  config.neighbourhood.page_above_mb);
     l.localiser = std::make_unique<Localiser>(l.map, config);
     if (l.map->paged()) {
         l.localiser->set_neighbourhood(std::make_shared<NeighbourhoodBuilder>(

@@ -128,7 +128,8 @@ class LocalisationComponent : public runtime::Component {
             p.fail("new_site_pose", std::string(kNewSitePoseNames) + ", not '" + pose_from + "'");
         new_site_pose_.emplace(*source);
         resolve_site_map(p);
-        page_on_site_ = on_site_ && !p.has("neighbourhood.radius");
+        page_radius_on_site_ = on_site_ && !p.has("neighbourhood.radius");
+        page_above_on_site_ = on_site_ && !p.has("neighbourhood.page_above_mb");
         page_on_site(&config_);
         if (site_poll_s_ > 0 && !on_site_) p.fail("site_poll_s", "needs site_dir");
         if (map_dir_.empty() && map_state_ != kFailed)
@@ -373,11 +374,12 @@ class LocalisationComponent : public runtime::Component {
         if (map_state_ == kReady && !map_dir_.empty()) load_map();
     }
 
-    // On a site (its versions never change once written) the map is paged unless the launch
-    // config says otherwise (`neighbourhood.radius`; core/neighbourhood_builder.hpp); a `map`
+    // On a site (its versions never change once written) a large map is paged unless the launch
+    // config says otherwise (`neighbourhood.*`; core/neighbourhood_builder.hpp); a `map`
     // directory may be one a mapping component is writing, so there it is whole unless asked.
     void page_on_site(LocaliserConfig* config) const {
-        if (page_on_site_) config->neighbourhood.radius = kSiteNeighbourhoodRadius;
+        if (page_radius_on_site_) config->neighbourhood.radius = kSiteNeighbourhoodRadius;
+        if (page_above_on_site_) config->neighbourhood.page_above_mb = kSitePageAboveMb;
     }
 
     void on_odometry(const msg::Odometry& m) {
@@ -672,7 +674,8 @@ class LocalisationComponent : public runtime::Component {
     enum MapState : int { kLoading, kReady, kFailed };
     std::atomic<int> map_state_{kLoading};
     bool on_site_ = false;                      // site_dir given
-    bool page_on_site_ = false;                 // on a site, neighbourhood.radius not given
+    bool page_radius_on_site_ = false;          // on a site, neighbourhood.radius not given
+    bool page_above_on_site_ = false;           // on a site, neighbourhood.page_above_mb not given
     std::atomic<bool> new_site_{false};         // and it has no version yet (until one arrives)
     std::optional<NewSitePose> new_site_pose_;  // new_site_pose (component thread)
     std::string new_site_said_;  // the last reason logged (once each time it changes)

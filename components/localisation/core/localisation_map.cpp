@@ -63,9 +63,9 @@ LocalisationMap::LocalisationMap(const map::MapData& map, const LocalisationMapC
         throw common::ConfigError("map", "has no keyframes: nothing to localise against");
     }
     const bool paging = pages && page_radius > 0.0;
-    // Paged: the local maps read from the directory one at a time (map holds none).
-    index_voxels(paging ? pages->merge_all(refused)
-                        : map::merge_voxels(map, {config.min_health, config.min_planarity}));
+    // With pages: the local maps read from the directory one at a time (map holds none).
+    index_voxels(pages ? pages->merge_all(refused)
+                       : map::merge_voxels(map, {config.min_health, config.min_planarity}));
     if (voxels_->voxels.empty()) {
         throw common::ConfigError("map", "has no usable voxels: nothing to register against");
     }
@@ -314,25 +314,20 @@ bool LocalisationMap::covers(const Eigen::Vector3d& p, double radius) const {
 std::shared_ptr<const LocalisationMap> load_localisation_map(const std::string& dir,
                                                              const LocalisationMapConfig& config,
                                                              std::vector<std::string>* refused,
-                                                             double page_radius) {
-    if (page_radius > 0.0) {
-        // The graph and keyframes only; the local maps are read one at a time.
-        const map::LoadedMap skeleton = map::load_map(dir, false);
-        auto pages = std::make_shared<const MapPages>(dir, skeleton, config);
-        std::vector<std::string> failed = skeleton.refused;
-        try {
-            auto map = std::make_shared<const LocalisationMap>(
-                skeleton.map, config, std::move(pages), page_radius, &failed);
-            if (refused) *refused = failed;
-            return map;
-        } catch (const common::ConfigError& e) {
-            throw common::ConfigError(dir, e.problem());
-        }
-    }
-    map::LoadedMap loaded = map::load_map(dir);
-    if (refused) *refused = loaded.refused;
+                                                             double page_radius,
+                                                             double page_above_mb) {
+    // The graph and keyframes; the local maps are read one at a time (never all at once).
+    const map::LoadedMap skeleton = map::load_map(dir, false);
+    std::uint64_t bytes = 0;
+    for (const map::ManifestEntry& e : skeleton.local_map_files) bytes += e.size;
+    const bool paging = page_radius > 0.0 && double(bytes) > page_above_mb * 1e6;
+    std::vector<std::string> failed = skeleton.refused;
     try {
-        return std::make_shared<const LocalisationMap>(loaded.map, config);
+        auto map = std::make_shared<const LocalisationMap>(
+            skeleton.map, config, std::make_shared<const MapPages>(dir, skeleton, config),
+            paging ? page_radius : 0.0, &failed);
+        if (refused) *refused = failed;
+        return map;
     } catch (const common::ConfigError& e) {
         throw common::ConfigError(dir, e.problem());
     }

@@ -73,8 +73,8 @@ class LocalisationMap {
     // Throws common::ConfigError when the map holds nothing to localise against (no keyframe or
     // no voxel), with one line saying so. With `pages` (the same map directory, opened paged) and
     // page_radius > 0 the map is paged once loaded (above).
-    // Paged, `map` need not hold its local maps: they are read from pages (a damaged one is left
-    // out and named in *refused).
+    // With pages, `map` need not hold its local maps: they are read from pages (a damaged one is
+    // left out and named in *refused); the map is paged when page_radius > 0.
     LocalisationMap(const map::MapData& map, const LocalisationMapConfig& config = {},
                     std::shared_ptr<const MapPages> pages = nullptr, double page_radius = 0.0,
                     std::vector<std::string>* refused = nullptr);
@@ -163,9 +163,11 @@ class LocalisationMap {
 // Loads a map directory (map::load_map) for localisation. Throws common::IoError /
 // map::MapFormatError / common::ConfigError with one line when it cannot be used; files the
 // loader refused (a damaged local map) are reported in *refused and the rest is used.
-// With page_radius > 0 the map is paged (above) on the directory's MapPages.
+// The local maps are read one at a time. With page_radius > 0 the map is paged (above) when its
+// local-map files hold more than page_above_mb [MB] (0: always); else it is held whole.
 std::shared_ptr<const LocalisationMap> load_localisation_map(
     const std::string& dir, const LocalisationMapConfig& config = {},
-    std::vector<std::string>* refused = nullptr, double page_radius = 0.0);
+    std::vector<std::string>* refused = nullptr, double page_radius = 0.0,
+    double page_above_mb = 0.0);
 
 }  // namespace ltm::localisation

@@ -102,6 +102,7 @@ void visit_fields(LocaliserConfig& c, Visitor&& v) {
     v("max_gap", c.max_gap, positive);
     v("neighbourhood.radius", c.neighbourhood.radius, non_negative);
     v("neighbourhood.rebuild_distance", c.neighbourhood.rebuild_distance, positive);
+    v("neighbourhood.page_above_mb", c.neighbourhood.page_above_mb, non_negative);
 }
 
 std::optional<common::ConfigProblem> validate(const LocaliserConfig& config);

@@ -318,6 +318,9 @@ TEST(PagedLocalisationMap, KeepsTheSiteIndexAndLetsTheVoxelsGo) {
     const auto paged = load_localisation_map(lm.dir, {}, nullptr, 100.0);
     EXPECT_FALSE(whole->paged());
     ASSERT_TRUE(paged->paged());
+    // A map whose local-map files hold less than page_above_mb is held whole.
+    EXPECT_FALSE(load_localisation_map(lm.dir, {}, nullptr, 100.0, 1000.0)->paged());
+    EXPECT_TRUE(load_localisation_map(lm.dir, {}, nullptr, 100.0, 1e-6)->paged());
     EXPECT_THROW(paged->voxels(), common::ConfigError);
     EXPECT_THROW(paged->target(), common::ConfigError);
     EXPECT_EQ(paged->voxel_count(), whole->voxel_count());
@@ -437,6 +440,8 @@ TEST(NeighbourhoodConfig, OutOfRangeValuesAreRejectedWithOneLine) {
     EXPECT_THROW(validate(c), common::ConfigError);
     c.radius = 0.0;  // no paging: rebuild_distance unused
     EXPECT_NO_THROW(validate(c));
+    c.page_above_mb = -1.0;
+    EXPECT_THROW(validate(c), common::ConfigError);
     // The localiser's keys: neighbourhood.radius, neighbourhood.rebuild_distance.
     LocaliserConfig lc;
     EXPECT_FALSE(validate(lc).has_value());

@@ -11,6 +11,9 @@ void validate(const NeighbourhoodConfig& c) {
     if (!(c.radius >= 0.0) || !std::isfinite(c.radius)) {
         throw common::ConfigError("neighbourhood.radius", "must be >= 0 (0: no paging)");
     }
+    if (!(c.page_above_mb >= 0.0) || !std::isfinite(c.page_above_mb)) {
+        throw common::ConfigError("neighbourhood.page_above_mb", "must be >= 0 (0: always paged)");
+    }
     if (c.radius > 0.0 && !(c.rebuild_distance > 0.0 && c.rebuild_distance < c.radius)) {
         throw common::ConfigError("neighbourhood.rebuild_distance",
                                   "must be > 0 and below neighbourhood.radius");

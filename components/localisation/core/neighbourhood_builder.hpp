@@ -18,10 +18,14 @@
 
 namespace ltm::localisation {
 
-// The localisation component's radius on a site (its versions never change once written) when
-// the launch config gives none: the local maps of site_loop within 100 m of day 1's poses track
-// within 5 mm of the whole map (localisation README, "The map paged").
+// The localisation component's paging on a site (its versions never change once written) when
+// the launch config gives none (localisation README, "The map paged"): a map whose local-map files
+// hold more than 100 MB (about three times site_loop's 1.1 km, ~260 MiB merged in memory) is
+// paged with a radius of 100 m (site_loop's day 1 tracks within 5 mm of the whole map there); a
+// smaller one is held whole (a paged global query reads its local maps from disk: 0.1 -> 0.6 s
+// on site_loop, where nothing would be saved).
 constexpr double kSiteNeighbourhoodRadius = 100.0;  // [m]
+constexpr double kSitePageAboveMb = 100.0;          // [MB]
 
 struct NeighbourhoodConfig {
     // Local maps anchored within this (horizontal) of the pose are held for tracking, and within
@@ -32,6 +36,9 @@ struct NeighbourhoodConfig {
     // A new neighbourhood is asked for when the pose is this far (horizontal) from the current
     // one's centre [m]; below radius, so that the pose stays well inside what is held.
     double rebuild_distance = 40.0;
+    // ... only when the map's local-map files hold more than this [MB]; a smaller map is held
+    // whole (0: paged whenever radius > 0).
+    double page_above_mb = 0.0;
 };
 
 // Throws common::ConfigError (one line) when a value is out of range.

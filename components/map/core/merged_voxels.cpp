@@ -64,8 +64,10 @@ void VoxelMerger::add(const StoredLocalMap& lm, const Eigen::Isometry3d& T_world
                                   (std::uint64_t(index.y() + (1 << 20)) << 21) |
                                   std::uint64_t(index.z() + (1 << 20));
         const float d = (centre - anchor).head<2>().norm();
-        const auto [it, fresh] = slot_.emplace(key, std::uint32_t(merged.voxels.size()));
-        if (!fresh && !(d < anchor_distance_[it->second])) continue;  // a nearer map's is kept
+        bool fresh = false;
+        std::uint32_t* const at = slot(key, &fresh);
+        if (fresh) *at = std::uint32_t(merged.voxels.size());
+        if (!fresh && !(d < anchor_distance_[*at])) continue;  // a nearer map's is kept
         // The voxel in the map frame; its life record keeps no observation indices (not copied).
         common::VoxelData w;
         w.index = index;
@@ -84,10 +86,52 @@ void VoxelMerger::add(const StoredLocalMap& lm, const Eigen::Isometry3d& T_world
             lo_ = lo_.cwiseMin(merged.voxels.back().centre.cast<double>());
             hi_ = hi_.cwiseMax(merged.voxels.back().centre.cast<double>());
         } else {
-            merged.voxels[it->second] = std::move(w);
-            anchor_distance_[it->second] = d;
+            merged.voxels[*at] = std::move(w);
+            anchor_distance_[*at] = d;
         }
     }
+}
+
+namespace {
+
+constexpr std::uint64_t kEmptySlot = ~std::uint64_t(0);  // packed cells use 63 bits
+
+std::size_t slot_hash(std::uint64_t key, std::size_t mask) {
+    return std::size_t((key * 0x9E3779B97F4A7C15ull) >> 17) & mask;
+}
+
+}  // namespace
+
+void VoxelMerger::grow() {
+    std::vector<std::uint64_t> keys(std::max<std::size_t>(1024, 2 * slot_keys_.size()), kEmptySlot);
+    std::vector<std::uint32_t> values(keys.size());
+    const std::size_t mask = keys.size() - 1;
+    for (std::size_t i = 0; i < slot_keys_.size(); ++i) {
+        if (slot_keys_[i] == kEmptySlot) continue;
+        std::size_t j = slot_hash(slot_keys_[i], mask);
+        while (keys[j] != kEmptySlot) j = (j + 1) & mask;
+        keys[j] = slot_keys_[i];
+        values[j] = slot_values_[i];
+    }
+    slot_keys_ = std::move(keys);
+    slot_values_ = std::move(values);
+}
+
+std::uint32_t* VoxelMerger::slot(std::uint64_t key, bool* fresh) {
+    if (2 * (slot_count_ + 1) > slot_keys_.size()) grow();
+    const std::size_t mask = slot_keys_.size() - 1;
+    std::size_t j = slot_hash(key, mask);
+    while (slot_keys_[j] != kEmptySlot) {
+        if (slot_keys_[j] == key) {
+            *fresh = false;
+            return &slot_values_[j];
+        }
+        j = (j + 1) & mask;
+    }
+    slot_keys_[j] = key;
+    ++slot_count_;
+    *fresh = true;
+    return &slot_values_[j];
 }
 
 MergedVoxels VoxelMerger::finish() {
@@ -98,7 +142,9 @@ MergedVoxels VoxelMerger::finish() {
         merged.bbox_min = lo_;
         merged.bbox_max = hi_;
     }
-    slot_ = {};
+    slot_keys_ = {};
+    slot_values_ = {};
+    slot_count_ = 0;
     anchor_distance_ = {};
     return std::move(out_);
 }

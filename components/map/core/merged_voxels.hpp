@@ -46,8 +46,15 @@ class VoxelMerger {
     MergedVoxelsFilter filter_;
     float inv_ = 1.0f;
     MergedVoxels out_;
-    std::unordered_map<std::uint64_t, std::uint32_t> slot_;  // packed cell -> voxel index
-    std::vector<float> anchor_distance_;                     // per merged voxel
+    // Packed cell -> merged voxel index: open addressing with linear probing (a whole map's
+    // merge looks up every voxel of every local map; a node-based map spent most of the merge
+    // allocating), grown to keep it at most half full.
+    std::uint32_t* slot(std::uint64_t key, bool* fresh);
+    void grow();
+    std::vector<std::uint64_t> slot_keys_;
+    std::vector<std::uint32_t> slot_values_;
+    std::size_t slot_count_ = 0;
+    std::vector<float> anchor_distance_;  // per merged voxel
     std::vector<std::uint32_t> sessions_;
     Eigen::Vector3d lo_ = Eigen::Vector3d::Constant(1e300), hi_ = -lo_;
 };

@@ -2,6 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <map>
+#include <random>
+#include <tuple>
+
 namespace ltm::map {
 namespace {
 
@@ -75,6 +79,45 @@ TEST(MergedVoxels, LeavesOutFilteredVoxelsAndUnplacedLocalMaps) {
     MapData weak;
     add_local_map(weak, 1, 0, at(0, 0), {voxel({1.5f, 0.5f, 0.5f}, 0.9f, 0.5f)});
     EXPECT_FLOAT_EQ(merge_voxels(weak, {}).voxels->voxels[0].stability, 0.5f);
+}
+
+// Many overlapping local maps (the cell table grows many times over): every cell keeps the
+// voxel of the local map anchored nearest to it, as a brute force over the cells says, in the
+// order the cells were first met.
+TEST(MergedVoxels, ALargeMergeKeepsEveryCellsNearestAnchorsVoxel) {
+    MapData map;
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> u(-40.0f, 40.0f);
+    using Cell = std::tuple<int, int, int>;
+    std::map<Cell, std::pair<float, Eigen::Vector3f>> nearest;  // distance, world centre
+    std::vector<Cell> order;
+    for (int m = 0; m < 6; ++m) {
+        const Eigen::Isometry3d T = at(15.0 * m, 3.0 * m);
+        std::vector<common::VoxelData> voxels;
+        for (int i = 0; i < 20000; ++i) {
+            const Eigen::Vector3f c(u(rng), u(rng), 0.1f * u(rng));
+            voxels.push_back(voxel(c));
+            const Eigen::Vector3f w = T.linear().cast<float>() * c + T.translation().cast<float>();
+            const Eigen::Vector3i k = w.array().floor().cast<int>();
+            const Cell cell{k.x(), k.y(), k.z()};
+            const float d = (w - T.translation().cast<float>()).head<2>().norm();  // as merged
+            const auto it = nearest.find(cell);
+            if (it == nearest.end()) {
+                nearest[cell] = {d, w};
+                order.push_back(cell);
+            } else if (d < it->second.first) {
+                it->second = {d, w};
+            }
+        }
+        add_local_map(map, std::uint64_t(m + 1), 0, T, std::move(voxels));
+    }
+    const MergedVoxels merged = merge_voxels(map, {});
+    ASSERT_EQ(merged.voxels->voxels.size(), order.size());
+    for (std::size_t i = 0; i < order.size(); ++i) {
+        const common::VoxelData& v = merged.voxels->voxels[i];
+        EXPECT_EQ(Cell(v.index.x(), v.index.y(), v.index.z()), order[i]) << i;
+        EXPECT_LT((v.centre - nearest[order[i]].second).norm(), 1e-4f) << i;
+    }
 }
 
 }  // namespace
