@@ -59,6 +59,9 @@ struct Args {
     // Track mode: tracking on the paged map's neighbourhood (map_pages.hpp; 0: the whole map).
     double neighbourhood_radius = 0.0, rebuild_distance = 40.0;
     bool settle = false;  // wait for each neighbourhood build (reproducible runs)
+    // Track mode: the first scan's global localisation narrowed to this map keyframe's place.
+    int hint_keyframe = -1;
+    double hint_radius = 10.0;
 };
 
 // CPU time of the whole process [s]: on a shared, loaded machine the wall time of a scan is
@@ -261,6 +264,15 @@ int run(const Args& a) {
     localisation::GlobalLocaliser global(map, lc.global);
     std::shared_ptr<localisation::NeighbourhoodBuilder> builder;
     std::size_t held_max = 0, held_sum = 0, held_n = 0;
+    if (a.mode == "track" && a.hint_keyframe >= 0) {
+        if (std::size_t(a.hint_keyframe) >= map->keyframes().size()) {
+            std::fprintf(stderr, "ltm_bench_localise: --hint-keyframe: the map has %zu keyframes\n",
+                         map->keyframes().size());
+            return 2;
+        }
+        localiser.set_initial_pose(
+            {map->keyframes()[std::size_t(a.hint_keyframe)].T_map_lidar, a.hint_radius});
+    }
     if (map->paged()) {
         localisation::NeighbourhoodConfig nc;
         nc.radius = a.neighbourhood_radius;
@@ -453,8 +465,12 @@ int run(const Args& a) {
             percentile(step_times[2], 0.5), percentile(step_times[3], 0.5),
             percentile(step_times[4], 0.5));
     }
-    std::printf("heap in use: %.1f MiB at the end, %.1f MiB at most (sampled every 100 scans)\n",
-                double(mallinfo2().uordblks) / 1048576.0, double(heap_peak) / 1048576.0);
+    std::printf(
+        "heap in use (main arena): %.1f MiB at the end, %.1f MiB at most (sampled every 100 "
+        "scans); every arena: malloc_stats on stderr\n",
+        double(mallinfo2().uordblks) / 1048576.0, double(heap_peak) / 1048576.0);
+    std::fflush(stdout);
+    malloc_stats();
     if (a.mode == "track") {
         std::printf(
             "track: %.1f scans/s (odometry + localisation, one thread), relocalisations "
@@ -545,6 +561,10 @@ int main(int argc, char** argv) {
     app.add_option("--rebuild-distance", a.rebuild_distance,
                    "track mode: a new neighbourhood when the pose moved this far [m]");
     app.add_flag("--settle", a.settle, "track mode: wait for each neighbourhood build");
+    app.add_option("--hint-keyframe", a.hint_keyframe,
+                   "track mode: the first global localisation narrowed to this map keyframe's "
+                   "place (a map of look-alike copies: ltm_tile_map)");
+    app.add_option("--hint-radius", a.hint_radius, "... within this of it [m]");
     app.add_flag("--no-features", a.no_features, "initial poses from the descriptors only");
     if (const int code = common::cli::parse(app, argc, argv); code >= 0) return code;
     if (a.dir.empty() && a.mode != "recall") {

@@ -13,6 +13,8 @@ namespace ltm::localisation {
 namespace {
 
 constexpr double kDegToRad = M_PI / 180.0;
+// A cell of the map's features holds samples up to its half-diagonal from its centre.
+constexpr double kFeatureCellReach = 0.7072;
 
 Eigen::Isometry3d yawed(const Eigen::Isometry3d& T, double yaw) {
     Eigen::Isometry3d out = T;
@@ -222,24 +224,43 @@ void GlobalLocaliser::feature_guesses(const std::vector<Eigen::Vector3f>& points
                                       const std::vector<Place>& places, Guesses* guesses) {
     const places::LocalFeatures query = places::make_local_features(points, map_->feature_config());
     if (query.size() < 3 || places.empty()) return;
-    // The map's samples around every place, once (places overlap), matched in one pass.
-    std::vector<std::uint32_t> indices;
-    for (const Place& place : places) {
-        const Eigen::Vector3d c = map_->keyframes()[place.keyframe].T_map_lidar.translation();
-        for (std::uint32_t k : map_->feature_indices_near(c, config_.feature_region))
-            indices.push_back(k);
-    }
-    std::sort(indices.begin(), indices.end());
-    indices.erase(std::unique(indices.begin(), indices.end()), indices.end());
-    if (indices.size() < 3) return;
+    std::vector<Eigen::Vector3d> centres;
+    for (const Place& place : places)
+        centres.push_back(map_->keyframes()[place.keyframe].T_map_lidar.translation());
     places::LocalFeatures target;
-    target.sample_spacing = map_->features().sample_spacing;
-    target.positions.reserve(indices.size());
-    target.descriptors.reserve(indices.size());
-    for (std::uint32_t k : indices) {
-        target.positions.push_back(map_->features().positions[k]);
-        target.descriptors.push_back(map_->features().descriptors[k]);
+    if (map_->paged()) {
+        if (!map_->has_features()) return;
+        // The map's samples around every place, made from the local maps this query read.
+        const double r2 = config_.feature_region * config_.feature_region;
+        const places::LocalFeatures near = map_->features_around(
+            *around_, centres, config_.feature_region + kFeatureCellReach * map_->feature_cell());
+        target.sample_spacing = near.sample_spacing;
+        for (std::size_t k = 0; k < near.size(); ++k) {
+            const bool in = std::any_of(centres.begin(), centres.end(), [&](const auto& c) {
+                return (near.positions[k] - c).template head<2>().squaredNorm() <= r2;
+            });
+            if (!in) continue;
+            target.positions.push_back(near.positions[k]);
+            target.descriptors.push_back(near.descriptors[k]);
+        }
+    } else {
+        // The map's samples around every place, once (places overlap), matched in one pass.
+        std::vector<std::uint32_t> indices;
+        for (const Eigen::Vector3d& c : centres) {
+            for (std::uint32_t k : map_->feature_indices_near(c, config_.feature_region))
+                indices.push_back(k);
+        }
+        std::sort(indices.begin(), indices.end());
+        indices.erase(std::unique(indices.begin(), indices.end()), indices.end());
+        target.sample_spacing = map_->features().sample_spacing;
+        target.positions.reserve(indices.size());
+        target.descriptors.reserve(indices.size());
+        for (std::uint32_t k : indices) {
+            target.positions.push_back(map_->features().positions[k]);
+            target.descriptors.push_back(map_->features().descriptors[k]);
+        }
     }
+    if (target.size() < 3) return;
     const std::vector<places::FeatureMatch> matches =
         places::match_local_features(query, target, config_.matching);
     // RANSAC on the matches around each place (a wrong place's matches do not outvote it).
@@ -317,18 +338,25 @@ GlobalLocalisation GlobalLocaliser::localise(const std::vector<Eigen::Vector3f>&
     const std::vector<Place> places = rank_places(query, hint);
     out.places = int(places.size());
     out.steps.places = lap(&t);
+    if (places.empty() && !hint) {
+        out.reason = "no place of the map resembles the scan";
+        return finished(out, start);
+    }
+    // The map around the places and the hint (paged: read from its directory): the initial poses
+    // are there, and the local features' are made from it.
+    std::vector<Eigen::Vector3d> around;
+    if (hint) around.push_back(hint->T_map_lidar.translation());
+    for (const Place& p : places)
+        around.push_back(map_->keyframes()[p.keyframe].T_map_lidar.translation());
+    if (!take_target(around)) {
+        out.reason = "not localised: " + target_problem_;
+        return finished(out, start);
+    }
     Guesses guesses = initial_guesses(finite, places, hint);
     out.guesses = int(guesses.size());
     out.steps.features = lap(&t);
     if (guesses.empty()) {
         out.reason = "no place of the map resembles the scan";
-        return finished(out, start);
-    }
-    // The map around every initial pose (paged: read from its directory).
-    std::vector<Eigen::Vector3d> around;
-    for (const Guess& g : guesses) around.push_back(g.T_map_lidar.translation());
-    if (!take_target(around)) {
-        out.reason = "not localised: " + target_problem_;
         return finished(out, start);
     }
     const std::vector<std::size_t> order = probe(finite, &guesses);

@@ -6,6 +6,7 @@
 
 #include "common/core/config_check.hpp"
 #include "common/core/io_error.hpp"
+#include "localisation/core/map_features.hpp"
 #include "localisation/core/map_pages.hpp"
 #include "map/core/map_store.hpp"
 #include "map/core/merged_voxels.hpp"
@@ -21,12 +22,6 @@ std::uint64_t column_key(double x, double y) {
     const auto cx = std::int64_t(std::floor(x / kColumnSize));
     const auto cy = std::int64_t(std::floor(y / kColumnSize));
     return (std::uint64_t(cx + (1 << 30)) << 32) | std::uint64_t(cy + (1 << 30));
-}
-
-// A lattice point's cell of a grid of `step` (the point is at a multiple of step, or anywhere).
-std::uint64_t lattice_key(double x, double y, double step) {
-    const auto ix = std::int64_t(std::lround(x / step)), iy = std::int64_t(std::lround(y / step));
-    return (std::uint64_t(ix + (1 << 30)) << 32) | std::uint64_t(iy + (1 << 30));
 }
 
 }  // namespace
@@ -84,7 +79,9 @@ LocalisationMap::LocalisationMap(const map::MapData& map, const LocalisationMapC
     descriptor_config_ = stored ? map.localisation_descriptor_config : config.descriptor;
     place_keyframes(map);
     feature_config_ = config.features;
-    if (config.local_features) make_features(config);
+    feature_map_config_ = config;
+    // Paged: a global query makes the features of its places from the local maps it reads.
+    if (config.local_features && !paging) make_features(config);
     if (paging) {
         // The site's index stays; the voxels go back to the map directory.
         pages_ = std::move(pages);
@@ -144,37 +141,14 @@ std::shared_ptr<const Neighbourhood> LocalisationMap::neighbourhood_around(
 }
 
 void LocalisationMap::make_features(const LocalisationMapConfig& config) {
-    // Samples lie on a lattice anchored at the frame's origin: a sample found from two cells is
-    // the same sample (same lattice point), kept once.
-    std::unordered_map<std::uint64_t, bool> seen;
-    const double cell = config.feature_cell;
-    const double half_diagonal = cell * 0.7072;
-    std::unordered_map<std::uint64_t, Eigen::Vector2d> cells;
-    for (const common::VoxelData& v : voxels_->voxels) {
-        const double cx = (std::floor(v.centre.x() / cell) + 0.5) * cell;
-        const double cy = (std::floor(v.centre.y() / cell) + 0.5) * cell;
-        cells.emplace(lattice_key(cx, cy, cell), Eigen::Vector2d(cx, cy));
-    }
-    const double spacing = config.features.sample_spacing;
-    features_.sample_spacing = spacing;
-    // Every lattice point of a tile (a thinned lattice would break the matches' refinement).
-    places::LocalFeatureConfig tile = config.features;
-    tile.max_samples = std::max(tile.max_samples, int(std::pow(cell / spacing + 2.0, 2.0)) * 2);
-    for (const auto& [key, c] : cells) {
-        const Eigen::Vector3d centre(c.x(), c.y(), 0.0);
-        const places::LocalFeatures f = places::make_local_features(
-            centres_near(centre, half_diagonal + config.features.radius), tile, centre,
-            half_diagonal);
-        for (std::size_t i = 0; i < f.size(); ++i) {
-            const Eigen::Vector3d& p = f.positions[i];
-            if (std::abs(p.x() - c.x()) > 0.5 * cell || std::abs(p.y() - c.y()) > 0.5 * cell)
-                continue;  // another cell's sample
-            const std::uint64_t id = lattice_key(p.x(), p.y(), spacing);
-            if (!seen.emplace(id, true).second) continue;
-            features_.positions.push_back(p);
-            features_.descriptors.push_back(f.descriptors[i]);
-        }
-    }
+    features_ = make_map_features(voxels_->voxels, config);
+}
+
+places::LocalFeatures LocalisationMap::features_around(const Neighbourhood& n,
+                                                       const std::vector<Eigen::Vector3d>& places,
+                                                       double near) const {
+    if (!n.voxels) return {};
+    return make_map_features(n.voxels->voxels, feature_map_config_, &places, near);
 }
 
 std::vector<std::uint32_t> LocalisationMap::feature_indices_near(const Eigen::Vector3d& p,

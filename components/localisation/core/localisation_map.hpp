@@ -118,6 +118,14 @@ class LocalisationMap {
     std::vector<std::uint32_t> feature_indices_near(const Eigen::Vector3d& p, double radius) const;
     const places::LocalFeatures& features() const { return features_; }
     const places::LocalFeatureConfig& feature_config() const { return feature_config_; }
+    // Whether the map has local features: made on load, or (paged) by a query from the local
+    // maps it reads (features_around).
+    bool has_features() const { return feature_map_config_.local_features; }
+    double feature_cell() const { return feature_map_config_.feature_cell; }
+    // Paged: the features of the cells within `near` of `places`, from a neighbourhood's voxels.
+    places::LocalFeatures features_around(const Neighbourhood& n,
+                                          const std::vector<Eigen::Vector3d>& places,
+                                          double near) const;
     std::size_t feature_count() const { return features_.size(); }
 
     // Whether any map voxel is within `radius` (horizontal) of p.
@@ -147,7 +155,8 @@ class LocalisationMap {
     std::shared_ptr<const Columns> columns_;
     std::shared_ptr<const registration::RegistrationTarget> target_;
     places::LocalFeatureConfig feature_config_;
-    places::LocalFeatures features_;  // every sample of the map, map frame
+    LocalisationMapConfig feature_map_config_;  // how the features are made (map_features.hpp)
+    places::LocalFeatures features_;            // every sample of the map, map frame (paged: none)
     std::size_t local_maps_ = 0, sessions_ = 0;
     double path_length_ = 0.0;
     double voxel_size_ = 0.0, coarse_voxel_size_ = 0.0;
