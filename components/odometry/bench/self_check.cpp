@@ -96,7 +96,7 @@ void write_frame_log(const std::string& path, const std::vector<FrameResult>& re
            "min_information,local_map,inlier_fraction,searched,segment,lost_for,"
            "search_used,constrained,info_t0,info_t1,info_t2,weak_x,weak_y,weak_z,"
            "profile_support,profile_contrast,profile_shift,sigma_weak,sigma_max,step_error,"
-           "step_mahalanobis,heading_held\n";
+           "step_mahalanobis,heading_held,turn_rate,spin_held\n";
     for (std::size_t i = 0; i < results.size(); ++i) {
         const FrameResult& r = results[i];
         const Eigen::Matrix3d C = r.covariance.topLeftCorner<3, 3>();
@@ -116,7 +116,8 @@ void write_frame_log(const std::string& path, const std::vector<FrameResult>& re
             << r.translation_information[1] << ',' << r.translation_information[2] << ',' << v.x()
             << ',' << v.y() << ',' << v.z() << ',' << r.profile_support << ',' << r.profile_contrast
             << ',' << r.profile_shift << ',' << sigma_weak << ',' << sigma_max << ','
-            << s.step_error[i] << ',' << s.mahalanobis[i] << ',' << r.heading_held << '\n';
+            << s.step_error[i] << ',' << s.mahalanobis[i] << ',' << r.heading_held << ','
+            << r.turn_rate << ',' << (r.spin_hold ? r.spin_held : -1.0) << '\n';
     }
 }
 
