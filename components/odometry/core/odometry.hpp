@@ -200,6 +200,8 @@ class Odometry {
     // it did not observe held at the last pose (spin_hold.hpp). `kept_out`: degenerate by the
     // observability check (then every weak direction is unobserved).
     void hold_while_spinning(bool kept_out, FrameResult* r) const;
+    // Whether a turn rate [deg/s] is a spin (tracking.spin_rate; never with wheel odometry).
+    bool spinning(double rate) const;
     bool excellent(const FrameResult& r) const;
     bool doubtful(const FrameResult& r) const;
     void learn(const FrameResult& r);

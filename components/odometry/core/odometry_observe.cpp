@@ -217,10 +217,14 @@ void Odometry::inflate_covariance(const Eigen::Isometry3d& predicted, double dt,
                  found ? r->weak_direction : Eigen::Vector3d::Zero(), sigma, &r->covariance);
 }
 
+bool Odometry::spinning(double rate) const {
+    const double threshold = config_.tracking.spin_rate;
+    // Not with wheel odometry: it measures the translation.
+    return threshold > 0.0 && rate >= threshold && !(prior_ != nullptr && prior_->has_wheel());
+}
+
 void Odometry::hold_while_spinning(bool kept_out, FrameResult* r) const {
-    const double rate = config_.tracking.spin_rate;
-    if (!(rate > 0.0) || r->turn_rate < rate) return;
-    if (prior_ != nullptr && prior_->has_wheel()) return;  // the wheels measure the translation
+    if (!spinning(r->turn_rate)) return;
     std::vector<Eigen::Vector3d> unobserved = translation_parts(r->degenerate_directions);
     if (kept_out) {
         const Observability o =
@@ -235,8 +239,9 @@ void Odometry::hold_while_spinning(bool kept_out, FrameResult* r) const {
     r->spin_hold = true;
     std::ostringstream s;
     s.precision(3);
-    s << "; turning " << r->turn_rate << " deg/s (at least tracking.spin_rate " << rate
-      << "): held at the last position there (moved " << r->spin_held << " m)";
+    s << "; turning " << r->turn_rate << " deg/s (at least tracking.spin_rate "
+      << config_.tracking.spin_rate << "): held at the last position there (moved " << r->spin_held
+      << " m)";
     r->message += s.str();
 }
 

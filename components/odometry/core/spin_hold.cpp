@@ -27,7 +27,8 @@ double hold_along(const Eigen::Vector3d& anchor, const std::vector<Eigen::Vector
     if (U.cols() == 0) return 0.0;
     // An orthonormal basis of the span (rank-revealing: two nearly equal directions count once),
     // then the offset from the anchor projected onto it removed.
-    const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(U);
+    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(U);
+    qr.setThreshold(1e-3);  // directions within ~0.06 deg of each other are one
     const Eigen::Index rank = qr.rank();
     if (rank == 0) return 0.0;
     const Eigen::MatrixXd Q = Eigen::MatrixXd(qr.householderQ()).leftCols(rank);
