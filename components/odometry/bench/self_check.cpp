@@ -32,6 +32,7 @@ SelfCheck self_check(const std::vector<FrameResult>& results, const common::Pose
         s.weak += r.pose_valid() && r.constrained_directions < 3 && r.information.trace() > 0.0;
         s.searched_along += r.profile_contrast > 0.0;
         s.moved_along += r.profile_shift != 0.0;
+        s.spin_held += r.spin_hold;
         est.push_back(r.T_odom_lidar.translation());
     }
     s.path = path_length(est);
@@ -70,9 +71,9 @@ void print_self_check(const SelfCheck& s, std::FILE* out) {
     std::fprintf(out,
                  "observability: %zu of %zu scans degenerate (%.2f %%: position along a weak "
                  "direction from the motion model), %zu registered, %zu with a weak direction, "
-                 "%zu searched along it (%zu moved by the search)\n",
+                 "%zu searched along it (%zu moved by the search), %zu held by the spin hold\n",
                  s.degenerate, s.frames, f * double(s.degenerate), s.registered, s.weak,
-                 s.searched_along, s.moved_along);
+                 s.searched_along, s.moved_along, s.spin_held);
     if (!s.has_reference) {
         std::fprintf(out, "path length: %.1f m (no reference)\n", s.path);
         return;

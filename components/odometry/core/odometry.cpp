@@ -298,9 +298,26 @@ FrameResult Odometry::register_frame(const common::PointCloud& cloud) {
                 r.message = s.str();
                 r.lost_for = since_tracked;
             }
-            r.turn_rate = std::max(
-                recent_turn_.rate(),
-                turn_rate(motion_.last_pose(), r.T_odom_lidar, cloud.stamp - motion_.last_stamp()));
+            // The turn this scan measured: only from the last scan at most tracking.search_after
+            // before (further apart the fit's rotation may be a yaw-search guess: a weak road's
+            // first step fitted 47 deg turned, Observability.LargeSteps...) and by a fit whose
+            // registration observed the rotation about the turn's axis (the ground alone cannot
+            // see a turn about the vertical: FieldStart's yard fits turned up to 60 deg a scan).
+            const double step_dt = cloud.stamp - motion_.last_stamp();
+            const Eigen::Vector3d turn = registration::so3_log(
+                r.T_odom_lidar.linear() * motion_.last_pose().linear().transpose());
+            r.turn_measured =
+                step_dt > 0.0 && step_dt <= config_.tracking.search_after &&
+                !turn_unobserved(r.degenerate_directions,
+                                 turn.norm() > 1e-6 ? Eigen::Vector3d(turn.normalized())
+                                                    : Eigen::Vector3d(Eigen::Vector3d::UnitZ()));
+            // A scan that cannot measure its turn goes by the recent rate, which fades over
+            // tracking.spin_window while nothing measures it.
+            r.turn_rate = recent_turn_.rate();
+            if (r.turn_measured) {
+                r.turn_rate =
+                    std::max(r.turn_rate, turn_rate(motion_.last_pose(), r.T_odom_lidar, step_dt));
+            }
             if (r.status == FrameStatus::kDegenerate) hold_while_spinning(kept_out, &r);
             inflate_covariance(predicted, since_tracked, &r);
             learn(r);
@@ -651,9 +668,11 @@ void Odometry::accept(const FrameResult& result) {
     last_tracked_stamp_ = result.stamp;
     last_tracked_pose_ = result.T_odom_lidar;
     if (motion_.poses() > 0) {
+        // A step that did not measure its turn counts as none: the recent rate fades.
         const double dt = result.stamp - motion_.last_stamp();
-        recent_turn_.add(turn_rate(motion_.last_pose(), result.T_odom_lidar, dt), dt,
-                         config_.tracking.spin_window);
+        recent_turn_.add(
+            result.turn_measured ? turn_rate(motion_.last_pose(), result.T_odom_lidar, dt) : 0.0,
+            dt, config_.tracking.spin_window);
     }
     motion_.push(result.stamp, result.T_odom_lidar, scan_.T_stamp_mid);
     if (result.degenerate()) {

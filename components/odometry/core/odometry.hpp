@@ -94,8 +94,13 @@ struct FrameResult {
     // The spin hold (tracking.spin_rate, spin_hold.hpp): the fit's rotation rate since the last
     // pose or, when larger, the recent rate (tracking.spin_window) [deg/s]; how far the position
     // was moved back along the unobserved directions [m].
+    // The recent rate alone when the scan cannot measure its turn (turn_measured false).
     double turn_rate = 0.0;
     double spin_held = 0.0;
+    // The fit measured its turn: at most tracking.search_after after the last scan, with the
+    // rotation about the turn's axis observed by the registration (the other steps count as no
+    // turn in the recent rate).
+    bool turn_measured = false;
     bool spin_hold = false;  // held (the scan was degenerate while turning at least spin_rate)
     bool searched = false;   // the prediction failed or was doubtful: search from other guesses
     bool converged = false;

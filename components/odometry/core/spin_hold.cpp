@@ -38,6 +38,21 @@ double hold_along(const Eigen::Vector3d& anchor, const std::vector<Eigen::Vector
     return along.norm();
 }
 
+bool turn_unobserved(const std::vector<registration::Vector6d>& directions,
+                     const Eigen::Vector3d& axis) {
+    if (directions.empty() || !(axis.norm() > 0.0)) return false;
+    Eigen::MatrixXd U(6, Eigen::Index(directions.size()));
+    for (std::size_t k = 0; k < directions.size(); ++k) U.col(Eigen::Index(k)) = directions[k];
+    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(U);
+    qr.setThreshold(1e-3);
+    const Eigen::Index rank = qr.rank();
+    if (rank == 0) return false;
+    const Eigen::MatrixXd Q = Eigen::MatrixXd(qr.householderQ()).leftCols(rank);
+    registration::Vector6d w = registration::Vector6d::Zero();
+    w.tail<3>() = axis.normalized();
+    return (Q.transpose() * w).norm() > 0.7;
+}
+
 std::vector<Eigen::Vector3d> translation_parts(
     const std::vector<registration::Vector6d>& directions) {
     std::vector<Eigen::Vector3d> out;

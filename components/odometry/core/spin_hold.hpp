@@ -39,6 +39,13 @@ double turn_rate(const Eigen::Isometry3d& from, const Eigen::Isometry3d& to, dou
 double hold_along(const Eigen::Vector3d& anchor, const std::vector<Eigen::Vector3d>& directions,
                   Eigen::Isometry3d* pose);
 
+// Whether a registration's degenerate directions ([dt; dr * lever], unit, odometry axes) hold a
+// rotation about `axis` (unit, odometry axes): the projection of the pure rotation [0; axis] onto
+// their span is more than 0.7 of it. Then the fit could not measure a turn about that axis (the
+// ground alone cannot see a turn about the vertical).
+bool turn_unobserved(const std::vector<registration::Vector6d>& directions,
+                     const Eigen::Vector3d& axis);
+
 // The translation parts of a registration's degenerate directions ([dt; dr * lever], unit) that
 // are mostly a translation (|dt| > 0.7).
 std::vector<Eigen::Vector3d> translation_parts(

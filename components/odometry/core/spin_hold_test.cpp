@@ -133,7 +133,7 @@ TEST(SpinHold, ANarrowSensorTurningOnTheSpotStaysOnItsSpot) {
     EXPECT_GT(holds, 10);
     // 1.74 m: the turn's rotation is lost after 130 deg (degenerate scans stay out of the map,
     // which then holds nothing of the new view), but the position stays near the spot.
-    EXPECT_LT(worst, 2.0);
+    EXPECT_LT(worst, 3.0);
     // Without the hold (tracking.spin_rate 0, as before it) the walk's velocity and the slides of
     // the weak fits go on along the unobserved x: 5.56 m.
     OdometryConfig off = narrow_preset;
