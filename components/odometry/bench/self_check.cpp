@@ -32,6 +32,7 @@ SelfCheck self_check(const std::vector<FrameResult>& results, const common::Pose
         s.weak += r.pose_valid() && r.constrained_directions < 3 && r.information.trace() > 0.0;
         s.searched_along += r.profile_contrast > 0.0;
         s.moved_along += r.profile_shift != 0.0;
+        s.spin_held += r.spin_hold;
         est.push_back(r.T_odom_lidar.translation());
     }
     s.path = path_length(est);
@@ -70,9 +71,9 @@ void print_self_check(const SelfCheck& s, std::FILE* out) {
     std::fprintf(out,
                  "observability: %zu of %zu scans degenerate (%.2f %%: position along a weak "
                  "direction from the motion model), %zu registered, %zu with a weak direction, "
-                 "%zu searched along it (%zu moved by the search)\n",
+                 "%zu searched along it (%zu moved by the search), %zu held by the spin hold\n",
                  s.degenerate, s.frames, f * double(s.degenerate), s.registered, s.weak,
-                 s.searched_along, s.moved_along);
+                 s.searched_along, s.moved_along, s.spin_held);
     if (!s.has_reference) {
         std::fprintf(out, "path length: %.1f m (no reference)\n", s.path);
         return;
@@ -96,7 +97,7 @@ void write_frame_log(const std::string& path, const std::vector<FrameResult>& re
            "min_information,local_map,inlier_fraction,searched,segment,lost_for,"
            "search_used,constrained,info_t0,info_t1,info_t2,weak_x,weak_y,weak_z,"
            "profile_support,profile_contrast,profile_shift,sigma_weak,sigma_max,step_error,"
-           "step_mahalanobis,heading_held\n";
+           "step_mahalanobis,heading_held,turn_rate,spin_held\n";
     for (std::size_t i = 0; i < results.size(); ++i) {
         const FrameResult& r = results[i];
         const Eigen::Matrix3d C = r.covariance.topLeftCorner<3, 3>();
@@ -116,7 +117,8 @@ void write_frame_log(const std::string& path, const std::vector<FrameResult>& re
             << r.translation_information[1] << ',' << r.translation_information[2] << ',' << v.x()
             << ',' << v.y() << ',' << v.z() << ',' << r.profile_support << ',' << r.profile_contrast
             << ',' << r.profile_shift << ',' << sigma_weak << ',' << sigma_max << ','
-            << s.step_error[i] << ',' << s.mahalanobis[i] << ',' << r.heading_held << '\n';
+            << s.step_error[i] << ',' << s.mahalanobis[i] << ',' << r.heading_held << ','
+            << r.turn_rate << ',' << (r.spin_hold ? r.spin_held : -1.0) << '\n';
     }
 }
 

@@ -16,6 +16,7 @@ namespace ltm::odometry::bench {
 struct SelfCheck {
     std::size_t frames = 0, degenerate = 0, registered = 0, published = 0;
     std::size_t searched_along = 0, moved_along = 0, weak = 0;
+    std::size_t spin_held = 0;  // degenerate scans held by the spin hold (tracking.spin_rate)
     double path = 0.0, reference_path = 0.0;  // [m]
     bool has_reference = false;
     std::size_t registered_off = 0;  // registered, step error > 1 m

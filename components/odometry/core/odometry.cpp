@@ -1,6 +1,5 @@
 #include "odometry/core/odometry.hpp"
 
-#include <Eigen/QR>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -55,18 +54,8 @@ int translation_directions(const std::vector<registration::Vector6d>& directions
 // The fit's position along its unobserved translation directions (odometry axes) moved back to
 // the prediction's.
 void keep_unobserved_at(const Eigen::Isometry3d& predicted, FrameResult* r) {
-    const Eigen::Vector3d off = r->T_odom_lidar.translation() - predicted.translation();
-    Eigen::Matrix<double, 3, Eigen::Dynamic> U(3, 0);
-    for (const registration::Vector6d& v : r->degenerate_directions) {
-        if (v.head<3>().norm() <= 0.7) continue;
-        U.conservativeResize(3, U.cols() + 1);
-        U.col(U.cols() - 1) = v.head<3>().normalized();
-    }
-    if (U.cols() == 0) return;
-    // Orthonormal basis of the unobserved subspace, then the offset projected onto it removed.
-    const Eigen::HouseholderQR<Eigen::MatrixXd> qr(U);
-    const Eigen::MatrixXd Q = qr.householderQ() * Eigen::MatrixXd::Identity(3, U.cols());
-    r->T_odom_lidar.translation() -= Q * (Q.transpose() * off);
+    hold_along(predicted.translation(), translation_parts(r->degenerate_directions),
+               &r->T_odom_lidar);
 }
 
 const OdometryConfig& checked(const OdometryConfig& config) {
@@ -309,6 +298,27 @@ FrameResult Odometry::register_frame(const common::PointCloud& cloud) {
                 r.message = s.str();
                 r.lost_for = since_tracked;
             }
+            // The turn this scan measured: only from the last scan at most tracking.search_after
+            // before (further apart the fit's rotation may be a yaw-search guess: a weak road's
+            // first step fitted 47 deg turned, Observability.LargeSteps...) and by a fit whose
+            // registration observed the rotation about the turn's axis (the ground alone cannot
+            // see a turn about the vertical: FieldStart's yard fits turned up to 60 deg a scan).
+            const double step_dt = cloud.stamp - motion_.last_stamp();
+            const Eigen::Vector3d turn = registration::so3_log(
+                r.T_odom_lidar.linear() * motion_.last_pose().linear().transpose());
+            r.turn_measured =
+                step_dt > 0.0 && step_dt <= config_.tracking.search_after &&
+                !turn_unobserved(r.degenerate_directions,
+                                 turn.norm() > 1e-6 ? Eigen::Vector3d(turn.normalized())
+                                                    : Eigen::Vector3d(Eigen::Vector3d::UnitZ()));
+            // A scan that cannot measure its turn goes by the recent rate, which fades over
+            // tracking.spin_window while nothing measures it.
+            r.turn_rate = recent_turn_.rate();
+            if (r.turn_measured) {
+                r.turn_rate =
+                    std::max(r.turn_rate, turn_rate(motion_.last_pose(), r.T_odom_lidar, step_dt));
+            }
+            if (r.status == FrameStatus::kDegenerate) hold_while_spinning(kept_out, &r);
             inflate_covariance(predicted, since_tracked, &r);
             learn(r);
         }
@@ -657,6 +667,13 @@ void Odometry::accept(const FrameResult& result) {
     last_stamp_ = result.stamp;
     last_tracked_stamp_ = result.stamp;
     last_tracked_pose_ = result.T_odom_lidar;
+    if (motion_.poses() > 0) {
+        // A step that did not measure its turn counts as none: the recent rate fades.
+        const double dt = result.stamp - motion_.last_stamp();
+        recent_turn_.add(
+            result.turn_measured ? turn_rate(motion_.last_pose(), result.T_odom_lidar, dt) : 0.0,
+            dt, config_.tracking.spin_window);
+    }
     motion_.push(result.stamp, result.T_odom_lidar, scan_.T_stamp_mid);
     if (result.degenerate()) {
         motion_.damp(result.degenerate_directions, config_.registration.degeneracy_length,

@@ -17,6 +17,7 @@
 #include "odometry/core/observability.hpp"
 #include "odometry/core/odometry_config.hpp"
 #include "odometry/core/scan_cadence.hpp"
+#include "odometry/core/spin_hold.hpp"
 #include "registration/core/parallel.hpp"
 #include "registration/core/preprocess.hpp"
 #include "registration/core/registration.hpp"
@@ -90,7 +91,18 @@ struct FrameResult {
     // The prediction held the last heading instead of the constant turn rate (a sparse stream
     // whose turns that predicts better: tracking.heading_hold_ratio).
     bool heading_held = false;
-    bool searched = false;  // the prediction failed or was doubtful: search from other guesses
+    // The spin hold (tracking.spin_rate, spin_hold.hpp): the fit's rotation rate since the last
+    // pose or, when larger, the recent rate (tracking.spin_window) [deg/s]; how far the position
+    // was moved back along the unobserved directions [m].
+    // The recent rate alone when the scan cannot measure its turn (turn_measured false).
+    double turn_rate = 0.0;
+    double spin_held = 0.0;
+    // The fit measured its turn: at most tracking.search_after after the last scan, with the
+    // rotation about the turn's axis observed by the registration (the other steps count as no
+    // turn in the recent rate).
+    bool turn_measured = false;
+    bool spin_hold = false;  // held (the scan was degenerate while turning at least spin_rate)
+    bool searched = false;   // the prediction failed or was doubtful: search from other guesses
     bool converged = false;
     bool deskewed = false;      // per-point times used to de-skew (at least for the map update)
     double residual_rms = 0.0;  // [m]
@@ -189,6 +201,12 @@ class Odometry {
     // The published covariance of an accepted fit widened along its weak directions
     // (observability.hpp: the expected step from the prediction and the speed last measured).
     void inflate_covariance(const Eigen::Isometry3d& predicted, double dt, FrameResult* r) const;
+    // A degenerate scan turning at least tracking.spin_rate: its position along the directions
+    // it did not observe held at the last pose (spin_hold.hpp). `kept_out`: degenerate by the
+    // observability check (then every weak direction is unobserved).
+    void hold_while_spinning(bool kept_out, FrameResult* r) const;
+    // Whether a turn rate [deg/s] is a spin (tracking.spin_rate; never with wheel odometry).
+    bool spinning(double rate) const;
     bool excellent(const FrameResult& r) const;
     bool doubtful(const FrameResult& r) const;
     void learn(const FrameResult& r);
@@ -216,6 +234,7 @@ class Odometry {
     bool lost_ = false;
     bool unobserved_ = false;      // the last fit was degenerate: the velocity is a guess
     double observed_speed_ = 0.0;  // [m/s] of the last registered scan constrained every way
+    RecentTurnRate recent_turn_;   // the published steps' rotation rate (tracking.spin_window)
     static constexpr int kYoungSegmentScans = 10;  // scans that enter a new segment's map anyway
     int segment_scans_ = 0;                        // scans integrated since the segment began
     int kept_out_run_ = 0;  // degenerate scans kept out of the map in a row (after the young ones)

@@ -58,8 +58,18 @@ struct TrackingConfig {
     // A last step turning more than this is no travel: degenerate_velocity_keep applies along
     // every direction (a robot turning on the spot does not go on at its last walking speed).
     double degenerate_travel_turn = 3.0;  // [deg]
-    double yaw_search = 90.0;             // [deg] 0: no yaw search
-    double yaw_step = 15.0;               // [deg]
+    // The spin hold (spin_hold.hpp): a degenerate scan whose fit turned at least this fast since
+    // the last pose keeps the last position along every translation direction it did not observe
+    // (the registration's unobserved ones; for a scan the observability check found degenerate,
+    // every direction below observability.weak_information) instead of the motion model's: a
+    // sensor spinning that fast is turning on the spot, not travelling. Not with wheel odometry
+    // (it measures the translation). 0: off.
+    double spin_rate = 45.0;  // [deg/s]
+    // ... the larger of the fit's rate and the published steps' rate smoothed over this window
+    // (a fit's rotation is noisy where its translation is unobserved).
+    double spin_window = 0.5;  // [s]
+    double yaw_search = 90.0;  // [deg] 0: no yaw search
+    double yaw_step = 15.0;    // [deg]
     // The best of those guesses is probed again turned by +-yaw_refine (coarse to fine: a fit's
     // basin in yaw is a few degrees when its translation is off too). 0: not refined.
     double yaw_refine = 5.0;  // [deg]
@@ -156,6 +166,8 @@ void visit_fields(OdometryConfig& c, Visitor&& v) {
     v("tracking.degenerate_velocity_keep", t.degenerate_velocity_keep, unit);
     v("tracking.degenerate_travel_keep", t.degenerate_travel_keep, unit);
     v("tracking.degenerate_travel_turn", t.degenerate_travel_turn, in_range(0, 180));
+    v("tracking.spin_rate", t.spin_rate, non_negative);
+    v("tracking.spin_window", t.spin_window, non_negative);
     v("tracking.yaw_search", t.yaw_search, in_range(0, 180));
     v("tracking.yaw_step", t.yaw_step, in_range(1, 90));
     v("tracking.yaw_refine", t.yaw_refine, in_range(0, 45));

@@ -83,8 +83,8 @@ TEST(OdometryConfig, EveryFieldHasOneKeyAndARule) {
         EXPECT_TRUE(keys.insert(key).second) << "key visited twice: " << key;
         ++fields;
     });
-    EXPECT_EQ(fields, 77);  // 57 (tracking.restart_gap_cadence, restart_kept_out,
-                            // heading_hold_ratio) + 20 observability.*
+    EXPECT_EQ(fields, 79);  // 59 (tracking.restart_gap_cadence, restart_kept_out,
+                            // heading_hold_ratio, spin_rate, spin_window) + 20 observability.*
 }
 
 }  // namespace

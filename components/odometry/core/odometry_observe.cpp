@@ -2,6 +2,7 @@
 // criterion, step_search.hpp for the search along a weak direction).
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 #include <string>
 
 #include "odometry/core/odometry.hpp"
@@ -214,6 +215,34 @@ void Odometry::inflate_covariance(const Eigen::Isometry3d& predicted, double dt,
                                        used == "fit (converges)");
     inflate_weak(o, maps_.current().T_odom_map().linear(),
                  found ? r->weak_direction : Eigen::Vector3d::Zero(), sigma, &r->covariance);
+}
+
+bool Odometry::spinning(double rate) const {
+    const double threshold = config_.tracking.spin_rate;
+    // Not with wheel odometry: it measures the translation.
+    return threshold > 0.0 && rate >= threshold && !(prior_ != nullptr && prior_->has_wheel());
+}
+
+void Odometry::hold_while_spinning(bool kept_out, FrameResult* r) const {
+    if (!spinning(r->turn_rate)) return;
+    std::vector<Eigen::Vector3d> unobserved = translation_parts(r->degenerate_directions);
+    if (kept_out) {
+        const Observability o =
+            translation_observability(r->information, config_.observability.weak_information);
+        const Eigen::Matrix3d R_odom_map = maps_.current().T_odom_map().linear();
+        for (int k = 0; k < 3 - o.constrained; ++k)
+            unobserved.push_back(R_odom_map * o.directions.col(k));
+        unobserved.push_back(r->weak_direction);
+    }
+    if (unobserved.empty()) return;
+    r->spin_held = hold_along(motion_.last_pose().translation(), unobserved, &r->T_odom_lidar);
+    r->spin_hold = true;
+    std::ostringstream s;
+    s.precision(3);
+    s << "; turning " << r->turn_rate << " deg/s (at least tracking.spin_rate "
+      << config_.tracking.spin_rate << "): held at the last position there (moved " << r->spin_held
+      << " m)";
+    r->message += s.str();
 }
 
 }  // namespace ltm::odometry
