@@ -58,35 +58,54 @@ LocalisationMap::LocalisationMap(const map::MapData& map, const LocalisationMapC
         throw common::ConfigError("map", "has no keyframes: nothing to localise against");
     }
     const bool paging = pages && page_radius > 0.0;
-    // With pages: the local maps read from the directory one at a time (map holds none).
-    index_voxels(pages ? pages->merge_all(refused)
-                       : map::merge_voxels(map, {config.min_health, config.min_planarity}));
-    if (voxels_->voxels.empty()) {
-        throw common::ConfigError("map", "has no usable voxels: nothing to register against");
-    }
     const bool stored =
         map.localisation_descriptor_config.rings > 0 &&
         map.localisation_descriptor_config.kind == places::ScanContextKind::kMeanVariance;
-    voxel_size_ = voxels_->voxel_size;
+    descriptor_config_ = stored ? map.localisation_descriptor_config : config.descriptor;
+    feature_config_ = config.features;
+    feature_map_config_ = config;
+    coarse_voxel_size_ = 0.0;
+    if (paging && stored) {
+        // Never merged whole: each local map read once for the coverage grid, then let go.
+        float size = 0.0f;
+        pages->for_each_voxel(
+            [&](const Eigen::Vector3f& c, float voxel_size) {
+                coverage_.insert(coverage_key(c.x(), c.y()));
+                size = std::max(size, voxel_size);
+                ++voxel_count_;
+            },
+            refused);
+        if (voxel_count_ == 0) {
+            throw common::ConfigError("map", "has no usable voxels: nothing to register against");
+        }
+        voxel_size_ = size;
+        local_maps_ = pages->local_maps();
+        sessions_ = map.sessions.size();
+    } else {
+        // With pages: the local maps read from the directory one at a time (map holds none).
+        index_voxels(pages ? pages->merge_all(refused)
+                           : map::merge_voxels(map, {config.min_health, config.min_planarity}));
+        if (voxels_->voxels.empty()) {
+            throw common::ConfigError("map", "has no usable voxels: nothing to register against");
+        }
+        voxel_size_ = voxels_->voxel_size;
+        voxel_count_ = voxels_->voxels.size();
+        if (paging) index_coverage();  // a format-1 map: its descriptors need the voxels first
+    }
     coarse_voxel_size_ =
         config.coarse_factor >= 2 ? voxel_size_ * config.coarse_factor : voxel_size_;
-    voxel_count_ = voxels_->voxels.size();
     if (!paging) {
         target_ = std::make_shared<const registration::RegistrationTarget>(
             registration::make_registration_target(*voxels_, config.min_planarity,
                                                    config.coarse_factor));
     }
-    descriptor_config_ = stored ? map.localisation_descriptor_config : config.descriptor;
     place_keyframes(map);
-    feature_config_ = config.features;
-    feature_map_config_ = config;
     // Paged: a global query makes the features of its places from the local maps it reads.
     if (config.local_features && !paging) make_features(config);
     if (paging) {
-        // The site's index stays; the voxels go back to the map directory.
+        // The site's index stays; the voxels are in the map directory.
         pages_ = std::move(pages);
         page_radius_ = page_radius;
-        index_coverage();
         voxels_.reset();
         columns_.reset();
     }

@@ -133,7 +133,8 @@ class LocalisationMap {
 
     double voxel_size() const { return voxel_size_; }
     double coarse_voxel_size() const { return coarse_voxel_size_; }  // = voxel_size(): no coarse
-    std::size_t voxel_count() const { return voxel_count_; }         // merged, on load
+    // Merged voxels (whole); paged (never merged whole): the local maps' voxels summed.
+    std::size_t voxel_count() const { return voxel_count_; }
     std::size_t local_maps() const { return local_maps_; }
     std::size_t sessions() const { return sessions_; }
     // Horizontal extent of the keyframe path [m] (sum of distances between consecutive ones).

@@ -115,6 +115,27 @@ map::MergedVoxels MapPages::merge_all(std::vector<std::string>* refused) const {
     return merge([](const File&) { return true; }, &nodes, refused);
 }
 
+void MapPages::for_each_voxel(const std::function<void(const Eigen::Vector3f&, float)>& f,
+                              std::vector<std::string>* refused) const {
+    const map::MergedVoxelsFilter filter{config_.min_health, config_.min_planarity};
+    for (const File& file : files_) {
+        map::StoredLocalMap lm;
+        try {
+            lm = map::load_local_map(dir_, file.entry, format_version_, graph_nodes_);
+        } catch (const common::IoError& e) {
+            if (refused) refused->push_back(e.what());
+            continue;
+        }
+        if (!lm.data) continue;
+        const Eigen::Isometry3d T = file.T_world_anchor * lm.data->T_anchor_grid;
+        const Eigen::Matrix3f R = T.linear().cast<float>();
+        const Eigen::Vector3f t = T.translation().cast<float>();
+        for (const common::VoxelData& v : lm.data->voxels) {
+            if (map::merges(v, filter)) f(R * v.centre + t, lm.data->voxel_size);
+        }
+    }
+}
+
 std::shared_ptr<const Neighbourhood> MapPages::build(const std::vector<Eigen::Vector3d>& centres,
                                                      double radius,
                                                      std::vector<std::string>* refused) const {

@@ -11,6 +11,7 @@
 // local map is the whole map, voxel for voxel.
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <unordered_set>
@@ -58,6 +59,10 @@ class MapPages {
     // Every local map merged (as map::merge_voxels merges a whole map), read one at a time; a
     // damaged one is left out and named in *refused.
     map::MergedVoxels merge_all(std::vector<std::string>* refused = nullptr) const;
+    // Every voxel a merge would consider (map::merges), in the map frame, a local map at a time
+    // (never all in memory): f(centre, voxel_size of its local map). Damaged maps as above.
+    void for_each_voxel(const std::function<void(const Eigen::Vector3f&, float)>& f,
+                        std::vector<std::string>* refused = nullptr) const;
 
     // The local maps anchored within `radius` of `centre` (graph nodes, ascending).
     std::vector<std::uint64_t> nodes_near(const Eigen::Vector3d& centre, double radius) const;

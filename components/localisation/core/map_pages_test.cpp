@@ -324,7 +324,7 @@ TEST(PagedLocalisationMap, KeepsTheSiteIndexAndLetsTheVoxelsGo) {
     EXPECT_TRUE(load_localisation_map(lm.dir, {}, nullptr, 100.0, 1e-6)->paged());
     EXPECT_THROW(paged->voxels(), common::ConfigError);
     EXPECT_THROW(paged->target(), common::ConfigError);
-    EXPECT_EQ(paged->voxel_count(), whole->voxel_count());
+    EXPECT_GE(paged->voxel_count(), whole->voxel_count());  // the local maps' voxels, summed
     EXPECT_EQ(paged->voxel_size(), whole->voxel_size());
     EXPECT_EQ(paged->coarse_voxel_size(), whole->target().coarse->voxel_size());
     ASSERT_EQ(paged->keyframes().size(), whole->keyframes().size());

@@ -6,15 +6,11 @@
 #include <vector>
 
 namespace ltm::map {
-namespace {
-
-bool usable(const common::VoxelData& v, const MergedVoxelsFilter& filter) {
+bool merges(const common::VoxelData& v, const MergedVoxelsFilter& filter) {
     return v.point_count > 0 && v.planarity >= filter.min_planarity &&
            v.life.health >= filter.min_health && std::abs(v.normal.squaredNorm() - 1.0f) < 1e-3f &&
            v.centre.allFinite();
 }
-
-}  // namespace
 
 MergedVoxels merge_voxels(const MapData& map, const MergedVoxelsFilter& filter) {
     std::unordered_map<std::uint64_t, Eigen::Isometry3d> anchors;
@@ -55,7 +51,7 @@ void VoxelMerger::add(const StoredLocalMap& lm, const Eigen::Isometry3d& T_world
     const Eigen::Vector3f anchor = T_world_anchor.translation().cast<float>();
     const float inv = inv_;
     for (const common::VoxelData& v : lm.data->voxels) {
-        if (!usable(v, filter_)) continue;
+        if (!merges(v, filter_)) continue;
         const Eigen::Vector3f centre = R * v.centre + t;
         const Eigen::Vector3f cell = (centre * inv).array().floor();
         if (!(cell.cwiseAbs().maxCoeff() < float((1 << 20) - 1))) continue;

@@ -31,6 +31,7 @@ struct MergedVoxels {
 };
 
 // A voxel is kept when it has points, a unit normal, a finite centre and passes the filter.
+bool merges(const common::VoxelData& v, const MergedVoxelsFilter& filter);
 MergedVoxels merge_voxels(const MapData& map, const MergedVoxelsFilter& filter);
 
 // The same merge fed one local map at a time (a paged map reads them one by one, each freed once
