@@ -8,6 +8,7 @@
 #include "common/core/io_error.hpp"
 #include "localisation/core/map_features.hpp"
 #include "localisation/core/map_pages.hpp"
+#include "localisation/core/voxel_columns.hpp"
 #include "map/core/map_store.hpp"
 #include "map/core/merged_voxels.hpp"
 
@@ -15,40 +16,9 @@ namespace ltm::localisation {
 
 namespace {
 
-constexpr double kColumnSize = 8.0;    // [m] cell of the 2-D index of voxel centres
 constexpr double kCoverageCell = 2.0;  // [m] cell of a paged map's coverage grid
 
-std::uint64_t column_key(double x, double y) {
-    const auto cx = std::int64_t(std::floor(x / kColumnSize));
-    const auto cy = std::int64_t(std::floor(y / kColumnSize));
-    return (std::uint64_t(cx + (1 << 30)) << 32) | std::uint64_t(cy + (1 << 30));
-}
-
 }  // namespace
-
-struct LocalisationMap::Columns {
-    std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cells;  // voxel indices
-
-    template <class F>
-    void for_each_near(const std::vector<common::VoxelData>& voxels, const Eigen::Vector3d& p,
-                       double radius, F&& f) const {
-        const double r2 = radius * radius;
-        const int reach = int(std::ceil(radius / kColumnSize));
-        const double x0 = p.x(), y0 = p.y();
-        for (int dx = -reach; dx <= reach; ++dx) {
-            for (int dy = -reach; dy <= reach; ++dy) {
-                const auto it =
-                    cells.find(column_key(x0 + dx * kColumnSize, y0 + dy * kColumnSize));
-                if (it == cells.end()) continue;
-                for (std::uint32_t i : it->second) {
-                    const Eigen::Vector3f& c = voxels[i].centre;
-                    const double ex = c.x() - x0, ey = c.y() - y0;
-                    if (ex * ex + ey * ey <= r2) f(i);
-                }
-            }
-        }
-    }
-};
 
 LocalisationMap::LocalisationMap(const map::MapData& map, const LocalisationMapConfig& config,
                                  std::shared_ptr<const MapPages> pages, double page_radius,
@@ -106,8 +76,8 @@ LocalisationMap::LocalisationMap(const map::MapData& map, const LocalisationMapC
         // The site's index stays; the voxels are in the map directory.
         pages_ = std::move(pages);
         page_radius_ = page_radius;
+        columns_.reset();  // before the voxels it refers to
         voxels_.reset();
-        columns_.reset();
     }
 }
 
@@ -198,12 +168,7 @@ void LocalisationMap::index_voxels(map::MergedVoxels merged) {
     voxels_ = std::move(merged.voxels);
     local_maps_ = merged.local_maps;
     sessions_ = merged.sessions;
-    auto columns = std::make_shared<Columns>();
-    for (std::uint32_t i = 0; i < voxels_->voxels.size(); ++i) {
-        const Eigen::Vector3f& c = voxels_->voxels[i].centre;
-        columns->cells[column_key(c.x(), c.y())].push_back(i);
-    }
-    columns_ = std::move(columns);
+    columns_ = std::make_shared<const VoxelColumns>(voxels_->voxels);
 }
 
 void LocalisationMap::place_keyframes(const map::MapData& map) {
@@ -232,7 +197,7 @@ void LocalisationMap::place_keyframes(const map::MapData& map) {
             const Eigen::Vector3f t = T_lidar_map.translation().cast<float>();
             local.clear();
             columns_->for_each_near(
-                voxels_->voxels, k.T_map_lidar.translation(), descriptor_config_.max_range,
+                k.T_map_lidar.translation(), descriptor_config_.max_range,
                 [&](std::uint32_t i) { local.push_back(R * voxels_->voxels[i].centre + t); });
             k.descriptor = places::make_scan_context(local, descriptor_config_);
             descriptors_computed_ = true;
@@ -272,10 +237,7 @@ std::vector<std::uint32_t> LocalisationMap::keyframes_near(const Eigen::Vector3d
 std::vector<Eigen::Vector3f> LocalisationMap::centres_near(const Eigen::Vector3d& p,
                                                            double radius) const {
     if (!columns_) throw common::ConfigError("map", "is paged: its voxels are on disk");
-    std::vector<Eigen::Vector3f> out;
-    columns_->for_each_near(voxels_->voxels, p, radius,
-                            [&](std::uint32_t i) { out.push_back(voxels_->voxels[i].centre); });
-    return out;
+    return columns_->centres_near(p, radius);
 }
 
 bool LocalisationMap::covers(const Eigen::Vector3d& p, double radius) const {
@@ -300,7 +262,7 @@ bool LocalisationMap::covers(const Eigen::Vector3d& p, double radius) const {
         return false;
     }
     bool any = false;
-    columns_->for_each_near(voxels_->voxels, p, radius, [&](std::uint32_t) { any = true; });
+    columns_->for_each_near(p, radius, [&](std::uint32_t) { any = true; });
     return any;
 }
 

@@ -66,6 +66,7 @@ struct MapKeyframe {
 };
 
 class MapPages;
+class VoxelColumns;
 struct Neighbourhood;
 
 class LocalisationMap {
@@ -141,7 +142,6 @@ class LocalisationMap {
     double path_length() const { return path_length_; }
 
   private:
-    struct Columns;  // 2-D grid of voxel centres for range queries
     void index_voxels(map::MergedVoxels merged);
     void place_keyframes(const map::MapData& map);
     void make_features(const LocalisationMapConfig& config);
@@ -153,7 +153,7 @@ class LocalisationMap {
     std::vector<MapKeyframe, Eigen::aligned_allocator<MapKeyframe>> keyframes_;
     places::RingKeyIndex index_;
     std::shared_ptr<common::LocalMapData> voxels_;
-    std::shared_ptr<const Columns> columns_;
+    std::shared_ptr<const VoxelColumns> columns_;  // of voxels_ (whole only)
     std::shared_ptr<const registration::RegistrationTarget> target_;
     places::LocalFeatureConfig feature_config_;
     LocalisationMapConfig feature_map_config_;  // how the features are made (map_features.hpp)

@@ -5,11 +5,11 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "localisation/core/voxel_columns.hpp"
+
 namespace ltm::localisation {
 
 namespace {
-
-constexpr double kColumnSize = 8.0;  // [m] cell of the 2-D index of voxel centres
 
 std::uint64_t grid_key(std::int64_t ix, std::int64_t iy) {
     return (std::uint64_t(ix + (1 << 30)) << 32) | std::uint64_t(iy + (1 << 30));
@@ -19,43 +19,6 @@ std::uint64_t grid_key(std::int64_t ix, std::int64_t iy) {
 std::uint64_t lattice_key(double x, double y, double step) {
     return grid_key(std::lround(x / step), std::lround(y / step));
 }
-
-// The voxel centres in 8 m columns, for the centres within a radius of a point.
-class Columns {
-  public:
-    explicit Columns(const std::vector<common::VoxelData>& voxels) : voxels_(voxels) {
-        for (std::uint32_t i = 0; i < voxels.size(); ++i) {
-            const Eigen::Vector3f& c = voxels[i].centre;
-            cells_[key(c.x(), c.y())].push_back(i);
-        }
-    }
-    std::vector<Eigen::Vector3f> near(const Eigen::Vector3d& p, double radius) const {
-        std::vector<Eigen::Vector3f> out;
-        const double r2 = radius * radius;
-        const int reach = int(std::ceil(radius / kColumnSize));
-        for (int dx = -reach; dx <= reach; ++dx) {
-            for (int dy = -reach; dy <= reach; ++dy) {
-                const auto it =
-                    cells_.find(key(p.x() + dx * kColumnSize, p.y() + dy * kColumnSize));
-                if (it == cells_.end()) continue;
-                for (std::uint32_t i : it->second) {
-                    const Eigen::Vector3f& c = voxels_[i].centre;
-                    const double ex = c.x() - p.x(), ey = c.y() - p.y();
-                    if (ex * ex + ey * ey <= r2) out.push_back(c);
-                }
-            }
-        }
-        return out;
-    }
-
-  private:
-    static std::uint64_t key(double x, double y) {
-        return grid_key(std::int64_t(std::floor(x / kColumnSize)),
-                        std::int64_t(std::floor(y / kColumnSize)));
-    }
-    const std::vector<common::VoxelData>& voxels_;
-    std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cells_;
-};
 
 }  // namespace
 
@@ -77,7 +40,7 @@ places::LocalFeatures make_map_features(const std::vector<common::VoxelData>& vo
             return (c - p.template head<2>()).squaredNorm() <= near2;
         });
     };
-    const Columns columns(voxels);
+    const VoxelColumns columns(voxels);
     const double spacing = config.features.sample_spacing;
     places::LocalFeatures features;
     features.sample_spacing = spacing;
@@ -89,7 +52,7 @@ places::LocalFeatures make_map_features(const std::vector<common::VoxelData>& vo
         if (!wanted(c)) continue;
         const Eigen::Vector3d centre(c.x(), c.y(), 0.0);
         const places::LocalFeatures f = places::make_local_features(
-            columns.near(centre, half_diagonal + config.features.radius), tile, centre,
+            columns.centres_near(centre, half_diagonal + config.features.radius), tile, centre,
             half_diagonal);
         for (std::size_t i = 0; i < f.size(); ++i) {
             const Eigen::Vector3d& p = f.positions[i];
