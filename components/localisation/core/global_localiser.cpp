@@ -13,8 +13,6 @@ namespace ltm::localisation {
 namespace {
 
 constexpr double kDegToRad = M_PI / 180.0;
-// A cell of the map's features holds samples up to its half-diagonal from its centre.
-constexpr double kFeatureCellReach = 0.7072;
 
 Eigen::Isometry3d yawed(const Eigen::Isometry3d& T, double yaw) {
     Eigen::Isometry3d out = T;
@@ -227,39 +225,9 @@ void GlobalLocaliser::feature_guesses(const std::vector<Eigen::Vector3f>& points
     std::vector<Eigen::Vector3d> centres;
     for (const Place& place : places)
         centres.push_back(map_->keyframes()[place.keyframe].T_map_lidar.translation());
-    places::LocalFeatures target;
-    if (map_->paged()) {
-        if (!map_->has_features()) return;
-        // The map's samples around every place, made from the local maps this query read.
-        const double r2 = config_.feature_region * config_.feature_region;
-        const places::LocalFeatures near = map_->features_around(
-            *around_, centres, config_.feature_region + kFeatureCellReach * map_->feature_cell());
-        target.sample_spacing = near.sample_spacing;
-        for (std::size_t k = 0; k < near.size(); ++k) {
-            const bool in = std::any_of(centres.begin(), centres.end(), [&](const auto& c) {
-                return (near.positions[k] - c).template head<2>().squaredNorm() <= r2;
-            });
-            if (!in) continue;
-            target.positions.push_back(near.positions[k]);
-            target.descriptors.push_back(near.descriptors[k]);
-        }
-    } else {
-        // The map's samples around every place, once (places overlap), matched in one pass.
-        std::vector<std::uint32_t> indices;
-        for (const Eigen::Vector3d& c : centres) {
-            for (std::uint32_t k : map_->feature_indices_near(c, config_.feature_region))
-                indices.push_back(k);
-        }
-        std::sort(indices.begin(), indices.end());
-        indices.erase(std::unique(indices.begin(), indices.end()), indices.end());
-        target.sample_spacing = map_->features().sample_spacing;
-        target.positions.reserve(indices.size());
-        target.descriptors.reserve(indices.size());
-        for (std::uint32_t k : indices) {
-            target.positions.push_back(map_->features().positions[k]);
-            target.descriptors.push_back(map_->features().descriptors[k]);
-        }
-    }
+    // The map's samples around every place, once (places overlap), matched in one pass.
+    const places::LocalFeatures target =
+        map_->features_near_places(centres, config_.feature_region, around_.get());
     if (target.size() < 3) return;
     const std::vector<places::FeatureMatch> matches =
         places::match_local_features(query, target, config_.matching);

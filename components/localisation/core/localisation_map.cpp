@@ -16,7 +16,8 @@ namespace ltm::localisation {
 
 namespace {
 
-constexpr double kCoverageCell = 2.0;  // [m] cell of a paged map's coverage grid
+constexpr double kCoverageCell = 2.0;         // [m] cell of a paged map's coverage grid
+constexpr double kFeatureCellReach = 0.7072;  // a feature cell's half-diagonal over its side
 
 }  // namespace
 
@@ -138,6 +139,43 @@ places::LocalFeatures LocalisationMap::features_around(const Neighbourhood& n,
                                                        double near) const {
     if (!n.voxels) return {};
     return make_map_features(n.voxels->voxels, feature_map_config_, &places, near);
+}
+
+places::LocalFeatures LocalisationMap::features_near_places(
+    const std::vector<Eigen::Vector3d>& places, double radius, const Neighbourhood* around) const {
+    places::LocalFeatures out;
+    if (!has_features()) return out;
+    const double r2 = radius * radius;
+    if (pages_) {
+        if (!around) return out;
+        // A cell holds samples up to its half-diagonal from its centre.
+        const places::LocalFeatures made = features_around(
+            *around, places, radius + kFeatureCellReach * feature_map_config_.feature_cell);
+        out.sample_spacing = made.sample_spacing;
+        for (std::size_t k = 0; k < made.size(); ++k) {
+            const bool in = std::any_of(places.begin(), places.end(), [&](const auto& c) {
+                return (made.positions[k] - c).template head<2>().squaredNorm() <= r2;
+            });
+            if (!in) continue;
+            out.positions.push_back(made.positions[k]);
+            out.descriptors.push_back(made.descriptors[k]);
+        }
+        return out;
+    }
+    std::vector<std::uint32_t> indices;
+    for (const Eigen::Vector3d& c : places) {
+        for (std::uint32_t k : feature_indices_near(c, radius)) indices.push_back(k);
+    }
+    std::sort(indices.begin(), indices.end());
+    indices.erase(std::unique(indices.begin(), indices.end()), indices.end());
+    out.sample_spacing = features_.sample_spacing;
+    out.positions.reserve(indices.size());
+    out.descriptors.reserve(indices.size());
+    for (std::uint32_t k : indices) {
+        out.positions.push_back(features_.positions[k]);
+        out.descriptors.push_back(features_.descriptors[k]);
+    }
+    return out;
 }
 
 std::vector<std::uint32_t> LocalisationMap::feature_indices_near(const Eigen::Vector3d& p,

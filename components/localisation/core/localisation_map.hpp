@@ -117,12 +117,16 @@ class LocalisationMap {
     // The map's local features within `radius` (horizontal) of p (empty without local features).
     places::LocalFeatures features_near(const Eigen::Vector3d& p, double radius) const;
     std::vector<std::uint32_t> feature_indices_near(const Eigen::Vector3d& p, double radius) const;
+    // ... within `radius` of any of `places`, each once: the whole map's (in their order on
+    // load), or (paged) made from the voxels of `around`, the local maps a query read there
+    // (empty without local features or without `around`).
+    places::LocalFeatures features_near_places(const std::vector<Eigen::Vector3d>& places,
+                                               double radius, const Neighbourhood* around) const;
     const places::LocalFeatures& features() const { return features_; }
     const places::LocalFeatureConfig& feature_config() const { return feature_config_; }
     // Whether the map has local features: made on load, or (paged) by a query from the local
-    // maps it reads (features_around).
+    // maps it reads (features_near_places).
     bool has_features() const { return feature_map_config_.local_features; }
-    double feature_cell() const { return feature_map_config_.feature_cell; }
     // Paged: the features of the cells within `near` of `places`, from a neighbourhood's voxels.
     places::LocalFeatures features_around(const Neighbourhood& n,
                                           const std::vector<Eigen::Vector3d>& places,
