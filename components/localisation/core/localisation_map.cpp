@@ -16,8 +16,7 @@ namespace ltm::localisation {
 
 namespace {
 
-constexpr double kCoverageCell = 2.0;         // [m] cell of a paged map's coverage grid
-constexpr double kFeatureCellReach = 0.7072;  // a feature cell's half-diagonal over its side
+constexpr double kCoverageCell = 2.0;  // [m] cell of a paged map's coverage grid
 
 }  // namespace
 
@@ -72,7 +71,7 @@ LocalisationMap::LocalisationMap(const map::MapData& map, const LocalisationMapC
     }
     place_keyframes(map);
     // Paged: a global query makes the features of its places from the local maps it reads.
-    if (config.local_features && !paging) make_features(config);
+    if (config.local_features && !paging) features_ = make_map_features(voxels_->voxels, config);
     if (paging) {
         // The site's index stays; the voxels are in the map directory.
         pages_ = std::move(pages);
@@ -130,10 +129,6 @@ std::shared_ptr<const Neighbourhood> LocalisationMap::neighbourhood_around(
     return n;
 }
 
-void LocalisationMap::make_features(const LocalisationMapConfig& config) {
-    features_ = make_map_features(voxels_->voxels, config);
-}
-
 places::LocalFeatures LocalisationMap::features_around(const Neighbourhood& n,
                                                        const std::vector<Eigen::Vector3d>& places,
                                                        double near) const {
@@ -150,7 +145,7 @@ places::LocalFeatures LocalisationMap::features_near_places(
         if (!around) return out;
         // A cell holds samples up to its half-diagonal from its centre.
         const places::LocalFeatures made = features_around(
-            *around, places, radius + kFeatureCellReach * feature_map_config_.feature_cell);
+            *around, places, radius + kFeatureCellHalfDiagonal * feature_map_config_.feature_cell);
         out.sample_spacing = made.sample_spacing;
         for (std::size_t k = 0; k < made.size(); ++k) {
             const bool in = std::any_of(places.begin(), places.end(), [&](const auto& c) {

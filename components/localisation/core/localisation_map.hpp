@@ -10,12 +10,11 @@
 // range of each keyframe (a rendered view of the map, not the keyframe's own scan: retrieval is
 // weaker on such maps).
 //
-// Paged (issue 28 item 3; made with a MapPages and a radius): after the load the merged voxels,
-// their registration grids and their column index are let go. What stays is the site's index:
-// the keyframes with their descriptors, the local features and a coverage grid (2 m cells that
-// hold a voxel, for covers()). Tracking registers to a neighbourhood of the pose
-// (neighbourhood_builder.hpp) and a global query to the local maps within the radius of its
-// initial poses (target_around: read from the map directory, the last one kept).
+// Paged (issue 28 item 3; made with a MapPages and a radius): the whole map is never merged. What
+// stays is the site's index: the keyframes with their descriptors and a coverage grid (2 m cells
+// that hold a voxel, for covers()). Tracking registers to a neighbourhood of the pose
+// (neighbourhood_builder.hpp); a global query reads the local maps within the radius of its
+// places (neighbourhood_around) and makes their local features (features_near_places).
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <memory>
@@ -148,7 +147,6 @@ class LocalisationMap {
   private:
     void index_voxels(map::MergedVoxels merged);
     void place_keyframes(const map::MapData& map);
-    void make_features(const LocalisationMapConfig& config);
     void index_coverage();
     std::uint64_t coverage_key(double x, double y) const;
 

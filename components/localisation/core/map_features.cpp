@@ -26,7 +26,7 @@ places::LocalFeatures make_map_features(const std::vector<common::VoxelData>& vo
                                         const LocalisationMapConfig& config,
                                         const std::vector<Eigen::Vector3d>* around, double near) {
     const double cell = config.feature_cell;
-    const double half_diagonal = cell * 0.7072;
+    const double half_diagonal = cell * kFeatureCellHalfDiagonal;
     // The cells holding a voxel (their order: the hash map's, as every load has made them).
     std::unordered_map<std::uint64_t, Eigen::Vector2d> cells;
     for (const common::VoxelData& v : voxels) {

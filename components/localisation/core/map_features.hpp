@@ -16,6 +16,9 @@
 
 namespace ltm::localisation {
 
+// A cell holds the samples up to its half-diagonal from its centre (over the cell's side).
+constexpr double kFeatureCellHalfDiagonal = 0.7072;
+
 // Every cell holding a voxel; with `around`, only the cells whose centre is within `near`
 // (horizontal) of one of its points.
 places::LocalFeatures make_map_features(const std::vector<common::VoxelData>& voxels,
