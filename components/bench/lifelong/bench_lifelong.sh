@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# ./ltm bench lifelong --scenario S --days N [--out D] [--config lifelong|legacy] [--sensor M] [--resume]
+# ./ltm bench lifelong --scenario S --days N [--out D] [--config lifelong|legacy] [--sensor M] [--realtime] [--resume]
 # A robot's week on one site: every day (session d of the scenario) runs through a launch config
 # and the host (./ltm run, the real components), under /usr/bin/time -v; then `ltm_eval lifelong`
 # scores each day against the simulator's truth (ltm_sim --truth-only of the same session) and
@@ -12,13 +12,17 @@
 #                      newest version after day d (D/site/versions/vNNNN/map) is the next map
 #   --sensor M         the scans of the simulator's sensor M (os1_64, hdl64e, vlp32c, vlp16,
 #                      livox_avia) instead of the scenario's; the presets follow the scans (auto)
+#   --realtime         the simulator at the sensor's rate (10 Hz) and the localisation skipping
+#                      scans while busy, as on a live robot (default: as fast as the machine goes,
+#                      every scan localised); the memory then holds what a robot's does, not the
+#                      maintenance's queue of scans a fast run builds up
 #   --config legacy    what a user does today: day 0 robot_maintain.yaml (maps), later days
 #                      robot_localise_maintain.yaml on day 0's map, the maintained map carried
 #                      from day to day (each day starts from a copy of the day before's)
 set -uo pipefail
 ROOT="$(cd "$(dirname "$0")/../../.." && pwd)"
 BIN="${LTM_BUILD_DIR:-$ROOT/build}/bin"
-SCENARIO=""; DAYS=""; OUT=""; CONFIG=""; RESUME=0; SENSOR=""
+SCENARIO=""; DAYS=""; OUT=""; CONFIG=""; RESUME=0; SENSOR=""; REALTIME=0
 # [s] after the sensor's last scan, for the final maintenance pass and every save (the launch
 # configs' 60 s was too short on a shared 2-core machine: site_sessions' day 0, exit 3).
 FINISH_S=600
@@ -31,6 +35,7 @@ usage() {
         "--out D" "the run's folder (default results/lifelong-<time>)" \
         "--config C" "lifelong (default when launch_configs/robot_lifelong.yaml exists) or legacy" \
         "--sensor M" "the simulator's sensor for the scans (os1_64, hdl64e, vlp32c, vlp16, livox_avia)" \
+        "--realtime" "the sensor's rate and skip_while_busy, as on a live robot (default: fast)" \
         "--resume" "keep the days of D that ran to the end (D/dayN/exit_status 0)"
 }
 fail() { echo "ltm bench lifelong: $*" >&2; exit 2; }
@@ -38,6 +43,7 @@ while [ $# -gt 0 ]; do
     case "$1" in
         -h|--help) usage; exit 0 ;;
         --resume) RESUME=1; shift ;;
+        --realtime) REALTIME=1; shift ;;
         --scenario|--days|--out|--config|--sensor)
             [ $# -ge 2 ] || fail "$1: needs a value"
             case "$1" in
@@ -100,11 +106,16 @@ run_day() {
         env_vars+=(LTM_SITE="$OUT/site")
     fi
     local start=$SECONDS
+    local rate=()
+    [ "$REALTIME" = 0 ] || rate=(--set sensor.mode=realtime --set localisation.skip_while_busy=true)
     # A DDS domain of this run's own (LTM_BENCH_DOMAIN): two runs on one machine stay apart.
     env "${env_vars[@]}" /usr/bin/time -v -o "$dir/time.txt" "$ROOT/ltm" run "$launch" \
-        --set domain_id="${LTM_BENCH_DOMAIN:-$((100 + $$ % 100))}" \
-        --set sensor.session="$d" ${SENSOR:+--set sensor.sensor="$SENSOR"} \
-        --set finish_timeout_s="$FINISH_S" --out "$dir" > "$dir/host.log" 2>&1
+        --set domain_id="$DOMAIN" \
+        --set sensor.session="$d" ${SENSOR:+--set sensor.sensor="$SENSOR"} "${rate[@]}" \
+        --set finish_timeout_s="$FINISH_S" --out "$dir" > "$dir/host.log" 2>&1 &
+    local run_pid=$!
+    sample_memory "$run_pid" "$dir/memory.txt"
+    wait "$run_pid"
     rc=$?
     echo "$rc" > "$dir/exit_status"
     echo "  day $d: host exit $rc after $((SECONDS - start)) s ($(basename "$launch")); log $dir/host.log"
@@ -127,6 +138,27 @@ run_day() {
         ln -sfn "$newest/maintenance" "$dir/maintained"
         echo "$newest" > "$dir/version"
     fi
+}
+
+DOMAIN="${LTM_BENCH_DOMAIN:-$((100 + $$ % 100))}"
+
+# The host's resident memory every 0.5 s while the day runs (D/dayN/memory.txt: seconds since the
+# start, VmRSS in kB): where in the day the peak falls (the drive, the stop's passes and saves).
+sample_memory() {
+    local run_pid="$1" file="$2" host="" rss
+    echo "# seconds VmRSS_kB (the host of ./ltm run, domain $DOMAIN)" > "$file"
+    local start_ns
+    start_ns=$(date +%s%N)
+    while kill -0 "$run_pid" 2>/dev/null; do
+        [ -n "$host" ] && kill -0 "$host" 2>/dev/null ||
+            host=$(pgrep -n -f "ltm_host .*domain_id=$DOMAIN " || true)
+        if [ -n "$host" ]; then
+            rss=$(awk '/^VmRSS/ {print $2}' "/proc/$host/status" 2>/dev/null)
+            [ -z "$rss" ] || echo "$(( ($(date +%s%N) - start_ns) / 1000000 )) $rss" |
+                awk '{printf "%.1f %d\n", $1 / 1000, $2}' >> "$file"
+        fi
+        sleep 0.5
+    done
 }
 
 ran=0

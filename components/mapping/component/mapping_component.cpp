@@ -195,7 +195,13 @@ class MappingComponent : public runtime::Component {
         }
         ctx_.log().info(std::to_string(mapper_->keyframes().size()) + " keyframes, " +
                         std::to_string(mapper_->local_map_count()) + " local maps, " +
-                        std::to_string(mapper_->loops().size()) + " loops closed");
+                        std::to_string(mapper_->loops().size()) + " loops closed" +
+                        (mapper_->forgotten_voxels() > 0
+                             ? ", " + std::to_string(mapper_->forgotten_voxels()) +
+                                   " voxels forgotten (unseen by their local map's last " +
+                                   std::to_string(mapper_->config().long_term.forget_after_visits) +
+                                   " visits)"
+                             : std::string()));
         if (const std::string edits = edits_->summary(); !edits.empty()) ctx_.log().info(edits);
         if (saver_ && !site_dir_.empty()) {
             for (const std::string& line : mapper_->take_paging_problems()) ctx_.log().warn(line);

@@ -267,11 +267,22 @@ common::LocalMapData merge_local_maps(const common::LocalMapData& into,
             }
         }
         if (beside_surface > 0.0 && cell.find(moved.index) == cell.end() &&
-            !inside_old_voxels(cell, n_into, moved.index) &&
-            same_surface_voxel(out.voxels, n_into, cell, moved, g, beside_surface * g, false) >=
-                0) {
-            ++beside;  // the old surface one cell on: adds nothing
-            continue;
+            !inside_old_voxels(cell, n_into, moved.index)) {
+            const long j =
+                same_surface_voxel(out.voxels, n_into, cell, moved, g, beside_surface * g, false);
+            if (j >= 0) {
+                // The old surface one cell on: adds nothing, but the old voxel was seen today
+                // (its life goes on: forget_unseen_voxels).
+                common::VoxelLife& life = out.voxels[std::size_t(j)].life;
+                life.last_seen = std::max(life.last_seen, moved.life.last_seen);
+                std::vector<std::uint16_t> seen;
+                seen.reserve(life.seen.size() + moved.life.seen.size());
+                std::set_union(life.seen.begin(), life.seen.end(), moved.life.seen.begin(),
+                               moved.life.seen.end(), std::back_inserter(seen));
+                life.seen = std::move(seen);
+                ++beside;
+                continue;
+            }
         }
         const auto [it, fresh] = cell.emplace(moved.index, out.voxels.size());
         if (fresh) {
@@ -296,6 +307,25 @@ common::LocalMapData merge_local_maps(const common::LocalMapData& into,
         out.bbox_max = out.bbox_max.cwiseMax(q);
     }
     return out;
+}
+
+std::size_t forget_unseen_voxels(common::LocalMapData* map, int after_visits, double visit_gap) {
+    if (after_visits <= 0 || map->voxels.empty()) return 0;
+    // The visits' first stamps, ascending; a voxel last seen before the K-th last of them has
+    // missed K visits.
+    std::vector<double> starts;
+    const std::vector<double>& t = map->observation_times;
+    for (std::size_t i = 0; i < t.size(); ++i) {
+        if (i == 0 || t[i] - t[i - 1] > visit_gap) starts.push_back(t[i]);
+    }
+    if (starts.size() < std::size_t(after_visits)) return 0;
+    const double kth_last = starts[starts.size() - std::size_t(after_visits)];
+    const std::size_t before = map->voxels.size();
+    map->voxels.erase(
+        std::remove_if(map->voxels.begin(), map->voxels.end(),
+                       [&](const common::VoxelData& v) { return v.life.last_seen < kth_last; }),
+        map->voxels.end());
+    return before - map->voxels.size();
 }
 
 }  // namespace ltm::mapping

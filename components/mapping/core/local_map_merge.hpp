@@ -24,14 +24,15 @@
 // With beside_surface > 0, a voxel of `add` in a cell empty in `into` (and not taken so) that lies
 // next to a voxel of `into` (26 neighbouring cells) with a normal, its centre within
 // beside_surface x voxel_size of that voxel's plane and its normal (if any) within 30 deg of it,
-// adds nothing: the old surface one cell beyond the old patch, as another day's slightly
-// different view shows it (on repeat_week 85-90 % of the voxels a revisit added were beside an
-// old voxel). An empty cell between voxels of `into` (both cells of an opposite pair of its
-// neighbours hold one: a hole maintenance emptied or earlier days' returns missed) is not an
-// edge and is filled as before. A really new surface loses only its cells that touch the old one on
-// its plane: a new object standing on old ground (its faces off the ground's plane) enters whole,
-// new ground beyond the old keeps all but its first ring. The result keeps `into`'s id, segment,
-// anchor, grid, voxel size and finished flag; its revision is `into`'s + 1 and its box covers both.
+// adds nothing but the old voxel's last sighting (life.last_seen, life.seen): the old surface one
+// cell beyond the old patch, as another day's slightly different view shows it (on repeat_week
+// 85-90 % of the voxels a revisit added were beside an old voxel). An empty cell between voxels of
+// `into` (both cells of an opposite pair of its neighbours hold one: a hole maintenance emptied or
+// earlier days' returns missed) is not an edge and is filled as before. A really new surface loses
+// only its cells that touch the old one on its plane: a new object standing on old ground (its
+// faces off the ground's plane) enters whole, new ground beyond the old keeps all but its first
+// ring. The result keeps `into`'s id, segment, anchor, grid, voxel size and finished flag; its
+// revision is `into`'s + 1 and its box covers both.
 #include <Eigen/Geometry>
 #include <cstddef>
 #include <cstdint>
@@ -64,5 +65,17 @@ common::LocalMapData merge_local_maps(const common::LocalMapData& into,
                                       std::size_t* absorbed_count = nullptr,
                                       double beside_surface = 0.0,
                                       std::size_t* beside_count = nullptr);
+
+// Voxel life on repeated ground (METHOD.md section 5: a voxel's life from its last observation and
+// the map's time; issue 26, "bounded"). A local map's visits are its observation times split where
+// more than visit_gap seconds pass between two stamps (the robot left the place and came back: a
+// later lap, another day). A voxel last seen before the after_visits-th last visit began has been
+// missed by the map's last after_visits visits: whatever made it (another day's noise at a
+// cell's edge, a passing object maintenance did not catch, a surface since gone out of view) is no
+// longer seen there, and it leaves the map. Without this a place driven every day thickens by a
+// few per cent a day (repeat_fortnight, components/bench/lifelong/README.md). after_visits <= 0:
+// nothing is forgotten. Observation times sorted ascending (as merge_local_maps leaves them).
+// Returns the voxels removed.
+std::size_t forget_unseen_voxels(common::LocalMapData* map, int after_visits, double visit_gap);
 
 }  // namespace ltm::mapping

@@ -192,6 +192,8 @@ class Mapper {
     // New objects found there: their cells are no longer cleared in maps that arrive later.
     void keep_cells(const std::vector<Eigen::Vector3f>& centres, float cell_size);
     std::size_t removed_voxels() const { return removed_voxels_; }
+    // Voxels folded local maps forgot (LongTermConfig::forget_after_visits), since the start.
+    std::size_t forgotten_voxels() const { return forgotten_voxels_; }
 
     // Paging (PagingConfig, mapper_paging.cpp). `loader` reads a paged-out local map's file back
     // (map::load_local_map from the directory the saves go to) and throws on failure; without
@@ -319,6 +321,7 @@ class Mapper {
     bool fixes_expected_ = false;
     RemovedCells removed_;  // what maintenance found gone
     std::size_t removed_voxels_ = 0;
+    std::size_t forgotten_voxels_ = 0;
     std::deque<std::uint64_t> removal_waiting_;  // local maps to clear (remove_cells_in_steps)
     LocalMapLoader loader_;                      // paging: none, nothing is paged
     std::size_t paged_in_ = 0;

@@ -77,6 +77,13 @@ struct LongTermConfig {
     // old surface one cell beyond its patch, as another day's view shows it (local_map_merge.hpp;
     // a new object's faces off the old planes still enter). 0: off (robot_lifelong.yaml: 0.5).
     double beside_surface = 0.0;  // [voxel sizes]
+    // Voxel life (local_map_merge.hpp, forget_unseen_voxels): a folded local map's voxel that its
+    // last forget_after_visits visits (stretches of its observation times more than visit_gap
+    // apart: another lap, another day) did not see leaves it, so a place driven every day stays
+    // the size of what is there, not of every day's noise at its edges (issue 26, "bounded").
+    // 0: voxels are never forgotten (the map only loses what maintenance removes).
+    int forget_after_visits = 3;
+    double visit_gap = 60.0;  // [s]
 };
 
 // Joining two robots' sessions (open in one Mapper at once) that no loop has placed together yet.
@@ -227,6 +234,8 @@ void visit_own_fields(MapperConfig& c, Visitor&& v) {
     v("long_term.max_observation_times", l.max_observation_times, in_range(2, 65536));
     v("long_term.same_surface", l.same_surface, in_range(0.0, 0.5));
     v("long_term.beside_surface", l.beside_surface, in_range(0.0, 1.0));
+    v("long_term.forget_after_visits", l.forget_after_visits, non_negative);
+    v("long_term.visit_gap", l.visit_gap, positive);
     auto& j = c.session_join;
     v("session_join.loops", j.loops, at_least(1));
     v("session_join.agree_translation", j.agree_translation, positive);

@@ -117,6 +117,8 @@ void Mapper::fold(std::uint64_t n, std::uint64_t into) {
         *e.stored.data, *maps_.at(n).stored.data, T_into_n,
         std::size_t(config_.long_term.max_observation_times), config_.long_term.same_surface,
         nullptr, config_.long_term.beside_surface));
+    forgotten_voxels_ += forget_unseen_voxels(merged.get(), config_.long_term.forget_after_visits,
+                                              config_.long_term.visit_gap);
     e.stored.data = std::move(merged);
     e.serial = next_serial_++;
 
