@@ -203,6 +203,21 @@ class MappingComponent : public runtime::Component {
                                    " visits)"
                              : std::string()));
         if (const std::string edits = edits_->summary(); !edits.empty()) ctx_.log().info(edits);
+        if (const Mapper::FoldStats& f = mapper_->fold_stats(); f.tried > 0) {
+            std::vector<double> c = f.corrections;
+            std::string median = "-";
+            if (!c.empty()) {
+                std::nth_element(c.begin(), c.begin() + long(c.size() / 2), c.end());
+                char text[32];
+                std::snprintf(text, sizeof text, "%.1f cm", 100.0 * c[c.size() / 2]);
+                median = text;
+            }
+            ctx_.log().info("folds: " + std::to_string(f.registered) + " of " +
+                            std::to_string(f.tried) +
+                            " registered to the map they went into (median correction to the "
+                            "graph's estimate " +
+                            median + "), the others placed by the graph");
+        }
         if (saver_ && !site_dir_.empty()) {
             for (const std::string& line : mapper_->take_paging_problems()) ctx_.log().warn(line);
             ctx_.log().info(

@@ -281,5 +281,71 @@ TEST(LocalMapMerge, TheOldSurfaceOneCellBeyondItsPatchAddsNothingNewSurfacesStil
     EXPECT_EQ(merge_local_maps(a, raised, I, 1024, 0.2, nullptr, 0.5).voxels.size(), 26u);
 }
 
+// The beside rule adds nothing, but the old voxel it stands beside was seen again: its life goes
+// on (last_seen), so the forgetting below does not take a surface another day sees one cell on.
+TEST(LocalMapMerge, AVoxelBesideTheOldSurfaceRefreshesTheOldVoxelsLastSighting) {
+    common::LocalMapData a, b;
+    a.voxel_size = b.voxel_size = 1.0f;
+    a.observation_times = {1.0};
+    b.observation_times = {86401.0};
+    common::VoxelData old = voxel({0, 0, 0}, {0.5f, 0.5f, 0.5f}, {0, 0, 1}, 10);
+    old.life.created = old.life.last_seen = 1.0;
+    old.life.observations = 4;
+    old.life.seen = {0};
+    a.voxels = {old};
+    common::VoxelData next = voxel({1, 0, 0}, {1.5f, 0.5f, 0.55f}, {0, 0, 1}, 6);
+    next.life.created = next.life.last_seen = 86401.0;
+    next.life.observations = 1;
+    next.life.seen = {0};
+    b.voxels = {next};
+    std::size_t beside = 0;
+    const common::LocalMapData m =
+        merge_local_maps(a, b, Eigen::Isometry3d::Identity(), 1024, 0.2, nullptr, 0.5, &beside);
+    EXPECT_EQ(beside, 1u);
+    ASSERT_EQ(m.voxels.size(), 1u);
+    EXPECT_DOUBLE_EQ(m.voxels[0].life.last_seen, 86401.0);
+    EXPECT_DOUBLE_EQ(m.voxels[0].life.created, 1.0);
+    EXPECT_EQ(m.voxels[0].life.observations, 4u);  // a sighting, not an observation of its cell
+    EXPECT_EQ(m.voxels[0].life.seen, (std::vector<std::uint16_t>{0, 1}));
+}
+
+// Four days' visits of one local map (each a few scans a second apart; days apart): a voxel seen
+// on day 0 only is forgotten once three later visits missed it, one seen on day 1 stays (two
+// missed), one seen every day stays; a lap two minutes later is a visit of its own, scans within
+// a visit are not.
+TEST(LocalMapMerge, AVoxelTheLastVisitsOfItsLocalMapDidNotSeeIsForgotten) {
+    common::LocalMapData m;
+    m.voxel_size = 1.0f;
+    for (int day = 0; day < 4; ++day)
+        for (int k = 0; k < 5; ++k) m.observation_times.push_back(86400.0 * day + 0.1 * k);
+    const auto seen_last = [](int x, double t) {
+        common::VoxelData v = voxel({x, 0, 0}, {x + 0.5f, 0.5f, 0.5f}, {0, 0, 1}, 5);
+        v.life.created = 0.0;
+        v.life.last_seen = t;
+        v.life.observations = 3;
+        return v;
+    };
+    m.voxels = {seen_last(0, 0.4), seen_last(1, 86400.2), seen_last(2, 3 * 86400.0 + 0.3)};
+
+    common::LocalMapData kept = m;
+    EXPECT_EQ(forget_unseen_voxels(&kept, 0, 60.0), 0u);  // off
+    EXPECT_EQ(kept.voxels.size(), 3u);
+    EXPECT_EQ(forget_unseen_voxels(&kept, 4, 60.0), 0u);  // day 0's voxel missed three, not four
+    common::LocalMapData three = m;
+    EXPECT_EQ(forget_unseen_voxels(&three, 3, 60.0), 1u);
+    ASSERT_EQ(three.voxels.size(), 2u);
+    EXPECT_EQ(three.voxels[0].index.x(), 1);
+    EXPECT_EQ(three.voxels[1].index.x(), 2);
+    // Within one visit nothing is missed: one day's scans are one visit however many.
+    common::LocalMapData one_day = m;
+    one_day.observation_times = {0.0, 0.1, 0.2, 0.3, 0.4};
+    one_day.voxels = {seen_last(0, 0.0), seen_last(1, 0.4)};
+    EXPECT_EQ(forget_unseen_voxels(&one_day, 1, 60.0), 0u);
+    // A lap later (120 s, more than the gap): a visit of its own.
+    one_day.observation_times.push_back(120.0);
+    EXPECT_EQ(forget_unseen_voxels(&one_day, 1, 60.0), 2u);
+    EXPECT_TRUE(one_day.voxels.empty());
+}
+
 }  // namespace
 }  // namespace ltm::mapping

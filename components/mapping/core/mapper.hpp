@@ -194,6 +194,13 @@ class Mapper {
     std::size_t removed_voxels() const { return removed_voxels_; }
     // Voxels folded local maps forgot (LongTermConfig::forget_after_visits), since the start.
     std::size_t forgotten_voxels() const { return forgotten_voxels_; }
+    // Folds since the start: registrations tried, those used, and their corrections to the
+    // graph's estimate [m] (LongTermConfig::register_fold).
+    struct FoldStats {
+        std::size_t tried = 0, registered = 0;
+        std::vector<double> corrections;
+    };
+    const FoldStats& fold_stats() const { return fold_stats_; }
 
     // Paging (PagingConfig, mapper_paging.cpp). `loader` reads a paged-out local map's file back
     // (map::load_local_map from the directory the saves go to) and throws on failure; without
@@ -257,7 +264,12 @@ class Mapper {
     // Folds the finished local map of node `n` into an earlier map of the same place when the
     // conditions hold (mapper_long_term.cpp); the node it went into, or nullopt.
     std::optional<std::uint64_t> try_fold(std::uint64_t n);
-    void fold(std::uint64_t n, std::uint64_t into);
+    // n's anchor in into's anchor frame from registering n's surfaces to into's (from the graph's
+    // estimate T_graph), when LongTermConfig::register_fold and the fit is accepted and within
+    // fold_max_correction of T_graph; nothing otherwise (the fold then trusts the graph).
+    std::optional<Eigen::Isometry3d> registered_fold(std::uint64_t n, std::uint64_t into,
+                                                     const Eigen::Isometry3d& T_graph);
+    void fold(std::uint64_t n, std::uint64_t into, const Eigen::Isometry3d& T_into_n);
     // The stored keyframe standing for a new keyframe at world pose T (long_term), if any.
     std::optional<std::uint32_t> stand_in(std::uint32_t session, std::uint64_t local_map_id,
                                           std::uint64_t node, const Eigen::Isometry3d& T_world,
@@ -322,6 +334,7 @@ class Mapper {
     RemovedCells removed_;  // what maintenance found gone
     std::size_t removed_voxels_ = 0;
     std::size_t forgotten_voxels_ = 0;
+    FoldStats fold_stats_;
     std::deque<std::uint64_t> removal_waiting_;  // local maps to clear (remove_cells_in_steps)
     LocalMapLoader loader_;                      // paging: none, nothing is paged
     std::size_t paged_in_ = 0;

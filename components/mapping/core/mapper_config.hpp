@@ -84,6 +84,16 @@ struct LongTermConfig {
     // 0: voxels are never forgotten (the map only loses what maintenance removes).
     int forget_after_visits = 3;
     double visit_gap = 60.0;  // [s]
+    // A local map is folded where registering its surfaces to the existing map's (the loop
+    // verification's registration, from the graph's estimate) puts it, when that fit is accepted
+    // and within fold_max_correction / _rotation of the graph's estimate; otherwise (or when
+    // false) where the graph puts it. The graph places a day's maps by that day's localisation
+    // and loops, a cm or two off the old surfaces: folded so, each day moved the map's voxels by a
+    // share of that offset while its keyframes stayed (repeat_fortnight: the same scans localised
+    // 3.9 cm apart on day 1's and day 8's maps; components/bench/lifelong/README.md).
+    bool register_fold = true;
+    double fold_max_correction = 0.5;           // [m]
+    double fold_max_correction_rotation = 2.0;  // [deg]
 };
 
 // Joining two robots' sessions (open in one Mapper at once) that no loop has placed together yet.
@@ -236,6 +246,9 @@ void visit_own_fields(MapperConfig& c, Visitor&& v) {
     v("long_term.beside_surface", l.beside_surface, in_range(0.0, 1.0));
     v("long_term.forget_after_visits", l.forget_after_visits, non_negative);
     v("long_term.visit_gap", l.visit_gap, positive);
+    v("long_term.register_fold", l.register_fold, unchecked);
+    v("long_term.fold_max_correction", l.fold_max_correction, positive);
+    v("long_term.fold_max_correction_rotation", l.fold_max_correction_rotation, positive);
     auto& j = c.session_join;
     v("session_join.loops", j.loops, at_least(1));
     v("session_join.agree_translation", j.agree_translation, positive);

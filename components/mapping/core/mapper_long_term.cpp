@@ -101,14 +101,42 @@ std::optional<std::uint64_t> Mapper::try_fold(std::uint64_t n) {
     }
     if (!best) return std::nullopt;
     if (!page_in(*best, maps_.at(*best))) return std::nullopt;  // unavailable: kept apart
-    fold(n, *best);
+    const Eigen::Isometry3d T_graph =
+        graph_.find(*best)->T_world_anchor.inverse() * node->T_world_anchor;
+    fold(n, *best, registered_fold(n, *best, T_graph).value_or(T_graph));
     return best;
 }
 
-void Mapper::fold(std::uint64_t n, std::uint64_t into) {
+std::optional<Eigen::Isometry3d> Mapper::registered_fold(std::uint64_t n, std::uint64_t into,
+                                                         const Eigen::Isometry3d& T_graph) {
+    const LongTermConfig& lt = config_.long_term;
+    if (!lt.register_fold) return std::nullopt;
+    // The folded map's surfaces (its voxels with a normal) in its anchor frame, registered to the
+    // map they go into from the graph's estimate.
+    const common::LocalMapData& add = *maps_.at(n).stored.data;
+    std::vector<Eigen::Vector3f> points;
+    points.reserve(add.voxels.size());
+    const Eigen::Isometry3f T_anchor_grid = add.T_anchor_grid.cast<float>();
+    for (const common::VoxelData& v : add.voxels) {
+        if (v.normal.squaredNorm() > 0.0f) points.push_back(T_anchor_grid * v.centre);
+    }
+    const MapEntry& target = maps_.at(into);
+    const registration::LoopVerification r =
+        verifier_.verify(points, target.serial, *target.stored.data, T_graph);
+    ++fold_stats_.tried;
+    if (!r.accepted) return std::nullopt;
+    const Eigen::Isometry3d d = T_graph.inverse() * r.T_anchor_lidar;
+    const double dt = d.translation().norm();
+    const double dr = Eigen::AngleAxisd(d.linear()).angle() * 180.0 / M_PI;
+    // Larger than the graph can be off between places loops joined: another fit, not this one.
+    if (dt > lt.fold_max_correction || dr > lt.fold_max_correction_rotation) return std::nullopt;
+    ++fold_stats_.registered;
+    fold_stats_.corrections.push_back(dt);
+    return r.T_anchor_lidar;
+}
+
+void Mapper::fold(std::uint64_t n, std::uint64_t into, const Eigen::Isometry3d& T_into_n) {
     const map::PoseGraphNode folded_node = *graph_.find(n);
-    const map::PoseGraphNode& target = *graph_.find(into);
-    const Eigen::Isometry3d T_into_n = target.T_world_anchor.inverse() * folded_node.T_world_anchor;
     const Eigen::Isometry3d T_n_into = T_into_n.inverse();
 
     // The voxels.
