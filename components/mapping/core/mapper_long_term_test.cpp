@@ -102,6 +102,43 @@ TEST(MapperLongTerm, ASecondSessionOverAMappedSiteAddsNoLocalMapWhereItDrivesOve
 // The road driven the other way a day later (a 360 deg sensor): with a spinning sensor's preset
 // (keyframe_angle 180) a stored keyframe stands for a revisit whatever its heading, so the
 // reversed drive stores (almost) no keyframe; with 15 deg it stored a second set (issue 26).
+// A fold registers the folded map's surfaces to the map they go into (register_fold): the
+// second session's four local maps are each registered, the corrections to the graph's estimate
+// small (the loops placed them well); with register_fold off none is tried and the folds are the
+// graph's.
+TEST(MapperLongTerm, AFoldRegistersTheFoldedMapToTheOneItGoesInto) {
+    const std::vector<Eigen::Vector3f> scene =
+        registration::test::with_dense_ground(registration::test::synthetic_scene(71));
+    const MapperConfig config = test_config();
+    Mapper first(config);
+    replay(Drive(scene, 0.0, 0.0, Eigen::Isometry3d::Identity(), 0.0), first);
+    ASSERT_TRUE(first.optimise().solved);
+    const map::MapData map = first.snapshot();
+    const Drive again(scene, 0.5, 0.3, registration::test::xy_yaw(-20.0, 7.0, 35.0), 86400.0);
+
+    Mapper registered(config, map);
+    std::vector<LocalMapResult> results;
+    replay(again, registered, &results);
+    std::size_t merged = 0;
+    for (const LocalMapResult& r : results) merged += r.merged;
+    ASSERT_GE(merged, 3u);
+    const Mapper::FoldStats& f = registered.fold_stats();
+    EXPECT_EQ(f.tried, merged);
+    EXPECT_EQ(f.registered, merged);
+    ASSERT_EQ(f.corrections.size(), merged);
+    for (const double c : f.corrections) EXPECT_LT(c, 0.1);
+
+    MapperConfig off = config;
+    off.long_term.register_fold = false;
+    Mapper by_graph(off, map);
+    results.clear();
+    replay(again, by_graph, &results);
+    merged = 0;
+    for (const LocalMapResult& r : results) merged += r.merged;
+    EXPECT_GE(merged, 3u);
+    EXPECT_EQ(by_graph.fold_stats().tried, 0u);
+}
+
 TEST(MapperLongTerm, ARoadDrivenTheOtherWayStoresNoSecondSetOfKeyframesForASpinningSensor) {
     const std::vector<Eigen::Vector3f> scene =
         registration::test::with_dense_ground(registration::test::synthetic_scene(71));
