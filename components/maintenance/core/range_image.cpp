@@ -98,8 +98,10 @@ bool RangeImage::clear_around(float az, float el, float r, float reach) const {
     return true;
 }
 
-Visibility RangeImage::classify(const Eigen::Vector3f& p, float size, float margin) const {
+Visibility RangeImage::classify(const Eigen::Vector3f& p, float size, float margin,
+                                float hit_margin) const {
     if (rows_ == 0 || !p.allFinite()) return Visibility::kUnseen;
+    const float at = hit_margin >= 0.0f ? std::min(hit_margin, margin) : margin;
     const float r = p.norm();
     if (r <= 0.5f * size) return Visibility::kUnseen;
     const float az = std::atan2(p.y(), p.x());
@@ -124,7 +126,7 @@ Visibility RangeImage::classify(const Eigen::Vector3f& p, float size, float marg
     if (n_rows == 0) return Visibility::kUnseen;
     const int row_step = std::max(1, (n_rows + max_samples - 1) / max_samples);
     const int col_step = std::max(1, (c1 - c0 + max_samples - 1) / max_samples);
-    int beyond = 0, before = 0, sky = 0;
+    int beyond = 0, before = 0, behind = 0, sky = 0;
     for (int k = 0; k < n_rows; k += row_step) {
         const int row = rows[k];
         for (int c = c0; c <= c1; c += col_step) {
@@ -139,11 +141,15 @@ Visibility RangeImage::classify(const Eigen::Vector3f& p, float size, float marg
                 ++beyond;
             } else if (range < r - margin) {
                 ++before;
-            } else {
+            } else if (range <= r + at) {
                 return Visibility::kSurface;  // a surface return wins over every other sample
+            } else {
+                ++behind;  // just behind the cube: neither at it nor (surely) through it
             }
         }
     }
+    // A return just behind the cube says neither: never seen through on its strength either.
+    if (behind > 0) return Visibility::kUnseen;
     if (beyond > 0) return Visibility::kFree;
     if (before > 0) return Visibility::kOccluded;
     // Only beams to the sky through the cube: free when it is within their range and nothing

@@ -29,8 +29,15 @@ class RangeImage {
                const Eigen::Vector3f& up = Eigen::Vector3f::UnitZ());
 
     // The cube of edge `size` centred at `p` (sensor frame). A return counts as at the cube
-    // when its range is within `margin` of the cube's centre's, as beyond it when farther.
-    Visibility classify(const Eigen::Vector3f& p, float size, float margin) const;
+    // when its range is within `margin` of the cube's centre's, as beyond it (the cube seen
+    // through) when farther. With `hit_margin` (>= 0, below `margin`) a return farther than the
+    // cube's centre by more than `hit_margin` but not by `margin` is neither: another surface
+    // just behind the cube, not the cube (a van's side 0.7 m in front of its neighbour's at 33 m
+    // was "hit" by the neighbour's returns); the cube is then unseen unless another sample
+    // returned at it (a return before it within `margin` stays at it, as without).
+    // hit_margin < 0 (the default): `margin` both ways.
+    Visibility classify(const Eigen::Vector3f& p, float size, float margin,
+                        float hit_margin = -1.0f) const;
 
     bool empty() const { return rows_ == 0; }
     int rows() const { return rows_; }
