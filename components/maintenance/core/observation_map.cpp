@@ -110,9 +110,11 @@ JudgeCounts ObservationMap::judge(const View& view) {
         if ((c - sensor).squaredNorm() > max_range_sq) continue;
         ++counts.voxels;
         const Eigen::Vector3f p = T_sensor_world * c;
-        const float per_range = float(config_.free_margin_per_m) * p.norm();
-        const float margin = float(config_.free_margin) + half_diagonal + per_range;
-        const float hit_margin = float(config_.hit_margin) + half_diagonal + per_range;
+        const float range = p.norm();
+        const float margin =
+            float(config_.free_margin) + half_diagonal + float(config_.free_margin_per_m) * range;
+        const float hit_margin =
+            float(config_.hit_margin) + half_diagonal + float(config_.hit_margin_per_m) * range;
         ObservedVoxel& v = voxels_[i];
         switch (view.image.classify(p, voxel_size_, margin, hit_margin)) {
             case Visibility::kSurface:

@@ -203,6 +203,7 @@ TEST(ObservationMap, ASurfaceJustBehindACubeIsNotAHitOnIt) {
     EXPECT_GT(now[31].second, 2u) << "2 m in front: seen through";
     EXPECT_EQ(now[31].first, 0u);
     c.hit_margin = c.free_margin;  // the rule before: every return within the margin is a hit
+    c.hit_margin_per_m = c.free_margin_per_m;
     auto before = judge(c);
     EXPECT_GT(before[32].first, 10u);
     EXPECT_EQ(before[33].first, now[33].first);
