@@ -210,5 +210,47 @@ TEST(ObservationMap, ASurfaceJustBehindACubeIsNotAHitOnIt) {
     EXPECT_EQ(before[31].second, now[31].second);
 }
 
+// A wall along the route (y = 2.1 m) seen at a grazing angle from the origin, its returns lost
+// at x 29.5..30.45 m (a dark patch): the beams through the cubes there return on the same wall
+// 0.3-1 m behind them. That is the voxel's own surface (on its plane), still a hit; only another
+// surface just behind a cube says nothing (above).
+TEST(ObservationMap, AGrazingWallsOwnReturnJustBehindItsCubeIsStillAHit) {
+    MaintenanceConfig c;
+    ObservationMap map(c, {0, 0});
+    std::vector<Eigen::Vector3f> wall;
+    for (float x = 20.0f; x <= 40.0f; x += 0.05f)
+        for (float z = -0.5f; z <= 0.5f; z += 0.05f) wall.emplace_back(x, 2.1f, z);
+    map.add_points(wall, 0.0);
+    std::vector<Eigen::Vector3f> scan;
+    for (int ring = 0; ring <= 30; ++ring) {
+        const double el = (-6.0 + 0.4 * ring) * M_PI / 180.0;
+        for (int k = 0; k < 100; ++k) {
+            const double az = (0.1 + 0.2 * k) * M_PI / 180.0;
+            const Eigen::Vector3d d(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az),
+                                    std::sin(el));
+            const Eigen::Vector3d q = d * (2.1 / d.y());
+            if (q.x() < 20.0 || q.x() > 40.0 || std::abs(q.z()) > 0.5) continue;
+            if (q.x() > 29.5 && q.x() < 30.45) continue;  // lost
+            scan.push_back(q.cast<float>());
+        }
+    }
+    View view;
+    view.map_time = 100.0;
+    view.image = RangeImage(c.range_image, scan);
+    map.judge(view);
+    std::size_t in_patch = 0, hit = 0, free = 0;
+    for (std::uint32_t i = 0; i < map.size(); ++i) {
+        const Eigen::Vector3f p = map.centre(i);
+        if (p.x() < 29.6f || p.x() > 30.2f || std::abs(p.z()) > 0.3f) continue;
+        ++in_patch;
+        for (const auto& e : map.voxel(i).hit_histogram())
+            if (e.slot > 0) ++hit;
+        for (const auto& e : map.voxel(i).free_histogram()) free += e.count;
+    }
+    ASSERT_GT(in_patch, 4u);
+    EXPECT_GE(hit, in_patch) << "the wall's own return just behind its cubes: hits";
+    EXPECT_EQ(free, 0u);
+}
+
 }  // namespace
 }  // namespace ltm::maintenance
