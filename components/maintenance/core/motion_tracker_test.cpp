@@ -103,11 +103,8 @@ TEST(MotionTracker, ParkedCarPassedAtSpeedIsNotMoving) {
 
 TEST(MotionTracker, ItsVoxelsLeaveTheMapStaticOnesStay) {
     // Through the long-term map with its defaults (no preset): the walker's voxels go, the wall's
-    // and the car's stay; without the motion tracker much of the walker, hit in its views, stays,
-    // and so it does when the tracker follows only the session's first 0.3 s
-    // (motion.session_span). (Since the hit band, hit_margin, the returns of what stands just
-    // behind the walker's cubes no longer count as hits on them: the histories alone take about
-    // half of it, 34-37 of 71 kept, against more than half before.)
+    // and the car's stay; without the motion tracker the walker, hit in its views, stays, and so
+    // it does when the tracker follows only the session's first 0.3 s (motion.session_span).
     const auto run = [](bool enabled, double span, std::size_t* walker, std::size_t* walker_kept,
                         std::size_t* stat, std::size_t* stat_kept) {
         MaintenanceConfig config;
@@ -150,13 +147,10 @@ TEST(MotionTracker, ItsVoxelsLeaveTheMapStaticOnesStay) {
     ASSERT_GT(stat, 300u);
     EXPECT_LE(walker_kept, walker / 10) << walker_kept << " of " << walker << " kept";
     EXPECT_GE(stat_kept, stat * 99 / 100) << stat_kept << " of " << stat << " kept";
-    const std::size_t kept_with = walker_kept;
     run(false, 12.0, &walker, &walker_kept, &stat, &stat_kept);
-    EXPECT_GT(walker_kept, walker / 3) << walker_kept << " of " << walker << " kept without it";
-    EXPECT_GT(walker_kept, 3 * kept_with);
+    EXPECT_GT(walker_kept, walker / 2) << walker_kept << " of " << walker << " kept without it";
     run(true, 0.3, &walker, &walker_kept, &stat, &stat_kept);
-    EXPECT_GT(walker_kept, walker / 3) << walker_kept << " of " << walker << " kept past the span";
-    EXPECT_GT(walker_kept, 3 * kept_with);
+    EXPECT_GT(walker_kept, walker / 2) << walker_kept << " of " << walker << " kept past the span";
 }
 
 // SemanticKITTI 07's walker: 0.3 m in front of a hedge 14 m long, on the cells next to the
