@@ -160,6 +160,16 @@ struct MaintenanceConfig {
     double create_range = 0.0;
     double free_margin = 0.3;  // [m] a return this much beyond a cube (plus half its diagonal)
     double free_margin_per_m = 0.01;  // [m/m] ... plus this per metre of range: seen through
+    // [m] a return behind a cube counts as at it (a hit) only within this (plus half its
+    // diagonal, plus hit_margin_per_m per metre of range) of the cube's centre along the beam; one
+    // farther, but not beyond the free margin, is another surface just behind the cube and says
+    // nothing (a van's side 0.7 m in front of the next van's kept "hits" from it, seen from 33-50
+    // m, after the van left). The per-metre term is smaller than free_margin_per_m: an angular
+    // pose error moves a return across the beam, hardly along it. hit_margin = free_margin and
+    // hit_margin_per_m = free_margin_per_m: the rule before (every return within the free
+    // margin is a hit).
+    double hit_margin = 0.1;
+    double hit_margin_per_m = 0.002;  // [m/m]
     // [s] scans become views at most this often (unset: min(0.2, T/50), T so far)
     std::optional<double> view_spacing;
     double view_delay = 10.0;   // [s] a view judges the voxels that exist this long after it
@@ -182,6 +192,8 @@ void visit_fields(MaintenanceConfig& c, const std::string& prefix, Visitor&& v) 
     v(prefix + "create_range", c.create_range, non_negative);
     v(prefix + "free_margin", c.free_margin, non_negative);
     v(prefix + "free_margin_per_m", c.free_margin_per_m, non_negative);
+    v(prefix + "hit_margin", c.hit_margin, non_negative);
+    v(prefix + "hit_margin_per_m", c.hit_margin_per_m, non_negative);
     v(prefix + "view_spacing", c.view_spacing, non_negative);
     v(prefix + "view_delay", c.view_delay, non_negative);
     v(prefix + "session_gap", c.session_gap, non_negative);

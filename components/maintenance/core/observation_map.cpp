@@ -100,6 +100,7 @@ void ObservationMap::add_points(const std::vector<Eigen::Vector3f>& points, doub
 JudgeCounts ObservationMap::judge(const View& view) {
     JudgeCounts counts;
     const Eigen::Isometry3f T_sensor_world = view.T_world_sensor.inverse().cast<float>();
+    const Eigen::Isometry3f T_world_sensor = view.T_world_sensor.cast<float>();
     const Eigen::Vector3f sensor = view.T_world_sensor.translation().cast<float>();
     const float max_range_sq = float(config_.max_range * config_.max_range);
     const auto slot = std::int32_t(std::floor(view.map_time / config_.slot));
@@ -110,10 +111,28 @@ JudgeCounts ObservationMap::judge(const View& view) {
         if ((c - sensor).squaredNorm() > max_range_sq) continue;
         ++counts.voxels;
         const Eigen::Vector3f p = T_sensor_world * c;
-        const float margin = float(config_.free_margin) + half_diagonal +
-                             float(config_.free_margin_per_m) * p.norm();
+        const float range = p.norm();
+        const float margin =
+            float(config_.free_margin) + half_diagonal + float(config_.free_margin_per_m) * range;
+        const float hit_margin =
+            float(config_.hit_margin) + half_diagonal + float(config_.hit_margin_per_m) * range;
         ObservedVoxel& v = voxels_[i];
-        switch (view.image.classify(p, voxel_size_, margin)) {
+        Eigen::Vector3f behind(0.0f, 0.0f, 0.0f);
+        Visibility seen = view.image.classify(p, voxel_size_, margin, hit_margin, &behind);
+        // A return just behind the cube on the voxel's own plane is its surface seen at a grazing
+        // angle (a hit, as it always was); on another surface (a van's side 0.7 m behind the
+        // one that left) it says nothing. A voxel with no plane keeps the old rule (a hit).
+        if (seen == Visibility::kUnseen && behind.squaredNorm() > 0.0f) {
+            const Eigen::Vector3f n = normal(std::uint32_t(i));
+            const float off =
+                n.squaredNorm() > 0.0f
+                    ? std::abs(n.dot(T_world_sensor * behind - centre(std::uint32_t(i))))
+                    : 0.0f;
+            const float tolerance = float(config_.hit_margin) + 0.5f * voxel_size_ +
+                                    view.image.pixel_half_diagonal() * behind.norm();
+            if (off <= tolerance) seen = Visibility::kSurface;
+        }
+        switch (seen) {
             case Visibility::kSurface:
                 v.history.add(slot, true, max_entries);
                 ++counts.hit;

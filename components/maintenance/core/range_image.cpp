@@ -98,8 +98,10 @@ bool RangeImage::clear_around(float az, float el, float r, float reach) const {
     return true;
 }
 
-Visibility RangeImage::classify(const Eigen::Vector3f& p, float size, float margin) const {
+Visibility RangeImage::classify(const Eigen::Vector3f& p, float size, float margin,
+                                float hit_margin, Eigen::Vector3f* behind_return) const {
     if (rows_ == 0 || !p.allFinite()) return Visibility::kUnseen;
+    const float at = hit_margin >= 0.0f ? std::min(hit_margin, margin) : margin;
     const float r = p.norm();
     if (r <= 0.5f * size) return Visibility::kUnseen;
     const float az = std::atan2(p.y(), p.x());
@@ -124,7 +126,9 @@ Visibility RangeImage::classify(const Eigen::Vector3f& p, float size, float marg
     if (n_rows == 0) return Visibility::kUnseen;
     const int row_step = std::max(1, (n_rows + max_samples - 1) / max_samples);
     const int col_step = std::max(1, (c1 - c0 + max_samples - 1) / max_samples);
-    int beyond = 0, before = 0, sky = 0;
+    int beyond = 0, before = 0, behind = 0, sky = 0;
+    float behind_range = 0.0f;
+    int behind_row = 0, behind_col = 0;
     for (int k = 0; k < n_rows; k += row_step) {
         const int row = rows[k];
         for (int c = c0; c <= c1; c += col_step) {
@@ -139,10 +143,26 @@ Visibility RangeImage::classify(const Eigen::Vector3f& p, float size, float marg
                 ++beyond;
             } else if (range < r - margin) {
                 ++before;
-            } else {
+            } else if (range <= r + at) {
                 return Visibility::kSurface;  // a surface return wins over every other sample
+            } else {  // just behind the cube: neither at it nor (surely) through it
+                if (behind++ == 0 || range < behind_range) {
+                    behind_range = range;
+                    behind_row = row;
+                    behind_col = ((c % cols_) + cols_) % cols_;
+                }
             }
         }
+    }
+    // A return just behind the cube says neither: never seen through on its strength either.
+    if (behind > 0) {
+        if (behind_return) {
+            const float a = (float(behind_col) + 0.5f) * az_res_ - kPi;
+            const float e = el_min_ + (float(behind_row) + 0.5f) * el_res_;
+            *behind_return = behind_range * Eigen::Vector3f(std::cos(e) * std::cos(a),
+                                                            std::cos(e) * std::sin(a), std::sin(e));
+        }
+        return Visibility::kUnseen;
     }
     if (beyond > 0) return Visibility::kFree;
     if (before > 0) return Visibility::kOccluded;

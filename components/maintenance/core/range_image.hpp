@@ -10,6 +10,7 @@
 // the measured returns are the occluders, so parked cars, walls and the moving object itself
 // occlude exactly as they did when the scan was taken.
 #include <Eigen/Core>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -29,8 +30,20 @@ class RangeImage {
                const Eigen::Vector3f& up = Eigen::Vector3f::UnitZ());
 
     // The cube of edge `size` centred at `p` (sensor frame). A return counts as at the cube
-    // when its range is within `margin` of the cube's centre's, as beyond it when farther.
-    Visibility classify(const Eigen::Vector3f& p, float size, float margin) const;
+    // when its range is within `margin` of the cube's centre's, as beyond it (the cube seen
+    // through) when farther. With `hit_margin` (>= 0, below `margin`) a return farther than the
+    // cube's centre by more than `hit_margin` but not by `margin` is neither: another surface
+    // just behind the cube, not the cube (a van's side 0.7 m in front of its neighbour's at 33 m
+    // was "hit" by the neighbour's returns); the cube is then unseen unless another sample
+    // returned at it (a return before it within `margin` stays at it, as without).
+    // hit_margin < 0 (the default): `margin` both ways. `behind` (optional): the nearest such
+    // return (sensor frame, at its pixel's centre direction) when the cube is unseen for it, so
+    // that the caller can tell the cube's own surface at a grazing angle from another surface.
+    Visibility classify(const Eigen::Vector3f& p, float size, float margin,
+                        float hit_margin = -1.0f, Eigen::Vector3f* behind = nullptr) const;
+    // Half the angular diagonal of a pixel [rad]: a return placed at its pixel's centre direction
+    // is at most this times its range off.
+    float pixel_half_diagonal() const { return 0.5f * std::hypot(az_res_, el_res_); }
 
     bool empty() const { return rows_ == 0; }
     int rows() const { return rows_; }
