@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <thread>
 
 #include "common/core/io_error.hpp"
 #include "runtime/config_error.hpp"
@@ -77,6 +78,8 @@ void block_stop_signals() {
 void tune_malloc_for_large_samples() {
     mallopt(M_MMAP_THRESHOLD, 64 * 1024 * 1024);
     mallopt(M_TRIM_THRESHOLD, 256 * 1024 * 1024);
+    if (!std::getenv("MALLOC_ARENA_MAX"))
+        mallopt(M_ARENA_MAX, int(std::max(2u, std::thread::hardware_concurrency())));
 }
 
 Host::Host(LaunchConfig config) : config_(std::move(config)) {

@@ -58,7 +58,12 @@ class Host {
 void block_stop_signals();
 
 // glibc malloc thresholds that keep large samples (1-2 MB scans) on the heap instead of fresh
-// mmap()s: in-process transfer of a 1.4 MB sample drops from ~2 ms to ~0.2 ms.
+// mmap()s: in-process transfer of a 1.4 MB sample drops from ~2 ms to ~0.2 ms. And at most one
+// malloc arena a core (glibc's default is eight a core; MALLOC_ARENA_MAX in the environment wins):
+// each component thread with an arena of its own kept freed memory there between two trims
+// (heap_trim.hpp); with one arena a core a lifelong day's host peaked 45 MB lower (571 / 584
+// against 628 / 619 MB, repeat_fortnight day 3, fast mode, the same CPU time;
+// components/bench/lifelong/README.md, "Ten days").
 void tune_malloc_for_large_samples();
 
 }  // namespace ltm::runtime
