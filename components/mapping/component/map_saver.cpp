@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <filesystem>
 #include <optional>
 #include <thread>
 
@@ -44,8 +45,24 @@ void MapSaver::stop() {
 
 std::unordered_map<std::uint64_t, map::MapWriter::WrittenLocalMap> MapSaver::written_local_maps()
     const {
-    std::lock_guard<std::mutex> lock(written_mutex_);
-    return written_;
+    std::unordered_map<std::uint64_t, map::MapWriter::WrittenLocalMap> out;
+    {
+        std::lock_guard<std::mutex> lock(written_mutex_);
+        out = written_;
+    }
+    // Only files still there as written: a map paged out on a file that is gone would be lost
+    // (a lifelong session's site component, constructed after the mapping, removed the staging
+    // the mapping's first save had just filled; site_week lost a day's version so). The next save
+    // writes the others again (MapWriter checks its files' sizes).
+    std::error_code ec;
+    for (auto it = out.begin(); it != out.end();) {
+        const map::LocalMapFile* f = it->second.file.get();
+        const bool there =
+            f && std::filesystem::file_size(std::filesystem::path(dir_) / f->file, ec) == f->size &&
+            !ec;
+        it = there ? std::next(it) : out.erase(it);
+    }
+    return out;
 }
 
 std::string MapSaver::describe(const std::string& dir, const map::SaveStats& st) {

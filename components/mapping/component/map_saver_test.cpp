@@ -89,6 +89,26 @@ TEST(MapSaver, AWaitingSaveOlderThanASaveNowIsSkipped) {
     EXPECT_EQ(saver.background_saves(), 0u);
 }
 
+// A staging emptied behind the saver's back (a lifelong session's site component, constructed
+// after the mapping, removed what the mapping's first save had put there): the saver no longer
+// names those files as written, so the mapping does not page a local map out onto a file that is
+// gone; the next save writes them again.
+TEST(MapSaver, FilesGoneFromTheFolderAreNotNamedAsWrittenAndTheNextSaveWritesThemAgain) {
+    const fs::path dir = fresh_dir("gone");
+    Lines log;
+    MapSaver saver("mapping", dir.string(), {}, nullptr, log.sink());
+    const map::MapData m = small_map(1, 3);
+    saver.save_now(m, {});
+    EXPECT_EQ(saver.written_local_maps().size(), 3u);
+    fs::remove_all(dir);
+    EXPECT_TRUE(saver.written_local_maps().empty());
+    saver.save_now(m, {});  // the same map: the writer sees its files gone and writes them
+    EXPECT_EQ(saver.written_local_maps().size(), 3u);
+    const map::LoadedMap back = map::load_map(dir.string());
+    EXPECT_TRUE(back.refused.empty());
+    EXPECT_EQ(back.map.local_maps.size(), 3u);
+}
+
 TEST(MapSaver, AStopFinishesTheSaveThatWaits) {
     const fs::path dir = fresh_dir("stop");
     Lines log;
