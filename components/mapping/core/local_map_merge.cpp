@@ -25,6 +25,14 @@ std::uint32_t saturating_add(std::uint32_t a, std::uint32_t b) {
                : a + b;
 }
 
+// The sorted union of two voxels' seen indices, into `into`.
+void add_seen(std::vector<std::uint16_t>& into, const std::vector<std::uint16_t>& more) {
+    std::vector<std::uint16_t> seen;
+    seen.reserve(into.size() + more.size());
+    std::set_union(into.begin(), into.end(), more.begin(), more.end(), std::back_inserter(seen));
+    into = std::move(seen);
+}
+
 // b folded into a (both in the same cell of the same grid frame; seen already remapped).
 void merge_voxel(common::VoxelData& a, const common::VoxelData& b) {
     const double wa = double(std::max<std::uint32_t>(a.point_count, 1));
@@ -53,11 +61,7 @@ void merge_voxel(common::VoxelData& a, const common::VoxelData& b) {
     a.life.created = std::min(a.life.created, b.life.created);
     a.life.last_seen = std::max(a.life.last_seen, b.life.last_seen);
     a.life.observations = saturating_add(a.life.observations, b.life.observations);
-    std::vector<std::uint16_t> seen;
-    seen.reserve(a.life.seen.size() + b.life.seen.size());
-    std::set_union(a.life.seen.begin(), a.life.seen.end(), b.life.seen.begin(), b.life.seen.end(),
-                   std::back_inserter(seen));
-    a.life.seen = std::move(seen);
+    add_seen(a.life.seen, b.life.seen);
 }
 
 // seen indices through `map` (old index -> new index), sorted, without repeats.
@@ -275,11 +279,7 @@ common::LocalMapData merge_local_maps(const common::LocalMapData& into,
                 // (its life goes on: forget_unseen_voxels).
                 common::VoxelLife& life = out.voxels[std::size_t(j)].life;
                 life.last_seen = std::max(life.last_seen, moved.life.last_seen);
-                std::vector<std::uint16_t> seen;
-                seen.reserve(life.seen.size() + moved.life.seen.size());
-                std::set_union(life.seen.begin(), life.seen.end(), moved.life.seen.begin(),
-                               moved.life.seen.end(), std::back_inserter(seen));
-                life.seen = std::move(seen);
+                add_seen(life.seen, moved.life.seen);
                 ++beside;
                 continue;
             }
