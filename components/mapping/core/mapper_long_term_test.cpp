@@ -99,9 +99,6 @@ TEST(MapperLongTerm, ASecondSessionOverAMappedSiteAddsNoLocalMapWhereItDrivesOve
     EXPECT_EQ(sessions[1].last_stamp, 86415.0);
 }
 
-// The road driven the other way a day later (a 360 deg sensor): with a spinning sensor's preset
-// (keyframe_angle 180) a stored keyframe stands for a revisit whatever its heading, so the
-// reversed drive stores (almost) no keyframe; with 15 deg it stored a second set (issue 26).
 // A fold registers the folded map's surfaces to the map they go into (register_fold): the
 // second session's four local maps are each registered, the corrections to the graph's estimate
 // small (the loops placed them well); with register_fold off none is tried and the folds are the
@@ -139,6 +136,9 @@ TEST(MapperLongTerm, AFoldRegistersTheFoldedMapToTheOneItGoesInto) {
     EXPECT_EQ(by_graph.fold_stats().tried, 0u);
 }
 
+// The road driven the other way a day later (a 360 deg sensor): with a spinning sensor's preset
+// (keyframe_angle 180) a stored keyframe stands for a revisit whatever its heading, so the
+// reversed drive stores (almost) no keyframe; with 15 deg it stored a second set (issue 26).
 TEST(MapperLongTerm, ARoadDrivenTheOtherWayStoresNoSecondSetOfKeyframesForASpinningSensor) {
     const std::vector<Eigen::Vector3f> scene =
         registration::test::with_dense_ground(registration::test::synthetic_scene(71));
