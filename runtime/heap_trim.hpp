@@ -11,6 +11,7 @@
 // faulted in again (at a period of seconds, well under 1 % of a core).
 #include <chrono>
 #include <cstddef>
+#include <string>
 
 namespace ltm::runtime {
 
@@ -34,5 +35,23 @@ class HeapTrimmer {
 // Gives every malloc arena's free pages back to the system now; true when some memory was
 // released (glibc), false otherwise or where malloc_trim does not exist.
 bool trim_heap();
+
+// What the process's memory is made of, in bytes: resident (VmRSS, and its peak VmHWM), what
+// malloc's arenas hold from the system (heap pages and large mmapped blocks) and how much of that
+// the program uses (glibc mallinfo2, summed over every arena). `known` is false where they cannot
+// be read; then resident is still filled when /proc is there. held - in_use is what malloc keeps
+// free: after a trim only the part in pages it cannot give back (a page with one live allocation on
+// it).
+struct HeapStats {
+    bool known = false;
+    std::size_t resident = 0;
+    std::size_t peak = 0;  // VmHWM
+    std::size_t held = 0;
+    std::size_t in_use = 0;
+};
+HeapStats heap_stats();
+
+// One line for a log: "resident 512 MB (peak 540 MB), heap 430 MB in use of 470 MB held".
+std::string heap_stats_text(const HeapStats& s);
 
 }  // namespace ltm::runtime

@@ -63,5 +63,28 @@ TEST(TrimHeap, GivesFreedPagesBack) {
 }
 #endif
 
+#if defined(__GLIBC__)
+TEST(HeapStats, CountsWhatTheProgramHoldsAndWhatMallocKeepsFree) {
+    const HeapStats before = heap_stats();
+    if (!before.known) GTEST_SKIP() << "no mallinfo2 in this C library";
+    std::vector<std::unique_ptr<char[]>> blocks(4096);  // 16 MiB in 4 KiB blocks, written
+    for (auto& b : blocks) {
+        b.reset(new char[4096]);
+        std::memset(b.get(), 1, 4096);
+    }
+    const HeapStats held = heap_stats();
+    EXPECT_GE(held.in_use, before.in_use + 15 * 1024 * 1024);
+    EXPECT_GE(held.held, held.in_use);
+    EXPECT_GE(held.peak, held.resident);
+    EXPECT_GT(held.resident, std::size_t(16) * 1024 * 1024);
+    for (auto& b : blocks) b.reset();
+    const HeapStats freed = heap_stats();
+    EXPECT_LE(freed.in_use + 15 * 1024 * 1024, held.in_use);
+    const std::string line = heap_stats_text(held);
+    EXPECT_NE(line.find("in use of"), std::string::npos) << line;
+    EXPECT_NE(line.find("resident "), std::string::npos) << line;
+}
+#endif
+
 }  // namespace
 }  // namespace ltm::runtime

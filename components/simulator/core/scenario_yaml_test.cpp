@@ -29,7 +29,7 @@ std::string error_of(const std::string& text) {
 TEST(ScenarioYaml, ShippedScenariosLoad) {
     for (const char* name :
          {"tiny_loop", "site_loop", "site_sessions", "kitti00_path", "fast_turns", "turn_on_spot",
-          "repeat_week", "repeat_fortnight", "tiny_lost", "handheld_spins"}) {
+          "repeat_week", "repeat_fortnight", "long_day", "tiny_lost", "handheld_spins"}) {
         const ScenarioConfig sc = load_scenario(kScenarios + name + ".yaml");
         EXPECT_EQ(sc.name, name);
         EXPECT_FALSE(sc.sessions.empty());
