@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "common/core/io_error.hpp"
+#include "common/core/ply_io.hpp"
 #include "common/core/trajectory_io.hpp"
 #include "evaluation/cli/commands.hpp"
 #include "evaluation/cli/lifelong_inputs.hpp"
@@ -331,6 +332,11 @@ int run_lifelong(const LifelongOptions& o) {
                 scans << line;
             }
             write_text_file(o.out + "/day" + std::to_string(d) + "_scans.txt", scans.str());
+            if (!c.static_lost.empty()) {
+                common::PlyCloud lost;
+                for (const auto& p : c.static_lost) lost.points.push_back(p.cast<float>());
+                common::write_ply(o.out + "/day" + std::to_string(d) + "_static_lost.ply", lost);
+            }
             if (!accounts.empty()) {
                 write_text_file(o.out + "/day" + std::to_string(d) + "_objects.txt",
                                 objects_text(accounts));
@@ -392,10 +398,12 @@ Run add_lifelong(CLI::App& parent) {
     app->add_option("--min-planarity", o->min_planarity,
                     "map voxels counted (localisation's filter) [0..1]");
     app->add_option("--min-health", o->min_health, "map voxels counted [0..1]");
-    app->add_option("--out", o->out,
-                    "write metrics.txt, metrics.json, table.txt, dayN.svg, dayN_scans.txt (each "
-                    "scan's error), dayN_objects.txt (each changed object's place) and "
-                    "dayN_kept.txt (the voxels kept in those places) here");
+    app->add_option(
+        "--out", o->out,
+        "write metrics.txt, metrics.json, table.txt, dayN.svg, dayN_scans.txt (each "
+        "scan's error), dayN_objects.txt (each changed object's place) and "
+        "dayN_kept.txt (the voxels kept in those places) and dayN_static_lost.ply (day 0's static "
+        "voxels the map after the day lost) here");
     return [o] { return run_lifelong(*o); };
 }
 

@@ -70,7 +70,10 @@ MapChangeScore score_map_changes(const std::vector<Eigen::Vector3d>& first_map,
     for (const auto& p : first_map) {
         if (inside_any(p, exclude, m)) continue;
         ++s.static_before;
-        if (grid.has_neighbour(p.cast<float>())) ++s.static_kept;
+        if (grid.has_neighbour(p.cast<float>()))
+            ++s.static_kept;
+        else
+            s.static_lost.push_back(p);
     }
     return s;
 }

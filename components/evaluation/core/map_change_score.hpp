@@ -30,6 +30,8 @@ struct MapChangeScore {
     // First-map voxels outside every box of `unstable` (and of this day's changes): how many,
     // and how many of them the later map keeps.
     std::size_t static_before = 0, static_kept = 0;
+    // The first map's static voxels the later map lost (world frame): where the static% goes.
+    std::vector<Eigen::Vector3d> static_lost;
 };
 
 // Voxel centres in the world frame. `unstable`: every object that changes on any day (so that a

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 namespace ltm::eval {
 namespace {
 
@@ -74,6 +76,10 @@ TEST(MapChangeScore, CountsWhatTheLaterMapKept) {
     strict.static_radius = 0.2;
     const MapChangeScore t = score_map_changes(first, later, changes, {stays}, strict);
     EXPECT_EQ(t.static_kept, ground.size() - (ground.size() + 9) / 10);
+    EXPECT_TRUE(s.static_lost.empty());
+    ASSERT_EQ(t.static_lost.size(), t.static_before - t.static_kept);
+    for (const auto& p : t.static_lost)  // each one a first-map voxel the later map has not
+        EXPECT_TRUE(std::find(later.begin(), later.end(), p) == later.end()) << p.transpose();
 }
 
 TEST(MapChangeScore, EmptyMapsScoreZero) {

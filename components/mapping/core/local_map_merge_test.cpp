@@ -5,6 +5,7 @@
 #include <cmath>
 #include <map>
 
+#include "mapping/core/mapper_config.hpp"
 #include "registration/core/test_data.hpp"
 
 namespace ltm::mapping {
@@ -345,6 +346,34 @@ TEST(LocalMapMerge, AVoxelTheLastVisitsOfItsLocalMapDidNotSeeIsForgotten) {
     one_day.observation_times.push_back(120.0);
     EXPECT_EQ(forget_unseen_voxels(&one_day, 1, 60.0), 2u);
     EXPECT_TRUE(one_day.voxels.empty());
+}
+
+// A long day on the same ground (eight laps 100 s apart) is one visit with the default gap: a
+// voxel seen on day 0 or on the day's first lap only is not forgotten within the day (with a
+// 60 s gap the laps were eight visits: a long day forgot 45 k voxels of repeat_week's yard, day
+// 0's far ground among them); three later days are three visits as before.
+TEST(LocalMapMerge, TheLapsOfALongDayAreOneVisitWithTheDefaultGap) {
+    const MapperConfig config;
+    const auto& life = config.long_term;
+    common::LocalMapData m;
+    m.voxel_size = 1.0f;
+    for (int k = 0; k < 5; ++k) m.observation_times.push_back(0.1 * k);
+    for (int lap = 0; lap < 8; ++lap)
+        for (int k = 0; k < 5; ++k) m.observation_times.push_back(86400.0 + 100.0 * lap + 0.1 * k);
+    const auto seen_last = [](int x, double t) {
+        common::VoxelData v = voxel({x, 0, 0}, {x + 0.5f, 0.5f, 0.5f}, {0, 0, 1}, 5);
+        v.life.created = 0.0;
+        v.life.last_seen = t;
+        v.life.observations = 3;
+        return v;
+    };
+    m.voxels = {seen_last(0, 0.4), seen_last(1, 86400.2)};
+    EXPECT_EQ(forget_unseen_voxels(&m, life.forget_after_visits, life.visit_gap), 0u);
+    for (int day = 2; day < 4; ++day)
+        for (int k = 0; k < 5; ++k) m.observation_times.push_back(86400.0 * day + 0.1 * k);
+    EXPECT_EQ(forget_unseen_voxels(&m, life.forget_after_visits, life.visit_gap), 1u);
+    ASSERT_EQ(m.voxels.size(), 1u);
+    EXPECT_EQ(m.voxels[0].index.x(), 1);
 }
 
 }  // namespace
