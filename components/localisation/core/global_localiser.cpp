@@ -184,20 +184,36 @@ std::vector<std::uint32_t> GlobalLocaliser::ring_key_candidates(
 }
 
 std::vector<GlobalLocaliser::Place> GlobalLocaliser::rank_places(
-    const places::ScanContext& query, const std::optional<PoseHint>& hint) const {
+    const std::vector<Eigen::Vector3f>& finite, const places::ScanContext& query,
+    const std::optional<PoseHint>& hint) const {
     const LocalisationMap& map = *map_;
-    std::vector<std::uint32_t> candidates;
-    if (hint) {
-        const double r = hint->radius > 0.0 ? hint->radius : config_.hint_radius;
-        candidates = map.keyframes_near(hint->T_map_lidar.translation(), r);
-    } else {
-        candidates = ring_key_candidates(query);
-    }
+    // The scan's descriptor as it came, and turned by each tilt offset (a handheld sensor's
+    // pitch differs from the map keyframes'): each one's candidates, all ranked together.
     std::vector<Place> scored;
-    for (std::uint32_t k : candidates) {
-        const places::ScanContextMatch m =
-            places::compare(query, map.keyframes()[k].descriptor, map.descriptor_config());
-        if (m.valid) scored.push_back({k, m.distance, m.yaw});
+    for (const double tilt_deg : config_.tilt_offsets) {
+        const double tilt = tilt_deg * kDegToRad;
+        places::ScanContext turned;
+        if (tilt != 0.0) {
+            const Eigen::Matrix3f R =
+                Eigen::AngleAxisf(float(tilt), Eigen::Vector3f::UnitY()).toRotationMatrix();
+            std::vector<Eigen::Vector3f> pts;
+            pts.reserve(finite.size());
+            for (const Eigen::Vector3f& p : finite) pts.push_back(R * p);
+            turned = places::make_scan_context(pts, map_->descriptor_config());
+        }
+        const places::ScanContext& q = tilt != 0.0 ? turned : query;
+        std::vector<std::uint32_t> candidates;
+        if (hint) {
+            const double r = hint->radius > 0.0 ? hint->radius : config_.hint_radius;
+            candidates = map.keyframes_near(hint->T_map_lidar.translation(), r);
+        } else {
+            candidates = ring_key_candidates(q);
+        }
+        for (std::uint32_t k : candidates) {
+            const places::ScanContextMatch m =
+                places::compare(q, map.keyframes()[k].descriptor, map.descriptor_config());
+            if (m.valid) scored.push_back({k, m.distance, m.yaw, tilt});
+        }
     }
     std::sort(scored.begin(), scored.end(),
               [](const Place& a, const Place& b) { return a.distance < b.distance; });
@@ -303,7 +319,7 @@ GlobalLocalisation GlobalLocaliser::localise(const std::vector<Eigen::Vector3f>&
     }
     Clock::time_point t = start;
     const places::ScanContext query = places::make_scan_context(finite, map_->descriptor_config());
-    const std::vector<Place> places = rank_places(query, hint);
+    const std::vector<Place> places = rank_places(finite, query, hint);
     out.places = int(places.size());
     out.steps.places = lap(&t);
     if (places.empty() && !hint) {
@@ -415,7 +431,11 @@ GlobalLocaliser::Guesses GlobalLocaliser::initial_guesses(
     for (std::size_t i = 0; i < places.size(); ++i) {
         const Eigen::Isometry3d& T_kf = map_->keyframes()[places[i].keyframe].T_map_lidar;
         for (double off : config_.yaw_offsets) {
-            guesses.push_back({yawed(T_kf, places[i].yaw + off * kDegToRad), int(i), false});
+            Eigen::Isometry3d T = yawed(T_kf, places[i].yaw + off * kDegToRad);
+            T.linear() =
+                T.linear() *
+                Eigen::AngleAxisd(places[i].tilt, Eigen::Vector3d::UnitY()).toRotationMatrix();
+            guesses.push_back({T, int(i), false});
         }
     }
     if (config_.local_features) feature_guesses(finite, places, &guesses);

@@ -49,6 +49,14 @@ struct GlobalLocaliserConfig {
     double place_separation = 4.0;  // a candidate this close to a better one is the same place [m]
     // Initial yaws tried about each place's descriptor yaw [deg].
     std::vector<double> yaw_offsets = {0.0};
+    // Tilts tried [deg]: the scan's descriptor is also made with its points turned by each of
+    // these about the sensor's y axis (pitch), and the ring-key candidates of each are compared;
+    // a place found so gives initial poses turned by that tilt. The descriptors are made in the
+    // sensor's frame, a map keyframe's in its own: a handheld sensor pitched 15-17 deg from every
+    // keyframe of a place does not find it (hku-avia session 2 scans 89-91, pitched 33-38 deg:
+    // the keyframe 0.12 m and 8 deg from scan 91 ranked 147th of 149 by descriptor distance). The
+    // narrow preset (handheld Livox type sensors) tries 0 and +-15 (localiser_preset).
+    std::vector<double> tilt_offsets = {0.0};
     bool local_features = true;    // also initial poses from local features + RANSAC
     double feature_region = 40.0;  // map samples within this of a place's keyframe [m]
     // (the features' own settings are the map's: LocalisationMapConfig::features)
@@ -167,6 +175,7 @@ void visit_fields(GlobalLocaliserConfig& c, const std::string& prefix, Visitor&&
     v(prefix + "places", c.places, at_least(1));
     v(prefix + "place_separation", c.place_separation, non_negative);
     v(prefix + "yaw_offsets", c.yaw_offsets, not_empty);
+    v(prefix + "tilt_offsets", c.tilt_offsets, not_empty);
     v(prefix + "local_features", c.local_features, unchecked);
     v(prefix + "feature_region", c.feature_region, positive);
     visit_fields(c.matching, prefix + "matching.", v);
@@ -267,6 +276,7 @@ class GlobalLocaliser {
         std::uint32_t keyframe;
         double distance;
         double yaw;
+        double tilt = 0.0;  // the query's points turned by this about the sensor's y axis [rad]
     };
     using Guesses = std::vector<Guess, Eigen::aligned_allocator<Guess>>;
     struct Verified {
@@ -276,7 +286,8 @@ class GlobalLocaliser {
     };
     // The steps of localise(), in order.
     std::vector<std::uint32_t> ring_key_candidates(const places::ScanContext& query) const;
-    std::vector<Place> rank_places(const places::ScanContext& query,
+    std::vector<Place> rank_places(const std::vector<Eigen::Vector3f>& finite,
+                                   const places::ScanContext& query,
                                    const std::optional<PoseHint>& hint) const;
     Guesses initial_guesses(const std::vector<Eigen::Vector3f>& finite,
                             const std::vector<Place>& places, const std::optional<PoseHint>& hint);
