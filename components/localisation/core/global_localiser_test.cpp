@@ -286,6 +286,18 @@ TEST(GlobalLocaliserTilt, APitchedNarrowScanIsFoundWithTheTiltOffsets) {
     }
     EXPECT_GE(found_tilted, 5);
     EXPECT_LT(found_level, found_tilted);
+    // More places compared is no licence for a wrong one: a scene the map does not hold, level or
+    // pitched, is not localised.
+    const std::vector<Eigen::Vector3f> elsewhere =
+        mt::with_dense_ground(mt::synthetic_scene(97, 70.0));
+    for (const double pitch : {0.0, 17.0, -17.0}) {
+        Eigen::Isometry3d T = mt::xy_yaw(2.0, -1.0, 40.0);
+        T.linear() = T.linear() *
+                     Eigen::AngleAxisd(pitch * kDeg, Eigen::Vector3d::UnitY()).toRotationMatrix();
+        const GlobalLocalisation r =
+            GlobalLocaliser(map, tilted).localise(narrow_view(elsewhere, T));
+        EXPECT_FALSE(r.localised) << pitch << ": " << r.reason;
+    }
     // The spinning sensors' presets do not try tilts.
     EXPECT_EQ(localiser_preset(common::SensorPreset::kHdl64).global.tilt_offsets,
               std::vector<double>{0.0});
