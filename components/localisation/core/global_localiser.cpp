@@ -184,20 +184,36 @@ std::vector<std::uint32_t> GlobalLocaliser::ring_key_candidates(
 }
 
 std::vector<GlobalLocaliser::Place> GlobalLocaliser::rank_places(
-    const places::ScanContext& query, const std::optional<PoseHint>& hint) const {
+    const std::vector<Eigen::Vector3f>& finite, const places::ScanContext& query,
+    const std::optional<PoseHint>& hint) const {
     const LocalisationMap& map = *map_;
-    std::vector<std::uint32_t> candidates;
-    if (hint) {
-        const double r = hint->radius > 0.0 ? hint->radius : config_.hint_radius;
-        candidates = map.keyframes_near(hint->T_map_lidar.translation(), r);
-    } else {
-        candidates = ring_key_candidates(query);
-    }
+    // The scan's descriptor as it came, and turned by each tilt offset (a handheld sensor's
+    // pitch differs from the map keyframes'): each one's candidates, all ranked together.
     std::vector<Place> scored;
-    for (std::uint32_t k : candidates) {
-        const places::ScanContextMatch m =
-            places::compare(query, map.keyframes()[k].descriptor, map.descriptor_config());
-        if (m.valid) scored.push_back({k, m.distance, m.yaw});
+    for (const double tilt_deg : config_.tilt_offsets) {
+        const double tilt = tilt_deg * kDegToRad;
+        places::ScanContext turned;
+        if (tilt != 0.0) {
+            const Eigen::Matrix3f R =
+                Eigen::AngleAxisf(float(tilt), Eigen::Vector3f::UnitY()).toRotationMatrix();
+            std::vector<Eigen::Vector3f> pts;
+            pts.reserve(finite.size());
+            for (const Eigen::Vector3f& p : finite) pts.push_back(R * p);
+            turned = places::make_scan_context(pts, map_->descriptor_config());
+        }
+        const places::ScanContext& q = tilt != 0.0 ? turned : query;
+        std::vector<std::uint32_t> candidates;
+        if (hint) {
+            const double r = hint->radius > 0.0 ? hint->radius : config_.hint_radius;
+            candidates = map.keyframes_near(hint->T_map_lidar.translation(), r);
+        } else {
+            candidates = ring_key_candidates(q);
+        }
+        for (std::uint32_t k : candidates) {
+            const places::ScanContextMatch m =
+                places::compare(q, map.keyframes()[k].descriptor, map.descriptor_config());
+            if (m.valid) scored.push_back({k, m.distance, m.yaw, tilt});
+        }
     }
     std::sort(scored.begin(), scored.end(),
               [](const Place& a, const Place& b) { return a.distance < b.distance; });
@@ -303,7 +319,7 @@ GlobalLocalisation GlobalLocaliser::localise(const std::vector<Eigen::Vector3f>&
     }
     Clock::time_point t = start;
     const places::ScanContext query = places::make_scan_context(finite, map_->descriptor_config());
-    const std::vector<Place> places = rank_places(query, hint);
+    const std::vector<Place> places = rank_places(finite, query, hint);
     out.places = int(places.size());
     out.steps.places = lap(&t);
     if (places.empty() && !hint) {
@@ -341,39 +357,62 @@ GlobalLocalisation GlobalLocaliser::localise(const std::vector<Eigen::Vector3f>&
         out.reason = poor_search_fit(accepted.front().v.inlier_fraction);
         return finished(out, start);
     }
-    const registration::LoopVerification& best = accepted.front().v;
     const Guess& from = guesses[std::size_t(accepted.front().guess)];
-    out.second_inliers_ratio = rival_ratio(accepted);
-    take_answer(best, from, places, &out);
-    if (out.second_inliers_ratio >= config_.ambiguity_ratio) {
-        out.reason = ambiguous_places(out.second_inliers_ratio);
-        return finished(out, start);
-    }
-    // The answer's constraints are the verification's fine registration's (grid frame = map
-    // frame): no second registration.
-    if (best.covariance.allFinite()) out.covariance = best.covariance;
-    const HorizontalConstraints hc = horizontal_constraints(best.hessian);
-    out.weakest_share = hc.share;
-    const bool elongated = out.weakest_share < config_.slide_below_share;
-    const bool poor = best.inlier_fraction < config_.slide_below_inlier_fraction;
-    if (config_.slide_distance > 0.0 && (elongated || poor)) {
-        // Along the weakest horizontal direction; a poor fit that pins both alike has no
-        // telling direction: along both (site_loop, 3 laps, another day's scan 20 turned: share
-        // 0.41, 76 % inliers, 3.5 m along the road, which was its stronger direction).
-        std::vector<Eigen::Vector3d> directions{hc.weakest};
-        if (!elongated) directions.push_back(hc.strongest);
-        out.slide_tested = true;
-        out.slide_inliers_ratio = slide_rival(finite, best, directions, &out.verified);
-        out.second_inliers_ratio = std::max(out.second_inliers_ratio, out.slide_inliers_ratio);
+    // The answer's checks; a clearly better pose the slide test reaches becomes the answer and
+    // is checked again (slide_moves).
+    for (;;) {
+        const registration::LoopVerification& best = accepted.front().v;
+        out.second_inliers_ratio = rival_ratio(accepted);
+        take_answer(best, from, places, &out);
         if (out.second_inliers_ratio >= config_.ambiguity_ratio) {
-            out.reason = ambiguous_along_slide(config_.slide_distance, out.second_inliers_ratio,
-                                               out.weakest_share);
+            out.reason = ambiguous_places(out.second_inliers_ratio);
             out.steps.checks = lap(&t);
             return finished(out, start);
         }
+        // The answer's constraints are the verification's fine registration's (grid frame = map
+        // frame): no second registration.
+        if (best.covariance.allFinite()) out.covariance = best.covariance;
+        const HorizontalConstraints hc = horizontal_constraints(best.hessian);
+        out.weakest_share = hc.share;
+        const bool elongated = out.weakest_share < config_.slide_below_share;
+        const bool poor = best.inlier_fraction < config_.slide_below_inlier_fraction;
+        if (config_.slide_distance > 0.0 && (elongated || poor)) {
+            // Along the weakest horizontal direction; a poor fit that pins both alike has no
+            // telling direction: along both (site_loop, 3 laps, another day's scan 20 turned:
+            // share 0.41, 76 % inliers, 3.5 m along the road, which was its stronger direction).
+            std::vector<Eigen::Vector3d> directions{hc.weakest};
+            if (!elongated) directions.push_back(hc.strongest);
+            out.slide_tested = true;
+            std::vector<registration::LoopVerification> rivals =
+                slide_rivals(finite, best, directions, &out.verified);
+            out.slide_inliers_ratio =
+                rivals.empty() ? 0.0 : double(rivals.front().inliers) / double(best.inliers);
+            // The answer fits below ambiguity_ratio of the slide pose's inliers, and the slide
+            // pose fits well itself: the better minimum beside the answer. The answer moves
+            // there, the poses verified so far its rivals.
+            if (out.slide_moved < config_.slide_moves &&
+                out.slide_inliers_ratio * config_.ambiguity_ratio > 1.0 &&
+                rivals.front().inlier_fraction >= config_.search.below_inlier_fraction) {
+                ++out.slide_moved;
+                for (registration::LoopVerification& v : rivals)
+                    accepted.push_back({std::move(v), accepted.front().guess});
+                std::stable_sort(
+                    accepted.begin(), accepted.end(),
+                    [](const Verified& a, const Verified& b) { return a.v.inliers > b.v.inliers; });
+                continue;
+            }
+            out.second_inliers_ratio = std::max(out.second_inliers_ratio, out.slide_inliers_ratio);
+            if (out.second_inliers_ratio >= config_.ambiguity_ratio) {
+                out.reason = ambiguous_along_slide(config_.slide_distance, out.second_inliers_ratio,
+                                                   out.weakest_share);
+                out.steps.checks = lap(&t);
+                return finished(out, start);
+            }
+        }
+        break;
     }
     out.confidence *= 1.0 - out.second_inliers_ratio;
-    out.reason = describe(from, places, best, out);
+    out.reason = describe(from, places, accepted.front().v, out);
     out.localised = true;
     out.around = around_;
     out.steps.checks = lap(&t);
@@ -392,7 +431,11 @@ GlobalLocaliser::Guesses GlobalLocaliser::initial_guesses(
     for (std::size_t i = 0; i < places.size(); ++i) {
         const Eigen::Isometry3d& T_kf = map_->keyframes()[places[i].keyframe].T_map_lidar;
         for (double off : config_.yaw_offsets) {
-            guesses.push_back({yawed(T_kf, places[i].yaw + off * kDegToRad), int(i), false});
+            Eigen::Isometry3d T = yawed(T_kf, places[i].yaw + off * kDegToRad);
+            T.linear() =
+                T.linear() *
+                Eigen::AngleAxisd(places[i].tilt, Eigen::Vector3d::UnitY()).toRotationMatrix();
+            guesses.push_back({T, int(i), false});
         }
     }
     if (config_.local_features) feature_guesses(finite, places, &guesses);
@@ -602,24 +645,28 @@ void GlobalLocaliser::take_answer(const registration::LoopVerification& best, co
 // Slide test: along the horizontal direction the scan pins down worst (a corridor, a narrow view
 // along a row of similar things), the answer is moved by slide_distance either way and verified
 // again; another verified pose there that fits about as well is a rival the places did not offer
-// (hku-avia: three answers 1.5-3 m along the path passed every other check).
-double GlobalLocaliser::slide_rival(const std::vector<Eigen::Vector3f>& finite,
-                                    const registration::LoopVerification& best,
-                                    const std::vector<Eigen::Vector3d>& directions, int* verified) {
-    double ratio = 0.0;
+// (hku-avia: three answers 1.5-3 m along the path passed every other check), and one that fits
+// clearly better is the minimum the answer should have reached (slide_moves).
+std::vector<registration::LoopVerification> GlobalLocaliser::slide_rivals(
+    const std::vector<Eigen::Vector3f>& finite, const registration::LoopVerification& best,
+    const std::vector<Eigen::Vector3d>& directions, int* verified) {
+    std::vector<registration::LoopVerification> rivals;
     for (std::size_t k = 0; k < 2 * directions.size(); ++k) {
         const double sign = k % 2 ? -1.0 : 1.0;
         Eigen::Isometry3d moved = best.T_anchor_lidar;
         moved.translation() += sign * config_.slide_distance * directions[k / 2];
-        const registration::LoopVerification v =
+        registration::LoopVerification v =
             verifier_.verify(finite, target(), registration::GuessList{moved});
         ++*verified;
         if (!v.accepted) continue;
         const auto [dt, dr] = pose_distance(best.T_anchor_lidar, v.T_anchor_lidar);
         if (dt < config_.distinct_translation && dr < config_.distinct_rotation) continue;
-        ratio = std::max(ratio, double(v.inliers) / double(best.inliers));
+        rivals.push_back(std::move(v));
     }
-    return ratio;
+    std::stable_sort(rivals.begin(), rivals.end(),
+                     [](const registration::LoopVerification& a,
+                        const registration::LoopVerification& b) { return a.inliers > b.inliers; });
+    return rivals;
 }
 
 // How the answer was found, and its figures (one line).
@@ -643,6 +690,7 @@ std::string GlobalLocaliser::describe(const Guess& from, const std::vector<Place
     if (out.outprobed) how << ", outprobed " << out.outprobed;
     if (out.searched) how << ", searched around " << out.searched;
     if (out.slide_tested) how << ", slide rival " << out.slide_inliers_ratio;
+    if (out.slide_moved) how << ", moved by the slide test " << out.slide_moved;
     how << ", verified " << out.verified;
     return how.str();
 }

@@ -145,5 +145,167 @@ TEST(GlobalLocaliserSearch, TurnsOnlyTheGuessesThatDidNotVerify) {
     EXPECT_EQ(b.search_scored, three_yaws);
 }
 
+// A street whose posts and panels repeat every 2 m along x, with walls either side, and (when
+// `landmark`) one box that does not repeat.
+std::vector<Eigen::Vector3f> repeating_street(bool landmark) {
+    std::vector<Eigen::Vector3f> pts;
+    for (float x = -40.0f; x <= 40.0f; x += 0.25f) {
+        for (float y = -10.0f; y <= 10.0f; y += 0.25f) pts.emplace_back(x, y, -1.8f);
+        for (float z = -1.8f; z <= 2.2f; z += 0.25f) {
+            pts.emplace_back(x, -10.0f, z);
+            pts.emplace_back(x, 10.0f, z);
+        }
+    }
+    // Posts 0.6 m square every 2 m either side.
+    for (float c = -40.0f; c <= 40.0f; c += 2.0f) {
+        for (const float y : {-5.0f, 5.0f}) {
+            for (float z = -1.8f; z <= 1.2f; z += 0.1f) {
+                for (float s = -0.3f; s <= 0.3f; s += 0.1f) {
+                    pts.emplace_back(c + s, y - 0.3f, z);
+                    pts.emplace_back(c + s, y + 0.3f, z);
+                    pts.emplace_back(c - 0.3f, y + s, z);
+                    pts.emplace_back(c + 0.3f, y + s, z);
+                }
+            }
+        }
+    }
+    if (landmark) {  // panels across the road's edges, at spacings that do not repeat
+        const std::pair<float, float> panels[] = {{-5.3f, -1.0f}, {-2.1f, -1.0f}, {2.7f, -1.0f},
+                                                  {4.2f, -1.0f},  {7.9f, -1.0f},  {-3.7f, 1.0f},
+                                                  {0.6f, 1.0f},   {5.5f, 1.0f}};
+        for (const auto& [x, side] : panels) {
+            for (float z = -1.8f; z <= 4.2f; z += 0.1f) {
+                for (float y = 1.5f; y <= 4.5f; y += 0.1f) pts.emplace_back(x, side * y, z);
+            }
+        }
+    }
+    return pts;
+}
+
+std::shared_ptr<const LocalisationMap> street_map(const std::vector<Eigen::Vector3f>& scene) {
+    std::vector<std::vector<Eigen::Vector3f>> scans;
+    common::PoseList poses;
+    for (double x = -24.0; x <= 24.0; x += 4.0) {
+        poses.push_back(mt::xy_yaw(x, 0.0, 0.0));
+        scans.push_back(mt::view(scene, poses.back(), 30.0));
+    }
+    return std::make_shared<const LocalisationMap>(make_map(scans, poses, 0.6, 0.0));
+}
+
+// Scans 56, 57 and 92 of hku-avia session 2 were refused as ambiguous: their answer stood in a
+// poorer minimum 1.4-3 m along the path, and the slide test reached the true pose with 113-116 %
+// of its inliers. A pose the slide test reaches that fits clearly better is the answer; one that
+// fits about as well (a street that repeats itself exactly) still makes it ambiguous.
+TEST(GlobalLocaliserSlide, AClearlyBetterPoseTheSlideTestReachesIsTheAnswer) {
+    const std::vector<Eigen::Vector3f> street = repeating_street(true);
+    const auto map = street_map(street);
+    const Eigen::Isometry3d truth = mt::xy_yaw(1.0, 0.0, 0.0);
+    const std::vector<Eigen::Vector3f> scan = mt::view(street, truth, 30.0);
+    GlobalLocaliserConfig c;
+    c.local_features = false;
+    c.search.radius = 0.0;       // no translation search: the slide test alone
+    c.slide_below_share = 1.0;   // slide-tested whatever the fit's constraints
+    c.hint_yaw_offsets = {0.0};  // the hint alone, one period (2 m) along the street
+    // A basin narrower than a period (hku-avia's answers stood 1.4-3 m off): the coarse pass
+    // reaches no surface 2 m away.
+    c.verification.coarse.max_correspondence_distance = 0.8;
+    PoseHint hint;
+    hint.T_map_lidar = truth * mt::xy_yaw(2.0, 0.0, 0.0);
+    hint.radius = 0.5;
+    GlobalLocaliserConfig before = c;
+    before.slide_moves = 0;
+    const GlobalLocalisation a = GlobalLocaliser(map, before).localise(scan, hint);
+    EXPECT_FALSE(a.localised) << a.reason;
+    EXPECT_GT(a.slide_inliers_ratio, 1.0 / c.ambiguity_ratio) << a.reason;
+    const GlobalLocalisation b = GlobalLocaliser(map, c).localise(scan, hint);
+    ASSERT_TRUE(b.localised) << b.reason;
+    EXPECT_EQ(b.slide_moved, 1) << b.reason;
+    EXPECT_LT(error_of(b.T_map_lidar, truth).translation, 0.1) << b.reason;
+    EXPECT_LT(b.second_inliers_ratio, c.ambiguity_ratio) << b.reason;
+    // No landmark: the pose 2 m along fits as well, and nothing is claimed.
+    const std::vector<Eigen::Vector3f> plain = repeating_street(false);
+    const GlobalLocalisation d =
+        GlobalLocaliser(street_map(plain), c).localise(mt::view(plain, truth, 30.0), hint);
+    EXPECT_FALSE(d.localised) << d.reason;
+    EXPECT_EQ(d.slide_moved, 0) << d.reason;
+    GlobalLocaliserConfig bad;
+    bad.slide_moves = -1;
+    ASSERT_TRUE(validate(bad));
+    EXPECT_EQ(validate(bad)->key, "slide_moves");
+}
+
+// What a narrow (Livox type, 70 deg) sensor at T_world_lidar sees of the scene.
+std::vector<Eigen::Vector3f> narrow_view(const std::vector<Eigen::Vector3f>& scene,
+                                         const Eigen::Isometry3d& T_world_lidar) {
+    std::vector<Eigen::Vector3f> out;
+    for (const Eigen::Vector3f& p : mt::view(scene, T_world_lidar, 40.0)) {
+        if (std::abs(std::atan2(p.y(), p.x())) < 35.0 * kDeg) out.push_back(p);
+    }
+    return out;
+}
+
+// A handheld sensor pitched from the map's keyframes (hku-avia session 2 scans 89-91: 15-17 deg
+// from every session-1 scan of the place; refused, the right keyframes ranked last by their
+// descriptors): its descriptor is also made turned by the tilt offsets, and the initial poses
+// carry the tilt.
+TEST(GlobalLocaliserTilt, APitchedNarrowScanIsFoundWithTheTiltOffsets) {
+    const SceneMap& s = scene_map();
+    // The map of narrow views along the path, every metre, level.
+    std::vector<std::vector<Eigen::Vector3f>> scans;
+    common::PoseList poses;
+    for (std::size_t i = 0; i + 1 < s.path.size(); ++i) {
+        for (const double f : {0.0, 0.5}) {
+            Eigen::Isometry3d T = s.path[i];
+            T.translation() = (1.0 - f) * s.path[i].translation() + f * s.path[i + 1].translation();
+            poses.push_back(T);
+            scans.push_back(narrow_view(s.scene, T));
+        }
+    }
+    const auto map = std::make_shared<const LocalisationMap>(make_map(scans, poses, 0.6, 0.0));
+    GlobalLocaliserConfig level = localiser_preset(common::SensorPreset::kNarrow).global;
+    level.tilt_offsets = {0.0};
+    const GlobalLocaliserConfig tilted = localiser_preset(common::SensorPreset::kNarrow).global;
+    ASSERT_EQ(tilted.tilt_offsets.size(), 3u);
+    int found_level = 0, found_tilted = 0;
+    for (int trial = 0; trial < 6; ++trial) {
+        Eigen::Isometry3d truth = poses[std::size_t(4 + 4 * trial)] * mt::xy_yaw(0.2, -0.2, 5.0);
+        const double pitch = (trial % 2 ? -17.0 : 17.0) * kDeg;
+        truth.linear() =
+            truth.linear() * Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()).toRotationMatrix();
+        const std::vector<Eigen::Vector3f> scan = narrow_view(s.scene, truth);
+        const GlobalLocalisation a = GlobalLocaliser(map, level).localise(scan);
+        const GlobalLocalisation b = GlobalLocaliser(map, tilted).localise(scan);
+        for (const GlobalLocalisation* r : {&a, &b}) {
+            if (!r->localised) continue;  // allowed, but a pose must be right
+            const Errors e = error_of(r->T_map_lidar, truth);
+            EXPECT_LT(e.translation, 0.1) << trial << ": " << r->reason;
+            EXPECT_LT(e.rotation_deg, 0.5) << trial << ": " << r->reason;
+        }
+        found_level += a.localised;
+        found_tilted += b.localised;
+    }
+    EXPECT_GE(found_tilted, 5);
+    EXPECT_LT(found_level, found_tilted);
+    // More places compared is no licence for a wrong one: a scene the map does not hold, level or
+    // pitched, is not localised.
+    const std::vector<Eigen::Vector3f> elsewhere =
+        mt::with_dense_ground(mt::synthetic_scene(97, 70.0));
+    for (const double pitch : {0.0, 17.0, -17.0}) {
+        Eigen::Isometry3d T = mt::xy_yaw(2.0, -1.0, 40.0);
+        T.linear() = T.linear() *
+                     Eigen::AngleAxisd(pitch * kDeg, Eigen::Vector3d::UnitY()).toRotationMatrix();
+        const GlobalLocalisation r =
+            GlobalLocaliser(map, tilted).localise(narrow_view(elsewhere, T));
+        EXPECT_FALSE(r.localised) << pitch << ": " << r.reason;
+    }
+    // The spinning sensors' presets do not try tilts.
+    EXPECT_EQ(localiser_preset(common::SensorPreset::kHdl64).global.tilt_offsets,
+              std::vector<double>{0.0});
+    GlobalLocaliserConfig bad;
+    bad.tilt_offsets.clear();
+    ASSERT_TRUE(validate(bad));
+    EXPECT_EQ(validate(bad)->key, "tilt_offsets");
+}
+
 }  // namespace
 }  // namespace ltm::localisation

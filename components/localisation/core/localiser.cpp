@@ -62,9 +62,13 @@ LocaliserConfig localiser_preset(common::SensorPreset preset) {
     // neighbours are compared with the full descriptor as they come, none skipped as a clump
     // of one place (GlobalLocaliserConfig::candidate_separation), 25 of them as before the
     // separation came.
+    // ... and a handheld one is pitched from the map's keyframes of a place (hku-avia: by up to
+    // 17 deg): its descriptor is also made turned by +-15 deg (GlobalLocaliserConfig::
+    // tilt_offsets; session 2 on session 1, 260 -> 265 of 266 right, 0 wrong).
     if (row.horizontal_fov_deg < 360.0) {
         c.global.candidate_separation = 0.0;
         c.global.candidates = 25;
+        c.global.tilt_offsets = {0.0, 15.0, -15.0};
     }
     c.off_map_margin = row.localisation.off_map_margin;
     return c;
