@@ -101,7 +101,8 @@ TEST_F(SitePipeline, TheMappingsFirstSaveIsKeptAndAnEarlierSessionsStagingRemove
         << "ltm site staging\nsession earlier\npid 999999\nclaimed 2026-11-28 10:00:00 UTC\n";
     const std::string mapping =
         "  - name: mapping\n    type: mapping\n    params: {site_dir: " + site +
-        ", save_period_s: 60, cpu_budget: background}\n";  // saves at once
+        ", save_period_s: 60, cpu_budget: background, scan_context: {rings: 6, sectors: 12, "
+        "max_range: 80, min_range: 0, sensor_height: 2}}\n";  // the tiny map's; saves at once
     Process host({kHost, config(177, site, mapping)}, path("host"));
     ASSERT_TRUE(host.wait_for_log("the session starts from v0001", 60)) << host.err();
     const std::string err = host.err();
@@ -110,7 +111,9 @@ TEST_F(SitePipeline, TheMappingsFirstSaveIsKeptAndAnEarlierSessionsStagingRemove
                                 "claimed 2026-11-28 10:00:00 UTC)";
     const auto first = err.find(removed);
     ASSERT_NE(first, std::string::npos) << err;
-    EXPECT_EQ(err.find("/next: the staging of a session", first + 1), std::string::npos) << err;
+    EXPECT_EQ(err.find("/next: the staging of a session", first + removed.size()),
+              std::string::npos)
+        << err;
     const auto saved = err.find("map saved to " + site + "/next/map");
     ASSERT_NE(saved, std::string::npos) << err;
     EXPECT_LT(first, saved) << err;  // removed before the session wrote into it
@@ -122,8 +125,7 @@ TEST_F(SitePipeline, TheMappingsFirstSaveIsKeptAndAnEarlierSessionsStagingRemove
     host.signal(SIGTERM);
     ASSERT_EQ(host.wait(60), 0) << host.err();
     EXPECT_NE(host.err().find("saved site version (site): " + site +
-                              "/versions/v0002 (v0002: 0 "
-                              "local maps added, 0 updated (2)"),
+                              "/versions/v0002 (v0002: 0 local maps added"),
               std::string::npos)
         << host.err();
     const auto versions = store.versions();
