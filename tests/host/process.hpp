@@ -40,6 +40,7 @@ class Process {
         }
     }
     void signal(int sig) { kill(pid_, sig); }
+    pid_t pid() const { return pid_; }
     // Exit code (128 + signal when killed); -1 when still running after `timeout_s` (then killed).
     int wait(double timeout_s) {
         const auto deadline =

@@ -1,7 +1,8 @@
 // The `site` component through the host (issue 26, item 3): a session commits what was staged as
 // the site's next version at SIGTERM; nothing staged is NOT saved (exit 4) and the previous
 // version stays the newest; a second live session on the site, and a named version that is
-// unknown, are refused in one line (exit 2); a staging a crashed session left is removed; the
+// unknown, are refused in one line (exit 2); a staging a crashed session left is removed, and the
+// mapping's first save into the staging (before the site component's construction) is kept; the
 // localisation on a new site says there is no map yet, takes the site's anchor, and refuses a
 // damaged anchor in one line. The map is staged by the test itself
 // (the mapping's part is the lead's); the host runs the real site component.
@@ -17,6 +18,7 @@
 #include "host/temp_dir_test.hpp"
 #include "map/core/map_store.hpp"
 #include "map/core/site_anchor.hpp"
+#include "map/core/site_staging.hpp"
 #include "map/core/site_store.hpp"
 #include "map/core/site_test_maps.hpp"
 
@@ -82,6 +84,54 @@ TEST_F(SitePipeline, TheStagedSessionBecomesTheNextVersionAndASecondSessionIsRef
     EXPECT_TRUE(versions[1].intact) << versions[1].problem;
     EXPECT_FALSE(fs::exists(store.staging_dir()));
     EXPECT_EQ(map::load_map(versions[1].map_dir()).map.local_maps.size(), 3u);
+}
+
+// A composed host as robot_lifelong.yaml: the mapping (constructed before the site component)
+// claims the staging and saves into it at its construction; the site component shares the claim
+// and keeps that save (before, it removed SITE/next whenever it existed: "the staging of a session
+// that did not finish", right after the mapping's first save). A staging an earlier session left
+// (marked by it, a dead pid) is still removed, once, before the mapping's first save.
+TEST_F(SitePipeline, TheMappingsFirstSaveIsKeptAndAnEarlierSessionsStagingRemoved) {
+    const std::string site = path("site");
+    make_first_version(site);
+    map::SiteStore store(site);
+    fs::create_directories(store.staging_map_dir());
+    std::ofstream(store.staging_map_dir() + "/lm_earlier.bin") << "an earlier session's file";
+    std::ofstream(store.staging_marker_file())
+        << "ltm site staging\nsession earlier\npid 999999\nclaimed 2026-11-28 10:00:00 UTC\n";
+    const std::string mapping =
+        "  - name: mapping\n    type: mapping\n    params: {site_dir: " + site +
+        ", save_period_s: 60, cpu_budget: background, scan_context: {rings: 6, sectors: 12, "
+        "max_range: 80, min_range: 0, sensor_height: 2}}\n";  // the tiny map's; saves at once
+    Process host({kHost, config(177, site, mapping)}, path("host"));
+    ASSERT_TRUE(host.wait_for_log("the session starts from v0001", 60)) << host.err();
+    const std::string err = host.err();
+    const std::string removed = "removed " + site +
+                                "/next: the staging of a session that did not finish (pid 999999, "
+                                "claimed 2026-11-28 10:00:00 UTC)";
+    const auto first = err.find(removed);
+    ASSERT_NE(first, std::string::npos) << err;
+    EXPECT_EQ(err.find("/next: the staging of a session", first + removed.size()),
+              std::string::npos)
+        << err;
+    const auto saved = err.find("map saved to " + site + "/next/map");
+    ASSERT_NE(saved, std::string::npos) << err;
+    EXPECT_LT(first, saved) << err;  // removed before the session wrote into it
+    EXPECT_NE(err.find(site + "/next is this session's staging (pid "), std::string::npos) << err;
+    EXPECT_TRUE(fs::exists(store.staging_map_dir() + "/manifest.txt"));  // the first save, kept
+    EXPECT_FALSE(fs::exists(store.staging_map_dir() + "/lm_earlier.bin"));
+    EXPECT_EQ(map::read_staging_mark(site).pid, long(host.pid()));
+
+    host.signal(SIGTERM);
+    ASSERT_EQ(host.wait(60), 0) << host.err();
+    EXPECT_NE(host.err().find("saved site version (site): " + site +
+                              "/versions/v0002 (v0002: 0 local maps added"),
+              std::string::npos)
+        << host.err();
+    const auto versions = store.versions();
+    ASSERT_EQ(versions.size(), 2u);
+    EXPECT_TRUE(versions[1].intact) << versions[1].problem;
+    EXPECT_FALSE(fs::exists(versions[1].dir + "/session"));
 }
 
 TEST_F(SitePipeline, NothingStagedIsNotSavedAndThePreviousVersionStays) {

@@ -65,6 +65,7 @@
 #include "maintenance/core/change_report.hpp"
 #include "maintenance/core/long_term_map.hpp"
 #include "maintenance/core/packed_scan.hpp"
+#include "map/core/site_staging.hpp"
 #include "map/core/site_store.hpp"
 #include "runtime/component.hpp"
 #include "runtime/convert/dds_string.hpp"
@@ -263,6 +264,15 @@ class MaintenanceComponent : public runtime::Component {
     void resolve_files(runtime::Parameters& p) {
         load_file_ = save_file_ = config_.map_file;
         if (config_.site_dir.empty()) return;
+        // The staging is this session's before anything is saved into it
+        // (map/core/site_staging.hpp): shared with the mapping and the site component.
+        bool made = false;
+        try {
+            staging_claim_ = map::claim_staging(config_.site_dir, &made);
+        } catch (const common::IoError& e) {
+            p.fail("site_dir", e.what());
+        }
+        if (made && !staging_claim_->removed().empty()) ctx_.log().warn(staging_claim_->removed());
         map::SiteSession site;
         try {
             site = map::resolve_site(config_.site_dir, config_.site_version);
@@ -544,7 +554,8 @@ class MaintenanceComponent : public runtime::Component {
     std::string frame_id_ = "map";
 
     // The worker's (read by on_shutdown after the join).
-    std::string load_file_, save_file_;  // the maintained map's ("": none)
+    std::string load_file_, save_file_;                 // the maintained map's ("": none)
+    std::shared_ptr<map::StagingClaim> staging_claim_;  // with site_dir: the session's staging
     std::unique_ptr<LongTermMap> map_;
     std::uint32_t session_ = 0;
     bool started_ = false;

@@ -25,7 +25,7 @@
 #include "common/core/io_error.hpp"
 #include "map/core/map_store.hpp"
 #include "map/core/site_anchor.hpp"
-#include "map/core/site_lock.hpp"
+#include "map/core/site_staging.hpp"
 #include "map/core/site_store.hpp"
 
 namespace {
@@ -77,9 +77,9 @@ int check(const std::string& dir, const std::string& version) {
 
 int import_map(const std::string& dir, const std::string& map_dir, const std::string& maintained,
                std::size_t keep) {
-    ltm::map::SiteLock lock(SiteStore(dir).lock_file());
+    const auto claim = ltm::map::claim_staging(dir);  // the site's lock; an earlier staging gone
+    if (!claim->removed().empty()) std::printf("%s\n", claim->removed().c_str());
     SiteStore site(dir);
-    site.remove_stale_staging();
     std::vector<std::string> notes;
     const auto start = site.start_version("", &notes);
     for (const std::string& n : notes) std::printf("%s\n", n.c_str());

@@ -10,6 +10,7 @@
 #include "common/core/io_error.hpp"
 #include "common/core/small_disk_for_tests.hpp"
 #include "map/core/map_store.hpp"
+#include "map/core/site_staging.hpp"
 #include "map/core/site_store.hpp"
 #include "map/core/site_test_maps.hpp"
 
@@ -69,7 +70,7 @@ TEST(SiteFullDisk, ASaveTheDiskRefusesIsOneLineAndThePreviousVersionStays) {
     expect_v0001_whole(site);
     // Room again: the next session starts from v0001 (the stale staging removed) and commits.
     fs::remove(disk.path() + "/filler");
-    EXPECT_TRUE(site.remove_stale_staging());
+    EXPECT_FALSE(claim_staging(disk.path() + "/site")->removed().empty());
     EXPECT_EQ(site.commit(stage(site, test::tiny_map(3)), 10).name, "v0002");
     EXPECT_TRUE(load_map(site.start_version("")->map_dir()).refused.empty());
 }

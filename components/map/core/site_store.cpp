@@ -23,6 +23,7 @@ constexpr const char* kVersions = "versions";
 constexpr const char* kStaging = "next";
 constexpr const char* kMaintained = "maintenance/long_term_map.bin";
 constexpr const char* kRemoving = ".removing-";
+constexpr const char* kMarker = "session";  // SITE/next/session (site_staging.hpp)
 
 // A version named by the user: "v0003", "v3" or "3".
 std::uint32_t parse_user_name(const std::string& name) {
@@ -151,6 +152,7 @@ std::string SiteStore::staging_maintained_map_file() const {
     return staging_dir() + "/" + kMaintained;
 }
 std::string SiteStore::lock_file() const { return (fs::path(dir_) / "lock").string(); }
+std::string SiteStore::staging_marker_file() const { return staging_dir() + "/" + kMarker; }
 
 std::string SiteStore::staging_problem() const {
     std::error_code ec;
@@ -162,14 +164,6 @@ std::string SiteStore::staging_problem() const {
     if (const std::string p = check_maintained_map_file(staging_maintained_map_file()); !p.empty())
         return "the session's maintained map is not whole: " + p;
     return "";
-}
-
-bool SiteStore::remove_stale_staging() const {
-    std::error_code ec;
-    if (!fs::exists(staging_dir(), ec)) return false;
-    fs::remove_all(staging_dir(), ec);
-    if (ec) throw common::IoError(staging_dir(), "cannot remove a stale staging: " + ec.message());
-    return true;
 }
 
 SiteVersion SiteStore::commit(VersionSummary summary, std::size_t keep) {
@@ -189,6 +183,9 @@ SiteVersion SiteStore::commit(VersionSummary summary, std::size_t keep) {
     summary.number = before.empty() ? 1 : before.back().number + 1;
     if (summary.created == 0) summary.created = std::int64_t(std::time(nullptr));
     common::write_file_atomic((staging / "version.txt").string(), write_version_text(summary));
+    // Whose staging it was is not part of the version (a crash from here on leaves an unmarked
+    // staging, which the next session removes: nothing was committed).
+    fs::remove(staging_marker_file(), ec);
     for (const char* sub : {"map/local_maps", "map", "maintenance", ""}) sync_dir(staging / sub);
 
     const fs::path versions = fs::path(dir_) / kVersions;
@@ -289,7 +286,8 @@ std::string SiteStore::snapshot_staging() const {
         const std::string name = it->path().filename().string();
         if (it->is_directory(ec)) {
             fs::create_directories(to / rel, ec);
-        } else if (rel != "map/manifest.txt" && name.find(".tmp") == std::string::npos) {
+        } else if (rel != "map/manifest.txt" && rel != kMarker &&
+                   name.find(".tmp") == std::string::npos) {
             std::error_code link;
             fs::create_hard_link(it->path(), to / rel, link);  // gone meanwhile: the check says
         }

@@ -3,13 +3,15 @@
 //   SITE/versions/v0001/map/                            a map directory (map_store.hpp)
 //   SITE/versions/v0001/maintenance/long_term_map.bin   the maintained map (maintenance core)
 //   SITE/versions/v0001/version.txt                     what the session changed (version_summary)
-//   SITE/next/                     the running session's staging: next/map/, next/maintenance/...
+//   SITE/next/                     the running session's staging: next/map/, next/maintenance/...,
+//                                  next/session (whose it is: site_staging.hpp)
 //   SITE/lock                      held by the host running a session (site_lock.hpp)
 // A session starts from a version (named, or the newest intact one), saves into SITE/next (the
 // mapping with SaveOptions::link_from = the start version's map: unchanged files are hard links,
 // not copies) and at its end commit() makes the staging the next version by one rename. A crash
-// or a full disk before that rename leaves every version as it was; SITE/next is then stale and
-// the next session removes it.
+// or a full disk before that rename leaves every version as it was; SITE/next is then an earlier
+// session's, and the next session's first claim removes it (site_staging.hpp: writers claim the
+// staging under the site's lock before they write; a staging is never removed by its own session).
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -57,13 +59,12 @@ class SiteStore {
     std::string staging_map_dir() const;
     std::string staging_maintained_map_file() const;
     std::string lock_file() const;  // SITE/lock
+    // SITE/next/session: whose staging it is (site_staging.hpp; removed by commit before its
+    // rename, so a version holds no marker).
+    std::string staging_marker_file() const;
 
     // "" when the staging holds a whole map (and a whole maintained map, if any), else one line.
     std::string staging_problem() const;
-
-    // Removes a staging left by a session that did not commit (call with the site locked).
-    // True when there was one.
-    bool remove_stale_staging() const;
 
     // Makes the staged session the next version atomically (version.txt written into the
     // staging, fsync, rename SITE/next -> SITE/versions/vNNNN, fsync of SITE/versions), then

@@ -15,6 +15,7 @@
 #include "common/core/io_error.hpp"
 #include "map/core/map_store.hpp"
 #include "map/core/site_check.hpp"
+#include "map/core/site_staging.hpp"
 #include "map/core/site_test_maps.hpp"
 
 namespace ltm::map {
@@ -178,8 +179,8 @@ TEST(SiteStore, CommitRefusesAMissingOrDamagedStagingAndChangesNothing) {
     EXPECT_EQ(error.find('\n'), std::string::npos);
     EXPECT_EQ(names(site.versions()), std::vector<std::string>{"v0001"});
     EXPECT_TRUE(fs::exists(site.staging_dir()));  // left for a look; the next session removes it
-    EXPECT_TRUE(site.remove_stale_staging());
-    EXPECT_FALSE(fs::exists(site.staging_dir()));
+    EXPECT_FALSE(claim_staging(dir.string())->removed().empty());
+    EXPECT_FALSE(fs::exists(site.staging_map_dir()));
     // A damaged maintained map is refused too.
     save_map(site.staging_map_dir(), test::tiny_map(3));
     test::write_maintained_map(site.staging_maintained_map_file(), 3);
@@ -252,7 +253,7 @@ TEST(SiteStore, ANamedVersionThatIsDamagedOrUnknownIsRefusedInOneLine) {
 }
 
 // A session killed (SIGKILL) while it saves a large map into the staging: every version stays
-// whole, the next session starts on the previous one and removes the stale staging.
+// whole, the next session starts on the previous one and removes the dead one's staging.
 TEST(SiteStore, KillDuringASaveLeavesThePreviousVersionLoadable) {
     const fs::path dir = fresh_site("kill");
     SiteStore site(dir.string());
@@ -263,6 +264,7 @@ TEST(SiteStore, KillDuringASaveLeavesThePreviousVersionLoadable) {
     ASSERT_GE(child, 0);
     if (child == 0) {
         close(ready[0]);
+        const auto claim = claim_staging(dir.string());  // as a session's writers do
         MapWriter writer(site.staging_map_dir());
         for (std::uint32_t round = 0;; ++round) {  // until killed: always in the middle of a save
             writer.save(test::tiny_map(12, 3000, round + 2));
@@ -284,7 +286,8 @@ TEST(SiteStore, KillDuringASaveLeavesThePreviousVersionLoadable) {
     const LoadedMap loaded = load_map(start->map_dir());
     EXPECT_TRUE(loaded.refused.empty());
     EXPECT_EQ(loaded.map.local_maps.size(), 2u);
-    EXPECT_TRUE(site.remove_stale_staging());
+    EXPECT_NE(claim_staging(dir.string())->removed().find("(pid " + std::to_string(child)),
+              std::string::npos);
     EXPECT_EQ(session(site, test::tiny_map(3)).name, "v0002");
 }
 

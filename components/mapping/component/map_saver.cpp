@@ -52,8 +52,9 @@ std::unordered_map<std::uint64_t, map::MapWriter::WrittenLocalMap> MapSaver::wri
     }
     // Only files still there as written: a map paged out on a file that is gone would be lost
     // (a lifelong session's site component, constructed after the mapping, removed the staging
-    // the mapping's first save had just filled; site_week lost a day's version so). The next save
-    // writes the others again (MapWriter checks its files' sizes).
+    // the mapping's first save had just filled; site_week lost a day's version so. The staging
+    // is now the session's own, map/core/site_staging.hpp: this guards against any other loss of
+    // a file). The next save writes the others again (MapWriter checks its files' sizes).
     std::error_code ec;
     for (auto it = out.begin(); it != out.end();) {
         const map::LocalMapFile* f = it->second.file.get();

@@ -32,6 +32,7 @@
 #include "common/core/thread_clock.hpp"
 #include "map/core/link_applied.hpp"
 #include "map/core/map_store.hpp"
+#include "map/core/site_staging.hpp"
 #include "map/core/site_store.hpp"
 #include "mapping/component/map_edit_inputs.hpp"
 #include "mapping/component/map_saver.hpp"
@@ -267,6 +268,16 @@ class MappingComponent : public runtime::Component {
         }
         if (!load_dir->empty()) p.fail("load_map_dir", "give either load_map_dir or site_dir");
         if (!map_dir_.empty()) p.fail("map_dir", "give either map_dir or site_dir");
+        // The staging is this session's before the first save (map/core/site_staging.hpp): the
+        // site's lock, and an earlier session's staging removed; the site component, constructed
+        // after this one, shares the claim and keeps what this component saved.
+        bool made = false;
+        try {
+            staging_claim_ = map::claim_staging(site, &made);
+        } catch (const common::IoError& e) {
+            p.fail("site_dir", e.what());
+        }
+        if (made && !staging_claim_->removed().empty()) ctx_.log().warn(staging_claim_->removed());
         map::SiteSession session;
         try {
             session = map::resolve_site(site, version);
@@ -659,6 +670,7 @@ class MappingComponent : public runtime::Component {
     std::uint64_t saved_state_ = 0;
     static constexpr double kBudgetBurst = 0.1;  // [s] of CPU, when this component creates it
     std::string site_dir_, start_version_;       // site_dir; the version continued ("": none)
+    std::shared_ptr<map::StagingClaim> staging_claim_;  // with site_dir: the session's staging
     map::DeliveryTracker delivery_;
     std::unique_ptr<MapEditInputs> edits_;            // holds the mapper: declared after it
     static constexpr std::size_t kMaxWaiting = 1000;  // 100 s at 10 Hz

@@ -2,16 +2,20 @@
 // launch config, so that the others (localisation, mapping, maintenance) have resolved the same
 // start version (map/core/site_store.hpp: resolve_site) and stopped LAST, so that they have
 // saved into the staging (SITE/next) when it commits.
-//   construction: takes SITE/lock (another live session: one-line error, the host refuses to
-//     start), checks that every component with a `site_dir` names this site and version, removes
-//     a staging a crashed session left, and says which version the session starts from (and
-//     which damaged ones it skipped);
+//   construction: claims the site's staging (map/core/site_staging.hpp; the claim holds
+//     SITE/lock: another live session is a one-line error, the host refuses to start), checks that
+//     every component with a `site_dir` names this site and version, and says which version the
+//     session starts from (and which damaged ones it skipped). The mapping and the maintenance
+//     claimed the staging before it (constructed earlier, the mapping may have saved into it
+//     already): the claim is theirs, shared, and the staging is kept; the first claim of the
+//     session removed a staging an earlier session left (crashed, killed, not committed);
 //   map_changes (ltm_msgs/MapChangeSet, the maintenance's): voxels removed and added, summed for
 //     the version's summary;
-//   shutdown: the staging checked (the map whole; the maintained map whole, and there when a
-//     maintenance component takes part), the summary measured from the start version's map and
-//     the staged one, the staging committed as the next version, the oldest beyond
-//     `keep_versions` removed, the lock released; the host lists the output ("site version").
+//   shutdown: the staging checked (this session's, by its marker; the map whole; the maintained
+//     map whole, and there when a maintenance component takes part), the summary measured from
+//     the start version's map and the staged one, the staging committed as the next version, the
+//     oldest beyond `keep_versions` removed, the claim let go (the lock goes with the session's
+//     last claim); the host lists the output ("site version").
 //     A staging that is not whole commits nothing: the output is NOT saved (exit 4) and the
 //     start version stays the newest.
 //   map_request COMMIT_VERSION (`./ltm map commit`): a version in the middle of the session. The
@@ -30,7 +34,7 @@
 
 #include "common/core/io_error.hpp"
 #include "common/core/one_line.hpp"
-#include "map/core/site_lock.hpp"
+#include "map/core/site_staging.hpp"
 #include "map/core/site_store.hpp"
 #include "runtime/component.hpp"
 #include "runtime/convert/owned_message.hpp"
@@ -64,16 +68,18 @@ class SiteComponent : public runtime::Component {
         save_timeout_s_ = p.get<double>("save_timeout_s", 60.0);
         if (!(save_timeout_s_ > 0)) p.fail("save_timeout_s", "must be > 0");
         check_others(p);
+        bool made = false;
         try {
-            lock_ = std::make_unique<SiteLock>(store_.lock_file());
+            claim_ = claim_staging(store_.dir(), &made);
         } catch (const common::IoError& e) {
             p.fail("site_dir", e.what());
         }
+        if (!claim_->removed().empty() && made) ctx.log().warn(claim_->removed());
+        if (!made)
+            ctx.log().info(store_.staging_dir() + " is this session's staging (" +
+                           claim_->mark().describe() + " by a component before this one): kept");
         try {
             session_ = resolve_site(store_.dir(), version_);
-            if (store_.remove_stale_staging())
-                ctx.log().warn("removed " + store_.staging_dir() +
-                               ": the staging of a session that did not finish");
         } catch (const common::IoError& e) {
             p.fail(version_.empty() ? "site_dir" : "site_version", e.what());
         }
@@ -100,11 +106,12 @@ class SiteComponent : public runtime::Component {
     }
 
     void on_shutdown() override {
-        if (!lock_) return;  // committed already (a second shutdown)
+        if (!claim_) return;  // committed already (a second shutdown)
         const std::string stays = session_.start
                                       ? session_.start->name + " stays the newest version"
                                       : std::string("the site still has no version");
         std::string problem = store_.staging_problem();
+        if (problem.empty()) problem = claim_->staging_problem();  // never another session's
         if (problem.empty() && maintenance_ && !fs::exists(store_.staging_maintained_map_file()))
             problem = "the maintenance saved no maintained map into the staging";
         if (problem.empty()) {
@@ -129,7 +136,7 @@ class SiteComponent : public runtime::Component {
         if (!problem.empty())
             ctx_.report_output("site version", store_.staging_dir(), false,
                                problem + "; nothing committed, " + stays);
-        lock_.reset();
+        claim_.reset();  // the lock goes with the session's last claim
     }
 
   private:
@@ -137,7 +144,7 @@ class SiteComponent : public runtime::Component {
     void on_request(const msg::MapRequest& m) {
         if (m.command != ltm_msgs_msg_MapRequest_Constants_COMMIT_VERSION) return;
         if (pending_) return answer(m.id, false, "a commit is under way already");
-        if (!lock_) return answer(m.id, false, "the session has ended");
+        if (!claim_) return answer(m.id, false, "the session has ended");
         pending_ = m.id;
         if (!mapping_) return commit_now();
         save_id_ = m.id ^ 0x5a5a5a5au;
@@ -176,6 +183,8 @@ class SiteComponent : public runtime::Component {
     // The staging as it is now, committed as the next version (3 snapshots at most: a periodic
     // save that replaced files meanwhile fails the check).
     void commit_now() {
+        if (const std::string p = claim_->staging_problem(); !p.empty())
+            return finish_request(false, "nothing committed: " + p);
         std::string problem;
         for (int attempt = 0; attempt < 3; ++attempt) {
             try {
@@ -249,7 +258,7 @@ class SiteComponent : public runtime::Component {
     runtime::Publisher<msg::Status> status_out_;
     std::uint32_t pending_ = 0, save_id_ = 0;  // the request being answered, our save request
     std::chrono::steady_clock::time_point save_deadline_{};
-    std::unique_ptr<SiteLock> lock_;
+    std::shared_ptr<StagingClaim> claim_;  // the session's, shared with its mapping, maintenance
     SiteSession session_;
     std::uint64_t removed_ = 0, added_ = 0;  // by the maintenance (map_changes)
 };
