@@ -26,12 +26,7 @@ inline float fast_exp_neg(float x) {
 }  // namespace
 
 int usable_neighbours(const VoxelGrid& grid, const Eigen::Vector3f& x, std::uint32_t* out) {
-    const std::vector<Surfel>& surfels = grid.surfels();
-    int n = 0;
-    grid.for_each_neighbour(x, [&](std::uint32_t i) {
-        if (surfels[i].usable) out[n++] = i;
-    });
-    return n;
+    return grid.usable_neighbours(x, out);
 }
 
 bool imls_from_neighbours(const std::vector<Surfel>& surfels, const std::uint32_t* found, int n,

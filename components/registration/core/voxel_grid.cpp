@@ -44,7 +44,9 @@ void VoxelGrid::end_pass(const Eigen::Vector3f& sensor, double stamp) {
         VoxelRecord& r = records_[i];
         ++r.observations;
         r.last_seen = stamp;
+        const std::uint32_t was_usable = surfels_[i].usable;
         update_surfel(config_, float(voxel_size_), cell_centre(keys_[i]), sensor, r, surfels_[i]);
+        if (surfels_[i].usable != was_usable) set_usable_tag(i);
     }
 }
 
@@ -58,6 +60,7 @@ void VoxelGrid::copy_voxel(const VoxelGrid& other, std::size_t j, VoxelKey key) 
     Surfel s = other.surfels_[j];
     s.centre += cell_centre(key) - other.cell_centre(other.keys_[j]);
     surfels_.push_back(s);
+    if (s.usable) set_usable_tag(surfels_.size() - 1);
 }
 
 std::size_t VoxelGrid::usable_voxels() const {

@@ -50,5 +50,45 @@ TEST(VoxelHash, AgreesWithUnorderedMapThroughGrowthAndClear) {
     }
 }
 
+TEST(VoxelHash, TagsStayWithTheirKeysThroughGrowthAndClear) {
+    VoxelHash hash(4);
+    std::unordered_map<VoxelKey, std::pair<std::uint32_t, std::uint32_t>> oracle;  // value, tag
+    std::mt19937 rng(12);
+    std::uniform_int_distribution<int> c(-40, 40);
+    for (std::uint32_t i = 0; i < 30000; ++i) {
+        const VoxelKey k = pack_key(c(rng), c(rng), c(rng));
+        const auto [value, inserted] = hash.insert(k, i);
+        if (inserted) oracle[k] = {value, 0};
+        // Tag some keys (and untag some again) while the table grows under them.
+        if (i % 3 == 0) {
+            const std::uint32_t tag = i % 2;
+            hash.set_tag(k, tag);
+            oracle[k].second = tag;
+        }
+    }
+    std::size_t tagged = 0;
+    for (const auto& [k, e] : oracle) {
+        ASSERT_EQ(hash.find(k), e.first);
+        ASSERT_EQ(hash.find_tagged(k), e.second != 0 ? e.first : VoxelHash::kNone);
+        tagged += e.second != 0;
+    }
+    EXPECT_GT(tagged, 1000u);
+    EXPECT_LT(tagged, oracle.size());
+    // Keys that are not there, beside ones that are (long probe runs included).
+    for (int i = 0; i < 5000; ++i) {
+        const VoxelKey k = pack_key(c(rng), c(rng), c(rng) + 100);
+        EXPECT_EQ(hash.find_tagged(k), VoxelHash::kNone);
+    }
+    // After clear an entry inserted again starts untagged.
+    const VoxelKey k = oracle.begin()->first;
+    hash.set_tag(k, 1);
+    hash.clear();
+    EXPECT_EQ(hash.find_tagged(k), VoxelHash::kNone);
+    hash.insert(k, 7);
+    EXPECT_EQ(hash.find_tagged(k), VoxelHash::kNone);
+    hash.set_tag(k, 1);
+    EXPECT_EQ(hash.find_tagged(k), 7u);
+}
+
 }  // namespace
 }  // namespace ltm::registration
