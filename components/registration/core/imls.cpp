@@ -31,18 +31,19 @@ int usable_neighbours(const VoxelGrid& grid, const Eigen::Vector3f& x, std::uint
 
 bool imls_from_neighbours(const std::vector<Surfel>& surfels, const std::uint32_t* found, int n,
                           const Eigen::Vector3f& x, const ImlsParams& params, ImlsResult* result) {
+    // The nearest centre within max_distance (the first of equals), selected without branches:
+    // which neighbour is nearest is as good as random, and its mispredictions were a large part
+    // of the cost.
     std::uint32_t nearest = 0;
-    float best = params.max_distance * params.max_distance;
-    bool any = false;
+    const float reach = params.max_distance * params.max_distance;
+    float best = reach;
     for (int k = 0; k < n; ++k) {
         const float d2 = (x - surfels[found[k]].centre).squaredNorm();
-        if (d2 < best) {
-            best = d2;
-            nearest = found[k];
-            any = true;
-        }
+        const bool closer = d2 < best;
+        nearest = closer ? found[k] : nearest;
+        best = closer ? d2 : best;
     }
-    if (!any) return false;
+    if (!(best < reach)) return false;
     const Eigen::Vector3f& nx = surfels[nearest].normal;
     const float inv_h2 = 1.0f / (params.bandwidth * params.bandwidth);
     float num = 0.0f, den = 0.0f;
