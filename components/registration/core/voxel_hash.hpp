@@ -26,13 +26,25 @@ inline Eigen::Vector3i unpack_key(VoxelKey k) {
             int(std::int64_t((k >> 42) & mask) - bias)};
 }
 
+// floor(x) when it is within the key range (|floor(x)| < kVoxelKeyLimit), else false (NaN too).
+// The same as std::floor and a range check, in a few instructions: floor(x) < limit exactly when
+// x < limit, and floor(x) > -limit exactly when x >= 1 - limit (the limits are integers); within
+// that range a float converts to an int exactly, and truncation rounds up below zero.
+inline bool floor_in_key_range(float x, std::int32_t* out) {
+    if (!(x >= float(1 - kVoxelKeyLimit) && x < float(kVoxelKeyLimit))) return false;
+    const std::int32_t t = std::int32_t(x);
+    *out = t - std::int32_t(float(t) > x);
+    return true;
+}
+
 // Integer voxel coordinates of p on a grid of edge `inv_size`^-1; false when out of key range.
 inline bool voxel_coords(const Eigen::Vector3f& p, float inv_size, Eigen::Vector3i* v) {
-    const float x = std::floor(p.x() * inv_size), y = std::floor(p.y() * inv_size),
-                z = std::floor(p.z() * inv_size);
-    constexpr float lim = float(kVoxelKeyLimit);
-    if (!(std::abs(x) < lim && std::abs(y) < lim && std::abs(z) < lim)) return false;
-    *v = Eigen::Vector3i(int(x), int(y), int(z));
+    std::int32_t x, y, z;
+    if (!floor_in_key_range(p.x() * inv_size, &x) || !floor_in_key_range(p.y() * inv_size, &y) ||
+        !floor_in_key_range(p.z() * inv_size, &z)) {
+        return false;
+    }
+    *v = Eigen::Vector3i(x, y, z);
     return true;
 }
 

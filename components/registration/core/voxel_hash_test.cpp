@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
 #include <random>
 #include <unordered_map>
 
@@ -22,6 +24,49 @@ TEST(VoxelHash, VoxelCoordsFloorsAndRejectsOutOfRange) {
     EXPECT_EQ(v, Eigen::Vector3i(-1, 0, 1));
     EXPECT_FALSE(voxel_coords(Eigen::Vector3f(3e6f, 0, 0), 1.0f, &v));
     EXPECT_FALSE(voxel_coords(Eigen::Vector3f(NAN, 0, 0), 1.0f, &v));
+}
+
+TEST(VoxelHash, FloorInKeyRangeIsStdFloorWithTheRangeCheck) {
+    // The old definition: floor, then |floor| < the key limit.
+    const auto reference = [](float x, std::int32_t* out) {
+        const float f = std::floor(x);
+        if (!(std::abs(f) < float(kVoxelKeyLimit))) return false;
+        *out = std::int32_t(f);
+        return true;
+    };
+    std::vector<float> xs = {0.0f,
+                             -0.0f,
+                             0.5f,
+                             -0.5f,
+                             1.0f,
+                             -1.0f,
+                             -1e-30f,
+                             1e-30f,
+                             2.9999998f,
+                             -2.9999998f,
+                             std::numeric_limits<float>::quiet_NaN(),
+                             std::numeric_limits<float>::infinity(),
+                             -std::numeric_limits<float>::infinity(),
+                             3e9f,
+                             -3e9f};
+    for (const float edge :
+         {float(kVoxelKeyLimit), float(1 - kVoxelKeyLimit), float(-kVoxelKeyLimit)}) {
+        for (const float d : {-1.0f, -0.5f, -0.0625f, 0.0f, 0.0625f, 0.5f, 1.0f})
+            xs.push_back(edge + d);
+        xs.push_back(std::nextafter(edge, 0.0f));
+        xs.push_back(std::nextafter(edge, 2.0f * edge));
+    }
+    std::mt19937 rng(13);
+    std::uniform_real_distribution<float> wide(-2.2e6f, 2.2e6f), narrow(-40.0f, 40.0f);
+    for (int i = 0; i < 100000; ++i) xs.push_back(i % 2 ? wide(rng) : narrow(rng));
+    for (const float x : xs) {
+        std::int32_t got = 12345, want = 12345;
+        const bool ok = floor_in_key_range(x, &got);
+        ASSERT_EQ(ok, reference(x, &want)) << x;
+        if (ok) {
+            ASSERT_EQ(got, want) << x;
+        }
+    }
 }
 
 TEST(VoxelHash, AgreesWithUnorderedMapThroughGrowthAndClear) {
