@@ -89,27 +89,8 @@ class VoxelHash {
         while (slots_[i].key != key) i = (i + 1) & mask_;
         slots_[i].tag = tag;
     }
-    // The value stored for key when its tag is not 0, else kNone. The first two slots decide
-    // without a branch on the answer (at a load of a quarter to a half, the first slot alone is
-    // taken by another key as often as not); only when both are taken by other keys does it go on
-    // probing.
-    std::uint32_t find_tagged(VoxelKey key) const {
-        const std::size_t i = slot_of(key);
-        const Slot& a = slots_[i];
-        const Slot& b = slots_[(i + 1) & mask_];
-        const unsigned a_hit = a.key == key, a_empty = a.key == kEmpty;
-        const unsigned b_hit = b.key == key, b_empty = b.key == kEmpty;
-        if (__builtin_expect((a_hit | a_empty | b_hit | b_empty) == 0, 0)) {
-            return find_tagged_from((i + 2) & mask_, key);
-        }
-        // Selected by masks, not branches (the compiler branches on a ?: of these).
-        const unsigned hit = a_hit | ((a_empty ^ 1u) & b_hit);
-        const std::uint32_t a_mask = 0u - std::uint32_t(a_hit);
-        const std::uint32_t tag = (a.tag & a_mask) | (b.tag & ~a_mask);
-        const std::uint32_t value = (a.value & a_mask) | (b.value & ~a_mask);
-        const std::uint32_t found = 0u - std::uint32_t(hit & unsigned(tag != 0));
-        return (value & found) | (kNone & ~found);
-    }
+    // The value stored for key when its tag is not 0, else kNone.
+    std::uint32_t find_tagged(VoxelKey key) const { return find_tagged_from(slot_of(key), key); }
 
     // Hints the cache that `key` is about to be looked up.
     void prefetch(VoxelKey key) const { __builtin_prefetch(&slots_[slot_of(key)]); }
