@@ -39,9 +39,12 @@ void VoxelDownsampler::run(const std::vector<Eigen::Vector3f>& in, double cell,
     cells_.reserve(in.size() / 4 + 16);
     cells_.clear();
     const float inv = float(1.0 / cell);
+    VoxelKey last = ~VoxelKey(0);  // consecutive points often share a cell: it is taken
     for (const Eigen::Vector3f& p : in) {
         VoxelKey key;
-        if (cell_key(p, inv, &key) && cells_.insert(key, 0).second) out->push_back(p);
+        if (!cell_key(p, inv, &key) || key == last) continue;
+        last = key;
+        if (cells_.insert(key, 0).second) out->push_back(p);
     }
 }
 
@@ -58,10 +61,16 @@ void Preprocessor::run(const common::PointCloud& cloud, const Vector6d* velocity
     out->dropped_range = 0;
     out->deskewed = false;
     out->T_stamp_mid.setIdentity();
-    cropped_.clear();
-    cropped_times_.clear();
+    // Crop, and the map-grid cell of each point kept (its index in the cloud with it). A point in
+    // the cell of the point kept before it is never the first of its cell: it is left out here,
+    // without a look-up (a scan stored ring by ring has runs of such points).
+    kept_.clear();
+    keys_.clear();
     const float min2 = float(config_.min_range * config_.min_range);
     const float max2 = float(config_.max_range * config_.max_range);
+    const float inv = float(1.0 / map_cell_);
+    VoxelKey last = ~VoxelKey(0);
+    std::size_t cropped = 0;
     for (std::size_t i = 0; i < cloud.points.size(); ++i) {
         const Eigen::Vector3f& p = cloud.points[i];
         if (!p.allFinite() || (with_time && !std::isfinite(cloud.time[i]))) {
@@ -73,26 +82,25 @@ void Preprocessor::run(const common::PointCloud& cloud, const Vector6d* velocity
             ++out->dropped_range;
             continue;
         }
-        cropped_.push_back(p);
-        if (with_time) cropped_times_.push_back(cloud.time[i]);
+        ++cropped;
+        VoxelKey key;
+        if (!cell_key(p, inv, &key) || key == last) continue;
+        last = key;
+        kept_.push_back(std::uint32_t(i));
+        keys_.push_back(key);
     }
 
     // Map grid: the first point of each cell.
     out->map_points.clear();
     map_times_.clear();
-    cells_.reserve(cropped_.size() / 4 + 16);
+    cells_.reserve(cropped / 4 + 16);
     cells_.clear();
-    const float inv = float(1.0 / map_cell_);
-    keys_.resize(cropped_.size());
-    for (std::size_t i = 0; i < cropped_.size(); ++i) {
-        if (!cell_key(cropped_[i], inv, &keys_[i])) keys_[i] = ~VoxelKey(0);
-    }
     constexpr std::size_t kAhead = 8;  // prefetch distance: hides the hash's cache misses
-    for (std::size_t i = 0; i < cropped_.size(); ++i) {
-        if (i + kAhead < cropped_.size()) cells_.prefetch(keys_[i + kAhead]);
-        if (keys_[i] == ~VoxelKey(0) || !cells_.insert(keys_[i], 0).second) continue;
-        out->map_points.push_back(cropped_[i]);
-        if (with_time) map_times_.push_back(cropped_times_[i]);
+    for (std::size_t k = 0; k < kept_.size(); ++k) {
+        if (k + kAhead < kept_.size()) cells_.prefetch(keys_[k + kAhead]);
+        if (!cells_.insert(keys_[k], 0).second) continue;
+        out->map_points.push_back(cloud.points[kept_[k]]);
+        if (with_time) map_times_.push_back(cloud.time[kept_[k]]);
     }
     raw_map_points_.clear();
     mid_time_ = 0.0;

@@ -3,6 +3,7 @@
 // voxel down-sampling (a fine grid for the map update, a coarser one for registration), and
 // de-skew when the scan has per-point times. Buffers are reused: no allocation once warm.
 #include <Eigen/Geometry>
+#include <cstdint>
 #include <vector>
 
 #include "common/core/point_cloud.hpp"
@@ -63,11 +64,11 @@ class Preprocessor {
 
     PreprocessConfig config_;
     double map_cell_, registration_cell_;
-    std::vector<Eigen::Vector3f> cropped_;
-    std::vector<float> cropped_times_, map_times_;
+    std::vector<float> map_times_;
+    std::vector<std::uint32_t> kept_;  // cloud index of each point left for the map grid
     std::vector<Eigen::Vector3f> raw_map_points_;  // map points before de-skewing
     double mid_time_ = 0.0;                        // middle of the map points' times [s]
-    std::vector<VoxelKey> keys_;                   // map-grid key of each cropped point
+    std::vector<VoxelKey> keys_;                   // map-grid key of each of them
     VoxelHash cells_;
     VoxelDownsampler registration_sampler_;
     bool map_points_only_ = false;

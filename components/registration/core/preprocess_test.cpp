@@ -89,6 +89,53 @@ TEST(Preprocess, KeepsTheFirstPointOfEveryOccupiedCell) {
     EXPECT_EQ(cells(out.registration_points, 2.0), cells(out.map_points, 2.0));
 }
 
+// The first point of each cell in input order, by brute force over the points kept by the crop.
+std::vector<Vector3f> first_per_cell(const std::vector<Vector3f>& pts, double cell,
+                                     double min_range, double max_range) {
+    std::set<VoxelKey> seen;
+    std::vector<Vector3f> first;
+    for (const auto& p : pts) {
+        if (!p.allFinite() || p.norm() < min_range || p.norm() > max_range) continue;
+        Eigen::Vector3i v = Eigen::Vector3i::Zero();
+        if (!voxel_coords(p, float(1.0 / cell), &v)) continue;
+        if (seen.insert(pack_key(v.x(), v.y(), v.z())).second) first.push_back(p);
+    }
+    return first;
+}
+
+TEST(Preprocess, ARingOrderedScanKeepsTheFirstPointOfEveryCell) {
+    // A scan stored ring by ring, as a spinning LiDAR's: runs of neighbours in one map cell, with
+    // points out of range and not finite inside the runs, and every ring crossing the cells of
+    // the ring before it (a cell met again later, not just after itself).
+    PreprocessConfig config;
+    config.min_range = 2.0;
+    config.max_range = 40.0;
+    config.map_sample_fraction = 0.5;
+    config.registration_sample_fraction = 1.5;
+    common::PointCloud c;
+    for (int ring = 0; ring < 16; ++ring) {
+        const float elevation = -0.25f + 0.02f * float(ring);
+        for (int k = 0; k < 3000; ++k) {
+            const float azimuth = 2.0f * float(M_PI) * float(k) / 3000.0f;
+            const float range = 6.0f + 3.0f * std::sin(3.0f * azimuth) + 0.5f * float(ring % 3);
+            Vector3f p(range * std::cos(azimuth), range * std::sin(azimuth),
+                       1.8f + range * std::tan(elevation));
+            if (k % 97 == 5) p = Vector3f(50.0f, 0.0f, 0.0f);  // beyond max_range
+            if (k % 89 == 7) p = Vector3f(0.5f, 0.0f, 0.0f);   // within min_range
+            if (k % 101 == 9) p.x() = std::numeric_limits<float>::quiet_NaN();
+            c.points.push_back(p);
+        }
+    }
+    Preprocessor pre(config, 1.0);
+    PreprocessedScan out;
+    pre.run(c, nullptr, &out);
+    const std::vector<Vector3f> want = first_per_cell(c.points, 0.5, 2.0, 40.0);
+    ASSERT_GT(want.size(), 1000u);
+    EXPECT_LT(want.size(), c.points.size() / 4);  // long runs in one cell
+    EXPECT_EQ(out.map_points, want);
+    EXPECT_EQ(out.registration_points, first_per_cell(out.map_points, 1.5, 0.0, 1e9));
+}
+
 TEST(Preprocess, CapsTheRegistrationPoints) {
     PreprocessConfig config;
     config.min_range = 0.0;

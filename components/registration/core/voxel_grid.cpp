@@ -16,6 +16,7 @@ void VoxelGrid::absorb_pending(double stamp) {
     VoxelKey last_key = ~VoxelKey(0);  // consecutive points often share a voxel
     std::uint32_t i = 0;
     const float g = float(voxel_size_);
+    Eigen::Vector3f centre = Eigen::Vector3f::Zero();  // of the voxel last_key (its sums' origin)
     for (std::size_t k = 0; k < pending_.size(); ++k) {
         if (k + kAhead < pending_.size()) hash_.prefetch(pending_[k + kAhead].key);
         const Pending& p = pending_[k];
@@ -29,9 +30,10 @@ void VoxelGrid::absorb_pending(double stamp) {
             }
             i = index;
             last_key = p.key;
+            centre = (unpack_key(p.key).cast<float>().array() + 0.5f).matrix() * g;
         }
         VoxelRecord& r = records_[i];
-        r.sums.add(p.point - (unpack_key(p.key).cast<float>().array() + 0.5f).matrix() * g);
+        r.sums.add(p.point - centre);
         if (r.last_scan != pass_) {
             r.last_scan = pass_;
             touched_.push_back(i);
@@ -44,7 +46,9 @@ void VoxelGrid::end_pass(const Eigen::Vector3f& sensor, double stamp) {
         VoxelRecord& r = records_[i];
         ++r.observations;
         r.last_seen = stamp;
+        const std::uint32_t was_usable = surfels_[i].usable;
         update_surfel(config_, float(voxel_size_), cell_centre(keys_[i]), sensor, r, surfels_[i]);
+        if (surfels_[i].usable != was_usable) set_usable_tag(i);
     }
 }
 
@@ -58,6 +62,7 @@ void VoxelGrid::copy_voxel(const VoxelGrid& other, std::size_t j, VoxelKey key) 
     Surfel s = other.surfels_[j];
     s.centre += cell_centre(key) - other.cell_centre(other.keys_[j]);
     surfels_.push_back(s);
+    if (s.usable) set_usable_tag(surfels_.size() - 1);
 }
 
 std::size_t VoxelGrid::usable_voxels() const {

@@ -83,6 +83,33 @@ class VoxelGrid {
         }
     }
 
+    // The usable voxels (Surfel::usable) of the 3x3x3 block around p's voxel, in the order of
+    // for_each_neighbour, written to out (at most 27); returns how many. Branch-free over the
+    // block (whether a neighbour is there and usable is as likely as not: mispredicted branches
+    // were much of the cost), and without reading the surfels: a voxel's usable flag is mirrored
+    // in its hash slot's tag (set wherever a surfel's flag is written, see set_usable_tag).
+    int usable_neighbours(const Eigen::Vector3f& p, std::uint32_t* out) const {
+        Eigen::Vector3i v;
+        if (!voxel_coords(p, inv_voxel_size_, &v)) return 0;
+        VoxelKey keys[27];
+        int n = 0;
+        for (int dz = -1; dz <= 1; ++dz) {
+            for (int dy = -1; dy <= 1; ++dy) {
+                for (int dx = -1; dx <= 1; ++dx) {
+                    keys[n] = pack_key(v.x() + dx, v.y() + dy, v.z() + dz);
+                    hash_.prefetch(keys[n++]);
+                }
+            }
+        }
+        int count = 0;
+        for (int k = 0; k < 27; ++k) {
+            const std::uint32_t i = hash_.find_tagged(keys[k]);
+            out[count] = i;
+            count += int(i != VoxelHash::kNone);
+        }
+        return count;
+    }
+
     // The key of p's voxel; false when p is out of the key range.
     bool key_of(const Eigen::Vector3f& p, VoxelKey* key) const {
         Eigen::Vector3i v;
@@ -115,6 +142,8 @@ class VoxelGrid {
     void absorb_pending(double stamp);
     void end_pass(const Eigen::Vector3f& sensor, double stamp);
     void copy_voxel(const VoxelGrid& other, std::size_t j, VoxelKey key);
+    // The hash slot's tag of voxel i mirrors surfels_[i].usable (usable_neighbours reads it).
+    void set_usable_tag(std::size_t i) { hash_.set_tag(keys_[i], surfels_[i].usable); }
     // Appends a voxel that is not present yet; false when the key is taken.
     bool insert_voxel(VoxelKey key, const Surfel& surfel, const VoxelRecord& record);
 

@@ -29,6 +29,7 @@ bool VoxelGrid::insert_voxel(VoxelKey key, const Surfel& surfel, const VoxelReco
     surfels_.push_back(surfel);
     records_.push_back(record);
     records_.back().last_scan = 0;
+    if (surfel.usable) set_usable_tag(surfels_.size() - 1);
     return true;
 }
 

@@ -190,5 +190,67 @@ TEST(VoxelGrid, CoarsenedMergesTheMomentsOfItsVoxels) {
     EXPECT_GT(compared, 80u);
 }
 
+// usable_neighbours (the usable flags mirrored in the hash) against for_each_neighbour filtered by
+// the surfels' own flags, at random points over the grid.
+void expect_usable_neighbours_match(const VoxelGrid& grid, std::uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(-9.0f, 9.0f);
+    std::size_t found = 0;
+    for (int q = 0; q < 2000; ++q) {
+        const Vector3f x(u(rng), u(rng), 1.0f + 0.2f * u(rng));
+        std::vector<std::uint32_t> want;
+        grid.for_each_neighbour(x, [&](std::uint32_t i) {
+            if (grid.surfels()[i].usable) want.push_back(i);
+        });
+        std::uint32_t got[27];
+        const int n = grid.usable_neighbours(x, got);
+        ASSERT_EQ(std::vector<std::uint32_t>(got, got + n), want);
+        found += want.size();
+    }
+    EXPECT_GT(found, 0u);
+}
+
+TEST(VoxelGrid, UsableNeighboursFollowTheSurfelsThroughEveryWayAGridIsMade) {
+    VoxelConfig config;
+    VoxelGrid grid(0.5, config);
+    // Voxels become usable over a few scans of a plane ...
+    for (int scan = 0; scan < 3; ++scan) {
+        grid.integrate(plane_points(4000, 10 + scan), Vector3f(0, 0, 10), scan, all);
+        expect_usable_neighbours_match(grid, 20 + scan);
+    }
+    ASSERT_GT(grid.usable_voxels(), 100u);
+    std::vector<bool> was_usable;
+    for (const Surfel& s : grid.surfels()) was_usable.push_back(s.usable != 0);
+    // ... and some stop being usable when points scattered about the plane land in them.
+    std::vector<Vector3f> scatter = plane_points(20000, 5);
+    std::mt19937 rng(6);
+    std::uniform_real_distribution<float> thick(-0.6f, 0.6f);
+    for (Vector3f& p : scatter) p.z() += thick(rng);
+    grid.integrate(scatter, Vector3f(0, 0, 10), 5.0, all);
+    std::size_t lost = 0;
+    for (std::size_t i = 0; i < was_usable.size(); ++i)
+        lost += was_usable[i] && !grid.surfels()[i].usable;
+    EXPECT_GT(lost, 10u);
+    expect_usable_neighbours_match(grid, 30);
+    // Loaded from plain data, coarsened, seeded from another grid.
+    const VoxelGrid loaded = VoxelGrid::from_data(
+        [&] {
+            common::LocalMapData d;
+            d.voxel_size = 0.5f;
+            d.voxels = grid.to_data();
+            return d;
+        }(),
+        config, config.min_planarity);
+    ASSERT_GT(loaded.usable_voxels(), 0u);
+    expect_usable_neighbours_match(loaded, 31);
+    const VoxelGrid coarse = grid.coarsened(2, config);
+    ASSERT_GT(coarse.usable_voxels(), 0u);
+    expect_usable_neighbours_match(coarse, 32);
+    VoxelGrid seeded(0.5, config);
+    seeded.seed_from(grid, Eigen::Vector3i(1, -2, 0), [](const Vector3f& c) { return c.x() < 3; });
+    ASSERT_GT(seeded.usable_voxels(), 0u);
+    expect_usable_neighbours_match(seeded, 33);
+}
+
 }  // namespace
 }  // namespace ltm::registration

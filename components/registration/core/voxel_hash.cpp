@@ -5,7 +5,7 @@
 namespace ltm::registration {
 
 void VoxelHash::clear() {
-    std::fill(slots_.begin(), slots_.end(), Slot{kEmpty, 0});
+    std::fill(slots_.begin(), slots_.end(), Slot{kEmpty, 0, 0});
     size_ = 0;
 }
 
@@ -18,13 +18,15 @@ void VoxelHash::reserve(std::size_t n) {
 void VoxelHash::rehash(std::size_t capacity) {
     std::vector<Slot> old;
     old.swap(slots_);
-    slots_.assign(capacity, Slot{kEmpty, 0});
+    slots_.assign(capacity, Slot{kEmpty, 0, 0});
     mask_ = capacity - 1;
     shift_ = 64;
     for (std::size_t c = capacity; c > 1; c >>= 1) --shift_;
     size_ = 0;
     for (const Slot& s : old) {
-        if (s.key != kEmpty) insert(s.key, s.value);
+        if (s.key == kEmpty) continue;
+        insert(s.key, s.value);
+        if (s.tag != 0) set_tag(s.key, s.tag);
     }
 }
 

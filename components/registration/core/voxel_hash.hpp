@@ -26,13 +26,25 @@ inline Eigen::Vector3i unpack_key(VoxelKey k) {
             int(std::int64_t((k >> 42) & mask) - bias)};
 }
 
+// floor(x) when it is within the key range (|floor(x)| < kVoxelKeyLimit), else false (NaN too).
+// The same as std::floor and a range check, in a few instructions: floor(x) < limit exactly when
+// x < limit, and floor(x) > -limit exactly when x >= 1 - limit (the limits are integers); within
+// that range a float converts to an int exactly, and truncation rounds up below zero.
+inline bool floor_in_key_range(float x, std::int32_t* out) {
+    if (!(x >= float(1 - kVoxelKeyLimit) && x < float(kVoxelKeyLimit))) return false;
+    const std::int32_t t = std::int32_t(x);
+    *out = t - std::int32_t(float(t) > x);
+    return true;
+}
+
 // Integer voxel coordinates of p on a grid of edge `inv_size`^-1; false when out of key range.
 inline bool voxel_coords(const Eigen::Vector3f& p, float inv_size, Eigen::Vector3i* v) {
-    const float x = std::floor(p.x() * inv_size), y = std::floor(p.y() * inv_size),
-                z = std::floor(p.z() * inv_size);
-    constexpr float lim = float(kVoxelKeyLimit);
-    if (!(std::abs(x) < lim && std::abs(y) < lim && std::abs(z) < lim)) return false;
-    *v = Eigen::Vector3i(int(x), int(y), int(z));
+    std::int32_t x, y, z;
+    if (!floor_in_key_range(p.x() * inv_size, &x) || !floor_in_key_range(p.y() * inv_size, &y) ||
+        !floor_in_key_range(p.z() * inv_size, &z)) {
+        return false;
+    }
+    *v = Eigen::Vector3i(x, y, z);
     return true;
 }
 
@@ -62,12 +74,23 @@ class VoxelHash {
             if (s.key == kEmpty) {
                 s.key = key;
                 s.value = value;
+                s.tag = 0;
                 ++size_;
                 return {value, true};
             }
             i = (i + 1) & mask_;
         }
     }
+
+    // A tag per entry (0 on insertion), kept in the slot's otherwise unused bytes: a look-up that
+    // filters on it (find_tagged) reads no other memory. set_tag: the key must be present.
+    void set_tag(VoxelKey key, std::uint32_t tag) {
+        std::size_t i = slot_of(key);
+        while (slots_[i].key != key) i = (i + 1) & mask_;
+        slots_[i].tag = tag;
+    }
+    // The value stored for key when its tag is not 0, else kNone.
+    std::uint32_t find_tagged(VoxelKey key) const { return find_tagged_from(slot_of(key), key); }
 
     // Hints the cache that `key` is about to be looked up.
     void prefetch(VoxelKey key) const { __builtin_prefetch(&slots_[slot_of(key)]); }
@@ -84,11 +107,20 @@ class VoxelHash {
     struct Slot {
         VoxelKey key;
         std::uint32_t value;
+        std::uint32_t tag;
     };
     std::size_t slot_of(VoxelKey key) const {
         return std::size_t((key * 0x9E3779B97F4A7C15ull) >> shift_) & mask_;
     }
     void rehash(std::size_t capacity);
+    std::uint32_t find_tagged_from(std::size_t i, VoxelKey key) const {
+        for (;;) {
+            const Slot& s = slots_[i];
+            if (s.key == key) return s.tag != 0 ? s.value : kNone;
+            if (s.key == kEmpty) return kNone;
+            i = (i + 1) & mask_;
+        }
+    }
 
     std::vector<Slot> slots_;
     std::size_t mask_ = 0, size_ = 0;
