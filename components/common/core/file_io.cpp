@@ -36,6 +36,15 @@ void fsync_dir(const std::string& dir) {
 
 }  // namespace
 
+void sync_folder(const std::string& dir) {
+    const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (fd < 0) return;
+    const int r = ::fsync(fd);
+    const int error = errno;
+    ::close(fd);
+    if (r != 0) throw IoError(dir, std::string("fsync: ") + std::strerror(error));
+}
+
 std::string read_file(const std::string& path, const std::string& name_in_errors) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw IoError(name_in_errors, "cannot open (missing or unreadable)");

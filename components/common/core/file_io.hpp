@@ -15,4 +15,9 @@ inline void write_file_atomic(const std::string& path, const std::string& bytes)
     write_file_atomic(path, bytes.data(), bytes.size());
 }
 
+// fsync of a folder (its entries, e.g. after a rename into it): best effort where the folder
+// cannot be opened (missing, or a file system that does not open folders); IoError naming the
+// folder when the fsync itself fails.
+void sync_folder(const std::string& dir);
+
 }  // namespace ltm::common

@@ -1,6 +1,5 @@
 #include "map/core/site_staging.hpp"
 
-#include <fcntl.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -58,15 +57,6 @@ std::string utc_now() {
     char buf[32];
     std::strftime(buf, sizeof buf, "%Y-%m-%d %H:%M:%S UTC", &tm);
     return buf;
-}
-
-void sync_dir(const fs::path& dir) {
-    const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-    if (fd < 0) return;
-    const int r = ::fsync(fd);
-    const int error = errno;
-    ::close(fd);
-    if (r != 0) throw common::IoError(dir.string(), std::string("fsync: ") + std::strerror(error));
 }
 
 // The claims of this process, by site (canonical path): a composed host's components share one.
@@ -134,7 +124,7 @@ StagingClaim::StagingClaim(const std::string& site_dir) : site_dir_(site_dir) {
     common::write_file_atomic(SiteStore(site_dir).staging_marker_file(),
                               std::string(kMarkerHeader) + "\nsession " + mark_.id + "\npid " +
                                   std::to_string(mark_.pid) + "\nclaimed " + mark_.claimed + "\n");
-    sync_dir(staging.parent_path());
+    common::sync_folder(staging.parent_path().string());
 }
 
 StagingClaim::~StagingClaim() = default;

@@ -1,8 +1,5 @@
 #include "map/core/site_store.hpp"
 
-#include <fcntl.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <cerrno>
 #include <cstdio>
@@ -55,16 +52,6 @@ void check(SiteVersion& v) {
     v.problem = check_map_dir(v.map_dir());
     if (v.problem.empty()) v.problem = check_maintained_map_file(v.maintained_map_file());
     v.intact = v.problem.empty();
-}
-
-// fsync of a folder (its entries); best effort on a folder that does not exist.
-void sync_dir(const fs::path& dir) {
-    const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-    if (fd < 0) return;
-    const int r = ::fsync(fd);
-    const int error = errno;
-    ::close(fd);
-    if (r != 0) throw common::IoError(dir.string(), std::string("fsync: ") + std::strerror(error));
 }
 
 void link_or_copy(const fs::path& from, const fs::path& to) {
@@ -186,12 +173,13 @@ SiteVersion SiteStore::commit(VersionSummary summary, std::size_t keep) {
     // Whose staging it was is not part of the version (a crash from here on leaves an unmarked
     // staging, which the next session removes: nothing was committed).
     fs::remove(staging_marker_file(), ec);
-    for (const char* sub : {"map/local_maps", "map", "maintenance", ""}) sync_dir(staging / sub);
+    for (const char* sub : {"map/local_maps", "map", "maintenance", ""})
+        common::sync_folder((staging / sub).string());
 
     const fs::path versions = fs::path(dir_) / kVersions;
     fs::create_directories(versions, ec);
     if (ec) throw common::IoError(versions.string(), "cannot create: " + ec.message());
-    sync_dir(dir_);
+    common::sync_folder(dir_);
     SiteVersion made;
     made.number = summary.number;
     made.name = version_name(made.number);
@@ -199,7 +187,7 @@ SiteVersion SiteStore::commit(VersionSummary summary, std::size_t keep) {
     if (::rename(staging.c_str(), made.dir.c_str()) != 0)
         throw common::IoError(made.dir,
                               std::string("cannot make the version: ") + std::strerror(errno));
-    sync_dir(versions);
+    common::sync_folder(versions.string());
     made.intact = true;
 
     prune(made, summary.started_from, keep);
@@ -233,7 +221,7 @@ void SiteStore::prune(const SiteVersion& made, const std::string& started_from, 
         pruned_.push_back(v.name);
         --count;
     }
-    sync_dir(versions);
+    common::sync_folder(versions.string());
 }
 
 SiteVersion SiteStore::adopt(const std::string& made_dir, std::uint32_t number, std::size_t keep) {
@@ -257,14 +245,15 @@ SiteVersion SiteStore::adopt_as(const std::string& made_dir, std::uint32_t numbe
     std::error_code ec;
     if (fs::exists(made.dir, ec))
         throw common::IoError(made.dir, "the site has a " + made.name + " already");
-    for (const char* sub : {"map/local_maps", "map", "maintenance", ""}) sync_dir(from / sub);
+    for (const char* sub : {"map/local_maps", "map", "maintenance", ""})
+        common::sync_folder((from / sub).string());
     fs::create_directories(versions, ec);
     if (ec) throw common::IoError(versions.string(), "cannot create: " + ec.message());
-    sync_dir(dir_);
+    common::sync_folder(dir_);
     if (::rename(from.c_str(), made.dir.c_str()) != 0)
         throw common::IoError(made.dir,
                               std::string("cannot make the version: ") + std::strerror(errno));
-    sync_dir(versions);
+    common::sync_folder(versions.string());
     made.intact = true;
     prune(made, started_from, keep);
     return made;
