@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "runtime/domain.hpp"
+#include "runtime/held_memory.hpp"
 #include "runtime/logging.hpp"
 #include "runtime/messages.hpp"
 #include "runtime/parameters.hpp"
@@ -108,6 +109,11 @@ class ComponentContext {
                        const std::string& detail = "");
     std::vector<Output> outputs() const;
 
+    // What the component holds now, by part (bytes; any thread, at the component's own pace:
+    // a few times a minute is plenty). The host's minute log line lists them (held_memory.hpp).
+    void report_memory(const std::string& part, std::size_t bytes) { held_.set(part, bytes); }
+    std::vector<HeldPart> held_memory() const { return held_.parts(); }
+
     // The absolute ROS name a declared topic resolves to (remap and namespace applied).
     std::string resolve(const std::string& topic);
     // Throws ConfigError for a remap of a topic the component never declared.
@@ -176,6 +182,7 @@ class ComponentContext {
     std::atomic<bool> finished_{false};
     mutable std::mutex outputs_mutex_;
     std::vector<Output> outputs_;  // the last report of each (what, path)
+    HeldMemory held_;
 };
 
 }  // namespace ltm::runtime

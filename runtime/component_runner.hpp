@@ -48,6 +48,8 @@ class ComponentRunner {
     bool making_progress(std::chrono::steady_clock::duration limit) const;
     // The outputs the component reported (ComponentContext::report_output).
     std::vector<ComponentContext::Output> outputs() const { return ctx_->outputs(); }
+    // What the component said it holds (ComponentContext::report_memory).
+    std::vector<HeldPart> held_memory() const { return ctx_->held_memory(); }
     // What it is doing now, for a stop that takes long: "on_shutdown", "a handler of TOPIC", ...
     std::string activity() const;
 

@@ -12,6 +12,7 @@
 #include "common/core/io_error.hpp"
 #include "runtime/config_error.hpp"
 #include "runtime/heap_trim.hpp"
+#include "runtime/held_memory.hpp"
 #include "runtime/log_file.hpp"
 #include "runtime/logging.hpp"
 #include "runtime/systemd_notify.hpp"
@@ -197,7 +198,11 @@ int Host::run() {
         }
         watchdog.poll();
         if (heap_trimmer.poll() && clock::now() >= next_memory_line) {
-            g_log.info("memory: " + heap_stats_text(heap_stats()));
+            std::vector<std::pair<std::string, std::vector<HeldPart>>> held;
+            for (const auto& r : runners_) held.emplace_back(r->name(), r->held_memory());
+            const std::string parts = held_memory_text(held);
+            g_log.info("memory: " + heap_stats_text(heap_stats()) +
+                       (parts.empty() ? "" : "; " + parts));
             next_memory_line = clock::now() + memory_every;
         }
         if (stop_) break;

@@ -593,6 +593,18 @@ class LocalisationComponent : public runtime::Component {
         status_out_.publish(*status_msg(stamp, no_map_, counters(), frame_id_));
     }
 
+    // What the localiser holds, for the host's minute memory line: at most every
+    // kMemoryReportPeriod seconds, from the worker (which owns the localiser).
+    void report_memory() {
+        const double now = common::steady_wall_s();
+        if (now < next_memory_report_) return;
+        next_memory_report_ = now + runtime::kMemoryReportPeriod;
+        ctx_.report_memory("map", localiser_->map().memory_bytes());
+        const auto& n = localiser_->neighbourhood();
+        ctx_.report_memory("neighbourhood",
+                           n && n->current() ? n->current()->memory_bytes() : std::size_t(0));
+    }
+
     void process(const Scan& scan) {
         if (!localiser_) {
             publish_no_map(scan.cloud.stamp);
@@ -623,6 +635,7 @@ class LocalisationComponent : public runtime::Component {
         }
         report_change(scan.index, u);
         last_state_ = u.state;
+        report_memory();
     }
 
     // The state changes an operator wants to hear about, on `status` and in the log.
@@ -710,6 +723,7 @@ class LocalisationComponent : public runtime::Component {
     runtime::Publisher<msg::PoseWithCovarianceStamped> site_pose_out_;
     runtime::Publisher<msg::TransformStamped> correction_out_;
     runtime::Publisher<msg::Status> events_out_;
+    double next_memory_report_ = 0.0;  // steady wall time [s] (report_memory)
     // The global thread's global localiser (the worker swaps a newer version's in) and its answer
     // for the worker.
     GlobalAnswers answers_;

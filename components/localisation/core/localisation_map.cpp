@@ -83,6 +83,18 @@ LocalisationMap::LocalisationMap(const map::MapData& map, const LocalisationMapC
 
 LocalisationMap::~LocalisationMap() = default;
 
+std::size_t LocalisationMap::memory_bytes() const {
+    std::size_t n = keyframes_.capacity() * sizeof(MapKeyframe);
+    for (const MapKeyframe& k : keyframes_) n += k.descriptor.memory_bytes();
+    if (voxels_) n += voxels_->voxels.capacity() * sizeof(common::VoxelData);
+    if (target_) n += target_->memory_bytes();
+    n += features_.positions.capacity() * sizeof(Eigen::Vector3d);
+    for (const places::ScanContext& d : features_.descriptors) n += d.memory_bytes();
+    // A coverage cell: a 32-byte node and a bucket.
+    n += coverage_.size() * 32 + coverage_.bucket_count() * sizeof(void*);
+    return n;
+}
+
 std::uint64_t LocalisationMap::coverage_key(double x, double y) const {
     const auto cx = std::int64_t(std::floor(x / kCoverageCell));
     const auto cy = std::int64_t(std::floor(y / kCoverageCell));

@@ -143,6 +143,9 @@ class LocalisationMap {
     std::size_t sessions() const { return sessions_; }
     // Horizontal extent of the keyframe path [m] (sum of distances between consecutive ones).
     double path_length() const { return path_length_; }
+    // What it holds (bytes): keyframes and their descriptors, the whole map's voxels and grids,
+    // the local features, the coverage cells; not the neighbourhoods a paged map gives out.
+    std::size_t memory_bytes() const;
 
   private:
     void index_voxels(map::MergedVoxels merged);

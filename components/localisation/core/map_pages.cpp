@@ -153,4 +153,10 @@ std::shared_ptr<const Neighbourhood> MapPages::build(const std::vector<Eigen::Ve
     return n;
 }
 
+std::size_t Neighbourhood::memory_bytes() const {
+    return sizeof(Neighbourhood) + nodes.capacity() * sizeof(std::uint64_t) +
+           (voxels ? voxels->voxels.capacity() * sizeof(common::VoxelData) : 0) +
+           (target ? target->memory_bytes() : 0);
+}
+
 }  // namespace ltm::localisation

@@ -34,6 +34,7 @@ struct Neighbourhood {
     std::shared_ptr<const common::LocalMapData> voxels;  // map frame, as LocalisationMap::voxels
     std::shared_ptr<const registration::RegistrationTarget> target;
     std::size_t voxel_count() const { return voxels ? voxels->voxels.size() : 0; }
+    std::size_t memory_bytes() const;  // its voxels and grids
     EIGEN_MAKE_ALIGNED_OPERATOR_NEW
 };
 

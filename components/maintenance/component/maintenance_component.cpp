@@ -146,6 +146,12 @@ class MaintenanceComponent : public runtime::Component {
             if (!summary_)
                 p.fail("output_dir", "cannot write " + config_.output_dir + "/changes.txt");
         }
+        // The scans waiting for the worker, for the host's minute memory line (the map's parts
+        // are reported after each pass).
+        ctx.add_timer(runtime::kMemoryReportPeriod, [this] {
+            std::lock_guard<std::mutex> lock(queue_mutex_);
+            ctx_.report_memory("queue", waiting_.bytes());
+        });
         ctx.subscribe<msg::PointCloud2>("points", TopicRole::kSensor,
                                         [this](const msg::PointCloud2& m) { on_points(m); });
         switch (config_.input) {
@@ -496,6 +502,9 @@ class MaintenanceComponent : public runtime::Component {
                       c.count(ChangeReason::kNew), c.voxels_removed, st.voxels,
                       st.memory_bytes / 1048576.0, st.voxels_paged, c.time_ms);
         event(StatusLevel::kOk, StatusCode::kMaintained, text, stamp);
+        ctx_.report_memory("map", st.memory_bytes - st.views_bytes - st.motion_bytes);
+        ctx_.report_memory("views", st.views_bytes);
+        ctx_.report_memory("motion", st.motion_bytes);
         if (!c.changes.empty()) changes_out_.publish(*to_msg(c, pass, stamp, frame_id()));
         if (config_.output_dir.empty()) return;
         all_.append(c);

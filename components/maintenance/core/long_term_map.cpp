@@ -282,8 +282,9 @@ LongTermMapStats LongTermMap::stats() const {
         s.voxels += map->size();
         s.memory_bytes += map->memory_bytes();
     }
-    for (const View& v : pending_) s.memory_bytes += v.image.memory_bytes();
-    s.memory_bytes += motion_.memory_bytes();
+    for (const View& v : pending_) s.views_bytes += v.image.memory_bytes();
+    s.motion_bytes = motion_.memory_bytes();
+    s.memory_bytes += s.views_bytes + s.motion_bytes;
     s.motion_ms = motion_ms_;
     s.motion = motion_.stats();
     s.voxels_flagged_moving = flagged_moving_;

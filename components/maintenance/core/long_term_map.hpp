@@ -32,7 +32,9 @@ namespace ltm::maintenance {
 
 struct LongTermMapStats {
     std::size_t regions = 0, voxels = 0, views = 0, views_pending = 0;
-    std::size_t memory_bytes = 0;  // the regions in memory and the pending views
+    std::size_t memory_bytes = 0;  // the regions in memory, the pending views and the motion
+    std::size_t views_bytes = 0;   // of it: the pending views' range images
+    std::size_t motion_bytes = 0;  // of it: the motion tracker's
     // Paging: regions (and their voxels, included in `voxels`) on disk, the bytes of their files,
     // regions written out and read back since the start.
     std::size_t regions_paged = 0, voxels_paged = 0, paged_bytes = 0;

@@ -121,6 +121,15 @@ class MappingComponent : public runtime::Component {
             });
         }
         if (saver_ && save_period > 0) ctx.add_timer(save_period, [this] { save(); });
+        // What the mapper holds, by part, for the host's minute memory line.
+        ctx.add_timer(runtime::kMemoryReportPeriod, [this] {
+            const Mapper::Memory m = mapper_->memory();
+            ctx_.report_memory("local maps", m.local_maps);
+            ctx_.report_memory("keyframes", m.keyframes);
+            ctx_.report_memory("graph", m.graph);
+            ctx_.report_memory("loop targets", m.loop_targets);
+            ctx_.report_memory("removed cells", m.removed_cells);
+        });
         // One robot (relative topic names, the mapper's default session), or one a robot.
         for (const std::string& name : robots.empty() ? std::vector<std::string>{""} : robots) {
             auto robot = std::make_unique<Robot>();

@@ -230,6 +230,16 @@ class Mapper {
     // The sessions that built the map, the open ones last (each when it added anything), by id.
     std::vector<map::SessionRecord> sessions() const;
     std::size_t memory_bytes() const;
+    // memory_bytes() by part: local maps (in memory; the paged-out ones' headers), keyframes
+    // (their points and descriptors), graph (nodes, edges, odometry chains, the folds' records),
+    // loop targets (the verification's cached grids), removed cells (what maintenance emptied).
+    struct Memory {
+        std::size_t local_maps = 0, keyframes = 0, graph = 0, loop_targets = 0, removed_cells = 0;
+        std::size_t total() const {
+            return local_maps + keyframes + graph + loop_targets + removed_cells;
+        }
+    };
+    Memory memory() const;
 
   private:
     struct MapEntry {

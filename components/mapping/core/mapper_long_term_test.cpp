@@ -355,7 +355,14 @@ TEST(MapperLongTerm, RemovedCellsLeaveTheLocalMapsNowAndLater) {
     ASSERT_GT(gone.size(), 20u);
     const std::size_t all = voxels_in(mapper, far_box).size();
     const std::uint64_t revision = mapper.revision();
+    const Mapper::Memory memory = mapper.memory();
+    EXPECT_EQ(memory.removed_cells, RemovedCells().memory_bytes());
+    EXPECT_GT(memory.local_maps, all * sizeof(common::VoxelData));
+    EXPECT_GT(memory.keyframes, 0u);
     const std::size_t cleared = mapper.remove_cells(gone, 0.25f);
+    // The memory line's parts: the cells recorded are counted.
+    EXPECT_GT(mapper.memory().removed_cells, memory.removed_cells);
+    EXPECT_EQ(mapper.memory().total(), mapper.memory_bytes());
     EXPECT_GE(cleared, gone.size());
     EXPECT_EQ(mapper.removed_voxels(), cleared);
     EXPECT_GT(mapper.revision(), revision);  // the map changed: saved again

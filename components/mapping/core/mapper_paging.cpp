@@ -63,6 +63,7 @@ std::size_t Mapper::page_out(
         e.header = header_of(m);
         e.stored.paged = w->second.file;
         e.stored.data.reset();
+        verifier_.forget(e.serial);  // its loop target's grids leave with it
         ++count;
     }
     return count;

@@ -72,31 +72,33 @@ map::MapData Mapper::snapshot() const {
     return m;
 }
 
-std::size_t Mapper::memory_bytes() const {
-    std::size_t n = graph_.nodes().capacity() * sizeof(map::PoseGraphNode) +
-                    graph_.edges().capacity() * sizeof(map::PoseGraphEdge);
+std::size_t Mapper::memory_bytes() const { return memory().total(); }
+
+Mapper::Memory Mapper::memory() const {
+    Memory m;
+    m.graph = graph_.nodes().capacity() * sizeof(map::PoseGraphNode) +
+              graph_.edges().capacity() * sizeof(map::PoseGraphEdge) + folding_.memory_bytes() +
+              chains_.memory_bytes();
     for (const auto& [node, entry] : maps_) {
         if (!entry.stored.data) {  // paged out
-            n += sizeof(common::LocalMapData) + sizeof(map::LocalMapFile);
+            m.local_maps += sizeof(common::LocalMapData) + sizeof(map::LocalMapFile);
             continue;
         }
         const common::LocalMapData& d = *entry.stored.data;
-        n += sizeof(common::LocalMapData) + d.voxels.capacity() * sizeof(common::VoxelData) +
-             d.observation_times.capacity() * sizeof(double);
+        m.local_maps += sizeof(common::LocalMapData) +
+                        d.voxels.capacity() * sizeof(common::VoxelData) +
+                        d.observation_times.capacity() * sizeof(double);
         for (const common::VoxelData& v : d.voxels)
-            n += v.life.seen.capacity() * sizeof(std::uint16_t);
+            m.local_maps += v.life.seen.capacity() * sizeof(std::uint16_t);
     }
-    n += folding_.memory_bytes();
-    n += chains_.memory_bytes();
-    auto descriptor_bytes = [](const places::ScanContext& d) {
-        return (d.value.capacity() + d.spread.capacity()) * sizeof(float) + d.occupied.capacity();
-    };
     for (const auto& k : keyframes_) {
-        n += sizeof(map::StoredKeyframe) + descriptor_bytes(k->descriptor) +
-             descriptor_bytes(k->localisation_descriptor) +
-             k->data.points.capacity() * sizeof(Eigen::Vector3f);
+        m.keyframes += sizeof(map::StoredKeyframe) + k->descriptor.memory_bytes() +
+                       k->localisation_descriptor.memory_bytes() +
+                       k->data.points.capacity() * sizeof(Eigen::Vector3f);
     }
-    return n;
+    m.loop_targets = verifier_.memory_bytes();
+    m.removed_cells = removed_.memory_bytes();
+    return m;
 }
 
 }  // namespace ltm::mapping

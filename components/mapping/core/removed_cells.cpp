@@ -29,6 +29,13 @@ bool RemovedCells::may_hold(const Eigen::Vector3i& lo, const Eigen::Vector3i& hi
     return false;
 }
 
+std::size_t RemovedCells::memory_bytes() const {
+    // A node: the next pointer and the value, in a 32-byte malloc chunk (glibc's minimum).
+    constexpr std::size_t kNode = 32;
+    return (cells_.bucket_count() + blocks_.bucket_count()) * sizeof(void*) +
+           (cells_.size() + blocks_.size()) * kNode;
+}
+
 std::size_t RemovedCells::add(const std::vector<Eigen::Vector3f>& centres, float cell_size) {
     if (!(cell_size > 0.0f) || !std::isfinite(cell_size)) return 0;
     if (size_ == 0.0f) size_ = cell_size;

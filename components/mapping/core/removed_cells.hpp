@@ -36,6 +36,8 @@ class RemovedCells {
     std::size_t size() const { return cells_.size(); }
     bool full() const { return full_; }
     float cell_size() const { return size_; }
+    // About what the sets hold (their buckets and nodes, with malloc's 16 B a node).
+    std::size_t memory_bytes() const;
 
   private:
     static constexpr int kBlock = 8;  // cells a block's edge

@@ -113,6 +113,10 @@ class OdometryComponent : public runtime::Component {
             });
         ctx.subscribe<msg::PointCloud2>("points", TopicRole::kSensor,
                                         [this](const msg::PointCloud2& m) { on_points(m); });
+        // The local maps being built, for the host's minute memory line.
+        ctx.add_timer(runtime::kMemoryReportPeriod, [this] {
+            if (odometry_) ctx_.report_memory("local maps", odometry_->memory_bytes());
+        });
         odometry_out_ = ctx.advertise<msg::Odometry>("odometry", TopicRole::kState);
         keyframe_out_ = ctx.advertise<msg::Keyframe>("keyframe", TopicRole::kState);
         local_map_out_ = ctx.advertise<msg::LocalMap>("local_map", TopicRole::kMap);

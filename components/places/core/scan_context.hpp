@@ -63,6 +63,10 @@ struct ScanContext {
 
     bool empty() const { return value.empty(); }
     float at(int ring, int sector) const { return value[std::size_t(ring) * sectors + sector]; }
+    // What its bins take (bytes).
+    std::size_t memory_bytes() const {
+        return (value.capacity() + spread.capacity()) * sizeof(float) + occupied.capacity();
+    }
 };
 
 // The descriptor of a scan (points in the sensor frame, z up). Non-finite points are skipped.

@@ -1,5 +1,6 @@
 #include "registration/core/loop_verifier.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -34,6 +35,18 @@ std::optional<common::ConfigProblem> validate(const LoopVerifierConfig& config) 
 }
 
 LoopVerifier::LoopVerifier(const LoopVerifierConfig& config) : config_(checked(config)) {}
+
+void LoopVerifier::forget(std::uint64_t map_key) {
+    cache_.erase(std::remove_if(cache_.begin(), cache_.end(),
+                                [&](const Cached& c) { return c.key == map_key; }),
+                 cache_.end());
+}
+
+std::size_t LoopVerifier::memory_bytes() const {
+    std::size_t n = sampled_.capacity() * sizeof(Eigen::Vector3f);
+    for (const Cached& c : cache_) n += c.target->memory_bytes();
+    return n;
+}
 
 std::shared_ptr<RegistrationTarget> LoopVerifier::target(std::uint64_t key,
                                                          const common::LocalMapData& map) {

@@ -173,6 +173,11 @@ class LoopVerifier {
                             const RegistrationTarget& target, const GuessList& guesses,
                             Passes passes = Passes::kCoarseThenFine);
 
+    // The cached targets' grids (bytes).
+    std::size_t memory_bytes() const;
+    // Drops the cached target of `map_key` (its map left memory: paged out).
+    void forget(std::uint64_t map_key);
+
   private:
     struct Cached {
         std::uint64_t key;

@@ -17,6 +17,11 @@ struct RegistrationTarget {
     // Both grids are in the local map's grid frame: T_anchor_lidar = T_anchor_grid * T_grid_lidar.
     Eigen::Isometry3d T_anchor_grid = Eigen::Isometry3d::Identity();
     std::size_t skipped_voxels = 0;  // index out of range, centre not finite, or repeated
+    // Its grids (bytes).
+    std::size_t memory_bytes() const {
+        return sizeof(RegistrationTarget) + fine.memory_bytes() +
+               (coarse ? coarse->memory_bytes() : 0);
+    }
     EIGEN_MAKE_ALIGNED_OPERATOR_NEW
 };
 
