@@ -82,6 +82,13 @@ class StampPairer {
     // The wall time a scan waits at most from now on (StampPairerOptions::wait_s).
     void set_wait_s(double wait_s) { options_.wait_s = wait_s; }
     std::size_t waiting() const { return waiting_.size(); }
+    // The waiting scans' bytes, each as `bytes(scan)` says.
+    template <class Fn>
+    std::size_t waiting_bytes(Fn bytes) const {
+        std::size_t n = 0;
+        for (const Waiting& w : waiting_) n += sizeof(Waiting) + bytes(w.scan);
+        return n;
+    }
     std::uint64_t dropped() const { return dropped_; }
 
   private:

@@ -38,6 +38,20 @@ TEST(StampPairerTest, AScanWaitsForThePoseOfItsStamp) {
     EXPECT_EQ(out[0].pose, 7);
 }
 
+TEST(StampPairerTest, CountsTheWaitingScansBytes) {
+    Pairer p;
+    const auto bytes = [](const std::string& s) { return s.size(); };
+    EXPECT_EQ(p.waiting_bytes(bytes), 0u);
+    p.add_scan(1.0, "abc");
+    p.add_scan(2.0, "de");
+    const std::size_t two = p.waiting_bytes(bytes);
+    EXPECT_GE(two, 5u);
+    p.add_pose(1.0, 7);
+    ASSERT_EQ(release(p).size(), 1u);            // "de" left
+    const std::size_t per_scan = (two - 5) / 2;  // the queue's own record of a scan
+    EXPECT_EQ(p.waiting_bytes(bytes), per_scan + 2);
+}
+
 TEST(StampPairerTest, PosesBeforeScansPairToo) {
     Pairer p;
     p.add_pose(1.0, 1);

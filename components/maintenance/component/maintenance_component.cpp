@@ -31,8 +31,10 @@
 // map/core/site_store.hpp), it is loaded from the site's start version (`site_version`, or the
 // newest intact one) and saved into the site's staging, which the `site` component commits. With
 // `output_dir` (created when missing) every pass writes there its change record (changes_NNNN.ltmc,
-// maintenance/core/change_record.hpp), appends its summary to changes.txt and rewrites
-// changes_removed_added.ply (every change of the run: removed voxels red, added green).
+// maintenance/core/change_record.hpp) and appends its summary to changes.txt; at the end of the
+// session changes_removed_added.ply holds every change of the run (removed voxels red, added
+// green), made from the records (the run's changes are not kept in memory: they grew with the
+// day's length, issue 28).
 // Paging (`paging_radius`, `paging_dir`): only the regions near the robot stay in memory, the
 // others wait on disk (maintenance/core/region_pager.hpp; the worker reads them back when a scan
 // or a view reaches them, on its own thread).
@@ -146,9 +148,12 @@ class MaintenanceComponent : public runtime::Component {
             if (!summary_)
                 p.fail("output_dir", "cannot write " + config_.output_dir + "/changes.txt");
         }
-        // The scans waiting for the worker, for the host's minute memory line (the map's parts
-        // are reported after each pass).
+        // The scans waiting for their pose and for the worker, for the host's minute memory
+        // line (the map's parts are reported after each pass).
         ctx.add_timer(runtime::kMemoryReportPeriod, [this] {
+            ctx_.report_memory("pairing", pairer_.waiting_bytes([](const Points& p) {
+                return p.capacity() * sizeof(Eigen::Vector3f);
+            }));
             std::lock_guard<std::mutex> lock(queue_mutex_);
             ctx_.report_memory("queue", waiting_.bytes());
         });
@@ -465,6 +470,15 @@ class MaintenanceComponent : public runtime::Component {
         const double stamp = stamp_;
         try {
             if (started_) finish_pass(map_->end_session(), stamp);
+            if (!records_.empty()) {
+                const fs::path ply = fs::path(config_.output_dir) / "changes_removed_added.ply";
+                try {
+                    write_change_ply(ply.string(), records_);
+                } catch (const std::exception& e) {
+                    event(StatusLevel::kError, StatusCode::kWriteFailed, common::one_line(e.what()),
+                          stamp);
+                }
+            }
             if (!save_file_.empty()) {
                 const fs::path parent = fs::path(save_file_).parent_path();
                 if (!parent.empty()) fs::create_directories(parent);  // throws: one line below
@@ -507,16 +521,14 @@ class MaintenanceComponent : public runtime::Component {
         ctx_.report_memory("motion", st.motion_bytes);
         if (!c.changes.empty()) changes_out_.publish(*to_msg(c, pass, stamp, frame_id()));
         if (config_.output_dir.empty()) return;
-        all_.append(c);
-        all_.voxel_size = c.voxel_size;
         const fs::path dir(config_.output_dir);
         char name[40];
         std::snprintf(name, sizeof name, "changes_%04u.ltmc", pass);
         try {
             write_change_record((dir / name).string(), c);
+            records_.push_back((dir / name).string());
             write_change_summary(summary_, c, pass);
             summary_.flush();
-            write_change_ply((dir / "changes_removed_added.ply").string(), all_);
         } catch (const std::exception& e) {
             event(StatusLevel::kError, StatusCode::kWriteFailed, common::one_line(e.what()), stamp);
         }
@@ -574,7 +586,7 @@ class MaintenanceComponent : public runtime::Component {
     std::optional<common::CpuPacer> pacer_;  // cpu_share < 1, or cpu_budget
     double paced_wait_s_ = 0.0;
     std::atomic<bool> stopping_{false};
-    ChangeSet all_;  // every change of the run (the PLY)
+    std::vector<std::string> records_;  // the passes' change records written (the PLY's)
     std::ofstream summary_;
 
     runtime::Publisher<msg::MapChangeSet> changes_out_;

@@ -14,28 +14,10 @@ namespace ltm::maintenance {
 
 namespace {
 
-SlotHistogram merged(const SlotHistogram& a, const SlotHistogram& b) {
-    SlotHistogram out;
-    out.reserve(a.size() + b.size());
-    std::size_t i = 0, j = 0;
-    while (i < a.size() || j < b.size()) {
-        if (j == b.size() || (i < a.size() && a[i].slot < b[j].slot)) {
-            out.push_back(a[i++]);
-        } else if (i == a.size() || b[j].slot < a[i].slot) {
-            out.push_back(b[j++]);
-        } else {
-            out.push_back({a[i].slot, std::uint16_t(std::min<std::uint32_t>(
-                                          65535u, std::uint32_t(a[i].count) + b[j].count))});
-            ++i;
-            ++j;
-        }
-    }
-    return out;
-}
-
 // The first (from_start) or last `n` observations of `views`.
-SlotHistogram one_sided(const SlotHistogram& views, std::uint32_t n, bool from_start) {
-    SlotHistogram out;
+const SlotHistogram& one_sided(const SlotHistogram& views, std::uint32_t n, bool from_start,
+                               SlotHistogram& out) {
+    out.clear();
     std::uint32_t left = n;
     if (from_start) {
         for (std::size_t k = 0; k < views.size() && left > 0; ++k) {
@@ -46,9 +28,10 @@ SlotHistogram one_sided(const SlotHistogram& views, std::uint32_t n, bool from_s
     } else {
         for (std::size_t k = views.size(); k-- > 0 && left > 0;) {
             const std::uint32_t take = std::min<std::uint32_t>(left, views[k].count);
-            out.insert(out.begin(), SlotCount{views[k].slot, std::uint16_t(take)});
+            out.push_back(SlotCount{views[k].slot, std::uint16_t(take)});
             left -= take;
         }
+        std::reverse(out.begin(), out.end());
     }
     return out;
 }
@@ -57,8 +40,9 @@ SlotHistogram one_sided(const SlotHistogram& views, std::uint32_t n, bool from_s
 
 VoxelJudgement judge_voxel(const ChangeConfig& config, double slot, const ObservedVoxel& voxel) {
     VoxelJudgement j;
-    const SlotHistogram hits = voxel.hit_histogram();
-    const SlotHistogram views = merged(hits, voxel.free_histogram());
+    // Kept per thread: a pass judges every voxel of its region (no allocation a voxel).
+    thread_local SlotHistogram hits, views, side;
+    voxel.history.histograms(&hits, &views);
     j.views = histogram_total(views);
     j.hits = histogram_total(hits);
     // Keys left unset here (a config not resolved by resolve_thresholds): a long session.
@@ -78,9 +62,11 @@ VoxelJudgement judge_voxel(const ChangeConfig& config, double slot, const Observ
     if (j.hits > 0 && free_fraction >= config.min_free_fraction) {
         const double sigma = config.sigma.value_or(kLongSession.sigma) / slot;
         const double w = histogram_wasserstein1(hits, views, sigma);
-        const double w_max =
-            std::max(histogram_wasserstein1(one_sided(views, j.hits, true), views, sigma),
-                     histogram_wasserstein1(one_sided(views, j.hits, false), views, sigma));
+        const double w_first =
+            histogram_wasserstein1(one_sided(views, j.hits, true, side), views, sigma);
+        const double w_last =
+            histogram_wasserstein1(one_sided(views, j.hits, false, side), views, sigma);
+        const double w_max = std::max(w_first, w_last);
         j.score = w_max > 1e-9 ? std::clamp(w / w_max, 0.0, 1.0) : 0.0;
     }
     const bool recent_known = j.recent_views >= std::uint32_t(config.min_recent_views);

@@ -182,6 +182,31 @@ TEST_F(ChangeRecordFiles, SummaryAndPly) {
     EXPECT_LT((unsigned char)ply[body + 3 * 15 + 12], (unsigned char)ply[body + 3 * 15 + 13]);
 }
 
+// The run's PLY from its passes' records, read one at a time, is the PLY of all their changes
+// together (the maintenance component writes it so at the session's end, keeping none in memory).
+TEST_F(ChangeRecordFiles, ThePlyOfTheRecordsIsThePlyOfTheirChangesTogether) {
+    ChangeSet first = sample(1), second = sample(1);
+    for (SegmentChange& c : second.changes)
+        for (Eigen::Vector3f& v : c.voxels) v += Eigen::Vector3f(10.0f, 0.0f, 0.0f);
+    write_change_record(path("p0.ltmc"), first);
+    write_change_record(path("p1.ltmc"), second);
+    ChangeSet all = first;
+    all.append(second);
+    write_change_ply(path("all.ply"), all);
+    write_change_ply(path("records.ply"), {path("p0.ltmc"), path("p1.ltmc")});
+    const auto read = [](const std::string& p) {
+        std::ifstream in(p, std::ios::binary);
+        return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    };
+    const std::string ply = read(path("records.ply"));
+    EXPECT_NE(ply.find("element vertex 10\n"), std::string::npos);
+    EXPECT_EQ(ply, read(path("all.ply")));
+    // A damaged record: one line, and the PLY written before stays as it was.
+    std::ofstream(path("p1.ltmc"), std::ios::binary | std::ios::trunc) << "not a record";
+    EXPECT_ANY_THROW(write_change_ply(path("records.ply"), {path("p0.ltmc"), path("p1.ltmc")}));
+    EXPECT_EQ(read(path("records.ply")), ply);
+}
+
 // The map untouched: a ledger that applied good records meets a damaged one (every truncation
 // and a flipped byte in each section) and is exactly as before; a record of another voxel size or
 // an earlier session is refused the same way.

@@ -4,6 +4,7 @@
 #include <cstring>
 
 #include "common/core/file_io.hpp"
+#include "maintenance/core/change_record.hpp"
 
 namespace ltm::maintenance {
 
@@ -28,28 +29,44 @@ void write_change_summary(std::ostream& out, const ChangeSet& c, std::size_t pas
     }
 }
 
-void write_change_ply(const std::string& path, const ChangeSet& changes) {
-    std::size_t n = 0;
-    for (const SegmentChange& s : changes.changes) n += s.voxels.size();
-    std::string bytes =
-        "ply\nformat binary_little_endian 1.0\ncomment ltm map changes: removed red, added "
-        "green\nelement vertex " +
-        std::to_string(n) +
-        "\nproperty float x\nproperty float y\nproperty float z\nproperty uchar red\n"
-        "property uchar green\nproperty uchar blue\nend_header\n";
-    const std::size_t header = bytes.size();
-    bytes.resize(header + n * 15);
-    char* out = bytes.data() + header;
+namespace {
+
+// The PLY's vertices of `changes` appended to `body` (15 bytes a voxel).
+void append_vertices(const ChangeSet& changes, std::string& body) {
     for (const SegmentChange& s : changes.changes) {
         const unsigned char rgb[3] = {static_cast<unsigned char>(s.removed() ? 220 : 30),
                                       static_cast<unsigned char>(s.removed() ? 30 : 200), 30};
         for (const Eigen::Vector3f& p : s.voxels) {
-            std::memcpy(out, p.data(), 12);
-            std::memcpy(out + 12, rgb, 3);
-            out += 15;
+            char v[15];
+            std::memcpy(v, p.data(), 12);
+            std::memcpy(v + 12, rgb, 3);
+            body.append(v, 15);
         }
     }
-    common::write_file_atomic(path, bytes);
+}
+
+void write_ply(const std::string& path, const std::string& body) {
+    const std::string header =
+        "ply\nformat binary_little_endian 1.0\ncomment ltm map changes: removed red, added "
+        "green\nelement vertex " +
+        std::to_string(body.size() / 15) +
+        "\nproperty float x\nproperty float y\nproperty float z\nproperty uchar red\n"
+        "property uchar green\nproperty uchar blue\nend_header\n";
+    common::write_file_atomic(path, header + body);
+}
+
+}  // namespace
+
+void write_change_ply(const std::string& path, const ChangeSet& changes) {
+    std::string body;
+    append_vertices(changes, body);
+    write_ply(path, body);
+}
+
+void write_change_ply(const std::string& path, const std::vector<std::string>& records) {
+    std::string body;
+    for (const std::string& r : records) append_vertices(read_change_record(r), body);
+    write_ply(path, body);
 }
 
 }  // namespace ltm::maintenance

@@ -4,6 +4,7 @@
 // little-endian: x y z float, red green blue uchar; every viewer colours it).
 #include <ostream>
 #include <string>
+#include <vector>
 
 #include "maintenance/core/change_set.hpp"
 
@@ -15,5 +16,9 @@ void write_change_summary(std::ostream& out, const ChangeSet& changes, std::size
 
 // Written atomically; throws common::IoError.
 void write_change_ply(const std::string& path, const ChangeSet& changes);
+// The same for the changes of several passes, from their records (change_record.hpp), read one
+// at a time: a run's changes need not stay in memory until its end (issue 28: they grew the
+// robot's memory by the day's length). Throws what read_change_record and the write throw.
+void write_change_ply(const std::string& path, const std::vector<std::string>& records);
 
 }  // namespace ltm::maintenance

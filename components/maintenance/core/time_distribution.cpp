@@ -117,7 +117,9 @@ double histogram_wasserstein1(const SlotHistogram& a, const SlotHistogram& b, do
     const double na = histogram_total(a), nb = histogram_total(b);
     if (!(na > 0.0) || !(nb > 0.0)) return 0.0;
     // The signed slot masses of F_a - F_b, merged by slot.
-    std::vector<std::pair<std::int32_t, double>> d;
+    // Kept per thread (its room reused: called for every voxel a pass judges).
+    thread_local std::vector<std::pair<std::int32_t, double>> d;
+    d.clear();
     d.reserve(a.size() + b.size());
     std::size_t i = 0, j = 0;
     while (i < a.size() || j < b.size()) {

@@ -157,6 +157,18 @@ SlotHistogram VoxelHistory::hit_histogram() const {
     return out;
 }
 
+void VoxelHistory::histograms(SlotHistogram* hits, SlotHistogram* views) const {
+    hits->clear();
+    views->clear();
+    const Entries h = entries();
+    for (int k = 0; k < h.n; ++k) {
+        const Entry& e = h.e[std::size_t(k)];
+        if (e.hits > 0) hits->push_back({e.slot, std::uint16_t(e.hits)});
+        // Counts are at most kMaxCount each: their sum fits a histogram's count.
+        views->push_back({e.slot, std::uint16_t(e.hits + e.free)});
+    }
+}
+
 SlotHistogram VoxelHistory::free_histogram() const {
     const Entries h = entries();
     SlotHistogram out;

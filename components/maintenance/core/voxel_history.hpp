@@ -59,6 +59,9 @@ class VoxelHistory {
     // The hit and the free views as slot histograms (the change decisions read these).
     SlotHistogram hit_histogram() const;
     SlotHistogram free_histogram() const;
+    // The hit histogram and every view's (hits and free views summed by slot) into the given
+    // ones (cleared first; their room is reused: a pass judges every voxel of a region).
+    void histograms(SlotHistogram* hits, SlotHistogram* views) const;
     // Slots from the first hit to the last (0 without hits), at most kMaxSpan.
     std::uint32_t hit_span() const;
 

@@ -121,5 +121,37 @@ TEST(VoxelHistory, CountsHalveTogetherPastTheirLimit) {
     EXPECT_NEAR(double(e.e[0].hits) / double(e.e[1].free), 2.0, 0.01);
 }
 
+// The histograms a pass reads, into reused vectors: the hit histogram, and every view's by slot
+// as the hit and free histograms merged (what judge_voxel read before).
+TEST(VoxelHistory, HistogramsIntoReusedRoomAreTheHitAndTheMergedViews) {
+    std::mt19937 rng(11);
+    std::uniform_int_distribution<int> step(0, 5);
+    std::bernoulli_distribution hit(0.4);
+    SlotHistogram hits{{-7, 3}}, views{{1, 1}, {2, 2}};  // stale content: cleared
+    for (int voxel = 0; voxel < 50; ++voxel) {
+        VoxelHistory h;
+        std::int32_t slot = 100 * voxel;
+        for (int v = 0; v < 5 + voxel * 7; ++v) {
+            slot += step(rng);
+            h.add(slot, hit(rng), VoxelHistory::kCapacity);
+        }
+        h.histograms(&hits, &views);
+        const SlotHistogram want_hits = h.hit_histogram(), free = h.free_histogram();
+        ASSERT_EQ(hits.size(), want_hits.size());
+        for (std::size_t k = 0; k < hits.size(); ++k) {
+            EXPECT_EQ(hits[k].slot, want_hits[k].slot);
+            EXPECT_EQ(hits[k].count, want_hits[k].count);
+        }
+        SlotHistogram want_views = want_hits;
+        for (const SlotCount& f : free) add_to_histogram(want_views, f.slot, f.count, 100);
+        ASSERT_EQ(views.size(), want_views.size()) << voxel;
+        for (std::size_t k = 0; k < views.size(); ++k) {
+            EXPECT_EQ(views[k].slot, want_views[k].slot);
+            EXPECT_EQ(views[k].count, want_views[k].count);
+        }
+        EXPECT_EQ(histogram_total(views), histogram_total(want_hits) + histogram_total(free));
+    }
+}
+
 }  // namespace
 }  // namespace ltm::maintenance
