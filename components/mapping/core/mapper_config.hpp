@@ -86,13 +86,16 @@ struct LongTermConfig {
     // some views see among them. 0: voxels are never forgotten (only maintenance removes).
     int forget_after_visits = 3;
     double visit_gap = 3600.0;  // [s]
-    // A local map is folded where registering its surfaces to the existing map's (the loop
-    // verification's registration, from the graph's estimate) puts it, when that fit is accepted
-    // and within fold_max_correction / _rotation of the graph's estimate; otherwise (or when
-    // false) where the graph puts it. The graph places a day's maps by that day's localisation
-    // and loops, a cm or two off the old surfaces: folded so, each day moved the map's voxels by a
-    // share of that offset while its keyframes stayed (repeat_fortnight: the same scans localised
-    // 3.9 cm apart on day 1's and day 8's maps; components/bench/lifelong/README.md).
+    // A local map folded into an earlier session's map (another day's) is folded where
+    // registering its surfaces to that map's (the loop verification's registration, from the
+    // graph's estimate) puts it, when that fit is accepted and within fold_max_correction /
+    // _rotation of the graph's estimate; otherwise (or when false), and always between maps of
+    // open sessions (one day's laps: the graph's estimate is the loops' consensus, and the
+    // registration overrode it, site_loop day 0 0.065 -> 0.087 m), where the graph puts it. The
+    // graph places a day's maps by that day's localisation and loops, a cm or two off the old
+    // surfaces: folded so, each day moved the map's voxels by a share of that offset while its
+    // keyframes stayed (repeat_fortnight: the same scans localised 3.9 cm apart on day 1's and day
+    // 8's maps; components/bench/lifelong/README.md).
     bool register_fold = true;
     double fold_max_correction = 0.5;           // [m]
     double fold_max_correction_rotation = 2.0;  // [deg]
