@@ -156,7 +156,10 @@ GlobalLocaliser::GlobalLocaliser(std::shared_ptr<const LocalisationMap> map,
       probe_(probe_config(config.verification.coarse, config.probe_iterations),
              map_->coarse_voxel_size()),
       settle_(probe_config(config.verification.coarse, std::max(1, config.rival_settle_iterations)),
-              map_->coarse_voxel_size()) {
+              map_->coarse_voxel_size()),
+      slide_settle_(
+          probe_config(config.verification.coarse, std::max(1, config.slide_settle_iterations)),
+          map_->coarse_voxel_size()) {
     if (auto problem = validate(config)) throw common::ConfigError("localisation.global", *problem);
 }
 
@@ -384,7 +387,7 @@ GlobalLocalisation GlobalLocaliser::localise(const std::vector<Eigen::Vector3f>&
             if (!elongated) directions.push_back(hc.strongest);
             out.slide_tested = true;
             std::vector<registration::LoopVerification> rivals =
-                slide_rivals(finite, best, directions, &out.verified);
+                slide_rivals(finite, best, directions, &out);
             out.slide_inliers_ratio =
                 rivals.empty() ? 0.0 : double(rivals.front().inliers) / double(best.inliers);
             // The answer fits below ambiguity_ratio of the slide pose's inliers, and the slide
@@ -490,18 +493,25 @@ double GlobalLocaliser::probe_share_on_surface(const Eigen::Isometry3d& T_map_li
     return double(on) / double(probe_points_.size());
 }
 
-bool GlobalLocaliser::settles_at_answer(const Guess& guess, const std::vector<Verified>& accepted) {
+bool GlobalLocaliser::settles_at(
+    registration::Registration& reg, const Eigen::Isometry3d& start,
+    const std::vector<const registration::LoopVerification*>& answers) {
     const registration::RegistrationTarget& map_target = target();
     const registration::VoxelGrid& coarse =
         map_target.coarse ? *map_target.coarse : map_target.fine;
-    const registration::RegistrationResult r =
-        settle_.align(probe_points_, coarse, guess.T_map_lidar);
+    const registration::RegistrationResult r = reg.align(probe_points_, coarse, start);
     if (!r.ok() || !r.T_map_lidar.matrix().allFinite()) return false;
-    for (const Verified& a : accepted) {
-        const auto [dt, dr] = pose_distance(a.v.T_anchor_lidar, r.T_map_lidar);
+    for (const registration::LoopVerification* a : answers) {
+        const auto [dt, dr] = pose_distance(a->T_anchor_lidar, r.T_map_lidar);
         if (dt < config_.distinct_translation && dr < config_.distinct_rotation) return true;
     }
     return false;
+}
+
+bool GlobalLocaliser::settles_at_answer(const Guess& guess, const std::vector<Verified>& accepted) {
+    std::vector<const registration::LoopVerification*> answers;
+    for (const Verified& a : accepted) answers.push_back(&a.v);
+    return settles_at(settle_, guess.T_map_lidar, answers);
 }
 
 std::vector<GlobalLocaliser::Verified> GlobalLocaliser::verify_guesses(
@@ -646,18 +656,24 @@ void GlobalLocaliser::take_answer(const registration::LoopVerification& best, co
 // along a row of similar things), the answer is moved by slide_distance either way and verified
 // again; another verified pose there that fits about as well is a rival the places did not offer
 // (hku-avia: three answers 1.5-3 m along the path passed every other check), and one that fits
-// clearly better is the minimum the answer should have reached (slide_moves).
+// clearly better is the minimum the answer should have reached (slide_moves). A pose whose probe
+// slides back to the answer is not verified (slide_settle_iterations): a verification ending at
+// the answer is discarded below anyway.
 std::vector<registration::LoopVerification> GlobalLocaliser::slide_rivals(
     const std::vector<Eigen::Vector3f>& finite, const registration::LoopVerification& best,
-    const std::vector<Eigen::Vector3d>& directions, int* verified) {
+    const std::vector<Eigen::Vector3d>& directions, GlobalLocalisation* out) {
     std::vector<registration::LoopVerification> rivals;
     for (std::size_t k = 0; k < 2 * directions.size(); ++k) {
         const double sign = k % 2 ? -1.0 : 1.0;
         Eigen::Isometry3d moved = best.T_anchor_lidar;
         moved.translation() += sign * config_.slide_distance * directions[k / 2];
+        if (config_.slide_settle_iterations > 0 && settles_at(slide_settle_, moved, {&best})) {
+            ++out->slide_settled;
+            continue;
+        }
         registration::LoopVerification v =
             verifier_.verify(finite, target(), registration::GuessList{moved});
-        ++*verified;
+        ++out->verified;
         if (!v.accepted) continue;
         const auto [dt, dr] = pose_distance(best.T_anchor_lidar, v.T_anchor_lidar);
         if (dt < config_.distinct_translation && dr < config_.distinct_rotation) continue;
@@ -690,6 +706,7 @@ std::string GlobalLocaliser::describe(const Guess& from, const std::vector<Place
     if (out.outprobed) how << ", outprobed " << out.outprobed;
     if (out.searched) how << ", searched around " << out.searched;
     if (out.slide_tested) how << ", slide rival " << out.slide_inliers_ratio;
+    if (out.slide_settled) how << ", slide poses settled at it " << out.slide_settled;
     if (out.slide_moved) how << ", moved by the slide test " << out.slide_moved;
     how << ", verified " << out.verified;
     return how.str();

@@ -123,6 +123,7 @@ TEST(GlobalLocaliser, TheSlideTestRunsOnlyWhereTheFitIsWeakAndFineOnlyGivesTheSa
     GlobalLocaliserConfig always;
     always.slide_below_share = 1.0;
     always.fine_only = false;
+    always.slide_settle_iterations = 0;  // every slide pose verified in full
     GlobalLocaliser reference(s.map, always);
     const GlobalLocalisation a = reference.localise(scan);
     ASSERT_TRUE(a.localised) << a.reason;
@@ -134,6 +135,7 @@ TEST(GlobalLocaliser, TheSlideTestRunsOnlyWhereTheFitIsWeakAndFineOnlyGivesTheSa
     ASSERT_TRUE(b.localised) << b.reason;
     EXPECT_GT(b.weakest_share, g.config().slide_below_share);
     EXPECT_FALSE(b.slide_tested);
+    EXPECT_EQ(b.slide_settled, 0);
     EXPECT_LT(b.verified, a.verified);
     EXPECT_LT(error_of(b.T_map_lidar, a.T_map_lidar).translation, 0.01);
     EXPECT_LT(error_of(b.T_map_lidar, truth).translation, 0.1);
