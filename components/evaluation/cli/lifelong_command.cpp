@@ -99,7 +99,8 @@ std::string kept_text(const ObjectChanges& changes, const std::vector<SiteObject
     const Eigen::Isometry3d T_map_world = T_world_map.inverse();
     auto place = [&](const SiteObject& o, const char* what) {
         for (const auto& p : later) {
-            if (p.z() < o.base_z + config.ground_clearance || !o.contains(p, config.box_margin))
+            if (!o.contains(p, config.box_margin) ||
+                p.z() < o.ground_at(p) + config.ground_clearance)
                 continue;
             double lowest = p.z();
             for (const auto& q : later)

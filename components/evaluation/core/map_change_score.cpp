@@ -15,13 +15,14 @@ bool inside(const Eigen::Vector3d& p, const SiteObject& o, double margin) {
     return o.contains(p, margin);
 }
 
-// Voxels of the object itself: inside its box and above the ground under it.
+// Voxels of the object itself: inside its box and above the ground under it (where the object
+// stands: a fence on a slope stands on higher ground than its base at one end).
 std::size_t count_inside(const std::vector<Eigen::Vector3d>& map, const SiteObject& o,
                          const MapChangeConfig& config) {
-    const double floor = o.base_z + config.ground_clearance;
     return static_cast<std::size_t>(
         std::count_if(map.begin(), map.end(), [&](const Eigen::Vector3d& p) {
-            return p.z() >= floor && inside(p, o, config.box_margin);
+            return inside(p, o, config.box_margin) &&
+                   p.z() >= o.ground_at(p) + config.ground_clearance;
         }));
 }
 

@@ -15,7 +15,8 @@ struct MapChangeConfig {
     double box_margin = 0.3;     // [m] object boxes grown by this (voxel centres, noise)
     double static_radius = 0.5;  // [m] a first-map voxel is kept when a later voxel is this near
     std::size_t min_voxels = 3;  // an added object is in the map with at least this many voxels
-    // [m] voxels lower than this above an object's base are the ground under it, not the object
+    // [m] voxels lower than this above the ground under an object (SiteObject::ground_at) are that
+    // ground, not the object
     double ground_clearance = 0.3;
 };
 

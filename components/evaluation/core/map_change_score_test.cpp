@@ -94,5 +94,34 @@ TEST(MapChangeScore, EmptyMapsScoreZero) {
     EXPECT_EQ(score_map_changes(ground, ground, changes, {}).added_present, 0u);
 }
 
+// A fence on a slope is sunk to its lowest ground (base_z) and stands on higher ground at its
+// other end: the ground there, under a fence removed, is no voxel of the fence (the ten days of
+// repeat_fortnight counted 8-11 ground voxels a day as a removed fence's, issue 26).
+TEST(MapChangeScore, TheGroundAtASunkFencesHighEndIsNoVoxelOfTheFence) {
+    SiteObject fence;
+    fence.id = 1;
+    fence.kind = "fence";
+    fence.x = 8.0, fence.y = 0.0, fence.base_z = -0.3;
+    fence.length = 16.0, fence.width = 0.1, fence.height = 2.4;
+    fence.ground_z = {-0.3, -0.15, 0.0, 0.15, 0.3};  // west end to east end
+    std::vector<Eigen::Vector3d> first, later;
+    for (double x = 0.25; x < 16.0; x += 0.5) {
+        const double ground = -0.3 + 0.6 * x / 16.0;
+        first.emplace_back(x, 0.0, ground);  // the ground along the fence (and under it)
+        later.emplace_back(x, 0.0, ground);  // the fence gone, its ground stays
+        // The fence up to its top, base_z + height all along (the ground hides its foot).
+        for (double z = ground + 0.5; z < 2.1; z += 0.5) first.emplace_back(x, 0.0, z);
+    }
+    ObjectChanges changes;
+    changes.removed = {fence};
+    const MapChangeScore s = score_map_changes(first, later, changes, {});
+    EXPECT_EQ(s.removed_kept, 0u);  // with base_z alone: the east half's ground, 0.3 m up and more
+    EXPECT_EQ(s.removed_before, first.size() - later.size());
+    SiteObject flat = fence;
+    flat.ground_z.clear();  // without the ground: base_z all along (as before)
+    changes.removed = {flat};
+    EXPECT_GT(score_map_changes(first, later, changes, {}).removed_kept, 5u);
+}
+
 }  // namespace
 }  // namespace ltm::eval

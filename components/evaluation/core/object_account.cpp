@@ -22,10 +22,11 @@ struct PlaceCounter {
     // The place's voxels of `map`; their heights above the base in `heights` when given.
     std::size_t count(const std::vector<Eigen::Vector3d>& map,
                       std::vector<double>* heights = nullptr) const {
-        const double floor = place.base_z + config.ground_clearance;
         std::size_t n = 0;
         for (const auto& p : map) {
-            if (p.z() < floor || !in_box(p, place, config.box_margin)) continue;
+            if (!in_box(p, place, config.box_margin) ||
+                p.z() < place.ground_at(p) + config.ground_clearance)
+                continue;
             const bool other = std::any_of(standing.begin(), standing.end(), [&](const auto* s) {
                 return in_box(p, *s, config.box_margin);
             });

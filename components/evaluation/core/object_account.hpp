@@ -26,9 +26,10 @@ struct ObjectAccount {
 };
 
 // Voxels of a place: in the object's box grown by `config.box_margin`, at least
-// `config.ground_clearance` above its base, and in no grown box of an object that stands on the
-// day (`today_objects`: a neighbour parked within the margin is no voxel of the place).
-// `yesterday_objects` tells which objects left today; `route` is the day's true path.
+// `config.ground_clearance` above the ground under it (SiteObject::ground_at), and in no grown box
+// of an object that stands on the day (`today_objects`: a neighbour parked within the margin is no
+// voxel of the place). `yesterday_objects` tells which objects left today; `route` is the day's
+// true path.
 std::vector<ObjectAccount> account_left_places(
     const std::vector<Eigen::Vector3d>& first_map, const std::vector<Eigen::Vector3d>& start_map,
     const std::vector<Eigen::Vector3d>& later_map, const ObjectChanges& changes,

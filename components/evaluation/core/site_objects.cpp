@@ -1,5 +1,6 @@
 #include "evaluation/core/site_objects.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -16,6 +17,18 @@ bool SiteObject::contains(const Eigen::Vector3d& p, double margin) const {
     const double across = -std::sin(yaw) * dx + std::cos(yaw) * dy;
     return std::abs(along) <= 0.5 * length + margin && std::abs(across) <= 0.5 * width + margin &&
            p.z() >= base_z - margin && p.z() <= base_z + height + margin;
+}
+
+double SiteObject::ground_at(const Eigen::Vector3d& p) const {
+    if (ground_z.size() < 2) return base_z;
+    const double yaw = yaw_deg * M_PI / 180.0;
+    const double along = std::cos(yaw) * (p.x() - x) + std::sin(yaw) * (p.y() - y);
+    const double steps = double(ground_z.size() - 1);
+    const double t =
+        length > 0.0 ? std::clamp((along / length + 0.5) * steps, 0.0, steps) : 0.5 * steps;
+    const std::size_t k = std::min(std::size_t(t), ground_z.size() - 2);
+    const double f = t - double(k);
+    return (1.0 - f) * ground_z[k] + f * ground_z[k + 1];
 }
 
 std::vector<SiteObject> read_site_objects(const std::string& path) {
@@ -42,6 +55,14 @@ std::vector<SiteObject> read_site_objects(const std::string& path) {
                                             "height changed`");
         }
         o.changed = changed != 0;
+        for (double z; s >> z;) o.ground_z.push_back(z);
+        const bool bad_ground = !s.eof() || o.ground_z.size() == 1 ||
+                                std::any_of(o.ground_z.begin(), o.ground_z.end(),
+                                            [](double z) { return !std::isfinite(z); });
+        if (bad_ground)
+            throw common::IoError(path, "line " + std::to_string(n) +
+                                            ": the ground heights after `changed` must be numbers, "
+                                            "none or at least two");
         out.push_back(o);
     }
     return out;

@@ -50,6 +50,29 @@ TEST(SiteObjects, BadLineNamesFileAndLine) {
     EXPECT_THROW(read_site_objects("/nonexistent/objects.txt"), common::IoError);
 }
 
+TEST(SiteObjects, ReadsTheGroundUnderAnObjectAndInterpolatesItAlongItsAxis) {
+    const auto path = write_tmp("ltm_site_objects_ground.txt",
+                                "1 fence 10 5 -0.3 90 16 0.1 2.4 1 -0.3 0.1 0.5\n"
+                                "2 car 0 0 0.2 0 4.5 1.8 1.5 0\n");
+    const auto objects = read_site_objects(path);
+    ASSERT_EQ(objects.size(), 2u);
+    ASSERT_EQ(objects[0].ground_z.size(), 3u);
+    const SiteObject& f = objects[0];  // along +y: from y = -3 to y = 13
+    EXPECT_NEAR(f.ground_at({10, -3, 0}), -0.3, 1e-9);
+    EXPECT_NEAR(f.ground_at({10, 1, 0}), -0.1, 1e-9);
+    EXPECT_NEAR(f.ground_at({10.05, 9, 0}), 0.3, 1e-9);
+    EXPECT_NEAR(f.ground_at({10, 20, 0}), 0.5, 1e-9);  // beyond its end: the end's
+    EXPECT_TRUE(objects[1].ground_z.empty());
+    EXPECT_DOUBLE_EQ(objects[1].ground_at({1, 0, 0}), 0.2);  // without: base_z
+    for (const char* bad :
+         {"1 fence 10 5 -0.3 90 16 0.1 2.4 1 -0.3\n",  // one height
+          "1 fence 10 5 -0.3 90 16 0.1 2.4 1 -0.3 x\n", "1 car 0 0 0 0 4 2 1 0 nan 0\n"}) {
+        EXPECT_THROW(read_site_objects(write_tmp("ltm_site_objects_ground_bad.txt", bad)),
+                     common::IoError)
+            << bad;
+    }
+}
+
 TEST(SiteObjects, OrientedBoxContainment) {
     const SiteObject o = car(1, 10, 20, 90);  // 4.5 m along y, 1.8 m along x
     EXPECT_TRUE(o.contains({10, 22, 1}, 0.0));

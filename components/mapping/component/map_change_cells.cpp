@@ -34,10 +34,14 @@ ChangeCells change_cells(const msg::MapChangeSet& m) {
             ++out.malformed;
             continue;
         }
+        const bool vanished = c.reason == ltm_msgs_msg_SegmentChange_Constants_VANISHED;
+        if (vanished) out.vanished.emplace_back();
         for (std::uint32_t k = 0; k + 2 < c.voxels._length; k += 3) {
             const Eigen::Vector3f p(c.voxels._buffer[k], c.voxels._buffer[k + 1],
                                     c.voxels._buffer[k + 2]);
-            if (p.allFinite()) to->push_back(p);
+            if (!p.allFinite()) continue;
+            to->push_back(p);
+            if (vanished) out.vanished.back().push_back(p);
         }
     }
     return out;

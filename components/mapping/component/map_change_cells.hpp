@@ -12,6 +12,8 @@ namespace ltm::mapping {
 
 struct ChangeCells {
     std::vector<Eigen::Vector3f> removed, added;
+    // The voxels of each vanished segment (also in `removed`): Mapper::remove_cells' `vanished`.
+    std::vector<std::vector<Eigen::Vector3f>> vanished;
     float cell_size = 0.0f;
     std::size_t removed_segments = 0, added_segments = 0, malformed = 0;
     std::string frame_id;

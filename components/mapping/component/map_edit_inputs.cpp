@@ -101,7 +101,7 @@ void MapEditInputs::on_changes(const msg::MapChangeSet& m) {
     if (c.removed.empty()) return;
     if (!pacer_) {  // all at once
         const double cpu0 = common::thread_cpu_s();
-        const std::size_t cleared = mapper_.remove_cells(c.removed, c.cell_size);
+        const std::size_t cleared = mapper_.remove_cells(c.removed, c.cell_size, c.vanished);
         char cpu[64];
         std::snprintf(cpu, sizeof cpu, " (%.2f s of CPU at once)", common::thread_cpu_s() - cpu0);
         ctx_.log().info("map maintenance pass " + std::to_string(m.pass) + ": " +
@@ -114,7 +114,7 @@ void MapEditInputs::on_changes(const msg::MapChangeSet& m) {
     if (!clearing_) clearing_.emplace(Clearing{"", 0, 0, common::steady_wall_s()});
     clearing_->passes += (clearing_->passes.empty() ? "" : ", ") + std::to_string(m.pass);
     clearing_->segments += c.removed_segments;
-    if (mapper_.remove_cells_in_steps(c.removed, c.cell_size) == 0) clearing_done();
+    if (mapper_.remove_cells_in_steps(c.removed, c.cell_size, c.vanished) == 0) clearing_done();
 }
 
 void MapEditInputs::clear_some() {

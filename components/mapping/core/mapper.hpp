@@ -179,14 +179,19 @@ class Mapper {
     // centre lies in such a cell, within half a cell of one, or within half its own edge of a
     // cell centre), now and in the local maps that
     // arrive later in this Mapper's life (snapshots of a map still being built hold them again).
-    // The local maps' voxels removed.
-    std::size_t remove_cells(const std::vector<Eigen::Vector3f>& centres, float cell_size);
+    // `vanished`: the cells of each vanished segment (among `centres`); those of a segment of at
+    // least map_edits.surface_min_cells also take the voxels whose own surface they lie on within
+    // one voxel edge (MapEditConfig). The local maps' voxels removed.
+    std::size_t remove_cells(const std::vector<Eigen::Vector3f>& centres, float cell_size,
+                             const std::vector<std::vector<Eigen::Vector3f>>& vanished = {});
     // The same in steps (issue 28: a pass's edits spread, not a burst on the mapping's thread):
     // records the cells now (local maps that arrive later are cleared of them at once) and lists
     // the local maps near them, which clear_removed_step() clears one at a time (true while more
     // wait; *removed: its voxels removed). The result is remove_cells' once all steps ran.
     // Local maps waiting to be cleared.
-    std::size_t remove_cells_in_steps(const std::vector<Eigen::Vector3f>& centres, float cell_size);
+    std::size_t remove_cells_in_steps(
+        const std::vector<Eigen::Vector3f>& centres, float cell_size,
+        const std::vector<std::vector<Eigen::Vector3f>>& vanished = {});
     bool clear_removed_step(std::size_t* removed = nullptr);
     std::size_t removal_waiting() const { return removal_waiting_.size(); }
     // New objects found there: their cells are no longer cleared in maps that arrive later.

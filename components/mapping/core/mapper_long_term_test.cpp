@@ -3,6 +3,7 @@
 // stored already, and loops that agree with the graph make no optimisation due.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <random>
@@ -424,6 +425,73 @@ TEST(MapperLongTerm, RemovedCellsLeaveTheLocalMapsNowAndLater) {
     again.revision += 1;
     ASSERT_TRUE(mapper.add_local_map(again).added);
     EXPECT_FALSE(voxels_in(mapper, box).empty());
+}
+
+// A parked car's side seen only from afar (issue 26, repeat_fortnight): the local map holds its
+// lowest part as a voxel of its own (an upright plane 0.1-0.7 m above the ground, centre 0.3 m),
+// while maintenance, which makes no voxel for a far return beside an earlier day's, removed the
+// car's cells from 0.75 m up only. A cell of the vanished car on that voxel's plane within one
+// voxel edge takes it; the ground below, a wall 0.4 m behind the side and the side's plane 1.5 m on
+// stay; the same cells as moving ones (no vanished segment) or a vanished segment of fewer than
+// map_edits.surface_min_cells cells leave it, as before (only cells within half its edge took a
+// voxel). A snapshot of the map that arrives later is cleared the same way.
+TEST(MapperLongTerm, AVanishedObjectsCellsTakeTheVoxelsOnItsSurfaceWithinAVoxelEdge) {
+    common::LocalMapData m;
+    m.id = 0;
+    m.revision = 1;
+    m.finished = true;
+    m.voxel_size = 0.6f;
+    m.bbox_min = Eigen::Vector3d(8.0, -2.0, -2.0);
+    m.bbox_max = Eigen::Vector3d(12.0, 4.0, 3.0);
+    const auto voxel = [&](const Eigen::Vector3f& c, const Eigen::Vector3f& n) {
+        common::VoxelData v;
+        v.index = (c / m.voxel_size).array().floor().cast<int>();
+        v.centre = c;
+        v.normal = n;
+        v.point_count = 60;
+        v.planarity = 0.97f;
+        m.voxels.push_back(v);
+    };
+    const Eigen::Vector3f side_low(10.05f, 0.3f, 0.3f), ground(9.9f, 0.3f, -0.28f),
+        wall(10.45f, 0.3f, 0.3f), side_far(10.05f, 1.8f, 0.3f);
+    voxel(side_low, Eigen::Vector3f::UnitX());
+    voxel(ground, Eigen::Vector3f::UnitZ());
+    voxel(wall, Eigen::Vector3f::UnitX());
+    voxel(side_far, Eigen::Vector3f::UnitX());
+    // The car's side above 0.75 m, y 0-1 (its cells), as maintenance removed it.
+    std::vector<Eigen::Vector3f> car;
+    for (float y = 0.05f; y < 1.0f; y += 0.25f)
+        for (float z = 0.8f; z < 1.5f; z += 0.25f) car.emplace_back(10.05f, y, z);
+    ASSERT_GE(car.size(), 10u);
+    const Eigen::AlignedBox3f all(Eigen::Vector3f(5.0f, -5.0f, -5.0f),
+                                  Eigen::Vector3f(15.0f, 5.0f, 5.0f));
+    const auto has = [&](const Mapper& mapper, const Eigen::Vector3f& p) {
+        const std::vector<Eigen::Vector3f> v = voxels_in(mapper, all);
+        return std::any_of(v.begin(), v.end(),
+                           [&](const auto& q) { return (q - p).norm() < 1e-3f; });
+    };
+    Mapper vanished(test_config()), moving(test_config()), small(test_config());
+    for (Mapper* mapper : {&vanished, &moving, &small}) ASSERT_TRUE(mapper->add_local_map(m).added);
+    EXPECT_EQ(vanished.remove_cells(car, 0.25f, {car}), 1u);
+    EXPECT_FALSE(has(vanished, side_low));
+    for (const Eigen::Vector3f& p : {ground, wall, side_far})
+        EXPECT_TRUE(has(vanished, p)) << p.transpose();
+    EXPECT_EQ(moving.remove_cells(car, 0.25f), 0u);
+    EXPECT_TRUE(has(moving, side_low));
+    const std::vector<Eigen::Vector3f> few(car.begin(), car.begin() + 4);
+    EXPECT_EQ(small.remove_cells(car, 0.25f, {few}), 0u);
+    EXPECT_TRUE(has(small, side_low));
+    common::LocalMapData again = m;  // a newer snapshot holds it again
+    again.revision = 2;
+    ASSERT_TRUE(vanished.add_local_map(again).added);
+    EXPECT_FALSE(has(vanished, side_low));
+    EXPECT_TRUE(has(vanished, wall));
+    // Off (surface_band 0): as before.
+    MapperConfig off = test_config();
+    off.map_edits.surface_band = 0.0;
+    Mapper without(off);
+    ASSERT_TRUE(without.add_local_map(m).added);
+    EXPECT_EQ(without.remove_cells(car, 0.25f, {car}), 0u);
 }
 
 // The same edits in steps (issue 28: spread over the mapping's thread, one local map a step)

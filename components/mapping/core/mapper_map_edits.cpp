@@ -121,9 +121,22 @@ std::shared_ptr<const common::LocalMapData> Mapper::without_removed(
     const Eigen::Isometry3f T = (T_world_anchor * map.T_anchor_grid).cast<float>();
     // A voxel's points spread over its cube: its centre can lie between the surfaces it holds.
     const float reach = 0.5f * map.voxel_size;
+    // A vanished object's cell on the voxel's own surface, within one voxel edge (MapEditConfig):
+    // not on the ground's plane (an upright enough surface).
+    const MapEditConfig& edits = config_.map_edits;
+    const bool surfaces = edits.surface_band > 0.0 && !removed_.surfaces_empty();
+    const float max_nz = float(std::cos(edits.surface_min_tilt * M_PI / 180.0));
     std::vector<char> drop(map.voxels.size(), 0);
     for (std::size_t i = 0; i < map.voxels.size(); ++i) {
-        if (removed_.covers(T * map.voxels[i].centre, reach)) {
+        const common::VoxelData& v = map.voxels[i];
+        const Eigen::Vector3f p = T * v.centre;
+        bool gone = removed_.covers(p, reach);
+        if (!gone && surfaces && v.normal.squaredNorm() > 0.5f) {
+            const Eigen::Vector3f n = (T.linear() * v.normal).normalized();
+            gone = std::abs(n.z()) < max_nz &&
+                   removed_.surface_near(p, n, map.voxel_size, float(edits.surface_band));
+        }
+        if (gone) {
             drop[i] = 1;
             ++*removed;
         }
@@ -151,23 +164,32 @@ bool Mapper::on_reference_part(std::uint64_t node) const {
     return segments_.root(graph_, node) == segments_.root(SegmentKey(reference_session(), 0));
 }
 
-std::size_t Mapper::remove_cells(const std::vector<Eigen::Vector3f>& centres, float cell_size) {
+std::size_t Mapper::remove_cells(const std::vector<Eigen::Vector3f>& centres, float cell_size,
+                                 const std::vector<std::vector<Eigen::Vector3f>>& vanished) {
     const std::size_t before = removed_voxels_;
-    remove_cells_in_steps(centres, cell_size);
+    remove_cells_in_steps(centres, cell_size, vanished);
     while (clear_removed_step()) {
     }
     return removed_voxels_ - before;
 }
 
-std::size_t Mapper::remove_cells_in_steps(const std::vector<Eigen::Vector3f>& centres,
-                                          float cell_size) {
-    if (removed_.add(centres, cell_size) == 0) return removal_waiting_.size();
+std::size_t Mapper::remove_cells_in_steps(
+    const std::vector<Eigen::Vector3f>& centres, float cell_size,
+    const std::vector<std::vector<Eigen::Vector3f>>& vanished) {
+    std::size_t added = removed_.add(centres, cell_size);
+    for (const std::vector<Eigen::Vector3f>& segment : vanished) {
+        if (segment.size() >= std::size_t(std::max(1, config_.map_edits.surface_min_cells)))
+            added += removed_.add_surface(segment, cell_size);
+    }
+    if (added == 0) return removal_waiting_.size();
     Eigen::AlignedBox3f box;
     for (const Eigen::Vector3f& c : centres) {
         if (c.allFinite()) box.extend(c);
     }
-    box.min().array() -= cell_size;
-    box.max().array() += cell_size;
+    // (a vanished object's cell reaches the voxels on its surface within a voxel edge)
+    const float grow = cell_size + (vanished.empty() ? 0.0f : 1.0f);
+    box.min().array() -= grow;
+    box.max().array() += grow;
     for (const auto& [id, entry] : maps_) {
         const map::PoseGraphNode* n = graph_.find(id);
         if (!n || !on_reference_part(id)) continue;   // unplaced parts: not where the cells are

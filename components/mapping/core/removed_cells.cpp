@@ -20,39 +20,53 @@ Eigen::Vector3i RemovedCells::block(const Eigen::Vector3i& c) {
     return b;
 }
 
-bool RemovedCells::may_hold(const Eigen::Vector3i& lo, const Eigen::Vector3i& hi) const {
+bool RemovedCells::Set::may_hold(const Eigen::Vector3i& lo, const Eigen::Vector3i& hi) const {
     const Eigen::Vector3i a = block(lo), b = block(hi);
     for (int x = a.x(); x <= b.x(); ++x)
         for (int y = a.y(); y <= b.y(); ++y)
             for (int z = a.z(); z <= b.z(); ++z)
-                if (blocks_.count(key(Eigen::Vector3i(x, y, z)))) return true;
+                if (blocks.count(key(Eigen::Vector3i(x, y, z)))) return true;
     return false;
 }
 
 std::size_t RemovedCells::memory_bytes() const {
     // A node: the next pointer and the value, in a 32-byte malloc chunk (glibc's minimum).
     constexpr std::size_t kNode = 32;
-    return (cells_.bucket_count() + blocks_.bucket_count()) * sizeof(void*) +
-           (cells_.size() + blocks_.size()) * kNode;
+    std::size_t n = 0;
+    for (const Set* set : {&all_, &surface_}) {
+        n += (set->cells.bucket_count() + set->blocks.bucket_count()) * sizeof(void*) +
+             (set->cells.size() + set->blocks.size()) * kNode;
+    }
+    return n;
 }
 
-std::size_t RemovedCells::add(const std::vector<Eigen::Vector3f>& centres, float cell_size) {
+std::size_t RemovedCells::add_to(Set& set, const std::vector<Eigen::Vector3f>& centres,
+                                 float cell_size) {
     if (!(cell_size > 0.0f) || !std::isfinite(cell_size)) return 0;
     if (size_ == 0.0f) size_ = cell_size;
     std::size_t added = 0;
     for (const Eigen::Vector3f& c : centres) {
         if (!c.allFinite() || c.cwiseAbs().maxCoeff() > 2.0e5f) continue;
-        if (cells_.size() >= capacity_) {
+        if (set.cells.size() >= capacity_) {
             full_ = true;
             break;
         }
         const Eigen::Vector3i k = cell(c);
-        if (cells_.insert(key(k)).second) {
+        if (set.cells.insert(key(k)).second) {
             ++added;
-            ++blocks_[key(block(k))];
+            ++set.blocks[key(block(k))];
         }
     }
     return added;
+}
+
+std::size_t RemovedCells::add(const std::vector<Eigen::Vector3f>& centres, float cell_size) {
+    return add_to(all_, centres, cell_size);
+}
+
+std::size_t RemovedCells::add_surface(const std::vector<Eigen::Vector3f>& centres,
+                                      float cell_size) {
+    return add_to(surface_, centres, cell_size);
 }
 
 void RemovedCells::erase(const std::vector<Eigen::Vector3f>& centres) {
@@ -60,44 +74,68 @@ void RemovedCells::erase(const std::vector<Eigen::Vector3f>& centres) {
     for (const Eigen::Vector3f& c : centres) {
         if (!c.allFinite() || c.cwiseAbs().maxCoeff() > 2.0e5f) continue;
         const Eigen::Vector3i k = cell(c);
-        if (cells_.erase(key(k)) == 0) continue;
-        const auto b = blocks_.find(key(block(k)));
-        if (b != blocks_.end() && --b->second == 0) blocks_.erase(b);
+        for (Set* set : {&all_, &surface_}) {
+            if (set->cells.erase(key(k)) == 0) continue;
+            const auto b = set->blocks.find(key(block(k)));
+            if (b != set->blocks.end() && --b->second == 0) set->blocks.erase(b);
+        }
     }
 }
 
 bool RemovedCells::covers(const Eigen::Vector3f& p) const {
-    if (cells_.empty() || !p.allFinite() || p.cwiseAbs().maxCoeff() > 2.0e5f) return false;
+    if (all_.cells.empty() || !p.allFinite() || p.cwiseAbs().maxCoeff() > 2.0e5f) return false;
     const Eigen::Vector3f q = p / size_;
     const Eigen::Vector3i c = q.array().floor().cast<int>();
     // The neighbour on the side of p along each axis (p is within half a cell of it).
     Eigen::Vector3i side;
     for (int a = 0; a < 3; ++a) side[a] = q[a] - float(c[a]) < 0.5f ? -1 : 1;
-    if (!may_hold(c.cwiseMin(c + side), c.cwiseMax(c + side))) return false;
+    if (!all_.may_hold(c.cwiseMin(c + side), c.cwiseMax(c + side))) return false;
     for (int i = 0; i < 8; ++i) {
         Eigen::Vector3i n = c;
         for (int a = 0; a < 3; ++a) {
             if (i & (1 << a)) n[a] += side[a];
         }
-        if (cells_.count(key(n))) return true;
+        if (all_.cells.count(key(n))) return true;
     }
     return false;
 }
 
 bool RemovedCells::covers(const Eigen::Vector3f& p, float radius) const {
     if (covers(p)) return true;
-    if (!(radius > 0.0f) || cells_.empty() || !p.allFinite() || p.cwiseAbs().maxCoeff() > 2.0e5f)
+    if (!(radius > 0.0f) || all_.cells.empty() || !p.allFinite() ||
+        p.cwiseAbs().maxCoeff() > 2.0e5f)
         return false;
     const Eigen::Vector3i lo = ((p.array() - radius) / size_).floor().cast<int>();
     const Eigen::Vector3i hi = ((p.array() + radius) / size_).floor().cast<int>();
-    if (!may_hold(lo, hi)) return false;
+    if (!all_.may_hold(lo, hi)) return false;
     const float r2 = radius * radius;
     for (int x = lo.x(); x <= hi.x(); ++x)
         for (int y = lo.y(); y <= hi.y(); ++y)
             for (int z = lo.z(); z <= hi.z(); ++z) {
                 const Eigen::Vector3i c(x, y, z);
                 const Eigen::Vector3f centre = (c.cast<float>().array() + 0.5f) * size_;
-                if ((centre - p).squaredNorm() <= r2 && cells_.count(key(c))) return true;
+                if ((centre - p).squaredNorm() <= r2 && all_.cells.count(key(c))) return true;
+            }
+    return false;
+}
+
+bool RemovedCells::surface_near(const Eigen::Vector3f& p, const Eigen::Vector3f& n, float reach,
+                                float band) const {
+    if (surface_.cells.empty() || !(reach > 0.0f) || !(band >= 0.0f) || !p.allFinite() ||
+        !n.allFinite() || p.cwiseAbs().maxCoeff() > 2.0e5f)
+        return false;
+    const Eigen::Vector3i lo = ((p.array() - reach) / size_).floor().cast<int>();
+    const Eigen::Vector3i hi = ((p.array() + reach) / size_).floor().cast<int>();
+    if (!surface_.may_hold(lo, hi)) return false;
+    const float r2 = reach * reach;
+    for (int x = lo.x(); x <= hi.x(); ++x)
+        for (int y = lo.y(); y <= hi.y(); ++y)
+            for (int z = lo.z(); z <= hi.z(); ++z) {
+                const Eigen::Vector3i c(x, y, z);
+                const Eigen::Vector3f d = (c.cast<float>().array() + 0.5f) * size_ - p.array();
+                if (d.squaredNorm() <= r2 && std::abs(d.dot(n)) <= band &&
+                    surface_.cells.count(key(c)))
+                    return true;
             }
     return false;
 }

@@ -51,14 +51,25 @@ void write_labels(const std::string& path, const std::vector<std::uint32_t>& lab
 
 void write_objects(const std::string& path, const Simulator& sim) {
     std::ofstream out = open_out(path);
-    out << "# id kind x y base_z yaw_deg length width height changed  (world frame, metres)\n";
+    out << "# id kind x y base_z yaw_deg length width height changed ground_z x" << kGroundSamples
+        << "  (world frame, metres; ground_z: the terrain's height on the footprint's long axis "
+           "from one end to the other, evenly spaced: a fence on a slope is sunk to its lowest "
+           "ground, base_z, and stands on higher ground elsewhere)\n";
     char line[256];
     for (const auto& o : sim.objects()) {
         const Eigen::Vector3d s = o.size.minCoeff() > 0 ? o.size : default_object_size(o.kind);
-        std::snprintf(line, sizeof line, "%u %s %.3f %.3f %.3f %.2f %.2f %.2f %.2f %d\n", o.id,
+        std::snprintf(line, sizeof line, "%u %s %.3f %.3f %.3f %.2f %.2f %.2f %.2f %d", o.id,
                       object_kind_name(o.kind), o.x, o.y, o.base_z, o.yaw * 180.0 / M_PI, s.x(),
                       s.y(), s.z(), sim.plan().is_changed(o.id) ? 1 : 0);
         out << line;
+        for (int k = 0; k < kGroundSamples; ++k) {
+            const double along = s.x() * (double(k) / double(kGroundSamples - 1) - 0.5);
+            const double z =
+                sim.terrain().height(o.x + std::cos(o.yaw) * along, o.y + std::sin(o.yaw) * along);
+            std::snprintf(line, sizeof line, " %.3f", z);
+            out << line;
+        }
+        out << "\n";
     }
     close_out(out, path);
 }

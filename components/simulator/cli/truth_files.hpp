@@ -12,7 +12,10 @@ namespace ltm::sim::cli {
 void write_identity_calib(const std::string& path);
 // One line a uint32 label, little-endian (SemanticKITTI layout).
 void write_labels(const std::string& path, const std::vector<std::uint32_t>& labels);
-// objects.txt: the session's static objects; changes.txt: what differs between sessions;
+// Terrain heights objects.txt gives along each object's long axis (its ends included).
+constexpr int kGroundSamples = 5;
+// objects.txt: the session's static objects (with the ground under each, kGroundSamples heights
+// along its long axis); changes.txt: what differs between sessions;
 // actors.txt: the moving actors; kidnaps.txt: output frames that follow an unseen move.
 void write_objects(const std::string& path, const Simulator& sim);
 void write_changes(const std::string& path, const Simulator& sim);
