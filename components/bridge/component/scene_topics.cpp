@@ -42,6 +42,10 @@ SceneConfig load_scene_config(runtime::Parameters& p) {
     c.cloud.max_points = static_cast<std::size_t>(
         p.get<int>("map_cloud.max_points", static_cast<int>(c.cloud.max_points)));
     c.cloud.leaf_m = p.get<double>("map_cloud.leaf_m", c.cloud.leaf_m);
+    const int kept = p.get<int>("map_cloud.max_kept_points", 0);  // 0: 4 x max_points
+    if (kept < 0 || kept > 20000000)
+        p.fail("map_cloud.max_kept_points", "must be 0 (4 x max_points) .. 20000000");
+    c.cloud.max_kept_points = static_cast<std::size_t>(kept);
     c.mesh = p.get<bool>("mesh_scene", c.mesh);
     if (!(c.rate_hz > 0.0 && c.rate_hz <= 10.0)) p.fail("map_cloud.rate_hz", "must be in (0, 10]");
     if (c.cloud.max_points < 1 || c.cloud.max_points > 2000000)
@@ -84,6 +88,7 @@ void SceneTopics::on_local_map(const msg::LocalMap& m) {
     const std::string frame = convert::to_string(m.header.frame_id);
     if (!frame.empty()) odom_frame_ = frame;
     cloud_.set_local_map(m.id, convert::to_isometry(m.anchor), std::move(points));
+    ctx_.report_memory("map cloud", cloud_.memory_bytes());
 }
 
 void SceneTopics::on_graph(const msg::PoseGraph& g) {

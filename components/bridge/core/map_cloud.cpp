@@ -82,9 +82,42 @@ std::vector<Eigen::Vector3f> decimate(const std::vector<Eigen::Vector3f>& points
 void MapCloud::set_local_map(std::uint64_t id, const Eigen::Isometry3d& T_odom_anchor,
                              std::vector<Eigen::Vector3f> points_anchor) {
     LocalMap& m = maps_[id];
+    kept_ -= m.points.size();
     m.T_odom_anchor = T_odom_anchor;
+    if (kept_leaf_ > 0.0) {
+        double leaf = kept_leaf_;  // never coarser: max_points is its point count
+        points_anchor =
+            decimate(points_anchor, std::max<std::size_t>(points_anchor.size(), 1), leaf);
+    }
     m.points = std::move(points_anchor);
+    m.points.shrink_to_fit();
+    kept_ += m.points.size();
     dirty_ = true;
+    bound();
+}
+
+void MapCloud::bound() {
+    const std::size_t cap = config_.max_kept_points > 0
+                                ? config_.max_kept_points
+                                : 4 * std::max<std::size_t>(config_.max_points, 1);
+    // (a leaf past 10 km keeps one point a map: nothing coarser helps)
+    while (kept_ > cap && kept_leaf_ < 1e4) {
+        kept_leaf_ = kept_leaf_ > 0.0 ? 1.25 * kept_leaf_ : config_.leaf_m;
+        kept_ = 0;
+        for (auto& [id, m] : maps_) {
+            double leaf = kept_leaf_;
+            m.points = decimate(m.points, std::max<std::size_t>(m.points.size(), 1), leaf);
+            m.points.shrink_to_fit();
+            kept_ += m.points.size();
+        }
+    }
+}
+
+std::size_t MapCloud::memory_bytes() const {
+    std::size_t n = 0;
+    for (const auto& [id, m] : maps_)
+        n += sizeof(LocalMap) + m.points.capacity() * sizeof(Eigen::Vector3f);
+    return n;
 }
 
 void MapCloud::set_graph(std::map<std::uint64_t, Eigen::Isometry3d> T_map_anchor) {

@@ -14,6 +14,11 @@ namespace ltm::bridge {
 struct MapCloudConfig {
     std::size_t max_points = 200000;  // the cloud sent never has more
     double leaf_m = 0.5;              // decimation grid [m]; coarser when the map needs it
+    // The local maps' points kept at most (0: 4 x max_points): past it every kept local map is
+    // decimated on a coarser grid (from leaf_m, a quarter coarser each time), and so are later
+    // ones. A robot's day adds local maps with its distance (a lap of a known route too): the
+    // points kept (12 B each) stay bounded, the view coarsens (issue 28).
+    std::size_t max_kept_points = 0;
 };
 
 // The centroid of the points in each cell of a `leaf_m` grid, growing the leaf until at most
@@ -50,6 +55,9 @@ class MapCloud {
     // Something changed since the last build().
     bool dirty() const { return dirty_; }
     std::size_t local_maps() const { return maps_.size(); }
+    std::size_t kept_points() const { return kept_; }
+    double kept_leaf_m() const { return kept_leaf_; }  // 0: kept as they came
+    std::size_t memory_bytes() const;
 
     struct Cloud {
         std::vector<Eigen::Vector3f> points;  // <= max_points
@@ -66,11 +74,15 @@ class MapCloud {
     };
     // T_map_odom from the newest local map the graph holds (for local maps it has not placed).
     Eigen::Isometry3d map_from_odom() const;
+    // Coarsens the kept local maps until at most max_kept_points are kept.
+    void bound();
 
     MapCloudConfig config_;
     std::map<std::uint64_t, LocalMap> maps_;
     std::map<std::uint64_t, Eigen::Isometry3d> graph_;
     bool dirty_ = false;
+    std::size_t kept_ = 0;    // points in maps_
+    double kept_leaf_ = 0.0;  // the grid the kept maps are decimated on (0: none)
     VoxelDecimator decimator_;
 };
 

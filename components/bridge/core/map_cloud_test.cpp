@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 
 namespace ltm::bridge {
@@ -77,6 +78,38 @@ TEST(MapCloud, OdometryFrameUntilAGraphThenTheGraphsAnchors) {
     cloud.set_local_map(2, shift(20, 0), {{3.f, 0.f, 0.f}, {4.f, 0.f, 0.f}});
     EXPECT_EQ(cloud.build().points.size(), 3u);
     EXPECT_EQ(cloud.local_maps(), 2u);
+}
+
+// A long day adds local maps with its distance (here 60 laps of one 20 m square, a map a lap):
+// the points kept stay within the bound, coarsened, and the cloud still covers every map.
+TEST(MapCloud, TheLocalMapsKeptStayWithinTheirBoundOverALongDay) {
+    MapCloudConfig config;
+    config.max_points = 1000;
+    config.leaf_m = 0.1;
+    MapCloud cloud(config);  // keeps at most 4000 points
+    std::vector<Eigen::Vector3f> lap;
+    for (int i = 0; i < 400; ++i)  // a 20 m wall every 5 cm, 1 m high at 4 heights
+        for (int h = 0; h < 4; ++h) lap.emplace_back(0.05f * float(i), 0.0f, 0.25f * float(h));
+    for (std::uint64_t id = 0; id < 60; ++id) {
+        cloud.set_local_map(id, shift(0.0, 0.0), lap);
+        ASSERT_LE(cloud.kept_points(), 4000u) << id;
+    }
+    EXPECT_GT(cloud.kept_leaf_m(), 0.1);
+    EXPECT_LE(cloud.memory_bytes(), 4000 * sizeof(Eigen::Vector3f) + 60 * 200);
+    const MapCloud::Cloud c = cloud.build();
+    ASSERT_FALSE(c.points.empty());
+    float lo = 1e9f, hi = -1e9f;
+    for (const Eigen::Vector3f& p : c.points) {
+        lo = std::min(lo, p.x());
+        hi = std::max(hi, p.x());
+    }
+    EXPECT_LT(lo, 1.5f);  // the wall's both ends are still drawn
+    EXPECT_GT(hi, 18.5f);
+    // Within the bound nothing is decimated: the first maps are kept as they came.
+    MapCloud small(config);
+    small.set_local_map(1, shift(0.0, 0.0), lap);
+    EXPECT_EQ(small.kept_points(), lap.size());
+    EXPECT_EQ(small.kept_leaf_m(), 0.0);
 }
 
 }  // namespace
