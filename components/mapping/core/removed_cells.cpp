@@ -100,23 +100,29 @@ bool RemovedCells::covers(const Eigen::Vector3f& p) const {
     return false;
 }
 
+template <class Keep>
+bool RemovedCells::any_within(const Set& set, const Eigen::Vector3f& p, float reach,
+                              Keep keep) const {
+    const Eigen::Vector3i lo = ((p.array() - reach) / size_).floor().cast<int>();
+    const Eigen::Vector3i hi = ((p.array() + reach) / size_).floor().cast<int>();
+    if (!set.may_hold(lo, hi)) return false;
+    const float r2 = reach * reach;
+    for (int x = lo.x(); x <= hi.x(); ++x)
+        for (int y = lo.y(); y <= hi.y(); ++y)
+            for (int z = lo.z(); z <= hi.z(); ++z) {
+                const Eigen::Vector3i c(x, y, z);
+                const Eigen::Vector3f d = (c.cast<float>().array() + 0.5f) * size_ - p.array();
+                if (d.squaredNorm() <= r2 && keep(d) && set.cells.count(key(c))) return true;
+            }
+    return false;
+}
+
 bool RemovedCells::covers(const Eigen::Vector3f& p, float radius) const {
     if (covers(p)) return true;
     if (!(radius > 0.0f) || all_.cells.empty() || !p.allFinite() ||
         p.cwiseAbs().maxCoeff() > 2.0e5f)
         return false;
-    const Eigen::Vector3i lo = ((p.array() - radius) / size_).floor().cast<int>();
-    const Eigen::Vector3i hi = ((p.array() + radius) / size_).floor().cast<int>();
-    if (!all_.may_hold(lo, hi)) return false;
-    const float r2 = radius * radius;
-    for (int x = lo.x(); x <= hi.x(); ++x)
-        for (int y = lo.y(); y <= hi.y(); ++y)
-            for (int z = lo.z(); z <= hi.z(); ++z) {
-                const Eigen::Vector3i c(x, y, z);
-                const Eigen::Vector3f centre = (c.cast<float>().array() + 0.5f) * size_;
-                if ((centre - p).squaredNorm() <= r2 && all_.cells.count(key(c))) return true;
-            }
-    return false;
+    return any_within(all_, p, radius, [](const Eigen::Vector3f&) { return true; });
 }
 
 bool RemovedCells::surface_near(const Eigen::Vector3f& p, const Eigen::Vector3f& n, float reach,
@@ -124,20 +130,8 @@ bool RemovedCells::surface_near(const Eigen::Vector3f& p, const Eigen::Vector3f&
     if (surface_.cells.empty() || !(reach > 0.0f) || !(band >= 0.0f) || !p.allFinite() ||
         !n.allFinite() || p.cwiseAbs().maxCoeff() > 2.0e5f)
         return false;
-    const Eigen::Vector3i lo = ((p.array() - reach) / size_).floor().cast<int>();
-    const Eigen::Vector3i hi = ((p.array() + reach) / size_).floor().cast<int>();
-    if (!surface_.may_hold(lo, hi)) return false;
-    const float r2 = reach * reach;
-    for (int x = lo.x(); x <= hi.x(); ++x)
-        for (int y = lo.y(); y <= hi.y(); ++y)
-            for (int z = lo.z(); z <= hi.z(); ++z) {
-                const Eigen::Vector3i c(x, y, z);
-                const Eigen::Vector3f d = (c.cast<float>().array() + 0.5f) * size_ - p.array();
-                if (d.squaredNorm() <= r2 && std::abs(d.dot(n)) <= band &&
-                    surface_.cells.count(key(c)))
-                    return true;
-            }
-    return false;
+    return any_within(surface_, p, reach,
+                      [&](const Eigen::Vector3f& d) { return std::abs(d.dot(n)) <= band; });
 }
 
 }  // namespace ltm::mapping

@@ -61,6 +61,10 @@ class RemovedCells {
     };
     static std::uint64_t key(const Eigen::Vector3i& c);
     static Eigen::Vector3i block(const Eigen::Vector3i& c);
+    // Whether a recorded cell of `set` whose centre lies within `reach` of p passes
+    // keep(centre - p) (p finite and in range, reach > 0: the callers check).
+    template <class Keep>
+    bool any_within(const Set& set, const Eigen::Vector3f& p, float reach, Keep keep) const;
     Eigen::Vector3i cell(const Eigen::Vector3f& p) const;
     std::size_t add_to(Set& set, const std::vector<Eigen::Vector3f>& centres, float cell_size);
 
