@@ -320,6 +320,10 @@ class Mapper {
     std::shared_ptr<const common::LocalMapData> without_removed(
         const common::LocalMapData& map, const Eigen::Isometry3d& T_world_anchor,
         std::size_t* removed) const;
+    // Of the `flat` voxels of `map` (world frame by T) marked in `drop`, those that are ground
+    // (MapEditConfig::ground_height) are unmarked.
+    void keep_ground(const common::LocalMapData& map, const Eigen::Isometry3f& T,
+                     const std::vector<std::size_t>& flat, std::vector<char>& drop) const;
     // True when the node's part is placed with the map's first session's (by loops or fixes).
     bool on_reference_part(std::uint64_t node) const;
     // The map's first session: the lowest with nodes (a loaded map's first, or the default).

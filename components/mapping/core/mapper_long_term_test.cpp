@@ -494,6 +494,61 @@ TEST(MapperLongTerm, AVanishedObjectsCellsTakeTheVoxelsOnItsSurfaceWithinAVoxelE
     EXPECT_EQ(without.remove_cells(car, 0.25f, {car}), 0u);
 }
 
+// Ground stays (MapEditConfig::ground_height, long_day: two thirds of the static voxels lost were
+// ground): a pedestrian who left, whose lowest removed cell holds the ground's points under its
+// feet, takes its own voxels but not the ground voxel beside its feet; a car's roof (flat, 1.5 m
+// above the ground around) still goes. Off (ground_height 0), the ground voxel goes as before.
+TEST(MapperLongTerm, RemovedCellsLeaveTheGroundUnderAnObjectsFeet) {
+    common::LocalMapData m;
+    m.id = 0;
+    m.revision = 1;
+    m.finished = true;
+    m.voxel_size = 0.6f;
+    m.bbox_min = Eigen::Vector3d(0.0, -5.0, -1.0);
+    m.bbox_max = Eigen::Vector3d(12.0, 5.0, 3.0);
+    const auto voxel = [&](const Eigen::Vector3f& c, const Eigen::Vector3f& n) {
+        common::VoxelData v;
+        v.index = (c / m.voxel_size).array().floor().cast<int>();
+        v.centre = c;
+        v.normal = n;
+        v.point_count = 40;
+        v.planarity = 0.95f;
+        m.voxels.push_back(v);
+    };
+    // Ground at z 0 over x 0-12, y -3..3 (one voxel a 0.6 m cell).
+    for (float x = 0.3f; x < 12.0f; x += 0.6f)
+        for (float y = -2.7f; y < 3.0f; y += 0.6f)
+            voxel(Eigen::Vector3f(x, y, 0.0f), Eigen::Vector3f::UnitZ());
+    const Eigen::Vector3f feet_ground(6.3f, 0.3f, 0.0f), body(6.2f, 0.25f, 0.9f),
+        roof(9.9f, 0.3f, 1.5f);
+    voxel(body, Eigen::Vector3f::UnitX());
+    voxel(roof, Eigen::Vector3f::UnitZ());
+    // The pedestrian's cells (0.25 m) from the ground's cell up, the roof's cell.
+    std::vector<Eigen::Vector3f> cells;
+    for (float z = 0.125f; z < 1.8f; z += 0.25f) cells.emplace_back(6.375f, 0.375f, z);
+    cells.emplace_back(9.875f, 0.375f, 1.375f);
+    const Eigen::AlignedBox3f all(Eigen::Vector3f(-5.0f, -5.0f, -5.0f),
+                                  Eigen::Vector3f(15.0f, 5.0f, 5.0f));
+    const auto has = [&](const Mapper& mapper, const Eigen::Vector3f& p) {
+        const std::vector<Eigen::Vector3f> v = voxels_in(mapper, all);
+        return std::any_of(v.begin(), v.end(),
+                           [&](const auto& q) { return (q - p).norm() < 1e-3f; });
+    };
+    Mapper guarded(test_config());
+    ASSERT_TRUE(guarded.add_local_map(m).added);
+    EXPECT_EQ(guarded.remove_cells(cells, 0.25f), 2u);
+    EXPECT_FALSE(has(guarded, body));
+    EXPECT_FALSE(has(guarded, roof));
+    EXPECT_TRUE(has(guarded, feet_ground));
+    EXPECT_EQ(voxels_in(guarded, all).size(), m.voxels.size() - 2);
+    MapperConfig off = test_config();
+    off.map_edits.ground_height = 0.0;
+    Mapper unguarded(off);
+    ASSERT_TRUE(unguarded.add_local_map(m).added);
+    EXPECT_EQ(unguarded.remove_cells(cells, 0.25f), 3u);
+    EXPECT_FALSE(has(unguarded, feet_ground));
+}
+
 // The same edits in steps (issue 28: spread over the mapping's thread, one local map a step)
 // end as the edits at once: the same voxels left, the same count; until then the maps not yet
 // cleared still hold theirs, and a map that arrives meanwhile is cleared as it arrives.

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <unordered_map>
 
 #include "mapping/core/mapper.hpp"
 
@@ -14,6 +15,10 @@ namespace ltm::mapping {
 namespace {
 
 double angle_deg(const Eigen::Matrix3d& R) { return Eigen::AngleAxisd(R).angle() * 180.0 / M_PI; }
+
+std::uint64_t column_key(int x, int y) {
+    return (std::uint64_t(std::uint32_t(x)) << 32) | std::uint64_t(std::uint32_t(y));
+}
 
 }  // namespace
 
@@ -113,6 +118,41 @@ MapFixResult Mapper::add_map_fix(std::uint32_t session, std::uint64_t local_map_
     return r;
 }
 
+// The ground guard (MapEditConfig::ground_height): of the `flat` voxels (dropped, on a
+// near-horizontal plane), those within ground_height of the lowest voxel centre within
+// ground_reach are ground and stay. Columns of 1 m; a voxel's lowest is looked for in the columns
+// whose cells lie within ground_reach of its own.
+void Mapper::keep_ground(const common::LocalMapData& map, const Eigen::Isometry3f& T,
+                         const std::vector<std::size_t>& flat, std::vector<char>& drop) const {
+    constexpr float kColumn = 1.0f;
+    const auto column = [&](const Eigen::Vector3f& p) {
+        return Eigen::Vector2i(int(std::floor(p.x() / kColumn)), int(std::floor(p.y() / kColumn)));
+    };
+    std::unordered_map<std::uint64_t, float> lowest;
+    lowest.reserve(map.voxels.size() / 2);
+    for (const common::VoxelData& v : map.voxels) {
+        const Eigen::Vector3f p = T * v.centre;
+        if (!p.allFinite()) continue;
+        const Eigen::Vector2i c = column(p);
+        auto [it, added] = lowest.emplace(column_key(c.x(), c.y()), p.z());
+        if (!added) it->second = std::min(it->second, p.z());
+    }
+    const MapEditConfig& edits = config_.map_edits;
+    const int r = int(std::ceil(edits.ground_reach / kColumn));
+    for (const std::size_t i : flat) {
+        const Eigen::Vector3f p = T * map.voxels[i].centre;
+        const Eigen::Vector2i c = column(p);
+        float low = std::numeric_limits<float>::infinity();
+        for (int dx = -r; dx <= r; ++dx) {
+            for (int dy = -r; dy <= r; ++dy) {
+                const auto it = lowest.find(column_key(c.x() + dx, c.y() + dy));
+                if (it != lowest.end()) low = std::min(low, it->second);
+            }
+        }
+        if (p.z() - low <= float(edits.ground_height)) drop[i] = 0;
+    }
+}
+
 std::shared_ptr<const common::LocalMapData> Mapper::without_removed(
     const common::LocalMapData& map, const Eigen::Isometry3d& T_world_anchor,
     std::size_t* removed) const {
@@ -127,20 +167,24 @@ std::shared_ptr<const common::LocalMapData> Mapper::without_removed(
     const bool surfaces = edits.surface_band > 0.0 && !removed_.surfaces_empty();
     const float max_nz = float(std::cos(edits.surface_min_tilt * M_PI / 180.0));
     std::vector<char> drop(map.voxels.size(), 0);
+    std::vector<std::size_t> flat;  // dropped voxels on a near-horizontal plane: ground?
     for (std::size_t i = 0; i < map.voxels.size(); ++i) {
         const common::VoxelData& v = map.voxels[i];
         const Eigen::Vector3f p = T * v.centre;
+        const bool planar = v.normal.squaredNorm() > 0.5f;
+        const Eigen::Vector3f n = planar ? Eigen::Vector3f((T.linear() * v.normal).normalized())
+                                         : Eigen::Vector3f::Zero();
         bool gone = removed_.covers(p, reach);
-        if (!gone && surfaces && v.normal.squaredNorm() > 0.5f) {
-            const Eigen::Vector3f n = (T.linear() * v.normal).normalized();
+        if (!gone && surfaces && planar)
             gone = std::abs(n.z()) < max_nz &&
                    removed_.surface_near(p, n, map.voxel_size, float(edits.surface_band));
-        }
         if (gone) {
             drop[i] = 1;
-            ++*removed;
+            if (planar && std::abs(n.z()) >= max_nz) flat.push_back(i);
         }
     }
+    if (edits.ground_height > 0.0 && !flat.empty()) keep_ground(map, T, flat, drop);
+    *removed = static_cast<std::size_t>(std::count(drop.begin(), drop.end(), char(1)));
     if (*removed == 0) return nullptr;
     auto out = std::make_shared<common::LocalMapData>();
     out->id = map.id;
