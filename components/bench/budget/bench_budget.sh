@@ -201,12 +201,28 @@ component_lines() {
       echo '```'; } >> "$2"
 }
 
+# shutdown_at HOSTLOG SAMPLES: the wall-clock time (epoch seconds) the host began its shutdown
+# (every source finished), its log's local time of day on the samples' first day; nothing if it
+# did not say so.
+shutdown_at() {
+    local hms first day t
+    hms="$(grep -m1 -E '\[host\] every source finished' "$1" | cut -d' ' -f1)"
+    first="$(awk '$1=="s"{print int($2); exit}' "$2" 2>/dev/null)"
+    [ -n "$hms" ] && [ -n "$first" ] || return 0
+    day="$(date -d "@$first" +%F)" || return 0
+    t="$(date -d "$day $hms" +%s.%N 2>/dev/null)" || return 0
+    # (a run over midnight: the shutdown is on the next day)
+    awk -v t="$t" -v f="$first" 'BEGIN{ if (t + 0 < f + 0) t += 86400; printf "%.3f\n", t }'
+}
+
 report_lifelong_day() {  # DAY SESSION
     local day="$1" dir="$OUT/lifelong/day$1"
     [ -f "$dir/samples.txt" ] || { echo "  no $dir/samples.txt: day $day did not run"; return; }
+    local stop; stop="$(shutdown_at "$dir/host.log" "$dir/samples.txt")"
     "$BIN/ltm_budget" report --host "robot:$dir/samples.txt:$dir/launch.yaml" --probe "$dir/probe.csv" \
         --published "$(published "$dir/host.log")" --out "$dir" --with-pose \
         --target-share "$(target_share "$dir")" \
+        ${stop:+--mission-end "$stop"} \
         --title "robot_lifelong.yaml, $NAME session $2 (day $day), $(sensor_name "$dir") at 10 Hz" \
         --note "$(cat "$dir/load.txt" 2>/dev/null)" > /dev/null || echo "  report failed: see above"
     component_lines "$dir/host.log" "$dir/report.md"
@@ -258,15 +274,16 @@ base_dir() { if [ "$1" = 1 ]; then echo "$OUT/base_station"; else echo "$OUT/bas
 base_yaml() { if [ "$1" = 1 ]; then echo base_station.yaml; else echo base_station_multi.yaml; fi; }
 
 report_base_station() {  # ROBOTS
-    local n="$1" dir base i h
+    local n="$1" dir base i h stop
     dir="$(base_dir "$n")"; base="$(base_yaml "$n")"
     for ((i = 1; i <= n; ++i)); do
         h="robot$i"
         [ -f "$dir/$h/samples.txt" ] || { echo "  no $dir/$h/samples.txt: did not run"; continue; }
+        stop="$(shutdown_at "$dir/$h/host.log" "$dir/$h/samples.txt")"
         "$BIN/ltm_budget" report --host "$h:$dir/$h/samples.txt:$dir/$h/launch.yaml" \
             --host "base:$dir/base/samples.txt:$ROOT/launch_configs/$base" --probe "$dir/$h/probe.csv" \
             --published "$(published "$dir/$h/host.log")" --out "$dir/$h" \
-            --target-share "$(target_share "$dir/$h")" \
+            --target-share "$(target_share "$dir/$h")" ${stop:+--mission-end "$stop"} \
             --title "$base with $n robot(s): $h's host and the base station's, $(sensor_name "$dir/$h") at 10 Hz" \
             --note "$(cat "$dir/load.txt" 2>/dev/null)" > /dev/null || echo "  report failed: see above"
         component_lines "$dir/$h/host.log" "$dir/$h/report.md"

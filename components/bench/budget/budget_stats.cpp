@@ -240,4 +240,23 @@ Delivery match_next_update(const std::vector<ProbeRecord>& scans,
     return d;
 }
 
+MissionSpan mission_span(double first_sample, double last_sample,
+                         const std::vector<ProbeRecord>& scans, double shutdown) {
+    MissionSpan m{first_sample, last_sample, false};
+    if (!scans.empty()) {
+        double first = scans.front().sent, last = scans.front().sent;
+        for (const auto& s : scans) {
+            first = std::min(first, s.sent);
+            last = std::max(last, s.sent);
+        }
+        m.t0 = std::max(m.t0, first);
+        m.t1 = std::min(m.t1, last + 1.0);
+    }
+    if (shutdown > m.t0 && shutdown < m.t1) {
+        m.t1 = shutdown;
+        m.ends_at_shutdown = true;
+    }
+    return m;
+}
+
 }  // namespace ltm::bench

@@ -62,6 +62,17 @@ struct ProbeRecord {
 std::vector<ProbeRecord> read_probe(std::istream& in);  // throws std::runtime_error
 std::vector<ProbeRecord> of_topic(const std::vector<ProbeRecord>& all, const std::string& topic);
 
+// The span the targets name: from the first scan's publish to the last's + 1 s (its processing),
+// within the host's samples [first_sample, last_sample]; it ends sooner at `shutdown` (wall clock,
+// s; 0: unknown) when the host began its shutdown before that (the end-of-session pass and the
+// saves are the stop, not the mission). Without scans: the samples' span.
+struct MissionSpan {
+    double t0 = 0, t1 = 0;
+    bool ends_at_shutdown = false;
+};
+MissionSpan mission_span(double first_sample, double last_sample,
+                         const std::vector<ProbeRecord>& scans, double shutdown);
+
 struct Delivery {
     std::size_t scans = 0;          // scans the probe saw published
     std::size_t missing = 0;        // with no output for them

@@ -252,6 +252,29 @@ TEST(BudgetStatsTest, MatchesScansWithPosesAndMapUpdates) {
     EXPECT_THROW(read_probe(bad), std::runtime_error);
 }
 
+// The mission span: first scan .. last + 1 s within the samples; the host's shutdown ends it when
+// it began sooner (the end-of-session pass and the saves are the stop), never later or earlier
+// than the first scan.
+TEST(BudgetStatsTest, TheMissionSpanEndsAtTheShutdownWhenItBeganBeforeTheLastScanPlusOneSecond) {
+    std::vector<ProbeRecord> scans;
+    for (int i = 0; i < 11; ++i) scans.push_back({"points", 100.0 + 0.1 * i, 1000.0 + 0.1 * i, 0});
+    const MissionSpan plain = mission_span(995.0, 1010.0, scans, 0.0);
+    EXPECT_DOUBLE_EQ(plain.t0, 1000.0);
+    EXPECT_DOUBLE_EQ(plain.t1, 1002.0);
+    EXPECT_FALSE(plain.ends_at_shutdown);
+    const MissionSpan stop = mission_span(995.0, 1010.0, scans, 1001.3);
+    EXPECT_DOUBLE_EQ(stop.t1, 1001.3);
+    EXPECT_TRUE(stop.ends_at_shutdown);
+    // A shutdown after last + 1 s, or before the first scan (a clock off): the span as before.
+    EXPECT_FALSE(mission_span(995.0, 1010.0, scans, 1003.0).ends_at_shutdown);
+    EXPECT_DOUBLE_EQ(mission_span(995.0, 1010.0, scans, 999.0).t1, 1002.0);
+    // The samples bound it; no scans: the samples' span.
+    EXPECT_DOUBLE_EQ(mission_span(995.0, 1001.5, scans, 0.0).t1, 1001.5);
+    const MissionSpan none = mission_span(995.0, 1010.0, {}, 0.0);
+    EXPECT_DOUBLE_EQ(none.t0, 995.0);
+    EXPECT_DOUBLE_EQ(none.t1, 1010.0);
+}
+
 TEST(CdrStampTest, ReadsTheHeaderStampInEitherByteOrder) {
     const std::uint8_t le[] = {0, 1, 0, 0, 0x10, 0, 0, 0, 0x00, 0x65, 0xCD, 0x1D};  // 16 s + 0.5 s
     EXPECT_NEAR(*cdr_header_stamp(le, sizeof le), 16.5, 1e-9);

@@ -68,14 +68,16 @@ struct Targets {
 
 std::string verdict(bool ok) { return ok ? "meets" : "MISSES"; }
 
-void report_host(std::ostream& out, const HostRun& h, double t0, double t1, std::size_t scans,
-                 const Targets& targets, bool is_robot) {
+void report_host(std::ostream& out, const HostRun& h, double t0, double t1, bool ends_at_stop,
+                 std::size_t scans, const Targets& targets, bool is_robot) {
     const auto series = cpu_by_owner(h.log, h.components);
     const CpuSeries& process = series.at("process");
     const double span = t1 - t0;
     out << "\n## host " << h.label << "\n\n";
-    out << "mission span " << fmt("%.1f", span) << " s (first scan published .. last + 1 s), "
-        << scans << " scans; whole run "
+    out << "mission span " << fmt("%.1f", span) << " s (first scan published .. "
+        << (ends_at_stop ? "the host's shutdown, which began within 1 s of the last scan"
+                         : "last + 1 s")
+        << "), " << scans << " scans; whole run "
         << fmt("%.1f", h.log.samples.back().t - h.log.samples.front().t)
         << " s (start-up and final saves included)\n\n";
     out << "| component / thread | CPU in span [s] | ms a scan | share of one core avg | worst 1 s "
@@ -189,7 +191,7 @@ void report_latency(std::ostream& out, const std::vector<ProbeRecord>& probe,
 
 int report(const std::vector<std::string>& hosts, const std::string& probe_path,
            const std::string& out_dir, const std::string& title, std::size_t published,
-           const std::string& note, bool with_pose, double target_share) {
+           const std::string& note, bool with_pose, double target_share, double mission_end) {
     std::vector<HostRun> runs;
     for (const auto& spec : hosts) {
         const auto a = spec.find(':'), b = spec.find(':', a + 1);
@@ -217,17 +219,11 @@ int report(const std::vector<std::string>& hosts, const std::string& probe_path,
     out << "# " << title << "\n\n" << note << "\n";
     for (std::size_t i = 0; i < runs.size(); ++i) {
         const auto& h = runs[i];
-        double t0 = h.log.samples.front().t, t1 = h.log.samples.back().t;
-        if (!scans.empty()) {
-            double first = scans.front().sent, last = scans.front().sent;
-            for (const auto& s : scans) {
-                first = std::min(first, s.sent);
-                last = std::max(last, s.sent);
-            }
-            t0 = std::max(t0, first);
-            t1 = std::min(t1, last + 1.0);
-        }
-        report_host(out, h, t0, t1, scans.size(), targets, i == 0);
+        // The robot's host: its shutdown, when it began before the last scan + 1 s, ends the
+        // mission (the whole run's worst second still shows the stop).
+        const MissionSpan m = mission_span(h.log.samples.front().t, h.log.samples.back().t, scans,
+                                           i == 0 ? mission_end : 0.0);
+        report_host(out, h, m.t0, m.t1, m.ends_at_shutdown, scans.size(), targets, i == 0);
     }
     if (!probe.empty()) report_latency(out, probe, targets, published, with_pose);
     std::vector<MemoryCurve> curves;
@@ -262,7 +258,7 @@ int main(int argc, char** argv) {
     double interval = 0.1;
     std::string out, in, replace, scans, probe_file, pose_topic, title = "ltm budget", note,
                                                                  presets_of;
-    double target_share = 0.5;
+    double target_share = 0.5, mission_end = 0.0;
     std::vector<std::string> hosts, probe_inputs;
     int readers = 1;
     bool with_pose = false;
@@ -297,6 +293,10 @@ int main(int argc, char** argv) {
                     "the average share of one core the robot's host may use (issue 28: 0.5 on a "
                     "VLP-32C, 1 on a 64-beam sensor)")
         ->check(cli::positive());
+    rep->add_option("--mission-end", mission_end,
+                    "[s] wall clock (epoch) when the robot's host began its shutdown: the mission "
+                    "span ends there if before the last scan + 1 s")
+        ->check(cli::at_least(0.0));
     rep->add_flag("--with-pose", with_pose,
                   "a localisation runs: report its map poses even if none came");
     if (const int code = cli::parse(app, argc, argv); code >= 0) return code;
@@ -327,7 +327,8 @@ int main(int argc, char** argv) {
             return 0;
         }
         if (*rep)
-            return report(hosts, probe_file, out, title, published, note, with_pose, target_share);
+            return report(hosts, probe_file, out, title, published, note, with_pose, target_share,
+                          mission_end);
     } catch (const cli::UsageError& e) {
         return cli::usage_error(app, e);
     } catch (const std::exception& e) {
