@@ -385,6 +385,38 @@ std::vector<Eigen::Vector3f> voxels_in(const Mapper& m, const Eigen::AlignedBox3
     return out;
 }
 
+// A finished local map (id 0, revision 1) of 0.6 m voxels in the world frame, none yet.
+common::LocalMapData finished_local_map(const Eigen::Vector3d& bbox_min,
+                                        const Eigen::Vector3d& bbox_max) {
+    common::LocalMapData m;
+    m.id = 0;
+    m.revision = 1;
+    m.finished = true;
+    m.voxel_size = 0.6f;
+    m.bbox_min = bbox_min;
+    m.bbox_max = bbox_max;
+    return m;
+}
+
+// A voxel of 60 points on a plane through c with normal n.
+void add_planar_voxel(common::LocalMapData& m, const Eigen::Vector3f& c, const Eigen::Vector3f& n) {
+    common::VoxelData v;
+    v.index = (c / m.voxel_size).array().floor().cast<int>();
+    v.centre = c;
+    v.normal = n;
+    v.point_count = 60;
+    v.planarity = 0.97f;
+    m.voxels.push_back(v);
+}
+
+// Whether the mapper's local maps hold a voxel centred at p (within 1 mm).
+bool has_voxel(const Mapper& mapper, const Eigen::Vector3f& p) {
+    const Eigen::AlignedBox3f all(Eigen::Vector3f::Constant(-100.0f),
+                                  Eigen::Vector3f::Constant(100.0f));
+    const std::vector<Eigen::Vector3f> v = voxels_in(mapper, all);
+    return std::any_of(v.begin(), v.end(), [&](const auto& q) { return (q - p).norm() < 1e-3f; });
+}
+
 // What maintenance found gone leaves every local map, and local maps that arrive later, until a
 // new object is found there.
 TEST(MapperLongTerm, RemovedCellsLeaveTheLocalMapsNowAndLater) {
@@ -436,21 +468,10 @@ TEST(MapperLongTerm, RemovedCellsLeaveTheLocalMapsNowAndLater) {
 // map_edits.surface_min_cells cells leave it, as before (only cells within half its edge took a
 // voxel). A snapshot of the map that arrives later is cleared the same way.
 TEST(MapperLongTerm, AVanishedObjectsCellsTakeTheVoxelsOnItsSurfaceWithinAVoxelEdge) {
-    common::LocalMapData m;
-    m.id = 0;
-    m.revision = 1;
-    m.finished = true;
-    m.voxel_size = 0.6f;
-    m.bbox_min = Eigen::Vector3d(8.0, -2.0, -2.0);
-    m.bbox_max = Eigen::Vector3d(12.0, 4.0, 3.0);
+    common::LocalMapData m =
+        finished_local_map(Eigen::Vector3d(8.0, -2.0, -2.0), Eigen::Vector3d(12.0, 4.0, 3.0));
     const auto voxel = [&](const Eigen::Vector3f& c, const Eigen::Vector3f& n) {
-        common::VoxelData v;
-        v.index = (c / m.voxel_size).array().floor().cast<int>();
-        v.centre = c;
-        v.normal = n;
-        v.point_count = 60;
-        v.planarity = 0.97f;
-        m.voxels.push_back(v);
+        add_planar_voxel(m, c, n);
     };
     const Eigen::Vector3f side_low(10.05f, 0.3f, 0.3f), ground(9.9f, 0.3f, -0.28f),
         wall(10.45f, 0.3f, 0.3f), side_far(10.05f, 1.8f, 0.3f);
@@ -463,29 +484,22 @@ TEST(MapperLongTerm, AVanishedObjectsCellsTakeTheVoxelsOnItsSurfaceWithinAVoxelE
     for (float y = 0.05f; y < 1.0f; y += 0.25f)
         for (float z = 0.8f; z < 1.5f; z += 0.25f) car.emplace_back(10.05f, y, z);
     ASSERT_GE(car.size(), 10u);
-    const Eigen::AlignedBox3f all(Eigen::Vector3f(5.0f, -5.0f, -5.0f),
-                                  Eigen::Vector3f(15.0f, 5.0f, 5.0f));
-    const auto has = [&](const Mapper& mapper, const Eigen::Vector3f& p) {
-        const std::vector<Eigen::Vector3f> v = voxels_in(mapper, all);
-        return std::any_of(v.begin(), v.end(),
-                           [&](const auto& q) { return (q - p).norm() < 1e-3f; });
-    };
     Mapper vanished(test_config()), moving(test_config()), small(test_config());
     for (Mapper* mapper : {&vanished, &moving, &small}) ASSERT_TRUE(mapper->add_local_map(m).added);
     EXPECT_EQ(vanished.remove_cells(car, 0.25f, {car}), 1u);
-    EXPECT_FALSE(has(vanished, side_low));
+    EXPECT_FALSE(has_voxel(vanished, side_low));
     for (const Eigen::Vector3f& p : {ground, wall, side_far})
-        EXPECT_TRUE(has(vanished, p)) << p.transpose();
+        EXPECT_TRUE(has_voxel(vanished, p)) << p.transpose();
     EXPECT_EQ(moving.remove_cells(car, 0.25f), 0u);
-    EXPECT_TRUE(has(moving, side_low));
+    EXPECT_TRUE(has_voxel(moving, side_low));
     const std::vector<Eigen::Vector3f> few(car.begin(), car.begin() + 4);
     EXPECT_EQ(small.remove_cells(car, 0.25f, {few}), 0u);
-    EXPECT_TRUE(has(small, side_low));
+    EXPECT_TRUE(has_voxel(small, side_low));
     common::LocalMapData again = m;  // a newer snapshot holds it again
     again.revision = 2;
     ASSERT_TRUE(vanished.add_local_map(again).added);
-    EXPECT_FALSE(has(vanished, side_low));
-    EXPECT_TRUE(has(vanished, wall));
+    EXPECT_FALSE(has_voxel(vanished, side_low));
+    EXPECT_TRUE(has_voxel(vanished, wall));
     // Off (surface_band 0): as before.
     MapperConfig off = test_config();
     off.map_edits.surface_band = 0.0;
@@ -499,21 +513,10 @@ TEST(MapperLongTerm, AVanishedObjectsCellsTakeTheVoxelsOnItsSurfaceWithinAVoxelE
 // feet, takes its own voxels but not the ground voxel beside its feet; a car's roof (flat, 1.5 m
 // above the ground around) still goes. Off (ground_height 0), the ground voxel goes as before.
 TEST(MapperLongTerm, RemovedCellsLeaveTheGroundUnderAnObjectsFeet) {
-    common::LocalMapData m;
-    m.id = 0;
-    m.revision = 1;
-    m.finished = true;
-    m.voxel_size = 0.6f;
-    m.bbox_min = Eigen::Vector3d(0.0, -5.0, -1.0);
-    m.bbox_max = Eigen::Vector3d(12.0, 5.0, 3.0);
+    common::LocalMapData m =
+        finished_local_map(Eigen::Vector3d(0.0, -5.0, -1.0), Eigen::Vector3d(12.0, 5.0, 3.0));
     const auto voxel = [&](const Eigen::Vector3f& c, const Eigen::Vector3f& n) {
-        common::VoxelData v;
-        v.index = (c / m.voxel_size).array().floor().cast<int>();
-        v.centre = c;
-        v.normal = n;
-        v.point_count = 40;
-        v.planarity = 0.95f;
-        m.voxels.push_back(v);
+        add_planar_voxel(m, c, n);
     };
     // Ground at z 0 over x 0-12, y -3..3 (one voxel a 0.6 m cell).
     for (float x = 0.3f; x < 12.0f; x += 0.6f)
@@ -527,26 +530,21 @@ TEST(MapperLongTerm, RemovedCellsLeaveTheGroundUnderAnObjectsFeet) {
     std::vector<Eigen::Vector3f> cells;
     for (float z = 0.125f; z < 1.8f; z += 0.25f) cells.emplace_back(6.375f, 0.375f, z);
     cells.emplace_back(9.875f, 0.375f, 1.375f);
-    const Eigen::AlignedBox3f all(Eigen::Vector3f(-5.0f, -5.0f, -5.0f),
-                                  Eigen::Vector3f(15.0f, 5.0f, 5.0f));
-    const auto has = [&](const Mapper& mapper, const Eigen::Vector3f& p) {
-        const std::vector<Eigen::Vector3f> v = voxels_in(mapper, all);
-        return std::any_of(v.begin(), v.end(),
-                           [&](const auto& q) { return (q - p).norm() < 1e-3f; });
-    };
+    const Eigen::AlignedBox3f all(Eigen::Vector3f(-100.0f, -100.0f, -100.0f),
+                                  Eigen::Vector3f(100.0f, 100.0f, 100.0f));
     Mapper guarded(test_config());
     ASSERT_TRUE(guarded.add_local_map(m).added);
     EXPECT_EQ(guarded.remove_cells(cells, 0.25f), 2u);
-    EXPECT_FALSE(has(guarded, body));
-    EXPECT_FALSE(has(guarded, roof));
-    EXPECT_TRUE(has(guarded, feet_ground));
+    EXPECT_FALSE(has_voxel(guarded, body));
+    EXPECT_FALSE(has_voxel(guarded, roof));
+    EXPECT_TRUE(has_voxel(guarded, feet_ground));
     EXPECT_EQ(voxels_in(guarded, all).size(), m.voxels.size() - 2);
     MapperConfig off = test_config();
     off.map_edits.ground_height = 0.0;
     Mapper unguarded(off);
     ASSERT_TRUE(unguarded.add_local_map(m).added);
     EXPECT_EQ(unguarded.remove_cells(cells, 0.25f), 3u);
-    EXPECT_FALSE(has(unguarded, feet_ground));
+    EXPECT_FALSE(has_voxel(unguarded, feet_ground));
 }
 
 // The same edits in steps (issue 28: spread over the mapping's thread, one local map a step)
