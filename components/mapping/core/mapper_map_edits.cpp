@@ -7,18 +7,14 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
-#include <unordered_map>
 
+#include "common/core/column_floor.hpp"
 #include "mapping/core/mapper.hpp"
 
 namespace ltm::mapping {
 namespace {
 
 double angle_deg(const Eigen::Matrix3d& R) { return Eigen::AngleAxisd(R).angle() * 180.0 / M_PI; }
-
-std::uint64_t column_key(int x, int y) {
-    return (std::uint64_t(std::uint32_t(x)) << 32) | std::uint64_t(std::uint32_t(y));
-}
 
 }  // namespace
 
@@ -125,31 +121,13 @@ MapFixResult Mapper::add_map_fix(std::uint32_t session, std::uint64_t local_map_
 void Mapper::keep_ground(const common::LocalMapData& map, const Eigen::Isometry3f& T,
                          const std::vector<std::size_t>& flat, std::vector<char>& drop) const {
     constexpr float kColumn = 1.0f;
-    const auto column = [&](const Eigen::Vector3f& p) {
-        return Eigen::Vector2i(int(std::floor(p.x() / kColumn)), int(std::floor(p.y() / kColumn)));
-    };
-    std::unordered_map<std::uint64_t, float> lowest;
-    lowest.reserve(map.voxels.size() / 2);
-    for (const common::VoxelData& v : map.voxels) {
-        const Eigen::Vector3f p = T * v.centre;
-        if (!p.allFinite()) continue;
-        const Eigen::Vector2i c = column(p);
-        auto [it, added] = lowest.emplace(column_key(c.x(), c.y()), p.z());
-        if (!added) it->second = std::min(it->second, p.z());
-    }
+    common::ColumnFloor floor(kColumn, map.voxels.size() / 2);
+    for (const common::VoxelData& v : map.voxels) floor.add(T * v.centre);
     const MapEditConfig& edits = config_.map_edits;
-    const int r = int(std::ceil(edits.ground_reach / kColumn));
+    const int cells = int(std::ceil(edits.ground_reach / kColumn));
     for (const std::size_t i : flat) {
         const Eigen::Vector3f p = T * map.voxels[i].centre;
-        const Eigen::Vector2i c = column(p);
-        float low = std::numeric_limits<float>::infinity();
-        for (int dx = -r; dx <= r; ++dx) {
-            for (int dy = -r; dy <= r; ++dy) {
-                const auto it = lowest.find(column_key(c.x() + dx, c.y() + dy));
-                if (it != lowest.end()) low = std::min(low, it->second);
-            }
-        }
-        if (p.z() - low <= float(edits.ground_height)) drop[i] = 0;
+        if (p.z() - floor.lowest_around(p, cells) <= float(edits.ground_height)) drop[i] = 0;
     }
 }
 
